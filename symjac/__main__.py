@@ -1,0 +1,5 @@
+import sys
+
+from symjac.cli import main
+
+sys.exit(main())

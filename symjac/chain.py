@@ -1,0 +1,225 @@
+r"""Forward kinematics of a robot, derived once and cached: :math:`{}^a_bT` between any two frames.
+
+Frames are named by :data:`Frame` values: ``"world"`` (before the base transform), ``0 .. n`` (the DH frames) and
+``"tool"`` (after the tool transform). Without a base transform ``"world"`` coincides with {0}; without a tool
+transform ``"tool"`` coincides with {n}.
+
+Transforms are built with :func:`symjac.transforms.compose` from the elementary motions of the links, so parallel
+joints already appear as angle sums. :meth:`Chain.transform` returns these raw structured products (what the
+Jacobian methods and code generation start from); :meth:`Chain.simplified_transform` lays them out for people.
+"""
+
+from __future__ import annotations
+
+from functools import cache, cached_property
+from typing import Literal
+
+import sympy as sp
+
+from symjac.errors import FrameError
+from symjac.model import Robot
+from symjac.simplify import AngleBasis, simplify_matrix
+from symjac.transforms import Motion, compose, dh_motions, homogeneous, inverse_motions, inverse_transform
+
+Frame = int | Literal["world", "tool"]
+
+__all__ = ["Chain", "Frame", "chain_of", "forward_kinematics"]
+
+
+class Chain:
+    """Symbolic kinematics of one :class:`~symjac.model.Robot`; every derived quantity is computed once.
+
+    Prefer :func:`chain_of`, which also caches the chain per robot.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> chain = Chain(load_robot("planar2r"))
+    >>> chain.simplified_transform(0, 2)[:2, 3]
+    Matrix([
+    [L1*cos(theta1) + L2*cos(theta1 + theta2)],
+    [L1*sin(theta1) + L2*sin(theta1 + theta2)]])
+    """
+
+    def __init__(self, robot: Robot):
+        self.robot = robot
+        self._transforms: dict[tuple[int, int], sp.ImmutableMatrix] = {}
+        self._simplified: dict[tuple[int, int], sp.ImmutableMatrix] = {}
+
+    # --- frames ------------------------------------------------------------------------------------------
+
+    @property
+    def n(self) -> int:
+        """Number of joints."""
+        return self.robot.dof
+
+    def position(self, frame: Frame) -> int:
+        """Index of a frame along the chain: world -1, DH frames 0..n, tool n + 1."""
+        if frame == "world":
+            return -1
+        if frame == "tool":
+            return self.n + 1
+        if isinstance(frame, int) and not isinstance(frame, bool) and 0 <= frame <= self.n:
+            return frame
+        raise FrameError(f"frame {frame!r} does not exist for {self.robot.name}: use 0..{self.n}, 'world' or 'tool'")
+
+    def frame_name(self, position: int) -> Frame:
+        """Inverse of :meth:`position`."""
+        return "world" if position == -1 else "tool" if position == self.n + 1 else position
+
+    def axis_frame(self, joint: int) -> int:
+        """The frame whose z-axis is the axis of ``joint`` (1-based): {i} (modified DH) or {i-1} (standard)."""
+        return joint if self.robot.convention == "modified" else joint - 1
+
+    @cached_property
+    def _steps(self) -> list[tuple[Motion | sp.Matrix, ...]]:
+        """Motions from frame position k-1 to k, for k = 0 (base), 1..n (links), n+1 (tool)."""
+        robot = self.robot
+        steps: list[tuple[Motion | sp.Matrix, ...]] = [(robot.base.matrix,) if robot.base else ()]
+        for joint in robot.joints:
+            steps.append(dh_motions(robot.convention.value, joint.alpha, joint.a, joint.angle, joint.offset))
+        steps.append((robot.tool.matrix,) if robot.tool else ())
+        return steps
+
+    def _motions(self, start: int, end: int) -> list[Motion | sp.Matrix]:
+        if start <= end:
+            return [m for k in range(start + 1, end + 1) for m in self._steps[k]]
+        motions: list[Motion | sp.Matrix] = []
+        for k in range(start, end, -1):
+            step = self._steps[k]
+            if step and isinstance(step[0], sp.MatrixBase):
+                motions.append(inverse_transform(step[0]))
+            else:
+                motions.extend(inverse_motions(step))  # type: ignore[arg-type]
+        return motions
+
+    # --- transforms ---------------------------------------------------------------------------------------
+
+    def transform(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
+        r"""The raw structured product :math:`{}^{\text{source}}_{\text{target}}T` (pose of target in source)."""
+        key = (self.position(source), self.position(target))
+        if key not in self._transforms:
+            rotation_matrix, position = compose(self._motions(*key))
+            self._transforms[key] = sp.ImmutableMatrix(homogeneous(rotation_matrix, position))
+        return self._transforms[key]
+
+    def simplified_transform(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
+        """:meth:`transform` in compact textbook form, written in the angle basis of ``source``."""
+        key = (self.position(source), self.position(target))
+        if key not in self._simplified:
+            raw = self.transform(source, target)
+            self._simplified[key] = sp.ImmutableMatrix(simplify_matrix(raw, self.angle_bases(source)))
+        return self._simplified[key]
+
+    def rotation(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
+        r""":math:`{}^{\text{source}}_{\text{target}}R`, raw."""
+        return self.transform(source, target)[:3, :3]
+
+    @cached_property
+    def link_transforms(self) -> tuple[sp.ImmutableMatrix, ...]:
+        r"""The n link transforms :math:`{}^{i-1}_{i}T`, i = 1..n."""
+        return tuple(self.transform(i - 1, i) for i in range(1, self.n + 1))
+
+    @cached_property
+    def T_0_i(self) -> tuple[sp.ImmutableMatrix, ...]:
+        r""":math:`{}^0_iT` for i = 0..n, simplified (index i gives frame {i})."""
+        return tuple(self.simplified_transform(0, i) for i in range(self.n + 1))
+
+    @cached_property
+    def T_i_n(self) -> tuple[sp.ImmutableMatrix, ...]:
+        r""":math:`{}^i_nT` for i = 0..n, simplified."""
+        return tuple(self.simplified_transform(i, self.n) for i in range(self.n + 1))
+
+    # --- simplification basis -------------------------------------------------------------------------------
+
+    @cached_property
+    def parallel_groups(self) -> tuple[tuple[int, ...], ...]:
+        """Maximal runs of consecutive joints (1-based) whose axes are parallel or anti-parallel."""
+        groups: list[list[int]] = [[1]]
+        for i in range(1, self.n):
+            twist = self._twist_between(i)
+            if twist == 0 or abs(twist) == sp.pi:
+                groups[-1].append(i + 1)
+            else:
+                groups.append([i + 1])
+        return tuple(tuple(group) for group in groups)
+
+    def _twist_between(self, i: int) -> sp.Expr:
+        """The twist angle between the axes of joints i and i+1 (alpha_i)."""
+        joints = self.robot.joints
+        return joints[i].alpha if self.robot.convention == "modified" else joints[i - 1].alpha
+
+    def angle_basis(self, frame: Frame) -> AngleBasis:
+        r"""The angles results expressed in ``frame`` read best in (see :mod:`symjac.simplify`).
+
+        Within a group of parallel joints j..m, let :math:`\Theta_f` be the summed joint angles from j up to frame f
+        (:math:`\Theta_{j-1} = 0`; an anti-parallel twist flips the sign of later angles). Relative to a reference
+        frame r of the group (``frame`` itself if it is in the group, else the group frame nearest to it) the
+        basis angles are :math:`\Theta_f - \Theta_r`: for frame {0} of a planar arm :math:`\theta_1, \theta_{12},
+        \theta_{123}`; for its frame {1}, :math:`-\theta_1, \theta_2, \theta_{23}`.
+        """
+        k = self.position(frame)
+        references = [k if g[0] <= k <= g[-1] else (g[0] - 1 if k < g[0] else g[-1]) for g in self.parallel_groups]
+        return self._basis(tuple(references))
+
+    def angle_bases(self, frame: Frame) -> tuple[AngleBasis, ...]:
+        """:meth:`angle_basis` first, then the bases that measure one parallel group from another of its frames.
+
+        A textbook entry may mix references (the seed 002 arm in its tool frame has :math:`s_3` next to
+        :math:`L_1 + L_2 c_2 + L_3 c_{23}`); :func:`symjac.simplify.simplify_matrix` keeps, per entry, the shortest.
+        """
+        default = self.angle_basis(frame)
+        k = self.position(frame)
+        references = [k if g[0] <= k <= g[-1] else (g[0] - 1 if k < g[0] else g[-1]) for g in self.parallel_groups]
+        bases = [default]
+        for index, group in enumerate(self.parallel_groups):
+            if sum(self.robot.joints[i - 1].is_revolute for i in group) < 2:
+                continue
+            for reference in range(group[0] - 1, group[-1] + 1):
+                if reference != references[index]:
+                    bases.append(self._basis(tuple(references[:index] + [reference] + references[index + 1:])))
+        return tuple(bases)
+
+    def _basis(self, references: tuple[int, ...]) -> AngleBasis:
+        joints = self.robot.joints
+        variables = tuple(joint.variable for joint in joints if joint.is_revolute)
+        angles: list[sp.Expr] = []
+        for group, reference in zip(self.parallel_groups, references, strict=True):
+            first = group[0]
+            cumulative = {first - 1: sp.S.Zero}
+            total, sign = sp.S.Zero, 1
+            for i in group:
+                if i > first and abs(self._twist_between(i - 1)) == sp.pi:
+                    sign = -sign
+                if joints[i - 1].is_revolute:
+                    total += sign * joints[i - 1].variable
+                cumulative[i] = total
+            relative = {sp.expand(value - cumulative[reference]) for value in cumulative.values()}
+            relative.discard(sp.S.Zero)
+            angles.extend(relative)
+        return AngleBasis(variables, _order_like(tuple(angles), variables))
+
+
+def _order_like(angles: tuple[sp.Expr, ...], variables: tuple[sp.Symbol, ...]) -> tuple[sp.Expr, ...]:
+    """Sort basis angles by the first joint they involve, so generator order follows the chain (base first)."""
+    position = {v: i for i, v in enumerate(variables)}
+    return tuple(sorted(angles, key=lambda a: (min(position[s] for s in a.free_symbols), len(a.free_symbols))))
+
+
+@cache
+def chain_of(robot: Robot) -> Chain:
+    """The cached :class:`Chain` of ``robot`` (robots are immutable, so one chain serves every call)."""
+    return Chain(robot)
+
+
+def forward_kinematics(robot: Robot, source: Frame = 0, target: Frame | None = None) -> sp.Matrix:
+    r"""The pose :math:`{}^{\text{source}}_{\text{target}}T` in compact form (default :math:`{}^0_nT`).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> forward_kinematics(load_robot("planar3r"), target="tool")[0, 3]
+    L1*cos(theta1) + L2*cos(theta1 + theta2) + L3*cos(theta1 + theta2 + theta3)
+    """
+    chain = chain_of(robot)
+    return sp.Matrix(chain.simplified_transform(source, chain.n if target is None else target))

@@ -1,0 +1,263 @@
+"""The ``symjac`` command: list robots, show DH tables and transforms, print forward kinematics and Jacobians.
+
+Results go to stdout (or ``-o FILE``, written only once complete); progress of slow steps goes to stderr when it
+is a terminal. Any symjac error prints one line and exits with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+import sympy as sp
+
+from symjac import __version__
+from symjac.chain import Frame, chain_of
+from symjac.errors import ExpressionError, FrameError, SymjacError
+from symjac.expressions import parse_expression
+from symjac.io import catalog, load_robot
+from symjac.jacobian import METHODS, jacobian
+from symjac.model import Robot
+from symjac.printing import latex, pretty
+from symjac.resources import render_template
+
+FORMATS = ("latex", "pretty", "json")
+ROW_NAMES = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit status (0 success, 2 usage or input error)."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    try:
+        text = args.handler(args)
+        _emit(text, args.output)
+    except SymjacError as error:
+        print(f"symjac: error: {error}", file=sys.stderr)
+        return 2
+    except OSError as error:
+        print(f"symjac: error: {error}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="symjac", description="Symbolic kinematics and Jacobians of serial arms.")
+    parser.add_argument("--version", action="version", version=f"symjac {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    def command(name: str, handler: Callable[[argparse.Namespace], str], help_text: str) -> argparse.ArgumentParser:
+        sub = commands.add_parser(name, help=help_text, description=help_text)
+        sub.set_defaults(handler=handler)
+        sub.add_argument("-o", "--output", type=Path, help="write the result to this file instead of stdout")
+        return sub
+
+    command("robots", _robots, "list the built-in robots")
+    for name, handler, help_text in (
+        ("show", _show, "show the DH table and the link transforms"),
+        ("fk", _fk, "print the forward kinematics"),
+        ("jacobian", _jacobian, "print the basic Jacobian [v; omega]"),
+    ):
+        sub = command(name, handler, help_text)
+        sub.add_argument("robot", metavar="ROBOT", help="a built-in robot name (see 'symjac robots') or a TOML file")
+        sub.add_argument("--format", choices=FORMATS, default="latex", help="output format (default: latex)")
+        sub.add_argument("--numeric", action="store_true", help="substitute the parameters' numeric defaults")
+        sub.add_argument("--standalone", action="store_true", help="with --format latex: a complete LaTeX document")
+        if name == "jacobian":
+            sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
+            sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
+            sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
+    return parser
+
+
+# --- commands ----------------------------------------------------------------------------------------------
+
+
+def _robots(args: argparse.Namespace) -> str:
+    robots = catalog()
+    width = max(map(len, robots))
+    return "".join(f"{name:<{width}}  {description}\n" for name, description in robots.items())
+
+
+def _show(args: argparse.Namespace) -> str:
+    robot = load_robot(args.robot)
+    chain = chain_of(robot)
+    transforms = [(f"{{}}^{{{i - 1}}}_{{{i}}}T", f"T_{i - 1}_{i}", chain.simplified_transform(i - 1, i))
+                  for i in range(1, robot.dof + 1)]
+    for key in ("base", "tool"):
+        fixed = getattr(robot, key)
+        if fixed is not None:
+            source, target = ("world", 0) if key == "base" else (robot.dof, "tool")
+            transforms.append((f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", fixed.matrix))
+    rows = _dh_rows(robot)
+    if args.format == "json":
+        return _json({**_metadata(robot), "dh_table": rows,
+                      "transforms": {plain: _matrix_strings(_numeric(robot, m, args.numeric))
+                                     for _, plain, m in transforms}})
+    if args.format == "pretty":
+        header = f"{robot.name}: {robot.description}\n{robot.convention.value} DH\n"
+        table = _text_table(["joint", "type", *_dh_headers(robot)], rows)
+        blocks = [f"{plain} =\n{pretty(_numeric(robot, m, args.numeric))}" for _, plain, m in transforms]
+        return header + table + "\n" + "\n\n".join(blocks) + "\n"
+    blocks = [{"caption": "Denavit-Hartenberg table", "latex": _latex_table(robot, rows)}]
+    blocks += [{"caption": "", "latex": f"{tex} = {latex(_numeric(robot, m, args.numeric))}"}
+               for tex, _, m in transforms]
+    return _latex_output(args, robot, f"{robot.name}: DH table and link transforms", blocks)
+
+
+def _fk(args: argparse.Namespace) -> str:
+    robot = load_robot(args.robot)
+    chain = chain_of(robot)
+    source: Frame = "world" if robot.base else 0
+    target: Frame = "tool" if robot.tool else robot.dof
+    T = _progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
+    T = _numeric(robot, T, args.numeric)
+    if args.format == "json":
+        return _json({**_metadata(robot), "source": source, "target": target, "entries": _matrix_strings(T),
+                      "latex": latex(T)})
+    if args.format == "pretty":
+        return f"T_{source}_{target} =\n{pretty(T)}\n"
+    block = {"caption": "", "latex": f"{{}}^{{{source}}}_{{{target}}}T = {latex(T)}"}
+    return _latex_output(args, robot, f"{robot.name}: forward kinematics", [block])
+
+
+def _jacobian(args: argparse.Namespace) -> str:
+    robot = load_robot(args.robot)
+    frame = _parse_frame(args.frame)
+    point = _parse_point(args.point, robot)
+    J = _progress(f"Jacobian of {robot.name} in frame {frame}",
+                  lambda: jacobian(robot, frame=frame, point=point, method=args.method))
+    J = _numeric(robot, J, args.numeric)
+    name = f"{{}}^{{{frame}}}J"
+    if args.format == "json":
+        return _json({**_metadata(robot), "frame": frame, "point": args.point, "method": args.method,
+                      "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
+                      "entries": _matrix_strings(J), "latex": f"{name} = {latex(J)}"})
+    if args.format == "pretty":
+        return f"J in frame {frame}, point {args.point}, method {args.method}:\n{pretty(J)}\n"
+    block = {"caption": f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}",
+             "latex": f"{name} = {latex(J)}"}
+    return _latex_output(args, robot, f"{robot.name}: Jacobian in frame {frame}", [block])
+
+
+# --- argument parsing helpers --------------------------------------------------------------------------------
+
+
+def _parse_frame(text: str) -> Frame:
+    if text in ("world", "tool"):
+        return text  # type: ignore[return-value]
+    try:
+        return int(text)
+    except ValueError:
+        raise FrameError(f"--frame must be a frame number, 'world' or 'tool', got {text!r}") from None
+
+
+def _parse_point(text: str, robot: Robot) -> Any:
+    if text in ("wrist", "tool"):
+        return text
+    parts = text.split(",")
+    if len(parts) != 3:
+        raise FrameError(f"--point must be 'wrist', 'tool' or three coordinates x,y,z, got {text!r}")
+    names = {parameter.name: parameter.symbol for parameter in robot.parameters}
+    try:
+        return tuple(parse_expression(part, names) for part in parts)
+    except ExpressionError as error:
+        raise FrameError(f"--point: {error}") from None
+
+
+# --- output helpers ------------------------------------------------------------------------------------------
+
+
+def _progress(what: str, compute: Callable[[], Any]) -> Any:
+    """Run ``compute``, telling a human on a terminal what is happening and how long it took."""
+    interactive = sys.stderr.isatty()
+    if interactive:
+        print(f"deriving {what} ...", end="", file=sys.stderr, flush=True)
+    start = time.perf_counter()
+    result = compute()
+    if interactive:
+        print(f" {time.perf_counter() - start:.2f} s", file=sys.stderr)
+    return result
+
+
+def _numeric(robot: Robot, matrix: sp.MatrixBase, numeric: bool) -> sp.MatrixBase:
+    """With ``--numeric``, replace the parameters by their defaults, printed as short decimals."""
+    if not numeric:
+        return matrix
+    values = {symbol: sp.Float(repr(float(value))) for symbol, value in robot.defaults.items()}
+    return matrix.xreplace(values)
+
+
+def _metadata(robot: Robot) -> dict[str, Any]:
+    return {"symjac": __version__, "robot": robot.name, "convention": robot.convention.value,
+            "joint_variables": [str(q) for q in robot.q],
+            "parameters": {p.name: float(p.default) for p in robot.parameters}}
+
+
+def _matrix_strings(matrix: sp.MatrixBase) -> list[list[str]]:
+    return [[sp.sstr(matrix[r, c]) for c in range(matrix.cols)] for r in range(matrix.rows)]
+
+
+def _json(data: dict[str, Any]) -> str:
+    return json.dumps(data, indent=2) + "\n"
+
+
+def _dh_headers(robot: Robot) -> list[str]:
+    return ["alpha_{i-1}", "a_{i-1}", "d_i", "theta_i"] if robot.convention == "modified" else [
+        "alpha_i", "a_i", "d_i", "theta_i"]
+
+
+def _dh_rows(robot: Robot) -> list[list[str]]:
+    return [[str(joint.index), joint.type.value, *(sp.sstr(e) for e in (joint.alpha, joint.a, joint.offset,
+                                                                         joint.angle))]
+            for joint in robot.joints]
+
+
+def _text_table(headers: list[str], rows: list[list[str]]) -> str:
+    widths = [max(len(row[i]) for row in [headers, *rows]) for i in range(len(headers))]
+    lines = ["  ".join(cell.ljust(width) for cell, width in zip(row, widths, strict=True)).rstrip()
+             for row in [headers, *rows]]
+    return "\n".join(lines) + "\n"
+
+
+def _latex_table(robot: Robot, rows: list[list[str]]) -> str:
+    headers = [r"\alpha_{i-1}", "a_{i-1}", "d_i", r"\theta_i"] if robot.convention == "modified" else [
+        r"\alpha_i", "a_i", "d_i", r"\theta_i"]
+    body = r" \\ ".join(" & ".join([str(joint.index)] + [latex(e) for e in (joint.alpha, joint.a, joint.offset,
+                                                                              joint.angle)])
+                        for joint in robot.joints)
+    return r"\begin{array}{c|cccc} i & " + " & ".join(headers) + r" \\ \hline " + body + r" \end{array}"
+
+
+def _latex_output(args: argparse.Namespace, robot: Robot, title: str, blocks: list[dict[str, str]]) -> str:
+    if args.standalone:
+        return render_template("latex_document.tex.j2", version=__version__, robot=robot.name, title=title,
+                               blocks=blocks)
+    return "".join(f"{block['latex']}\n" for block in blocks)
+
+
+def _emit(text: str, output: Path | None) -> None:
+    """Write the finished text to stdout, or atomically to ``output`` (never a partial file)."""
+    if output is None:
+        sys.stdout.write(text)
+        return
+    directory = output.parent if str(output.parent) else Path(".")
+    handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{output.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8") as stream:
+            stream.write(text)
+        os.replace(temporary, output)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

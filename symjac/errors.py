@@ -1,0 +1,51 @@
+"""Typed errors raised by symjac.
+
+Every error symjac raises on purpose derives from :class:`SymjacError`, so a caller (or the CLI) can catch the
+whole family in one place. Messages say *what* is wrong and *where* (file, joint, field).
+"""
+
+from __future__ import annotations
+
+
+class SymjacError(Exception):
+    """Base class of every error symjac raises on purpose."""
+
+
+class RobotFileError(SymjacError, ValueError):
+    """A robot description (TOML file or mapping) is malformed.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong, in one sentence.
+    source : str
+        The file path or ``"<mapping>"`` the description came from.
+    joint : int, optional
+        1-based joint number the problem is in.
+    field : str, optional
+        Name of the offending field (``"alpha"``, ``"parameters.a2"``, ...).
+    """
+
+    def __init__(self, message: str, *, source: str, joint: int | None = None, field: str | None = None):
+        self.message = message
+        self.source = source
+        self.joint = joint
+        self.field = field
+        where = [source]
+        if joint is not None:
+            where.append(f"joint {joint}")
+        if field is not None:
+            where.append(f"field '{field}'")
+        super().__init__(f"{', '.join(where)}: {message}")
+
+
+class ExpressionError(SymjacError, ValueError):
+    """A field expression is not in the accepted grammar (numbers, names, + - * / **, pi)."""
+
+
+class UnknownRobotError(SymjacError, LookupError):
+    """A robot name is neither in the catalog nor an existing file."""
+
+
+class FrameError(SymjacError, ValueError):
+    """A frame, point or method argument does not exist for this robot."""

@@ -1,0 +1,146 @@
+r"""Robot-file field expressions: a whitelist parser and its inverse.
+
+A field of a robot file is a number or a small expression such as ``"-pi/2"`` or ``"L1 + L2"``. The text is parsed
+with :func:`ast.parse` and the tree is walked node by node; only these nodes are accepted:
+
+* numbers (``int`` or decimal ``float`` literals, turned into exact SymPy rationals: ``0.4318 -> 2159/5000``),
+* names: the constant ``pi`` and the parameter names the file declares,
+* binary ``+ - * /`` and ``**`` with a small integer exponent, unary ``+`` and ``-``, parentheses.
+
+Anything else (calls, attributes, subscripts, strings, lambdas, ...) is rejected *before* any of it could run:
+the SymPy expression is built here, never by ``eval``, ``sympify`` or ``parse_expr`` on file text.
+"""
+
+from __future__ import annotations
+
+import ast
+import keyword
+import re
+from collections.abc import Mapping
+from fractions import Fraction
+
+import sympy as sp
+
+from symjac.errors import ExpressionError
+
+MAX_EXPRESSION_LENGTH = 200
+MAX_EXPONENT = 8
+_IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+
+
+def is_valid_name(name: str) -> bool:
+    """Return whether ``name`` may name a parameter: an ASCII identifier, not a Python keyword, not ``pi``."""
+    return bool(_IDENTIFIER.match(name)) and not keyword.iskeyword(name) and name != "pi"
+
+
+def exact_number(value: int | float) -> sp.Rational:
+    """Return the exact rational a decimal literal denotes (``0.4318 -> 2159/5000``, not the binary float).
+
+    Python's ``repr`` of a float is the shortest decimal that round-trips, i.e. the text the user wrote.
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ExpressionError(f"expected a number, got {type(value).__name__} {value!r}")
+    if isinstance(value, float) and not (value == value and abs(value) != float("inf")):
+        raise ExpressionError(f"expected a finite number, got {value!r}")
+    if isinstance(value, int):
+        return sp.Integer(value)
+    fraction = Fraction(repr(value))
+    return sp.Rational(fraction.numerator, fraction.denominator)
+
+
+def parse_expression(text: str, names: Mapping[str, sp.Symbol]) -> sp.Expr:
+    """Parse a field expression over ``names`` and ``pi`` into an exact SymPy expression.
+
+    Parameters
+    ----------
+    text : str
+        The field text, for example ``"-pi/2"`` or ``"a3 + 0.02"``.
+    names : mapping of str to sympy.Symbol
+        The parameter names the expression may use.
+
+    Returns
+    -------
+    sympy.Expr
+        The expression, with exact rationals for decimal literals.
+
+    Raises
+    ------
+    ExpressionError
+        If the text is not in the grammar; nothing in it is executed.
+
+    Examples
+    --------
+    >>> import sympy as sp
+    >>> parse_expression("-pi/2", {})
+    -pi/2
+    >>> L1, L2 = sp.symbols("L1 L2")
+    >>> parse_expression("L1 + 0.5*L2", {"L1": L1, "L2": L2})
+    L1 + L2/2
+    """
+    if not isinstance(text, str):
+        raise ExpressionError(f"expected a string expression, got {type(text).__name__}")
+    if len(text) > MAX_EXPRESSION_LENGTH:
+        raise ExpressionError(f"expression longer than {MAX_EXPRESSION_LENGTH} characters")
+    if not text.strip():
+        raise ExpressionError("empty expression")
+    try:
+        tree = ast.parse(text.strip(), mode="eval")
+    except SyntaxError:
+        raise ExpressionError(f"cannot parse {text!r}: not a valid expression") from None
+    return _build(tree.body, names, text)
+
+
+_BINARY = {
+    ast.Add: lambda a, b: a + b,
+    ast.Sub: lambda a, b: a - b,
+    ast.Mult: lambda a, b: a * b,
+    ast.Div: lambda a, b: a / b,
+}
+
+
+def _build(node: ast.AST, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
+    if isinstance(node, ast.Constant) and isinstance(node.value, int | float) and not isinstance(node.value, bool):
+        return exact_number(node.value)
+    if isinstance(node, ast.Name):
+        if node.id == "pi":
+            return sp.pi
+        if node.id in names:
+            return names[node.id]
+        known = ", ".join(sorted(names)) or "none declared"
+        raise ExpressionError(f"unknown name {node.id!r} in {text!r} (parameters: {known})")
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
+        operand = _build(node.operand, names, text)
+        return -operand if isinstance(node.op, ast.USub) else operand
+    if isinstance(node, ast.BinOp) and type(node.op) in _BINARY:
+        left, right = _build(node.left, names, text), _build(node.right, names, text)
+        if isinstance(node.op, ast.Div) and right == 0:
+            raise ExpressionError(f"division by zero in {text!r}")
+        return _BINARY[type(node.op)](left, right)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
+        exponent = node.right
+        if isinstance(exponent, ast.UnaryOp) and isinstance(exponent.op, ast.USub):
+            exponent = exponent.operand
+        if not (
+            isinstance(exponent, ast.Constant)
+            and type(exponent.value) is int
+            and exponent.value <= MAX_EXPONENT
+        ):
+            raise ExpressionError(f"only small integer powers (up to {MAX_EXPONENT}) are allowed in {text!r}")
+        return _build(node.left, names, text) ** _build(node.right, names, text)
+    raise ExpressionError(f"{type(node).__name__} is not allowed in {text!r}: use numbers, names, + - * / ** and pi")
+
+
+def expression_text(expr: sp.Expr) -> int | float | str:
+    """Write an exact expression back in the robot-file grammar (inverse of :func:`parse_expression`).
+
+    Integers stay integers, terminating decimals become floats (``2159/5000 -> 0.4318``), everything else a
+    string that :func:`parse_expression` reads back to the same expression.
+    """
+    expr = sp.sympify(expr)
+    if expr.is_Integer:
+        return int(expr)
+    if expr.is_Rational:
+        as_float = float(expr)
+        if exact_number(as_float) == expr:
+            return as_float
+    return sp.sstr(expr)

@@ -1,0 +1,185 @@
+r"""Basic Jacobians :math:`J = [J_v; J_\omega]` of a serial robot, by the textbook derivation methods.
+
+For joint i with axis :math:`z_i` through the point :math:`p_i` (frame {i} in the modified convention, {i-1} in the
+standard one), :math:`\epsilon_i = 1` for a prismatic and :math:`0` for a revolute joint, and the point P fixed to
+the last link, the columns of the basic Jacobian are
+
+.. math::
+    J_i = \begin{bmatrix} \epsilon_i z_i + \bar\epsilon_i\, z_i \times p_{iP} \\ \bar\epsilon_i z_i \end{bmatrix}
+
+expressed in any frame {k} as :math:`{}^kJ = \mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J`.
+
+Methods (all return the same matrix, simplified to the same unique normal form):
+
+``"differentiation"``
+    :math:`J_v = \partial\,{}^0x_P/\partial q` of the forward kinematics, :math:`J_\omega` from the z-axes
+    :math:`{}^0z_i = {}^0_iR\,[0, 0, 1]^T`, then rotated into {k}.
+``"cross_product"``
+    :math:`z_i \times p_{iP}` computed in frame {i}, where :math:`{}^iz_i = [0,0,1]^T` makes it
+    :math:`[-p_y, p_x, 0]^T` of :math:`{}^ip_{iP}` (the last column of :math:`{}^i_PT`), then rotated into {k}:
+    :math:`{}^k(z_i \times p_{iP}) = {}^k_iR\,(\hat{Z}\,{}^ip_{iP})`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from functools import lru_cache
+from typing import Literal, get_args
+
+import sympy as sp
+
+from symjac.chain import Frame, chain_of
+from symjac.errors import FrameError
+from symjac.model import Robot
+from symjac.simplify import AngleBasis, simplify_matrix
+from symjac.transforms import block_rotation, point_shift
+
+Method = Literal["differentiation", "cross_product"]
+Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
+
+METHODS: tuple[str, ...] = get_args(Method)
+
+__all__ = ["METHODS", "Method", "Point", "change_frame", "jacobian", "jacobian_of", "shift_point"]
+
+
+def jacobian(
+    robot: Robot,
+    frame: Frame = 0,
+    point: Point = "wrist",
+    method: Method = "differentiation",
+    *,
+    simplify: bool = True,
+) -> sp.Matrix:
+    r"""The 6 x n basic Jacobian :math:`{}^kJ` of ``robot``, rows :math:`[v; \omega]`.
+
+    Parameters
+    ----------
+    robot : Robot
+    frame : int or "world" or "tool"
+        Frame {k} the Jacobian is expressed in (default {0}).
+    point : "wrist", "tool" or sequence of 3
+        Where the linear velocity is taken: the origin of frame {n} (default), the origin of the tool frame, or a
+        point given by its coordinates in frame {n}.
+    method : "differentiation" or "cross_product"
+        Derivation (see the module docstring); both give the same matrix.
+    simplify : bool
+        Lay the result out in compact textbook form (default). ``False`` returns the raw structured products.
+
+    Returns
+    -------
+    J : sympy.Matrix, shape (6, n)
+        Rows :math:`[v_x, v_y, v_z, \omega_x, \omega_y, \omega_z]` expressed in {k}; column i belongs to joint i.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> jacobian(load_robot("planar2r"), frame=1)[:2, :]
+    Matrix([
+    [-L2*sin(theta2),        -L2*sin(theta2)],
+    [L1 + L2*cos(theta2), L2*cos(theta2)]])
+    """
+    if method not in METHODS:
+        raise FrameError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
+    chain = chain_of(robot)
+    chain.position(frame)  # validate early, with a clear message
+    return sp.Matrix(_cached_jacobian(robot, frame, _point_vector(robot, point), method, simplify))
+
+
+def _point_vector(robot: Robot, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """Coordinates in frame {n} of the point where the linear velocity is taken."""
+    if isinstance(point, str):
+        if point == "wrist":
+            return (sp.S.Zero,) * 3
+        if point == "tool":
+            if robot.tool is None:
+                raise FrameError(f"{robot.name} has no tool transform, so it has no 'tool' point")
+            x, y, z = robot.tool.matrix[:3, 3]
+            return x, y, z
+        raise FrameError(f"unknown point {point!r}: use 'wrist', 'tool' or three coordinates in frame {{n}}")
+    values = tuple(point)
+    if len(values) != 3:
+        raise FrameError(f"a point needs 3 coordinates in frame {{n}}, got {len(values)}")
+    coordinates = []
+    for value in values:
+        expr = sp.sympify(value)
+        if not isinstance(expr, sp.Expr) or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+            raise FrameError(f"point coordinate {value!r} is not a finite number or expression")
+        coordinates.append(sp.nsimplify(expr, rational=True) if expr.is_Float else expr)
+    x, y, z = coordinates
+    return x, y, z
+
+
+@lru_cache(maxsize=256)
+def _cached_jacobian(
+    robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method, simplify: bool
+) -> sp.ImmutableMatrix:
+    chain = chain_of(robot)
+    raw = _differentiation(robot, frame, point) if method == "differentiation" else _cross_product(robot, frame, point)
+    result = simplify_matrix(raw, chain.angle_bases(frame)) if simplify else raw
+    return sp.ImmutableMatrix(result)
+
+
+def _differentiation(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+    chain = chain_of(robot)
+    T_0_n = chain.transform(0, chain.n)
+    x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
+    J_0 = sp.zeros(6, chain.n)
+    for i, joint in enumerate(robot.joints):
+        J_0[:3, i] = x_P.diff(joint.variable)
+        if joint.is_revolute:
+            J_0[3:, i] = chain.rotation(0, chain.axis_frame(joint.index))[:, 2]
+    if chain.position(frame) == 0:
+        return J_0
+    return block_rotation(chain.rotation(frame, 0)) * J_0
+
+
+def _cross_product(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+    chain = chain_of(robot)
+    J = sp.zeros(6, chain.n)
+    for i, joint in enumerate(robot.joints):
+        a = chain.axis_frame(joint.index)
+        R_k_a = chain.rotation(frame, a)
+        if joint.is_revolute:
+            T_a_n = chain.transform(a, chain.n)
+            p_aP = T_a_n[:3, :3] * sp.Matrix(point) + T_a_n[:3, 3]
+            J[:3, i] = R_k_a * sp.Matrix([-p_aP[1], p_aP[0], 0])  # Z^ p = z x p in frame {a}
+            J[3:, i] = R_k_a[:, 2]
+        else:
+            J[:3, i] = R_k_a[:, 2]
+    return J
+
+
+def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:
+    r"""Re-express a basic Jacobian: :math:`{}^BJ = \mathrm{diag}({}^B_AR, {}^B_AR)\,{}^AJ`."""
+    return block_rotation(sp.Matrix(R_b_a)) * sp.Matrix(J)
+
+
+def shift_point(J: sp.MatrixBase, p: Sequence[sp.Expr]) -> sp.Matrix:
+    r"""Move the reference point of a basic Jacobian by :math:`p` (same frame as J): :math:`J_E = [I, -\hat p; 0, I] J_W`.
+
+    Examples
+    --------
+    >>> L = sp.Symbol("L")
+    >>> shift_point(sp.Matrix([0, 0, 0, 0, 0, 1]), [L, 0, 0]).T
+    Matrix([[0, L, 0, 0, 0, 1]])
+    """
+    return point_shift(p) * sp.Matrix(J)
+
+
+def jacobian_of(f: Sequence[sp.Expr] | sp.MatrixBase, q: Sequence[sp.Symbol], basis: AngleBasis | None = None) -> sp.Matrix:
+    r"""The Jacobian :math:`\partial f / \partial q` of any vector function (seed 000, section 4.2).
+
+    With an angle ``basis`` the entries are simplified (see :mod:`symjac.simplify`).
+
+    Examples
+    --------
+    >>> t1, t2 = sp.symbols("theta1 theta2", real=True)
+    >>> l1, l2 = sp.symbols("l1 l2")
+    >>> f = [l1 * sp.cos(t1) + l2 * sp.cos(t1 + t2), l1 * sp.sin(t1) + l2 * sp.sin(t1 + t2)]
+    >>> jacobian_of(f, [t1, t2])
+    Matrix([
+    [-l1*sin(theta1) - l2*sin(theta1 + theta2), -l2*sin(theta1 + theta2)],
+    [ l1*cos(theta1) + l2*cos(theta1 + theta2),  l2*cos(theta1 + theta2)]])
+    """
+    J = sp.Matrix(f).jacobian(sp.Matrix(list(q)))
+    return simplify_matrix(J, basis) if basis is not None else J

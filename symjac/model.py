@@ -1,0 +1,391 @@
+r"""The robot model: a validated Denavit-Hartenberg table as immutable data.
+
+Notation (Craig), used throughout symjac: ``T_0_3`` is the pose of frame {3} relative to frame {0}, so
+``T_0_3 = T_0_1 @ T_1_2 @ T_2_3`` (inner indices cancel); likewise ``R_0_3``, ``p_0_3`` and ``z_0_i`` (the z-axis of
+frame {i} expressed in {0}).
+
+Conventions, stated by every robot file (there is no default):
+
+* standard DH: :math:`{}^{i-1}_{i}T = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`; joint *i* moves about or along
+  :math:`z_{i-1}`;
+* modified DH (Craig): :math:`{}^{i-1}_{i}T = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`; joint *i* moves
+  about or along :math:`z_i`.
+
+In both, the row of joint *i* holds the fields ``alpha, a, d, theta``; for the modified convention ``alpha`` and ``a``
+are :math:`\alpha_{i-1}, a_{i-1}`. Revolute joint *i* has the variable ``theta{i}`` (its ``theta`` field is a constant
+offset added to it); prismatic joint *i* has ``d{i}`` (its ``d`` field is an offset). Constant parameters keep the
+names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact numeric defaults that are used
+only where numbers are asked for.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from enum import StrEnum
+from typing import Any
+
+import sympy as sp
+
+from symjac.errors import ExpressionError, RobotFileError
+from symjac.expressions import exact_number, expression_text, is_valid_name, parse_expression
+from symjac.transforms import homogeneous, rotation_rpy
+
+__all__ = [
+    "Convention",
+    "FixedTransform",
+    "Joint",
+    "JointType",
+    "Parameter",
+    "Robot",
+    "robot_from_mapping",
+    "robot_to_mapping",
+]
+
+
+class Convention(StrEnum):
+    """Denavit-Hartenberg convention of a robot description."""
+
+    STANDARD = "standard"
+    MODIFIED = "modified"
+
+
+class JointType(StrEnum):
+    """Kind of a joint: rotation about, or translation along, its z-axis."""
+
+    REVOLUTE = "revolute"
+    PRISMATIC = "prismatic"
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A named constant of the robot (a length or an angle) with its exact numeric default."""
+
+    name: str
+    default: sp.Rational
+
+    @property
+    def symbol(self) -> sp.Symbol:
+        """The real SymPy symbol that stands for this parameter in derivations."""
+        return sp.Symbol(self.name, real=True)
+
+
+@dataclass(frozen=True)
+class Joint:
+    """One row of the DH table; see the module docstring for the meaning of the fields per convention."""
+
+    index: int
+    type: JointType
+    alpha: sp.Expr
+    a: sp.Expr
+    d: sp.Expr
+    theta: sp.Expr
+    limits: tuple[sp.Expr, sp.Expr] | None = None
+
+    @property
+    def is_revolute(self) -> bool:
+        """Whether the joint rotates (its variable is an angle)."""
+        return self.type is JointType.REVOLUTE
+
+    @property
+    def variable(self) -> sp.Symbol:
+        """The joint variable: ``theta{i}`` for a revolute joint, ``d{i}`` for a prismatic one."""
+        prefix = "theta" if self.is_revolute else "d"
+        return sp.Symbol(f"{prefix}{self.index}", real=True)
+
+    @property
+    def angle(self) -> sp.Expr:
+        """The rotation about z of this link: variable plus offset (revolute) or the constant (prismatic)."""
+        return self.variable + self.theta if self.is_revolute else self.theta
+
+    @property
+    def offset(self) -> sp.Expr:
+        """The translation along z of this link: variable plus offset (prismatic) or the constant (revolute)."""
+        return self.d if self.is_revolute else self.variable + self.d
+
+
+@dataclass(frozen=True)
+class FixedTransform:
+    """A constant rigid transform (base or tool), kept in the form it was given so it can be written back.
+
+    Either ``xyz`` and ``rpy`` (roll about x, then pitch about y, then yaw about z, all about fixed axes:
+    :math:`R = R_z(\\text{yaw}) R_y(\\text{pitch}) R_x(\\text{roll})`), or a full 4 x 4 ``given_matrix``.
+    """
+
+    xyz: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+    rpy: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+    given_matrix: sp.ImmutableMatrix | None = None
+
+    @property
+    def matrix(self) -> sp.ImmutableMatrix:
+        """The 4 x 4 homogeneous transform."""
+        if self.given_matrix is not None:
+            return self.given_matrix
+        return sp.ImmutableMatrix(homogeneous(rotation_rpy(*self.rpy), sp.Matrix(self.xyz)))
+
+
+@dataclass(frozen=True)
+class Robot:
+    """A serial robot: DH table, parameters with defaults, optional base and tool transforms.
+
+    Build one with :func:`robot_from_mapping` or :func:`symjac.load_robot`; every instance is validated.
+    """
+
+    name: str
+    convention: Convention
+    joints: tuple[Joint, ...]
+    parameters: tuple[Parameter, ...] = ()
+    description: str = ""
+    base: FixedTransform | None = None
+    tool: FixedTransform | None = None
+    source: str = field(default="<mapping>", compare=False)
+
+    @property
+    def dof(self) -> int:
+        """Number of joints n."""
+        return len(self.joints)
+
+    @property
+    def q(self) -> tuple[sp.Symbol, ...]:
+        """Joint variables (theta_i or d_i), in chain order."""
+        return tuple(joint.variable for joint in self.joints)
+
+    @property
+    def parameter_symbols(self) -> tuple[sp.Symbol, ...]:
+        """Parameter symbols in file order."""
+        return tuple(parameter.symbol for parameter in self.parameters)
+
+    @property
+    def defaults(self) -> dict[sp.Symbol, sp.Rational]:
+        """Exact numeric default of every parameter, keyed by symbol (for ``expr.subs(robot.defaults)``)."""
+        return {parameter.symbol: parameter.default for parameter in self.parameters}
+
+
+_TOP_KEYS = {"name", "description", "convention", "angle_unit", "parameters", "joints", "base", "tool"}
+_JOINT_KEYS = {"type", "alpha", "a", "d", "theta", "limits"}
+_TRANSFORM_KEYS = {"xyz", "rpy", "matrix"}
+
+
+def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Robot:
+    """Validate a robot description given as a mapping (the parsed TOML file) and build the :class:`Robot`.
+
+    Parameters
+    ----------
+    data : mapping
+        Keys ``name``, ``convention`` and ``joints`` (required), ``description``, ``angle_unit`` (``"rad"``, the
+        default, or ``"deg"`` for alpha, revolute theta, rpy and revolute limits), ``parameters``, ``base``,
+        ``tool``. See the README for the full format.
+    source : str
+        Where the data came from, used in error messages.
+
+    Returns
+    -------
+    Robot
+
+    Raises
+    ------
+    RobotFileError
+        Naming the source, the joint and the field of the first problem found.
+
+    Examples
+    --------
+    >>> robot = robot_from_mapping({
+    ...     "name": "planar2r", "convention": "standard", "parameters": {"L1": 1, "L2": 0.5},
+    ...     "joints": [{"type": "revolute", "a": "L1"}, {"type": "revolute", "a": "L2"}]})
+    >>> robot.q
+    (theta1, theta2)
+    """
+
+    def fail(message: str, joint: int | None = None, field: str | None = None) -> RobotFileError:
+        return RobotFileError(message, source=source, joint=joint, field=field)
+
+    if not isinstance(data, Mapping):
+        raise fail(f"expected a table of robot fields, got {type(data).__name__}")
+    unknown = sorted(set(data) - _TOP_KEYS)
+    if unknown:
+        raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(_TOP_KEYS))}")
+
+    name = data.get("name")
+    if not isinstance(name, str) or not is_valid_name(name):
+        raise fail(f"'name' must be an identifier (letters, digits, underscore), got {name!r}", field="name")
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise fail("'description' must be a string", field="description")
+    convention_text = data.get("convention")
+    if convention_text not in {c.value for c in Convention}:
+        raise fail(f"'convention' is required and must be 'standard' or 'modified', got {convention_text!r}",
+                   field="convention")
+    convention = Convention(convention_text)
+    unit = data.get("angle_unit", "rad")
+    if unit not in ("rad", "deg"):
+        raise fail(f"'angle_unit' must be 'rad' or 'deg', got {unit!r}", field="angle_unit")
+    angle_scale = sp.pi / 180 if unit == "deg" else sp.S.One
+
+    joints_data = data.get("joints")
+    if not isinstance(joints_data, Sequence) or isinstance(joints_data, str) or not joints_data:
+        raise fail("'joints' must be a non-empty list of joint tables", field="joints")
+    joint_types: list[JointType] = []
+    for number, joint_data in enumerate(joints_data, start=1):
+        if not isinstance(joint_data, Mapping):
+            raise fail(f"expected a table, got {type(joint_data).__name__}", joint=number)
+        kind = joint_data.get("type")
+        if kind not in {t.value for t in JointType}:
+            raise fail(f"'type' must be 'revolute' or 'prismatic', got {kind!r}", joint=number, field="type")
+        joint_types.append(JointType(kind))
+    reserved = {f"theta{i}" for i in range(1, len(joint_types) + 1)} | {
+        f"d{i}" for i, kind in enumerate(joint_types, start=1) if kind is JointType.PRISMATIC
+    }
+
+    parameters = _parameters(data.get("parameters", {}), reserved, fail)
+    names = {parameter.name: parameter.symbol for parameter in parameters}
+    defaults = {parameter.symbol: parameter.default for parameter in parameters}
+
+    def value(raw: Any, field: str, joint: int | None = None, scale: sp.Expr = sp.S.One) -> sp.Expr:
+        try:
+            expr = parse_expression(raw, names) if isinstance(raw, str) else exact_number(raw)
+        except ExpressionError as error:
+            raise fail(str(error), joint=joint, field=field) from None
+        return expr * scale
+
+    joints = []
+    for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
+        unknown = sorted(set(joint_data) - _JOINT_KEYS)
+        if unknown:
+            raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(_JOINT_KEYS))}",
+                       joint=number)
+        fields = {}
+        for key in ("alpha", "a", "d", "theta"):
+            is_angle = key == "alpha" or key == "theta"
+            fields[key] = value(joint_data.get(key, 0), key, number, angle_scale if is_angle else sp.S.One)
+        limits = None
+        if "limits" in joint_data:
+            scale = angle_scale if kind is JointType.REVOLUTE else sp.S.One
+            limits = _limits(joint_data["limits"], lambda raw, s=scale, j=number: value(raw, "limits", j, s),
+                             defaults, lambda message, j=number: fail(message, joint=j, field="limits"))
+        joints.append(Joint(index=number, type=kind, limits=limits, **fields))
+        for key, expr in fields.items():
+            _require_finite(expr, defaults, lambda message, j=number, k=key: fail(message, joint=j, field=k))
+
+    transforms = {}
+    for key in ("base", "tool"):
+        if key in data:
+            transforms[key] = _fixed_transform(data[key], key, value, defaults, fail, angle_scale)
+
+    return Robot(
+        name=name,
+        convention=convention,
+        joints=tuple(joints),
+        parameters=parameters,
+        description=description,
+        base=transforms.get("base"),
+        tool=transforms.get("tool"),
+        source=source,
+    )
+
+
+def _parameters(raw: Any, reserved: set[str], fail: Any) -> tuple[Parameter, ...]:
+    if not isinstance(raw, Mapping):
+        raise fail("'parameters' must be a table of name = number", field="parameters")
+    parameters = []
+    for name, default in raw.items():
+        where = f"parameters.{name}"
+        if not isinstance(name, str) or not is_valid_name(name):
+            raise fail(f"parameter name {name!r} is not an identifier (letters, digits, underscore)", field=where)
+        if name in reserved:
+            raise fail(f"parameter name {name!r} is taken by a joint variable", field=where)
+        try:
+            parameters.append(Parameter(name, exact_number(default)))
+        except ExpressionError as error:
+            raise fail(f"default must be a finite number: {error}", field=where) from None
+    return tuple(parameters)
+
+
+def _require_finite(expr: sp.Expr, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> None:
+    number = expr.subs(defaults)
+    if not number.is_number or not math.isfinite(float(number)):
+        raise fail(f"value {expr} is not a finite number once parameters take their defaults")
+
+
+def _limits(raw: Any, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> tuple[sp.Expr, sp.Expr]:
+    if not isinstance(raw, Sequence) or isinstance(raw, str) or len(raw) != 2:
+        raise fail("'limits' must be a list [lower, upper]")
+    lower, upper = value(raw[0]), value(raw[1])
+    low, high = float(lower.subs(defaults)), float(upper.subs(defaults))
+    if not (math.isfinite(low) and math.isfinite(high)) or low >= high:
+        raise fail(f"'limits' must be finite with lower < upper, got [{low}, {high}]")
+    return lower, upper
+
+
+def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any,
+                     angle_scale: sp.Expr) -> FixedTransform:
+    if not isinstance(raw, Mapping):
+        raise fail(f"'{key}' must be a table with 'xyz' and 'rpy', or 'matrix'", field=key)
+    unknown = sorted(set(raw) - _TRANSFORM_KEYS)
+    if unknown:
+        raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: xyz, rpy, matrix", field=key)
+    if "matrix" in raw:
+        if set(raw) != {"matrix"}:
+            raise fail("give either 'matrix' or 'xyz'/'rpy', not both", field=key)
+        rows = raw["matrix"]
+        if not (isinstance(rows, Sequence) and len(rows) == 4
+                and all(isinstance(row, Sequence) and not isinstance(row, str) and len(row) == 4 for row in rows)):
+            raise fail("'matrix' must be 4 rows of 4 entries", field=f"{key}.matrix")
+        matrix = sp.ImmutableMatrix([[value(entry, f"{key}.matrix") for entry in row] for row in rows])
+        if list(matrix[3, :]) != [0, 0, 0, 1]:
+            raise fail("the last row of 'matrix' must be [0, 0, 0, 1]", field=f"{key}.matrix")
+        for entry in matrix:
+            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.matrix"))
+        rotation = matrix[:3, :3].subs(defaults).evalf()
+        error = (rotation.T * rotation - sp.eye(3)).norm()
+        if not error < 1e-9 or not abs(rotation.det() - 1) < 1e-9:
+            raise fail("the upper-left 3 x 3 block of 'matrix' is not a rotation", field=f"{key}.matrix")
+        return FixedTransform(given_matrix=matrix)
+
+    def vector(name: str, scale: sp.Expr) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+        entries = raw.get(name, [0, 0, 0])
+        if not isinstance(entries, Sequence) or isinstance(entries, str) or len(entries) != 3:
+            raise fail(f"'{name}' must be a list of 3 numbers or expressions", field=f"{key}.{name}")
+        x, y, z = (value(entry, f"{key}.{name}", None, scale) for entry in entries)
+        for entry in (x, y, z):
+            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"))
+        return x, y, z
+
+    return FixedTransform(xyz=vector("xyz", sp.S.One), rpy=vector("rpy", angle_scale))
+
+
+def robot_to_mapping(robot: Robot) -> dict[str, Any]:
+    """Return the plain-data description of ``robot`` (inverse of :func:`robot_from_mapping`; angles in radians).
+
+    Examples
+    --------
+    >>> robot = robot_from_mapping({"name": "r", "convention": "modified",
+    ...                             "joints": [{"type": "revolute", "alpha": "-pi/2"}]})
+    >>> robot_to_mapping(robot)["joints"][0]["alpha"]
+    '-pi/2'
+    """
+    data: dict[str, Any] = {"name": robot.name}
+    if robot.description:
+        data["description"] = robot.description
+    data["convention"] = robot.convention.value
+    if robot.parameters:
+        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in robot.parameters}
+    joints = []
+    for joint in robot.joints:
+        row: dict[str, Any] = {"type": joint.type.value}
+        for key in ("alpha", "a", "d", "theta"):
+            row[key] = expression_text(getattr(joint, key))
+        if joint.limits is not None:
+            row["limits"] = [expression_text(limit) for limit in joint.limits]
+        joints.append(row)
+    data["joints"] = joints
+    for key in ("base", "tool"):
+        transform: FixedTransform | None = getattr(robot, key)
+        if transform is None:
+            continue
+        if transform.given_matrix is not None:
+            data[key] = {"matrix": [[expression_text(e) for e in transform.given_matrix.row(r)] for r in range(4)]}
+        else:
+            data[key] = {"xyz": [expression_text(e) for e in transform.xyz],
+                         "rpy": [expression_text(e) for e in transform.rpy]}
+    return data

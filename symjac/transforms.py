@@ -1,0 +1,184 @@
+r"""Rigid-body transforms: elementary rotations, DH link transforms, skew matrices and 6 x 6 maps.
+
+Everything here is pure SymPy and knows nothing about robot files. Link transforms are also available as a list of
+*elementary motions* (rotation or translation about/along x or z) so that :func:`compose` can multiply a chain while
+merging consecutive rotations about the same axis: :math:`R_z(\theta_2) T_x(a) \cdots` stays as written, but
+:math:`R_z(\theta_2) T_z(d) R_z(\theta_3) = T_z(d) R_z(\theta_2 + \theta_3)`, which is how parallel joints give the
+compact :math:`c_{23}` instead of :math:`c_2 c_3 - s_2 s_3`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from typing import Literal
+
+import sympy as sp
+
+Axis = Literal["x", "y", "z"]
+_AXIS_INDEX = {"x": 0, "y": 1, "z": 2}
+
+
+def rotation(axis: Axis, angle: sp.Expr) -> sp.Matrix:
+    r"""Return the 3 x 3 rotation by ``angle`` about the unit ``axis``.
+
+    .. math:: R_z(\theta) = \begin{bmatrix} c & -s & 0 \\ s & c & 0 \\ 0 & 0 & 1 \end{bmatrix}
+
+    Examples
+    --------
+    >>> rotation("z", sp.pi / 2)
+    Matrix([
+    [0, -1, 0],
+    [1,  0, 0],
+    [0,  0, 1]])
+    """
+    c, s = sp.cos(angle), sp.sin(angle)
+    i = _AXIS_INDEX[axis]
+    j, k = (i + 1) % 3, (i + 2) % 3
+    matrix = sp.eye(3)
+    matrix[j, j], matrix[j, k], matrix[k, j], matrix[k, k] = c, -s, s, c
+    return matrix
+
+
+def rotation_rpy(roll: sp.Expr, pitch: sp.Expr, yaw: sp.Expr) -> sp.Matrix:
+    r"""Roll-pitch-yaw about fixed axes: :math:`R = R_z(\text{yaw})\,R_y(\text{pitch})\,R_x(\text{roll})`."""
+    return rotation("z", yaw) * rotation("y", pitch) * rotation("x", roll)
+
+
+def homogeneous(rotation_matrix: sp.Matrix, position: sp.Matrix) -> sp.Matrix:
+    r"""Stack :math:`R` and :math:`p` into :math:`T = \begin{bmatrix} R & p \\ 0 & 1 \end{bmatrix}`."""
+    transform = sp.eye(4)
+    transform[:3, :3] = rotation_matrix
+    transform[:3, 3] = position
+    return transform
+
+
+def inverse_transform(transform: sp.Matrix) -> sp.Matrix:
+    r"""Invert a rigid transform without a general inverse: :math:`T^{-1} = [R^T, -R^T p; 0, 1]`."""
+    rotation_t = transform[:3, :3].T
+    return homogeneous(rotation_t, -rotation_t * transform[:3, 3])
+
+
+def skew(vector: Sequence[sp.Expr]) -> sp.Matrix:
+    r"""Cross-product matrix: :math:`\hat{p}\,v = p \times v`.
+
+    .. math:: \hat{p} = \begin{bmatrix} 0 & -p_z & p_y \\ p_z & 0 & -p_x \\ -p_y & p_x & 0 \end{bmatrix}
+    """
+    x, y, z = vector
+    return sp.Matrix([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+
+
+def vee(matrix: sp.Matrix) -> sp.Matrix:
+    r"""Inverse of :func:`skew`: the vector :math:`w` of a skew-symmetric :math:`\hat{w}`."""
+    return sp.Matrix([matrix[2, 1], matrix[0, 2], matrix[1, 0]])
+
+
+def block_rotation(rotation_matrix: sp.Matrix) -> sp.Matrix:
+    r"""The 6 x 6 frame change of a basic Jacobian: :math:`{}^BJ = \mathrm{diag}({}^B_AR, {}^B_AR)\,{}^AJ`."""
+    return sp.diag(rotation_matrix, rotation_matrix)
+
+
+def point_shift(vector: Sequence[sp.Expr]) -> sp.Matrix:
+    r"""The 6 x 6 map from the twist at a point W to the twist at E, with :math:`p = p_{WE}`.
+
+    .. math:: \begin{bmatrix} v_E \\ \omega \end{bmatrix} =
+              \begin{bmatrix} I & -\hat{p} \\ 0 & I \end{bmatrix} \begin{bmatrix} v_W \\ \omega \end{bmatrix}
+    """
+    shift = sp.eye(6)
+    shift[:3, 3:] = -skew(vector)
+    return shift
+
+
+# --- elementary motions and their structured product -------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Motion:
+    """An elementary motion: ``kind`` ``"R"`` (rotate by ``value`` about ``axis``) or ``"T"`` (translate along it)."""
+
+    kind: Literal["R", "T"]
+    axis: Axis
+    value: sp.Expr
+
+
+def dh_motions(
+    convention: Literal["standard", "modified"], alpha: sp.Expr, a: sp.Expr, theta: sp.Expr, d: sp.Expr
+) -> tuple[Motion, ...]:
+    r"""The DH link transform as elementary motions.
+
+    .. math::
+        \text{standard: } R_z(\theta)\,T_z(d)\,T_x(a)\,R_x(\alpha) \qquad
+        \text{modified: } R_x(\alpha)\,T_x(a)\,R_z(\theta)\,T_z(d)
+    """
+    about_z = (Motion("R", "z", theta), Motion("T", "z", d))
+    along_x = (Motion("T", "x", a), Motion("R", "x", alpha))
+    if convention == "standard":
+        return about_z + along_x
+    return along_x[::-1] + about_z
+
+
+def inverse_motions(motions: Sequence[Motion]) -> tuple[Motion, ...]:
+    """The motions of the inverse transform: reversed order, negated values."""
+    return tuple(Motion(m.kind, m.axis, -m.value) for m in reversed(motions))
+
+
+def dh_transform(
+    convention: Literal["standard", "modified"], alpha: sp.Expr, a: sp.Expr, theta: sp.Expr, d: sp.Expr
+) -> sp.Matrix:
+    """The 4 x 4 DH link transform (see :func:`dh_motions` for the factor order).
+
+    Examples
+    --------
+    >>> theta = sp.Symbol("theta1")
+    >>> dh_transform("modified", 0, sp.Symbol("L0"), theta, 0)
+    Matrix([
+    [cos(theta1), -sin(theta1), 0, L0],
+    [sin(theta1),  cos(theta1), 0,  0],
+    [          0,            0, 1,  0],
+    [          0,            0, 0,  1]])
+    """
+    rotation_matrix, position = compose(dh_motions(convention, alpha, a, theta, d))
+    return homogeneous(rotation_matrix, position)
+
+
+def compose(motions: Iterable[Motion | sp.Matrix]) -> tuple[sp.Matrix, sp.Matrix]:
+    r"""Multiply elementary motions (and constant 4 x 4 transforms) into :math:`(R, p)`.
+
+    Consecutive rotations about the same axis are merged into one rotation by the summed angle, also across
+    translations along that axis (which commute with them). Each translation is added as :math:`p \mathrel{+}= R\,t`
+    with the rotation accumulated so far, so a position is a sum of columns of compact rotation matrices.
+
+    Returns
+    -------
+    R : sympy.Matrix, shape (3, 3)
+    p : sympy.Matrix, shape (3, 1)
+    """
+    rotation_matrix, position = sp.eye(3), sp.zeros(3, 1)
+    pending: Motion | None = None  # a rotation not yet multiplied into rotation_matrix
+
+    def flush() -> None:
+        nonlocal rotation_matrix, pending
+        if pending is not None and pending.value != 0:
+            rotation_matrix = rotation_matrix * rotation(pending.axis, pending.value)
+        pending = None
+
+    for motion in motions:
+        if isinstance(motion, sp.MatrixBase):
+            flush()
+            position = position + rotation_matrix * motion[:3, 3]
+            rotation_matrix = rotation_matrix * motion[:3, :3]
+        elif motion.kind == "R":
+            if pending is not None and pending.axis == motion.axis:
+                pending = Motion("R", motion.axis, pending.value + motion.value)
+            else:
+                flush()
+                pending = motion
+        elif motion.value != 0:
+            if pending is not None and pending.axis != motion.axis:
+                flush()
+            # a translation along the pending rotation's own axis is not changed by that rotation
+            unit = sp.zeros(3, 1)
+            unit[_AXIS_INDEX[motion.axis]] = motion.value
+            position = position + rotation_matrix * unit
+    flush()
+    return rotation_matrix, position

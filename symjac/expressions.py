@@ -25,6 +25,7 @@ from symjac.errors import ExpressionError
 
 MAX_EXPRESSION_LENGTH = 200
 MAX_EXPONENT = 8
+MAX_POWER_BITS = 4096  # largest numerator/denominator a power may produce: "((9**8)**8)**8..." must not hang
 _IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 
 
@@ -44,7 +45,7 @@ def exact_number(value: int | float) -> sp.Rational:
         raise ExpressionError(f"expected a finite number, got {value!r}")
     if isinstance(value, int):
         return sp.Integer(value)
-    fraction = Fraction(repr(value))
+    fraction = Fraction(repr(float(value)))  # float(): a numpy float64 repr is "np.float64(...)"
     return sp.Rational(fraction.numerator, fraction.denominator)
 
 
@@ -115,7 +116,7 @@ def _build(node: ast.AST, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
         left, right = _build(node.left, names, text), _build(node.right, names, text)
         if isinstance(node.op, ast.Div) and right == 0:
             raise ExpressionError(f"division by zero in {text!r}")
-        return _BINARY[type(node.op)](left, right)
+        return _small_powers(_BINARY[type(node.op)](left, right), text)
     if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow):
         exponent = node.right
         if isinstance(exponent, ast.UnaryOp) and isinstance(exponent.op, ast.USub):
@@ -126,8 +127,21 @@ def _build(node: ast.AST, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
             and exponent.value <= MAX_EXPONENT
         ):
             raise ExpressionError(f"only small integer powers (up to {MAX_EXPONENT}) are allowed in {text!r}")
-        return _build(node.left, names, text) ** _build(node.right, names, text)
+        base, power = _build(node.left, names, text), _build(node.right, names, text)
+        if base == 0 and power < 0:
+            raise ExpressionError(f"division by zero in {text!r}")
+        bits = max((max(abs(r.p).bit_length(), r.q.bit_length()) for r in base.atoms(sp.Rational)), default=0)
+        if bits * abs(int(power)) > MAX_POWER_BITS:
+            raise ExpressionError(f"number too large in {text!r}")
+        return _small_powers(base**power, text)
     raise ExpressionError(f"{type(node).__name__} is not allowed in {text!r}: use numbers, names, + - * / ** and pi")
+
+
+def _small_powers(expr: sp.Expr, text: str) -> sp.Expr:
+    """Reject a result SymPy merged into a power beyond the grammar (``L1**8*L1 -> L1**9``): unwritable."""
+    if any(p.exp.is_Integer and abs(p.exp) > MAX_EXPONENT for p in expr.atoms(sp.Pow)):
+        raise ExpressionError(f"only small integer powers (up to {MAX_EXPONENT}) are allowed in {text!r}")
+    return expr
 
 
 def expression_text(expr: sp.Expr) -> int | float | str:
@@ -143,4 +157,28 @@ def expression_text(expr: sp.Expr) -> int | float | str:
         as_float = float(expr)
         if exact_number(as_float) == expr:
             return as_float
-    return sp.sstr(expr)
+    text = sp.sstr(expr)
+    try:  # sstr can regroup: 1/(2*(L1 + L2)) reads back as 1/(2*L1 + 2*L2), a different tree
+        if parse_expression(text, {symbol.name: symbol for symbol in expr.free_symbols}) == expr:
+            return text
+    except ExpressionError:
+        pass
+    return _tree_text(expr)
+
+
+def _tree_text(expr: sp.Expr) -> str:
+    """Write ``expr`` node by node, fully parenthesised, so that parsing rebuilds the very same tree."""
+    if expr.is_Integer:
+        return str(expr) if expr >= 0 else f"({expr})"
+    if expr.is_Rational:
+        return f"({expr.p}/{expr.q})"
+    if expr.is_Add:
+        return "(" + " + ".join(_tree_text(term) for term in expr.args) + ")"
+    if expr.is_Mul:
+        coefficient, rest = expr.as_coeff_Mul()
+        factors = [_tree_text(factor) for factor in sp.Mul.make_args(rest)]
+        product = "*".join(factors) if len(factors) == 1 else "(" + "*".join(factors) + ")"
+        return product if coefficient == 1 else f"({_tree_text(coefficient)}*{product})"
+    if expr.is_Pow:
+        return f"{_tree_text(expr.base)}**({expr.exp})"
+    return sp.sstr(expr)  # pi and parameter symbols

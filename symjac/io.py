@@ -93,7 +93,8 @@ def robot_to_toml(robot: Robot) -> str:
 def _toml_value(value: Any) -> str:
     """A TOML literal for the plain values robot files use (str, int, float, nested lists)."""
     if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)  # a JSON string is a valid TOML basic string
+        # a JSON string is a valid TOML basic string, except that TOML also requires DEL (U+007F) escaped
+        return json.dumps(value, ensure_ascii=False).replace("\x7f", "\\u007f")
     if isinstance(value, bool):  # pragma: no cover - robot files hold no booleans
         raise TypeError("booleans are not used in robot files")
     if isinstance(value, int | float):

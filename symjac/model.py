@@ -213,7 +213,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     if not isinstance(description, str):
         raise fail("'description' must be a string", field="description")
     convention_text = data.get("convention")
-    if convention_text not in {c.value for c in Convention}:
+    if not isinstance(convention_text, str) or convention_text not in {c.value for c in Convention}:
         raise fail(f"'convention' is required and must be 'standard' or 'modified', got {convention_text!r}",
                    field="convention")
     convention = Convention(convention_text)
@@ -230,7 +230,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         if not isinstance(joint_data, Mapping):
             raise fail(f"expected a table, got {type(joint_data).__name__}", joint=number)
         kind = joint_data.get("type")
-        if kind not in {t.value for t in JointType}:
+        if not isinstance(kind, str) or kind not in {t.value for t in JointType}:
             raise fail(f"'type' must be 'revolute' or 'prismatic', got {kind!r}", joint=number, field="type")
         joint_types.append(JointType(kind))
     reserved = {f"theta{i}" for i in range(1, len(joint_types) + 1)} | {
@@ -303,16 +303,26 @@ def _parameters(raw: Any, reserved: set[str], fail: Any) -> tuple[Parameter, ...
 
 def _require_finite(expr: sp.Expr, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> None:
     number = expr.subs(defaults)
-    if not number.is_number or not math.isfinite(float(number)):
+    if not number.is_number or not _is_finite(number):
         raise fail(f"value {expr} is not a finite number once parameters take their defaults")
+
+
+def _is_finite(number: sp.Expr) -> bool:
+    try:
+        return math.isfinite(float(number))
+    except TypeError:  # complex infinity (1/L1 with L1 = 0) has no float
+        return False
 
 
 def _limits(raw: Any, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> tuple[sp.Expr, sp.Expr]:
     if not isinstance(raw, Sequence) or isinstance(raw, str) or len(raw) != 2:
         raise fail("'limits' must be a list [lower, upper]")
     lower, upper = value(raw[0]), value(raw[1])
-    low, high = float(lower.subs(defaults)), float(upper.subs(defaults))
-    if not (math.isfinite(low) and math.isfinite(high)) or low >= high:
+    low_expr, high_expr = lower.subs(defaults), upper.subs(defaults)
+    if not (_is_finite(low_expr) and _is_finite(high_expr)):
+        raise fail(f"'limits' must be finite with lower < upper, got [{low_expr}, {high_expr}]")
+    low, high = float(low_expr), float(high_expr)
+    if low >= high:
         raise fail(f"'limits' must be finite with lower < upper, got [{low}, {high}]")
     return lower, upper
 

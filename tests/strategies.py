@@ -1,0 +1,48 @@
+"""Hypothesis strategies: random serial chains as robot mappings (both conventions, prismatic joints, 1-7 joints)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from hypothesis import strategies as st
+
+from symjac import Robot, robot_from_mapping
+
+# Twists: the special angles real arms use (parallel, perpendicular, anti-parallel) and a generic one.
+TWISTS = st.sampled_from([0, "pi/2", "-pi/2", "pi", 0.3, "-pi/3"])
+LENGTHS = st.sampled_from([0, 0, 0.25, -0.4, "L", "L/2 + 0.1"])
+OFFSETS = st.sampled_from([0, 0, "pi/2", -0.2])
+SMALL = st.sampled_from([0, 0.1, -0.3, "L"])
+ANGLES = st.sampled_from([0, "pi/2", -0.7, 1.1])
+
+
+@st.composite
+def joint_rows(draw: st.DrawFn) -> dict[str, Any]:
+    return {
+        "type": draw(st.sampled_from(["revolute", "revolute", "prismatic"])),
+        "alpha": draw(TWISTS),
+        "a": draw(LENGTHS),
+        "d": draw(LENGTHS),
+        "theta": draw(OFFSETS),
+    }
+
+
+@st.composite
+def fixed_transforms(draw: st.DrawFn) -> dict[str, Any]:
+    return {"xyz": [draw(SMALL) for _ in range(3)], "rpy": [draw(ANGLES) for _ in range(3)]}
+
+
+@st.composite
+def robots(draw: st.DrawFn, max_joints: int = 7) -> Robot:
+    """A random, valid robot with a parameter L = 0.35 used by some fields."""
+    data: dict[str, Any] = {
+        "name": "random",
+        "convention": draw(st.sampled_from(["standard", "modified"])),
+        "parameters": {"L": 0.35},
+        "joints": draw(st.lists(joint_rows(), min_size=1, max_size=max_joints)),
+    }
+    if draw(st.booleans()):
+        data["base"] = draw(fixed_transforms())
+    if draw(st.booleans()):
+        data["tool"] = draw(fixed_transforms())
+    return robot_from_mapping(data)

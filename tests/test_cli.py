@@ -1,0 +1,407 @@
+"""In-process tests of the ``symjac`` command line (``symjac.cli.main``)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import sympy as sp
+
+from symjac.cli import main
+from symjac.io import catalog, load_robot, robot_to_toml
+
+BMATRIX = r"\begin{bmatrix}"
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    """Run ``symjac *argv`` in process; return (exit status, stdout, stderr)."""
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def ok(capsys: pytest.CaptureFixture[str], *argv: str) -> str:
+    """Run a command that must succeed silently on stderr; return its stdout."""
+    status, out, err = run(capsys, *argv)
+    assert status == 0, err
+    assert err == ""
+    assert out.endswith("\n")
+    return out
+
+
+def latex_line(capsys: pytest.CaptureFixture[str], *argv: str) -> str:
+    """The single LaTeX line a non-standalone ``jacobian``/``fk`` prints."""
+    out = ok(capsys, *argv)
+    lines = out.splitlines()
+    assert len(lines) == 1, out
+    return lines[0]
+
+
+def assert_one_line_error(status: int, out: str, err: str) -> None:
+    assert status == 2
+    assert out == ""
+    lines = err.splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("symjac: error: "), err
+    assert "Traceback" not in err
+
+
+# --- robots -------------------------------------------------------------------------------------------------
+
+
+def test_robots_lists_the_whole_catalog(capsys):
+    out = ok(capsys, "robots")
+    robots = catalog()
+    lines = out.splitlines()
+    assert len(lines) == len(robots) >= 2
+    for line, (name, description) in zip(lines, robots.items(), strict=True):
+        assert line.split()[0] == name
+        assert line.rstrip().endswith(description.rstrip())
+
+
+# --- jacobian -----------------------------------------------------------------------------------------------
+
+
+def test_jacobian_planar2r_latex(capsys):
+    line = latex_line(capsys, "jacobian", "planar2r")
+    assert line.startswith(r"{}^{0}J = " + BMATRIX)
+    assert line.endswith(r"\end{bmatrix}")
+    assert "s_{12}" in line
+    assert "c_{12}" in line
+
+
+def test_jacobian_in_another_frame(capsys):
+    base = latex_line(capsys, "jacobian", "planar2r")
+    frame1 = latex_line(capsys, "jacobian", "planar2r", "--frame", "1")
+    assert frame1.startswith(r"{}^{1}J = " + BMATRIX)
+    assert frame1.split(" = ", 1)[1] != base.split(" = ", 1)[1]
+
+
+def test_jacobian_in_the_tool_frame(capsys):
+    line = latex_line(capsys, "jacobian", "planar3r", "--frame", "tool")
+    assert line.startswith(r"{}^{tool}J = " + BMATRIX)
+    # Expressed in the last frame, the velocity of a planar arm depends only on the relative angles.
+    assert "s_{1}" not in line
+    assert "c_{1}" not in line
+
+
+def test_jacobian_tool_point_differs_from_wrist_point(capsys):
+    wrist = latex_line(capsys, "jacobian", "planar3r")
+    tool = latex_line(capsys, "jacobian", "planar3r", "--point", "tool")
+    assert wrist != tool
+    assert "L_{3}" in tool
+    assert "L_{3}" not in wrist
+
+
+def test_jacobian_explicit_point_equals_tool_point(capsys):
+    tool = latex_line(capsys, "jacobian", "planar3r", "--point", "tool")
+    explicit = latex_line(capsys, "jacobian", "planar3r", "--point", "L3,0,0")
+    assert explicit == tool
+
+
+def test_jacobian_cross_product_equals_differentiation(capsys):
+    differentiation = ok(capsys, "jacobian", "puma560", "--method", "differentiation")
+    cross_product = ok(capsys, "jacobian", "puma560", "--method", "cross_product")
+    assert cross_product == differentiation
+    assert ok(capsys, "jacobian", "puma560") == differentiation  # the default method
+
+
+def test_jacobian_pretty_uses_unicode_shorthand(capsys):
+    out = ok(capsys, "jacobian", "planar2r", "--format", "pretty")
+    assert "c₁₂" in out
+    assert "s₁₂" in out
+    assert "\\" not in out  # no LaTeX
+
+
+def test_jacobian_json(capsys):
+    latex = latex_line(capsys, "jacobian", "planar3r", "--frame", "tool")
+    data = json.loads(ok(capsys, "jacobian", "planar3r", "--frame", "tool", "--format", "json"))
+    assert {"robot", "frame", "method", "shape", "entries", "latex"} <= data.keys()
+    assert data["robot"] == "planar3r"
+    assert data["frame"] == "tool"
+    assert data["method"] == "differentiation"
+    assert data["shape"] == [6, 3]
+    entries = data["entries"]
+    assert len(entries) == 6
+    assert all(len(row) == 3 and all(isinstance(cell, str) for cell in row) for row in entries)
+    assert data["latex"] == latex
+
+
+def test_jacobian_json_entries_are_the_matrix(capsys):
+    data = json.loads(ok(capsys, "jacobian", "planar2r", "--format", "json"))
+    assert data["frame"] == 0
+    assert data["shape"] == [6, 2]
+    L1, L2, t1, t2 = sp.symbols("L1 L2 theta1 theta2")
+    J = sp.Matrix([[sp.sympify(cell) for cell in row] for row in data["entries"]])
+    expected = sp.Matrix([
+        [-L1 * sp.sin(t1) - L2 * sp.sin(t1 + t2), -L2 * sp.sin(t1 + t2)],
+        [L1 * sp.cos(t1) + L2 * sp.cos(t1 + t2), L2 * sp.cos(t1 + t2)],
+        [0, 0], [0, 0], [0, 0], [1, 1],
+    ])
+    assert (J - expected).applyfunc(sp.simplify) == sp.zeros(6, 2)
+
+
+def test_jacobian_json_shape_of_a_six_joint_arm(capsys):
+    data = json.loads(ok(capsys, "jacobian", "puma560", "--format", "json"))
+    assert data["shape"] == [6, 6]
+    assert len(data["entries"]) == 6
+    assert all(len(row) == 6 for row in data["entries"])
+
+
+def test_jacobian_numeric_substitutes_the_parameters(capsys):
+    symbolic = latex_line(capsys, "jacobian", "puma560")
+    assert "a_{2}" in symbolic
+    numeric = latex_line(capsys, "jacobian", "puma560", "--numeric")
+    assert "0.4318" in numeric
+    assert "a_{2}" not in numeric
+    assert "d_{4}" not in numeric
+
+
+def test_jacobian_standalone_is_a_latex_document(capsys):
+    out = ok(capsys, "jacobian", "planar2r", "--standalone")
+    assert out.lstrip().startswith("%")  # the generated-by comment
+    assert r"\documentclass" in out
+    assert r"\begin{document}" in out
+    assert out.rstrip().endswith(r"\end{document}")
+    assert out.index(r"\documentclass") < out.index(r"\begin{document}") < out.index(BMATRIX)
+    assert "planar2r" in out
+    assert "s_{12}" in out
+    assert "{{" not in out  # no unrendered template placeholders
+    assert "{%" not in out
+
+
+# --- show and fk --------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("fmt", ["latex", "pretty", "json"])
+def test_show_stanford(capsys, fmt):
+    out = ok(capsys, "show", "stanford", "--format", fmt)
+    if fmt == "json":
+        data = json.loads(out)
+        assert data["robot"] == "stanford"
+        assert len(data["dh_table"]) == 6
+        assert {f"T_{i - 1}_{i}" for i in range(1, 7)} <= data["transforms"].keys()
+        assert all(len(m) == 4 and all(len(row) == 4 for row in m) for m in data["transforms"].values())
+    elif fmt == "pretty":
+        assert "stanford" in out
+        assert "prismatic" in out
+        assert "T_0_1 =" in out
+        assert "c₁" in out
+    else:
+        assert r"\begin{array}" in out
+        assert r"{}^{0}_{1}T = " + BMATRIX in out
+        assert r"{}^{5}_{6}T = " + BMATRIX in out
+
+
+@pytest.mark.parametrize("fmt", ["latex", "pretty", "json"])
+def test_fk_puma560(capsys, fmt):
+    out = ok(capsys, "fk", "puma560", "--format", fmt)
+    if fmt == "json":
+        data = json.loads(out)
+        assert data["robot"] == "puma560"
+        assert data["source"] == 0
+        assert data["target"] == 6
+        assert len(data["entries"]) == 4
+        assert data["entries"][3] == ["0", "0", "0", "1"]
+        assert data["latex"].startswith(BMATRIX)
+    elif fmt == "pretty":
+        assert out.startswith("T_0_6 =\n")
+        assert "c₂₃" in out
+    else:
+        lines = out.splitlines()
+        assert len(lines) == 1
+        assert lines[0].startswith(r"{}^{0}_{6}T = " + BMATRIX)
+        assert "c_{23}" in lines[0]
+
+
+@pytest.mark.parametrize("command", ["show", "fk"])
+def test_show_and_fk_standalone(capsys, command):
+    out = ok(capsys, command, "planar2r", "--standalone")
+    assert r"\documentclass" in out
+    assert out.rstrip().endswith(r"\end{document}")
+
+
+def test_fk_numeric(capsys):
+    out = ok(capsys, "fk", "planar2r", "--numeric")
+    assert "0.5" in out
+    assert "0.4" in out
+    assert "L_{1}" not in out
+
+
+# --- output files ---------------------------------------------------------------------------------------------
+
+
+def test_output_file_is_written_and_stdout_is_empty(capsys, tmp_path):
+    expected = ok(capsys, "jacobian", "planar2r")
+    target = tmp_path / "J.tex"
+    status, out, err = run(capsys, "jacobian", "planar2r", "-o", str(target))
+    assert (status, out, err) == (0, "", "")
+    assert target.read_text(encoding="utf-8") == expected
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["J.tex"]  # no temporary file left behind
+
+
+def test_output_file_replaces_an_existing_file(capsys, tmp_path):
+    target = tmp_path / "fk.json"
+    target.write_text("old", encoding="utf-8")
+    status, out, _ = run(capsys, "fk", "planar2r", "--format", "json", "--output", str(target))
+    assert (status, out) == (0, "")
+    assert json.loads(target.read_text(encoding="utf-8"))["robot"] == "planar2r"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["fk.json"]
+
+
+def test_output_file_relative_to_the_working_directory(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    status, out, _ = run(capsys, "robots", "-o", "robots.txt")
+    assert (status, out) == (0, "")
+    assert (tmp_path / "robots.txt").read_text(encoding="utf-8").startswith(next(iter(catalog())))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["robots.txt"]
+
+
+# --- robot files ------------------------------------------------------------------------------------------------
+
+
+def test_robot_file_path_works_as_robot(capsys, tmp_path):
+    path = tmp_path / "my_arm.toml"
+    path.write_text(robot_to_toml(load_robot("planar2r")), encoding="utf-8")
+    from_file = latex_line(capsys, "jacobian", str(path))
+    assert from_file == latex_line(capsys, "jacobian", "planar2r")
+    data = json.loads(ok(capsys, "show", str(path), "--format", "json"))
+    assert data["robot"] == "planar2r"
+
+
+def test_hand_written_robot_file(capsys, tmp_path):
+    path = tmp_path / "arm.toml"
+    path.write_text(
+        'name = "arm"\nconvention = "standard"\n\n[parameters]\nl = 2.5\n\n'
+        '[[joints]]\ntype = "revolute"\nalpha = 0\na = "l"\nd = 0\ntheta = 0\n',
+        encoding="utf-8",
+    )
+    line = latex_line(capsys, "jacobian", str(path))
+    assert line.startswith(r"{}^{0}J = " + BMATRIX)
+    assert "l s_{1}" in line
+    assert "2.5" in latex_line(capsys, "jacobian", str(path), "--numeric")
+
+
+# --- errors -------------------------------------------------------------------------------------------------
+
+
+MALFORMED_TOML = 'name = "arm"\n[[joints]\ntype = "revolute"\n'
+
+ERROR_CASES = {
+    "unknown robot": ["jacobian", "no_such_robot"],
+    "unknown robot for show": ["show", "no_such_robot"],
+    "missing robot file": ["fk", "missing.toml"],
+    "frame out of range": ["jacobian", "puma560", "--frame", "9"],
+    "negative frame": ["jacobian", "puma560", "--frame", "-1"],
+    "frame not a number": ["jacobian", "puma560", "--frame", "x"],
+    "point with two coordinates": ["jacobian", "planar3r", "--point", "1,2"],
+    "point with four coordinates": ["jacobian", "planar3r", "--point", "1,2,3,4"],
+    "point with code": ["jacobian", "planar3r", "--point", "__import__('os'),0,0"],
+    "point with unknown name": ["jacobian", "planar3r", "--point", "x,0,0"],
+    "point with empty coordinate": ["jacobian", "planar3r", "--point", "1,,0"],
+    "point unparsable": ["jacobian", "planar3r", "--point", "1,2,("],
+    "point named nowhere": ["jacobian", "planar3r", "--point", "elbow"],
+}
+
+
+@pytest.mark.parametrize("argv", ERROR_CASES.values(), ids=ERROR_CASES.keys())
+def test_errors_are_one_line_and_exit_2(capsys, tmp_path, monkeypatch, argv):
+    monkeypatch.chdir(tmp_path)
+    assert_one_line_error(*run(capsys, *argv))
+    # With -o, nothing is written: neither the output file nor a temporary file.
+    target = tmp_path / "out.tex"
+    assert_one_line_error(*run(capsys, *argv, "-o", str(target)))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_error_mentions_what_is_wrong(capsys):
+    _, _, err = run(capsys, "jacobian", "no_such_robot")
+    assert "no_such_robot" in err
+    assert "puma560" in err  # lists the known robots
+    _, _, err = run(capsys, "jacobian", "puma560", "--frame", "9")
+    assert "9" in err
+    _, _, err = run(capsys, "jacobian", "planar3r", "--point", "__import__('os'),0,0")
+    assert "--point" in err
+
+
+@pytest.mark.parametrize("text", [
+    MALFORMED_TOML,
+    'name = "arm"\n',  # no convention, no joints
+    'name = "arm"\nconvention = "standard"\njoints = []\n',
+    'name = "arm"\nconvention = "sideways"\n[[joints]]\ntype = "revolute"\nalpha = 0\na = 0\nd = 0\ntheta = 0\n',
+    'name = "arm"\nconvention = "standard"\n[[joints]]\ntype = "revolute"\nalpha = 0\na = "L9"\nd = 0\ntheta = 0\n',
+    'name = "arm"\nconvention = "standard"\n[[joints]]\ntype = "revolute"\nalpha = "__import__(\'os\')"\n'
+    'a = 0\nd = 0\ntheta = 0\n',
+], ids=["invalid toml", "no joints key", "empty joints", "bad convention", "unknown parameter", "code in field"])
+def test_malformed_robot_file(capsys, tmp_path, text):
+    path = tmp_path / "bad.toml"
+    path.write_text(text, encoding="utf-8")
+    status, out, err = run(capsys, "jacobian", str(path))
+    assert_one_line_error(status, out, err)
+    assert "bad.toml" in err  # the message names the file
+    target = tmp_path / "J.tex"
+    assert_one_line_error(*run(capsys, "jacobian", str(path), "-o", str(target)))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml"]
+
+
+def test_unreadable_robot_file(capsys, tmp_path):
+    path = tmp_path / "binary.toml"
+    path.write_bytes(b"\xff\xfe\x00garbage")
+    assert_one_line_error(*run(capsys, "fk", str(path)))
+
+
+def test_failed_run_keeps_an_existing_output_file(capsys, tmp_path):
+    target = tmp_path / "J.tex"
+    target.write_text("previous result\n", encoding="utf-8")
+    assert_one_line_error(*run(capsys, "jacobian", "puma560", "--frame", "9", "-o", str(target)))
+    assert target.read_text(encoding="utf-8") == "previous result\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["J.tex"]
+
+
+def test_output_into_a_missing_directory(capsys, tmp_path):
+    target = tmp_path / "no" / "such" / "dir" / "J.tex"
+    assert_one_line_error(*run(capsys, "jacobian", "planar2r", "-o", str(target)))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_output_onto_a_directory_leaves_no_temporary_file(capsys, tmp_path):
+    (tmp_path / "J.tex").mkdir()
+    assert_one_line_error(*run(capsys, "jacobian", "planar2r", "-o", str(tmp_path / "J.tex")))
+    assert [p.name for p in tmp_path.iterdir()] == ["J.tex"]
+    assert list((tmp_path / "J.tex").iterdir()) == []
+
+
+# --- argparse usage errors ------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("argv", [
+    [],
+    ["no_such_command"],
+    ["jacobian"],
+    ["jacobian", "planar2r", "--format", "html"],
+    ["jacobian", "planar2r", "--method", "guess"],
+    ["robots", "--no-such-option"],
+], ids=["no command", "unknown command", "missing robot", "bad format", "bad method", "unknown option"])
+def test_usage_errors_exit_2(capsys, argv):
+    with pytest.raises(SystemExit) as excinfo:
+        main(argv)
+    assert excinfo.value.code == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert "usage: symjac" in err
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as excinfo:
+        main(["--version"])
+    assert excinfo.value.code == 0
+    assert capsys.readouterr().out.startswith("symjac ")
+
+
+def test_help(capsys):
+    with pytest.raises(SystemExit) as excinfo:
+        main(["jacobian", "--help"])
+    assert excinfo.value.code == 0
+    out = capsys.readouterr().out
+    assert "--frame" in out
+    assert "--point" in out

@@ -1,3 +1,5 @@
+"""``python -m symjac``: the same as the ``symjac`` command."""
+
 import sys
 
 from symjac.cli import main

@@ -177,7 +177,7 @@ class Chain:
                 continue
             for reference in range(group[0] - 1, group[-1] + 1):
                 if reference != references[index]:
-                    bases.append(self._basis(tuple(references[:index] + [reference] + references[index + 1:])))
+                    bases.append(self._basis((*references[:index], reference, *references[index + 1:])))
         return tuple(bases)
 
     def _basis(self, references: tuple[int, ...]) -> AngleBasis:

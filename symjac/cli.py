@@ -104,8 +104,8 @@ def _show(args: argparse.Namespace) -> str:
     if args.format == "pretty":
         header = f"{robot.name}: {robot.description}\n{robot.convention.value} DH\n"
         table = _text_table(["joint", "type", *_dh_headers(robot)], rows)
-        blocks = [f"{plain} =\n{pretty(_numeric(robot, m, args.numeric))}" for _, plain, m in transforms]
-        return header + table + "\n" + "\n\n".join(blocks) + "\n"
+        texts = [f"{plain} =\n{pretty(_numeric(robot, m, args.numeric))}" for _, plain, m in transforms]
+        return header + table + "\n" + "\n\n".join(texts) + "\n"
     blocks = [{"caption": "Denavit-Hartenberg table", "latex": _latex_table(robot, rows)}]
     blocks += [{"caption": "", "latex": f"{tex} = {latex(_numeric(robot, m, args.numeric))}"}
                for tex, _, m in transforms]

@@ -31,15 +31,16 @@ import sympy as sp
 from symjac.chain import Frame, chain_of
 from symjac.errors import FrameError
 from symjac.model import Robot
+from symjac.propagation import force_propagation, velocity_propagation
 from symjac.simplify import AngleBasis, simplify_matrix
 from symjac.transforms import block_rotation, point_shift
 
-Method = Literal["differentiation", "cross_product"]
+Method = Literal["differentiation", "cross_product", "velocity_propagation", "force_propagation"]
 Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
 
 METHODS: tuple[str, ...] = get_args(Method)
 
-__all__ = ["METHODS", "Method", "Point", "change_frame", "jacobian", "jacobian_of", "shift_point"]
+__all__ = ["METHODS", "Method", "Point", "change_frame", "clear_caches", "jacobian", "jacobian_of", "shift_point"]
 
 
 def jacobian(
@@ -75,8 +76,8 @@ def jacobian(
     >>> from symjac import load_robot
     >>> jacobian(load_robot("planar2r"), frame=1)[:2, :]
     Matrix([
-    [-L2*sin(theta2),        -L2*sin(theta2)],
-    [L1 + L2*cos(theta2), L2*cos(theta2)]])
+    [    -L2*sin(theta2), -L2*sin(theta2)],
+    [L1 + L2*cos(theta2),  L2*cos(theta2)]])
     """
     if method not in METHODS:
         raise FrameError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
@@ -114,7 +115,9 @@ def _cached_jacobian(
     robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method, simplify: bool
 ) -> sp.ImmutableMatrix:
     chain = chain_of(robot)
-    raw = _differentiation(robot, frame, point) if method == "differentiation" else _cross_product(robot, frame, point)
+    derive = {"differentiation": _differentiation, "cross_product": _cross_product,
+              "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
+    raw = derive(robot, frame, point)
     result = simplify_matrix(raw, chain.angle_bases(frame)) if simplify else raw
     return sp.ImmutableMatrix(result)
 
@@ -149,13 +152,31 @@ def _cross_product(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> sp
     return J
 
 
+def clear_caches() -> None:
+    """Forget every cached chain and Jacobian (for cold-start benchmarks, or to free memory)."""
+    _cached_jacobian.cache_clear()
+    chain_of.cache_clear()
+
+
+def _velocity_propagation(robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
+    chain = chain_of(robot)
+    return block_rotation(chain.rotation(frame, chain.n)) * velocity_propagation(robot, point).jacobian
+
+
+def _force_propagation(robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
+    chain = chain_of(robot)
+    return block_rotation(chain.rotation(frame, chain.n)) * force_propagation(robot, point).jacobian
+
+
 def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:
     r"""Re-express a basic Jacobian: :math:`{}^BJ = \mathrm{diag}({}^B_AR, {}^B_AR)\,{}^AJ`."""
     return block_rotation(sp.Matrix(R_b_a)) * sp.Matrix(J)
 
 
 def shift_point(J: sp.MatrixBase, p: Sequence[sp.Expr]) -> sp.Matrix:
-    r"""Move the reference point of a basic Jacobian by :math:`p` (same frame as J): :math:`J_E = [I, -\hat p; 0, I] J_W`.
+    r"""Move the reference point of a basic Jacobian by :math:`p` (in J's frame).
+
+    .. math:: J_E = \begin{bmatrix} I & -\hat p \\ 0 & I \end{bmatrix} J_W
 
     Examples
     --------
@@ -166,7 +187,9 @@ def shift_point(J: sp.MatrixBase, p: Sequence[sp.Expr]) -> sp.Matrix:
     return point_shift(p) * sp.Matrix(J)
 
 
-def jacobian_of(f: Sequence[sp.Expr] | sp.MatrixBase, q: Sequence[sp.Symbol], basis: AngleBasis | None = None) -> sp.Matrix:
+def jacobian_of(
+    f: Sequence[sp.Expr] | sp.MatrixBase, q: Sequence[sp.Symbol], basis: AngleBasis | None = None
+) -> sp.Matrix:
     r"""The Jacobian :math:`\partial f / \partial q` of any vector function (seed 000, section 4.2).
 
     With an angle ``basis`` the entries are simplified (see :mod:`symjac.simplify`).

@@ -107,10 +107,10 @@ class Joint:
 
 @dataclass(frozen=True)
 class FixedTransform:
-    """A constant rigid transform (base or tool), kept in the form it was given so it can be written back.
+    r"""A constant rigid transform (base or tool), kept in the form it was given so it can be written back.
 
     Either ``xyz`` and ``rpy`` (roll about x, then pitch about y, then yaw about z, all about fixed axes:
-    :math:`R = R_z(\\text{yaw}) R_y(\\text{pitch}) R_x(\\text{roll})`), or a full 4 x 4 ``given_matrix``.
+    :math:`R = R_z(\text{yaw}) R_y(\text{pitch}) R_x(\text{roll})`), or a full 4 x 4 ``given_matrix``.
     """
 
     xyz: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)

@@ -15,10 +15,13 @@ from sympy.printing.latex import LatexPrinter
 from sympy.printing.pretty.pretty import PrettyPrinter
 from sympy.printing.pretty.stringpict import prettyForm
 
-__all__ = ["latex", "pretty", "shorthand_indices"]
+from symjac.propagation import ForcePropagation, VelocityPropagation
+
+__all__ = ["latex", "pretty", "propagation_steps", "shorthand_indices", "textbook_factors"]
 
 _JOINT_ANGLE = re.compile(r"theta(\d+)\Z")
-_SUBSCRIPTS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉‚")
+_RATE = re.compile(r"(theta|d)dot\d+\Z")
+_SUBSCRIPTS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉\u201a")  # U+201A, a low comma: c₈‚₉‚₁₀
 
 
 def shorthand_indices(argument: sp.Expr) -> str | None:
@@ -44,6 +47,44 @@ def shorthand_indices(argument: sp.Expr) -> str | None:
     return separator.join(str(i) for i in indices)
 
 
+def _factor_key(factor: sp.Expr) -> tuple[Any, ...]:
+    """Textbook order of a product's factors: parameters, cosines, sines (each by joint index), then sums."""
+    base = factor.base if isinstance(factor, sp.Pow) else factor
+    if isinstance(base, sp.cos | sp.sin):
+        indices = shorthand_indices(base.args[0])
+        if indices is not None:
+            digits = indices.split(",") if "," in indices else list(indices)
+            return (1 if isinstance(base, sp.cos) else 2, [int(i) for i in digits], sp.default_sort_key(factor))
+    if isinstance(base, sp.Add):
+        return (4, [], sp.default_sort_key(factor))
+    if isinstance(base, sp.Symbol) and _RATE.match(base.name):  # rates last, as in L_1 s_2 \dot\theta_1
+        return (3, [], sp.default_sort_key(factor))
+    if isinstance(base, sp.Function):
+        return (3, [], sp.default_sort_key(factor))
+    return (0, [], sp.default_sort_key(factor))
+
+
+def textbook_factors(product: sp.Expr) -> tuple[int, list[sp.Expr]] | None:
+    """An integer coefficient and the other factors in textbook order (``c_1 s_{23}``, ``a_2 c_2 (...)``).
+
+    ``None`` for products this ordering does not cover (fractions, negative powers, non-commutative factors),
+    which print as SymPy prints them.
+
+    Examples
+    --------
+    >>> t1, t2, L = sp.symbols("theta1 theta2 L", real=True)
+    >>> textbook_factors(-2 * sp.sin(t1 + t2) * sp.cos(t1) * L)
+    (-2, [L, cos(theta1), sin(theta1 + theta2)])
+    """
+    if not isinstance(product, sp.Mul) or not product.is_commutative:
+        return None
+    coefficient, rest = product.as_coeff_Mul()
+    factors = sp.Mul.make_args(rest)
+    if not coefficient.is_Integer or any(f.is_Pow and f.exp.is_negative for f in factors):
+        return None
+    return int(coefficient), sorted(factors, key=_factor_key)
+
+
 class TextbookLatexPrinter(LatexPrinter):
     """LaTeX with :math:`s_{ij}, c_{ij}` shorthand and ``bmatrix`` matrices."""
 
@@ -62,6 +103,16 @@ class TextbookLatexPrinter(LatexPrinter):
 
     def _print_cos(self, expr: sp.Function, exp: str | None = None) -> str:
         return self._shorthand("c", expr, exp) or self._print_Function(expr, exp)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        ordered = textbook_factors(expr)
+        if ordered is None:
+            return super()._print_Mul(expr)
+        coefficient, factors = ordered
+        parts = [r"\left(" + self._print(f) + r"\right)" if f.is_Add else self._print(f) for f in factors]
+        if abs(coefficient) != 1:
+            parts.insert(0, str(abs(coefficient)))
+        return ("- " if coefficient < 0 else "") + " ".join(parts)
 
 
 class TextbookPrettyPrinter(PrettyPrinter):
@@ -82,6 +133,16 @@ class TextbookPrettyPrinter(PrettyPrinter):
     def _print_cos(self, expr: sp.Function) -> prettyForm:
         return self._shorthand("c", expr) or self._print_Function(expr)
 
+    def _print_Mul(self, product: sp.Mul) -> prettyForm:
+        ordered = textbook_factors(product)
+        if ordered is None:
+            return super()._print_Mul(product)
+        coefficient, factors = ordered
+        forms = [self._print(f) for f in factors]
+        if coefficient != 1:
+            forms.insert(0, self._print(sp.Integer(coefficient)))  # prettyForm.__mul__ turns -1 into a sign
+        return prettyForm.__mul__(*forms)
+
 
 def latex(expr: Any, **settings: Any) -> str:
     r"""LaTeX of an expression or matrix in textbook shorthand.
@@ -98,3 +159,37 @@ def latex(expr: Any, **settings: Any) -> str:
 def pretty(expr: Any, **settings: Any) -> str:
     """Unicode pretty print of an expression or matrix in textbook shorthand (``c₁₂``)."""
     return TextbookPrettyPrinter(settings).doprint(expr)
+
+
+def propagation_steps(propagation: VelocityPropagation | ForcePropagation, style: str = "latex") -> list[str]:
+    r"""Every step of a velocity or force propagation, one equation per string, ready for lecture notes.
+
+    ``style`` is ``"latex"`` (``{}^{2}\omega_{2} = \begin{bmatrix}...``) or ``"pretty"`` (Unicode).
+
+    Examples
+    --------
+    >>> from symjac import load_robot, velocity_propagation
+    >>> propagation_steps(velocity_propagation(load_robot("planar2r")))[3]
+    '{}^{1}v_{1} = \\begin{bmatrix}0\\\\L_{1} \\dot{\\theta}_{1}\\\\0\\end{bmatrix}'
+    """
+    if style not in ("latex", "pretty"):
+        raise ValueError(f"style must be 'latex' or 'pretty', got {style!r}")
+    if isinstance(propagation, VelocityPropagation):
+        rows = propagation.velocities()
+        names = ((r"\omega", "ω"), ("v", "v"))
+    else:
+        rows = propagation.wrenches()
+        names = (("f", "f"), ("n", "n"))
+    last = max(frame for frame, _, _ in rows if isinstance(frame, int))
+    lines = []
+    for frame, first, second in rows:
+        where, subscript = {"tool": ("T", "T"), "point": (str(last), "P")}.get(str(frame), (str(frame), str(frame)))
+        for (tex_name, text_name), vector in zip(names, (first, second), strict=True):
+            if style == "latex":
+                lines.append(f"{{}}^{{{where}}}{tex_name}_{{{subscript}}} = {latex(vector)}")
+            else:
+                lines.append(f"{text_name}_{subscript} (in frame {where}) =\n{pretty(vector)}")
+    if isinstance(propagation, ForcePropagation):
+        tau = propagation.joint_torques()
+        lines.append(rf"\tau = {latex(tau)}" if style == "latex" else f"tau =\n{pretty(tau)}")
+    return lines

@@ -70,7 +70,7 @@ class AngleBasis:
         return cls(variables, variables)
 
     def decompose(self, argument: sp.Expr) -> tuple[tuple[int, ...], sp.Expr] | None:
-        """Write ``argument`` as :math:`\\sum_j m_j \\psi_j + c`; ``None`` if it is not linear in the variables."""
+        r"""Write ``argument`` as :math:`\sum_j m_j \psi_j + c`; ``None`` if it is not linear in the variables."""
         coefficients = [argument.coeff(v) for v in self.variables]
         constant = sp.expand(argument - sum(c * v for c, v in zip(coefficients, self.variables, strict=True)))
         if constant.free_symbols & set(self.variables) or not all(c.is_Rational for c in coefficients):
@@ -83,15 +83,25 @@ class AngleBasis:
 
 @dataclass
 class _Image:
-    """The polynomial ring an expression lives in, and the way back to SymPy expressions."""
+    """The polynomial ring an expression lives in, and the way back to SymPy expressions.
+
+    Generators, in ring order: :math:`S_j, C_j` of each basis angle, :math:`S_k, C_k` of each constant angle (an
+    angle free of joint variables: a twist, an offset, a parameter), then the remaining atoms.
+    """
 
     basis: AngleBasis
+    constant_angles: list[sp.Expr]
     atoms: list[sp.Expr]
     relations: list[tuple[int, int]] = field(default_factory=list)  # (index of sqrt(n) generator, n)
 
+    @property
+    def angle_count(self) -> int:
+        """Angles with a sine/cosine generator pair: basis angles first, then constant angles."""
+        return len(self.basis.angles) + len(self.constant_angles)
+
     @cached_property
     def ring_and_gens(self) -> tuple[Any, tuple[PolyElement, ...]]:
-        count = 2 * len(self.basis.angles) + len(self.atoms)
+        count = 2 * self.angle_count + len(self.atoms)
         names = [f"g{i}" for i in range(count)]
         polynomial_ring, *gens = ring(names, QQ, order="lex") if names else ring("g0", QQ, order="lex")
         return polynomial_ring, tuple(gens)
@@ -110,14 +120,15 @@ class _Image:
     def back(self) -> list[sp.Expr]:
         """Generator index -> SymPy expression."""
         exprs: list[sp.Expr] = []
-        for angle in self.basis.angles:
+        for angle in (*self.basis.angles, *self.constant_angles):
             exprs += [sp.sin(angle), sp.cos(angle)]
         return exprs + list(self.atoms)
 
     @cached_property
     def ideal(self) -> list[PolyElement]:
-        pythagoras = [self.sine(j) ** 2 + self.cosine(j) ** 2 - 1 for j in range(len(self.basis.angles))]
-        offset = 2 * len(self.basis.angles)
+        """S^2 + C^2 - 1 per angle, g^2 - n per sqrt(n): a Groebner basis (leading monomials pairwise coprime)."""
+        pythagoras = [self.sine(j) ** 2 + self.cosine(j) ** 2 - 1 for j in range(self.angle_count)]
+        offset = 2 * self.angle_count
         return pythagoras + [self.gens[offset + i] ** 2 - n for i, n in self.relations]
 
 
@@ -125,9 +136,26 @@ def _is_joint_trig(expr: sp.Expr, variables: frozenset[sp.Symbol]) -> bool:
     return isinstance(expr, sp.sin | sp.cos) and bool(expr.args[0].free_symbols & variables)
 
 
-def _collect_atoms(exprs: Sequence[sp.Expr], basis: AngleBasis) -> list[sp.Expr]:
-    """Everything that is not built from + * ** and trig of joint angles becomes a generator of its own."""
+def _angle_terms(argument: sp.Expr) -> list[tuple[sp.Expr, int]]:
+    """Split a constant angle into terms with a sign, each term not starting with a minus (``-b + 1/5``)."""
+    terms = []
+    for term in sp.Add.make_args(argument):
+        terms.append((-term, -1) if term.could_extract_minus_sign() else (term, 1))
+    return terms
+
+
+def _is_constant_angle(term: sp.Expr) -> bool:
+    """Whether sin and cos of ``term`` stay unevaluated (``pi/3`` evaluates to radicals and is not an angle here)."""
+    return isinstance(sp.sin(term), sp.sin) and isinstance(sp.cos(term), sp.cos)
+
+
+def _collect_atoms(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[list[sp.Expr], list[sp.Expr]]:
+    """Constant angles (trig arguments free of joint variables, split into terms) and the remaining atoms.
+
+    Everything that is not built from + * ** and trig of angles becomes a generator of its own.
+    """
     variables = frozenset(basis.variables)
+    angles: dict[sp.Expr, None] = {}
     atoms: dict[sp.Expr, None] = {}
     seen: set[sp.Expr] = set()
 
@@ -146,25 +174,35 @@ def _collect_atoms(exprs: Sequence[sp.Expr], basis: AngleBasis) -> list[sp.Expr]
             decomposed = basis.decompose(expr.args[0])
             if decomposed is None:
                 atoms[expr] = None
-            elif decomposed[1] != 0:
-                for constant_trig in (sp.cos(decomposed[1]), sp.sin(decomposed[1])):
-                    visit(constant_trig)
+            else:
+                visit_constant_angle(decomposed[1])
+        elif isinstance(expr, sp.sin | sp.cos):
+            visit_constant_angle(expr.args[0])
         else:
             atoms[expr] = None
 
+    def visit_constant_angle(argument: sp.Expr) -> None:
+        for term, _ in _angle_terms(argument):
+            if _is_constant_angle(term):
+                angles[term] = None
+            else:  # sin and cos of pi/3 are radicals: their atoms (sqrt(3)) are generators too
+                visit(sp.cos(term))
+                visit(sp.sin(term))
+
     for expr in exprs:
         visit(sp.sympify(expr))
-    return sorted(atoms, key=sp.default_sort_key)
+    return sorted(angles, key=sp.default_sort_key), sorted(atoms, key=sp.default_sort_key)
 
 
 def _image(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[_Image, list[PolyElement]]:
-    atoms = _collect_atoms(exprs, basis)
-    image = _Image(basis, atoms)
-    offset = 2 * len(basis.angles)
+    constant_angles, atoms = _collect_atoms(exprs, basis)
+    image = _Image(basis, constant_angles, atoms)
+    offset = 2 * image.angle_count
     for i, atom in enumerate(atoms):
         if isinstance(atom, sp.Pow) and atom.base.is_Integer and atom.exp == sp.S.Half:
             image.relations.append((i, int(atom.base)))
     atom_index = {atom: offset + i for i, atom in enumerate(atoms)}
+    angle_index = {angle: len(basis.angles) + k for k, angle in enumerate(constant_angles)}
     polynomial_ring, gens = image.ring_and_gens
     variables = frozenset(basis.variables)
     memo: dict[sp.Expr, PolyElement] = {}
@@ -182,6 +220,17 @@ def _image(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[_Image, list[Po
             trig_memo[multiples] = (real, imaginary)
         return trig_memo[multiples]
 
+    def constant_exponential(argument: sp.Expr) -> tuple[PolyElement, PolyElement]:
+        """(cos, sin) of a constant angle, by the addition formula over its terms."""
+        real, imaginary = polynomial_ring.one, polynomial_ring.zero
+        for term, sign in _angle_terms(argument):
+            if term in angle_index:
+                c, s = image.cosine(angle_index[term]), sign * image.sine(angle_index[term])
+            else:
+                c, s = convert(sp.cos(term)), sign * convert(sp.sin(term))
+            real, imaginary = real * c - imaginary * s, real * s + imaginary * c
+        return real, imaginary
+
     def convert(expr: sp.Expr) -> PolyElement:
         if expr in memo:
             return memo[expr]
@@ -197,16 +246,18 @@ def _image(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[_Image, list[Po
             result = polynomial_ring.one
             for arg in expr.args:
                 result *= convert(arg)
-        elif isinstance(expr, sp.Pow):
+        elif isinstance(expr, sp.Pow) and expr.exp.is_Integer and expr.exp > 0:
             result = convert(expr.base) ** int(expr.exp)
-        elif _is_joint_trig(expr, variables):
-            decomposed = basis.decompose(expr.args[0])
-            assert decomposed is not None  # otherwise it would be an atom
-            multiples, constant = decomposed
-            cos_part, sin_part = exponential(multiples)
-            if constant != 0:
-                c, s = convert(sp.cos(constant)), convert(sp.sin(constant))
-                cos_part, sin_part = cos_part * c - sin_part * s, sin_part * c + cos_part * s
+        elif isinstance(expr, sp.sin | sp.cos):
+            decomposed = basis.decompose(expr.args[0]) if _is_joint_trig(expr, variables) else None
+            if decomposed is None:  # a constant angle (a joint angle that does not decompose is an atom)
+                cos_part, sin_part = constant_exponential(expr.args[0])
+            else:
+                multiples, constant = decomposed
+                cos_part, sin_part = exponential(multiples)
+                if constant != 0:
+                    c, s = constant_exponential(constant)
+                    cos_part, sin_part = cos_part * c - sin_part * s, sin_part * c + cos_part * s
             result = cos_part if isinstance(expr, sp.cos) else sin_part
         else:  # pragma: no cover - every other node was made an atom by _collect_atoms
             raise TypeError(f"cannot convert {expr!r}")
@@ -307,8 +358,6 @@ def _nest(terms: list[tuple[tuple[int, ...], Any]], image: _Image) -> sp.Expr:
     inner = _nest(inside, image)
     factor = image.back[best]
     # keep a leading minus outside the parentheses: -c1*(x + y) rather than c1*(-x - y)
-    if inner.could_extract_minus_sign() and isinstance(inner, sp.Add):
-        product = -(factor * (-inner))
-    else:
-        product = factor * inner
+    negated = isinstance(inner, sp.Add) and inner.could_extract_minus_sign()
+    product = -(factor * (-inner)) if negated else factor * inner
     return product + _nest(outside, image)

@@ -89,6 +89,51 @@ def point_shift(vector: Sequence[sp.Expr]) -> sp.Matrix:
     return shift
 
 
+def twist_transform(transform: sp.MatrixBase) -> sp.Matrix:
+    r"""The 6 x 6 map of a rigid body's twist from frame {B} (at its origin) to frame {A} (at its origin).
+
+    With :math:`{}^A_BT = [R, p; 0, 1]`: :math:`{}^A\omega = R\,{}^B\omega` and
+    :math:`{}^Av_A = R\,{}^Bv_B - {}^A\omega \times p`, i.e.
+
+    .. math:: \begin{bmatrix} v_A \\ \omega_A \end{bmatrix} =
+              \begin{bmatrix} R & \hat{p} R \\ 0 & R \end{bmatrix} \begin{bmatrix} v_B \\ \omega_B \end{bmatrix}
+
+    ``twist_transform(T_6_T)`` gives the wrist twist from the tool-tip twist; ``twist_transform(T_T_6)`` the reverse.
+
+    Examples
+    --------
+    >>> L = sp.Symbol("L")
+    >>> T = homogeneous(sp.eye(3), sp.Matrix([L, 0, 0]))
+    >>> (twist_transform(T) * sp.Matrix([0, 0, 0, 0, 0, 1])).T
+    Matrix([[0, -L, 0, 0, 0, 1]])
+    """
+    R, p = sp.Matrix(transform[:3, :3]), sp.Matrix(transform[:3, 3])
+    return sp.Matrix(sp.BlockMatrix([[R, skew(p) * R], [sp.zeros(3), R]]))
+
+
+def wrench_transform(transform: sp.MatrixBase) -> sp.Matrix:
+    r"""The 6 x 6 map of a wrench :math:`[f; n]` from frame {B} (moment about its origin) to frame {A}.
+
+    With :math:`{}^A_BT = [R, p; 0, 1]`: :math:`{}^Af = R\,{}^Bf` and :math:`{}^An = R\,{}^Bn + p \times {}^Af`, i.e.
+
+    .. math:: \begin{bmatrix} f_A \\ n_A \end{bmatrix} =
+              \begin{bmatrix} R & 0 \\ \hat{p} R & R \end{bmatrix} \begin{bmatrix} f_B \\ n_B \end{bmatrix}
+
+    It is the transpose of the twist map the other way: ``wrench_transform(T) == twist_transform(T^-1).T``. With
+    ``T = T_T_S`` (sensor frame {S} seen from the tool frame {T}) it turns a force/torque sensor reading into the
+    wrench at the tool tip.
+
+    Examples
+    --------
+    >>> L, F = sp.symbols("L F")
+    >>> T = homogeneous(sp.eye(3), sp.Matrix([L, 0, 0]))
+    >>> (wrench_transform(T) * sp.Matrix([0, F, 0, 0, 0, 0])).T
+    Matrix([[0, F, 0, 0, 0, F*L]])
+    """
+    R, p = sp.Matrix(transform[:3, :3]), sp.Matrix(transform[:3, 3])
+    return sp.Matrix(sp.BlockMatrix([[R, sp.zeros(3)], [skew(p) * R, R]]))
+
+
 # --- elementary motions and their structured product -------------------------------------------------------
 
 

@@ -61,9 +61,9 @@ def test_methods_agree_symbolically(name, frame):
     frame = {"mid": robot.dof // 2, "last": robot.dof}.get(frame, frame)
     point = "tool" if robot.tool is not None else "wrist"
     by_differentiation = jacobian(robot, frame=frame, point=point, method="differentiation")
-    by_cross_product = jacobian(robot, frame=frame, point=point, method="cross_product")
     # the normal form is unique, so equal functions give identical expressions
-    assert by_differentiation == by_cross_product
+    for method in ("cross_product", "velocity_propagation", "force_propagation"):
+        assert jacobian(robot, frame=frame, point=point, method=method) == by_differentiation, method
 
 
 def test_cross_product_in_frame_zero_from_position_differences():
@@ -79,7 +79,7 @@ def test_cross_product_in_frame_zero_from_position_differences():
         z, p_in = T_0_i[:3, 2], T_0_n[:3, 3] - T_0_i[:3, 3]
         columns.append(sp.Matrix.vstack(z.cross(p_in), z))
     J_0 = simplify_matrix(sp.Matrix.hstack(*columns), chain.angle_bases(0))
-    assert J_0 == jacobian(robot)
+    assert jacobian(robot) == J_0
 
 
 def test_frame_change_and_point_shift_helpers_agree_with_direct_derivation():

@@ -886,3 +886,14 @@ def test_toml_keeps_exact_decimals():
     text = robot_to_toml(load_robot("puma560"))
     assert "a2 = 0.4318" in text
     assert "d3 = 0.15005" in text
+
+
+def test_readme_robot_file_example_loads_and_matches_the_catalog_puma():
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    (example,) = re.findall(r"```toml\n(.*?)```", readme, flags=re.S)
+    robot = robot_from_toml(example, source="README.md")
+    puma = load_robot("puma560")
+    assert [(j.alpha, j.a, j.d, j.theta) for j in robot.joints] == [(j.alpha, j.a, j.d, j.theta) for j in puma.joints]
+    assert robot.tool is not None and robot.tool.xyz == (0, 0, sp.Rational(1, 10))

@@ -1,0 +1,1 @@
+"""The built-in robot catalog: one TOML robot file per robot (data, not code)."""

@@ -191,8 +191,8 @@ class Chain:
             for i in group:
                 if i > first and abs(self._twist_between(i - 1)) == sp.pi:
                     sign = -sign
-                if joints[i - 1].is_revolute:
-                    total += sign * joints[i - 1].variable
+                if joints[i - 1].is_revolute:  # the angle with its offset: cos(theta1 - 1/5) stays one cosine
+                    total += sign * joints[i - 1].angle
                 cumulative[i] = total
             relative = {sp.expand(value - cumulative[reference]) for value in cumulative.values()}
             relative.discard(sp.S.Zero)
@@ -203,7 +203,11 @@ class Chain:
 def _order_like(angles: tuple[sp.Expr, ...], variables: tuple[sp.Symbol, ...]) -> tuple[sp.Expr, ...]:
     """Sort basis angles by the first joint they involve, so generator order follows the chain (base first)."""
     position = {v: i for i, v in enumerate(variables)}
-    return tuple(sorted(angles, key=lambda a: (min(position[s] for s in a.free_symbols), len(a.free_symbols))))
+    def key(angle: sp.Expr) -> tuple[int, int]:
+        used = [position[s] for s in angle.free_symbols if s in position]
+        return min(used), len(used)
+
+    return tuple(sorted(angles, key=key))
 
 
 @cache

@@ -23,10 +23,12 @@ from symjac.chain import Frame, chain_of
 from symjac.errors import ExpressionError, FrameError, SymjacError
 from symjac.expressions import parse_expression
 from symjac.io import catalog, load_robot
-from symjac.jacobian import METHODS, jacobian
+from symjac.jacobian import METHODS, jacobian, point_vector
 from symjac.model import Robot
-from symjac.printing import latex, pretty
+from symjac.printing import latex, pretty, propagation_steps
+from symjac.propagation import force_propagation, velocity_propagation, wrench_symbols
 from symjac.resources import render_template
+from symjac.statics import joint_torques
 
 FORMATS = ("latex", "pretty", "json")
 ROW_NAMES = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
@@ -64,16 +66,23 @@ def _parser() -> argparse.ArgumentParser:
         ("show", _show, "show the DH table and the link transforms"),
         ("fk", _fk, "print the forward kinematics"),
         ("jacobian", _jacobian, "print the basic Jacobian [v; omega]"),
+        ("torques", _torques, "print the joint torques tau = J^T F that hold a wrench"),
     ):
         sub = command(name, handler, help_text)
         sub.add_argument("robot", metavar="ROBOT", help="a built-in robot name (see 'symjac robots') or a TOML file")
         sub.add_argument("--format", choices=FORMATS, default="latex", help="output format (default: latex)")
         sub.add_argument("--numeric", action="store_true", help="substitute the parameters' numeric defaults")
         sub.add_argument("--standalone", action="store_true", help="with --format latex: a complete LaTeX document")
-        if name == "jacobian":
+        if name in ("jacobian", "torques"):
             sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
             sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
+        if name == "jacobian":
             sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
+            sub.add_argument("--steps", action="store_true",
+                             help="with a propagation method: print every propagation step before the Jacobian")
+        if name == "torques":
+            sub.add_argument("--wrench", help="fx,fy,fz,nx,ny,nz applied at the point, in the frame (default symbolic)")
+            sub.add_argument("--q", help="a configuration q1,...,qn (numbers or expressions with pi)")
     return parser
 
 
@@ -132,6 +141,7 @@ def _jacobian(args: argparse.Namespace) -> str:
     robot = load_robot(args.robot)
     frame = _parse_frame(args.frame)
     point = _parse_point(args.point, robot)
+    steps = _steps(args, robot, point) if args.steps else []
     J = _progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
     J = _numeric(robot, J, args.numeric)
@@ -139,12 +149,50 @@ def _jacobian(args: argparse.Namespace) -> str:
     if args.format == "json":
         return _json({**_metadata(robot), "frame": frame, "point": args.point, "method": args.method,
                       "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
-                      "entries": _matrix_strings(J), "latex": f"{name} = {latex(J)}"})
+                      "entries": _matrix_strings(J), "latex": f"{name} = {latex(J)}",
+                      **({"steps": steps} if args.steps else {})})
     if args.format == "pretty":
-        return f"J in frame {frame}, point {args.point}, method {args.method}:\n{pretty(J)}\n"
-    block = {"caption": f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}",
-             "latex": f"{name} = {latex(J)}"}
-    return _latex_output(args, robot, f"{robot.name}: Jacobian in frame {frame}", [block])
+        shown = "".join(f"{step}\n\n" for step in steps)
+        return f"{shown}J in frame {frame}, point {args.point}, method {args.method}:\n{pretty(J)}\n"
+    blocks = [{"caption": "", "latex": step} for step in steps]
+    blocks.append({"caption": f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}",
+                   "latex": f"{name} = {latex(J)}"})
+    return _latex_output(args, robot, f"{robot.name}: Jacobian in frame {frame}", blocks)
+
+
+def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[str]:
+    """The propagation steps of ``--steps``, in the output format (LaTeX for latex and json)."""
+    tip = None if point == "tool" else point_vector(robot, point)
+    derive: dict[str, Callable[[], Any]] = {
+        "velocity_propagation": lambda: velocity_propagation(robot, tip),
+        "force_propagation": lambda: force_propagation(robot, tip),
+    }
+    if args.method not in derive:
+        raise FrameError("--steps needs --method velocity_propagation or --method force_propagation")
+    propagation = _progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
+    style = "pretty" if args.format == "pretty" else "latex"
+    return propagation_steps(propagation, style, values=_numeric_values(robot) if args.numeric else None)
+
+
+def _torques(args: argparse.Namespace) -> str:
+    robot = load_robot(args.robot)
+    frame = _parse_frame(args.frame)
+    point = _parse_point(args.point, robot)
+    names = {parameter.name: parameter.symbol for parameter in robot.parameters}
+    wrench = None if args.wrench is None else _parse_list(args.wrench, 6, "--wrench", names)
+    q = None if args.q is None else _parse_list(args.q, robot.dof, "--q", {})
+    tau = _progress(f"joint torques of {robot.name}",
+                    lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q))
+    tau = _numeric(robot, tau, args.numeric)
+    if args.format == "json":
+        return _json({**_metadata(robot), "frame": frame, "point": args.point,
+                      "wrench": args.wrench or [str(s) for s in wrench_symbols()], "q": args.q,
+                      "torques": [sp.sstr(t) for t in tau], "latex": rf"\tau = {latex(tau)}"})
+    if args.format == "pretty":
+        return f"tau (wrench in frame {frame} at the {args.point} point) =\n{pretty(tau)}\n"
+    block = {"caption": f"Joint torques for a wrench in frame {frame} at the {args.point} point",
+             "latex": rf"\tau = {latex(tau)}"}
+    return _latex_output(args, robot, f"{robot.name}: joint torques", [block])
 
 
 # --- argument parsing helpers --------------------------------------------------------------------------------
@@ -172,6 +220,16 @@ def _parse_point(text: str, robot: Robot) -> Any:
         raise FrameError(f"--point: {error}") from None
 
 
+def _parse_list(text: str, length: int, option: str, names: dict[str, sp.Symbol]) -> list[sp.Expr]:
+    parts = text.split(",")
+    if len(parts) != length:
+        raise FrameError(f"{option} needs {length} comma-separated values, got {len(parts)} in {text!r}")
+    try:
+        return [parse_expression(part, names) for part in parts]
+    except ExpressionError as error:
+        raise FrameError(f"{option}: {error}") from None
+
+
 # --- output helpers ------------------------------------------------------------------------------------------
 
 
@@ -189,10 +247,12 @@ def _progress(what: str, compute: Callable[[], Any]) -> Any:
 
 def _numeric(robot: Robot, matrix: sp.MatrixBase, numeric: bool) -> sp.MatrixBase:
     """With ``--numeric``, replace the parameters by their defaults, printed as short decimals."""
-    if not numeric:
-        return matrix
-    values = {symbol: sp.Float(repr(float(value))) for symbol, value in robot.defaults.items()}
-    return matrix.xreplace(values)
+    return matrix.xreplace(_numeric_values(robot)) if numeric else matrix
+
+
+def _numeric_values(robot: Robot) -> dict[sp.Symbol, sp.Float]:
+    """The parameters' defaults as short decimals (``0.4318``, not ``2159/5000``)."""
+    return {symbol: sp.Float(repr(float(value))) for symbol, value in robot.defaults.items()}
 
 
 def _metadata(robot: Robot) -> dict[str, Any]:

@@ -40,7 +40,17 @@ Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
 
 METHODS: tuple[str, ...] = get_args(Method)
 
-__all__ = ["METHODS", "Method", "Point", "change_frame", "clear_caches", "jacobian", "jacobian_of", "shift_point"]
+__all__ = [
+    "METHODS",
+    "Method",
+    "Point",
+    "change_frame",
+    "clear_caches",
+    "jacobian",
+    "jacobian_of",
+    "point_vector",
+    "shift_point",
+]
 
 
 def jacobian(
@@ -83,11 +93,11 @@ def jacobian(
         raise FrameError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
     chain = chain_of(robot)
     chain.position(frame)  # validate early, with a clear message
-    return sp.Matrix(_cached_jacobian(robot, frame, _point_vector(robot, point), method, simplify))
+    return sp.Matrix(_cached_jacobian(robot, frame, point_vector(robot, point), method, simplify))
 
 
-def _point_vector(robot: Robot, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
-    """Coordinates in frame {n} of the point where the linear velocity is taken."""
+def point_vector(robot: Robot, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """Coordinates in frame {n} of a point given as ``"wrist"``, ``"tool"`` or three coordinates (validated)."""
     if isinstance(point, str):
         if point == "wrist":
             return (sp.S.Zero,) * 3
@@ -160,12 +170,12 @@ def clear_caches() -> None:
 
 def _velocity_propagation(robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
     chain = chain_of(robot)
-    return block_rotation(chain.rotation(frame, chain.n)) * velocity_propagation(robot, point).jacobian
+    return block_rotation(chain.rotation(frame, chain.n)) * velocity_propagation(robot, point, simplify=False).jacobian
 
 
 def _force_propagation(robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
     chain = chain_of(robot)
-    return block_rotation(chain.rotation(frame, chain.n)) * force_propagation(robot, point).jacobian
+    return block_rotation(chain.rotation(frame, chain.n)) * force_propagation(robot, point, simplify=False).jacobian
 
 
 def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:

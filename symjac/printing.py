@@ -8,6 +8,7 @@ variables ``theta{i}`` (all with coefficient +1); anything else prints in full.
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from typing import Any
 
 import sympy as sp
@@ -161,10 +162,12 @@ def pretty(expr: Any, **settings: Any) -> str:
     return TextbookPrettyPrinter(settings).doprint(expr)
 
 
-def propagation_steps(propagation: VelocityPropagation | ForcePropagation, style: str = "latex") -> list[str]:
+def propagation_steps(
+    propagation: VelocityPropagation | ForcePropagation, style: str = "latex", values: Mapping[Any, Any] | None = None
+) -> list[str]:
     r"""Every step of a velocity or force propagation, one equation per string, ready for lecture notes.
 
-    ``style`` is ``"latex"`` (``{}^{2}\omega_{2} = \begin{bmatrix}...``) or ``"pretty"`` (Unicode).
+    ``style`` is ``"latex"`` or ``"pretty"`` (Unicode); ``values`` (symbol -> number) are substituted first.
 
     Examples
     --------
@@ -185,11 +188,12 @@ def propagation_steps(propagation: VelocityPropagation | ForcePropagation, style
     for frame, first, second in rows:
         where, subscript = {"tool": ("T", "T"), "point": (str(last), "P")}.get(str(frame), (str(frame), str(frame)))
         for (tex_name, text_name), vector in zip(names, (first, second), strict=True):
+            vector = vector.xreplace(dict(values or {}))
             if style == "latex":
                 lines.append(f"{{}}^{{{where}}}{tex_name}_{{{subscript}}} = {latex(vector)}")
             else:
                 lines.append(f"{text_name}_{subscript} (in frame {where}) =\n{pretty(vector)}")
     if isinstance(propagation, ForcePropagation):
-        tau = propagation.joint_torques()
+        tau = propagation.joint_torques().xreplace(dict(values or {}))
         lines.append(rf"\tau = {latex(tau)}" if style == "latex" else f"tau =\n{pretty(tau)}")
     return lines

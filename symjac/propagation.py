@@ -27,6 +27,7 @@ linear in the wrench; their coefficient matrix is :math:`{}^nJ^T` (the duality o
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import sympy as sp
@@ -43,6 +44,7 @@ __all__ = [
     "VelocityStep",
     "force_propagation",
     "joint_rates",
+    "linear_combination",
     "velocity_propagation",
     "wrench_symbols",
 ]
@@ -92,7 +94,7 @@ class VelocityPropagation:
     def velocities(self) -> list[tuple[Frame | str, sp.Matrix, sp.Matrix]]:
         r"""Per step: the frame, :math:`{}^k\omega_k` and :math:`{}^kv_k` as vectors in the joint rates."""
         rates = sp.Matrix(self.rates)
-        return [(step.frame, _apply(step.omega, rates), _apply(step.v, rates)) for step in self.steps]
+        return [(s.frame, linear_combination(s.omega, rates), linear_combination(s.v, rates)) for s in self.steps]
 
     @property
     def jacobian(self) -> sp.Matrix:
@@ -121,11 +123,12 @@ class ForcePropagation:
     def wrenches(self) -> list[tuple[Frame | str, sp.Matrix, sp.Matrix]]:
         r"""Per step: the frame, :math:`{}^kf_k` and :math:`{}^kn_k` as vectors in the tip wrench components."""
         wrench = sp.Matrix(self.wrench)
-        return [(step.frame, _apply(step.force, wrench), _apply(step.moment, wrench)) for step in self.steps]
+        return [(s.frame, linear_combination(s.force, wrench), linear_combination(s.moment, wrench))
+                for s in self.steps]
 
     def joint_torques(self) -> sp.Matrix:
         r""":math:`\tau` as a vector in the tip wrench components."""
-        return _apply(self.torques, sp.Matrix(self.wrench))
+        return linear_combination(self.torques, sp.Matrix(self.wrench))
 
     @property
     def jacobian(self) -> sp.Matrix:
@@ -133,8 +136,15 @@ class ForcePropagation:
         return sp.Matrix(self.torques).T
 
 
-def _apply(coefficients: sp.MatrixBase, values: sp.Matrix) -> sp.Matrix:
-    """Coefficient matrix times a vector of symbols, each entry kept as a sum of (coefficient * symbol)."""
+def linear_combination(coefficients: sp.MatrixBase, values: sp.MatrixBase) -> sp.Matrix:
+    r"""The product :math:`M x` laid out as :math:`\sum_j M_{rj} x_j`, keeping each coefficient whole.
+
+    Examples
+    --------
+    >>> L, c, x, y = sp.symbols("L c x y")
+    >>> linear_combination(sp.Matrix([[-L - c, L]]), sp.Matrix([x, y]))
+    Matrix([[L*y - x*(L + c)]])
+    """
     def term(coefficient: sp.Expr, value: sp.Expr) -> sp.Expr:
         # -f_z*(L1 + L2*c2) reads better than f_z*(-L1 - L2*c2)
         return -((-coefficient) * value) if coefficient.is_Add and coefficient.could_extract_minus_sign() else (
@@ -151,12 +161,19 @@ def _tip(robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None) -> str | 
     return None if all(c == 0 for c in point) else "point"
 
 
-def _simplify(matrix: sp.Matrix, chain: Chain, frame: Frame) -> sp.ImmutableMatrix:
-    return sp.ImmutableMatrix(simplify_matrix(matrix, chain.angle_bases(frame)))
+def _layout(chain: Chain, simplify: bool) -> Callable[[sp.MatrixBase, Frame], sp.ImmutableMatrix]:
+    """Per-step output: simplified in the step frame's angle bases (for people), or the raw products.
+
+    The iteration itself always runs on the raw products: simplifying every step and multiplying the nested results
+    again was measured 100x slower on arms with generic twists; one simplification of the raw result is not.
+    """
+    if not simplify:
+        return lambda matrix, frame: sp.ImmutableMatrix(matrix)
+    return lambda matrix, frame: sp.ImmutableMatrix(simplify_matrix(matrix, chain.angle_bases(frame)))
 
 
 def velocity_propagation(
-    robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3
+    robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
 ) -> VelocityPropagation:
     r"""Propagate link velocities from the base to the tip (see the module docstring).
 
@@ -165,6 +182,8 @@ def velocity_propagation(
     robot : Robot
     point : tuple of 3, or None
         The tip: a point given in frame {n} (default its origin, the wrist), or ``None`` for the tool frame.
+    simplify : bool
+        Lay every step out in compact textbook form (default); ``False`` keeps the raw products.
 
     Returns
     -------
@@ -183,6 +202,7 @@ def velocity_propagation(
     [                                             0]])
     """
     chain = chain_of(robot)
+    layout = _layout(chain, simplify)
     n = chain.n
     omega, v = sp.zeros(3, n), sp.zeros(3, n)
     steps = [VelocityStep(0, sp.ImmutableMatrix(omega), sp.ImmutableMatrix(v))]
@@ -200,21 +220,19 @@ def velocity_propagation(
                 v[:, column] += z_a.cross(-chain.transform(k, axis_frame)[:3, 3])
         else:
             v[:, column] += z_a
-        omega, v = _simplify(omega, chain, k), _simplify(v, chain, k)
-        steps.append(VelocityStep(k, omega, v))
+        steps.append(VelocityStep(k, layout(omega, k), layout(v, k)))
     tip = _tip(robot, point)
     if tip == "tool":
         R_t_n, p_n_t = chain.rotation("tool", n), chain.transform(n, "tool")[:3, 3]
-        v = _simplify(R_t_n * (v + skew(-p_n_t) * omega), chain, "tool")
-        steps.append(VelocityStep("tool", _simplify(R_t_n * omega, chain, "tool"), v))
+        v_t = R_t_n * (v + skew(-p_n_t) * omega)
+        steps.append(VelocityStep("tool", layout(R_t_n * omega, "tool"), layout(v_t, "tool")))
     elif tip == "point":
-        v = _simplify(v + skew(-sp.Matrix(point)) * omega, chain, n)
-        steps.append(VelocityStep("point", sp.ImmutableMatrix(omega), v))
+        steps.append(VelocityStep("point", layout(omega, n), layout(v + skew(-sp.Matrix(point)) * omega, n)))
     return VelocityPropagation(joint_rates(robot), tuple(steps))
 
 
 def force_propagation(
-    robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3
+    robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
 ) -> ForcePropagation:
     r"""Propagate a tip wrench from the tip to the base and project it on the joint axes (module docstring).
 
@@ -224,6 +242,8 @@ def force_propagation(
     point : tuple of 3, or None
         Where the wrench acts: a point given in frame {n} (default the wrist; the wrench is then expressed in {n}),
         or ``None`` for the origin of the tool frame (the wrench expressed in the tool frame).
+    simplify : bool
+        Lay every step out in compact textbook form (default); ``False`` keeps the raw products.
 
     Returns
     -------
@@ -239,6 +259,7 @@ def force_propagation(
     [             0,                  L2]])
     """
     chain = chain_of(robot)
+    layout = _layout(chain, simplify)
     n = chain.n
     force = sp.Matrix.hstack(sp.eye(3), sp.zeros(3, 3))
     moment = sp.Matrix.hstack(sp.zeros(3, 3), sp.eye(3))
@@ -258,8 +279,7 @@ def force_propagation(
             R_k_next, p_k_next = chain.rotation(k, k + 1), chain.transform(k, k + 1)[:3, 3]
             force = R_k_next * force
             moment = R_k_next * moment + skew(p_k_next) * force
-        force, moment = _simplify(force, chain, k), _simplify(moment, chain, k)
-        frames[k] = ForceStep(k, force, moment)
+        frames[k] = ForceStep(k, layout(force, k), layout(moment, k))
         steps.append(frames[k])
     torques = sp.zeros(n, 6)
     for k, joint in enumerate(robot.joints, start=1):

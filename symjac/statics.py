@@ -19,7 +19,7 @@ from symjac.chain import Frame, chain_of
 from symjac.errors import FrameError
 from symjac.jacobian import Point, jacobian
 from symjac.model import Robot
-from symjac.propagation import wrench_symbols
+from symjac.propagation import linear_combination, wrench_symbols
 from symjac.transforms import wrench_transform
 
 __all__ = ["evaluate_at", "joint_torques", "wrench_between"]
@@ -57,7 +57,7 @@ def joint_torques(
     Matrix([[-L2*f_x*sin(theta2) + f_y*(L1 + L2*cos(theta2)) + n_z, -L2*f_x*sin(theta2) + L2*f_y*cos(theta2) + n_z]])
     """
     F = sp.Matrix(wrench_symbols()) if wrench is None else _vector(wrench, 6, "wrench")
-    tau = jacobian(robot, frame=frame, point=point).T * F
+    tau = linear_combination(jacobian(robot, frame=frame, point=point).T, F)
     if q is None:
         return tau
     return evaluate_at(robot, tau, q)
@@ -99,7 +99,7 @@ def _vector(values: Sequence[sp.Expr | float], length: int, name: str) -> sp.Mat
             if not math.isfinite(value):
                 raise FrameError(f"{name}[{index}] is {value}: entries must be finite")
             integral = isinstance(value, numbers.Integral)
-            column.append(sp.Integer(int(value)) if integral else sp.Float(float(value)))
+            column.append(sp.Integer(int(value)) if integral else sp.Float(float(value)))  # type: ignore[call-overload]
         elif isinstance(value, sp.Expr) and not value.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
             column.append(value)
         else:

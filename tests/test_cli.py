@@ -301,6 +301,11 @@ ERROR_CASES = {
     "point with empty coordinate": ["jacobian", "planar3r", "--point", "1,,0"],
     "point unparsable": ["jacobian", "planar3r", "--point", "1,2,("],
     "point named nowhere": ["jacobian", "planar3r", "--point", "elbow"],
+    "steps without a propagation method": ["jacobian", "planar3r", "--steps"],
+    "wrench with five entries": ["torques", "planar2r", "--wrench", "1,2,3,4,5"],
+    "wrench with code": ["torques", "planar2r", "--wrench", "1,2,3,4,5,__import__('os')"],
+    "configuration of the wrong length": ["torques", "planar2r", "--q", "0.1"],
+    "configuration with a parameter": ["torques", "planar2r", "--q", "L1,0"],
 }
 
 
@@ -405,3 +410,68 @@ def test_help(capsys):
     out = capsys.readouterr().out
     assert "--frame" in out
     assert "--point" in out
+
+
+# --- propagation steps and torques ----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("robot", ["stanford", "puma560"])
+def test_velocity_propagation_steps_print_every_frame_then_the_jacobian(capsys, robot):
+    lines = ok(capsys, "jacobian", robot, "--method", "velocity_propagation", "--steps").splitlines()
+    n = load_robot(robot).dof
+    assert len(lines) == 2 * (n + 1) + 1
+    for k in range(n + 1):
+        assert lines[2 * k].startswith(rf"{{}}^{{{k}}}\omega_{{{k}}} = {BMATRIX}")
+        assert lines[2 * k + 1].startswith(rf"{{}}^{{{k}}}v_{{{k}}} = {BMATRIX}")
+    assert r"\dot{\theta}_{1}" in lines[2]
+    assert lines[-1].startswith(rf"{{}}^{{0}}J = {BMATRIX}")
+    assert lines[-1] == latex_line(capsys, "jacobian", robot)
+
+
+def test_force_propagation_steps_run_from_the_tip_and_end_with_the_torques(capsys):
+    lines = ok(capsys, "jacobian", "stanford", "--method", "force_propagation", "--steps", "--frame", "6").splitlines()
+    assert lines[0] == rf"{{}}^{{6}}f_{{6}} = {BMATRIX}f_{{x}}\\f_{{y}}\\f_{{z}}\end{{bmatrix}}"
+    assert lines[-3].startswith(r"{}^{0}n_{0} = ")
+    assert lines[-2].startswith(r"\tau = ")
+    assert "d_{3}" in lines[-2]
+
+
+def test_steps_at_the_tool_tip_end_in_the_tool_frame(capsys):
+    out = ok(capsys, "jacobian", "planar3r", "--method", "velocity_propagation", "--steps", "--point", "tool")
+    assert r"{}^{T}v_{T} = " in out
+    out = ok(capsys, "jacobian", "planar3r", "--method", "velocity_propagation", "--steps", "--point", "0,L3,0")
+    assert r"{}^{3}v_{P} = " in out
+
+
+def test_steps_in_pretty_and_json_and_numeric(capsys):
+    out = ok(capsys, "jacobian", "planar2r", "--method", "velocity_propagation", "--steps", "--format", "pretty")
+    assert "ω_2 (in frame 2) =" in out
+    assert "L₁⋅θ̇₁" in out  # the rate of joint 1 in Unicode, after the length
+    data = json.loads(ok(capsys, "jacobian", "planar2r", "--method", "force_propagation", "--steps", "--format",
+                         "json"))
+    assert data["steps"][-1].startswith(r"\tau = ")
+    out = ok(capsys, "jacobian", "planar2r", "--method", "velocity_propagation", "--steps", "--numeric")
+    assert "L_{1}" not in out and "0.5" in out
+
+
+def test_torques_symbolic_in_textbook_form(capsys):
+    line = latex_line(capsys, "torques", "planar2r")
+    assert line.startswith(r"\tau = ")
+    assert "f_{x}" in line and "n_{z}" in line and "s_{12}" in line
+
+
+def test_torques_numeric_with_a_wrench_and_a_configuration(capsys):
+    data = json.loads(ok(capsys, "torques", "planar2r", "--wrench", "1,0,0,0,0,0", "--q", "pi/2,0", "--format",
+                         "json"))
+    assert [float(t) for t in data["torques"]] == pytest.approx([-0.9, -0.4])
+    # the stretched-out arm holds a force along itself with no torque (seed 002)
+    data = json.loads(ok(capsys, "torques", "planar2r", "--wrench", "0,2,0,0,0,0", "--q", "pi/2,0", "--format",
+                         "json"))
+    assert [float(t) for t in data["torques"]] == pytest.approx([0, 0], abs=1e-12)
+
+
+def test_torques_in_another_frame_and_point(capsys):
+    tool = latex_line(capsys, "torques", "planar3r", "--frame", "tool", "--point", "tool")
+    wrist = latex_line(capsys, "torques", "planar3r", "--frame", "tool")
+    assert tool != wrist
+    assert "L_{3}" in tool and "L_{3}" not in wrist

@@ -55,3 +55,15 @@ def test_transforms_compose_and_invert(robot):
     np.testing.assert_allclose(evaluate(chain.transform(n, 0), robot, q) @ T_0_n, np.eye(4), atol=1e-12)
     np.testing.assert_allclose(evaluate(chain.transform("tool", "world"), robot, q)
                                @ evaluate(chain.transform("world", "tool"), robot, q), np.eye(4), atol=1e-12)
+
+
+@settings(deadline=None, max_examples=15, suppress_health_check=[HealthCheck.too_slow])
+@given(robot=robots(), data=st.data())
+def test_propagation_methods_agree_with_differentiation_at_random_configurations(robot, data):
+    frame = data.draw(st.sampled_from([0, robot.dof, "tool"]), label="frame")
+    point = "tool" if robot.tool is not None else "wrist"
+    q = random_configuration(robot, np.random.default_rng(data.draw(st.integers(0, 2**16), label="seed")))
+    expected = evaluate(jacobian(robot, frame=frame, point=point, simplify=False), robot, q)
+    for method in ("velocity_propagation", "force_propagation"):
+        J = jacobian(robot, frame=frame, point=point, method=method)
+        np.testing.assert_allclose(evaluate(J, robot, q), expected, atol=1e-9, err_msg=method)

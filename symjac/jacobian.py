@@ -18,6 +18,23 @@ Methods (all return the same matrix, simplified to the same unique normal form):
     :math:`z_i \times p_{iP}` computed in frame {i}, where :math:`{}^iz_i = [0,0,1]^T` makes it
     :math:`[-p_y, p_x, 0]^T` of :math:`{}^ip_{iP}` (the last column of :math:`{}^i_PT`), then rotated into {k}:
     :math:`{}^k(z_i \times p_{iP}) = {}^k_iR\,(\hat{Z}\,{}^ip_{iP})`.
+``"velocity_propagation"``
+    Link velocities iterated outward (:func:`symjac.propagation.velocity_propagation`); the last step *is*
+    :math:`{}^nJ`, then rotated into {k}.
+``"force_propagation"``
+    A tip wrench iterated inward (:func:`symjac.propagation.force_propagation`); the torque map is
+    :math:`{}^nJ^T`, transposed and rotated into {k}.
+
+Which frame each method yields directly, and the 6 x 6 rotation that moves it to frame {k}:
+
+=======================  ===================  =============================================================
+method                   natural result       to frame {k}
+=======================  ===================  =============================================================
+differentiation          :math:`{}^0J`        :math:`\mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J`
+cross_product            :math:`{}^kJ`        computed in {k} directly (each column rotated from {i})
+velocity_propagation     :math:`{}^nJ`        :math:`\mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`
+force_propagation        :math:`{}^nJ^T`      transpose, then :math:`\mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`
+=======================  ===================  =============================================================
 """
 
 from __future__ import annotations
@@ -71,8 +88,8 @@ def jacobian(
     point : "wrist", "tool" or sequence of 3
         Where the linear velocity is taken: the origin of frame {n} (default), the origin of the tool frame, or a
         point given by its coordinates in frame {n}.
-    method : "differentiation" or "cross_product"
-        Derivation (see the module docstring); both give the same matrix.
+    method : "differentiation", "cross_product", "velocity_propagation" or "force_propagation"
+        Derivation (see the module docstring); all give the same matrix.
     simplify : bool
         Lay the result out in compact textbook form (default). ``False`` returns the raw structured products.
 

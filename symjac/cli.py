@@ -25,9 +25,10 @@ from symjac.expressions import parse_expression
 from symjac.io import catalog, load_robot
 from symjac.jacobian import METHODS, jacobian, point_vector
 from symjac.model import Robot
-from symjac.printing import latex, pretty, propagation_steps
+from symjac.printing import latex, pretty, propagation_steps, singularity_summary
 from symjac.propagation import force_propagation, velocity_propagation, wrench_symbols
 from symjac.resources import render_template
+from symjac.singularity import report_data, singularities
 from symjac.statics import joint_torques
 
 FORMATS = ("latex", "pretty", "json")
@@ -67,6 +68,7 @@ def _parser() -> argparse.ArgumentParser:
         ("fk", _fk, "print the forward kinematics"),
         ("jacobian", _jacobian, "print the basic Jacobian [v; omega]"),
         ("torques", _torques, "print the joint torques tau = J^T F that hold a wrench"),
+        ("singularities", _singularities, "factor det J, solve every factor and explain what the arm loses there"),
     ):
         sub = command(name, handler, help_text)
         sub.add_argument("robot", metavar="ROBOT", help="a built-in robot name (see 'symjac robots') or a TOML file")
@@ -80,6 +82,13 @@ def _parser() -> argparse.ArgumentParser:
             sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
             sub.add_argument("--steps", action="store_true",
                              help="with a propagation method: print every propagation step before the Jacobian")
+        if name == "singularities":
+            sub.add_argument("--frame", default=None, help="frame to analyse in (default: the most compact one)")
+            sub.add_argument("--point", default=None, help="wrist, tool, or x,y,z in frame {n} (default: tool if "
+                                                            "the robot has one, else wrist)")
+            sub.add_argument("--rows", default=None,
+                             help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z "
+                                  "(default: chosen automatically)")
         if name == "torques":
             sub.add_argument("--wrench", help="fx,fy,fz,nx,ny,nz applied at the point, in the frame (default symbolic)")
             sub.add_argument("--q", help="a configuration q1,...,qn (numbers or expressions with pi)")
@@ -193,6 +202,34 @@ def _torques(args: argparse.Namespace) -> str:
     block = {"caption": f"Joint torques for a wrench in frame {frame} at the {args.point} point",
              "latex": rf"\tau = {latex(tau)}"}
     return _latex_output(args, robot, f"{robot.name}: joint torques", [block])
+
+
+def _singularities(args: argparse.Namespace) -> str:
+    robot = load_robot(args.robot)
+    frame = None if args.frame is None else _parse_frame(args.frame)
+    point = None if args.point is None else _parse_point(args.point, robot)
+    rows = None if args.rows is None else _parse_rows(args.rows)
+    report = _progress(f"singularities of {robot.name}",
+                       lambda: singularities(robot, rows=rows, frame=frame, point=point, numeric=args.numeric))
+    if args.format == "json":
+        return _json({**_metadata(robot), **report_data(report)})
+    lines = singularity_summary(report, args.format)
+    if args.format == "pretty":
+        return "".join(f"{caption}\n{body}\n\n" if body else f"{caption}\n\n" for caption, body in lines)
+    if args.standalone:
+        blocks = [{"caption": caption, "latex": body or r"\quad"} for caption, body in lines]
+        return _latex_output(args, robot, f"{robot.name}: singular configurations", blocks)
+    return "".join(f"% {caption}\n{body}\n" if body else f"% {caption}\n" for caption, body in lines)
+
+
+def _parse_rows(text: str) -> tuple[int, ...]:
+    names = [part.strip() for part in text.split(",")]
+    aliases = {name: i for i, name in enumerate(ROW_NAMES)} | {name: i for i, name in enumerate(
+        ("v_x", "v_y", "v_z", "w_x", "w_y", "w_z"))}
+    unknown = [name for name in names if name not in aliases]
+    if unknown:
+        raise FrameError(f"--rows: unknown row {unknown[0]!r}; use {', '.join(ROW_NAMES)}")
+    return tuple(aliases[name] for name in names)
 
 
 # --- argument parsing helpers --------------------------------------------------------------------------------

@@ -17,8 +17,9 @@ from sympy.printing.pretty.pretty import PrettyPrinter
 from sympy.printing.pretty.stringpict import prettyForm
 
 from symjac.propagation import ForcePropagation, VelocityPropagation
+from symjac.singularity import ROW_NAMES, SingularityReport
 
-__all__ = ["latex", "pretty", "propagation_steps", "shorthand_indices", "textbook_factors"]
+__all__ = ["latex", "pretty", "propagation_steps", "shorthand_indices", "singularity_summary", "textbook_factors"]
 
 _JOINT_ANGLE = re.compile(r"theta(\d+)\Z")
 _RATE = re.compile(r"(theta|d)dot\d+\Z")
@@ -197,3 +198,53 @@ def propagation_steps(
         tau = propagation.joint_torques().xreplace(dict(values or {}))
         lines.append(rf"\tau = {latex(tau)}" if style == "latex" else f"tau =\n{pretty(tau)}")
     return lines
+
+
+def singularity_summary(report: SingularityReport, style: str = "latex") -> list[tuple[str, str]]:
+    r"""A singularity report as (caption, equation) pairs: the determinant, then each factor with its meaning.
+
+    ``style`` is ``"latex"`` (equations in LaTeX, captions in plain words) or ``"pretty"`` (Unicode).
+
+    Examples
+    --------
+    >>> from symjac import load_robot, singularities
+    >>> summary = singularity_summary(singularities(load_robot("planar2r")))
+    >>> summary[0][1]
+    '\\det J = L_{1} L_{2} s_{2}'
+    """
+    if style not in ("latex", "pretty"):
+        raise ValueError(f"style must be 'latex' or 'pretty', got {style!r}")
+    show = latex if style == "latex" else pretty
+    det = report.determinant
+    rows = ", ".join(ROW_NAMES[r] for r in det.rows)
+    where = f"rows {rows} of the Jacobian in frame {{{det.frame}}}"
+    if report.redundant:
+        lines = [(f"Redundant arm: {report.robot} has more joints than task rows ({rows}); it is singular only where "
+                  "every square minor below vanishes (where sqrt(det(J J^T)) = 0). Minors in frame "
+                  f"{{{det.frame}}}.", "")]
+        for minor in report.minors:
+            locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
+            lines.append((f"Joint {locked + 1} locked:", _equation(style, r"\det J", "det J", minor.expression)))
+        return lines
+    lines = [(f"Determinant of {where}:", _equation(style, r"\det J", "det J", det.expression))]
+    for factor in report.factors:
+        head = f"Factor {show(factor.expression)} ({factor.kind}): {factor.reason}."
+        if not factor.solutions:
+            lines.append((head, ""))
+            continue
+        solutions = [latex(s.equation) if style == "latex" else pretty(s.equation) for s in factor.solutions]
+        joined = r",\quad ".join(solutions) if style == "latex" else "\n".join(solutions)
+        if factor.existence is not None and factor.existence is not sp.true:
+            verdict = {True: "holds", False: "does not hold", None: "unknown"}[factor.exists_for_defaults]
+            head += f" Exists only if {sp.sstr(factor.existence)} (assuming positive lengths; {verdict} for the " \
+                    "default parameters)."
+        if factor.lost_words:
+            head += f" There it {factor.lost_words}; {factor.self_motion_words}."
+        lines.append((head, joined))
+    return lines
+
+
+def _equation(style: str, tex_name: str, text_name: str, value: Any) -> str:
+    if style == "latex":
+        return f"{tex_name} = {latex(value)}"
+    return pretty(sp.Eq(sp.Symbol(text_name), value, evaluate=False))

@@ -3,7 +3,10 @@
 The public API, in pipeline order: load a robot (:func:`load_robot`, :func:`robot_from_mapping`), derive its
 kinematics (:func:`chain_of`, :func:`forward_kinematics`) and Jacobians (:func:`jacobian`, by four methods; the
 iterations themselves with :func:`velocity_propagation` and :func:`force_propagation`), statics
-(:func:`joint_torques`, :func:`wrench_transform`, :func:`twist_transform`), and print them (:func:`latex`).
+(:func:`joint_torques`, :func:`wrench_transform`, :func:`twist_transform`), singular configurations
+(:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
+:func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`), and print them
+(:func:`latex`).
 """
 
 from symjac.chain import Chain, Frame, chain_of, forward_kinematics
@@ -29,7 +32,29 @@ from symjac.propagation import (
     velocity_propagation,
     wrench_symbols,
 )
+from symjac.rates import damped_least_squares, inverse_rates, rates_along_path
+from symjac.representations import (
+    REPRESENTATIONS,
+    RepresentationError,
+    RepresentationJacobian,
+    extract,
+    rate_matrix,
+    representation_jacobian,
+    representation_jacobian_at,
+    rotation_from,
+)
 from symjac.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
+from symjac.singularity import (
+    Determinant,
+    JacobianSpaces,
+    SingularFactor,
+    SingularityReport,
+    determinant,
+    jacobian_spaces,
+    numeric_jacobian,
+    singularities,
+    task_rows,
+)
 from symjac.statics import evaluate_at, joint_torques, wrench_between
 from symjac.transforms import twist_transform, wrench_transform
 
@@ -37,19 +62,26 @@ __version__ = "0.1.0"
 
 __all__ = [
     "METHODS",
+    "REPRESENTATIONS",
     "AngleBasis",
     "Chain",
     "Convention",
+    "Determinant",
     "ExpressionError",
     "FixedTransform",
     "ForcePropagation",
     "Frame",
     "FrameError",
+    "JacobianSpaces",
     "Joint",
     "JointType",
     "Parameter",
+    "RepresentationError",
+    "RepresentationJacobian",
     "Robot",
     "RobotFileError",
+    "SingularFactor",
+    "SingularityReport",
     "SymjacError",
     "UnknownRobotError",
     "VelocityPropagation",
@@ -58,24 +90,37 @@ __all__ = [
     "chain_of",
     "change_frame",
     "clear_caches",
+    "damped_least_squares",
+    "determinant",
     "evaluate_at",
+    "extract",
     "force_propagation",
     "forward_kinematics",
+    "inverse_rates",
     "is_identity",
     "jacobian",
     "jacobian_of",
+    "jacobian_spaces",
     "joint_rates",
     "joint_torques",
     "latex",
     "load_robot",
+    "numeric_jacobian",
     "pretty",
+    "rate_matrix",
+    "rates_along_path",
+    "representation_jacobian",
+    "representation_jacobian_at",
     "robot_from_mapping",
     "robot_from_toml",
     "robot_to_mapping",
     "robot_to_toml",
+    "rotation_from",
     "shift_point",
     "simplify_expr",
     "simplify_matrix",
+    "singularities",
+    "task_rows",
     "twist_transform",
     "velocity_propagation",
     "wrench_between",

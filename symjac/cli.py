@@ -27,6 +27,7 @@ from symjac.jacobian import METHODS, jacobian, point_vector
 from symjac.model import Robot
 from symjac.printing import latex, pretty, propagation_steps, singularity_summary
 from symjac.propagation import force_propagation, velocity_propagation, wrench_symbols
+from symjac.representations import POSITIONS, REPRESENTATIONS, representation_jacobian
 from symjac.resources import render_template
 from symjac.singularity import report_data, singularities
 from symjac.statics import joint_torques
@@ -82,6 +83,10 @@ def _parser() -> argparse.ArgumentParser:
             sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
             sub.add_argument("--steps", action="store_true",
                              help="with a propagation method: print every propagation step before the Jacobian")
+            sub.add_argument("--representation", choices=REPRESENTATIONS, default=None,
+                             help="print the representation Jacobian J_x = E(x) J_0 for these orientation coordinates")
+            sub.add_argument("--position", choices=POSITIONS, default="cartesian",
+                             help="with --representation: position coordinates (default cartesian)")
         if name == "singularities":
             sub.add_argument("--frame", default=None, help="frame to analyse in (default: the most compact one)")
             sub.add_argument("--point", default=None, help="wrist, tool, or x,y,z in frame {n} (default: tool if "
@@ -150,6 +155,8 @@ def _jacobian(args: argparse.Namespace) -> str:
     robot = load_robot(args.robot)
     frame = _parse_frame(args.frame)
     point = _parse_point(args.point, robot)
+    if args.representation is not None:
+        return _representation(args, robot, frame, point)
     steps = _steps(args, robot, point) if args.steps else []
     J = _progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
@@ -167,6 +174,32 @@ def _jacobian(args: argparse.Namespace) -> str:
     blocks.append({"caption": f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}",
                    "latex": f"{name} = {latex(J)}"})
     return _latex_output(args, robot, f"{robot.name}: Jacobian in frame {frame}", blocks)
+
+
+def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> str:
+    """``jacobian --representation``: x, E(x), the basic Jacobian and J_x = E(x) J_0, then E's own singularities."""
+    rj = _progress(f"{args.representation} representation Jacobian of {robot.name}",
+                   lambda: representation_jacobian(robot, args.representation, args.position, point, frame))
+    J_0 = _numeric(robot, jacobian(robot, frame=rj.frame, point=point), args.numeric)
+    x = sp.Matrix(rj.coordinates)
+    notes = [f"representation singularity (not kinematic): {s}" for s in rj.singularities]
+    if args.format == "json":
+        return _json({**_metadata(robot), "frame": rj.frame, "point": args.point,
+                      "orientation": args.representation, "position": args.position,
+                      "coordinates": [str(c) for c in rj.coordinates], "E": _matrix_strings(rj.E),
+                      "J_0": _matrix_strings(J_0), "representation_singularities": [str(s) for s in rj.singularities],
+                      "latex": rf"J_x = {latex(rj.E)} {latex(J_0)}"})
+    if args.format == "pretty":
+        return (f"x =\n{pretty(x)}\n\nE(x) =\n{pretty(rj.E)}\n\nJ_0 =\n{pretty(J_0)}\n\nJ_x = E(x) J_0\n"
+                + "".join(f"\n{note}" for note in notes) + "\n")
+    blocks = [{"caption": "Representation coordinates", "latex": f"x = {latex(x)}"},
+              {"caption": "Rate matrix, xdot = E(x) [v; omega]", "latex": f"E(x) = {latex(rj.E)}"},
+              {"caption": f"Representation Jacobian at the {args.point} point",
+               "latex": rf"J_x = E(x)\,{{}}^{{{rj.frame}}}J = {latex(rj.E)} {latex(J_0)}"}]
+    if args.standalone:
+        blocks += [{"caption": note, "latex": r"\quad"} for note in notes]
+        return _latex_output(args, robot, f"{robot.name}: {args.representation} representation Jacobian", blocks)
+    return "".join(f"% {b['caption']}\n{b['latex']}\n" for b in blocks) + "".join(f"% {n}\n" for n in notes)
 
 
 def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[str]:

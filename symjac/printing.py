@@ -23,6 +23,7 @@ __all__ = ["latex", "pretty", "propagation_steps", "shorthand_indices", "singula
 
 _JOINT_ANGLE = re.compile(r"theta(\d+)\Z")
 _RATE = re.compile(r"(theta|d)dot\d+\Z")
+_GREEK = frozenset({"alpha", "beta", "gamma", "phi", "psi", "vartheta", "eta"})
 _SUBSCRIPTS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉\u201a")  # U+201A, a low comma: c₈‚₉‚₁₀
 
 
@@ -96,15 +97,23 @@ class TextbookLatexPrinter(LatexPrinter):
     def _shorthand(self, letter: str, expr: sp.Function, exp: str | None) -> str | None:
         indices = shorthand_indices(expr.args[0])
         if indices is None:
-            return None
+            argument = expr.args[0]
+            if not (isinstance(argument, sp.Symbol) and argument.name in _GREEK):
+                return None
+            indices = "\\" + argument.name  # s_{\beta}: representation angles get the shorthand too
         text = f"{letter}_{{{indices}}}"
         return f"{text}^{{{exp}}}" if exp else text
 
     def _print_sin(self, expr: sp.Function, exp: str | None = None) -> str:
-        return self._shorthand("s", expr, exp) or self._print_Function(expr, exp)
+        return self._shorthand("s", expr, exp) or self._plain_function(expr, exp)
 
     def _print_cos(self, expr: sp.Function, exp: str | None = None) -> str:
-        return self._shorthand("c", expr, exp) or self._print_Function(expr, exp)
+        return self._shorthand("c", expr, exp) or self._plain_function(expr, exp)
+
+    def _plain_function(self, expr: sp.Function, exp: str | None) -> str:
+        r"""``\cos^{2}{\left(\beta \right)}`` as SymPy prints it (its own dispatch would come back here)."""
+        plain = LatexPrinter({"mat_str": "bmatrix", "mat_delim": ""})
+        return LatexPrinter._print_Function(plain, expr, exp)
 
     def _print_Mul(self, expr: sp.Mul) -> str:
         ordered = textbook_factors(expr)

@@ -475,3 +475,14 @@ def test_torques_in_another_frame_and_point(capsys):
     wrist = latex_line(capsys, "torques", "planar3r", "--frame", "tool")
     assert tool != wrist
     assert "L_{3}" in tool and "L_{3}" not in wrist
+
+
+def test_jacobian_with_a_representation_prints_e_and_its_own_singularities(capsys):
+    assert main(["jacobian", "puma560", "--representation", "zyz"]) == 0
+    out = capsys.readouterr().out
+    assert r"\frac{c_{\alpha}}{s_{\beta}}" in out and "representation singularity (not kinematic)" in out
+    assert main(["jacobian", "puma560", "--representation", "quaternion", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert len(data["E"]) == 7 and data["coordinates"][:3] == ["x", "y", "z"]
+    assert main(["jacobian", "puma560", "--representation", "zyz", "--frame", "3"]) == 2
+    assert "fixed frame" in capsys.readouterr().err

@@ -1,0 +1,351 @@
+r"""Code printers for :mod:`symjac.codegen`: SymPy expressions to Python, NumPy, C and SymPy source text.
+
+Each printer is a subclass of a SymPy code printer that maps every symbol to a *validated* name through
+``_print_Symbol`` (never a regex over printed text), prints every number as a finite float literal (or an exact
+SymPy constructor), writes small integer powers as products (``x*x`` is faster than ``x**2`` in every target) and
+refuses anything it does not know (an unknown function, a symbol without a name, an infinite number) with a
+:class:`~symjac.errors.SymjacError` before any text is produced. :func:`layout` then breaks long statements at
+operator spaces so that generated files stay within the line length ruff checks.
+"""
+
+from __future__ import annotations
+
+import builtins
+import keyword
+import math
+import re
+from collections.abc import Mapping
+from typing import Any
+
+import sympy as sp
+from sympy.printing.c import C99CodePrinter
+from sympy.printing.precedence import PRECEDENCE
+from sympy.printing.pycode import PythonCodePrinter
+from sympy.printing.str import StrPrinter
+
+from symjac.errors import SymjacError
+
+__all__ = [
+    "CPrinter",
+    "CodegenError",
+    "NumPyPrinter",
+    "PythonPrinter",
+    "SymPyPrinter",
+    "check_expression",
+    "check_identifier",
+    "float_literal",
+    "layout",
+]
+
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+_ALLOWED_FUNCTIONS = (sp.sin, sp.cos)
+
+
+class CodegenError(SymjacError, ValueError):
+    """A request for generated code cannot be honoured (bad name, unsupported expression, unknown target, ...)."""
+
+
+def check_identifier(name: Any, what: str, reserved: Mapping[str, str] | None = None) -> str:
+    """Return ``name`` if it may appear in generated code as an identifier, else raise :class:`CodegenError`.
+
+    It must be an ASCII identifier, not a Python keyword or soft keyword, not a builtin (a parameter called ``len``
+    or ``min`` would shadow it) and not in ``reserved`` (names the generated module uses itself, with the reason).
+
+    Examples
+    --------
+    >>> check_identifier("a2", "parameter name")
+    'a2'
+    >>> check_identifier("lambda", "parameter name")
+    Traceback (most recent call last):
+    ...
+    symjac.codegen_printers.CodegenError: parameter name 'lambda' is a Python keyword
+    """
+    if not isinstance(name, str) or not _IDENTIFIER.match(name):
+        raise CodegenError(f"{what} {name!r} is not an ASCII identifier (letters, digits, underscore)")
+    if keyword.iskeyword(name) or keyword.issoftkeyword(name):
+        raise CodegenError(f"{what} {name!r} is a Python keyword")
+    if hasattr(builtins, name):
+        raise CodegenError(f"{what} {name!r} would shadow the Python builtin of that name")
+    if reserved is not None and name in reserved:
+        raise CodegenError(f"{what} {name!r} clashes with {reserved[name]} in the generated module")
+    return name
+
+
+def float_literal(value: Any) -> str:
+    """The shortest round-tripping literal of a finite real number (``repr`` of the float).
+
+    Examples
+    --------
+    >>> float_literal(sp.Rational(2159, 5000)), float_literal(sp.pi), float_literal(2)
+    ('0.4318', '3.141592653589793', '2.0')
+    """
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise CodegenError(f"{value!r} is not a real number") from None
+    if not math.isfinite(number):
+        raise CodegenError(f"{value!r} is not a finite number")
+    return repr(number)
+
+
+class _Common:
+    """Shared behaviour: symbol names from a mapping, numbers as float literals, powers as products, whitelist."""
+
+    names: Mapping[sp.Symbol, str]
+    used: set[str]  # functions the printed code calls (the module imports exactly these)
+    _function_prefix = ""
+
+    def _print_Symbol(self, expr: sp.Symbol) -> str:
+        try:
+            return self.names[expr]
+        except KeyError:
+            raise CodegenError(f"symbol {expr} has no name in the generated code") from None
+
+    def _print_Dummy(self, expr: sp.Dummy) -> str:
+        return self._print_Symbol(expr)
+
+    def _print_Integer(self, expr: sp.Integer) -> str:
+        return float_literal(expr)
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return float_literal(expr)
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return float_literal(expr)
+
+    def _print_NumberSymbol(self, expr: sp.NumberSymbol) -> str:
+        return float_literal(expr)
+
+    _print_Pi = _print_NumberSymbol
+    _print_Exp1 = _print_NumberSymbol
+
+    def _print_Infinity(self, expr: sp.Expr) -> str:
+        raise CodegenError(f"{expr} is not a finite number")
+
+    _print_NegativeInfinity = _print_Infinity
+    _print_ComplexInfinity = _print_Infinity
+    _print_NaN = _print_Infinity
+
+    def _print_Function(self, expr: sp.Function) -> str:
+        if not isinstance(expr, _ALLOWED_FUNCTIONS):
+            raise CodegenError(f"function {type(expr).__name__} is not supported in generated code")
+        argument = self._print(expr.args[0])  # type: ignore[attr-defined]
+        self.used.add(type(expr).__name__)
+        return f"{self._function_prefix}{type(expr).__name__}({argument})"
+
+    _print_sin = _print_Function
+    _print_cos = _print_Function
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        """``-0.5*x*y/(z*z)``: float coefficient first, then factors, then one parenthesised denominator."""
+        coefficient, rest = expr.as_coeff_Mul()
+        sign = "-" if coefficient.is_negative else ""
+        coefficient = abs(coefficient)
+        numerator: list[sp.Expr] = []
+        denominator: list[sp.Expr] = []
+        for factor in rest.as_ordered_factors() if rest.is_Mul else [rest]:
+            if factor.is_Pow and factor.exp.is_Rational and factor.exp.is_negative:
+                denominator.append(sp.Pow(factor.base, -factor.exp))
+            elif factor != 1:
+                numerator.append(factor)
+        level = PRECEDENCE["Mul"]
+        parts = [] if coefficient == 1 else [float_literal(coefficient)]
+        parts += [self.parenthesize(factor, level, strict=True) for factor in numerator]  # type: ignore[attr-defined]
+        text = "*".join(parts) or "1.0"
+        if denominator:
+            below = "*".join(self.parenthesize(f, level, strict=True) for f in denominator)  # type: ignore[attr-defined]
+            single = denominator[0]
+            if len(denominator) > 1 or (single.is_Pow and single.exp.is_Integer and single.exp > 1):
+                below = f"({below})"
+            text = f"{text}/{below}"
+        return sign + text
+
+    def _sqrt(self, text: str) -> str:
+        self.used.add("sqrt")
+        return f"{self._function_prefix}sqrt({text})"
+
+    def _power(self, base: str, exponent: str) -> str:
+        return f"{base}**{exponent}"
+
+    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        base, exponent = expr.args
+        if not exponent.is_Rational:
+            raise CodegenError(f"power {expr} with a non-numeric exponent is not supported in generated code")
+        tight = self.parenthesize(base, PRECEDENCE["Mul"] + 1)  # type: ignore[attr-defined]
+        whole = self._print(base)  # type: ignore[attr-defined]
+        if exponent.is_Integer:
+            k = int(exponent)
+            if 1 <= abs(k) <= 3:
+                product = "*".join([tight] * abs(k))
+                if k > 0:
+                    return product
+                return f"1.0/{product}" if abs(k) == 1 else f"1.0/({product})"
+            if k > 0:
+                return self._power(tight, str(k))
+            return f"1.0/{self._power(tight, str(-k))}"
+        if exponent == sp.Rational(1, 2):
+            return self._sqrt(whole)
+        if exponent == sp.Rational(-1, 2):
+            return f"1.0/{self._sqrt(whole)}"
+        return self._power(tight, f"({float_literal(exponent)})")
+
+
+
+class PythonPrinter(_Common, PythonCodePrinter):
+    """Plain Python with ``from math import cos, sin, sqrt``: bare function names, float literals.
+
+    Examples
+    --------
+    >>> x, y = sp.symbols("x y")
+    >>> PythonPrinter({x: "theta1", y: "a2"}).doprint(y * sp.cos(x) ** 2 + x / 2)
+    '0.5*theta1 + a2*cos(theta1)*cos(theta1)'
+    """
+
+    def __init__(self, names: Mapping[sp.Symbol, str]):
+        super().__init__({"fully_qualified_modules": False, "standard": "python3"})
+        self.names = names
+        self.used = set()
+
+
+class NumPyPrinter(PythonPrinter):
+    """NumPy ufuncs (``np.sin``, ``np.sqrt``) on arrays; arithmetic as in :class:`PythonPrinter`."""
+
+    _function_prefix = "np."
+
+
+class CPrinter(_Common, C99CodePrinter):
+    """C99 with ``<math.h>``: double literals, integer powers as products, ``pow`` otherwise.
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> CPrinter({x: "q[0]"}).doprint(x ** 2 / 3 + sp.sin(x))
+    '0.3333333333333333*q[0]*q[0] + sin(q[0])'
+    """
+
+    def __init__(self, names: Mapping[sp.Symbol, str]):
+        super().__init__()
+        self.names = names
+        self.used = set()
+
+    def _power(self, base: str, exponent: str) -> str:
+        return f"pow({base}, {exponent})"
+
+
+class SymPyPrinter(StrPrinter):
+    """Python source that *rebuilds* the SymPy expression (``sympy.sin(theta1)``), exact numbers kept exact.
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> SymPyPrinter({x: "theta1"}).doprint(sp.Rational(1, 3) * sp.sin(x) + sp.sqrt(x) + sp.pi)
+    'sympy.sqrt(theta1) + sympy.Rational(1, 3)*sympy.sin(theta1) + sympy.pi'
+    """
+
+    def __init__(self, names: Mapping[sp.Symbol, str]):
+        super().__init__()
+        self.names = names
+
+    def _print_Symbol(self, expr: sp.Symbol) -> str:
+        return _Common._print_Symbol(self, expr)  # type: ignore[arg-type]
+
+    def _print_Integer(self, expr: sp.Integer) -> str:
+        return str(int(expr))
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return f"sympy.Rational({int(expr.p)}, {int(expr.q)})"
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return f"sympy.Float({float_literal(expr)!r})"
+
+    def _print_Pi(self, expr: sp.Expr) -> str:
+        return "sympy.pi"
+
+    def _print_NumberSymbol(self, expr: sp.NumberSymbol) -> str:
+        raise CodegenError(f"constant {expr} is not supported in generated code")
+
+    def _print_Function(self, expr: sp.Function) -> str:
+        if not isinstance(expr, _ALLOWED_FUNCTIONS):
+            raise CodegenError(f"function {type(expr).__name__} is not supported in generated code")
+        return f"sympy.{type(expr).__name__}({self._print(expr.args[0])})"
+
+    _print_sin = _print_Function
+    _print_cos = _print_Function
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        coefficient, rest = expr.as_coeff_Mul()
+        if coefficient.is_Rational and not coefficient.is_Integer:  # keep 1/3 exact: never "x/3" on an int
+            sign = "-" if coefficient < 0 else ""
+            return f"{sign}{self._print_Rational(abs(coefficient))}*{self.parenthesize(rest, 50)}"
+        return super()._print_Mul(expr)
+
+    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        base, exponent = expr.args
+        if exponent == sp.Rational(1, 2):
+            return f"sympy.sqrt({self._print(base)})"
+        if exponent.is_Integer:
+            return f"{self.parenthesize(base, 60)}**{int(exponent)}"
+        if exponent.is_Rational:
+            return f"{self.parenthesize(base, 60)}**{self._print_Rational(exponent)}"
+        raise CodegenError(f"power {expr} with a non-numeric exponent is not supported in generated code")
+
+    def emptyPrinter(self, expr: Any) -> str:
+        """Refuse whatever has no printing method of its own."""
+        raise CodegenError(f"{type(expr).__name__} ({expr}) is not supported in generated code")
+
+
+def check_expression(expr: sp.Basic) -> None:
+    """Refuse, before anything is printed, every node a generated module cannot evaluate.
+
+    Allowed: symbols, finite numbers, ``pi``, ``+``, ``*``, powers with rational exponents, ``sin`` and ``cos``.
+
+    Examples
+    --------
+    >>> check_expression(sp.sin(sp.Symbol("x")) ** 2 + sp.pi)
+    >>> check_expression(sp.exp(sp.Symbol("x")))
+    Traceback (most recent call last):
+    ...
+    symjac.codegen_printers.CodegenError: exp(x) is not supported in generated code (allowed: + * ** sin cos)
+    """
+    for node in sp.preorder_traversal(expr):
+        if isinstance(node, sp.Symbol | sp.Add | sp.Mul | sp.sin | sp.cos) or node is sp.pi:
+            continue
+        if isinstance(node, sp.Number):
+            float_literal(node)  # raises for infinities and NaN
+            continue
+        if isinstance(node, sp.Pow) and node.exp.is_Rational:
+            continue
+        raise CodegenError(f"{node} is not supported in generated code (allowed: + * ** sin cos)")
+
+
+def layout(head: str, code: str, tail: str = "", *, width: int = 120, language: str = "python") -> list[str]:
+    """Lines of the statement ``head + code + tail``, broken at spaces so that none is longer than ``width``.
+
+    Printed expressions contain spaces only around binary ``+``/``-`` and after commas, so a break at a space never
+    splits a token. A long Python statement is wrapped in parentheses (implicit continuation); C needs nothing.
+    Continuation lines are indented by four more spaces than ``head``'s own indentation.
+
+    Examples
+    --------
+    >>> layout("    x0 = ", "a + b + c", width=16)
+    ['    x0 = (a + b', '        + c)']
+    """
+    line = f"{head}{code}{tail}"
+    if len(line) <= width:
+        return [line]
+    indent = " " * (len(head) - len(head.lstrip()) + 4)
+    if language == "python":
+        head, tail = f"{head}(", f"){tail}"
+    pieces = code.split(" ")
+    lines: list[str] = []
+    current = head
+    for index, piece in enumerate(pieces):
+        addition = piece if current in (head, indent) else f" {piece}"
+        if len(current) + len(addition) > width and current not in (head, indent):
+            lines.append(current)
+            current, addition = indent, piece
+        current += addition
+        if index == len(pieces) - 1:
+            current += tail
+    lines.append(current)
+    return lines

@@ -50,12 +50,14 @@ __all__ = [
     "SingularFactor",
     "SingularityReport",
     "Solution",
+    "SymbolicSpaces",
     "determinant",
     "jacobian_spaces",
     "numeric_jacobian",
     "report_data",
     "singularities",
     "solve_factor",
+    "symbolic_spaces",
     "task_rows",
 ]
 
@@ -135,6 +137,55 @@ def jacobian_spaces(J: np.ndarray, tolerance: float | None = None) -> JacobianSp
         tolerance = float(sigma.max(initial=0.0)) * max(J.shape) * np.finfo(float).eps
     rank = int(np.sum(sigma > tolerance))
     return JacobianSpaces(sigma, rank, tolerance, Vt[rank:].T, U[:, :rank], U[:, rank:])
+
+
+@dataclass(frozen=True)
+class SymbolicSpaces:
+    """Rank and bases (as columns) of the null, range and left-null spaces of a Jacobian, exact."""
+
+    jacobian: sp.Matrix
+    rank: int
+    null_space: sp.Matrix
+    range_space: sp.Matrix
+    left_null_space: sp.Matrix
+
+
+def symbolic_spaces(
+    robot: Robot,
+    values: Mapping[sp.Symbol, sp.Expr],
+    rows: Sequence[int] | None = None,
+    frame: Frame = 0,
+    point: Point | None = None,
+) -> SymbolicSpaces:
+    r"""The exact subspaces of the Jacobian with some joint variables fixed, e.g. at a singular configuration.
+
+    ``values`` maps joint variables (and, optionally, parameters) to values; the others stay symbolic. Practical for
+    small arms and sparse frames; use :func:`jacobian_spaces` on :func:`numeric_jacobian` otherwise. The rank is the
+    generic rank over the remaining symbols.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> robot = load_robot("planar2r")
+    >>> spaces = symbolic_spaces(robot, {robot.q[1]: 0}, frame=2)
+    >>> spaces.rank, spaces.left_null_space.T
+    (1, Matrix([[1, 0]]))
+    """
+    if point is None:
+        point = "tool" if robot.tool is not None else "wrist"
+    point_xyz = point_vector(robot, point)
+    chosen = list(task_rows(robot, point_xyz) if rows is None else rows)
+    J = jacobian(robot, frame=frame, point=point_xyz)[chosen, :].xreplace(dict(values))
+    J = sp.Matrix(J.rows, J.cols, [sp.factor_terms(sp.trigsimp(entry)) for entry in J])
+
+    def columns(vectors: list[sp.Matrix], size: int) -> sp.Matrix:
+        if not vectors:
+            return sp.zeros(size, 0)
+        return sp.Matrix.hstack(*[v.applyfunc(lambda e: sp.factor_terms(sp.simplify(e))) for v in vectors])
+
+    return SymbolicSpaces(J, J.rank(simplify=True), columns(J.nullspace(simplify=True), J.cols),
+                          columns(J.columnspace(simplify=True), J.rows),
+                          columns(J.T.nullspace(simplify=True), J.rows))
 
 
 # --- task rows and frames ----------------------------------------------------------------------------------------

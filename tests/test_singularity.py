@@ -22,6 +22,7 @@ from symjac.singularity import (
     numeric_jacobian,
     singularities,
     solve_factor,
+    symbolic_spaces,
     task_rows,
 )
 
@@ -268,3 +269,12 @@ def test_cli_singularities_in_every_format(capsys):
     assert r"\det J = L_{1} L_{2} s_{2}" in capsys.readouterr().out
     assert main(["singularities", "planar2r", "--rows", "v_x,bogus"]) == 2
     assert "unknown row" in capsys.readouterr().err
+
+
+def test_symbolic_spaces_at_the_seed_002_elbow_singularity():
+    robot = load_robot("articulated3r")
+    spaces = symbolic_spaces(robot, {t3: 0}, frame="tool")
+    assert spaces.rank == 2
+    assert spaces.left_null_space.T == sp.Matrix([[1, 0, 0]])  # cannot move along x of frame {4}
+    (motion,) = spaces.null_space.T.tolist()
+    assert spaces.jacobian * sp.Matrix(motion) == sp.zeros(3, 1) and motion[0] == 0 and motion[2] != 0

@@ -236,6 +236,19 @@ def _admissible(robot: Robot, rows: tuple[int, ...], frame: Frame) -> bool:
     return True
 
 
+def _frame_sign(robot: Robot, rows: tuple[int, ...], frame: Frame) -> int:
+    r"""The sign :math:`\det(S\,\mathrm{diag}(R, R)\,S^T) = \pm 1` between the rows' determinant in ``frame`` and {0}.
+
+    It is 1 for all six rows or whole 3-row blocks; a planar subset in a frame whose z-axis is flipped (a twist of
+    pi) has -1, and the determinant is reported as in frame {0}.
+    """
+    q = [0.3 + 0.1 * i for i in range(robot.dof)]
+    values = {**dict(zip(robot.q, q, strict=True)), **robot.defaults}
+    R = np.array(chain_of(robot).rotation(frame, 0).xreplace(values).evalf(), dtype=float)
+    B = np.kron(np.eye(2), R)[np.ix_(rows, rows)]
+    return 1 if np.linalg.det(B) > 0 else -1
+
+
 # --- determinant -------------------------------------------------------------------------------------------------
 
 
@@ -349,7 +362,7 @@ def determinant(
         raise FrameError(f"rows {rows} mix with other rows when expressed in frame {frame}; use another frame")
     J = _square_jacobian(robot, frame, point_xyz, rows, columns, numeric)
     coefficient, factors = _factored_determinant(J, chain.angle_basis(frame), _all_bases(robot))
-    return Determinant(coefficient, factors, rows, frame, point_xyz, columns)
+    return Determinant(coefficient * _frame_sign(robot, rows, frame), factors, rows, frame, point_xyz, columns)
 
 
 _FACTOR_UNREDUCED_TERMS = 150

@@ -275,6 +275,6 @@ def test_symbolic_spaces_at_the_seed_002_elbow_singularity():
     robot = load_robot("articulated3r")
     spaces = symbolic_spaces(robot, {t3: 0}, frame="tool")
     assert spaces.rank == 2
-    assert spaces.left_null_space.T == sp.Matrix([[1, 0, 0]])  # cannot move along x of frame {4}
+    assert sp.Matrix([[1, 0, 0]]) == spaces.left_null_space.T  # cannot move along x of frame {4}
     (motion,) = spaces.null_space.T.tolist()
     assert spaces.jacobian * sp.Matrix(motion) == sp.zeros(3, 1) and motion[0] == 0 and motion[2] != 0

@@ -1,0 +1,169 @@
+# ---
+# jupyter:
+#   jupytext:
+#     formats: py:percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # 2. The Stanford arm: from a DH table to its Jacobian, two ways
+#
+# **What you will learn**
+#
+# * how a Denavit-Hartenberg table (modified, Craig's convention) becomes link transforms ${}^{i-1}_iT$ and the
+#   forward kinematics ${}^0_6T$;
+# * two derivations of the same Jacobian: differentiating the position of the wrist, and the column formula
+#   $J_i = [z_i \times p_{i6};\ z_i]$ (for a prismatic joint $[z_i;\ 0]$);
+# * how a Jacobian is re-expressed in another frame, ${}^kJ = \mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J$, and why a
+#   middle frame gives much shorter entries;
+# * how to find the misprints in a printed matrix by comparing it entry by entry with a derivation.
+#
+# The Stanford (Scheinman) arm has two revolute joints, a prismatic joint $d_3$ and a spherical wrist.
+
+# %%
+import sympy as sp
+from IPython.display import Markdown, Math, display
+
+from symjac import change_frame, chain_of, forward_kinematics, is_identity, jacobian, latex, load_robot
+from symjac.exercises import check
+from symjac.simplify import AngleBasis
+
+robot = load_robot("stanford")
+chain = chain_of(robot)
+basis = AngleBasis.of(j.variable for j in robot.joints if j.is_revolute)
+
+# %% [markdown]
+# ## The DH table
+#
+# In the modified convention row $i$ holds $\alpha_{i-1}, a_{i-1}$ (twist and length of the link *before* joint
+# $i$), then $d_i$ and $\theta_i$. The joint variable is added to $\theta_i$ (revolute) or $d_i$ (prismatic).
+
+# %%
+rows = ["| $i$ | type | $\\alpha_{i-1}$ | $a_{i-1}$ | $d_i$ | $\\theta_i$ |", "|---|---|---|---|---|---|"]
+for joint in robot.joints:
+    cells = [latex(value) for value in (joint.alpha, joint.a, joint.d, joint.theta)]
+    rows.append(f"| {joint.index} | {joint.type.value} | " + " | ".join(f"${c}$" for c in cells) + " |")
+display(Markdown("\n".join(rows)))
+
+# %% [markdown]
+# ## Link transforms and forward kinematics
+#
+# Each row gives ${}^{i-1}_iT = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)$. Multiplying them gives
+# the pose of the wrist frame {6} in the base frame {0}.
+
+# %%
+for i in range(1, robot.dof + 1):
+    display(Math(f"{{}}^{{{i - 1}}}_{{{i}}}T = " + latex(chain.simplified_transform(i - 1, i))))
+
+# %%
+T_0_6 = forward_kinematics(robot)
+display(Math(r"{}^0_6T = " + latex(T_0_6)))
+
+# %% [markdown]
+# ## The Jacobian by differentiation
+#
+# The linear rows are the derivatives of the wrist position ${}^0p_6$; the angular rows are the joint axes $z_i$
+# expressed in {0} (zero for the prismatic joint, which does not rotate anything).
+
+# %%
+J_diff = jacobian(robot, method="differentiation")
+display(Math(r"{}^0J = " + latex(J_diff)))
+
+# %% [markdown]
+# ## The Jacobian column by column: $z_i \times p_{i6}$
+#
+# Column $i$ of a revolute joint is the velocity that a unit rotation about axis $z_i$ gives to the wrist point,
+# $z_i \times p_{i6}$, where $p_{i6}$ is the vector from the origin of frame $\{i\}$ to the wrist. symjac computes
+# the cross product in frame $\{i\}$, where $z_i = [0, 0, 1]^T$, and rotates it into {0}. The two derivations agree
+# exactly:
+
+# %%
+J_cross = jacobian(robot, method="cross_product")
+check(J_cross, J_diff, robot)
+
+# %% [markdown]
+# ## Changing the frame
+#
+# The same motion can be described in any frame. The entries are shortest in a frame in the middle of the arm:
+# here frame {3}.
+
+# %%
+R_3_0 = chain.rotation(3, 0)
+J_3 = jacobian(robot, frame=3)
+display(Math(r"{}^3J = " + latex(J_3)))
+check(change_frame(J_diff, R_3_0), J_3, robot)
+print("operations in frame 0:", sp.count_ops(J_diff), " in frame 3:", sp.count_ops(J_3))
+
+# %% [markdown]
+# ## Where the printed notes disagree with the derivation
+#
+# Lecture notes are typed by hand. Below are two matrices as a set of course notes prints them (transcribed here as
+# data). Comparing each entry with symjac's result, exactly, finds the misprints; the derivation then tells which
+# side is right (a second derivation method agreeing with the first is strong evidence).
+
+# %%
+s1, c1 = sp.sin(robot.q[0]), sp.cos(robot.q[0])
+s2, c2 = sp.sin(robot.q[1]), sp.cos(robot.q[1])
+s4, c4 = sp.sin(robot.q[3]), sp.cos(robot.q[3])
+s5, c5 = sp.sin(robot.q[4]), sp.cos(robot.q[4])
+d2 = sp.Symbol("d2", real=True)
+d3 = robot.q[2]
+
+printed_T_1_2 = sp.Matrix([[c2, -s2, 0, 0], [0, 0, 1, d2], [-s2, c2, 0, 0], [0, 0, 0, 1]])
+printed_J = sp.Matrix([
+    [-c1 * d2 - s1 * s2 * d3, c1 * c2 * d3, c1 * s2, 0, 0, 0],
+    [-s1 * d2 + c1 * s2 * d3, s1 * c2 * d3, s1 * s2, 0, 0, 0],
+    [0, -s2 * d3, c2, 0, 0, 0],
+    [0, -s1, 0, c1 * s2, -s1 * c2 * s4 + c1 * c4, c1 * c2 * c4 * s5 - s1 * s4 * s5 + c1 * s2 * s5],
+    [0, c1, 0, s1 * s2, -s1 * c2 * s4 + c1 * c4, s1 * c2 * c4 * s5 + c1 * s4 * s5 + s1 * s2 * s5],
+    [1, 0, 0, c2, s2 * s4, -s2 * c4 * s5 + c5 * c2],
+])
+
+
+def misprints(derived, printed):
+    """Entries (1-based) where the printed matrix is not identically equal to the derived one."""
+    return [(r + 1, c + 1) for r in range(printed.rows) for c in range(printed.cols)
+            if not is_identity(derived[r, c], printed[r, c], basis)]
+
+
+for name, derived, printed in (("1_2T", chain.simplified_transform(1, 2), printed_T_1_2),
+                               ("0J", J_diff, printed_J)):
+    for r, c in misprints(derived, printed):
+        display(Math(f"{name}_{{{r}{c}}}:\\ \\text{{printed}}\\ {latex(printed[r - 1, c - 1])},"
+                     f"\\quad \\text{{derived}}\\ {latex(derived[r - 1, c - 1])}"))
+
+# %% [markdown]
+# Reading the differences:
+#
+# * ${}^1_2T_{32}$: $R_x(-\pi/2)\,R_z(\theta_2)$ has $-c_2$ in row 3, column 2; the print lost the sign.
+# * ${}^0J_{45}$: the print repeats the entry below it; the axis $z_5 = {}^0_4R\,[0, 1, 0]^T$ gives
+#   $-c_1 c_2 s_4 - s_1 c_4$.
+# * ${}^0J_{46}$, ${}^0J_{56}$: the last term should carry $c_5$, not $s_5$ (the third column of ${}^0_6R$).
+
+# %%
+assert misprints(J_diff, printed_J) == [(4, 5), (4, 6), (5, 6)]
+assert misprints(chain.simplified_transform(1, 2), printed_T_1_2) == [(3, 2)]
+
+# %% [markdown]
+# ## Exercises
+#
+# 1. Column 3 belongs to the prismatic joint $d_3$. Write it down (linear and angular part) in frame {0}.
+# 2. Write the linear part of column 1, $z_1 \times p_{16}$, in frame {0}.
+# 3. Which entry of ${}^3J$ is the rate at which $d_3$ moves the wrist along $z_3$?
+
+# %%
+answer_1 = sp.Matrix([c1 * s2, s1 * s2, c2, 0, 0, 0])
+check(answer_1, J_diff[:, 2], robot)
+
+# %%
+p = T_0_6[:3, 3]
+answer_2 = sp.Matrix([-p[1], p[0], 0])
+check(answer_2, J_diff[:3, 0], robot)
+
+# %%
+answer_3 = J_3[2, 2]
+check(answer_3, 1, robot)
+print("all answers correct")

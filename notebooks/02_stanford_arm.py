@@ -27,7 +27,7 @@
 import sympy as sp
 from IPython.display import Markdown, Math, display
 
-from symjac import change_frame, chain_of, forward_kinematics, is_identity, jacobian, latex, load_robot
+from symjac import chain_of, change_frame, forward_kinematics, is_identity, jacobian, latex, load_robot
 from symjac.exercises import check
 from symjac.simplify import AngleBasis
 

@@ -164,7 +164,7 @@ from symjac import robot_from_mapping, robot_to_mapping  # noqa: E402
 data = robot_to_mapping(arm)
 data["parameters"] = {"L1": 1, "L2": 0.25, "L3": 0.5}
 short = singularities(robot_from_mapping(data))
-shoulder = [f for f in short.factors if f.expression.has(arm.q[1])][0]
+shoulder = next(f for f in short.factors if f.expression.has(arm.q[1]))
 answer_3 = False
 assert answer_3 == shoulder.exists_for_defaults
 print(shoulder.existence, "->", shoulder.exists_for_defaults)

@@ -85,6 +85,7 @@ path_b = np.array([[0.3, -0.6, 1.2, 0.0, -0.6 + v, 0.2] for v in s])
 
 
 def along(path):
+    """Smallest singular value of J_0 and condition number of the Z-Y-Z J_x at each configuration."""
     smallest, condition = [], []
     for q in path:
         smallest.append(np.linalg.svd(numeric_jacobian(puma, q), compute_uv=False).min())

@@ -44,7 +44,7 @@ import os
 import tempfile
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from pathlib import Path
 from typing import Literal, get_args
 
@@ -189,6 +189,15 @@ class GeneratedFunction:
     def inputs_literal(self) -> str:
         """``((q, 6, "q"), (wrench, 6, "wrench"))``: each array argument, its length and its name."""
         return _tuple_literal(f'({a.name}, {len(a.entries)}, "{a.name}")' for a in self.arguments)
+
+    def call_lines(self, head: str, first: str) -> list[str]:
+        """``head(first, inputs, shape, out, parameters)`` laid out within the line width (one line if it fits)."""
+        arguments = f"{first}, {self.inputs_literal}, {self.shape_literal}, out, parameters"
+        line = f"{head}({arguments})"
+        if len(line) <= LINE_WIDTH:
+            return [line]
+        indent = " " * (len(head) - len(head.lstrip()))
+        return [f"{head}(", *layout(f"{indent}    ", arguments, ",", width=LINE_WIDTH, language="c"), f"{indent})"]
 
     @property
     def lengths_literal(self) -> str:
@@ -355,16 +364,22 @@ class _Lowered:
     op_count: int
     origin: str
 
-    @property
+    @cached_property
     def used_symbols(self) -> set[sp.Symbol]:
-        """Every symbol the evaluation reads (angles included)."""
+        """Every symbol the evaluation reads: arguments, sines and cosines, and the variables in the angles."""
         exprs = [e for _, e in self.temporaries] + list(self.outputs) + [a for _, _, a in self.angles]
         return set().union(*(e.free_symbols for e in exprs))
 
     @property
+    def trig_count(self) -> int:
+        """Sines and cosines evaluated per configuration."""
+        used = self.used_symbols
+        return sum((s in used) + (c in used) for s, c, _ in self.angles)
+
+    @property
     def cost(self) -> int:
         """What candidate selection minimises: operations plus one per sine and cosine."""
-        return self.op_count + 2 * len(self.angles)
+        return self.op_count + self.trig_count
 
 
 def lower(
@@ -577,10 +592,13 @@ def _python_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summ
         body += _unpack(_entry_names(lowered, names, symbols), argument, indent + "    ")
         body.append(f"{indent}except (TypeError, ValueError):")
         body.append(f'{indent}    raise ValueError(_length_error("{argument}", {argument}, {len(symbols)})) from None')
+    used = lowered.used_symbols
     for sine, cosine, angle in lowered.angles:
         text = printer.doprint(angle)
-        body.append(f"{indent}{names.mapping[sine]} = sin({text})")
-        body.append(f"{indent}{names.mapping[cosine]} = cos({text})")
+        if sine in used:
+            body.append(f"{indent}{names.mapping[sine]} = sin({text})")
+        if cosine in used:
+            body.append(f"{indent}{names.mapping[cosine]} = cos({text})")
     for symbol, expr in lowered.temporaries:
         body += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
@@ -614,7 +632,7 @@ def _function(lowered: _Lowered, name: str, kind: str, summary: str, arguments: 
     used = set(uses) | ({"sin", "cos"} if lowered.angles else set())
     return GeneratedFunction(
         name=name, kind=kind, summary=summary, arguments=arguments, shape=lowered.shape,  # type: ignore[arg-type]
-        op_count=lowered.op_count, trig_count=2 * len(lowered.angles), origin=lowered.origin, body=tuple(body),
+        op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin, body=tuple(body),
         outputs=tuple(outputs), output_lines=tuple(output_lines), constant=constant, uses=tuple(sorted(used)),
     )
 
@@ -630,10 +648,13 @@ def _numpy_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summa
         body += _unpack(_entry_names(lowered, names, symbols), argument, indent)
     if robot.parameters:
         body += _unpack(_entry_names(lowered, names, robot.parameter_symbols), "parameters", indent)
+    used = lowered.used_symbols
     for sine, cosine, angle in lowered.angles:
         text = printer.doprint(angle)
-        body.append(f"{indent}{names.mapping[sine]} = np.sin({text})")
-        body.append(f"{indent}{names.mapping[cosine]} = np.cos({text})")
+        if sine in used:
+            body.append(f"{indent}{names.mapping[sine]} = np.sin({text})")
+        if cosine in used:
+            body.append(f"{indent}{names.mapping[cosine]} = np.cos({text})")
     for symbol, expr in lowered.temporaries:
         body += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
@@ -644,6 +665,8 @@ def _numpy_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summa
 
 
 def _indices(shape: tuple[int, ...]) -> list[str]:
+    if not shape:
+        return ["..."]
     if len(shape) == 1:
         return [str(i) for i in range(shape[0])]
     rows, columns = shape
@@ -661,10 +684,13 @@ def _sympy_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summa
         body += _unpack(_entry_names(lowered, names, symbols), argument, indent)
     if robot.parameters:
         body += _unpack(_entry_names(lowered, names, robot.parameter_symbols), "parameters", indent)
+    used = lowered.used_symbols
     for sine, cosine, angle in lowered.angles:
         text = printer.doprint(angle)
-        body.append(f"{indent}{names.mapping[sine]} = sympy.sin({text})")
-        body.append(f"{indent}{names.mapping[cosine]} = sympy.cos({text})")
+        if sine in used:
+            body.append(f"{indent}{names.mapping[sine]} = sympy.sin({text})")
+        if cosine in used:
+            body.append(f"{indent}{names.mapping[cosine]} = sympy.cos({text})")
     for symbol, expr in lowered.temporaries:
         body += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
@@ -682,7 +708,7 @@ def _c_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summary: 
     names = _symbol_names(robot, lowered, set(taken) | _C_KEYWORDS)
     mapping = dict(names.mapping)
     for argument, symbols in lowered.inputs:
-        pointer = "x" if argument == "q" else "w"
+        pointer = "x" if argument == "q" else "wk"
         for k, symbol in enumerate(symbols):
             mapping[symbol] = f"{pointer}[{k}]"
     for parameter_index, symbol in enumerate(robot.parameter_symbols):
@@ -707,7 +733,7 @@ _C_KEYWORDS = frozenset((
     "auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum", "extern",
     "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return", "short", "signed",
     "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void", "volatile", "while",
-    "x", "w", "p", "o", "k", "S", "C", "m", "n",  # names of the kernel's own locals
+    "x", "w", "wk", "p", "o", "k", "q", "out", "S", "C", "m", "A",  # names of the kernel's own locals
 ))
 
 
@@ -853,8 +879,7 @@ def describe(
     defined = {f.name for f in functions} | {i.manipulability for i in infos}
     defined |= {i.determinant for i in infos if i.determinant}
     for scalar_name, expr in (scalars or {}).items():
-        check_identifier(scalar_name, "scalar function name", {**_RESERVED, **{n: "a generated function" for n in
-                                                                               defined}})
+        check_identifier(scalar_name, "scalar function name", {**_RESERVED, **{n: "a function" for n in defined}})
         if scalar_name.startswith("_") or scalar_name in {p.name for p in robot.parameters}:
             raise CodegenError(f"scalar function name {scalar_name!r} is private or a parameter name")
         lowered = _lower_function(_angles(robot), [sp.sympify(expr)], (), (("q", robot.q),), robot.parameter_symbols,
@@ -939,14 +964,13 @@ def _labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[str]:
     if len(requests) == 1:
         return [""]
     labels = []
-    custom = 0
+    custom: dict[tuple[sp.Expr, ...], str] = {}
     for request in requests:
         frame = str(request.frame)
         if isinstance(request.point, str):
             point = request.point
         else:
-            custom += 1
-            point = f"p{custom}"
+            point = custom.setdefault(point_vector(robot, request.point), f"p{len(custom) + 1}")
         rows = "" if request.rows is None else "_r" + "".join(str(r) for r in request.rows)
         labels.append(f"_{frame}_{point}{rows}")
     return labels

@@ -11,7 +11,7 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 
 from symjac.chain import Chain, Frame, chain_of, forward_kinematics
 from symjac.errors import ExpressionError, FrameError, RobotFileError, SymjacError, UnknownRobotError
-from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml
+from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
 from symjac.jacobian import METHODS, change_frame, clear_caches, jacobian, jacobian_of, shift_point
 from symjac.model import (
     Convention,
@@ -57,6 +57,7 @@ from symjac.singularity import (
 )
 from symjac.statics import evaluate_at, joint_torques, wrench_between
 from symjac.transforms import twist_transform, wrench_transform
+from symjac.urdf import robot_from_urdf
 
 __version__ = "0.1.0"
 
@@ -113,6 +114,7 @@ __all__ = [
     "representation_jacobian_at",
     "robot_from_mapping",
     "robot_from_toml",
+    "robot_from_urdf",
     "robot_to_mapping",
     "robot_to_toml",
     "rotation_from",
@@ -122,6 +124,7 @@ __all__ = [
     "singularities",
     "task_rows",
     "twist_transform",
+    "urdf_catalog",
     "velocity_propagation",
     "wrench_between",
     "wrench_symbols",

@@ -17,9 +17,9 @@ from typing import Literal
 import sympy as sp
 
 from symjac.errors import FrameError
-from symjac.model import Robot
+from symjac.model import Convention, FixedTransform, Joint, Robot
 from symjac.simplify import AngleBasis, simplify_matrix
-from symjac.transforms import Motion, compose, dh_motions, homogeneous, inverse_motions, inverse_transform
+from symjac.transforms import Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
 
@@ -68,30 +68,34 @@ class Chain:
         return "world" if position == -1 else "tool" if position == self.n + 1 else position
 
     def axis_frame(self, joint: int) -> int:
-        """The frame whose z-axis is the axis of ``joint`` (1-based): {i} (modified DH) or {i-1} (standard)."""
-        return joint if self.robot.convention == "modified" else joint - 1
+        """The frame whose z-axis is the axis of ``joint`` (1-based): {i} (modified DH, general) or {i-1} (standard)."""
+        return joint - 1 if self.robot.convention is Convention.STANDARD else joint
 
     @cached_property
     def _steps(self) -> list[tuple[Motion | sp.Matrix, ...]]:
         """Motions from frame position k-1 to k, for k = 0 (base), 1..n (links), n+1 (tool)."""
         robot = self.robot
         steps: list[tuple[Motion | sp.Matrix, ...]] = [(robot.base.matrix,) if robot.base else ()]
-        for joint in robot.joints:
-            steps.append(dh_motions(robot.convention.value, joint.alpha, joint.a, joint.angle, joint.offset))
+        if robot.convention is Convention.GENERAL:
+            steps += [(*self._fixed_part(joint.index), *_joint_motion(joint)) for joint in robot.joints]
+        else:
+            for joint in robot.joints:
+                convention: Literal["standard", "modified"] = robot.convention.value  # type: ignore[assignment]
+                steps.append(dh_motions(convention, joint.alpha, joint.a, joint.angle, joint.offset))
         steps.append((robot.tool.matrix,) if robot.tool else ())
         return steps
+
+    def _fixed_part(self, joint: int) -> tuple[Motion | sp.Matrix, ...]:
+        r"""The constant motions of a general joint before it moves: :math:`A_{i-1}^{-1}\,T_{\text{origin}}\,A_i`."""
+        joints = self.robot.joints
+        previous = alignment(joints[joint - 2].unit_axis) if joint > 1 else ()
+        current = joints[joint - 1]
+        return (*inverse_motions(previous), *origin_motions(current.origin), *alignment(current.unit_axis))
 
     def _motions(self, start: int, end: int) -> list[Motion | sp.Matrix]:
         if start <= end:
             return [m for k in range(start + 1, end + 1) for m in self._steps[k]]
-        motions: list[Motion | sp.Matrix] = []
-        for k in range(start, end, -1):
-            step = self._steps[k]
-            if step and isinstance(step[0], sp.MatrixBase):
-                motions.append(inverse_transform(step[0]))
-            else:
-                motions.extend(inverse_motions(step))  # type: ignore[arg-type]
-        return motions
+        return [m for k in range(start, end, -1) for m in inverse_motions(self._steps[k])]
 
     # --- transforms ---------------------------------------------------------------------------------------
 
@@ -145,9 +149,38 @@ class Chain:
         return tuple(tuple(group) for group in groups)
 
     def _twist_between(self, i: int) -> sp.Expr:
-        """The twist angle between the axes of joints i and i+1 (alpha_i)."""
+        """The twist angle between the axes of joints i and i+1 (alpha_i); for general joints 0, pi or nan."""
         joints = self.robot.joints
+        if self.robot.convention is Convention.GENERAL:
+            return self._general_relation(i + 1)[0]
         return joints[i].alpha if self.robot.convention == "modified" else joints[i - 1].alpha
+
+    def _z_offset(self, joint: int) -> sp.Expr:
+        """The constant turn about z between the axis frames of joint-1 and joint when their axes are parallel.
+
+        DH rows have none (it is in the ``theta`` offset); a general joint's origin and alignments may add one.
+        """
+        if self.robot.convention is not Convention.GENERAL:
+            return sp.S.Zero
+        return self._general_relation(joint)[1]
+
+    @cache  # noqa: B019 - one chain per robot (chain_of caches it), so the cache lives as long as the chain
+    def _general_relation(self, joint: int) -> tuple[sp.Expr, sp.Expr]:
+        r"""(twist, z offset) between the axis frames of general joints joint-1 and joint.
+
+        With the constant rotation :math:`C = A_{i-1}^{-1} R_\text{origin} A_i`: parallel axes (:math:`C_{33} = 1`)
+        give :math:`C = R_z(\gamma)`, anti-parallel ones :math:`C = R_x(\pi) R_z(\gamma)`; otherwise the twist is
+        ``nan`` and no offset is used.
+        """
+        C, _ = compose(self._fixed_part(joint))
+        c33 = sp.nsimplify(C[2, 2]) if C[2, 2].is_Float else C[2, 2]
+        if c33 == 1 or c33 == -1:
+            sign = 1 if c33 == 1 else -1
+            gamma = sp.atan2(sign * C[1, 0], C[0, 0])
+            if gamma.has(sp.atan2, sp.atan) or not gamma.is_number:
+                gamma = sp.S.Zero  # not a clean angle: only compactness is lost, the results stay exact
+            return (sp.S.Zero if sign == 1 else sp.pi), gamma
+        return sp.nan, sp.S.Zero
 
     def angle_basis(self, frame: Frame) -> AngleBasis:
         r"""The angles results expressed in ``frame`` read best in (see :mod:`symjac.simplify`).
@@ -191,6 +224,8 @@ class Chain:
             for i in group:
                 if i > first and abs(self._twist_between(i - 1)) == sp.pi:
                     sign = -sign
+                if i > first:
+                    total += sign * self._z_offset(i)
                 if joints[i - 1].is_revolute:  # the angle with its offset: cos(theta1 - 1/5) stays one cosine
                     total += sign * joints[i - 1].angle
                 cumulative[i] = total
@@ -208,6 +243,24 @@ def _order_like(angles: tuple[sp.Expr, ...], variables: tuple[sp.Symbol, ...]) -
         return min(used), len(used)
 
     return tuple(sorted(angles, key=key))
+
+
+def origin_motions(origin: FixedTransform | None) -> tuple[Motion | sp.Matrix, ...]:
+    r"""The origin of a general joint as motions.
+
+    .. math:: T(x, y, z)\,R_z(\text{yaw})\,R_y(\text{pitch})\,R_x(\text{roll})
+    """
+    if origin is None:
+        return ()
+    if origin.given_matrix is not None:
+        return (sp.Matrix(origin.given_matrix),)
+    (x, y, z), (roll, pitch, yaw) = origin.xyz, origin.rpy
+    return (Motion("T", "x", x), Motion("T", "y", y), Motion("T", "z", z),
+            Motion("R", "z", yaw), Motion("R", "y", pitch), Motion("R", "x", roll))
+
+
+def _joint_motion(joint: Joint) -> tuple[Motion, ...]:
+    return (Motion("R", "z", joint.angle), Motion("T", "z", joint.offset))
 
 
 @cache

@@ -1,12 +1,14 @@
-"""Reading and writing robot files (TOML), and the built-in catalog.
+"""Reading and writing robot files (TOML, URDF), and the built-in catalog.
 
-``load_robot`` accepts a catalog name (``"puma560"``) or a path to a TOML file; ``robot_to_toml`` writes a robot
-back in the same format. The catalog lives in ``symjac/robots/*.toml`` inside the package, as data, not code.
+``load_robot`` accepts a catalog name (``"puma560"``), a path to a TOML file, or a URDF file (a path, or the name of
+a built-in one: ``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The
+catalog lives in ``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
 """
 
 from __future__ import annotations
 
 import json
+import re
 import tomllib
 from importlib import resources
 from pathlib import Path
@@ -15,7 +17,7 @@ from typing import Any
 from symjac.errors import RobotFileError, UnknownRobotError
 from symjac.model import Robot, robot_from_mapping, robot_to_mapping
 
-__all__ = ["catalog", "load_robot", "robot_from_toml", "robot_to_toml"]
+__all__ = ["catalog", "load_robot", "robot_from_toml", "robot_to_toml", "urdf_catalog"]
 
 
 def catalog() -> dict[str, str]:
@@ -28,22 +30,42 @@ def catalog() -> dict[str, str]:
     return robots
 
 
-def load_robot(name_or_path: str | Path) -> Robot:
-    """Load a robot: a catalog name (see :func:`catalog`) or the path of a TOML robot file.
+def urdf_catalog() -> dict[str, str]:
+    """The built-in URDF files (load them as ``load_robot("panda.urdf")``), each with its description."""
+    robots = {}
+    for entry in sorted(resources.files("symjac.robots").joinpath("urdf").iterdir(), key=lambda e: e.name):
+        if entry.name.endswith(".urdf"):
+            match = re.search(r"<!--\s*description:\s*(.*?)\s*-->", entry.read_text(encoding="utf-8"))
+            robots[entry.name] = match.group(1) if match else ""
+    return robots
+
+
+def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_link: str | None = None) -> Robot:
+    """Load a robot: a catalog name (see :func:`catalog`), the path of a TOML robot file, or a URDF file.
+
+    A ``.urdf`` argument is a path, or, when no such file exists and it has no directory part, a built-in URDF file
+    (see :func:`urdf_catalog`). ``base_link`` and ``tip_link`` choose the URDF chain (defaults: the root link and the
+    only leaf); see :mod:`symjac.urdf`.
 
     Raises
     ------
     UnknownRobotError
         If the argument is neither a catalog name nor an existing file.
     RobotFileError
-        If the file is malformed (the message names file, joint and field).
+        If the file is malformed (the message names file, joint and field), or links are given for a TOML robot.
 
     Examples
     --------
     >>> load_robot("puma560").dof
     6
+    >>> load_robot("panda.urdf", tip_link="panda_link8").dof
+    7
     """
     path = Path(name_or_path)
+    if path.suffix.lower() == ".urdf":
+        return _load_urdf(name_or_path, path, base_link, tip_link)
+    if base_link is not None or tip_link is not None:
+        raise RobotFileError("base_link and tip_link apply to URDF files only", source=str(name_or_path))
     if isinstance(name_or_path, str) and path.suffix != ".toml" and "/" not in name_or_path:
         entry = resources.files("symjac.robots").joinpath(f"{name_or_path}.toml")
         if entry.is_file():
@@ -56,6 +78,25 @@ def load_robot(name_or_path: str | Path) -> Robot:
         return robot_from_toml(text, source=str(path))
     known = ", ".join(catalog())
     raise UnknownRobotError(f"{str(name_or_path)!r} is neither a built-in robot ({known}) nor a robot file")
+
+
+def _load_urdf(name_or_path: str | Path, path: Path, base_link: str | None, tip_link: str | None) -> Robot:
+    from symjac.urdf import MAX_URDF_BYTES, robot_from_urdf  # the XML machinery only when a URDF is asked for
+
+    if path.is_file():
+        try:
+            if path.stat().st_size > MAX_URDF_BYTES:
+                raise RobotFileError(f"file larger than {MAX_URDF_BYTES} bytes", source=str(path))
+            data = path.read_bytes()
+        except OSError as error:
+            raise RobotFileError(f"cannot read file: {error}", source=str(path)) from None
+        return robot_from_urdf(data, source=str(path), base_link=base_link, tip_link=tip_link)
+    if isinstance(name_or_path, str) and "/" not in name_or_path and "\\" not in name_or_path:
+        entry = resources.files("symjac.robots").joinpath("urdf", name_or_path)
+        if entry.is_file():
+            return robot_from_urdf(entry.read_bytes(), source=name_or_path, base_link=base_link, tip_link=tip_link)
+    known = ", ".join(urdf_catalog())
+    raise UnknownRobotError(f"{str(name_or_path)!r} is neither a URDF file nor a built-in one ({known})")
 
 
 def robot_from_toml(text: str, source: str = "<string>") -> Robot:

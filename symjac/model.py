@@ -1,4 +1,4 @@
-r"""The robot model: a validated Denavit-Hartenberg table as immutable data.
+r"""The robot model: a validated Denavit-Hartenberg table, or a general serial chain, as immutable data.
 
 Notation (Craig), used throughout symjac: ``T_0_3`` is the pose of frame {3} relative to frame {0}, so
 ``T_0_3 = T_0_1 @ T_1_2 @ T_2_3`` (inner indices cancel); likewise ``R_0_3``, ``p_0_3`` and ``z_0_i`` (the z-axis of
@@ -11,11 +11,25 @@ Conventions, stated by every robot file (there is no default):
 * modified DH (Craig): :math:`{}^{i-1}_{i}T = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`; joint *i* moves
   about or along :math:`z_i`.
 
-In both, the row of joint *i* holds the fields ``alpha, a, d, theta``; for the modified convention ``alpha`` and ``a``
-are :math:`\alpha_{i-1}, a_{i-1}`. Revolute joint *i* has the variable ``theta{i}`` (its ``theta`` field is a constant
-offset added to it); prismatic joint *i* has ``d{i}`` (its ``d`` field is an offset). Constant parameters keep the
-names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact numeric defaults that are used
-only where numbers are asked for.
+A third convention, ``general``, writes a chain as URDF does: joint *i* is a fixed origin transform (``xyz`` and
+``rpy``, or a 4 x 4 ``matrix``) followed by a rotation about, or a translation along, a constant unit ``axis``
+(default :math:`+z`, any direction and sign allowed). symjac turns every such joint into the same structured chain
+as the DH conventions by an exact constant *alignment* rotation :math:`A_i` that takes :math:`z` onto the axis:
+
+.. math:: {}^{i-1}_{i}T = A_{i-1}^{-1}\,T_{\text{origin},i}\,A_i\,R_z(\theta_i)\,T_z(d_i), \qquad A_0 = I,
+
+so frame {i} is the joint's child link frame turned by :math:`A_i`; its z-axis is the joint axis (as in the
+modified convention, joint *i* moves about or along :math:`z_i`). :math:`A_i` is :math:`I` for :math:`+z`,
+:math:`R_x(\pi)` for :math:`-z`, :math:`R_y(\pm\pi/2)` for :math:`\pm x`, :math:`R_x(\mp\pi/2)` for :math:`\pm y`,
+and otherwise the rotation with columns :math:`(e_1, u \times e_1, u)`, :math:`e_1` the normalised
+:math:`e_z \times u` (see :func:`symjac.transforms.alignment`). The tool transform of a general robot is given
+relative to frame {n} like every other tool.
+
+In both DH conventions, the row of joint *i* holds the fields ``alpha, a, d, theta``; for the modified convention
+``alpha`` and ``a`` are :math:`\alpha_{i-1}, a_{i-1}`. Revolute joint *i* has the variable ``theta{i}`` (its
+``theta`` field is a constant offset added to it); prismatic joint *i* has ``d{i}`` (its ``d`` field is an offset).
+Constant parameters keep the names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact
+numeric defaults that are used only where numbers are asked for.
 """
 
 from __future__ import annotations
@@ -41,14 +55,16 @@ __all__ = [
     "Robot",
     "robot_from_mapping",
     "robot_to_mapping",
+    "unit_vector",
 ]
 
 
 class Convention(StrEnum):
-    """Denavit-Hartenberg convention of a robot description."""
+    """How a robot description writes its links: a DH convention, or ``general`` (URDF-style origin and axis)."""
 
     STANDARD = "standard"
     MODIFIED = "modified"
+    GENERAL = "general"
 
 
 class JointType(StrEnum):
@@ -73,7 +89,12 @@ class Parameter:
 
 @dataclass(frozen=True)
 class Joint:
-    """One row of the DH table; see the module docstring for the meaning of the fields per convention."""
+    """One row of the DH table, or one general joint; see the module docstring for the fields per convention.
+
+    A general joint (convention ``general``) has ``alpha = a = 0``; its ``origin`` (``None`` is the identity) and
+    ``axis`` (as given, not normalised; ``None`` is :math:`+z`) say where and about what it moves. ``theta`` and
+    ``d`` keep their meaning as constant offsets.
+    """
 
     index: int
     type: JointType
@@ -82,6 +103,9 @@ class Joint:
     d: sp.Expr
     theta: sp.Expr
     limits: tuple[sp.Expr, sp.Expr] | None = None
+    origin: FixedTransform | None = None
+    axis: tuple[sp.Expr, sp.Expr, sp.Expr] | None = None
+    name: str = field(default="", compare=False)
 
     @property
     def is_revolute(self) -> bool:
@@ -103,6 +127,20 @@ class Joint:
     def offset(self) -> sp.Expr:
         """The translation along z of this link: variable plus offset (prismatic) or the constant (revolute)."""
         return self.d if self.is_revolute else self.variable + self.d
+
+    @property
+    def unit_axis(self) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+        """The joint axis as an exact unit vector (``(0, 0, 1)`` unless a general joint gives another)."""
+        if self.axis is None:
+            return (sp.S.Zero, sp.S.Zero, sp.S.One)
+        return unit_vector(self.axis)
+
+
+def unit_vector(vector: Sequence[sp.Expr]) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """``vector / |vector|`` exactly (``(0, 707107/10**6, 707107/10**6)`` gives ``(0, sqrt(2)/2, sqrt(2)/2)``)."""
+    x, y, z = (sp.nsimplify(v) if isinstance(v, sp.Float) else sp.sympify(v) for v in vector)
+    norm = sp.sqrt(x**2 + y**2 + z**2)
+    return sp.radsimp(x / norm), sp.radsimp(y / norm), sp.radsimp(z / norm)
 
 
 @dataclass(frozen=True)
@@ -164,6 +202,7 @@ class Robot:
 
 _TOP_KEYS = {"name", "description", "convention", "angle_unit", "parameters", "joints", "base", "tool"}
 _JOINT_KEYS = {"type", "alpha", "a", "d", "theta", "limits"}
+_GENERAL_JOINT_KEYS = {"type", "xyz", "rpy", "matrix", "axis", "d", "theta", "limits", "name"}
 _TRANSFORM_KEYS = {"xyz", "rpy", "matrix"}
 
 
@@ -214,8 +253,8 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         raise fail("'description' must be a string", field="description")
     convention_text = data.get("convention")
     if not isinstance(convention_text, str) or convention_text not in {c.value for c in Convention}:
-        raise fail(f"'convention' is required and must be 'standard' or 'modified', got {convention_text!r}",
-                   field="convention")
+        raise fail(f"'convention' is required and must be 'standard', 'modified' or 'general', got "
+                   f"{convention_text!r}", field="convention")
     convention = Convention(convention_text)
     unit = data.get("angle_unit", "rad")
     if unit not in ("rad", "deg"):
@@ -248,22 +287,27 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
             raise fail(str(error), joint=joint, field=field) from None
         return expr * scale
 
+    general = convention is Convention.GENERAL
+    allowed = _GENERAL_JOINT_KEYS if general else _JOINT_KEYS
     joints = []
     for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
-        unknown = sorted(set(joint_data) - _JOINT_KEYS)
+        unknown = sorted(set(joint_data) - allowed)
         if unknown:
-            raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(_JOINT_KEYS))}",
+            raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(allowed))}",
                        joint=number)
         fields = {}
         for key in ("alpha", "a", "d", "theta"):
             is_angle = key == "alpha" or key == "theta"
             fields[key] = value(joint_data.get(key, 0), key, number, angle_scale if is_angle else sp.S.One)
+        extra: dict[str, Any] = {}
+        if general:
+            extra = _general_fields(joint_data, number, value, defaults, fail, angle_scale)
         limits = None
         if "limits" in joint_data:
             scale = angle_scale if kind is JointType.REVOLUTE else sp.S.One
             limits = _limits(joint_data["limits"], lambda raw, s=scale, j=number: value(raw, "limits", j, s),
                              defaults, lambda message, j=number: fail(message, joint=j, field="limits"))
-        joints.append(Joint(index=number, type=kind, limits=limits, **fields))
+        joints.append(Joint(index=number, type=kind, limits=limits, **fields, **extra))
         for key, expr in fields.items():
             _require_finite(expr, defaults, lambda message, j=number, k=key: fail(message, joint=j, field=k))
 
@@ -282,6 +326,41 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         tool=transforms.get("tool"),
         source=source,
     )
+
+
+def _general_fields(joint_data: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
+                    fail: Any, angle_scale: sp.Expr) -> dict[str, Any]:
+    """Origin, axis and name of a general joint (convention ``general``)."""
+    extra: dict[str, Any] = {}
+    origin_keys = {"xyz", "rpy", "matrix"} & set(joint_data)
+    if origin_keys:
+        def joint_fail(message: str, joint: int | None = None, field: str | None = None) -> RobotFileError:
+            return fail(message, joint=number, field=field)
+
+        def joint_value(raw: Any, field: str, joint: int | None = None, scale: sp.Expr = sp.S.One) -> sp.Expr:
+            return value(raw, field, number, scale)
+
+        origin = _fixed_transform({k: joint_data[k] for k in origin_keys}, "origin", joint_value, defaults,
+                                  joint_fail, angle_scale)
+        if origin != FixedTransform():
+            extra["origin"] = origin
+    if "axis" in joint_data:
+        entries = joint_data["axis"]
+        if not isinstance(entries, Sequence) or isinstance(entries, str) or len(entries) != 3:
+            raise fail("'axis' must be a list of 3 numbers", joint=number, field="axis")
+        axis = tuple(value(entry, "axis", number) for entry in entries)
+        numbers = [entry.subs(defaults) for entry in axis]
+        if not all(entry.is_number and _is_finite(entry) for entry in numbers):
+            raise fail(f"'axis' must be 3 finite numbers, got {list(axis)}", joint=number, field="axis")
+        if sum(float(entry) ** 2 for entry in numbers) < 1e-18:
+            raise fail("'axis' must not be the zero vector", joint=number, field="axis")
+        if axis != (0, 0, 1):
+            extra["axis"] = axis
+    if "name" in joint_data:
+        if not isinstance(joint_data["name"], str):
+            raise fail("'name' must be a string", joint=number, field="name")
+        extra["name"] = joint_data["name"]
+    return extra
 
 
 def _parameters(raw: Any, reserved: set[str], fail: Any) -> tuple[Parameter, ...]:
@@ -381,21 +460,31 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
     if robot.parameters:
         data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in robot.parameters}
     joints = []
+    general = robot.convention is Convention.GENERAL
     for joint in robot.joints:
         row: dict[str, Any] = {"type": joint.type.value}
-        for key in ("alpha", "a", "d", "theta"):
-            row[key] = expression_text(getattr(joint, key))
+        if general:
+            if joint.name:
+                row["name"] = joint.name
+            if joint.origin is not None:
+                row.update(_transform_mapping(joint.origin))
+            if joint.axis is not None:
+                row["axis"] = [expression_text(e) for e in joint.axis]
+        for key in ("d", "theta") if general else ("alpha", "a", "d", "theta"):
+            if not general or getattr(joint, key) != 0:
+                row[key] = expression_text(getattr(joint, key))
         if joint.limits is not None:
             row["limits"] = [expression_text(limit) for limit in joint.limits]
         joints.append(row)
     data["joints"] = joints
     for key in ("base", "tool"):
         transform: FixedTransform | None = getattr(robot, key)
-        if transform is None:
-            continue
-        if transform.given_matrix is not None:
-            data[key] = {"matrix": [[expression_text(e) for e in transform.given_matrix.row(r)] for r in range(4)]}
-        else:
-            data[key] = {"xyz": [expression_text(e) for e in transform.xyz],
-                         "rpy": [expression_text(e) for e in transform.rpy]}
+        if transform is not None:
+            data[key] = _transform_mapping(transform)
     return data
+
+
+def _transform_mapping(transform: FixedTransform) -> dict[str, Any]:
+    if transform.given_matrix is not None:
+        return {"matrix": [[expression_text(e) for e in transform.given_matrix.row(r)] for r in range(4)]}
+    return {"xyz": [expression_text(e) for e in transform.xyz], "rpy": [expression_text(e) for e in transform.rpy]}

@@ -162,9 +162,42 @@ def dh_motions(
     return along_x[::-1] + about_z
 
 
-def inverse_motions(motions: Sequence[Motion]) -> tuple[Motion, ...]:
-    """The motions of the inverse transform: reversed order, negated values."""
-    return tuple(Motion(m.kind, m.axis, -m.value) for m in reversed(motions))
+def inverse_motions(motions: Sequence[Motion | sp.MatrixBase]) -> tuple[Motion | sp.Matrix, ...]:
+    """The motions of the inverse transform: reversed order, negated values, constant transforms inverted."""
+    return tuple(inverse_transform(sp.Matrix(m)) if isinstance(m, sp.MatrixBase) else Motion(m.kind, m.axis, -m.value)
+                 for m in reversed(motions))
+
+
+_ALIGNMENTS: dict[tuple[int, int, int], tuple[Motion, ...]] = {
+    (0, 0, 1): (),
+    (0, 0, -1): (Motion("R", "x", sp.pi),),
+    (1, 0, 0): (Motion("R", "y", sp.pi / 2),),
+    (-1, 0, 0): (Motion("R", "y", -sp.pi / 2),),
+    (0, 1, 0): (Motion("R", "x", -sp.pi / 2),),
+    (0, -1, 0): (Motion("R", "x", sp.pi / 2),),
+}
+
+
+def alignment(axis: Sequence[sp.Expr]) -> tuple[Motion | sp.Matrix, ...]:
+    r"""A constant rotation :math:`A` whose z-axis is the unit vector ``axis``: :math:`A\,e_z = u`.
+
+    For the coordinate axes it is one elementary rotation (:math:`I`, :math:`R_x(\pi)`, :math:`R_y(\pm\pi/2)`,
+    :math:`R_x(\mp\pi/2)` for :math:`\pm z, \pm x, \pm y`); otherwise the 4 x 4 transform with rotation columns
+    :math:`(e_1, u \times e_1, u)`, :math:`e_1 = e_z \times u / |e_z \times u|`.
+
+    Examples
+    --------
+    >>> alignment((0, 1, 0))
+    (Motion(kind='R', axis='x', value=-pi/2),)
+    """
+    u = sp.Matrix([sp.sympify(c) for c in axis])
+    key = tuple(int(c) if c.is_Integer else 2 for c in u)
+    if key in _ALIGNMENTS:
+        return _ALIGNMENTS[key]  # type: ignore[index]
+    e1 = sp.Matrix([-u[1], u[0], 0])
+    e1 = (e1 / sp.sqrt(e1.dot(e1))).applyfunc(sp.radsimp)
+    e2 = u.cross(e1).applyfunc(lambda e: sp.radsimp(sp.expand(e)))
+    return (homogeneous(sp.Matrix.hstack(e1, e2, u), sp.zeros(3, 1)),)
 
 
 def dh_transform(

@@ -33,12 +33,60 @@ def _trans(x: float, y: float, z: float) -> np.ndarray:
     return T
 
 
+def _rot_axis(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rodrigues: rotation by ``angle`` about the unit ``axis``."""
+    k = axis / np.linalg.norm(axis)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    T = np.eye(4)
+    T[:3, :3] = np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+    return T
+
+
+def _alignment(axis: np.ndarray) -> np.ndarray:
+    """symjac's documented choice of frame {i} for a general joint: a rotation A with A e_z = u (see symjac.model)."""
+    u = axis / np.linalg.norm(axis)
+    A = np.eye(4)
+    if abs(abs(u[2]) - 1) < 1e-15:
+        A[:3, :3] = np.diag([1.0, -1.0, -1.0]) if u[2] < 0 else np.eye(3)
+    elif min(abs(abs(u[0]) - 1), abs(abs(u[1]) - 1)) < 1e-15:
+        # R_y(+-pi/2) for +-x, R_x(-+pi/2) for +-y
+        if abs(u[0]) > 0.5:
+            A[:3, :3] = [[0, 0, u[0]], [0, 1, 0], [-u[0], 0, 0]]
+        else:
+            A[:3, :3] = [[1, 0, 0], [0, 0, u[1]], [0, -u[1], 0]]
+    else:
+        e1 = np.array([-u[1], u[0], 0.0])
+        e1 /= np.linalg.norm(e1)
+        A[:3, :3] = np.column_stack([e1, np.cross(u, e1), u])
+    return A
+
+
+def _general_link(robot: Robot, joint, previous, value: float) -> np.ndarray:
+    """Pose of frame {i} in frame {i-1} for a general joint, from origin, axis and Rodrigues (no alignment tricks)."""
+    origin = np.eye(4) if joint.origin is None else np.array(joint.origin.matrix.subs(robot.defaults), dtype=float)
+    axis = np.array([_float(c, robot) for c in (joint.axis or (0, 0, 1))])
+    theta, d = _float(joint.theta, robot), _float(joint.d, robot)
+    if joint.is_revolute:
+        theta += value
+    else:
+        d += value
+    motion = _rot_axis(axis, theta) @ _trans(*(d * axis / np.linalg.norm(axis)))
+    before = np.eye(4) if previous is None else _alignment(
+        np.array([_float(c, robot) for c in (previous.axis or (0, 0, 1))]))
+    return np.linalg.inv(before) @ origin @ motion @ _alignment(axis)
+
+
 def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
     """World poses of frame positions world, 0, 1, ..., n, tool (n + 3 matrices)."""
     base = np.array(robot.base.matrix.subs(robot.defaults), dtype=float) if robot.base else np.eye(4)
     tool = np.array(robot.tool.matrix.subs(robot.defaults), dtype=float) if robot.tool else np.eye(4)
     poses = [np.eye(4), base]
+    previous = None
     for joint, value in zip(robot.joints, q, strict=True):
+        if robot.convention == "general":
+            poses.append(poses[-1] @ _general_link(robot, joint, previous, value))
+            previous = joint
+            continue
         alpha, a = _float(joint.alpha, robot), _float(joint.a, robot)
         theta, d = _float(joint.theta, robot), _float(joint.d, robot)
         if joint.is_revolute:

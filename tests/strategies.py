@@ -1,4 +1,4 @@
-"""Hypothesis strategies: random serial chains as robot mappings (both conventions, prismatic joints, 1-7 joints)."""
+"""Hypothesis strategies: random serial chains as robot mappings (all conventions, prismatic joints, 1-7 joints)."""
 
 from __future__ import annotations
 
@@ -40,6 +40,36 @@ def robots(draw: st.DrawFn, max_joints: int = 7) -> Robot:
         "convention": draw(st.sampled_from(["standard", "modified"])),
         "parameters": {"L": 0.35},
         "joints": draw(st.lists(joint_rows(), min_size=1, max_size=max_joints)),
+    }
+    if draw(st.booleans()):
+        data["base"] = draw(fixed_transforms())
+    if draw(st.booleans()):
+        data["tool"] = draw(fixed_transforms())
+    return robot_from_mapping(data)
+
+
+AXES = st.sampled_from([[0, 0, 1], [0, 0, -1], [1, 0, 0], [0, -1, 0], [0, 0.6, 0.8], [1, 1, 0], [-2, 1, 2]])
+RPY = st.sampled_from([0, "pi/2", "-pi/2", "pi", 0.3])
+
+
+@st.composite
+def general_joints(draw: st.DrawFn) -> dict[str, Any]:
+    return {
+        "type": draw(st.sampled_from(["revolute", "revolute", "prismatic"])),
+        "xyz": [draw(SMALL) for _ in range(3)],
+        "rpy": [draw(RPY) for _ in range(3)],
+        "axis": draw(AXES),
+    }
+
+
+@st.composite
+def general_robots(draw: st.DrawFn, max_joints: int = 7) -> Robot:
+    """A random general (URDF-style origin and axis) chain, with a parameter L = 0.35 used by some fields."""
+    data: dict[str, Any] = {
+        "name": "random_general",
+        "convention": "general",
+        "parameters": {"L": 0.35},
+        "joints": draw(st.lists(general_joints(), min_size=1, max_size=max_joints)),
     }
     if draw(st.booleans()):
         data["base"] = draw(fixed_transforms())

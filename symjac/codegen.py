@@ -399,7 +399,7 @@ def lower(
     --------
     >>> x, y = sp.symbols("x y")
     >>> lower([sp.sin(x) * y, sp.sin(x) * y + 1], [x, y])
-    ((_x0, y*sin(x)),), (_x0, _x0 + 1))
+    (((_x0, y*sin(x)),), (_x0, _x0 + 1))
     >>> lower([x + y], [x])
     Traceback (most recent call last):
     ...
@@ -1067,8 +1067,8 @@ def generate(
     >>> source = generate(load_robot("planar2r"), "python")
     >>> namespace = {}
     >>> exec(compile(source, "planar2r_jacobian.py", "exec"), namespace)
-    >>> [[round(v, 6) for v in row] for row in namespace["jacobian"]([0.0, 1.5707963267948966])[:2]]
-    [[-0.5, -0.5], [1.0, 0.0]]
+    >>> [[round(v, 6) for v in row] for row in namespace["jacobian"]([0.0, 1.5707963267948966], L1=1.0)[:2]]
+    [[-0.4, -0.4], [1.0, 0.0]]
     """
     description = describe(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
                            strategy=strategy)

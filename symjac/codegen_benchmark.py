@@ -25,6 +25,7 @@ import types
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -94,7 +95,7 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
         modules = {}
         for target in TARGETS:
             path = Path(folder) / f"bench_{robot.name}_{target}.py"
-            write_module(path, generate(robot, target))
+            write_module(path, generate(robot, target))  # type: ignore[arg-type]  # TARGETS holds the Literal values
             modules[target] = _import(path, f"bench_{robot.name}_{target}")
         python, numpy_module, lambdify_module, c_module = (modules[t] for t in ("python", "numpy", "lambdify", "c"))
         rows.append(Measurement(robot.name, "generated python", _best(lambda: python.jacobian(q_list), seconds) * 1e6,
@@ -120,7 +121,7 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
     return rows
 
 
-def _single_thread(module: types.ModuleType, batch: np.ndarray, seconds: float) -> float:
+def _single_thread(module: Any, batch: np.ndarray, seconds: float) -> float:
     threads = module.THREADS
     module.THREADS = 1
     try:

@@ -224,11 +224,18 @@ def test_scalar_functions_can_be_plugged_in(workspace, target):
 
 @settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(robot=robots(max_joints=4))
-def test_random_chains_pass_their_selftest(robot):
-    namespace: dict[str, object] = {}
-    exec(compile(generate(robot, "python", points=("tool" if robot.tool else "wrist",)), "random.py", "exec"),
-         namespace)
-    assert namespace["selftest"](samples=5) < 1e-6  # type: ignore[operator]
+def test_random_chains_pass_their_selftest_and_targets_agree(robot):
+    modules = {}
+    for target in ("python", "numpy"):
+        namespace: dict[str, object] = {}
+        source = generate(robot, target, points=("tool" if robot.tool else "wrist",))
+        exec(compile(source, f"random_{target}.py", "exec"), namespace)
+        assert namespace["selftest"](samples=5) < 1e-6  # type: ignore[operator]
+        modules[target] = namespace
+    q = np.random.default_rng(2).uniform(-1, 1, (3, robot.dof))
+    batched = modules["numpy"]["jacobian"](q)  # type: ignore[operator]
+    for k in range(3):
+        np.testing.assert_allclose(modules["python"]["jacobian"](list(q[k])), batched[k], atol=1e-12)  # type: ignore[operator]
 
 
 # --- determinism, golden files, lint ---------------------------------------------------------------------------------

@@ -64,6 +64,12 @@ def _parser() -> argparse.ArgumentParser:
         return sub
 
     command("robots", _robots, "list the built-in robots")
+    converter = command("convert", _convert, "print the robot as a TOML robot file, converted to a DH convention")
+    converter.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
+    converter.add_argument("--to", choices=("modified", "standard", "toml"), required=True,
+                           help="the DH convention to convert to, or toml to keep the robot as it is")
+    converter.add_argument("--base-link", default=None, help="URDF only: first link of the chain (default: root)")
+    converter.add_argument("--tip-link", default=None, help="URDF only: last link of the chain (default: the leaf)")
     for name, handler, help_text in (
         ("show", _show, "show the DH table and the link transforms"),
         ("fk", _fk, "print the forward kinematics"),
@@ -107,6 +113,14 @@ def _robots(args: argparse.Namespace) -> str:
     robots = catalog()
     width = max(map(len, robots))
     return "".join(f"{name:<{width}}  {description}\n" for name, description in robots.items())
+
+
+def _convert(args: argparse.Namespace) -> str:
+    from symjac.convert import convert  # only this command needs it
+    from symjac.io import robot_to_toml
+
+    robot = load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
+    return robot_to_toml(robot if args.to == "toml" else convert(robot, args.to))
 
 
 def _show(args: argparse.Namespace) -> str:

@@ -52,24 +52,30 @@ AXES = st.sampled_from([[0, 0, 1], [0, 0, -1], [1, 0, 0], [0, -1, 0], [0, 0.6, 0
 RPY = st.sampled_from([0, "pi/2", "-pi/2", "pi", 0.3])
 
 
+SPECIAL_RPY = st.sampled_from([0, "pi/2", "-pi/2", "pi", "pi/4"])
+
+
 @st.composite
-def general_joints(draw: st.DrawFn) -> dict[str, Any]:
+def general_joints(draw: st.DrawFn, rpy: st.SearchStrategy[Any] = RPY) -> dict[str, Any]:
     return {
         "type": draw(st.sampled_from(["revolute", "revolute", "prismatic"])),
         "xyz": [draw(SMALL) for _ in range(3)],
-        "rpy": [draw(RPY) for _ in range(3)],
+        "rpy": [draw(rpy) for _ in range(3)],
         "axis": draw(AXES),
     }
 
 
 @st.composite
-def general_robots(draw: st.DrawFn, max_joints: int = 7) -> Robot:
-    """A random general (URDF-style origin and axis) chain, with a parameter L = 0.35 used by some fields."""
+def general_robots(draw: st.DrawFn, max_joints: int = 7, rpy: st.SearchStrategy[Any] = RPY) -> Robot:
+    """A random general (URDF-style origin and axis) chain, with a parameter L = 0.35 used by some fields.
+
+    ``rpy`` draws the origin angles (``SPECIAL_RPY``: only multiples of pi/4, for exact DH extraction).
+    """
     data: dict[str, Any] = {
         "name": "random_general",
         "convention": "general",
         "parameters": {"L": 0.35},
-        "joints": draw(st.lists(general_joints(), min_size=1, max_size=max_joints)),
+        "joints": draw(st.lists(general_joints(rpy), min_size=1, max_size=max_joints)),
     }
     if draw(st.booleans()):
         data["base"] = draw(fixed_transforms())

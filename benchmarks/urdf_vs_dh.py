@@ -1,0 +1,36 @@
+"""Derivation speed: the same robot from its URDF file (general chain) and from the catalog's DH table.
+
+Run: ``python benchmarks/urdf_vs_dh.py``. For each pair, every cache is cleared, then the simplified Jacobian in
+frame {0} at the flange and the forward kinematics are derived; the best of three cold runs is reported, with the
+ratio URDF / DH (the goal: within 1.5).
+"""
+
+from __future__ import annotations
+
+import time
+
+from symjac import clear_caches, forward_kinematics, jacobian, load_robot
+
+PAIRS = [("panda", "panda.urdf", "panda_link8"), ("ur5", "ur5.urdf", None)]
+
+
+def cold(robot) -> float:
+    best = float("inf")
+    for _ in range(3):
+        clear_caches()
+        start = time.perf_counter()
+        jacobian(robot, frame=0, point="tool" if robot.tool is not None else "wrist")
+        forward_kinematics(robot, "world", "tool")
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def main() -> None:
+    for dh_name, urdf_name, tip in PAIRS:
+        dh, urdf = load_robot(dh_name), load_robot(urdf_name, tip_link=tip)
+        t_dh, t_urdf = cold(dh), cold(urdf)
+        print(f"{dh_name:6s} DH {t_dh:6.2f} s   URDF {t_urdf:6.2f} s   ratio {t_urdf / t_dh:4.2f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -33,7 +33,7 @@ from IPython.display import Math, display
 from symjac import latex, load_robot, numeric_jacobian, rates_along_path, singularities
 from symjac.exercises import check
 from symjac.printing import singularity_summary
-from symjac.singularity import jacobian_spaces, symbolic_spaces
+from symjac.spaces import jacobian_spaces, symbolic_spaces
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)

@@ -44,17 +44,8 @@ from symjac.representations import (
     rotation_from,
 )
 from symjac.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
-from symjac.singularity import (
-    Determinant,
-    JacobianSpaces,
-    SingularFactor,
-    SingularityReport,
-    determinant,
-    jacobian_spaces,
-    numeric_jacobian,
-    singularities,
-    task_rows,
-)
+from symjac.singularity import Determinant, SingularFactor, SingularityReport, determinant, singularities
+from symjac.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, numeric_jacobian, symbolic_spaces, task_rows
 from symjac.statics import evaluate_at, joint_torques, wrench_between
 from symjac.transforms import twist_transform, wrench_transform
 from symjac.urdf import robot_from_urdf
@@ -83,6 +74,7 @@ __all__ = [
     "RobotFileError",
     "SingularFactor",
     "SingularityReport",
+    "SymbolicSpaces",
     "SymjacError",
     "UnknownRobotError",
     "VelocityPropagation",
@@ -122,6 +114,7 @@ __all__ = [
     "simplify_expr",
     "simplify_matrix",
     "singularities",
+    "symbolic_spaces",
     "task_rows",
     "twist_transform",
     "urdf_catalog",

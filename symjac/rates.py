@@ -33,7 +33,8 @@ from symjac.errors import FrameError
 from symjac.jacobian import Point, jacobian
 from symjac.model import Robot
 from symjac.simplify import simplify_matrix
-from symjac.singularity import _all_bases, determinant, numeric_jacobian, task_rows
+from symjac.singularity import _all_bases, determinant
+from symjac.spaces import numeric_jacobian, task_rows
 
 __all__ = [
     "RATE_SYMBOLS",

@@ -25,12 +25,9 @@ the arm is examined numerically (:func:`jacobian_spaces`) to classify the singul
 
 from __future__ import annotations
 
-import math
 import random
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
-from itertools import combinations
 from typing import Any
 
 import numpy as np
@@ -42,179 +39,24 @@ from symjac.errors import FrameError
 from symjac.jacobian import Point, jacobian, point_vector
 from symjac.model import Robot
 from symjac.simplify import AngleBasis, _expanded_expr, _Image, _image, _nested_expr, _reduce, simplify_expr
+from symjac.singular_geometry import classify, describe, findings, frame_axes, geometry_at, parallel
+from symjac.spaces import jacobian_spaces, numeric_jacobian, task_rows
 
 __all__ = [
     "ROW_NAMES",
     "Determinant",
-    "JacobianSpaces",
     "SingularFactor",
     "SingularityReport",
     "Solution",
-    "SymbolicSpaces",
     "determinant",
-    "jacobian_spaces",
-    "numeric_jacobian",
     "report_data",
     "singularities",
     "solve_factor",
-    "symbolic_spaces",
-    "task_rows",
 ]
 
 ROW_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "w_x", "w_y", "w_z")
 """Names of the six rows of a basic Jacobian, linear velocity first."""
 
-_AXIS_NAMES = ("x", "y", "z")
-
-
-# --- numeric Jacobian ----------------------------------------------------------------------------------------------
-
-
-@lru_cache(maxsize=64)
-def _numeric_function(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> Callable[..., Any]:
-    J = jacobian(robot, frame=frame, point=point, simplify=False).xreplace(robot.defaults)
-    return sp.lambdify([robot.q], J, modules="numpy", cse=True)
-
-
-def numeric_jacobian(robot: Robot, q: Sequence[float], frame: Frame = 0, point: Point = "wrist") -> np.ndarray:
-    """The 6 x n basic Jacobian at configuration ``q`` as floats (parameters at their defaults)."""
-    values = np.asarray(q, dtype=float)
-    if values.shape != (robot.dof,):
-        raise FrameError(f"q must have {robot.dof} entries for {robot.name}, got shape {values.shape}")
-    if not np.all(np.isfinite(values)):
-        raise FrameError(f"q must be finite, got {values.tolist()}")
-    return np.asarray(_numeric_function(robot, frame, point_vector(robot, point))(values), dtype=float)
-
-
-# --- rank, null space, range ------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class JacobianSpaces:
-    r"""The four fundamental subspaces of a numeric Jacobian, from its SVD :math:`J = U \Sigma V^T`.
-
-    ``null_space`` (columns: joint motions that move nothing), ``range_space`` (columns: Cartesian motions the arm
-    can make), ``left_null_space`` (columns: Cartesian directions it cannot move in, which are also the wrenches it
-    holds with zero joint torque, :math:`J^T F = 0`). ``manipulability`` is :math:`\sqrt{\det(J J^T)}`, the product of
-    the singular values; ``condition_number`` is :math:`\sigma_{max}/\sigma_{min}` (infinite at a singularity).
-    """
-
-    singular_values: np.ndarray
-    rank: int
-    tolerance: float
-    null_space: np.ndarray
-    range_space: np.ndarray
-    left_null_space: np.ndarray
-
-    @property
-    def manipulability(self) -> float:
-        r""":math:`w = \sqrt{\det(J J^T)} = \prod_i \sigma_i` (for rows <= columns)."""
-        return float(np.prod(self.singular_values))
-
-    @property
-    def condition_number(self) -> float:
-        r""":math:`\sigma_{max} / \sigma_{min}`; ``inf`` when the smallest singular value is zero."""
-        smallest = float(self.singular_values[-1]) if self.singular_values.size else 0.0
-        return math.inf if smallest <= self.tolerance else float(self.singular_values[0] / smallest)
-
-
-def jacobian_spaces(J: np.ndarray, tolerance: float | None = None) -> JacobianSpaces:
-    r"""Rank and the null, range and left-null spaces of a numeric matrix ``J`` (orthonormal bases, by SVD).
-
-    The default ``tolerance`` is NumPy's ``matrix_rank`` rule, :math:`\sigma_{max} \max(m, n)\,\varepsilon`.
-
-    Examples
-    --------
-    >>> spaces = jacobian_spaces(np.array([[1.0, 1.0], [0.0, 0.0]]))
-    >>> spaces.rank, spaces.left_null_space.ravel().round(6).tolist()
-    (1, [0.0, 1.0])
-    """
-    J = np.asarray(J, dtype=float)
-    if J.ndim != 2:
-        raise FrameError(f"a Jacobian must be a 2-d array, got shape {J.shape}")
-    U, sigma, Vt = np.linalg.svd(J)
-    if tolerance is None:
-        tolerance = float(sigma.max(initial=0.0)) * max(J.shape) * np.finfo(float).eps
-    rank = int(np.sum(sigma > tolerance))
-    return JacobianSpaces(sigma, rank, tolerance, Vt[rank:].T, U[:, :rank], U[:, rank:])
-
-
-@dataclass(frozen=True)
-class SymbolicSpaces:
-    """Rank and bases (as columns) of the null, range and left-null spaces of a Jacobian, exact."""
-
-    jacobian: sp.Matrix
-    rank: int
-    null_space: sp.Matrix
-    range_space: sp.Matrix
-    left_null_space: sp.Matrix
-
-
-def symbolic_spaces(
-    robot: Robot,
-    values: Mapping[sp.Symbol, sp.Expr],
-    rows: Sequence[int] | None = None,
-    frame: Frame = 0,
-    point: Point | None = None,
-) -> SymbolicSpaces:
-    r"""The exact subspaces of the Jacobian with some joint variables fixed, e.g. at a singular configuration.
-
-    ``values`` maps joint variables (and, optionally, parameters) to values; the others stay symbolic. Practical for
-    small arms and sparse frames; use :func:`jacobian_spaces` on :func:`numeric_jacobian` otherwise. The rank is the
-    generic rank over the remaining symbols.
-
-    Examples
-    --------
-    >>> from symjac import load_robot
-    >>> robot = load_robot("planar2r")
-    >>> spaces = symbolic_spaces(robot, {robot.q[1]: 0}, frame=2)
-    >>> spaces.rank, spaces.left_null_space.T
-    (1, Matrix([[1, 0]]))
-    """
-    if point is None:
-        point = "tool" if robot.tool is not None else "wrist"
-    point_xyz = point_vector(robot, point)
-    chosen = list(task_rows(robot, point_xyz) if rows is None else rows)
-    J = jacobian(robot, frame=frame, point=point_xyz)[chosen, :].xreplace(dict(values))
-    J = sp.Matrix(J.rows, J.cols, [sp.factor_terms(sp.trigsimp(entry)) for entry in J])
-
-    def columns(vectors: list[sp.Matrix], size: int) -> sp.Matrix:
-        if not vectors:
-            return sp.zeros(size, 0)
-        return sp.Matrix.hstack(*[v.applyfunc(lambda e: sp.factor_terms(sp.simplify(e))) for v in vectors])
-
-    return SymbolicSpaces(J, J.rank(simplify=True), columns(J.nullspace(simplify=True), J.cols),
-                          columns(J.columnspace(simplify=True), J.rows),
-                          columns(J.T.nullspace(simplify=True), J.rows))
-
-
-# --- task rows and frames ----------------------------------------------------------------------------------------
-
-
-def task_rows(robot: Robot, point: Point = "wrist") -> tuple[int, ...]:
-    r"""The rows of the basic Jacobian an arm controls: all six for n >= 6, else n independent rows.
-
-    Rows identically zero in frame {0} are dropped (a planar arm never moves along z); of the rest, rows are taken in
-    the order :math:`v_x, v_y, v_z, \omega_x, \omega_y, \omega_z` while they add rank at a generic configuration.
-    This gives x, y for a planar 2R arm, x, y, :math:`\omega_z` for a planar 3R arm and the position rows for a
-    3-joint positioning arm.
-    """
-    if robot.dof >= 6:
-        return tuple(range(6))
-    J = jacobian(robot, frame=0, point=point)
-    generator = random.Random(20261122)
-    samples = [[generator.uniform(-math.pi, math.pi) for _ in range(robot.dof)] for _ in range(2)]
-    numeric = [numeric_jacobian(robot, q, 0, point) for q in samples]
-    rows: list[int] = []
-    for row in range(6):
-        if all(entry == 0 for entry in J[row, :]):
-            continue
-        candidate = [*rows, row]
-        if all(np.linalg.matrix_rank(N[candidate, :], tol=1e-9) == len(candidate) for N in numeric):
-            rows = candidate
-        if len(rows) == robot.dof:
-            return tuple(rows)
-    raise FrameError(f"{robot.name}: its {robot.dof} joints control only {len(rows)} independent task rows")
 
 
 def _admissible(robot: Robot, rows: tuple[int, ...], frame: Frame) -> bool:
@@ -623,159 +465,6 @@ class SingularityReport:
         return self.determinant.frame
 
 
-@dataclass
-class _Geometry:
-    """Joint axes (point, unit direction) and reference points in frame {0}, numerically at one configuration.
-
-    ``points`` holds the reference point first, then the origins of the later joints' axis frames (a wrist centre).
-    """
-
-    axes: list[tuple[np.ndarray, np.ndarray]]
-    points: list[tuple[str, np.ndarray]]
-
-
-def _geometry(robot: Robot, q: Sequence[float], point: tuple[sp.Expr, ...]) -> _Geometry:
-    chain = chain_of(robot)
-    values = {**dict(zip(robot.q, q, strict=True)), **robot.defaults}
-    axes = []
-    for joint in robot.joints:
-        T = np.array(chain.transform(0, chain.axis_frame(joint.index)).xreplace(values).evalf(), dtype=float)
-        axes.append((T[:3, 3], T[:3, 2]))
-    T_n = np.array(chain.transform(0, chain.n).xreplace(values).evalf(), dtype=float)
-    P = T_n[:3, :3] @ np.array([float(sp.sympify(c).xreplace(robot.defaults)) for c in point]) + T_n[:3, 3]
-    points = [("the reference point", P)]
-    for joint in robot.joints[2:]:
-        origin = axes[joint.index - 1][0]
-        if all(np.linalg.norm(origin - p) > 1e-9 for _, p in points):
-            points.append((f"the origin of frame {{{chain.axis_frame(joint.index)}}}", origin))
-    return _Geometry(axes, points)
-
-
-def _parallel(u: np.ndarray, v: np.ndarray, tol: float = 1e-7) -> bool:
-    return bool(np.linalg.norm(np.cross(u, v)) < tol)
-
-
-def _distance_to_line(p: np.ndarray, origin: np.ndarray, direction: np.ndarray) -> float:
-    return float(np.linalg.norm(np.cross(p - origin, direction)))
-
-
-def _coplanar(first: np.ndarray, second: np.ndarray, third: np.ndarray, direction: np.ndarray) -> bool:
-    """Whether three lines with a common ``direction`` through the given points lie in one plane."""
-    normal = np.cross(direction, second - first)
-    return abs(float(np.dot(third - first, normal))) < 1e-7 * max(1.0, float(np.linalg.norm(normal)))
-
-
-def _findings(robot: Robot, geometry: _Geometry) -> dict[str, tuple[str, str]]:
-    """Geometric facts at one configuration, keyed uniquely, each with a category and a sentence.
-
-    Categories: ``wrist`` (two of the last three axes parallel), ``shoulder`` (a point on the first axis, or in the
-    plane through it parallel to the second), ``elbow`` (three parallel lines, two of them joint axes, in one plane:
-    the arm stretched out or folded back), ``aligned`` (any other two axes parallel).
-    """
-    facts: dict[str, tuple[str, str]] = {}
-    revolute = [i for i, joint in enumerate(robot.joints) if joint.is_revolute]
-    wrist = set(range(robot.dof - 3, robot.dof)) if robot.dof >= 5 else set()
-    axes = geometry.axes
-    for i, j in combinations(revolute, 2):
-        (oi, zi), (oj, zj) = axes[i], axes[j]
-        if _parallel(zi, zj):
-            shape = "collinear" if _distance_to_line(oj, oi, zi) < 1e-7 else "parallel"
-            facts[f"parallel {i} {j}"] = ("wrist" if {i, j} <= wrist else "aligned",
-                                          f"the axes of joints {i + 1} and {j + 1} are {shape}")
-    if revolute and revolute[0] == 0:
-        o1, z1 = axes[0]
-        normal = np.cross(z1, axes[1][1]) if robot.dof > 1 else np.zeros(3)
-        for name, p in geometry.points:
-            if _distance_to_line(p, o1, z1) < 1e-7:
-                facts[f"on axis 1 {name}"] = ("shoulder", f"{name} lies on the axis of joint 1")
-            elif np.linalg.norm(normal) > 1e-7 and abs(float(np.dot(p - o1, normal))) < 1e-7 * np.linalg.norm(normal):
-                facts[f"shoulder plane {name}"] = (
-                    "shoulder", f"{name} lies in the plane through the axis of joint 1 parallel to the axis of joint 2")
-    for i, j in combinations(revolute, 2):
-        (oi, zi), (oj, zj) = axes[i], axes[j]
-        if not _parallel(zi, zj) or _distance_to_line(oj, oi, zi) < 1e-7:
-            continue
-        thirds = [(f"the axis of joint {k + 1}", axes[k][0]) for k in revolute
-                  if k > j and _parallel(axes[k][1], zi)] + list(geometry.points)
-        for name, p in thirds:
-            if min(_distance_to_line(p, oi, zi), _distance_to_line(p, oj, zi)) < 1e-7:
-                continue
-            if _coplanar(oi, oj, p, zi):
-                facts[f"plane {i} {j} {name}"] = (
-                    "elbow", f"{name} lies in the plane of the parallel axes of joints {i + 1} and {j + 1}")
-                break
-    return facts
-
-
-_KIND_REASONS = {
-    "wrist": "two wrist rotations do the same thing, so one orientation direction is lost",
-    "shoulder": "rotating joint 1 no longer moves it sideways, so a direction is lost inside the workspace",
-    "elbow": "the arm is stretched out or folded back, on the boundary of its reach, and cannot move along that line",
-}
-
-
-def _classify(new: Mapping[str, tuple[str, str]], factor_joints: set[int], robot: Robot) -> tuple[str, str]:
-    """Kind and reasoning from the facts that hold on the singular set but not at a generic configuration."""
-    for kind in ("wrist", "shoulder", "elbow"):
-        sentences = [text for category, text in new.values() if category == kind]
-        if sentences:
-            return kind, f"{sentences[0]}: {_KIND_REASONS[kind]}"
-    wrist = set(range(robot.dof - 3, robot.dof)) if robot.dof >= 5 else set()
-    if wrist and factor_joints and factor_joints <= wrist:
-        return "wrist", f"the factor depends only on the wrist joints {_names(factor_joints)}"
-    if new:
-        return "other", "; ".join(sorted(text for _, text in new.values()))
-    return "other", "no aligned axes found; see the lost direction and the self-motion"
-
-
-def _names(joints: set[int]) -> str:
-    return ", ".join(str(j + 1) for j in sorted(joints))
-
-
-def _frame_axes(robot: Robot, q: Sequence[float], frame: Frame) -> dict[str, np.ndarray]:
-    """Unit axes of every frame, expressed in ``frame``, keyed by a readable name (analysis frame first)."""
-    chain = chain_of(robot)
-    values = {**dict(zip(robot.q, q, strict=True)), **robot.defaults}
-    position = chain.position(frame)
-    order = [position] + [k for k in range(-1, chain.n + 2) if k != position]
-    named: dict[str, np.ndarray] = {}
-    for k in order:
-        name = chain.frame_name(k)
-        if (name == "world" and robot.base is None) or (name == "tool" and robot.tool is None):
-            continue
-        R = np.array(chain.rotation(frame, name).xreplace(values).evalf(), dtype=float)
-        label = f"frame {{{name}}}" if isinstance(name, int) else f"the {name} frame"
-        for axis in range(3):
-            named[f"{_AXIS_NAMES[axis]} of {label}"] = R[:, axis]
-    return named
-
-
-def _describe(vector: np.ndarray, rows: tuple[int, ...], axes: dict[str, np.ndarray],
-              words: tuple[str, str, str, str]) -> str:
-    """A 6-vector restricted to ``rows`` in words: along/about a named axis when it is one, else its components.
-
-    ``words`` = (linear alone, angular alone, angular after a linear part, joiner), e.g. ``("translate",
-    "rotate", "rotating", "while")``.
-    """
-    full = np.zeros(6)
-    full[list(rows)] = vector
-    named: list[str | None] = []
-    for part in (full[:3], full[3:]):
-        norm = np.linalg.norm(part)
-        if norm < 1e-9:
-            named.append(None)
-            continue
-        unit = part / norm
-        name = next((n for n, a in axes.items() if abs(abs(float(np.dot(unit, a))) - 1) < 1e-7), None)
-        named.append(name if name is not None else str(np.round(unit, 3).tolist()))
-    linear, angular = named
-    if linear and angular:
-        return f"{words[0]} along {linear} {words[3]} {words[2]} about {angular}"
-    if linear:
-        return f"{words[0]} along {linear}"
-    return f"{words[1]} about {angular}" if angular else "nothing"
-
-
 def _solution_sample(robot: Robot, solution: Solution, generator: random.Random) -> list[float] | None:
     """A random configuration satisfying ``solution`` (other joints random, parameters at their defaults)."""
     variables = list(robot.q)
@@ -828,7 +517,7 @@ def singularities(
         return SingularityReport(robot.name, minors[0], (), redundant=True, minors=minors)
     det = determinant(robot, chosen, frame, point_xyz, numeric=numeric)
     generator = random.Random(seed)
-    generic = _findings(robot, _geometry(robot, [generator.uniform(-2.5, 2.5) for _ in robot.q], point_xyz))
+    generic = findings(robot, geometry_at(robot, [generator.uniform(-2.5, 2.5) for _ in robot.q], point_xyz))
     explained = []
     for factor, multiplicity in det.factors:
         explained.append(_explain(robot, det, factor, multiplicity, generic, generator))
@@ -851,14 +540,14 @@ def _explain(robot: Robot, det: Determinant, factor: sp.Expr, multiplicity: int,
             break
     factor_joints = {i for i, joint in enumerate(robot.joints) if factor.has(joint.variable)}
     if sample is None:
-        kind, reason = _classify({}, factor_joints, robot)
+        kind, reason = classify({}, factor_joints, robot)
         return SingularFactor(factor, multiplicity, solutions, existence, holds, kind, reason)
-    facts = _findings(robot, _geometry(robot, sample, det.point))
+    facts = findings(robot, geometry_at(robot, sample, det.point))
     new = {key: text for key, text in facts.items() if key not in generic}
-    kind, reason = _classify(new, factor_joints, robot)
+    kind, reason = classify(new, factor_joints, robot)
     J = numeric_jacobian(robot, sample, det.frame, det.point)[list(det.rows), :][:, list(det.columns)]
     spaces = jacobian_spaces(J, tolerance=1e-8 * max(1.0, float(np.abs(J).max())))
-    axes = _frame_axes(robot, sample, det.frame)
+    axes = frame_axes(robot, sample, det.frame)
     lost = spaces.left_null_space[:, 0] if spaces.left_null_space.shape[1] else None
     motion = spaces.null_space[:, 0] if spaces.null_space.shape[1] else None
     lost = None if lost is None else _canonical(lost)
@@ -868,13 +557,13 @@ def _explain(robot: Robot, det: Determinant, factor: sp.Expr, multiplicity: int,
         full[list(det.rows)] = lost
         R_k_0 = np.array(chain_of(robot).rotation(det.frame, 0).xreplace(
             {**dict(zip(robot.q, sample, strict=True)), **robot.defaults}).evalf(), dtype=float)
-        reach = R_k_0 @ _geometry(robot, sample, det.point).points[0][1]
-        if np.linalg.norm(full[3:]) < 1e-9 and np.linalg.norm(reach) > 1e-9 and _parallel(full[:3], reach, 1e-7):
+        reach = R_k_0 @ geometry_at(robot, sample, det.point).points[0][1]
+        if np.linalg.norm(full[3:]) < 1e-9 and np.linalg.norm(reach) > 1e-9 and parallel(full[:3], reach, 1e-7):
             radial = " (radially: along the line from the origin of frame {0} to the point)"
     motion = None if motion is None else _canonical(motion)
     lost_words = "" if lost is None else (
-        f"cannot {_describe(lost, det.rows, axes, ('translate', 'rotate', 'rotating', 'while'))}{radial}, and it "
-        f"holds {_describe(lost, det.rows, axes, ('a force', 'a moment', 'a moment', 'with'))} with zero joint "
+        f"cannot {describe(lost, det.rows, axes, ('translate', 'rotate', 'rotating', 'while'))}{radial}, and it "
+        f"holds {describe(lost, det.rows, axes, ('a force', 'a moment', 'a moment', 'with'))} with zero joint "
         "torque")
     motion_words = "" if motion is None else "joint rates " + ", ".join(
         f"{float(x):+.3g} on joint {det.columns[i] + 1}" for i, x in enumerate(motion) if abs(x) > 1e-9

@@ -15,16 +15,8 @@ from symjac import load_robot, robot_from_mapping, robot_to_mapping
 from symjac.cli import main
 from symjac.errors import FrameError
 from symjac.simplify import AngleBasis, is_identity
-from symjac.singularity import (
-    _admissible,
-    determinant,
-    jacobian_spaces,
-    numeric_jacobian,
-    singularities,
-    solve_factor,
-    symbolic_spaces,
-    task_rows,
-)
+from symjac.singularity import _admissible, determinant, singularities, solve_factor
+from symjac.spaces import jacobian_spaces, numeric_jacobian, symbolic_spaces, task_rows
 
 SQUARE = ["planar2r", "planar3r", "articulated3r", "scara", "stanford", "puma560", "ur5"]
 

@@ -651,9 +651,11 @@ def _numpy_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summa
     used = lowered.used_symbols
     for sine, cosine, angle in lowered.angles:
         text = printer.doprint(angle)
-        if sine in used:
+        if sine in used and cosine in used:  # one tangent of the half angle instead of two sines/cosines
+            body.append(f"{indent}{names.mapping[sine]}, {names.mapping[cosine]} = _sincos({text})")
+        elif sine in used:
             body.append(f"{indent}{names.mapping[sine]} = np.sin({text})")
-        if cosine in used:
+        elif cosine in used:
             body.append(f"{indent}{names.mapping[cosine]} = np.cos({text})")
     for symbol, expr in lowered.temporaries:
         body += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)

@@ -139,7 +139,9 @@ def _show(args: argparse.Namespace) -> str:
                       "transforms": {plain: _matrix_strings(_numeric(robot, m, args.numeric))
                                      for _, plain, m in transforms}})
     if args.format == "pretty":
-        header = f"{robot.name}: {robot.description}\n{robot.convention.value} DH\n"
+        kind = "general chain (URDF-style origin and axis)" if robot.convention == "general" else (
+            f"{robot.convention.value} DH")
+        header = f"{robot.name}: {robot.description}\n{kind}\n"
         table = _text_table(["joint", "type", *_dh_headers(robot)], rows)
         texts = [f"{plain} =\n{pretty(_numeric(robot, m, args.numeric))}" for _, plain, m in transforms]
         return header + table + "\n" + "\n\n".join(texts) + "\n"
@@ -354,11 +356,20 @@ def _json(data: dict[str, Any]) -> str:
 
 
 def _dh_headers(robot: Robot) -> list[str]:
+    if robot.convention == "general":  # origin and axis per joint, as in URDF
+        return ["xyz", "rpy", "axis", "d_i", "theta_i"]
     return ["alpha_{i-1}", "a_{i-1}", "d_i", "theta_i"] if robot.convention == "modified" else [
         "alpha_i", "a_i", "d_i", "theta_i"]
 
 
 def _dh_rows(robot: Robot) -> list[list[str]]:
+    if robot.convention == "general":
+        zero = (sp.S.Zero,) * 3
+        return [[str(joint.index), joint.type.value,
+                 *(sp.sstr(list(v)) for v in (joint.origin.xyz if joint.origin else zero,
+                                              joint.origin.rpy if joint.origin else zero,
+                                              joint.axis or (0, 0, 1))),
+                 sp.sstr(joint.offset), sp.sstr(joint.angle)] for joint in robot.joints]
     return [[str(joint.index), joint.type.value, *(sp.sstr(e) for e in (joint.alpha, joint.a, joint.offset,
                                                                          joint.angle))]
             for joint in robot.joints]
@@ -372,6 +383,10 @@ def _text_table(headers: list[str], rows: list[list[str]]) -> str:
 
 
 def _latex_table(robot: Robot, rows: list[list[str]]) -> str:
+    if robot.convention == "general":
+        cells = r" \\ ".join(" & ".join(row[:1] + [rf"\text{{{cell}}}" for cell in row[1:]]) for row in rows)
+        columns = r"\text{type} & \text{xyz} & \text{rpy} & \text{axis} & d_i & \theta_i"
+        return r"\begin{array}{c|cccccc} i & " + columns + r" \\ \hline " + cells + r" \end{array}"
     headers = [r"\alpha_{i-1}", "a_{i-1}", "d_i", r"\theta_i"] if robot.convention == "modified" else [
         r"\alpha_i", "a_i", "d_i", r"\theta_i"]
     body = r" \\ ".join(" & ".join([str(joint.index)] + [latex(e) for e in (joint.alpha, joint.a, joint.offset,

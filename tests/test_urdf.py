@@ -250,6 +250,11 @@ def test_cli_reads_a_urdf_file(capsys, tmp_path):
     path.write_text(_arm(), encoding="utf-8")
     assert main(["fk", str(path), "--format", "pretty"]) == 0
     assert "T_0_tool" in capsys.readouterr().out
+    assert main(["show", "ur5.urdf", "--format", "pretty"]) == 0
+    out = capsys.readouterr().out
+    assert "general chain" in out and "[0, pi/2, 0]" in out
+    assert main(["show", "ur5.urdf"]) == 0
+    assert r"\text{axis} & d_i & \theta_i" in capsys.readouterr().out
 
 
 # --- random general chains ----------------------------------------------------------------------------------------

@@ -607,22 +607,22 @@ def _python_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summ
 
 
 def _python_return(outputs: Sequence[str], shape: tuple[int, ...], indent: str) -> tuple[str, ...]:
+    """``return (...)``: a float, a tuple, or a tuple of row tuples (tuples build faster than lists)."""
     if len(shape) == 0:
         return tuple(layout(f"{indent}return ", outputs[0], width=LINE_WIDTH))
     if len(shape) == 1:
-        single = f"{indent}return [{', '.join(outputs)}]"
+        single = f"{indent}return {_tuple_literal(outputs)}"
         if len(single) <= LINE_WIDTH:
             return (single,)
-        lines = [f"{indent}return ["]
+        lines = [f"{indent}return ("]
         for value in outputs:
             lines += layout(f"{indent}    ", value, ",", width=LINE_WIDTH)
-        return (*lines, f"{indent}]")
+        return (*lines, f"{indent})")
     rows, columns = shape
-    lines = [f"{indent}return ["]
+    lines = [f"{indent}return ("]
     for r in range(rows):
-        row = ", ".join(outputs[r * columns:(r + 1) * columns])
-        lines += layout(f"{indent}    ", f"[{row}]", ",", width=LINE_WIDTH)
-    return (*lines, f"{indent}]")
+        lines += layout(f"{indent}    ", _tuple_literal(outputs[r * columns:(r + 1) * columns]), ",", width=LINE_WIDTH)
+    return (*lines, f"{indent})")
 
 
 def _function(lowered: _Lowered, name: str, kind: str, summary: str, arguments: tuple[Argument, ...],
@@ -921,7 +921,7 @@ _TITLES = {
     "c": "Kinematics and Jacobians in C, compiled at first import, with a NumPy fallback",
 }
 _DESCRIPTIONS = {
-    "python": "Each function takes one configuration as a sequence of floats and returns floats or nested lists.",
+    "python": "Each function takes one configuration as a sequence of floats and returns floats or nested tuples.",
     "numpy": "Each function takes q of shape (..., n) and returns an array of shape (..., rows, columns); an\n"
              "``out`` array of that shape may be given (written and returned). Large batches are split over\n"
              "threads (``THREADS``, default the number of CPUs).",

@@ -22,7 +22,7 @@ import importlib.util
 import tempfile
 import timeit
 import types
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -49,9 +49,12 @@ class Measurement:
     note: str = ""
 
 
-def _best(function: Callable[[], object], seconds: float = 0.2, repeat: int = 5) -> float:
-    """Best time of one call in seconds: calibrated loops of about ``seconds``, best of ``repeat``."""
-    timer = timeit.Timer(function)
+def _best(statement: str, namespace: dict[str, Any], seconds: float = 0.2, repeat: int = 7) -> float:
+    """Best time of one execution of ``statement``, in seconds (loops of about ``seconds``, best of ``repeat``).
+
+    The statement is timed as written (``jacobian(q)``), without a lambda around it.
+    """
+    timer = timeit.Timer(statement, globals=namespace)
     number, elapsed = timer.autorange()
     number = max(1, int(number * seconds / max(elapsed, 1e-9)))
     return min(timer.repeat(repeat=repeat, number=number)) / number
@@ -87,47 +90,40 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
         for k, value in enumerate(vectorised(*batch.T, *values)):
             out_batch[:, k] = value
 
+    names: dict[str, Any] = {"scalar": scalar, "q_list": q_list, "values": values, "baseline_batch": baseline_batch,
+                             "q": q, "batch": batch, "out": np.empty((6, n))}
     rows.append(Measurement(robot.name, "sympy.lambdify, raw J, no CSE",
-                            _best(lambda: scalar(*q_list, *values), seconds) * 1e6,
-                            _best(baseline_batch, seconds) * 1e9 / count, "math / numpy modules"))
+                            _best("scalar(*q_list, *values)", names, seconds) * 1e6,
+                            _best("baseline_batch()", names, seconds) * 1e9 / count, "math / numpy modules"))
 
     with tempfile.TemporaryDirectory() as folder:
-        modules = {}
         for target in TARGETS:
             path = Path(folder) / f"bench_{robot.name}_{target}.py"
             write_module(path, generate(robot, target))  # type: ignore[arg-type]  # TARGETS holds the Literal values
-            modules[target] = _import(path, f"bench_{robot.name}_{target}")
-        python, numpy_module, lambdify_module, c_module = (modules[t] for t in ("python", "numpy", "lambdify", "c"))
-        rows.append(Measurement(robot.name, "generated python", _best(lambda: python.jacobian(q_list), seconds) * 1e6,
+            names[target] = _import(path, f"bench_{robot.name}_{target}")
+        threads = names["numpy"].THREADS
+        rows.append(Measurement(robot.name, "generated python", _best("python.jacobian(q_list)", names, seconds) * 1e6,
                                 float("nan"), "list in, nested lists out"))
         rows.append(Measurement(robot.name, "generated numpy", float("nan"),
-                                _best(lambda: numpy_module.jacobian(batch), seconds) * 1e9 / count,
-                                f"{numpy_module.THREADS} thread(s)"))
-        rows.append(Measurement(robot.name, "generated lambdify",
-                                _best(lambda: lambdify_module.jacobian(q), seconds) * 1e6,
-                                _best(lambda: lambdify_module.jacobian(batch), seconds) * 1e9 / count,
+                                _best("numpy.jacobian(batch)", names, seconds) * 1e9 / count, f"{threads} thread(s)"))
+        rows.append(Measurement(robot.name, "generated lambdify", _best("lambdify.jacobian(q)", names, seconds) * 1e6,
+                                _best("lambdify.jacobian(batch)", names, seconds) * 1e9 / count,
                                 "sympy.lambdify(cse=True) at import"))
-        out = np.empty((6, n))
-        backend = c_module.BACKEND
+        backend = names["c"].BACKEND
         rows.append(Measurement(robot.name, f"generated c ({backend})",
-                                _best(lambda: c_module.jacobian(q, out), seconds) * 1e6,
-                                _best(lambda: c_module.jacobian(batch), seconds) * 1e9 / count,
-                                f"{c_module.THREADS} thread(s); call with out=" if backend == "c"
-                                else f"fallback: {c_module.BUILD_ERROR}"))
+                                _best("c.jacobian(q, out)", names, seconds) * 1e6,
+                                _best("c.jacobian(batch)", names, seconds) * 1e9 / count,
+                                f"{threads} thread(s); one configuration into out=" if backend == "c"
+                                else f"fallback: {names['c'].BUILD_ERROR}"))
         if backend == "c":
-            rows.append(Measurement(robot.name, "generated c, 1 thread", _best(lambda: c_module.jacobian(q), seconds)
-                                    * 1e6, _single_thread(c_module, batch, seconds) * 1e9 / count,
-                                    "call without out= (allocates)"))
+            names["c"].THREADS = 1
+            rows.append(Measurement(robot.name, "generated c, 1 thread", _best("c.jacobian(q)", names, seconds) * 1e6,
+                                    _best("c.jacobian(batch)", names, seconds) * 1e9 / count,
+                                    "one configuration without out= (allocates)"))
+            names["numpy"].THREADS = 1
+            rows.append(Measurement(robot.name, "generated numpy, 1 thread", float("nan"),
+                                    _best("numpy.jacobian(batch)", names, seconds) * 1e9 / count, ""))
     return rows
-
-
-def _single_thread(module: Any, batch: np.ndarray, seconds: float) -> float:
-    threads = module.THREADS
-    module.THREADS = 1
-    try:
-        return _best(lambda: module.jacobian(batch), seconds)
-    finally:
-        module.THREADS = threads
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -202,10 +202,10 @@ def test_wrong_shapes_raise_and_nan_propagates(workspace, target):
     np.testing.assert_array_equal(J[5], [1.0, 1.0])  # omega_z does not
 
 
-def test_python_module_uses_floats_only_and_returns_nested_lists(workspace):
+def test_python_module_uses_floats_only_and_returns_nested_tuples(workspace):
     module = _module(workspace, "ur5", "python")
     J = module.jacobian_0_wrist([0.1] * 6)
-    assert isinstance(J, list) and all(isinstance(row, list) and len(row) == 6 for row in J)
+    assert isinstance(J, tuple) and all(isinstance(row, tuple) and len(row) == 6 for row in J)
     assert all(type(value) is float for row in J for value in row)
 
 

@@ -116,11 +116,16 @@ def _robots(args: argparse.Namespace) -> str:
 
 
 def _convert(args: argparse.Namespace) -> str:
-    from symjac.convert import convert  # only this command needs it
+    from symjac.convert import convert, dh_from_general  # only this command needs them
     from symjac.io import robot_to_toml
+    from symjac.model import Convention
 
     robot = load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
-    return robot_to_toml(robot if args.to == "toml" else convert(robot, args.to))
+    notes: tuple[str, ...] = ()
+    if args.to != "toml" and robot.convention is Convention.GENERAL:
+        notes = dh_from_general(robot).notes  # whether the table needs a base or tool transform, in words
+    text = robot_to_toml(robot if args.to == "toml" else convert(robot, args.to))
+    return "".join(f"# {note}\n" for note in notes) + text
 
 
 def _show(args: argparse.Namespace) -> str:

@@ -147,3 +147,11 @@ def test_cli_convert_urdf_links(capsys):
     assert robot_from_toml(capsys.readouterr().out).tool.rpy == (0, 0, 0)
     assert main(["convert", "panda.urdf", "--to", "toml", "--tip-link", "nowhere"]) == 2
     assert "tip_link 'nowhere' is not a link" in capsys.readouterr().err
+
+
+def test_convert_command_says_when_the_table_needs_a_tool_transform(capsys):
+    from symjac.cli import main
+
+    assert main(["convert", "ur5.urdf", "--to", "modified"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("# ") and "tool transform" in out.splitlines()[0]

@@ -103,7 +103,7 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
             names[target] = _import(path, f"bench_{robot.name}_{target}")
         threads = names["numpy"].THREADS
         rows.append(Measurement(robot.name, "generated python", _best("python.jacobian(q_list)", names, seconds) * 1e6,
-                                float("nan"), "list in, nested lists out"))
+                                float("nan"), "list in, nested tuples out"))
         rows.append(Measurement(robot.name, "generated numpy", float("nan"),
                                 _best("numpy.jacobian(batch)", names, seconds) * 1e9 / count, f"{threads} thread(s)"))
         rows.append(Measurement(robot.name, "generated lambdify", _best("lambdify.jacobian(q)", names, seconds) * 1e6,

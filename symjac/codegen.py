@@ -96,6 +96,7 @@ __all__ = [
     "configure_codegen_parser",
     "describe",
     "generate",
+    "render_module",
     "write_module",
 ]
 

@@ -5,11 +5,12 @@ kinematics (:func:`chain_of`, :func:`forward_kinematics`) and Jacobians (:func:`
 iterations themselves with :func:`velocity_propagation` and :func:`force_propagation`), statics
 (:func:`joint_torques`, :func:`wrench_transform`, :func:`twist_transform`), singular configurations
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
-:func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`), and print them
-(:func:`latex`).
+:func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`); print them
+(:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`).
 """
 
 from symjac.chain import Chain, Frame, chain_of, forward_kinematics
+from symjac.codegen import CodegenError, JacobianRequest, generate, write_module
 from symjac.errors import ExpressionError, FrameError, RobotFileError, SymjacError, UnknownRobotError
 from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
 from symjac.jacobian import METHODS, change_frame, clear_caches, jacobian, jacobian_of, shift_point
@@ -57,6 +58,7 @@ __all__ = [
     "REPRESENTATIONS",
     "AngleBasis",
     "Chain",
+    "CodegenError",
     "Convention",
     "Determinant",
     "ExpressionError",
@@ -64,6 +66,7 @@ __all__ = [
     "ForcePropagation",
     "Frame",
     "FrameError",
+    "JacobianRequest",
     "JacobianSpaces",
     "Joint",
     "JointType",
@@ -89,6 +92,7 @@ __all__ = [
     "extract",
     "force_propagation",
     "forward_kinematics",
+    "generate",
     "inverse_rates",
     "is_identity",
     "jacobian",
@@ -122,4 +126,5 @@ __all__ = [
     "wrench_between",
     "wrench_symbols",
     "wrench_transform",
+    "write_module",
 ]

@@ -20,6 +20,7 @@ import sympy as sp
 
 from symjac import __version__
 from symjac.chain import Frame, chain_of
+from symjac.codegen import codegen_command, configure_codegen_parser
 from symjac.errors import ExpressionError, FrameError, SymjacError
 from symjac.expressions import parse_expression
 from symjac.io import catalog, load_robot
@@ -64,6 +65,7 @@ def _parser() -> argparse.ArgumentParser:
         return sub
 
     command("robots", _robots, "list the built-in robots")
+    configure_codegen_parser(command("codegen", codegen_command, "generate a numeric module: FK, Jacobians, torques"))
     converter = command("convert", _convert, "print the robot as a TOML robot file, converted to a DH convention")
     converter.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
     converter.add_argument("--to", choices=("modified", "standard", "toml"), required=True,

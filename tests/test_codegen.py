@@ -446,3 +446,27 @@ def test_command_line_helper_generates_the_same_module():
         codegen_command(parser.parse_args(["puma560", "--point", "1,2"]))
     with pytest.raises(CodegenError, match="unknown row 'v_q'"):
         codegen_command(parser.parse_args(["puma560", "--rows", "v_q"]))
+
+
+def test_codegen_works_on_a_chain_loaded_from_urdf(tmp_path):
+    from symjac import load_robot
+    from symjac.spaces import numeric_jacobian
+
+    robot = load_robot("ur5.urdf")
+    namespace: dict = {}
+    exec(compile(generate(robot, "python"), "ur5_urdf.py", "exec"), namespace)
+    rng = np.random.default_rng(4)
+    for _ in range(3):
+        q = rng.uniform(-np.pi, np.pi, robot.dof)
+        assert np.allclose(np.array(namespace["jacobian"](list(q))), numeric_jacobian(robot, q), atol=1e-12)
+    namespace["selftest"]()
+
+
+def test_cli_codegen_writes_a_module(tmp_path, capsys):
+    from symjac.cli import main
+
+    target = tmp_path / "planar.py"
+    assert main(["codegen", "planar2r", "--target", "numpy", "-o", str(target)]) == 0
+    assert "def jacobian(" in target.read_text()
+    assert main(["codegen", "planar2r", "--target", "numpy", "--frame", "9", "-o", str(tmp_path / "bad.py")]) == 2
+    assert not (tmp_path / "bad.py").exists()

@@ -174,6 +174,13 @@ def test_regular_install_ships_the_templates(tmp_path, outside):
     assert "s_{12}" in out
     assert out.rstrip().endswith(r"\end{document}")
 
+    # Code generation renders its module templates from the installed copy; the module checks itself.
+    module = outside / "planar_generated.py"
+    _run([symjac, "codegen", "planar2r", "--target", "python", "-o", module], cwd=outside)
+    _run([python, "-c", "import planar_generated; planar_generated.selftest()"], cwd=outside)
+    # URDF robots ship inside the package too.
+    assert "ur5" in _run([symjac, "fk", "ur5.urdf", "--format", "json"], cwd=outside)
+
     # The wheel carries only the package (and its templates and robot files), not the checkout's tests.
     assert not (purelib / "tests").exists()
     assert not (purelib / "templates").exists()

@@ -20,7 +20,7 @@ import sympy as sp
 
 from symjac import __version__
 from symjac.chain import Frame, chain_of
-from symjac.codegen import codegen_command, configure_codegen_parser
+from symjac.codegen import STRATEGIES, TARGETS, JacobianRequest, generate
 from symjac.errors import ExpressionError, FrameError, SymjacError
 from symjac.expressions import parse_expression
 from symjac.io import catalog, load_robot
@@ -65,7 +65,19 @@ def _parser() -> argparse.ArgumentParser:
         return sub
 
     command("robots", _robots, "list the built-in robots")
-    configure_codegen_parser(command("codegen", codegen_command, "generate a numeric module: FK, Jacobians, torques"))
+    generator = command("codegen", _codegen, "generate a numeric module: forward kinematics, Jacobians, torques")
+    generator.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
+    generator.add_argument("--target", choices=TARGETS, default="python",
+                           help="python (standard library), numpy (batched), lambdify (sympy at import) or c "
+                                "(compiled at first import, NumPy fallback); default python")
+    generator.add_argument("--frame", action="append", default=None, metavar="K",
+                           help="frame to express the Jacobian in: 0..n, world or tool (repeatable; default 0)")
+    generator.add_argument("--point", action="append", default=None, metavar="P",
+                           help="wrist, tool, or x,y,z in frame {n} (repeatable; default wrist)")
+    generator.add_argument("--rows", default=None,
+                           help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z (default all)")
+    generator.add_argument("--strategy", choices=STRATEGIES, default="fastest",
+                           help="expressions to start from (default: fewest operations after CSE)")
     converter = command("convert", _convert, "print the robot as a TOML robot file, converted to a DH convention")
     converter.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
     converter.add_argument("--to", choices=("modified", "standard", "toml"), required=True,
@@ -278,17 +290,28 @@ def _singularities(args: argparse.Namespace) -> str:
     return "".join(f"% {caption}\n{body}\n" if body else f"% {caption}\n" for caption, body in lines)
 
 
+def _codegen(args: argparse.Namespace) -> str:
+    robot = load_robot(args.robot)
+    frames = [_parse_frame(text) for text in (args.frame or ["0"])]
+    points = [_parse_point(text, robot) for text in (args.point or ["wrist"])]
+    rows = None if args.rows is None else _parse_rows(args.rows)
+    requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
+    return _progress(f"{args.target} module for {robot.name}",
+                     lambda: generate(robot, args.target, jacobians=requests, strategy=args.strategy))
+
+
+# --- argument parsing helpers --------------------------------------------------------------------------------
+
+
 def _parse_rows(text: str) -> tuple[int, ...]:
+    """Task rows by name: ``v_x .. omega_z`` (also ``w_x`` or ``wx``) -> indices 0..5."""
+    aliases = {name: i for names in (ROW_NAMES, ("v_x", "v_y", "v_z", "w_x", "w_y", "w_z"),
+                                     ("vx", "vy", "vz", "wx", "wy", "wz")) for i, name in enumerate(names)}
     names = [part.strip() for part in text.split(",")]
-    aliases = {name: i for i, name in enumerate(ROW_NAMES)} | {name: i for i, name in enumerate(
-        ("v_x", "v_y", "v_z", "w_x", "w_y", "w_z"))}
     unknown = [name for name in names if name not in aliases]
     if unknown:
         raise FrameError(f"--rows: unknown row {unknown[0]!r}; use {', '.join(ROW_NAMES)}")
     return tuple(aliases[name] for name in names)
-
-
-# --- argument parsing helpers --------------------------------------------------------------------------------
 
 
 def _parse_frame(text: str) -> Frame:
@@ -308,7 +331,7 @@ def _parse_point(text: str, robot: Robot) -> Any:
         raise FrameError(f"--point must be 'wrist', 'tool' or three coordinates x,y,z, got {text!r}")
     names = {parameter.name: parameter.symbol for parameter in robot.parameters}
     try:
-        return tuple(parse_expression(part, names) for part in parts)
+        return tuple(parse_expression(part.strip(), names) for part in parts)
     except ExpressionError as error:
         raise FrameError(f"--point: {error}") from None
 

@@ -38,7 +38,6 @@ Every name and number that reaches the generated text is validated first; anythi
 
 from __future__ import annotations
 
-import argparse
 import hashlib
 import os
 import tempfile
@@ -62,8 +61,6 @@ from symjac.codegen_printers import (
     float_literal,
     layout,
 )
-from symjac.errors import ExpressionError, FrameError
-from symjac.expressions import parse_expression
 from symjac.jacobian import Point, jacobian, point_vector
 from symjac.model import Robot
 from symjac.resources import render_template
@@ -92,8 +89,6 @@ __all__ = [
     "GeneratedFunction",
     "JacobianRequest",
     "ModuleDescription",
-    "codegen_command",
-    "configure_codegen_parser",
     "describe",
     "generate",
     "render_module",
@@ -1107,65 +1102,3 @@ def write_module(path: str | os.PathLike[str], text: str) -> Path:
 
 
 # --- command line ----------------------------------------------------------------------------------------------------
-
-
-def configure_codegen_parser(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
-    """Add the ``symjac codegen`` arguments to ``parser`` (``-o/--output`` is left to the caller)."""
-    parser.add_argument("robot", metavar="ROBOT", help="a built-in robot name (see 'symjac robots') or a TOML file")
-    parser.add_argument("--target", choices=TARGETS, default="python",
-                        help="python (standard library), numpy (batched), lambdify (sympy at import) or c "
-                             "(compiled at first import, NumPy fallback); default python")
-    parser.add_argument("--frame", action="append", default=None, metavar="K",
-                        help="frame to express the Jacobian in: 0..n, world or tool (repeatable; default 0)")
-    parser.add_argument("--point", action="append", default=None, metavar="P",
-                        help="wrist, tool, or x,y,z in frame {n} (repeatable; default wrist)")
-    parser.add_argument("--rows", default=None,
-                        help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z (default all)")
-    parser.add_argument("--strategy", choices=STRATEGIES, default="fastest",
-                        help="expressions to start from (default: fewest operations after CSE)")
-    return parser
-
-
-def codegen_command(args: argparse.Namespace) -> str:
-    """Handler of ``symjac codegen``: the generated module text (the CLI writes it to stdout or ``-o`` FILE)."""
-    from symjac.io import load_robot
-
-    robot = load_robot(args.robot)
-    frames = [_parse_frame(text) for text in (args.frame or ["0"])]
-    points = [_parse_point(text, robot) for text in (args.point or ["wrist"])]
-    rows = None if args.rows is None else _parse_rows(args.rows)
-    requests = [JacobianRequest(f, p, rows) for f in frames for p in points]
-    return generate(robot, args.target, jacobians=requests, strategy=args.strategy)
-
-
-def _parse_frame(text: str) -> Frame:
-    if text in ("world", "tool"):
-        return text  # type: ignore[return-value]
-    try:
-        return int(text)
-    except ValueError:
-        raise FrameError(f"--frame must be a frame number, 'world' or 'tool', got {text!r}") from None
-
-
-def _parse_point(text: str, robot: Robot) -> Point:
-    if text in ("wrist", "tool"):
-        return text  # type: ignore[return-value]
-    parts = text.split(",")
-    if len(parts) != 3:
-        raise FrameError(f"--point must be 'wrist', 'tool' or three coordinates x,y,z, got {text!r}")
-    names = {parameter.name: parameter.symbol for parameter in robot.parameters}
-    try:
-        return tuple(parse_expression(part.strip(), names) for part in parts)
-    except ExpressionError as error:
-        raise FrameError(f"--point: {error}") from None
-
-
-def _parse_rows(text: str) -> tuple[int, ...]:
-    aliases = {name: i for i, name in enumerate(ROW_NAMES)} | {
-        name: i for i, name in enumerate(("vx", "vy", "vz", "wx", "wy", "wz"))} | {
-        name: i for i, name in enumerate(("v_x", "v_y", "v_z", "w_x", "w_y", "w_z"))}
-    names = [part.strip() for part in text.split(",")]
-    unknown = [name for name in names if name not in aliases]
-    if unknown:
-        raise CodegenError(f"--rows: unknown row {unknown[0]!r}; use {', '.join(ROW_NAMES)}")
-    return _check_rows([aliases[name] for name in names])

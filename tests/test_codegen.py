@@ -10,7 +10,6 @@ NumPy fallback instead.
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import functools
 import hashlib
@@ -35,8 +34,6 @@ from symjac.codegen import (
     TARGETS,
     CodegenError,
     JacobianRequest,
-    codegen_command,
-    configure_codegen_parser,
     generate,
     write_module,
 )
@@ -433,19 +430,21 @@ def test_write_module_is_atomic(tmp_path, monkeypatch):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["module.py"]  # no temporary left behind
 
 
-def test_command_line_helper_generates_the_same_module():
-    parser = configure_codegen_parser(argparse.ArgumentParser())
-    args = parser.parse_args(["puma560", "--target", "numpy", "--frame", "0", "--frame", "3", "--point", "wrist",
-                              "--point", "0,0,d4/2", "--rows", "v_x,v_y,v_z"])
-    text = codegen_command(args)
+def test_command_line_generates_the_same_module(tmp_path, capsys):
+    from symjac.cli import main
+
+    path = tmp_path / "puma.py"
+    assert main(["codegen", "puma560", "--target", "numpy", "--frame", "0", "--frame", "3", "--point", "wrist",
+                 "--point", "0,0,d4/2", "--rows", "v_x,v_y,v_z", "-o", str(path)]) == 0
     d4 = sp.Symbol("d4", real=True)
     requests = [JacobianRequest(f, p, (0, 1, 2)) for f in (0, 3) for p in ("wrist", (0, 0, d4 / 2))]
+    text = path.read_text(encoding="utf-8")
     assert text == generate(load_robot("puma560"), "numpy", jacobians=requests)
     assert "def jacobian_3_p1_r012(" in text
-    with pytest.raises(FrameError, match="--point must be"):
-        codegen_command(parser.parse_args(["puma560", "--point", "1,2"]))
-    with pytest.raises(CodegenError, match="unknown row 'v_q'"):
-        codegen_command(parser.parse_args(["puma560", "--rows", "v_q"]))
+    assert main(["codegen", "puma560", "--point", "1,2"]) == 2
+    assert "--point must be" in capsys.readouterr().err
+    assert main(["codegen", "puma560", "--rows", "v_q"]) == 2
+    assert "unknown row 'v_q'" in capsys.readouterr().err
 
 
 def test_codegen_works_on_a_chain_loaded_from_urdf(tmp_path):

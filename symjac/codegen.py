@@ -45,7 +45,7 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from pathlib import Path
-from typing import Literal, get_args
+from typing import Any, Literal, get_args
 
 import sympy as sp
 
@@ -578,6 +578,41 @@ def _unpack(names: Sequence[str], value: str, indent: str) -> list[str]:
     return lines
 
 
+def _input_lines(robot: Robot, lowered: _Lowered, names: _Names, indent: str) -> list[str]:
+    """Unpack the argument rows (and the parameters) into the generated local names."""
+    lines: list[str] = []
+    for argument, symbols in lowered.inputs:
+        lines += _unpack(_entry_names(lowered, names, symbols), argument, indent)
+    if robot.parameters:
+        lines += _unpack(_entry_names(lowered, names, robot.parameter_symbols), "parameters", indent)
+    return lines
+
+
+def _angle_lines(lowered: _Lowered, names: _Names, printer: Any, indent: str, module: str,
+                 pair: str | None = None) -> list[str]:
+    """One sine and one cosine per joint angle the expressions use (``pair(a)`` gives both at once if set)."""
+    lines: list[str] = []
+    used = lowered.used_symbols
+    for sine, cosine, angle in lowered.angles:
+        text = printer.doprint(angle)
+        if pair is not None and sine in used and cosine in used:
+            lines.append(f"{indent}{names.mapping[sine]}, {names.mapping[cosine]} = {pair}({text})")
+            continue
+        if sine in used:
+            lines.append(f"{indent}{names.mapping[sine]} = {module}sin({text})")
+        if cosine in used:
+            lines.append(f"{indent}{names.mapping[cosine]} = {module}cos({text})")
+    return lines
+
+
+def _temporary_lines(lowered: _Lowered, names: _Names, printer: Any, indent: str) -> list[str]:
+    """The common subexpressions, one assignment each, in CSE order."""
+    lines: list[str] = []
+    for symbol, expr in lowered.temporaries:
+        lines += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)
+    return lines
+
+
 def _python_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summary: str,
                      arguments: tuple[Argument, ...], taken: Iterable[str], indent: str = "    ") -> GeneratedFunction:
     names = _symbol_names(robot, lowered, taken)
@@ -588,15 +623,8 @@ def _python_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summ
         body += _unpack(_entry_names(lowered, names, symbols), argument, indent + "    ")
         body.append(f"{indent}except (TypeError, ValueError):")
         body.append(f'{indent}    raise ValueError(_length_error("{argument}", {argument}, {len(symbols)})) from None')
-    used = lowered.used_symbols
-    for sine, cosine, angle in lowered.angles:
-        text = printer.doprint(angle)
-        if sine in used:
-            body.append(f"{indent}{names.mapping[sine]} = sin({text})")
-        if cosine in used:
-            body.append(f"{indent}{names.mapping[cosine]} = cos({text})")
-    for symbol, expr in lowered.temporaries:
-        body += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)
+    body += _angle_lines(lowered, names, printer, indent, "")
+    body += _temporary_lines(lowered, names, printer, indent)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
     output_lines = _python_return(outputs, lowered.shape, indent)
     return _function(lowered, name, kind, summary, arguments, body, outputs, output_lines, printer.used)
@@ -639,22 +667,9 @@ def _numpy_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summa
     indent = "    "
     names = _symbol_names(robot, lowered, taken)
     printer = NumPyPrinter(names.mapping)
-    body: list[str] = []
-    for argument, symbols in lowered.inputs:
-        body += _unpack(_entry_names(lowered, names, symbols), argument, indent)
-    if robot.parameters:
-        body += _unpack(_entry_names(lowered, names, robot.parameter_symbols), "parameters", indent)
-    used = lowered.used_symbols
-    for sine, cosine, angle in lowered.angles:
-        text = printer.doprint(angle)
-        if sine in used and cosine in used:  # one tangent of the half angle instead of two sines/cosines
-            body.append(f"{indent}{names.mapping[sine]}, {names.mapping[cosine]} = _sincos({text})")
-        elif sine in used:
-            body.append(f"{indent}{names.mapping[sine]} = np.sin({text})")
-        elif cosine in used:
-            body.append(f"{indent}{names.mapping[cosine]} = np.cos({text})")
-    for symbol, expr in lowered.temporaries:
-        body += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)
+    body = _input_lines(robot, lowered, names, indent)
+    body += _angle_lines(lowered, names, printer, indent, "np.", pair="_sincos")  # one half-angle tangent for both
+    body += _temporary_lines(lowered, names, printer, indent)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
     lines: list[str] = []
     for index, value in zip(_indices(lowered.shape), outputs, strict=True):
@@ -677,20 +692,9 @@ def _sympy_function(robot: Robot, lowered: _Lowered, name: str, kind: str, summa
     indent = "    "
     names = _symbol_names(robot, lowered, taken)
     printer = SymPyPrinter(names.mapping)
-    body: list[str] = []
-    for argument, symbols in lowered.inputs:
-        body += _unpack(_entry_names(lowered, names, symbols), argument, indent)
-    if robot.parameters:
-        body += _unpack(_entry_names(lowered, names, robot.parameter_symbols), "parameters", indent)
-    used = lowered.used_symbols
-    for sine, cosine, angle in lowered.angles:
-        text = printer.doprint(angle)
-        if sine in used:
-            body.append(f"{indent}{names.mapping[sine]} = sympy.sin({text})")
-        if cosine in used:
-            body.append(f"{indent}{names.mapping[cosine]} = sympy.cos({text})")
-    for symbol, expr in lowered.temporaries:
-        body += layout(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr), width=LINE_WIDTH)
+    body = _input_lines(robot, lowered, names, indent)
+    body += _angle_lines(lowered, names, printer, indent, "sympy.")
+    body += _temporary_lines(lowered, names, printer, indent)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
     lines = [f"{indent}return ["]
     for value in outputs:

@@ -229,9 +229,13 @@ class Chain:
                 if joints[i - 1].is_revolute:  # the angle with its offset: cos(theta1 - 1/5) stays one cosine
                     total += sign * joints[i - 1].angle
                 cumulative[i] = total
-            relative = {sp.expand(value - cumulative[reference]) for value in cumulative.values()}
-            relative.discard(sp.S.Zero)
-            angles.extend(relative)
+            seen: set[sp.Expr] = set()
+            for f in sorted(cumulative):  # one angle per joint-angle combination (a constant offset is not new)
+                value = sp.expand(cumulative[f] - cumulative[reference])
+                _, varying = value.as_independent(*variables, as_Add=True)
+                if varying != 0 and varying not in seen:
+                    seen.add(varying)
+                    angles.append(value)
         return AngleBasis(variables, _order_like(tuple(angles), variables))
 
 

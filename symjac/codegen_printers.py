@@ -340,12 +340,13 @@ def layout(head: str, code: str, tail: str = "", *, width: int = 120, language: 
     lines: list[str] = []
     current = head
     for index, piece in enumerate(pieces):
+        last = index == len(pieces) - 1
         addition = piece if current in (head, indent) else f" {piece}"
-        if len(current) + len(addition) > width and current not in (head, indent):
-            lines.append(current)
+        if len(current) + len(addition) + (len(tail) if last else 0) > width and current not in (head, indent):
+            lines.append(current)  # the closing tail counts on the last line too
             current, addition = indent, piece
         current += addition
-        if index == len(pieces) - 1:
+        if last:
             current += tail
     lines.append(current)
     return lines

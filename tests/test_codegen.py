@@ -469,3 +469,14 @@ def test_cli_codegen_writes_a_module(tmp_path, capsys):
     assert "def jacobian(" in target.read_text()
     assert main(["codegen", "planar2r", "--target", "numpy", "--frame", "9", "-o", str(tmp_path / "bad.py")]) == 2
     assert not (tmp_path / "bad.py").exists()
+
+
+def test_layout_counts_the_closing_tail_on_the_last_line():
+    """Regression (found by hypothesis): a statement whose last piece fitted but whose closing ')),' did not."""
+    from symjac.codegen_printers import layout
+
+    code = " + ".join(["x1234567"] * 12)
+    for width in range(40, 80):
+        lines = layout("        ", code, ")),", width=width)
+        assert all(len(line) <= width for line in lines), width
+        assert "".join(lines).replace(" ", "") == "(" + code.replace(" ", "") + ")" + ")),"  # wrapped, nothing lost

@@ -21,6 +21,7 @@ from symjac import (
     chain_of,
     jacobian,
     load_robot,
+    robot_from_mapping,
     robot_from_toml,
     robot_to_toml,
 )
@@ -291,3 +292,13 @@ def test_alignment_frames_put_z_on_the_joint_axis():
     # joint 2 (axis y of shoulder_link turned by pitch pi/2): z_2 in frame {1} is the y-axis of frame {1}
     assert list(chain.rotation(1, 2)[:, 2]) == [0, 1, 0]
     assert chain.parallel_groups == ((1,), (2, 3, 4), (5,), (6,))
+
+
+def test_prismatic_joint_turned_about_its_axis_does_not_duplicate_a_basis_angle():
+    """Regression (found by hypothesis): an origin rotated about z before a prismatic joint gave two basis angles
+    theta1 and theta1 + pi/2 for one joint angle."""
+    robot = robot_from_mapping({"name": "g", "convention": "general", "parameters": {"L": 0.35}, "joints": [
+        {"type": "revolute"}, {"type": "prismatic", "xyz": [0, 0, 0], "rpy": [0, 0, "pi/2"]}]})
+    for frame in ("world", 0, 1, 2):
+        J = jacobian(robot, frame=frame)
+        assert list(J[:, 1]) == [0, 0, 1, 0, 0, 0]

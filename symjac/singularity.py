@@ -542,7 +542,8 @@ def _explain(robot: Robot, det: Determinant, factor: sp.Expr, multiplicity: int,
     if sample is None:
         kind, reason = classify({}, factor_joints, robot)
         return SingularFactor(factor, multiplicity, solutions, existence, holds, kind, reason)
-    facts = findings(robot, geometry_at(robot, sample, det.point))
+    geometry = geometry_at(robot, sample, det.point)
+    facts = findings(robot, geometry)
     new = {key: text for key, text in facts.items() if key not in generic}
     kind, reason = classify(new, factor_joints, robot)
     J = numeric_jacobian(robot, sample, det.frame, det.point)[list(det.rows), :][:, list(det.columns)]
@@ -557,7 +558,7 @@ def _explain(robot: Robot, det: Determinant, factor: sp.Expr, multiplicity: int,
         full[list(det.rows)] = lost
         R_k_0 = np.array(chain_of(robot).rotation(det.frame, 0).xreplace(
             {**dict(zip(robot.q, sample, strict=True)), **robot.defaults}).evalf(), dtype=float)
-        reach = R_k_0 @ geometry_at(robot, sample, det.point).points[0][1]
+        reach = R_k_0 @ geometry.points[0][1]
         if np.linalg.norm(full[3:]) < 1e-9 and np.linalg.norm(reach) > 1e-9 and parallel(full[:3], reach, 1e-7):
             radial = " (radially: along the line from the origin of frame {0} to the point)"
     motion = None if motion is None else _canonical(motion)

@@ -80,10 +80,14 @@ def test_existence_condition_fails_for_a_short_arm():
 @pytest.mark.parametrize("name", SQUARE)
 def test_determinant_equals_the_numeric_determinant_of_the_finite_difference_jacobian(name):
     robot = load_robot(name)
-    det = determinant(robot)
-    rng = np.random.default_rng(7)
+    _assert_matches_finite_differences(robot, determinant(robot), seed=7, count=3)
+
+
+def _assert_matches_finite_differences(robot, det, seed, count):
+    """det J evaluated at random configurations equals det of the independent finite-difference Jacobian."""
+    rng = np.random.default_rng(seed)
     point = np.array([float(c.xreplace(robot.defaults)) for c in det.point])
-    for _ in range(3):
+    for _ in range(count):
         q = random_configuration(robot, rng)
         J = finite_difference_jacobian(robot, q, frame=0, point=point)[list(det.rows), :]
         assert _value(det.expression, robot, q) == pytest.approx(np.linalg.det(J), rel=1e-5, abs=1e-7)
@@ -242,12 +246,7 @@ def test_random_chains_determinant_matches_numeric(robot):
         det = determinant(robot)
     except FrameError:
         return  # the chain controls fewer independent rows than it has joints
-    rng = np.random.default_rng(11)
-    point = np.array([float(c.xreplace(robot.defaults)) for c in det.point])
-    for _ in range(2):
-        q = random_configuration(robot, rng)
-        J = finite_difference_jacobian(robot, q, frame=0, point=point)[list(det.rows), :]
-        assert _value(det.expression, robot, q) == pytest.approx(np.linalg.det(J), rel=1e-5, abs=1e-7)
+    _assert_matches_finite_differences(robot, det, seed=11, count=2)
 
 
 def test_cli_singularities_in_every_format(capsys):

@@ -9,11 +9,22 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 (:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`).
 """
 
-from symjac.chain import Chain, Frame, chain_of, forward_kinematics
-from symjac.codegen import CodegenError, JacobianRequest, generate, write_module
-from symjac.errors import ExpressionError, FrameError, RobotFileError, SymjacError, UnknownRobotError
+from symjac._version import __version__
+from symjac.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
+from symjac.codegen import JacobianRequest, generate, write_module
+from symjac.errors import (
+    ArgumentError,
+    CodegenError,
+    ConversionError,
+    ExpressionError,
+    FrameError,
+    RepresentationError,
+    RobotFileError,
+    SymjacError,
+    UnknownRobotError,
+)
 from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
-from symjac.jacobian import METHODS, change_frame, clear_caches, jacobian, jacobian_of, shift_point
+from symjac.jacobian import METHODS, ROW_NAMES, change_frame, jacobian, jacobian_of, rows_from_names, shift_point
 from symjac.model import (
     Convention,
     FixedTransform,
@@ -24,6 +35,7 @@ from symjac.model import (
     robot_from_mapping,
     robot_to_mapping,
 )
+from symjac.numeric import evaluate_at, numeric_jacobian
 from symjac.printing import latex, pretty
 from symjac.propagation import (
     ForcePropagation,
@@ -36,7 +48,6 @@ from symjac.propagation import (
 from symjac.rates import damped_least_squares, inverse_rates, rates_along_path
 from symjac.representations import (
     REPRESENTATIONS,
-    RepresentationError,
     RepresentationJacobian,
     extract,
     rate_matrix,
@@ -46,20 +57,21 @@ from symjac.representations import (
 )
 from symjac.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
 from symjac.singularity import Determinant, SingularFactor, SingularityReport, determinant, singularities
-from symjac.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, numeric_jacobian, symbolic_spaces, task_rows
-from symjac.statics import evaluate_at, joint_torques, wrench_between
+from symjac.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
+from symjac.statics import joint_torques, wrench_between
 from symjac.transforms import twist_transform, wrench_transform
 from symjac.urdf import robot_from_urdf
-
-__version__ = "0.1.0"
 
 __all__ = [
     "METHODS",
     "REPRESENTATIONS",
+    "ROW_NAMES",
     "AngleBasis",
+    "ArgumentError",
     "Chain",
     "CodegenError",
     "Convention",
+    "ConversionError",
     "Determinant",
     "ExpressionError",
     "FixedTransform",
@@ -82,6 +94,7 @@ __all__ = [
     "UnknownRobotError",
     "VelocityPropagation",
     "__version__",
+    "as_chain",
     "catalog",
     "chain_of",
     "change_frame",
@@ -114,6 +127,7 @@ __all__ = [
     "robot_to_mapping",
     "robot_to_toml",
     "rotation_from",
+    "rows_from_names",
     "shift_point",
     "simplify_expr",
     "simplify_matrix",

@@ -11,8 +11,9 @@ Jacobian methods and code generation start from); :meth:`Chain.simplified_transf
 
 from __future__ import annotations
 
-from functools import cache, cached_property
-from typing import Literal
+from collections.abc import Callable, Hashable
+from functools import cached_property, lru_cache
+from typing import Literal, TypeVar
 
 import sympy as sp
 
@@ -22,14 +23,18 @@ from symjac.simplify import AngleBasis, simplify_matrix
 from symjac.transforms import Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
+T = TypeVar("T")
 
-__all__ = ["Chain", "Frame", "chain_of", "forward_kinematics"]
+__all__ = ["CHAINS_KEPT", "Chain", "Frame", "as_chain", "chain_of", "clear_caches", "forward_kinematics"]
 
 
 class Chain:
-    """Symbolic kinematics of one :class:`~symjac.model.Robot`; every derived quantity is computed once.
+    """Symbolic kinematics of one :class:`~symjac.model.Robot`: the one owner of every derived quantity.
 
-    Prefer :func:`chain_of`, which also caches the chain per robot.
+    The robot is the immutable model; the chain is its data (the Model/Data split of pinocchio). Transforms, angle
+    bases and everything later stages derive from them (Jacobians per frame, point and method, propagations,
+    determinants, code generation candidates) are computed once and kept here, through :meth:`memo`; nothing is
+    cached anywhere else. Every algorithm takes a chain, or a robot (then :func:`as_chain` finds its chain).
 
     Examples
     --------
@@ -45,6 +50,18 @@ class Chain:
         self.robot = robot
         self._transforms: dict[tuple[int, int], sp.ImmutableMatrix] = {}
         self._simplified: dict[tuple[int, int], sp.ImmutableMatrix] = {}
+        self._memo: dict[Hashable, object] = {}
+        self._relations: dict[int, tuple[sp.Expr, sp.Expr]] = {}
+
+    def memo(self, key: Hashable, compute: Callable[[], T]) -> T:
+        """The value stored under ``key``, computed by ``compute()`` the first time it is asked for.
+
+        Keys start with the name of the quantity (``("jacobian", frame, point, method, simplify)``) so that stages
+        never collide. The values are immutable (SymPy immutable matrices, frozen dataclasses).
+        """
+        if key not in self._memo:
+            self._memo[key] = compute()
+        return self._memo[key]  # type: ignore[return-value]
 
     # --- frames ------------------------------------------------------------------------------------------
 
@@ -164,7 +181,6 @@ class Chain:
             return sp.S.Zero
         return self._general_relation(joint)[1]
 
-    @cache  # noqa: B019 - one chain per robot (chain_of caches it), so the cache lives as long as the chain
     def _general_relation(self, joint: int) -> tuple[sp.Expr, sp.Expr]:
         r"""(twist, z offset) between the axis frames of general joints joint-1 and joint.
 
@@ -172,6 +188,11 @@ class Chain:
         give :math:`C = R_z(\gamma)`, anti-parallel ones :math:`C = R_x(\pi) R_z(\gamma)`; otherwise the twist is
         ``nan`` and no offset is used.
         """
+        if joint not in self._relations:
+            self._relations[joint] = self._relation(joint)
+        return self._relations[joint]
+
+    def _relation(self, joint: int) -> tuple[sp.Expr, sp.Expr]:
         C, _ = compose(self._fixed_part(joint))
         c33 = sp.nsimplify(C[2, 2]) if C[2, 2].is_Float else C[2, 2]
         if c33 == 1 or c33 == -1:
@@ -212,6 +233,20 @@ class Chain:
                 if reference != references[index]:
                     bases.append(self._basis((*references[:index], reference, *references[index + 1:])))
         return tuple(bases)
+
+    def all_angle_bases(self) -> tuple[AngleBasis, ...]:
+        """Every angle basis of every frame, the trivial one (each joint angle with its offset) first.
+
+        Results that belong to no frame (determinant factors, joint rates) are laid out in the shortest of these.
+        """
+        def compute() -> tuple[AngleBasis, ...]:
+            revolute = [joint for joint in self.robot.joints if joint.is_revolute]
+            bases = [AngleBasis(tuple(j.variable for j in revolute), tuple(j.angle for j in revolute))]
+            for frame in range(self.n + 1):
+                bases += [basis for basis in self.angle_bases(frame) if basis not in bases]
+            return tuple(bases)
+
+        return self.memo(("all_angle_bases",), compute)
 
     def _basis(self, references: tuple[int, ...]) -> AngleBasis:
         joints = self.robot.joints
@@ -267,13 +302,36 @@ def _joint_motion(joint: Joint) -> tuple[Motion, ...]:
     return (Motion("R", "z", joint.angle), Motion("T", "z", joint.offset))
 
 
-@cache
+CHAINS_KEPT = 32
+"""How many chains :func:`chain_of` keeps (least recently used first out)."""
+
+
+@lru_cache(maxsize=CHAINS_KEPT)
 def chain_of(robot: Robot) -> Chain:
-    """The cached :class:`Chain` of ``robot`` (robots are immutable, so one chain serves every call)."""
+    """The :class:`Chain` of ``robot``, built on first use.
+
+    Robots are immutable and compared by value, so equal robots (the same file loaded twice) share one chain and
+    everything derived in it. This is the only registry in symjac; it keeps the :data:`CHAINS_KEPT` most recently
+    used chains. Hold a chain yourself (``Chain(robot)``) to control its lifetime exactly.
+    """
     return Chain(robot)
 
 
-def forward_kinematics(robot: Robot, source: Frame = 0, target: Frame | None = None) -> sp.Matrix:
+def as_chain(robot: Robot | Chain) -> Chain:
+    """The chain an algorithm works on: ``robot`` itself if it is a :class:`Chain`, else :func:`chain_of` it."""
+    if isinstance(robot, Chain):
+        return robot
+    if not isinstance(robot, Robot):
+        raise TypeError(f"expected a symjac Robot or Chain, got {type(robot).__name__}")
+    return chain_of(robot)
+
+
+def clear_caches() -> None:
+    """Forget every chain and so every derived quantity (for cold-start benchmarks, or to free memory)."""
+    chain_of.cache_clear()
+
+
+def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | None = None) -> sp.Matrix:
     r"""The pose :math:`{}^{\text{source}}_{\text{target}}T` in compact form (default :math:`{}^0_nT`).
 
     Examples
@@ -282,5 +340,5 @@ def forward_kinematics(robot: Robot, source: Frame = 0, target: Frame | None = N
     >>> forward_kinematics(load_robot("planar3r"), target="tool")[0, 3]
     L1*cos(theta1) + L2*cos(theta1 + theta2) + L3*cos(theta1 + theta2 + theta3)
     """
-    chain = chain_of(robot)
+    chain = as_chain(robot)
     return sp.Matrix(chain.simplified_transform(source, chain.n if target is None else target))

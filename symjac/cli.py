@@ -8,9 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
-import tempfile
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -18,13 +16,14 @@ from typing import Any
 
 import sympy as sp
 
-from symjac import __version__
+from symjac._version import __version__
 from symjac.chain import Frame, chain_of
 from symjac.codegen import STRATEGIES, TARGETS, JacobianRequest, generate
-from symjac.errors import ExpressionError, FrameError, SymjacError
+from symjac.errors import ArgumentError, ExpressionError, FrameError, SymjacError
 from symjac.expressions import parse_expression
+from symjac.files import write_text
 from symjac.io import catalog, load_robot
-from symjac.jacobian import METHODS, jacobian, point_vector
+from symjac.jacobian import METHODS, ROW_NAMES, jacobian, point_vector, rows_from_names
 from symjac.model import Robot
 from symjac.printing import latex, pretty, propagation_steps, singularity_summary
 from symjac.propagation import force_propagation, velocity_propagation, wrench_symbols
@@ -34,7 +33,6 @@ from symjac.singularity import report_data, singularities
 from symjac.statics import joint_torques
 
 FORMATS = ("latex", "pretty", "json")
-ROW_NAMES = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -245,7 +243,7 @@ def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[str]:
         "force_propagation": lambda: force_propagation(robot, tip),
     }
     if args.method not in derive:
-        raise FrameError("--steps needs --method velocity_propagation or --method force_propagation")
+        raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
     propagation = _progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
     style = "pretty" if args.format == "pretty" else "latex"
     return propagation_steps(propagation, style, values=_numeric_values(robot) if args.numeric else None)
@@ -304,14 +302,11 @@ def _codegen(args: argparse.Namespace) -> str:
 
 
 def _parse_rows(text: str) -> tuple[int, ...]:
-    """Task rows by name: ``v_x .. omega_z`` (also ``w_x`` or ``wx``) -> indices 0..5."""
-    aliases = {name: i for names in (ROW_NAMES, ("v_x", "v_y", "v_z", "w_x", "w_y", "w_z"),
-                                     ("vx", "vy", "vz", "wx", "wy", "wz")) for i, name in enumerate(names)}
-    names = [part.strip() for part in text.split(",")]
-    unknown = [name for name in names if name not in aliases]
-    if unknown:
-        raise FrameError(f"--rows: unknown row {unknown[0]!r}; use {', '.join(ROW_NAMES)}")
-    return tuple(aliases[name] for name in names)
+    """Task rows by name (``v_x .. omega_z``, :data:`symjac.jacobian.ROW_NAMES`) -> indices 0..5."""
+    try:
+        return rows_from_names(text)
+    except ArgumentError as error:
+        raise ArgumentError(f"--rows: {error}") from None
 
 
 def _parse_frame(text: str) -> Frame:
@@ -339,11 +334,11 @@ def _parse_point(text: str, robot: Robot) -> Any:
 def _parse_list(text: str, length: int, option: str, names: dict[str, sp.Symbol]) -> list[sp.Expr]:
     parts = text.split(",")
     if len(parts) != length:
-        raise FrameError(f"{option} needs {length} comma-separated values, got {len(parts)} in {text!r}")
+        raise ArgumentError(f"{option} needs {length} comma-separated values, got {len(parts)} in {text!r}")
     try:
         return [parse_expression(part, names) for part in parts]
     except ExpressionError as error:
-        raise FrameError(f"{option}: {error}") from None
+        raise ArgumentError(f"{option}: {error}") from None
 
 
 # --- output helpers ------------------------------------------------------------------------------------------
@@ -436,16 +431,8 @@ def _emit(text: str, output: Path | None) -> None:
     """Write the finished text to stdout, or atomically to ``output`` (never a partial file)."""
     if output is None:
         sys.stdout.write(text)
-        return
-    directory = output.parent if str(output.parent) else Path(".")
-    handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{output.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            stream.write(text)
-        os.replace(temporary, output)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    else:
+        write_text(output, text)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import tempfile
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
@@ -49,9 +48,10 @@ from typing import Any, Literal, get_args
 
 import sympy as sp
 
+from symjac._version import __version__
+from symjac.angles import AngleExpansion
 from symjac.chain import Frame, chain_of
 from symjac.codegen_printers import (
-    CodegenError,
     CPrinter,
     NumPyPrinter,
     PythonPrinter,
@@ -61,10 +61,11 @@ from symjac.codegen_printers import (
     float_literal,
     layout,
 )
-from symjac.jacobian import Point, jacobian, point_vector
+from symjac.errors import CodegenError
+from symjac.files import write_text
+from symjac.jacobian import ROW_NAMES, Point, jacobian, point_vector
 from symjac.model import Robot
 from symjac.resources import render_template
-from symjac.simplify import AngleBasis
 from symjac.transforms import block_rotation
 
 Target = Literal["python", "numpy", "lambdify", "c"]
@@ -78,7 +79,6 @@ TEMPLATES: dict[str, str] = {
     "lambdify": "lambdify_module.py.j2",
     "c": "c_module.py.j2",
 }
-ROW_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
 WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
 LINE_WIDTH = 120
 
@@ -292,58 +292,6 @@ def _tuple_literal(items: Iterable[str]) -> str:
     return f"({entries[0]},)" if len(entries) == 1 else f"({', '.join(entries)})"
 
 
-# --- angles ----------------------------------------------------------------------------------------------------------
-
-
-class _Angles:
-    """Sines and cosines of joint-angle combinations rewritten in those of the joint angles (with their offsets)."""
-
-    def __init__(self, robot: Robot):
-        revolute = [joint for joint in robot.joints if joint.is_revolute]
-        self.basis = AngleBasis(tuple(j.variable for j in revolute), tuple(j.angle for j in revolute))
-        self.sines = tuple(sp.Symbol(f"_s{j.index}", real=True) for j in revolute)
-        self.cosines = tuple(sp.Symbol(f"_c{j.index}", real=True) for j in revolute)
-        self.angles = tuple(j.angle for j in revolute)
-        self.variables = frozenset(self.basis.variables)
-        self._cache: dict[sp.Expr, tuple[sp.Expr, sp.Expr]] = {}
-
-    def sin_cos(self, argument: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
-        """``(sin a, cos a)`` with ``a = sum_j m_j psi_j + c`` expanded, partial sums nested in chain order."""
-        argument = sp.expand(argument)
-        if argument in self._cache:
-            return self._cache[argument]
-        decomposition = self.basis.decompose(argument) if argument.free_symbols & self.variables else None
-        if decomposition is None:
-            result = (sp.sin(argument), sp.cos(argument))
-        else:
-            multiples, constant = decomposition
-            sine, cosine = (sp.sin(constant), sp.cos(constant))
-            for j, multiple in enumerate(multiples):
-                s_j, c_j = (self.sines[j] if multiple > 0 else -self.sines[j]), self.cosines[j]
-                for _ in range(abs(multiple)):
-                    sine, cosine = sine * c_j + cosine * s_j, cosine * c_j - sine * s_j
-            result = (sine, cosine)
-        self._cache[argument] = result
-        return result
-
-    def expand(self, expr: sp.Expr) -> sp.Expr:
-        """``expr`` with every joint-dependent sine/cosine expanded and numeric subexpressions folded to floats."""
-        expanded = expr.replace(
-            lambda e: isinstance(e, sp.sin | sp.cos) and bool(e.free_symbols & self.variables),
-            lambda e: self.sin_cos(e.args[0])[0 if isinstance(e, sp.sin) else 1],
-        )
-        return _fold_numbers(expanded)
-
-
-def _fold_numbers(expr: sp.Expr) -> sp.Expr:
-    """Replace every numeric subexpression that is not a plain number (``sqrt(2)/2``, ``cos(1/5)``) by a float."""
-    if expr.is_Atom:
-        return expr
-    if expr.is_number:
-        return sp.Float(sp.N(expr, 20), 17)
-    return expr.func(*(_fold_numbers(arg) for arg in expr.args))
-
-
 # --- lowering --------------------------------------------------------------------------------------------------------
 
 
@@ -399,7 +347,7 @@ def lower(
     >>> lower([x + y], [x])
     Traceback (most recent call last):
     ...
-    symjac.codegen_printers.CodegenError: expressions depend on y, which is not an argument (arguments: x)
+    symjac.errors.CodegenError: expressions depend on y, which is not an argument (arguments: x)
     """
     flat = list(outputs)
     allowed = set(arguments)
@@ -415,7 +363,7 @@ def lower(
 
 
 def _lower_function(
-    angles: _Angles,
+    angles: AngleExpansion,
     exprs: Sequence[sp.Expr],
     shape: tuple[int, ...],
     inputs: tuple[tuple[str, tuple[sp.Symbol, ...]], ...],
@@ -478,8 +426,10 @@ def _lowered_jacobian(
 
 
 @lru_cache(maxsize=32)
-def _angles(robot: Robot) -> _Angles:
-    return _Angles(robot)
+def _angles(robot: Robot) -> AngleExpansion:
+    revolute = [joint for joint in robot.joints if joint.is_revolute]
+    return AngleExpansion(tuple(j.variable for j in revolute), tuple(j.angle for j in revolute),
+                          tuple(j.index for j in revolute))
 
 
 @lru_cache(maxsize=32)
@@ -821,8 +771,6 @@ def describe(
     strategy: Strategy = "fastest",
 ) -> ModuleDescription:
     """The frozen description of the module :func:`generate` renders (see there for the parameters)."""
-    from symjac import __version__
-
     if target not in TARGETS:
         raise CodegenError(f"unknown target {target!r}; choose one of {', '.join(TARGETS)}")
     if strategy not in STRATEGIES:
@@ -1087,22 +1035,8 @@ def render_module(description: ModuleDescription) -> str:
 
 
 def write_module(path: str | os.PathLike[str], text: str) -> Path:
-    """Write ``text`` to ``path`` atomically: a temporary file in the same folder, then ``os.replace``.
-
-    A failure at any point leaves no partial file (and an existing file untouched).
-    """
-    target = Path(path)
-    directory = target.parent if str(target.parent) else Path(".")
-    handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(text)
-        os.chmod(temporary, 0o644)
-        os.replace(temporary, target)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    return target
+    """Write a generated module to ``path`` atomically (:func:`symjac.files.write_text`): never a partial file."""
+    return write_text(path, text)
 
 
 # --- command line ----------------------------------------------------------------------------------------------------

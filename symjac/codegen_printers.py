@@ -23,7 +23,7 @@ from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 from sympy.printing.str import StrPrinter
 
-from symjac.errors import SymjacError
+from symjac.errors import CodegenError
 
 __all__ = [
     "CPrinter",
@@ -41,10 +41,6 @@ _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _ALLOWED_FUNCTIONS = (sp.sin, sp.cos)
 
 
-class CodegenError(SymjacError, ValueError):
-    """A request for generated code cannot be honoured (bad name, unsupported expression, unknown target, ...)."""
-
-
 def check_identifier(name: Any, what: str, reserved: Mapping[str, str] | None = None) -> str:
     """Return ``name`` if it may appear in generated code as an identifier, else raise :class:`CodegenError`.
 
@@ -58,7 +54,7 @@ def check_identifier(name: Any, what: str, reserved: Mapping[str, str] | None = 
     >>> check_identifier("lambda", "parameter name")
     Traceback (most recent call last):
     ...
-    symjac.codegen_printers.CodegenError: parameter name 'lambda' is a Python keyword
+    symjac.errors.CodegenError: parameter name 'lambda' is a Python keyword
     """
     if not isinstance(name, str) or not _IDENTIFIER.match(name):
         raise CodegenError(f"{what} {name!r} is not an ASCII identifier (letters, digits, underscore)")
@@ -305,7 +301,7 @@ def check_expression(expr: sp.Basic) -> None:
     >>> check_expression(sp.exp(sp.Symbol("x")))
     Traceback (most recent call last):
     ...
-    symjac.codegen_printers.CodegenError: exp(x) is not supported in generated code (allowed: + * ** sin cos)
+    symjac.errors.CodegenError: exp(x) is not supported in generated code (allowed: + * ** sin cos)
     """
     for node in sp.preorder_traversal(expr):
         if isinstance(node, sp.Symbol | sp.Add | sp.Mul | sp.sin | sp.cos) or node is sp.pi:

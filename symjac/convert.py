@@ -24,16 +24,12 @@ from dataclasses import dataclass, replace
 
 import sympy as sp
 
-from symjac.errors import SymjacError
+from symjac.errors import ConversionError
 from symjac.model import Convention, FixedTransform, Joint, Robot
 from symjac.transforms import homogeneous, inverse_transform, rotation
 
 __all__ = ["ConversionError", "DHExtraction", "convert", "dh_from_general", "modified_from_standard",
            "standard_from_modified"]
-
-
-class ConversionError(SymjacError, ValueError):
-    """A robot cannot be written in the requested convention."""
 
 
 def modified_from_standard(robot: Robot) -> Robot:

@@ -49,3 +49,19 @@ class UnknownRobotError(SymjacError, LookupError):
 
 class FrameError(SymjacError, ValueError):
     """A frame, point or method argument does not exist for this robot."""
+
+
+class ArgumentError(SymjacError, ValueError):
+    """An argument is not one of its choices or has the wrong shape (unknown method, row name, wrench length, ...)."""
+
+
+class RepresentationError(SymjacError, ValueError):
+    """An unknown representation, a malformed input, or a pose at a representation singularity."""
+
+
+class CodegenError(SymjacError, ValueError):
+    """A request for generated code cannot be honoured (bad name, unsupported expression, unknown target, ...)."""
+
+
+class ConversionError(SymjacError, ValueError):
+    """A robot cannot be written in the requested convention."""

@@ -40,13 +40,12 @@ force_propagation        :math:`{}^nJ^T`      transpose, then :math:`\mathrm{dia
 from __future__ import annotations
 
 from collections.abc import Sequence
-from functools import lru_cache
 from typing import Literal, get_args
 
 import sympy as sp
 
-from symjac.chain import Frame, chain_of
-from symjac.errors import FrameError
+from symjac.chain import Chain, Frame, as_chain
+from symjac.errors import ArgumentError, FrameError
 from symjac.model import Robot
 from symjac.propagation import force_propagation, velocity_propagation
 from symjac.simplify import AngleBasis, simplify_matrix
@@ -57,21 +56,42 @@ Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
 
 METHODS: tuple[str, ...] = get_args(Method)
 
+ROW_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
+"""The six rows of a basic Jacobian, linear velocity first: the one spelling symjac reads and prints."""
+
 __all__ = [
     "METHODS",
+    "ROW_NAMES",
     "Method",
     "Point",
     "change_frame",
-    "clear_caches",
     "jacobian",
     "jacobian_of",
     "point_vector",
+    "rows_from_names",
     "shift_point",
 ]
 
 
+def rows_from_names(names: str | Sequence[str]) -> tuple[int, ...]:
+    """Row indices 0..5 of row names from :data:`ROW_NAMES` (a sequence, or one comma-separated string).
+
+    Examples
+    --------
+    >>> rows_from_names("v_x,v_y,omega_z")
+    (0, 1, 5)
+    """
+    parts = [part.strip() for part in (names.split(",") if isinstance(names, str) else names)]
+    unknown = [part for part in parts if part not in ROW_NAMES]
+    if unknown or not parts:
+        raise ArgumentError(f"unknown row {unknown[0] if unknown else ''!r}; use {', '.join(ROW_NAMES)}")
+    if len(set(parts)) != len(parts):
+        raise ArgumentError(f"rows must not repeat, got {', '.join(parts)}")
+    return tuple(ROW_NAMES.index(part) for part in parts)
+
+
 def jacobian(
-    robot: Robot,
+    robot: Robot | Chain,
     frame: Frame = 0,
     point: Point = "wrist",
     method: Method = "differentiation",
@@ -82,7 +102,7 @@ def jacobian(
 
     Parameters
     ----------
-    robot : Robot
+    robot : Robot or Chain
     frame : int or "world" or "tool"
         Frame {k} the Jacobian is expressed in (default {0}).
     point : "wrist", "tool" or sequence of 3
@@ -107,14 +127,17 @@ def jacobian(
     [L1 + L2*cos(theta2),  L2*cos(theta2)]])
     """
     if method not in METHODS:
-        raise FrameError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-    chain = chain_of(robot)
-    chain.position(frame)  # validate early, with a clear message
-    return sp.Matrix(_cached_jacobian(robot, frame, point_vector(robot, point), method, simplify))
+        raise ArgumentError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
+    chain = as_chain(robot)
+    frame = chain.frame_name(chain.position(frame))  # validated, and 3 and numpy.int64(3) share one cache entry
+    xyz = point_vector(chain, point)
+    return sp.Matrix(chain.memo(("jacobian", frame, xyz, method, simplify),
+                                lambda: _derive(chain, frame, xyz, method, simplify)))
 
 
-def point_vector(robot: Robot, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """Coordinates in frame {n} of a point given as ``"wrist"``, ``"tool"`` or three coordinates (validated)."""
+    robot = robot.robot if isinstance(robot, Chain) else robot
     if isinstance(point, str):
         if point == "wrist":
             return (sp.S.Zero,) * 3
@@ -137,20 +160,18 @@ def point_vector(robot: Robot, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]
     return x, y, z
 
 
-@lru_cache(maxsize=256)
-def _cached_jacobian(
-    robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method, simplify: bool
-) -> sp.ImmutableMatrix:
-    chain = chain_of(robot)
+def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
+            simplify: bool) -> sp.ImmutableMatrix:
     derive = {"differentiation": _differentiation, "cross_product": _cross_product,
               "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
-    raw = derive(robot, frame, point)
-    result = simplify_matrix(raw, chain.angle_bases(frame)) if simplify else raw
-    return sp.ImmutableMatrix(result)
+    if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
+        return sp.ImmutableMatrix(simplify_matrix(jacobian(chain, frame, point, method, simplify=False),
+                                                  chain.angle_bases(frame)))
+    return sp.ImmutableMatrix(derive(chain, frame, point))
 
 
-def _differentiation(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
-    chain = chain_of(robot)
+def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+    robot = chain.robot
     T_0_n = chain.transform(0, chain.n)
     x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
     J_0 = sp.zeros(6, chain.n)
@@ -163,10 +184,9 @@ def _differentiation(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> 
     return block_rotation(chain.rotation(frame, 0)) * J_0
 
 
-def _cross_product(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
-    chain = chain_of(robot)
+def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
     J = sp.zeros(6, chain.n)
-    for i, joint in enumerate(robot.joints):
+    for i, joint in enumerate(chain.robot.joints):
         a = chain.axis_frame(joint.index)
         R_k_a = chain.rotation(frame, a)
         if joint.is_revolute:
@@ -179,20 +199,12 @@ def _cross_product(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> sp
     return J
 
 
-def clear_caches() -> None:
-    """Forget every cached chain and Jacobian (for cold-start benchmarks, or to free memory)."""
-    _cached_jacobian.cache_clear()
-    chain_of.cache_clear()
+def _velocity_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
+    return block_rotation(chain.rotation(frame, chain.n)) * velocity_propagation(chain, point, simplify=False).jacobian
 
 
-def _velocity_propagation(robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    chain = chain_of(robot)
-    return block_rotation(chain.rotation(frame, chain.n)) * velocity_propagation(robot, point, simplify=False).jacobian
-
-
-def _force_propagation(robot: Robot, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    chain = chain_of(robot)
-    return block_rotation(chain.rotation(frame, chain.n)) * force_propagation(robot, point, simplify=False).jacobian
+def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
+    return block_rotation(chain.rotation(frame, chain.n)) * force_propagation(chain, point, simplify=False).jacobian
 
 
 def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:

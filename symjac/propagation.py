@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from symjac.chain import Chain, Frame, chain_of
+from symjac.chain import Chain, Frame, as_chain
 from symjac.model import Robot
 from symjac.simplify import simplify_matrix
 from symjac.transforms import skew
@@ -52,7 +52,7 @@ __all__ = [
 _Z = sp.Matrix([0, 0, 1])
 
 
-def joint_rates(robot: Robot) -> tuple[sp.Symbol, ...]:
+def joint_rates(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
     r"""The joint rate symbols :math:`\dot\theta_i` (``thetadot{i}``) or :math:`\dot d_i` (``ddot{i}``).
 
     Examples
@@ -61,6 +61,7 @@ def joint_rates(robot: Robot) -> tuple[sp.Symbol, ...]:
     >>> joint_rates(load_robot("stanford"))
     (thetadot1, thetadot2, ddot3, thetadot4, thetadot5, thetadot6)
     """
+    robot = as_chain(robot).robot
     return tuple(
         sp.Symbol(f"{'theta' if joint.is_revolute else 'd'}dot{joint.index}", real=True) for joint in robot.joints
     )
@@ -154,7 +155,7 @@ def linear_combination(coefficients: sp.MatrixBase, values: sp.MatrixBase) -> sp
                                                               for j in range(coefficients.cols)]))
 
 
-def _tip(robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None) -> str | None:
+def _tip(point: tuple[sp.Expr, ...] | None) -> str | None:
     """Where the iteration ends past frame {n}: ``"tool"``, ``"point"`` or nowhere (``None``: the wrist)."""
     if point is None:
         return "tool"
@@ -173,7 +174,7 @@ def _layout(chain: Chain, simplify: bool) -> Callable[[sp.MatrixBase, Frame], sp
 
 
 def velocity_propagation(
-    robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    robot: Robot | Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
 ) -> VelocityPropagation:
     r"""Propagate link velocities from the base to the tip (see the module docstring).
 
@@ -201,7 +202,13 @@ def velocity_propagation(
     [L2*thetadot2 + thetadot1*(L1*cos(theta2) + L2)],
     [                                             0]])
     """
-    chain = chain_of(robot)
+    chain = as_chain(robot)
+    tip = None if point is None else tuple(point)
+    return chain.memo(("velocity_propagation", tip, simplify), lambda: _velocity_propagation(chain, tip, simplify))
+
+
+def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> VelocityPropagation:
+    robot = chain.robot
     layout = _layout(chain, simplify)
     n = chain.n
     omega, v = sp.zeros(3, n), sp.zeros(3, n)
@@ -221,7 +228,7 @@ def velocity_propagation(
         else:
             v[:, column] += z_a
         steps.append(VelocityStep(k, layout(omega, k), layout(v, k)))
-    tip = _tip(robot, point)
+    tip = _tip(point)
     if tip == "tool":
         R_t_n, p_n_t = chain.rotation("tool", n), chain.transform(n, "tool")[:3, 3]
         v_t = R_t_n * (v + skew(-p_n_t) * omega)
@@ -232,7 +239,7 @@ def velocity_propagation(
 
 
 def force_propagation(
-    robot: Robot, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    robot: Robot | Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
 ) -> ForcePropagation:
     r"""Propagate a tip wrench from the tip to the base and project it on the joint axes (module docstring).
 
@@ -258,13 +265,19 @@ def force_propagation(
     [L1*sin(theta2), L1*cos(theta2) + L2],
     [             0,                  L2]])
     """
-    chain = chain_of(robot)
+    chain = as_chain(robot)
+    tip = None if point is None else tuple(point)
+    return chain.memo(("force_propagation", tip, simplify), lambda: _force_propagation(chain, tip, simplify))
+
+
+def _force_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> ForcePropagation:
+    robot = chain.robot
     layout = _layout(chain, simplify)
     n = chain.n
     force = sp.Matrix.hstack(sp.eye(3), sp.zeros(3, 3))
     moment = sp.Matrix.hstack(sp.zeros(3, 3), sp.eye(3))
     steps: list[ForceStep] = []
-    tip = _tip(robot, point)
+    tip = _tip(point)
     if tip is not None:
         steps.append(ForceStep(tip, sp.ImmutableMatrix(force), sp.ImmutableMatrix(moment)))
         if tip == "tool":

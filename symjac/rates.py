@@ -29,12 +29,13 @@ import numpy as np
 import sympy as sp
 
 from symjac.chain import Frame, chain_of
-from symjac.errors import FrameError
-from symjac.jacobian import Point, jacobian
+from symjac.errors import ArgumentError
+from symjac.jacobian import ROW_NAMES, Point, jacobian
 from symjac.model import Robot
+from symjac.numeric import numeric_jacobian
 from symjac.simplify import simplify_matrix
-from symjac.singularity import _all_bases, determinant
-from symjac.spaces import numeric_jacobian, task_rows
+from symjac.singularity import determinant
+from symjac.spaces import task_rows
 
 __all__ = [
     "RATE_SYMBOLS",
@@ -46,8 +47,7 @@ __all__ = [
     "rates_along_path",
 ]
 
-RATE_SYMBOLS: tuple[sp.Symbol, ...] = tuple(
-    sp.Symbol(name, real=True) for name in ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z"))
+RATE_SYMBOLS: tuple[sp.Symbol, ...] = tuple(sp.Symbol(name, real=True) for name in ROW_NAMES)
 """Symbols of the commanded Cartesian velocity components, one per Jacobian row."""
 
 
@@ -81,11 +81,11 @@ def inverse_rates(
     """
     det = determinant(robot, rows, frame, point)
     if det.coefficient == 0:
-        raise FrameError(f"the Jacobian of {robot.name} on rows {det.row_names} is singular everywhere")
+        raise ArgumentError(f"the Jacobian of {robot.name} on rows {det.row_names} is singular everywhere")
     J = jacobian(robot, frame=det.frame, point=det.point).extract(list(det.rows), list(det.columns))
     velocity = tuple(RATE_SYMBOLS[r] for r in det.rows)
     adjugate = J.adjugate(method="berkowitz")
-    numerators = simplify_matrix(adjugate * sp.Matrix(velocity), _all_bases(robot))
+    numerators = simplify_matrix(adjugate * sp.Matrix(velocity), chain_of(robot).all_angle_bases())
     rates = sp.Matrix([_divide(numerator, det.coefficient, det.factors) for numerator in numerators])
     return InverseRates(rates, numerators, det.expression, det.rows, det.frame, velocity)
 
@@ -122,9 +122,9 @@ def damped_least_squares(
     J = np.asarray(J, dtype=float)
     xdot = np.asarray(xdot, dtype=float)
     if J.ndim != 2 or xdot.shape != (J.shape[0],):
-        raise FrameError(f"need J of shape (m, n) and xdot of shape (m,), got {J.shape} and {xdot.shape}")
+        raise ArgumentError(f"need J of shape (m, n) and xdot of shape (m,), got {J.shape} and {xdot.shape}")
     if not (np.all(np.isfinite(J)) and np.all(np.isfinite(xdot))):
-        raise FrameError("J and xdot must be finite")
+        raise ArgumentError("J and xdot must be finite")
     lam = damping(np.linalg.svd(J, compute_uv=False), threshold, maximum)
     return J.T @ np.linalg.solve(J @ J.T + lam**2 * np.eye(J.shape[0]), xdot)
 
@@ -159,11 +159,11 @@ def rates_along_path(
     chain_of(robot).position(frame)
     configurations = np.asarray(path, dtype=float)
     if configurations.ndim != 2 or configurations.shape[1] != robot.dof:
-        raise FrameError(f"path must have shape (m, {robot.dof}), got {configurations.shape}")
+        raise ArgumentError(f"path must have shape (m, {robot.dof}), got {configurations.shape}")
     chosen = list(task_rows(robot, point) if rows is None else rows)
     velocity = np.asarray(xdot, dtype=float)
     if velocity.shape != (len(chosen),):
-        raise FrameError(f"xdot needs {len(chosen)} entries (rows {chosen}), got shape {velocity.shape}")
+        raise ArgumentError(f"xdot needs {len(chosen)} entries (rows {chosen}), got shape {velocity.shape}")
     exact, damped, smallest, error = [], [], [], []
     for q in configurations:
         J = numeric_jacobian(robot, q, frame, point)[chosen, :]

@@ -59,11 +59,11 @@ import numpy as np
 import sympy as sp
 
 from symjac.chain import Frame, chain_of
-from symjac.errors import SymjacError
+from symjac.errors import RepresentationError
 from symjac.jacobian import Point, jacobian, point_vector
 from symjac.model import Robot
+from symjac.numeric import evaluate_at
 from symjac.simplify import AngleBasis, simplify_matrix
-from symjac.statics import evaluate_at
 from symjac.transforms import Axis, rotation, skew
 
 __all__ = [
@@ -107,10 +107,6 @@ GIMBAL_LOCK_TOLERANCE = 1e-12
 
 _AXIS: dict[str, Axis] = {"x": "x", "y": "y", "z": "z"}
 _INDEX = {"x": 0, "y": 1, "z": 2}
-
-
-class RepresentationError(SymjacError, ValueError):
-    """An unknown representation, a malformed input, or a pose at a representation singularity."""
 
 
 @dataclass(frozen=True)

@@ -34,16 +34,18 @@ import numpy as np
 import sympy as sp
 from sympy.polys.matrices import DomainMatrix
 
+from symjac.angles import AngleBasis
 from symjac.chain import Frame, chain_of
-from symjac.errors import FrameError
-from symjac.jacobian import Point, jacobian, point_vector
+from symjac.errors import ArgumentError, FrameError
+from symjac.jacobian import ROW_NAMES, Point, jacobian, point_vector
 from symjac.model import Robot
-from symjac.simplify import AngleBasis, _expanded_expr, _Image, _image, _nested_expr, _reduce, simplify_expr
+from symjac.numeric import numeric_jacobian
+from symjac.simplify import simplify_expr
 from symjac.singular_geometry import classify, describe, findings, frame_axes, geometry_at, parallel
-from symjac.spaces import jacobian_spaces, numeric_jacobian, task_rows
+from symjac.spaces import jacobian_spaces, task_rows
+from symjac.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, reduce_image
 
 __all__ = [
-    "ROW_NAMES",
     "Determinant",
     "SingularFactor",
     "SingularityReport",
@@ -53,9 +55,6 @@ __all__ = [
     "singularities",
     "solve_factor",
 ]
-
-ROW_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "w_x", "w_y", "w_z")
-"""Names of the six rows of a basic Jacobian, linear velocity first."""
 
 
 
@@ -113,7 +112,7 @@ class Determinant:
 
     @property
     def row_names(self) -> tuple[str, ...]:
-        """Names of the rows used (``v_x`` ... ``w_z``)."""
+        """Names of the rows used (``v_x`` ... ``omega_z``)."""
         return tuple(ROW_NAMES[r] for r in self.rows)
 
 
@@ -121,19 +120,6 @@ def _square_jacobian(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...], row
                      columns: Sequence[int], numeric: bool) -> sp.Matrix:
     J = jacobian(robot, frame=frame, point=point).extract(list(rows), list(columns))
     return J.xreplace(robot.defaults) if numeric else J
-
-
-def _all_bases(robot: Robot) -> list[AngleBasis]:
-    """Every angle basis of every frame, the trivial one (each joint angle alone) first."""
-    chain = chain_of(robot)
-    variables = tuple(joint.variable for joint in robot.joints if joint.is_revolute)
-    angles = tuple(joint.angle for joint in robot.joints if joint.is_revolute)
-    bases = [AngleBasis(variables, angles)]
-    for frame in range(robot.dof + 1):
-        for basis in chain.angle_bases(frame):
-            if basis not in bases:
-                bases.append(basis)
-    return bases
 
 
 def _layout(expr: sp.Expr, bases: Sequence[AngleBasis]) -> sp.Expr:
@@ -191,11 +177,11 @@ def determinant(
     columns = tuple(range(robot.dof)) if columns is None else tuple(columns)
     rows = task_rows(robot, point_xyz) if rows is None else tuple(rows)
     if len(rows) != len(columns) or not rows:
-        raise FrameError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
+        raise ArgumentError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
     if any(not 0 <= r < 6 for r in rows) or len(set(rows)) != len(rows):
-        raise FrameError(f"rows must be distinct indices 0..5 (v_x .. w_z), got {rows}")
+        raise ArgumentError(f"rows must be distinct indices 0..5 (v_x .. omega_z), got {rows}")
     if any(not 0 <= c < robot.dof for c in columns) or len(set(columns)) != len(columns):
-        raise FrameError(f"columns must be distinct joint indices 0..{robot.dof - 1}, got {columns}")
+        raise ArgumentError(f"columns must be distinct joint indices 0..{robot.dof - 1}, got {columns}")
     chain = chain_of(robot)
     if frame is None:
         frame = _best_frame(robot, rows, point_xyz)
@@ -203,7 +189,7 @@ def determinant(
     if not _admissible(robot, rows, frame):
         raise FrameError(f"rows {rows} mix with other rows when expressed in frame {frame}; use another frame")
     J = _square_jacobian(robot, frame, point_xyz, rows, columns, numeric)
-    coefficient, factors = _factored_determinant(J, chain.angle_basis(frame), _all_bases(robot))
+    coefficient, factors = _factored_determinant(J, chain.angle_basis(frame), chain_of(robot).all_angle_bases())
     return Determinant(coefficient * _frame_sign(robot, rows, frame), factors, rows, frame, point_xyz, columns)
 
 
@@ -214,7 +200,7 @@ def _factored_determinant(
     J: sp.Matrix, basis: AngleBasis, bases: Sequence[AngleBasis]
 ) -> tuple[sp.Expr, tuple[tuple[sp.Expr, int], ...]]:
     """Fraction-free determinant over the polynomial ring, factored, each factor reduced and laid out."""
-    image, polys = _image(list(J), basis)
+    image, polys = image_of(list(J), basis)
     domain = image.ring_and_gens[0].to_domain()
     matrix = DomainMatrix([polys[i * J.cols:(i + 1) * J.cols] for i in range(J.rows)], J.shape, domain)
     value = matrix.det()
@@ -224,16 +210,16 @@ def _factored_determinant(
     # hide the factor s_3); on large determinants (redundant arms' minors) multivariate factoring of the unreduced
     # polynomial can take minutes, so there the reduced polynomial, much smaller, is factored instead.
     if len(value.terms()) > _FACTOR_UNREDUCED_TERMS:
-        value = _reduce(value, image)
+        value = reduce_image(value, image)
     constant, raw_factors = value.factor_list()
     coefficient = _number(constant)
     collected: dict[sp.Expr, int] = {}
     for raw, multiplicity in raw_factors:
-        reduced = _reduce(raw, image)
+        reduced = reduce_image(raw, image)
         if reduced.is_ground:
             coefficient *= _number(reduced.LC) ** multiplicity
             continue
-        factor = _layout(_nested_expr(reduced, image), bases)
+        factor = _layout(nested_expr(reduced, image), bases)
         if factor.could_extract_minus_sign():
             factor, coefficient = -factor, coefficient * (-1) ** multiplicity
         collected[factor] = collected.get(factor, 0) + multiplicity
@@ -277,7 +263,7 @@ class _Linear:
     B: sp.Expr
     C: sp.Expr
     slack: sp.Expr  # A^2 + B^2 - C^2, normal form
-    image: _Image
+    image: TrigImage
     image_A: Any  # A and B as polynomials in the image's ring
     image_B: Any
 
@@ -286,7 +272,7 @@ def _linear_forms(factor: sp.Expr, bases: Sequence[AngleBasis]) -> list[_Linear]
     """Every way of reading ``factor`` as linear in the sine and cosine of one basis angle."""
     forms = []
     for basis in bases:
-        image, (poly,) = _image([factor], basis)
+        image, (poly,) = image_of([factor], basis)
         for j, angle in enumerate(basis.angles):
             s, c = 2 * j, 2 * j + 1
             monomials = list(poly.itermonoms())
@@ -300,9 +286,9 @@ def _linear_forms(factor: sp.Expr, bases: Sequence[AngleBasis]) -> list[_Linear]
                 parts[key][tuple(stripped)] = coefficient
             ring = image.ring_and_gens[0]
             A, B, C = (ring.from_dict(parts[k]) if parts[k] else ring.zero for k in "ABC")
-            slack = _reduce(A**2 + B**2 - C**2, image)
-            forms.append(_Linear(angle, _nested_expr(A, image), _nested_expr(B, image), _nested_expr(C, image),
-                                 _nested_expr(slack, image), image, A, B))
+            slack = reduce_image(A**2 + B**2 - C**2, image)
+            forms.append(_Linear(angle, nested_expr(A, image), nested_expr(B, image), nested_expr(C, image),
+                                 nested_expr(slack, image), image, A, B))
     return forms
 
 
@@ -335,7 +321,7 @@ def _solutions(form: _Linear) -> tuple[Solution, ...]:
     if A == 0:
         value = sp.asin(-C / B)
         return _angle_equation(form.angle, [value, sp.pi - value])
-    norm = _expanded_expr(_reduce(form.image_A**2 + form.image_B**2, form.image), form.image)
+    norm = expanded_expr(reduce_image(form.image_A**2 + form.image_B**2, form.image), form.image)
     center, spread = sp.atan2(B, A), sp.acos(-C / sp.sqrt(norm))
     return _angle_equation(form.angle, [center + spread, center - spread])
 
@@ -405,7 +391,7 @@ def solve_factor(
             a, b = polynomial.all_coeffs()
             return (Solution(d, sp.simplify(-b / a)),), sp.true
     best: tuple[tuple[int, ...], tuple[Solution, ...], sp.Expr | None] | None = None
-    for form in _linear_forms(factor, _all_bases(robot)):
+    for form in _linear_forms(factor, chain_of(robot).all_angle_bases()):
         if any(expr.has(*prismatic) for expr in (form.A, form.B)) if prismatic else False:
             continue
         solutions = _solutions(form)

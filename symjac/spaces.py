@@ -11,46 +11,25 @@ from __future__ import annotations
 
 import math
 import random
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
-from typing import Any
 
 import numpy as np
 import sympy as sp
 
-from symjac.chain import Frame
-from symjac.errors import FrameError
+from symjac.chain import Chain, Frame, as_chain
+from symjac.errors import ArgumentError
 from symjac.jacobian import Point, jacobian, point_vector
 from symjac.model import Robot
+from symjac.numeric import numeric_jacobian
 
 __all__ = [
     "JacobianSpaces",
     "SymbolicSpaces",
     "jacobian_spaces",
-    "numeric_jacobian",
     "symbolic_spaces",
     "task_rows",
 ]
-
-
-# --- numeric Jacobian ----------------------------------------------------------------------------------------------
-
-
-@lru_cache(maxsize=64)
-def _numeric_function(robot: Robot, frame: Frame, point: tuple[sp.Expr, ...]) -> Callable[..., Any]:
-    J = jacobian(robot, frame=frame, point=point, simplify=False).xreplace(robot.defaults)
-    return sp.lambdify([robot.q], J, modules="numpy", cse=True)
-
-
-def numeric_jacobian(robot: Robot, q: Sequence[float], frame: Frame = 0, point: Point = "wrist") -> np.ndarray:
-    """The 6 x n basic Jacobian at configuration ``q`` as floats (parameters at their defaults)."""
-    values = np.asarray(q, dtype=float)
-    if values.shape != (robot.dof,):
-        raise FrameError(f"q must have {robot.dof} entries for {robot.name}, got shape {values.shape}")
-    if not np.all(np.isfinite(values)):
-        raise FrameError(f"q must be finite, got {values.tolist()}")
-    return np.asarray(_numeric_function(robot, frame, point_vector(robot, point))(values), dtype=float)
 
 
 # --- rank, null space, range ------------------------------------------------------------------------------------
@@ -98,7 +77,7 @@ def jacobian_spaces(J: np.ndarray, tolerance: float | None = None) -> JacobianSp
     """
     J = np.asarray(J, dtype=float)
     if J.ndim != 2:
-        raise FrameError(f"a Jacobian must be a 2-d array, got shape {J.shape}")
+        raise ArgumentError(f"a Jacobian must be a 2-d array, got shape {J.shape}")
     U, sigma, Vt = np.linalg.svd(J)
     if tolerance is None:
         tolerance = float(sigma.max(initial=0.0)) * max(J.shape) * np.finfo(float).eps
@@ -118,7 +97,7 @@ class SymbolicSpaces:
 
 
 def symbolic_spaces(
-    robot: Robot,
+    robot: Robot | Chain,
     values: Mapping[sp.Symbol, sp.Expr],
     rows: Sequence[int] | None = None,
     frame: Frame = 0,
@@ -138,11 +117,13 @@ def symbolic_spaces(
     >>> spaces.rank, spaces.left_null_space.T
     (1, Matrix([[1, 0]]))
     """
+    chain = as_chain(robot)
+    robot = chain.robot
     if point is None:
         point = "tool" if robot.tool is not None else "wrist"
     point_xyz = point_vector(robot, point)
-    chosen = list(task_rows(robot, point_xyz) if rows is None else rows)
-    J = jacobian(robot, frame=frame, point=point_xyz)[chosen, :].xreplace(dict(values))
+    chosen = list(task_rows(chain, point_xyz) if rows is None else rows)
+    J = jacobian(chain, frame=frame, point=point_xyz)[chosen, :].xreplace(dict(values))
     J = sp.Matrix(J.rows, J.cols, [sp.factor_terms(sp.trigsimp(entry)) for entry in J])
 
     def columns(vectors: list[sp.Matrix], size: int) -> sp.Matrix:
@@ -158,7 +139,7 @@ def symbolic_spaces(
 # --- task rows and frames ----------------------------------------------------------------------------------------
 
 
-def task_rows(robot: Robot, point: Point = "wrist") -> tuple[int, ...]:
+def task_rows(robot: Robot | Chain, point: Point = "wrist") -> tuple[int, ...]:
     r"""The rows of the basic Jacobian an arm controls: all six for n >= 6, else n independent rows.
 
     Rows identically zero in frame {0} are dropped (a planar arm never moves along z); of the rest, rows are taken in
@@ -166,12 +147,19 @@ def task_rows(robot: Robot, point: Point = "wrist") -> tuple[int, ...]:
     This gives x, y for a planar 2R arm, x, y, :math:`\omega_z` for a planar 3R arm and the position rows for a
     3-joint positioning arm.
     """
+    chain = as_chain(robot)
+    xyz = point_vector(chain, point)
+    return chain.memo(("task_rows", xyz), lambda: _task_rows(chain, xyz))
+
+
+def _task_rows(chain: Chain, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:
+    robot = chain.robot
     if robot.dof >= 6:
         return tuple(range(6))
-    J = jacobian(robot, frame=0, point=point)
+    J = jacobian(chain, frame=0, point=point)
     generator = random.Random(20261122)
     samples = [[generator.uniform(-math.pi, math.pi) for _ in range(robot.dof)] for _ in range(2)]
-    numeric = [numeric_jacobian(robot, q, 0, point) for q in samples]
+    numeric = [numeric_jacobian(chain, q, 0, point) for q in samples]
     rows: list[int] = []
     for row in range(6):
         if all(entry == 0 for entry in J[row, :]):
@@ -181,4 +169,4 @@ def task_rows(robot: Robot, point: Point = "wrist") -> tuple[int, ...]:
             rows = candidate
         if len(rows) == robot.dof:
             return tuple(rows)
-    raise FrameError(f"{robot.name}: its {robot.dof} joints control only {len(rows)} independent task rows")
+    raise ArgumentError(f"{robot.name}: its {robot.dof} joints control only {len(rows)} independent task rows")

@@ -9,24 +9,22 @@ wrench_transform`; :func:`wrench_between` applies it to two frames of a robot.
 
 from __future__ import annotations
 
-import math
-import numbers
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 
 import sympy as sp
 
-from symjac.chain import Frame, chain_of
-from symjac.errors import FrameError
+from symjac.chain import Chain, Frame, as_chain
 from symjac.jacobian import Point, jacobian
 from symjac.model import Robot
+from symjac.numeric import as_vector, evaluate_at
 from symjac.propagation import linear_combination, wrench_symbols
 from symjac.transforms import wrench_transform
 
-__all__ = ["evaluate_at", "joint_torques", "wrench_between"]
+__all__ = ["joint_torques", "wrench_between"]
 
 
 def joint_torques(
-    robot: Robot,
+    robot: Robot | Chain,
     wrench: Sequence[sp.Expr | float] | None = None,
     frame: Frame = 0,
     point: Point = "wrist",
@@ -56,21 +54,14 @@ def joint_torques(
     >>> joint_torques(load_robot("planar2r"), frame=1)[:, 0].T
     Matrix([[-L2*f_x*sin(theta2) + f_y*(L1 + L2*cos(theta2)) + n_z, -L2*f_x*sin(theta2) + L2*f_y*cos(theta2) + n_z]])
     """
-    F = sp.Matrix(wrench_symbols()) if wrench is None else _vector(wrench, 6, "wrench")
+    F = sp.Matrix(wrench_symbols()) if wrench is None else as_vector(wrench, 6, "wrench")
     tau = linear_combination(jacobian(robot, frame=frame, point=point).T, F)
     if q is None:
         return tau
     return evaluate_at(robot, tau, q)
 
 
-def evaluate_at(robot: Robot, expr: sp.MatrixBase, q: Sequence[float | sp.Expr]) -> sp.Matrix:
-    """Substitute a configuration and the parameters' defaults, and evaluate to floats."""
-    values: dict[sp.Symbol, sp.Expr] = dict(zip(robot.q, _vector(q, robot.dof, "q"), strict=True))
-    values.update(robot.defaults)
-    return sp.Matrix(expr).xreplace(values).evalf()
-
-
-def wrench_between(robot: Robot, source: Frame, target: Frame) -> sp.Matrix:
+def wrench_between(robot: Robot | Chain, source: Frame, target: Frame) -> sp.Matrix:
     r"""The 6 x 6 map of a wrench from frame ``source`` (about its origin) to frame ``target`` (about its origin).
 
     .. math:: {}^{t}F = \begin{bmatrix} R & 0 \\ \hat{p} R & R \end{bmatrix} {}^{s}F, \quad
@@ -83,25 +74,4 @@ def wrench_between(robot: Robot, source: Frame, target: Frame) -> sp.Matrix:
     >>> wrench_between(robot, "tool", 3)[5, :]  # a force along y at the tool point: moment L3 f_y about {3}
     Matrix([[0, L3, 0, 0, 0, 1]])
     """
-    return wrench_transform(chain_of(robot).transform(target, source))
-
-
-def _vector(values: Sequence[sp.Expr | float], length: int, name: str) -> sp.Matrix:
-    """A column of ``length`` finite numbers or expressions; a clear error for anything else."""
-    if isinstance(values, str | bytes | Mapping) or not hasattr(values, "__len__"):
-        raise FrameError(f"{name} must be a sequence of {length} numbers, got {type(values).__name__}")
-    entries = list(values)
-    if len(entries) != length:
-        raise FrameError(f"{name} needs {length} entries, got {len(entries)}")
-    column = []
-    for index, value in enumerate(entries):
-        if isinstance(value, numbers.Real) and not isinstance(value, bool):
-            if not math.isfinite(value):
-                raise FrameError(f"{name}[{index}] is {value}: entries must be finite")
-            integral = isinstance(value, numbers.Integral)
-            column.append(sp.Integer(int(value)) if integral else sp.Float(float(value)))  # type: ignore[call-overload]
-        elif isinstance(value, sp.Expr) and not value.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
-            column.append(value)
-        else:
-            raise FrameError(f"{name}[{index}] must be a finite number or SymPy expression, got {value!r}")
-    return sp.Matrix(column)
+    return wrench_transform(as_chain(robot).transform(target, source))

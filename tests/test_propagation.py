@@ -23,7 +23,7 @@ from symjac import (
     wrench_symbols,
     wrench_transform,
 )
-from symjac.errors import FrameError
+from symjac.errors import ArgumentError
 from symjac.simplify import AngleBasis, is_identity
 from symjac.transforms import homogeneous, inverse_transform, rotation_rpy
 
@@ -251,7 +251,7 @@ def test_twist_map_matches_finite_differences_of_a_rigid_body():
     ],
 )
 def test_joint_torques_rejects_bad_input(kwargs, message):
-    with pytest.raises(FrameError, match=message):
+    with pytest.raises(ArgumentError, match=message):
         joint_torques(load_robot("planar2r"), **kwargs)
 
 

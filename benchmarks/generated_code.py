@@ -1,4 +1,4 @@
-"""Benchmark of generated code: ``python -m symjac.codegen_benchmark [ROBOT ...] [-n N]``.
+"""Benchmark of generated code: ``python benchmarks/generated_code.py [ROBOT ...] [-n N]``.
 
 For each robot (default: puma560 and panda) it generates the Jacobian in frame {0} at the wrist for every target,
 imports the modules from a temporary folder and measures, in the same run:
@@ -128,7 +128,7 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Print one line per robot and implementation: us per call and ns per configuration."""
-    parser = argparse.ArgumentParser(prog="python -m symjac.codegen_benchmark", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python benchmarks/generated_code.py", description=__doc__.splitlines()[0])
     parser.add_argument("robots", nargs="*", default=["puma560", "panda"], help="catalog names or robot files")
     parser.add_argument("-n", type=int, default=100_000, help="configurations per batch (default 100000)")
     parser.add_argument("--seconds", type=float, default=0.2, help="length of one timing loop (default 0.2 s)")

@@ -1,4 +1,4 @@
-"""Derivation benchmark: ``python -m symjac.benchmark [ROBOT ...]``.
+"""Derivation benchmark: ``python benchmarks/derivation.py [ROBOT ...]``.
 
 For each robot (default: the whole catalog) it derives the simplified Jacobian from a cold start (a fresh chain, no
 cached transforms) in frame {0}, then in every other frame, and prints the wall time and the operation count
@@ -19,9 +19,10 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from symjac.chain import clear_caches
 from symjac.errors import SymjacError
 from symjac.io import catalog, load_robot
-from symjac.jacobian import clear_caches, jacobian
+from symjac.jacobian import jacobian
 from symjac.model import Robot, robot_from_mapping
 from symjac.propagation import force_propagation, velocity_propagation
 from symjac.singularity import singularities
@@ -87,7 +88,7 @@ def time_singularities(robot: Robot) -> float | None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Print one line per robot: derivation time and operation count, frame {0} and best frame."""
-    parser = argparse.ArgumentParser(prog="python -m symjac.benchmark", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python benchmarks/derivation.py", description=__doc__.splitlines()[0])
     parser.add_argument("robots", nargs="*", help="catalog names or robot files (default: the whole catalog)")
     parser.add_argument("--snake", type=int, action="append", default=[], metavar="N",
                         help="also time an N-joint snake arm (repeatable; default: 8 and 10 with the catalog)")

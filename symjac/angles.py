@@ -1,0 +1,152 @@
+r"""Angles results are written in, and sines and cosines of angle sums expanded into those of single angles.
+
+An :class:`AngleBasis` names the angles a result should read in (for parallel joints the textbook sums,
+:math:`\theta_2 + \theta_3`, giving :math:`c_{23}`); :mod:`symjac.simplify` writes results in it. An
+:class:`AngleExpansion` goes the other way, for machines: every sine and cosine of a joint-angle combination is
+expanded by the addition formulas into the sines and cosines of the joint angles themselves, partial sums nested in
+chain order so that common subexpression elimination shares them (generated code then evaluates one ``sin`` and
+one ``cos`` per joint).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+__all__ = ["AngleBasis", "AngleExpansion", "fold_numbers"]
+
+
+@dataclass(frozen=True)
+class AngleBasis:
+    r"""Angles :math:`\psi_j = \sum_k M_{jk}\,\theta_k` (integer, invertible :math:`M`) that results are written in.
+
+    Parameters
+    ----------
+    variables : tuple of sympy.Symbol
+        The joint angles :math:`\theta_k` (revolute joint variables).
+    angles : tuple of sympy.Expr
+        The basis angles, each an integer combination of ``variables`` plus a constant offset (a joint's
+        ``theta`` offset, so that :math:`\theta_1 - 1/5` stays one angle instead of doubling every term); as many
+        as there are variables.
+
+    Examples
+    --------
+    >>> t1, t2 = sp.symbols("theta1 theta2", real=True)
+    >>> basis = AngleBasis((t1, t2), (t1, t1 + t2))
+    >>> from symjac.simplify import simplify_expr
+    >>> simplify_expr(sp.cos(t1) * sp.cos(t2) - sp.sin(t1) * sp.sin(t2), basis)
+    cos(theta1 + theta2)
+    """
+
+    variables: tuple[sp.Symbol, ...]
+    angles: tuple[sp.Expr, ...]
+    _inverse: sp.Matrix = field(init=False, repr=False, compare=False)
+    _offsets: sp.Matrix = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if len(self.angles) != len(self.variables):
+            raise ValueError(f"need {len(self.variables)} basis angles, got {len(self.angles)}")
+        matrix = sp.Matrix([[angle.coeff(v) for v in self.variables] for angle in self.angles])
+        if self.variables and (any(not entry.is_Integer for entry in matrix) or abs(matrix.det()) != 1):
+            raise ValueError(f"basis angles {self.angles} are not a unimodular combination of {self.variables}")
+        object.__setattr__(self, "_inverse", matrix.inv() if self.variables else sp.zeros(0, 0))
+        offsets = [sp.expand(angle - sum(c * v for c, v in zip(row, self.variables, strict=True)))
+                   for angle, row in zip(self.angles, matrix.tolist(), strict=True)]
+        if any(offset.free_symbols & set(self.variables) for offset in offsets):
+            raise ValueError(f"basis angles {self.angles} are not linear in {self.variables}")
+        object.__setattr__(self, "_offsets", sp.Matrix(offsets))
+
+    @classmethod
+    def of(cls, variables: Iterable[sp.Symbol]) -> AngleBasis:
+        """The trivial basis: each joint angle on its own."""
+        variables = tuple(variables)
+        return cls(variables, variables)
+
+    def decompose(self, argument: sp.Expr) -> tuple[tuple[int, ...], sp.Expr] | None:
+        r"""Write ``argument`` as :math:`\sum_j m_j \psi_j + c`; ``None`` if it is not linear in the variables."""
+        coefficients = [argument.coeff(v) for v in self.variables]
+        constant = sp.expand(argument - sum(c * v for c, v in zip(coefficients, self.variables, strict=True)))
+        if constant.free_symbols & set(self.variables) or not all(c.is_Rational for c in coefficients):
+            return None
+        multiples = sp.Matrix([coefficients]) * self._inverse
+        if not all(m.is_Integer for m in multiples):
+            return None
+        if self._offsets:
+            constant = sp.expand(constant - (multiples * self._offsets)[0])
+        return tuple(int(m) for m in multiples), constant
+
+
+
+class AngleExpansion:
+    r"""Sines and cosines of joint-angle combinations rewritten in those of single joint angles (with offsets).
+
+    .. math:: \sin(\psi_1 + \psi_2) = \sin\psi_1 \cos\psi_2 + \cos\psi_1 \sin\psi_2, \quad
+              \cos(\psi_1 + \psi_2) = \cos\psi_1 \cos\psi_2 - \sin\psi_1 \sin\psi_2
+
+    The sine and cosine of each angle :math:`\psi_j` (joint variable plus its constant offset) become the symbols
+    :attr:`sines` and :attr:`cosines` (``_s{i}``, ``_c{i}`` for joint i).
+
+    Parameters
+    ----------
+    variables : tuple of sympy.Symbol
+        The revolute joint variables.
+    angles : tuple of sympy.Expr
+        Each variable with its constant offset (``theta2 - pi/2``).
+    indices : tuple of int
+        The joint number of each variable, for the names of the sine and cosine symbols.
+
+    Examples
+    --------
+    >>> t1, t2 = sp.symbols("theta1 theta2", real=True)
+    >>> expansion = AngleExpansion((t1, t2), (t1, t2), (1, 2))
+    >>> expansion.expand(sp.cos(t1 + t2))
+    _c1*_c2 - _s1*_s2
+    """
+
+    def __init__(self, variables: tuple[sp.Symbol, ...], angles: tuple[sp.Expr, ...], indices: tuple[int, ...]):
+        self.basis = AngleBasis(variables, angles)
+        self.sines = tuple(sp.Symbol(f"_s{i}", real=True) for i in indices)
+        self.cosines = tuple(sp.Symbol(f"_c{i}", real=True) for i in indices)
+        self.angles = angles
+        self.variables = frozenset(variables)
+        self._cache: dict[sp.Expr, tuple[sp.Expr, sp.Expr]] = {}
+
+    def sin_cos(self, argument: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
+        """``(sin a, cos a)`` with ``a = sum_j m_j psi_j + c`` expanded, partial sums nested in chain order."""
+        argument = sp.expand(argument)
+        if argument in self._cache:
+            return self._cache[argument]
+        decomposition = self.basis.decompose(argument) if argument.free_symbols & self.variables else None
+        if decomposition is None:
+            result = (sp.sin(argument), sp.cos(argument))
+        else:
+            multiples, constant = decomposition
+            sine, cosine = (sp.sin(constant), sp.cos(constant))
+            for j, multiple in enumerate(multiples):
+                s_j, c_j = (self.sines[j] if multiple > 0 else -self.sines[j]), self.cosines[j]
+                for _ in range(abs(multiple)):
+                    sine, cosine = sine * c_j + cosine * s_j, cosine * c_j - sine * s_j
+            result = (sine, cosine)
+        self._cache[argument] = result
+        return result
+
+    def expand(self, expr: sp.Expr) -> sp.Expr:
+        """``expr`` with every joint-dependent sine/cosine expanded and numeric subexpressions folded to floats."""
+        expanded = expr.replace(
+            lambda e: isinstance(e, sp.sin | sp.cos) and bool(e.free_symbols & self.variables),
+            lambda e: self.sin_cos(e.args[0])[0 if isinstance(e, sp.sin) else 1],
+        )
+        return fold_numbers(expanded)
+
+
+
+
+def fold_numbers(expr: sp.Expr) -> sp.Expr:
+    """Replace every numeric subexpression that is not a plain number (``sqrt(2)/2``, ``cos(1/5)``) by a float."""
+    if expr.is_Atom:
+        return expr
+    if expr.is_number:
+        return sp.Float(sp.N(expr, 20), 17)
+    return expr.func(*(fold_numbers(arg) for arg in expr.args))

@@ -23,8 +23,9 @@ from symjac.chain import clear_caches
 from symjac.errors import SymjacError
 from symjac.io import catalog, load_robot
 from symjac.jacobian import jacobian
-from symjac.model import Robot, robot_from_mapping
+from symjac.model import Robot
 from symjac.propagation import force_propagation, velocity_propagation
+from symjac.robot_file import robot_from_mapping
 from symjac.singularity import singularities
 
 __all__ = ["DerivationTiming", "main", "snake", "time_derivation", "time_singularities"]

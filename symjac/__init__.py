@@ -25,16 +25,7 @@ from symjac.errors import (
 )
 from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
 from symjac.jacobian import METHODS, ROW_NAMES, change_frame, jacobian, jacobian_of, rows_from_names, shift_point
-from symjac.model import (
-    Convention,
-    FixedTransform,
-    Joint,
-    JointType,
-    Parameter,
-    Robot,
-    robot_from_mapping,
-    robot_to_mapping,
-)
+from symjac.model import Convention, FixedTransform, Joint, JointType, Parameter, Robot
 from symjac.numeric import evaluate_at, numeric_jacobian
 from symjac.printing import latex, pretty
 from symjac.propagation import (
@@ -55,6 +46,7 @@ from symjac.representations import (
     representation_jacobian_at,
     rotation_from,
 )
+from symjac.robot_file import robot_from_mapping, robot_to_mapping
 from symjac.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
 from symjac.singularity import Determinant, SingularFactor, SingularityReport, determinant, singularities
 from symjac.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows

@@ -25,7 +25,16 @@ from symjac.transforms import Motion, alignment, compose, dh_motions, homogeneou
 Frame = int | Literal["world", "tool"]
 T = TypeVar("T")
 
-__all__ = ["CHAINS_KEPT", "Chain", "Frame", "as_chain", "chain_of", "clear_caches", "forward_kinematics"]
+__all__ = [
+    "CHAINS_KEPT",
+    "Chain",
+    "Frame",
+    "as_chain",
+    "chain_of",
+    "clear_caches",
+    "forward_kinematics",
+    "origin_motions",
+]
 
 
 class Chain:

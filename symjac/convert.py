@@ -24,8 +24,10 @@ from dataclasses import dataclass, replace
 
 import sympy as sp
 
+from symjac.chain import chain_of
 from symjac.errors import ConversionError
-from symjac.model import Convention, FixedTransform, Joint, Robot
+from symjac.expressions import snap_angle
+from symjac.model import Convention, FixedTransform, Joint, Robot, fixed_transform_from_matrix
 from symjac.transforms import homogeneous, inverse_transform, rotation
 
 __all__ = ["ConversionError", "DHExtraction", "convert", "dh_from_general", "modified_from_standard",
@@ -113,8 +115,6 @@ def _unit(v: sp.Matrix) -> sp.Matrix:
 
 
 def _angle(sine: sp.Expr, cosine: sp.Expr) -> sp.Expr:
-    from symjac.urdf import snap_angle
-
     angle = sp.atan2(_exact(sine), _exact(cosine))
     if angle.has(sp.atan2, sp.atan):
         snapped = snap_angle(sp.Rational(float(angle)))
@@ -148,8 +148,6 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
     >>> extraction.needs_base, extraction.robot.tool.xyz
     (False, (0, 0, 107/1000))
     """
-    from symjac.chain import chain_of
-
     if robot.convention is not Convention.GENERAL:
         raise ConversionError(f"{robot.name} is already a DH table ({robot.convention.value})")
     chain = chain_of(robot)
@@ -279,6 +277,4 @@ def _append_x(base: FixedTransform | None, a: sp.Expr, alpha: sp.Expr) -> FixedT
 
 
 def _as_fixed(T: sp.Matrix) -> FixedTransform:
-    from symjac.urdf import fixed_transform_from_matrix  # shares the exact rpy extraction
-
     return fixed_transform_from_matrix(T)

@@ -6,6 +6,18 @@ whole family in one place. Messages say *what* is wrong and *where* (file, joint
 
 from __future__ import annotations
 
+__all__ = [
+    "ArgumentError",
+    "CodegenError",
+    "ConversionError",
+    "ExpressionError",
+    "FrameError",
+    "RepresentationError",
+    "RobotFileError",
+    "SymjacError",
+    "UnknownRobotError",
+]
+
 
 class SymjacError(Exception):
     """Base class of every error symjac raises on purpose."""

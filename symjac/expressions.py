@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import ast
 import keyword
+import math
 import re
 from collections.abc import Mapping
 from fractions import Fraction
@@ -22,6 +23,8 @@ from fractions import Fraction
 import sympy as sp
 
 from symjac.errors import ExpressionError
+
+__all__ = ["ANGLE_SNAP_TOLERANCE", "exact_number", "expression_text", "is_valid_name", "parse_expression", "snap_angle"]
 
 MAX_EXPRESSION_LENGTH = 200
 MAX_EXPONENT = 8
@@ -182,3 +185,23 @@ def _tree_text(expr: sp.Expr) -> str:
     if expr.is_Pow:
         return f"{_tree_text(expr.base)}**({expr.exp})"
     return sp.sstr(expr)  # pi and parameter symbols
+
+
+ANGLE_SNAP_TOLERANCE = 1e-9
+"""How close (radians) a number must be to a multiple of pi/12 for :func:`snap_angle` to make it exact."""
+
+
+def snap_angle(value: sp.Rational) -> sp.Expr:
+    r"""An exact angle: ``k*pi/12`` when ``value`` is within 1e-9 of it, else ``value`` unchanged.
+
+    Examples
+    --------
+    >>> snap_angle(sp.Rational(15707963267949, 10**13))
+    pi/2
+    >>> snap_angle(sp.Rational(3, 10))
+    3/10
+    """
+    k = round(float(value) / (math.pi / 12))
+    if abs(float(value) - k * math.pi / 12) < ANGLE_SNAP_TOLERANCE:
+        return sp.pi * sp.Rational(k, 12)
+    return value

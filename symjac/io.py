@@ -15,7 +15,8 @@ from pathlib import Path
 from typing import Any
 
 from symjac.errors import RobotFileError, UnknownRobotError
-from symjac.model import Robot, robot_from_mapping, robot_to_mapping
+from symjac.model import Robot
+from symjac.robot_file import robot_from_mapping, robot_to_mapping
 
 __all__ = ["catalog", "load_robot", "robot_from_toml", "robot_to_toml", "urdf_catalog"]
 

@@ -16,6 +16,26 @@ from typing import Literal
 import sympy as sp
 
 Axis = Literal["x", "y", "z"]
+
+__all__ = [
+    "Axis",
+    "Motion",
+    "alignment",
+    "block_rotation",
+    "compose",
+    "dh_motions",
+    "dh_transform",
+    "homogeneous",
+    "inverse_motions",
+    "inverse_transform",
+    "point_shift",
+    "rotation",
+    "rotation_rpy",
+    "skew",
+    "twist_transform",
+    "vee",
+    "wrench_transform",
+]
 _AXIS_INDEX = {"x": 0, "y": 1, "z": 2}
 
 

@@ -16,10 +16,10 @@ The chain
 
 Numbers
     Every number becomes an exact rational (``0.333 -> 333/1000``), so derivations stay exact and fast. An angle
-    (an ``rpy`` entry or a revolute limit) within :data:`ANGLE_SNAP_TOLERANCE` (1e-9) of a multiple of
-    :math:`\pi/12` becomes that exact multiple of :math:`\pi` (``1.5707963267949 -> pi/2``), so symbolic results read
-    :math:`\cos(\pi/2) = 0` instead of a long decimal. Axes are normalised exactly (``0 0.707107 0.707107`` becomes
-    :math:`(0, \sqrt2/2, \sqrt2/2)`).
+    (an ``rpy`` entry or a revolute limit) within :data:`symjac.expressions.ANGLE_SNAP_TOLERANCE` (1e-9) of a
+    multiple of :math:`\pi/12` becomes that exact multiple of :math:`\pi` (``1.5707963267949 -> pi/2``), so
+    symbolic results read :math:`\cos(\pi/2) = 0` instead of a long decimal. Axes are normalised exactly
+    (``0 0.707107 0.707107`` becomes :math:`(0, \sqrt2/2, \sqrt2/2)`).
 
 Safety
     The file is parsed with the standard library's expat parser, after refusing any document type declaration
@@ -30,7 +30,6 @@ Safety
 
 from __future__ import annotations
 
-import math
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
@@ -40,14 +39,12 @@ from pathlib import Path
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
-from symjac.expressions import exact_number, is_valid_name
-from symjac.model import Convention, FixedTransform, Joint, JointType, Robot
-from symjac.transforms import alignment, compose, homogeneous, inverse_motions, rotation_rpy
+from symjac.expressions import exact_number, is_valid_name, snap_angle
+from symjac.model import Convention, FixedTransform, Joint, JointType, Robot, fixed_transform_from_matrix
+from symjac.transforms import alignment, compose, homogeneous, inverse_motions
 
-__all__ = ["ANGLE_SNAP_TOLERANCE", "MAX_URDF_BYTES", "fixed_transform_from_matrix", "robot_from_urdf",
-           "snap_angle"]
+__all__ = ["MAX_URDF_BYTES", "robot_from_urdf"]
 
-ANGLE_SNAP_TOLERANCE = 1e-9
 MAX_URDF_BYTES = 5_000_000
 _MOVING = {"revolute": JointType.REVOLUTE, "continuous": JointType.REVOLUTE, "prismatic": JointType.PRISMATIC}
 _KNOWN_TYPES = {*_MOVING, "fixed", "floating", "planar"}
@@ -66,22 +63,6 @@ class _UrdfJoint:
     axis: tuple[sp.Expr, sp.Expr, sp.Expr]
     limits: tuple[sp.Expr, sp.Expr] | None
     mimic: bool
-
-
-def snap_angle(value: sp.Rational) -> sp.Expr:
-    r"""An exact angle: ``k*pi/12`` when ``value`` is within 1e-9 of it, else ``value`` unchanged.
-
-    Examples
-    --------
-    >>> snap_angle(sp.Rational(15707963267949, 10**13))
-    pi/2
-    >>> snap_angle(sp.Rational(3, 10))
-    3/10
-    """
-    k = round(float(value) / (math.pi / 12))
-    if abs(float(value) - k * math.pi / 12) < ANGLE_SNAP_TOLERANCE:
-        return sp.pi * sp.Rational(k, 12)
-    return value
 
 
 def robot_from_urdf(
@@ -325,32 +306,6 @@ def _combine(transforms: list[FixedTransform], prefix: list) -> FixedTransform:
         return nontrivial[0] if nontrivial else FixedTransform()
     rotation_matrix, position = compose([*prefix, *(sp.Matrix(t.matrix) for t in nontrivial)])
     return fixed_transform_from_matrix(homogeneous(rotation_matrix, position))
-
-
-def fixed_transform_from_matrix(T: sp.MatrixBase) -> FixedTransform:
-    r"""Write an exact rigid transform as ``xyz``/``rpy`` when its roll, pitch and yaw are exact, else as a matrix.
-
-    Examples
-    --------
-    >>> from symjac.transforms import rotation
-    >>> fixed_transform_from_matrix(homogeneous(rotation("x", sp.pi / 2), sp.Matrix([1, 0, 0]))).rpy
-    (pi/2, 0, 0)
-    """
-    R = sp.Matrix(T[:3, :3]).applyfunc(lambda e: sp.radsimp(sp.nsimplify(e) if e.is_Float else e))
-    position = tuple(sp.radsimp(sp.expand(e)) for e in T[:3, 3])
-    if all(e.is_number for e in R):
-        sin_pitch = -R[2, 0]
-        if sin_pitch == 1 or sin_pitch == -1:
-            angles = (sp.atan2(-R[1, 2], R[1, 1]), sp.pi / 2 * sin_pitch, sp.S.Zero)
-        else:
-            angles = (sp.atan2(R[2, 1], R[2, 2]), sp.asin(sin_pitch), sp.atan2(R[1, 0], R[0, 0]))
-        snapped = tuple(snap_angle(sp.Rational(float(a))) if a.has(sp.atan2, sp.asin, sp.atan) else a
-                        for a in angles)
-        if all(not a.has(sp.atan2, sp.asin, sp.atan) for a in snapped):
-            difference = rotation_rpy(*snapped) - R
-            if all(sp.radsimp(sp.expand(e)) == 0 for e in difference):
-                return FixedTransform(xyz=position, rpy=snapped)  # type: ignore[arg-type]
-    return FixedTransform(given_matrix=sp.ImmutableMatrix(homogeneous(R, sp.Matrix(position))))
 
 
 def _identifier(text: str) -> str:

@@ -20,9 +20,8 @@ from symjac.model import (
     JointType,
     Parameter,
     Robot,
-    robot_from_mapping,
-    robot_to_mapping,
 )
+from symjac.robot_file import robot_from_mapping, robot_to_mapping
 
 SOURCE = "arm.toml"
 L1, L2 = sp.symbols("L1 L2", real=True)

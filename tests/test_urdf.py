@@ -25,8 +25,9 @@ from symjac import (
     robot_from_toml,
     robot_to_toml,
 )
+from symjac.expressions import snap_angle
 from symjac.io import urdf_catalog
-from symjac.urdf import robot_from_urdf, snap_angle
+from symjac.urdf import robot_from_urdf
 
 PANDA_URDF = resources.files("symjac.robots").joinpath("urdf", "panda.urdf").read_text(encoding="utf-8")
 

@@ -1,1 +1,3 @@
 """The built-in robot catalog: one TOML robot file per robot (data, not code)."""
+
+__all__ = []

@@ -99,7 +99,7 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
     with tempfile.TemporaryDirectory() as folder:
         for target in TARGETS:
             path = Path(folder) / f"bench_{robot.name}_{target}.py"
-            write_module(path, generate(robot, target))  # type: ignore[arg-type]  # TARGETS holds the Literal values
+            write_module(path, generate(robot, target))
             names[target] = _import(path, f"bench_{robot.name}_{target}")
         threads = names["numpy"].THREADS
         rows.append(Measurement(robot.name, "generated python", _best("python.jacobian(q_list)", names, seconds) * 1e6,

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shlex
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -18,7 +19,7 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.chain import Frame, chain_of
-from symjac.codegen import STRATEGIES, TARGETS, JacobianRequest, generate
+from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
 from symjac.errors import ArgumentError, ExpressionError, FrameError, SymjacError
 from symjac.expressions import parse_expression
 from symjac.files import write_text
@@ -39,6 +40,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status (0 success, 2 usage or input error)."""
     parser = _parser()
     args = parser.parse_args(argv)
+    args.argv = list(sys.argv[1:] if argv is None else argv)  # the command as typed, for generated headers
     try:
         text = args.handler(args)
         _emit(text, args.output)
@@ -66,8 +68,7 @@ def _parser() -> argparse.ArgumentParser:
     generator = command("codegen", _codegen, "generate a numeric module: forward kinematics, Jacobians, torques")
     generator.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
     generator.add_argument("--target", choices=TARGETS, default="python",
-                           help="python (standard library), numpy (batched), lambdify (sympy at import) or c "
-                                "(compiled at first import, NumPy fallback); default python")
+                           help="; ".join(f"{b.name} ({b.summary})" for b in BACKENDS.values()) + "; default python")
     generator.add_argument("--frame", action="append", default=None, metavar="K",
                            help="frame to express the Jacobian in: 0..n, world or tool (repeatable; default 0)")
     generator.add_argument("--point", action="append", default=None, metavar="P",
@@ -295,7 +296,8 @@ def _codegen(args: argparse.Namespace) -> str:
     rows = None if args.rows is None else _parse_rows(args.rows)
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
     return _progress(f"{args.target} module for {robot.name}",
-                     lambda: generate(robot, args.target, jacobians=requests, strategy=args.strategy))
+                     lambda: generate(robot, args.target, jacobians=requests, strategy=args.strategy,
+                                      command=shlex.join(["symjac", *args.argv])))
 
 
 # --- argument parsing helpers --------------------------------------------------------------------------------

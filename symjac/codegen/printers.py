@@ -1,11 +1,11 @@
-r"""Code printers for :mod:`symjac.codegen`: SymPy expressions to Python, NumPy, C and SymPy source text.
+r"""Code printers of the generated modules: SymPy expressions to Python, NumPy, C and SymPy source text.
 
 Each printer is a subclass of a SymPy code printer that maps every symbol to a *validated* name through
 ``_print_Symbol`` (never a regex over printed text), prints every number as a finite float literal (or an exact
 SymPy constructor), writes small integer powers as products (``x*x`` is faster than ``x**2`` in every target) and
 refuses anything it does not know (an unknown function, a symbol without a name, an infinite number) with a
-:class:`~symjac.errors.SymjacError` before any text is produced. :func:`layout` then breaks long statements at
-operator spaces so that generated files stay within the line length ruff checks.
+:class:`~symjac.errors.SymjacError` before any text is produced. :func:`symjac.codegen.layout.wrap_statement`
+then breaks long statements at operator spaces so that generated files stay within the line length ruff checks.
 """
 
 from __future__ import annotations
@@ -27,14 +27,12 @@ from symjac.errors import CodegenError
 
 __all__ = [
     "CPrinter",
-    "CodegenError",
     "NumPyPrinter",
     "PythonPrinter",
     "SymPyPrinter",
     "check_expression",
     "check_identifier",
     "float_literal",
-    "layout",
 ]
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -186,7 +184,6 @@ class _Common:
         return self._power(tight, f"({float_literal(exponent)})")
 
 
-
 class PythonPrinter(_Common, PythonCodePrinter):
     """Plain Python with ``from math import cos, sin, sqrt``: bare function names, float literals.
 
@@ -312,37 +309,3 @@ def check_expression(expr: sp.Basic) -> None:
         if isinstance(node, sp.Pow) and node.exp.is_Rational:
             continue
         raise CodegenError(f"{node} is not supported in generated code (allowed: + * ** sin cos)")
-
-
-def layout(head: str, code: str, tail: str = "", *, width: int = 120, language: str = "python") -> list[str]:
-    """Lines of the statement ``head + code + tail``, broken at spaces so that none is longer than ``width``.
-
-    Printed expressions contain spaces only around binary ``+``/``-`` and after commas, so a break at a space never
-    splits a token. A long Python statement is wrapped in parentheses (implicit continuation); C needs nothing.
-    Continuation lines are indented by four more spaces than ``head``'s own indentation.
-
-    Examples
-    --------
-    >>> layout("    x0 = ", "a + b + c", width=16)
-    ['    x0 = (a + b', '        + c)']
-    """
-    line = f"{head}{code}{tail}"
-    if len(line) <= width:
-        return [line]
-    indent = " " * (len(head) - len(head.lstrip()) + 4)
-    if language == "python":
-        head, tail = f"{head}(", f"){tail}"
-    pieces = code.split(" ")
-    lines: list[str] = []
-    current = head
-    for index, piece in enumerate(pieces):
-        last = index == len(pieces) - 1
-        addition = piece if current in (head, indent) else f" {piece}"
-        if len(current) + len(addition) + (len(tail) if last else 0) > width and current not in (head, indent):
-            lines.append(current)  # the closing tail counts on the last line too
-            current, addition = indent, piece
-        current += addition
-        if last:
-            current += tail
-    lines.append(current)
-    return lines

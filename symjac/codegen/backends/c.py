@@ -1,0 +1,99 @@
+"""The ``"c"`` target: the NumPy module plus C kernels compiled at first import into a CPython extension.
+
+The extension is cached per user; sines and cosines are vectorised through glibc's libmvec where the CPU has AVX2.
+Without a compiler, headers or a writable cache the module silently falls back to its NumPy functions
+(``BACKEND`` says which runs).
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections.abc import Mapping, Sequence
+
+from symjac.chain import Chain
+from symjac.codegen.backends.numpy import numpy_function
+from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
+from symjac.codegen.layout import wrap_statement
+from symjac.codegen.lower import LoweredFunction, angle_expansion, symbol_names
+from symjac.codegen.printers import CPrinter
+from symjac.errors import CodegenError
+from symjac.resources import render_template
+
+__all__ = ["BACKEND", "c_function", "c_sources"]
+
+KERNELS_TEMPLATE = "c_kernels.c.j2"
+
+_C_KEYWORDS = frozenset((
+    "auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum", "extern",
+    "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return", "short", "signed",
+    "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void", "volatile", "while",
+    "x", "w", "wk", "p", "o", "k", "q", "out", "S", "C", "m", "A",  # names of the kernel's own locals
+))
+
+
+def c_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+               ) -> GeneratedFunction:
+    """The per-configuration C body: sines ``S[j][k]``, cosines ``C[j][k]`` (vectorised before), outputs ``o[k]``."""
+    robot = chain.robot
+    indent = "        "
+    names = symbol_names(robot, lowered, taken | _C_KEYWORDS)
+    mapping = dict(names.mapping)
+    for argument, symbols in lowered.inputs:
+        pointer = "x" if argument == "q" else "wk"
+        for k, symbol in enumerate(symbols):
+            mapping[symbol] = f"{pointer}[{k}]"
+    for parameter_index, symbol in enumerate(robot.parameter_symbols):
+        mapping[symbol] = f"p[{parameter_index}]"
+    angle_index = {a: k for k, a in enumerate(angle_expansion(chain).angles)}
+    for sine, cosine, angle in lowered.angles:
+        mapping[sine] = f"S[{angle_index[angle]}][k]"
+        mapping[cosine] = f"C[{angle_index[angle]}][k]"
+    printer = CPrinter(mapping)
+    body: list[str] = []
+    for symbol, expr in lowered.temporaries:
+        body += wrap_statement(f"{indent}const double {mapping[symbol]} = ", printer.doprint(expr), ";", language="c")
+    outputs = tuple(printer.doprint(e) for e in lowered.outputs)
+    lines: list[str] = []
+    for k, value in enumerate(outputs):
+        lines += wrap_statement(f"{indent}o[{k}] = ", value, ";", language="c")
+    return generated_function(lowered, spec, body, outputs, lines, printer.used)
+
+
+def c_sources(chain: Chain, functions: Sequence[tuple[LoweredFunction, FunctionSpec]], taken: frozenset[str]
+              ) -> Mapping[str, str]:
+    """The C extension's source and module name (``_symjac_<robot>_<hash of the source>``).
+
+    The self-test's kinematics stay in NumPy; every other function gets a C kernel.
+    """
+    robot = chain.robot
+    kernels = tuple(c_function(chain, lowered, spec, taken) for lowered, spec in functions
+                    if spec.kind != "kinematics")
+    printer = CPrinter({**{v: f"x[{k}]" for k, v in enumerate(robot.q)},
+                        **{s: f"p[{k}]" for k, s in enumerate(robot.parameter_symbols)}})
+    angle_code = tuple(printer.doprint(angle) for angle in angle_expansion(chain).angles)
+    data = {"robot": robot.name, "dof": robot.dof, "angles": angle_code, "functions": kernels,
+            "parameter_count": len(robot.parameters)}
+    # The name carries a hash of the source so that a changed module never loads a stale cached extension.
+    body = render_template(KERNELS_TEMPLATE, module="MODULE_NAME", **data)
+    module = f"_symjac_{robot.name}_{hashlib.sha256(body.encode()).hexdigest()[:16]}"
+    source = render_template(KERNELS_TEMPLATE, module=module, **data)
+    if '"""' in source or "\\" in source:
+        raise CodegenError("internal error: the C source cannot be embedded in a Python raw string")
+    return {"c_source": source, "c_module": module}
+
+
+BACKEND = Backend(
+    name="c",
+    order=3,
+    summary="compiled at first import, NumPy fallback",
+    template="c_module.py.j2",
+    title="Kinematics and Jacobians in C, compiled at first import, with a NumPy fallback",
+    description="The NumPy functions are the reference and the fallback; C kernels replace them when a C compiler and\n"
+                "the Python headers are present (``BACKEND`` is \"c\" or \"numpy\", ``BUILD_ERROR`` says why not).\n"
+                "The extension is cached in $SYMJAC_CACHE_DIR or ~/.cache/symjac.",
+    nan_policy="Wrong shapes raise ValueError; NaN and infinite angles give NaN outputs (no warning from C).",
+    emit=numpy_function,
+    dependencies=("numpy",),
+    exports=("BACKEND",),
+    extras=c_sources,
+)

@@ -1,0 +1,42 @@
+"""The ``"lambdify"`` target: SymPy + NumPy; the module rebuilds the expressions and lambdifies them at import."""
+
+from __future__ import annotations
+
+from symjac.chain import Chain
+from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
+from symjac.codegen.layout import angle_lines, input_lines, temporary_lines, wrap_statement
+from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.printers import SymPyPrinter
+
+__all__ = ["BACKEND", "sympy_function"]
+
+
+def sympy_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+                   ) -> GeneratedFunction:
+    """Statements that rebuild the CSE'd expressions in SymPy, returning the list of entries."""
+    indent = "    "
+    names = symbol_names(chain.robot, lowered, taken)
+    printer = SymPyPrinter(names.mapping)
+    body = input_lines(chain.robot, lowered, names, indent)
+    body += angle_lines(lowered, names, printer, indent, "sympy.")
+    body += temporary_lines(lowered, names, printer, indent)
+    outputs = tuple(printer.doprint(e) for e in lowered.outputs)
+    lines = [f"{indent}return ["]
+    for value in outputs:
+        lines += wrap_statement(f"{indent}    ", value, ",")
+    lines.append(f"{indent}]")
+    return generated_function(lowered, spec, body, outputs, lines, ())
+
+
+BACKEND = Backend(
+    name="lambdify",
+    order=2,
+    summary="sympy at import",
+    template="lambdify_module.py.j2",
+    title="Kinematics and Jacobians through sympy.lambdify, built when this module is imported",
+    description="The expressions are rebuilt in SymPy and compiled with ``sympy.lambdify(..., cse=True)`` at\n"
+                "import; functions take q of shape (..., n) and return arrays of shape (..., rows, columns).",
+    nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs.",
+    emit=sympy_function,
+    dependencies=("numpy", "sympy"),
+)

@@ -1,0 +1,43 @@
+"""The ``"numpy"`` target: NumPy only, batched over configurations by block kernels, split over threads."""
+
+from __future__ import annotations
+
+from symjac.chain import Chain
+from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
+from symjac.codegen.layout import angle_lines, indices, input_lines, temporary_lines, wrap_statement
+from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.printers import NumPyPrinter
+
+__all__ = ["BACKEND", "numpy_function"]
+
+
+def numpy_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+                   ) -> GeneratedFunction:
+    """The block kernel: inputs are rows ``(size, m)``, ``out`` is ``shape + (m,)``; every write is contiguous."""
+    indent = "    "
+    names = symbol_names(chain.robot, lowered, taken)
+    printer = NumPyPrinter(names.mapping)
+    body = input_lines(chain.robot, lowered, names, indent)
+    body += angle_lines(lowered, names, printer, indent, "np.", pair="_sincos")  # one half-angle tangent for both
+    body += temporary_lines(lowered, names, printer, indent)
+    outputs = tuple(printer.doprint(e) for e in lowered.outputs)
+    lines: list[str] = []
+    for index, value in zip(indices(lowered.shape), outputs, strict=True):
+        lines += wrap_statement(f"{indent}out[{index}] = ", value)
+    return generated_function(lowered, spec, body, outputs, lines, printer.used)
+
+
+BACKEND = Backend(
+    name="numpy",
+    order=1,
+    summary="batched",
+    template="numpy_module.py.j2",
+    title="Kinematics and Jacobians in NumPy, batched over configurations",
+    description="Each function takes q of shape (..., n) and returns an array of shape (..., rows, columns); an\n"
+                "``out`` array of that shape may be given (written and returned). Large batches are split over\n"
+                "threads (``THREADS``, default the number of CPUs).",
+    nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs (infinite angles give NaN with a\n"
+               "RuntimeWarning).",
+    emit=numpy_function,
+    dependencies=("numpy",),
+)

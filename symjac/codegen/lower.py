@@ -1,0 +1,268 @@
+r"""Lowering: from a robot's symbolic quantities to target-independent straight-line code (CSE), and its names.
+
+1. **Candidates.** For a Jacobian: the raw chain products differentiated, the raw cross-product form, the compact
+   textbook form, and the latter two in a neighbouring frame rotated back. Simplified entries are not always faster
+   (raw chain products won on Panda with an earlier simplifier), so nothing is assumed: every candidate is lowered
+   and the one with the fewest operations after CSE is kept (ties: the first).
+2. **Angles.** Every sine/cosine of a joint-angle combination is expanded by the angle-addition formulas into the
+   sines and cosines of the joint angles themselves (:class:`~symjac.angles.AngleExpansion`): a module evaluates
+   exactly one ``sin`` and one ``cos`` per revolute joint.
+3. **CSE.** Flatten, check that every free symbol is an argument (the error names the others),
+   ``sympy.cse(order="canonical")``.
+
+Everything derived here is kept in the robot's :class:`~symjac.chain.Chain` (:meth:`~symjac.chain.Chain.memo`, keys
+starting with ``"codegen"``), so generating several targets for one robot derives and lowers each function once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import sympy as sp
+
+from symjac.angles import AngleExpansion
+from symjac.chain import Chain, Frame
+from symjac.codegen.printers import check_expression
+from symjac.codegen.request import WRENCH_NAMES, frame_text
+from symjac.errors import CodegenError
+from symjac.jacobian import jacobian
+from symjac.model import Robot
+from symjac.transforms import block_rotation
+
+__all__ = [
+    "LoweredFunction",
+    "SymbolNames",
+    "angle_expansion",
+    "lower",
+    "lower_function",
+    "lowered_forward_kinematics",
+    "lowered_jacobian",
+    "lowered_kinematics",
+    "lowered_torques",
+    "symbol_names",
+]
+
+Inputs = tuple[tuple[str, tuple[sp.Symbol, ...]], ...]
+
+
+@dataclass(frozen=True)
+class LoweredFunction:
+    """One function as SymPy data after CSE (target-independent).
+
+    ``inputs`` are the array arguments and their entry symbols, ``angles`` the (sine, cosine, angle) triples the
+    expressions use, ``outputs`` the flattened results in row-major order of ``shape``, ``expanded`` the same before
+    CSE, ``op_count`` the arithmetic operations after CSE (``sympy.count_ops``) and ``origin`` the candidate's name.
+    """
+
+    inputs: Inputs
+    angles: tuple[tuple[sp.Symbol, sp.Symbol, sp.Expr], ...]
+    temporaries: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    outputs: tuple[sp.Expr, ...]
+    expanded: tuple[sp.Expr, ...]
+    shape: tuple[int, ...]
+    op_count: int
+    origin: str
+
+    @cached_property
+    def used_symbols(self) -> set[sp.Symbol]:
+        """Every symbol the evaluation reads: arguments, sines and cosines, and the variables in the angles."""
+        exprs = [e for _, e in self.temporaries] + list(self.outputs) + [a for _, _, a in self.angles]
+        return set().union(*(e.free_symbols for e in exprs))
+
+    @property
+    def trig_count(self) -> int:
+        """Sines and cosines evaluated per configuration."""
+        used = self.used_symbols
+        return sum((s in used) + (c in used) for s, c, _ in self.angles)
+
+    @property
+    def cost(self) -> int:
+        """What candidate selection minimises: operations plus one per sine and cosine."""
+        return self.op_count + self.trig_count
+
+
+def lower(
+    outputs: Sequence[sp.Expr] | sp.MatrixBase,
+    arguments: Iterable[sp.Symbol],
+) -> tuple[tuple[tuple[sp.Symbol, sp.Expr], ...], tuple[sp.Expr, ...]]:
+    """Flatten ``outputs``, check every free symbol is one of ``arguments``, and apply canonical CSE.
+
+    Returns
+    -------
+    temporaries : tuple of (Symbol, Expr)
+        In evaluation order; the symbols are ``_x0, _x1, ...``.
+    outputs : tuple of Expr
+        The flattened outputs in terms of arguments and temporaries.
+
+    Examples
+    --------
+    >>> x, y = sp.symbols("x y")
+    >>> lower([sp.sin(x) * y, sp.sin(x) * y + 1], [x, y])
+    (((_x0, y*sin(x)),), (_x0, _x0 + 1))
+    >>> lower([x + y], [x])
+    Traceback (most recent call last):
+    ...
+    symjac.errors.CodegenError: expressions depend on y, which is not an argument (arguments: x)
+    """
+    flat = list(outputs)
+    allowed = set(arguments)
+    unknown = set().union(*(sp.sympify(e).free_symbols for e in flat)) - allowed if flat else set()
+    if unknown:
+        names = ", ".join(sorted(map(str, unknown)))
+        known = ", ".join(sorted(map(str, allowed))) or "none"
+        raise CodegenError(f"expressions depend on {names}, which is not an argument (arguments: {known})")
+    for expr in flat:
+        check_expression(sp.sympify(expr))
+    temporaries, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x", real=True), order="canonical")
+    return tuple(temporaries), tuple(reduced)
+
+
+def lower_function(
+    angles: AngleExpansion,
+    exprs: Sequence[sp.Expr],
+    shape: tuple[int, ...],
+    inputs: Inputs,
+    parameters: tuple[sp.Symbol, ...],
+    origin: str,
+    expanded: bool = False,
+) -> LoweredFunction:
+    """Expand the angles of ``exprs`` (unless ``expanded``), lower them and count operations and sines/cosines."""
+    flat = [sp.sympify(e) for e in exprs] if expanded else [angles.expand(sp.sympify(e)) for e in exprs]
+    arguments = {s for _, symbols in inputs for s in symbols} | set(parameters) | set(angles.sines)
+    arguments |= set(angles.cosines)
+    temporaries, outputs = lower(flat, arguments)
+    used = set().union(*(e.free_symbols for _, e in temporaries), *(e.free_symbols for e in outputs))
+    angle_list = tuple((s, c, a) for s, c, a in zip(angles.sines, angles.cosines, angles.angles, strict=True)
+                       if s in used or c in used)
+    op_count = sum(int(sp.count_ops(e)) for _, e in temporaries) + sum(int(sp.count_ops(e)) for e in outputs)
+    return LoweredFunction(inputs, angle_list, temporaries, outputs, tuple(flat), shape, op_count, origin)
+
+
+def angle_expansion(chain: Chain) -> AngleExpansion:
+    """The expansion of sines and cosines into those of the single revolute joint angles of ``chain``."""
+    def compute() -> AngleExpansion:
+        revolute = [joint for joint in chain.robot.joints if joint.is_revolute]
+        return AngleExpansion(tuple(j.variable for j in revolute), tuple(j.angle for j in revolute),
+                              tuple(j.index for j in revolute))
+
+    return chain.memo(("codegen", "angles"), compute)
+
+
+def _jacobian_candidates(
+    chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], strategy: str
+) -> Iterator[tuple[str, sp.Matrix]]:
+    where = frame_text(frame)
+    if strategy in ("fastest", "raw"):
+        yield "raw chain products, differentiated", jacobian(chain, frame, point, "differentiation", simplify=False)
+    if strategy == "raw":
+        return
+    yield "compact (simplified) Jacobian", jacobian(chain, frame, point, simplify=True)
+    if strategy == "simplified":
+        return
+    yield "raw chain products, cross-product form", jacobian(chain, frame, point, "cross_product", simplify=False)
+    for via in (0, 1):
+        if via > chain.n or chain.position(frame) == via:
+            continue
+        rotation = block_rotation(chain.rotation(frame, via))
+        yield (f"compact Jacobian in frame {{{via}}}, rotated into {where}",
+               rotation * jacobian(chain, via, point, simplify=True))
+        yield (f"raw cross-product form in frame {{{via}}}, rotated into {where}",
+               rotation * jacobian(chain, via, point, "cross_product", simplify=False))
+
+
+def lowered_jacobian(
+    chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], rows: tuple[int, ...], strategy: str
+) -> LoweredFunction:
+    """The Jacobian rows ``rows`` in ``frame`` at ``point``: the candidate of ``strategy`` that costs least."""
+    def compute() -> LoweredFunction:
+        robot = chain.robot
+        angles = angle_expansion(chain)
+        best: LoweredFunction | None = None
+        for origin, J in _jacobian_candidates(chain, frame, point, strategy):
+            selected = [J[r, c] for r in rows for c in range(robot.dof)]
+            candidate = lower_function(angles, selected, (len(rows), robot.dof), (("q", robot.q),),
+                                       robot.parameter_symbols, origin)
+            if best is None or candidate.cost < best.cost:
+                best = candidate
+        assert best is not None  # every strategy yields at least one candidate
+        return best
+
+    return chain.memo(("codegen", "jacobian", frame, point, rows, strategy), compute)
+
+
+def lowered_forward_kinematics(chain: Chain, strategy: str) -> LoweredFunction:
+    """The pose of the tool frame in frame {0}: the raw or the compact product, whichever costs less."""
+    def compute() -> LoweredFunction:
+        robot = chain.robot
+        candidates = []
+        if strategy in ("fastest", "raw"):
+            candidates.append(("raw chain product", chain.transform(0, "tool")))
+        if strategy in ("fastest", "simplified"):
+            candidates.append(("compact (simplified) transform", chain.simplified_transform(0, "tool")))
+        lowered = [lower_function(angle_expansion(chain), list(T), (4, 4), (("q", robot.q),),
+                                  robot.parameter_symbols, origin) for origin, T in candidates]
+        return min(lowered, key=lambda candidate: candidate.cost)
+
+    return chain.memo(("codegen", "forward_kinematics", strategy), compute)
+
+
+def lowered_kinematics(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> LoweredFunction:
+    """Point position in {0}, ^0_nR and ^0_kR (21 values): what the self-test differentiates numerically."""
+    def compute() -> LoweredFunction:
+        T_0_n = chain.transform(0, chain.n)
+        x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
+        values = [*x_P, *T_0_n[:3, :3], *chain.rotation(0, frame)]
+        return lower_function(angle_expansion(chain), values, (21,), (("q", chain.robot.q),),
+                              chain.robot.parameter_symbols, "raw chain products")
+
+    return chain.memo(("codegen", "kinematics", frame, point), compute)
+
+
+def lowered_torques(chain: Chain, J: LoweredFunction, rows: tuple[int, ...]) -> LoweredFunction:
+    """Joint torques tau = J^T F from the (angle-expanded) Jacobian ``J``; ``F`` holds the wrench rows ``rows``."""
+    wrench = tuple(sp.Symbol(f"_F{r}", real=True) for r in rows)
+    n = chain.n
+    tau = [sum((J.expanded[k * n + i] * wrench[k] for k in range(len(rows))), sp.S.Zero) for i in range(n)]
+    return lower_function(angle_expansion(chain), tau, (n,), (("q", chain.robot.q), ("wrench", wrench)),
+                          chain.robot.parameter_symbols, f"J^T F from the Jacobian ({J.origin})", expanded=True)
+
+
+class SymbolNames:
+    """Printed names for a function's symbols: validated robot names, fresh names for everything generated."""
+
+    def __init__(self, robot: Robot, taken: Iterable[str]):
+        self.taken = set(taken)
+        self.mapping: dict[sp.Symbol, str] = {}
+        for symbol in (*robot.q, *robot.parameter_symbols):
+            self.mapping[symbol] = symbol.name
+            self.taken.add(symbol.name)
+
+    def fresh(self, symbol: sp.Symbol, base: str) -> str:
+        """The name of ``symbol``: its existing one, else ``base`` with underscores appended until it is free."""
+        if symbol in self.mapping:
+            return self.mapping[symbol]
+        name = base
+        while name in self.taken:
+            name = f"{name}_"
+        self.taken.add(name)
+        self.mapping[symbol] = name
+        return name
+
+
+def symbol_names(robot: Robot, lowered: LoweredFunction, taken: Iterable[str]) -> SymbolNames:
+    """Names for ``lowered``: ``s3``/``c3`` for joint 3's sine and cosine, ``f_x``.. for the wrench, ``x0``.."""
+    names = SymbolNames(robot, taken)
+    joint_index = {j.variable: j.index for j in robot.joints}
+    for sine, cosine, angle in lowered.angles:
+        index = next(joint_index[v] for v in angle.free_symbols if v in joint_index)
+        names.fresh(sine, f"s{index}")
+        names.fresh(cosine, f"c{index}")
+    for argument, symbols in lowered.inputs:
+        if argument == "wrench":
+            for symbol in symbols:  # _F0 .. _F5: the row each multiplies
+                names.fresh(symbol, WRENCH_NAMES[int(symbol.name.removeprefix("_F"))])
+    for k, (symbol, _) in enumerate(lowered.temporaries):
+        names.fresh(symbol, f"x{k}")
+    return names

@@ -1,0 +1,243 @@
+"""Assembling a generated module: requests to lowered functions, printed by the target's backend, into a template."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Literal, get_args
+
+import sympy as sp
+
+from symjac._version import __version__
+from symjac.chain import Chain, Frame, as_chain
+from symjac.codegen.backends import backend
+from symjac.codegen.description import (
+    Argument,
+    FunctionKind,
+    FunctionSpec,
+    JacobianInfo,
+    ModuleDescription,
+)
+from symjac.codegen.layout import LINE_WIDTH, comment_lines, wrap_statement
+from symjac.codegen.lower import (
+    LoweredFunction,
+    angle_expansion,
+    lower_function,
+    lowered_forward_kinematics,
+    lowered_jacobian,
+    lowered_kinematics,
+    lowered_torques,
+)
+from symjac.codegen.printers import check_identifier, float_literal
+from symjac.codegen.request import (
+    RESERVED,
+    WRENCH_NAMES,
+    JacobianRequest,
+    check_rows,
+    frame_text,
+    function_labels,
+    point_text,
+    point_words,
+    python_call,
+    requests_from,
+    validate_robot,
+)
+from symjac.errors import CodegenError
+from symjac.files import write_text
+from symjac.io import catalog, load_robot
+from symjac.jacobian import ROW_NAMES, Point
+from symjac.model import Robot
+from symjac.resources import render_template
+
+Strategy = Literal["fastest", "raw", "simplified"]
+STRATEGIES: tuple[str, ...] = get_args(Strategy)
+
+__all__ = ["STRATEGIES", "Strategy", "describe", "generate", "render_module", "write_module"]
+
+
+def describe(
+    robot: Robot | Chain,
+    target: str = "python",
+    frames: Sequence[Frame] | Frame = (0,),
+    points: Sequence[Point] | Point = ("wrist",),
+    *,
+    rows: Sequence[int] | None = None,
+    jacobians: Sequence[JacobianRequest] | None = None,
+    scalars: Mapping[str, sp.Expr] | None = None,
+    strategy: Strategy = "fastest",
+    command: str | None = None,
+) -> ModuleDescription:
+    """The frozen description of the module :func:`generate` renders (see there for the parameters)."""
+    spec = backend(target)
+    if strategy not in STRATEGIES:
+        raise CodegenError(f"unknown strategy {strategy!r}; choose one of {', '.join(STRATEGIES)}")
+    if not isinstance(robot, Robot | Chain):
+        raise CodegenError(f"expected a symjac Robot or Chain, got {type(robot).__name__}")
+    chain = as_chain(robot)
+    model = chain.robot
+    validate_robot(model)
+    requests = requests_from(chain, frames, points, rows, jacobians)
+    if not requests:
+        raise CodegenError("at least one Jacobian (frame and point) must be requested")
+
+    taken = frozenset(RESERVED) | {p.name for p in model.parameters}
+    q_argument = Argument("q", tuple(s.name for s in model.q), "Joint values")
+    lowered_functions: list[tuple[LoweredFunction, FunctionSpec]] = []
+
+    def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:
+        lowered_functions.append((lowered, FunctionSpec(name, kind, summary, (q_argument, *arguments))))
+
+    add(lowered_forward_kinematics(chain, strategy), "forward_kinematics", "forward_kinematics",
+        "The pose of the tool frame in frame {0}")
+    infos: list[JacobianInfo] = []
+    for request, label in zip(requests, function_labels(model, requests), strict=True):
+        point_name, point = point_text(model, request.point)
+        selected = check_rows(request.rows)
+        names = {kind: f"{kind}{label}" for kind in ("jacobian", "joint_torques", "manipulability",
+                                                      "jacobian_determinant", "_kinematics")}
+        if any(info.jacobian == names["jacobian"] for info in infos):
+            raise CodegenError(f"the Jacobian in frame {request.frame} at point {point_name} is requested twice")
+        J = lowered_jacobian(chain, request.frame, point, selected, strategy)
+        where, at = frame_text(request.frame), point_words(point_name)
+        add(J, names["jacobian"], "jacobian", f"The basic Jacobian [v; omega] at the {at}, in frame {where}")
+        add(lowered_torques(chain, J, selected), names["joint_torques"], "joint_torques",
+            f"Joint torques tau = J^T F holding a wrench F at the {at}, F in frame {where}",
+            Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected), "Wrench (force, moment) at the point"))
+        add(lowered_kinematics(chain, request.frame, point), names["_kinematics"], "kinematics",
+            "Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)")
+        infos.append(JacobianInfo(
+            jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
+            determinant=names["jacobian_determinant"] if len(selected) == model.dof else None,
+            kinematics=names["_kinematics"], frame=where, point=point_name,
+            point_values=tuple(float_literal(v.subs(model.defaults)) for v in point),  # type: ignore[arg-type]
+            rows=selected, row_names=tuple(ROW_NAMES[r] for r in selected),
+            wrench_names=tuple(WRENCH_NAMES[r] for r in selected),
+        ))
+
+    defined = {s.name for _, s in lowered_functions} | {i.manipulability for i in infos}
+    defined |= {i.determinant for i in infos if i.determinant}
+    for scalar_name, expr in (scalars or {}).items():
+        check_identifier(scalar_name, "scalar function name", {**RESERVED, **{n: "a function" for n in defined}})
+        if scalar_name.startswith("_") or scalar_name in {p.name for p in model.parameters}:
+            raise CodegenError(f"scalar function name {scalar_name!r} is private or a parameter name")
+        lowered = lower_function(angle_expansion(chain), [sp.sympify(expr)], (), (("q", model.q),),
+                                 model.parameter_symbols, "given expression")
+        add(lowered, scalar_name, "scalar", f"The scalar function {scalar_name}")
+        defined.add(scalar_name)
+
+    functions = tuple(spec.emit(chain, lowered, function, taken) for lowered, function in lowered_functions)
+    extras = spec.extras(chain, lowered_functions, taken) if spec.extras is not None else {}
+    exports = ({"PARAMETERS", "JOINTS", "ROBOT", "selftest", *spec.exports}
+               | {f.name for f in functions if not f.name.startswith("_")}
+               | {i.manipulability for i in infos} | {i.determinant for i in infos if i.determinant})
+    parameter_names = [p.name for p in model.parameters]
+    parameter_lines = wrap_statement("    parameters = ", "(" + ", ".join(parameter_names)
+                                     + ("," if len(parameter_names) == 1 else "") + ")")
+    if command is None:
+        catalog_robot = load_robot(model.name) if model.name in catalog() else None
+        command = python_call(model, target, requests, scalars or {}, strategy, catalog_robot)
+        command_lines = comment_lines(command)
+    else:
+        command_lines = comment_lines(command, continuation=" \\")  # a shell line continues with a backslash
+    return ModuleDescription(
+        target=target, template=spec.template, version=__version__, robot=model.name,
+        convention=model.convention.value, dof=model.dof,
+        joints=tuple((j.variable.name, j.type.value) for j in model.joints),
+        parameters=tuple((p.name, float_literal(p.default)) for p in model.parameters),
+        functions=functions, jacobians=tuple(infos),
+        scalars=tuple(f.name for f in functions if f.kind == "scalar"),
+        exports=tuple(_sorted_exports(exports)), command=command, command_lines=command_lines,
+        title=spec.title, description_text=spec.description, nan_policy=spec.nan_policy,
+        imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(spec.imports))),
+        parameter_lines=tuple(parameter_lines), extras=extras,
+    )
+
+
+def _sorted_exports(names: Iterable[str]) -> list[str]:
+    """``__all__`` in the order ruff's RUF022 expects: SCREAMING_CASE, then CamelCase, then the rest."""
+    def key(name: str) -> tuple[int, str]:
+        if name.isupper():
+            return (0, name)
+        if name[:1].isupper():
+            return (1, name)
+        return (2, name)
+
+    return sorted(names, key=key)
+
+
+def generate(
+    robot: Robot | Chain,
+    target: str = "python",
+    frames: Sequence[Frame] | Frame = (0,),
+    points: Sequence[Point] | Point = ("wrist",),
+    *,
+    rows: Sequence[int] | None = None,
+    jacobians: Sequence[JacobianRequest] | None = None,
+    scalars: Mapping[str, sp.Expr] | None = None,
+    strategy: Strategy = "fastest",
+    command: str | None = None,
+) -> str:
+    r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
+
+    Parameters
+    ----------
+    robot : Robot or Chain
+    target : str
+        One of :data:`~symjac.codegen.TARGETS` (``"python"``, ``"numpy"``, ``"lambdify"``, ``"c"``; see
+        :mod:`symjac.codegen.backends`).
+    frames : frame or sequence of frames
+        Frames the Jacobians are expressed in (default {0}); every frame is combined with every point.
+    points : point or sequence of points
+        ``"wrist"`` (default), ``"tool"`` or three coordinates in frame {n}.
+    rows : sequence of int, optional
+        Task rows of the Jacobians (0..5 = v_x .. omega_z); default all six.
+    jacobians : sequence of JacobianRequest, optional
+        Explicit requests instead of ``frames`` x ``points``.
+    scalars : mapping of str to sympy.Expr, optional
+        Extra scalar functions of the joint variables and parameters, generated through the same pipeline (the
+        place for a factored symbolic determinant: ``scalars={"det_factored": expr}``).
+    strategy : "fastest", "raw" or "simplified"
+        Which Jacobian expressions to start from: the candidate with fewest operations after CSE (default), the raw
+        chain products only, or the compact textbook form only.
+    command : str, optional
+        How to regenerate the module, for its header: the command line that was typed (the CLI passes it).
+        Default: the equivalent ``symjac.generate(...)`` call, written from the request.
+
+    Returns
+    -------
+    str
+        The module source; identical input gives byte-identical output.
+
+    Raises
+    ------
+    CodegenError
+        For an unknown target or strategy, a name that cannot be used in generated code, an unsupported expression.
+    FrameError
+        For a frame or point the robot does not have.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> source = generate(load_robot("planar2r"), "python")
+    >>> namespace = {}
+    >>> exec(compile(source, "planar2r_jacobian.py", "exec"), namespace)
+    >>> [[round(v, 6) for v in row] for row in namespace["jacobian"]([0.0, 1.5707963267948966], L1=1.0)[:2]]
+    [[-0.4, -0.4], [1.0, 0.0]]
+    """
+    return render_module(describe(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
+                                  strategy=strategy, command=command))
+
+
+def render_module(description: ModuleDescription) -> str:
+    """Render a :class:`ModuleDescription` with its target's template; check the result's line lengths."""
+    text = render_template(description.template, module=description)
+    for number, line in enumerate(text.splitlines(), start=1):
+        if len(line) > LINE_WIDTH or line != line.rstrip():
+            raise CodegenError(f"internal error: generated line {number} is too long or has trailing spaces")
+    return text
+
+
+def write_module(path: str | os.PathLike[str], text: str) -> Path:
+    """Write a generated module to ``path`` atomically (:func:`symjac.files.write_text`): never a partial file."""
+    return write_text(path, text)

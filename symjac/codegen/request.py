@@ -1,0 +1,206 @@
+"""What a generated module is asked to contain: Jacobian requests, validated before anything is derived or written.
+
+Every name and number that reaches generated text passes through here first (robot and parameter names, point
+coordinates, task rows); anything unusable raises :class:`~symjac.errors.CodegenError` with what and where.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import sympy as sp
+
+from symjac.chain import Chain, Frame
+from symjac.codegen.printers import check_expression, check_identifier, float_literal
+from symjac.errors import CodegenError
+from symjac.jacobian import ROW_NAMES, Point, point_vector
+from symjac.model import Robot
+
+__all__ = [
+    "RESERVED",
+    "WRENCH_NAMES",
+    "JacobianRequest",
+    "check_rows",
+    "frame_text",
+    "function_labels",
+    "point_text",
+    "point_words",
+    "python_call",
+    "requests_from",
+    "validate_robot",
+]
+
+WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
+
+# Names every generated module defines or imports for itself, with the reason a parameter may not take them.
+RESERVED: Mapping[str, str] = {
+    **{name: "an argument of the generated functions" for name in ("q", "out", "wrench", "samples", "seed",
+                                                                    "tolerance", "threads")},
+    **{name: "an import of the generated module" for name in ("annotations", "np", "sympy", "math", "os", "sys",
+                                                               "cos", "sin", "sqrt", "pi", "random", "threading",
+                                                               "importlib", "sysconfig", "hashlib", "shutil",
+                                                               "subprocess", "tempfile", "Path", "Sequence",
+                                                               "ArrayLike", "MappingProxyType", "Any")},
+    **{name: "a constant of the generated module" for name in ("PARAMETERS", "JOINTS", "ROBOT", "CONVENTION",
+                                                                "SYMJAC_VERSION", "JACOBIANS", "BACKEND", "THREADS",
+                                                                "BUILD_ERROR", "DOF")},
+    **{name: "a function of the generated module" for name in ("selftest", "forward_kinematics", "jacobian",
+                                                                "joint_torques", "manipulability",
+                                                                "jacobian_determinant")},
+}
+
+
+@dataclass(frozen=True)
+class JacobianRequest:
+    """One Jacobian a generated module should contain.
+
+    Parameters
+    ----------
+    frame : int or "world" or "tool"
+        Frame {k} the Jacobian is expressed in.
+    point : "wrist", "tool" or three coordinates in frame {n}
+        Where the linear velocity is taken (see :func:`symjac.jacobian`).
+    rows : tuple of int, optional
+        Task rows to keep, from 0..5 = v_x, v_y, v_z, omega_x, omega_y, omega_z (default all six). With as many rows
+        as joints the Jacobian is square and the module gets a ``jacobian_determinant`` function.
+    """
+
+    frame: Frame = 0
+    point: Point = "wrist"
+    rows: tuple[int, ...] | None = None
+
+
+def validate_robot(robot: Robot) -> None:
+    """Refuse a robot whose name, parameter names or defaults cannot appear in generated code."""
+    check_identifier(robot.name, "robot name")
+    variables = {joint.variable.name for joint in robot.joints}
+    for parameter in robot.parameters:
+        check_identifier(parameter.name, "parameter name", RESERVED)
+        if parameter.name.startswith("_") or parameter.name in variables:
+            raise CodegenError(f"parameter name {parameter.name!r} is private (leading '_') or a joint variable")
+        float_literal(parameter.default)
+
+
+def requests_from(
+    chain: Chain, frames: Sequence[Frame] | Frame, points: Sequence[Point] | Point, rows: Sequence[int] | None,
+    jacobians: Sequence[JacobianRequest] | None,
+) -> list[JacobianRequest]:
+    """The requests of a call: ``jacobians`` as given, else every frame with every point; frames checked."""
+    if jacobians is not None:
+        requests = list(jacobians)
+        if not all(isinstance(r, JacobianRequest) for r in requests):
+            raise CodegenError("jacobians must be a sequence of JacobianRequest")
+    else:
+        frame_list = [frames] if isinstance(frames, int | str) else list(frames)
+        point_list: list[Point] = ([points] if isinstance(points, str) or _is_coordinates(points)  # type: ignore[list-item]
+                                   else list(points))  # type: ignore[arg-type]
+        requests = [JacobianRequest(f, p, None if rows is None else tuple(rows)) for f in frame_list
+                    for p in point_list]
+    for request in requests:
+        chain.position(request.frame)  # FrameError with a clear message
+    return requests
+
+
+def _is_coordinates(points: object) -> bool:
+    return (isinstance(points, Sequence) and len(points) == 3
+            and all(not isinstance(p, str) and not isinstance(p, Sequence) for p in points))
+
+
+def check_rows(rows: Sequence[int] | None) -> tuple[int, ...]:
+    """The task rows as a tuple of distinct indices 0..5 (all six if ``rows`` is None)."""
+    if rows is None:
+        return tuple(range(6))
+    values = tuple(rows)
+    if not values or any(isinstance(r, bool) or not isinstance(r, int) or not 0 <= r < 6 for r in values):
+        raise CodegenError(f"rows must be a non-empty sequence of row numbers 0..5 "
+                           f"({', '.join(ROW_NAMES)}), got {rows!r}")
+    if len(set(values)) != len(values):
+        raise CodegenError(f"rows must not repeat a row, got {rows!r}")
+    return values
+
+
+def point_text(robot: Robot, point: Point) -> tuple[str, tuple[sp.Expr, sp.Expr, sp.Expr]]:
+    """A short text for the point (for comments and docstrings) and its validated coordinates in frame {n}."""
+    coordinates = point_vector(robot, point)
+    allowed = set(robot.parameter_symbols)
+    for value in coordinates:
+        check_expression(value)
+        extra = value.free_symbols - allowed
+        if extra:
+            raise CodegenError(f"point coordinate {value} uses {', '.join(sorted(map(str, extra)))}, which is not a "
+                               f"parameter of {robot.name}")
+    if isinstance(point, str):
+        return point, coordinates
+    text = "(" + ", ".join(str(value) for value in coordinates) + ")"
+    if len(text) > 48:  # keep comment and docstring lines short: the numbers at the default parameters
+        text = "(" + ", ".join(f"{float(value.subs(robot.defaults)):.6g}" for value in coordinates) + ")"
+    return text, coordinates
+
+
+def point_words(text: str) -> str:
+    """``"wrist"``, ``"tool point"`` or ``"point (x, y, z)"`` for a docstring sentence."""
+    if text == "wrist":
+        return "wrist"
+    if text == "tool":
+        return "tool point"
+    return f"point {text}"
+
+
+def frame_text(frame: Frame) -> str:
+    """``{3}`` for a DH frame, ``'tool'`` for a named one."""
+    return f"{{{frame}}}" if isinstance(frame, int) else f"'{frame}'"
+
+
+def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[str]:
+    """Function-name suffixes: none for a single Jacobian, else ``_<frame>_<point>`` (``_3_tool``, ``_0_p1``)."""
+    if len(requests) == 1:
+        return [""]
+    labels = []
+    custom: dict[tuple[sp.Expr, ...], str] = {}
+    for request in requests:
+        frame = str(request.frame)
+        if isinstance(request.point, str):
+            point = request.point
+        else:
+            point = custom.setdefault(point_vector(robot, request.point), f"p{len(custom) + 1}")
+        rows = "" if request.rows is None else "_r" + "".join(str(r) for r in request.rows)
+        labels.append(f"_{frame}_{point}{rows}")
+    return labels
+
+
+def python_call(
+    robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
+    catalog_robot: Robot | None,
+) -> str:
+    """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
+
+    ``catalog_robot`` is the catalog robot of the same name if there is one; only when it equals ``robot`` does the
+    call load it by name (a robot from a URDF or a mapping is ``robot``, the one the header's Robot line names).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> robot = load_robot("planar2r")
+    >>> python_call(robot, "numpy", [JacobianRequest(0), JacobianRequest("tool", (1, 0, 0), (0, 1))], {}, "raw",
+    ...             robot)
+    'symjac.generate(symjac.load_robot("planar2r"), "numpy", jacobians=[symjac.JacobianRequest(0, "wrist"), symjac.JacobianRequest("tool", (1, 0, 0), (0, 1))], strategy="raw")'
+    """  # noqa: E501  # a doctest's expected output cannot be wrapped
+    loaded = f'symjac.load_robot("{robot.name}")' if catalog_robot == robot else "robot"
+    items = [_request_text(robot, request) for request in requests]
+    parts = [loaded, f'"{target}"', f"jacobians=[{', '.join(items)}]"]
+    if scalars:
+        parts.append("scalars={" + ", ".join(f'"{name}": {expr}' for name, expr in scalars.items()) + "}")
+    if strategy != "fastest":
+        parts.append(f'strategy="{strategy}"')
+    return f"symjac.generate({', '.join(parts)})"
+
+
+def _request_text(robot: Robot, request: JacobianRequest) -> str:
+    frame = f'"{request.frame}"' if isinstance(request.frame, str) else str(request.frame)
+    if isinstance(request.point, str):
+        point = f'"{request.point}"'
+    else:
+        point = "(" + ", ".join(str(v) for v in point_vector(robot, request.point)) + ")"
+    rows = "" if request.rows is None else f", {tuple(request.rows)}"
+    return f"symjac.JacobianRequest({frame}, {point}{rows})"

@@ -7,7 +7,7 @@ spatial one, expressed in the base frame: :math:`\dot R = \hat\omega R`.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from functools import cache, singledispatch
 
 import sympy as sp
@@ -189,9 +189,9 @@ def _(spec: AxisAngle) -> sp.Matrix:
 
 
 @cache
-def _cached(definition: object, spec: Representation) -> sp.ImmutableMatrix:
+def _cached(definition: Callable[[Representation], sp.MatrixBase], spec: Representation) -> sp.ImmutableMatrix:
     """Each map of each representation is derived once (a pure function of the representation)."""
-    return sp.ImmutableMatrix(definition(spec))  # type: ignore[operator]
+    return sp.ImmutableMatrix(definition(spec))
 
 
 @cache

@@ -287,20 +287,6 @@ def test_package_all_is_sorted_and_complete():
     assert all(hasattr(package, name) for name in package.__all__)
 
 
-def test_gibbs_vector_round_trip_B_by_differences_and_E_B_identity():
-    rng = np.random.default_rng(37)
-    for _ in range(5):
-        R = random_rotation(rng)
-        x0 = extract("gibbs", R)
-        np.testing.assert_allclose(rotation_numeric("gibbs", x0), R, atol=1e-10)
-        x_dot = rng.normal(size=3)
-        R_dot = (rotation_numeric("gibbs", x0 + H * x_dot) - rotation_numeric("gibbs", x0 - H * x_dot)) / (2 * H)
-        B = numeric(angular_velocity_matrix("gibbs", list(x0)))
-        np.testing.assert_allclose(B @ x_dot, vee(R_dot @ R.T), atol=1e-6)
-        np.testing.assert_allclose(rate_numeric("gibbs", x0) @ B, np.eye(3), atol=1e-10)
-    assert representation_singularities("gibbs") == ()
-
-
 # --- rate matrices ---------------------------------------------------------------------------------------------------
 
 

@@ -43,7 +43,6 @@ __all__ = [
     "Cylindrical",
     "DirectionCosines",
     "EulerConvention",
-    "Gibbs",
     "Orientation",
     "OrientationSpec",
     "Position",
@@ -165,15 +164,6 @@ class AxisAngle:
 
 
 @dataclass(frozen=True)
-class Gibbs:
-    r"""Gibbs vector (classical Rodrigues parameters) :math:`g = k \tan(\vartheta / 2)`; undefined at half turns."""
-
-    kind: ClassVar[Literal["orientation"]] = "orientation"
-    name: ClassVar[str] = "gibbs"
-    coordinates: ClassVar[tuple[sp.Symbol, ...]] = _real("g_x", "g_y", "g_z")
-
-
-@dataclass(frozen=True)
 class Cartesian:
     """Cartesian position :math:`(x, y, z)`."""
 
@@ -200,7 +190,7 @@ class Cylindrical:
     coordinates: ClassVar[tuple[sp.Symbol, ...]] = _real("rho", "phi_c", "z", nonnegative=("rho",))
 
 
-OrientationSpec = EulerConvention | DirectionCosines | Quaternion | AxisAngle | Gibbs
+OrientationSpec = EulerConvention | DirectionCosines | Quaternion | AxisAngle
 PositionSpec = Cartesian | Spherical | Cylindrical
 Representation = OrientationSpec | PositionSpec
 Orientation = str | OrientationSpec
@@ -214,7 +204,7 @@ EULER_CONVENTIONS: tuple[EulerConvention, ...] = tuple(
 """All 24 Euler / Tait-Bryan conventions: the 12 intrinsic ones, then the 12 extrinsic ones."""
 
 _ALL: tuple[Representation, ...] = (
-    *EULER_CONVENTIONS, DirectionCosines(), Quaternion(), AxisAngle(), Gibbs(), Cartesian(), Spherical(), Cylindrical(),
+    *EULER_CONVENTIONS, DirectionCosines(), Quaternion(), AxisAngle(), Cartesian(), Spherical(), Cylindrical(),
 )
 REGISTRY: dict[str, Representation] = {spec.name: spec for spec in _ALL}
 """Every representation by its name: the one place a name is turned into a representation."""

@@ -20,7 +20,6 @@ from symjac.representations.conventions import (
     Cylindrical,
     DirectionCosines,
     EulerConvention,
-    Gibbs,
     Orientation,
     Position,
     Quaternion,
@@ -128,14 +127,6 @@ def _(spec: AxisAngle, R: np.ndarray, tol: float) -> np.ndarray:
     norm = float(np.linalg.norm(eps))
     axis = eps / norm if norm > 0.0 else np.array([0.0, 0.0, 1.0])
     return np.array([*axis, 2.0 * math.atan2(norm, eta)])
-
-
-@_extract.register
-def _(spec: Gibbs, R: np.ndarray, tol: float) -> np.ndarray:
-    q = _quaternion(R)
-    if q[0] <= tol:
-        raise RepresentationError("a half turn has no Gibbs vector (tan(pi/2))")
-    return q[1:] / q[0]
 
 
 @_extract.register

@@ -20,7 +20,6 @@ from symjac.representations.conventions import (
     Cylindrical,
     DirectionCosines,
     EulerConvention,
-    Gibbs,
     Orientation,
     Position,
     Quaternion,
@@ -104,12 +103,6 @@ def _(spec: AxisAngle) -> sp.Matrix:
     return sp.cos(angle) * sp.eye(3) + (1 - sp.cos(angle)) * axis * axis.T + sp.sin(angle) * skew(k)
 
 
-@_rotation.register
-def _(spec: Gibbs) -> sp.Matrix:
-    G = skew(spec.coordinates)
-    return sp.eye(3) + 2 * (G + G * G) / (1 + sp.Matrix(spec.coordinates).dot(sp.Matrix(spec.coordinates)))
-
-
 @singledispatch
 def _point(spec: Representation) -> sp.Matrix:
     raise RepresentationError(f"{spec.name} is not a position representation")
@@ -168,12 +161,6 @@ def _(spec: AxisAngle) -> sp.Matrix:
     return sp.Matrix.hstack(sp.sin(angle) * sp.eye(3) + (1 - sp.cos(angle)) * skew(k), sp.Matrix(k))
 
 
-@_angular_velocity.register
-def _(spec: Gibbs) -> sp.Matrix:
-    g = sp.Matrix(spec.coordinates)
-    return 2 * (sp.eye(3) + skew(spec.coordinates)) / (1 + g.dot(g))
-
-
 @singledispatch
 def _rates(spec: Representation) -> sp.Matrix:
     """E = B^-1 for minimal sets (square B); redundant sets register their closed form instead."""
@@ -199,12 +186,6 @@ def _(spec: AxisAngle) -> sp.Matrix:
     *k, angle = spec.coordinates
     E_k = -(skew(k) + sp.cot(angle / 2) * skew(k) * skew(k)) / 2
     return sp.Matrix.vstack(E_k, sp.Matrix([k]))
-
-
-@_rates.register
-def _(spec: Gibbs) -> sp.Matrix:
-    g = sp.Matrix(spec.coordinates)
-    return (sp.eye(3) - skew(spec.coordinates) + g * g.T) / 2
 
 
 @cache

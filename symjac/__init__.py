@@ -39,6 +39,7 @@ from symjac.propagation import (
 from symjac.rates import damped_least_squares, inverse_rates, rates_along_path
 from symjac.representations import (
     REPRESENTATIONS,
+    EulerConvention,
     RepresentationJacobian,
     extract,
     rate_matrix,
@@ -65,6 +66,7 @@ __all__ = [
     "Convention",
     "ConversionError",
     "Determinant",
+    "EulerConvention",
     "ExpressionError",
     "FixedTransform",
     "ForcePropagation",

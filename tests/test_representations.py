@@ -19,9 +19,11 @@ from strategies import robots
 
 from symjac import load_robot, robot_from_mapping
 from symjac.representations import (
+    EULER_CONVENTIONS,
     EULER_ORDERS,
     POSITIONS,
     REPRESENTATIONS,
+    EulerConvention,
     RepresentationError,
     angular_velocity_matrix,
     coordinates,
@@ -30,6 +32,7 @@ from symjac.representations import (
     point_from,
     position_rate_matrix,
     rate_matrix,
+    representation,
     representation_jacobian,
     representation_jacobian_at,
     representation_singularities,
@@ -38,9 +41,10 @@ from symjac.representations import (
 from symjac.transforms import rotation_rpy, skew
 
 SETTINGS = settings(deadline=None, max_examples=20, suppress_health_check=[HealthCheck.too_slow])
-PROPER = [order for order in EULER_ORDERS if order[0] == order[2]]
-TAIT_BRYAN = [order for order in EULER_ORDERS if order[0] != order[2]]
-ANGLE_SETS = [*EULER_ORDERS, "rpy"]
+# all 24 Euler / Tait-Bryan conventions (12 intrinsic, 12 extrinsic including "rpy")
+PROPER = [c.name for c in EULER_CONVENTIONS if c.is_proper]
+TAIT_BRYAN = [c.name for c in EULER_CONVENTIONS if not c.is_proper]
+ANGLE_SETS = [c.name for c in EULER_CONVENTIONS]
 H = 1e-6
 
 
@@ -159,6 +163,128 @@ def test_position_maps():
     assert point_from("cartesian", [1, 2, 3]) == sp.Matrix([1, 2, 3])
     assert point_from("cylindrical", [2, sp.pi / 2, 5]) == sp.Matrix([0, 2, 5])
     assert position_rate_matrix("cartesian") == sp.eye(3)
+
+
+# --- all 24 Euler / Tait-Bryan conventions as values -----------------------------------------------------------
+
+
+def test_registry_names_every_convention_once():
+    assert len(EULER_CONVENTIONS) == len(set(EULER_CONVENTIONS)) == 24
+    assert sum(c.extrinsic for c in EULER_CONVENTIONS) == 12
+    assert tuple(c.name for c in EULER_CONVENTIONS if not c.extrinsic) == EULER_ORDERS
+    assert set(EULER_ORDERS) == {"zyz", "zxz", "xyx", "xzx", "yxy", "yzy", "xyz", "xzy", "yxz", "yzx", "zxy", "zyx"}
+    assert len(set(REPRESENTATIONS)) == len(REPRESENTATIONS)
+    assert set(ANGLE_SETS) | {"direction_cosines", "quaternion", "axis_angle"} <= set(REPRESENTATIONS)
+    assert all(representation(name).kind == "orientation" for name in REPRESENTATIONS)
+    for convention in EULER_CONVENTIONS:
+        assert representation(convention.name) == convention
+        assert representation(convention) is convention
+        expected = "rpy" if convention.is_rpy else convention.axes + ("_extrinsic" if convention.extrinsic else "")
+        assert convention.name == expected
+    assert {"cartesian", "spherical", "cylindrical"} <= set(POSITIONS)
+    assert all(representation(name).kind == "position" for name in POSITIONS)
+    with pytest.raises(RepresentationError, match="Euler axes must be one of"):
+        EulerConvention("zzy")
+    with pytest.raises(RepresentationError, match="unknown orientation representation 'cartesian'"):
+        rotation_from("cartesian")
+
+
+def test_rpy_is_the_extrinsic_xyz_convention():
+    rpy = EulerConvention("xyz", extrinsic=True)
+    assert representation("rpy") == rpy and representation("xyz_extrinsic") == rpy
+    assert coordinates(rpy) == coordinates("rpy") == coordinates("xyz_extrinsic")
+    assert rotation_from(rpy) == rotation_from("rpy") == rotation_from("xyz_extrinsic")
+    assert rate_matrix(rpy) == rate_matrix("rpy")
+
+
+@pytest.mark.parametrize("convention", EULER_CONVENTIONS, ids=lambda c: c.name)
+def test_convention_rotation_is_the_product_of_elementary_rotations(convention):
+    """Intrinsic: about the moving axes, left to right; extrinsic: about the fixed axes, so right to left."""
+    from symjac.transforms import rotation
+
+    a, b, c = coordinates(convention)
+    first, second, third = (rotation(axis, angle) for axis, angle in zip(convention.axes, (a, b, c), strict=True))
+    expected = third * second * first if convention.extrinsic else first * second * third
+    assert rotation_from(convention) == expected
+    assert rotation_from(convention.name) == expected
+
+
+@pytest.mark.parametrize("axes", [c.axes for c in EULER_CONVENTIONS if not c.extrinsic])
+def test_extrinsic_is_intrinsic_with_axes_and_angles_reversed(axes):
+    a, b, c = sp.symbols("a b c", real=True)
+    extrinsic = rotation_from(EulerConvention(axes, extrinsic=True), [a, b, c])
+    assert extrinsic == rotation_from(EulerConvention(axes[::-1]), [c, b, a])
+
+
+@pytest.mark.parametrize("name", ANGLE_SETS)
+def test_every_convention_B_from_rotation_differences_and_E_B_identity(name):
+    """omega = B xdot against vee(R_dot R^T) by central differences; E B = I at the same points."""
+    rng = np.random.default_rng(sum(map(ord, name)))
+    checked = 0
+    while checked < 3:
+        x0 = rng.uniform(-math.pi, math.pi, 3)
+        if min(abs(v) for v in factor_values(name, x0)) < 0.1:
+            continue
+        x_dot = rng.normal(size=3)
+        R_dot = (rotation_numeric(name, x0 + H * x_dot) - rotation_numeric(name, x0 - H * x_dot)) / (2 * H)
+        omega = vee(R_dot @ rotation_numeric(name, x0).T)
+        B = numeric(angular_velocity_matrix(name, list(x0)))
+        np.testing.assert_allclose(B @ x_dot, omega, atol=1e-8, err_msg=name)
+        np.testing.assert_allclose(rate_numeric(name, x0) @ B, np.eye(3), atol=1e-12, err_msg=name)
+        checked += 1
+
+
+@pytest.mark.parametrize("name", ANGLE_SETS)
+def test_every_convention_extraction_round_trip_random_and_at_gimbal_lock(name):
+    rng = np.random.default_rng(sum(map(ord, name)) + 1)
+    for _ in range(5):
+        R = random_rotation(rng)
+        np.testing.assert_allclose(rotation_numeric(name, extract(name, R)), R, atol=1e-12, err_msg=name)
+    (singularity,) = representation_singularities(name)
+    for lock in singularity.solutions:
+        for offset in (0.0, 1e-10):
+            x = np.array([rng.uniform(-3, 3), float(lock) + offset, rng.uniform(-3, 3)])
+            R = rotation_numeric(name, x)
+            y = extract(name, R)
+            np.testing.assert_allclose(rotation_numeric(name, y), R, atol=1e-12, err_msg=f"{name} {lock} {offset}")
+            if offset == 0.0:
+                assert y[representation(name).leftmost] == 0.0
+
+
+@pytest.mark.parametrize("name", ANGLE_SETS)
+def test_every_convention_is_singular_exactly_where_det_B_vanishes(name):
+    convention = representation(name)
+    (singularity,) = representation_singularities(name)
+    middle = coordinates(name)[1]
+    assert singularity.variable == middle
+    assert str(singularity.factor) == f"{'sin' if convention.is_proper else 'cos'}({middle})"
+    assert sp.simplify(angular_velocity_matrix(name).det() ** 2 - singularity.factor**2) == 0
+    assert "gimbal lock" in str(singularity)
+
+
+def test_a_convention_value_is_accepted_wherever_a_name_is():
+    convention = EulerConvention("zyx", extrinsic=True)
+    R = random_rotation(np.random.default_rng(29))
+    np.testing.assert_array_equal(extract(convention, R), extract("zyx_extrinsic", R))
+    assert angular_velocity_matrix(convention) == angular_velocity_matrix("zyx_extrinsic")
+    assert representation_singularities(convention) == representation_singularities("zyx_extrinsic")
+    robot = load_robot("puma560")
+    by_value = representation_jacobian(robot, convention, "spherical")
+    assert by_value == representation_jacobian(robot, "zyx_extrinsic", "spherical")
+    assert by_value.orientation == "zyx_extrinsic"
+    q = _configuration(robot, np.random.default_rng(31), convention, "spherical", 0, "wrist")
+    value = _check_against_finite_differences(robot, q, np.ones(robot.dof), convention, "spherical", 0, "wrist")
+    assert value.x.shape == (6,)
+
+
+def test_package_all_is_sorted_and_complete():
+    import symjac.representations as package
+
+    def group(name):
+        return (0 if name.isupper() else 1 if name[0].isupper() else 2, name)
+
+    assert package.__all__ == sorted(package.__all__, key=group)
+    assert all(hasattr(package, name) for name in package.__all__)
 
 
 # --- rate matrices ---------------------------------------------------------------------------------------------------
@@ -356,7 +482,7 @@ def _lock_angles(name):
 def test_gimbal_lock_first_angle_zero_and_round_trip(name, offset):
     """At (and near) beta = 0, pi or +-pi/2 the pose is reproduced; exactly there the first angle is 0 (seed 002)."""
     rng = np.random.default_rng(13)
-    first = 2 if name == "rpy" else 0  # the leftmost factor: yaw for roll-pitch-yaw
+    first = representation(name).leftmost  # the leftmost factor: yaw for roll-pitch-yaw, the last angle if extrinsic
     for lock in _lock_angles(name):
         for _ in range(4):
             x = np.array([rng.uniform(-3, 3), lock - math.copysign(offset, lock - 0.1), rng.uniform(-3, 3)])
@@ -435,7 +561,7 @@ def _check_against_finite_differences(robot, q, q_dot, orientation, position, fr
     value = representation_jacobian_at(robot, q, orientation, position, point, frame)
     difference = value.x - _reference_x(robot, q, orientation, position, frame, point)
     angles = {"spherical": [1, 2], "cylindrical": [1]}.get(position, [])
-    if orientation in EULER_ORDERS or orientation == "rpy":
+    if orientation in ANGLE_SETS:
         angles += [3, 4, 5]
     difference[angles] = (difference[angles] + np.pi) % (2 * np.pi) - np.pi  # -pi and pi are the same azimuth
     np.testing.assert_allclose(difference, 0, atol=1e-9)
@@ -489,7 +615,9 @@ def test_catalog_robots_every_representation_against_finite_differences(name):
         q_dot = rng.normal(size=robot.dof)
         _check_against_finite_differences(robot, q, q_dot, orientation, position, frame, point)
         checked += 1
-    assert checked >= len(REPRESENTATIONS) - (2 if name == "scara" else 0)
+    # SCARA turns about z only: every z-z convention (intrinsic or extrinsic) is in gimbal lock at every pose
+    z_z = [c for c in EULER_CONVENTIONS if c.axes[0] == c.axes[2] == "z"]
+    assert checked >= len(REPRESENTATIONS) - (len(z_z) if name == "scara" else 0)
 
 
 def test_planar_arm_is_always_in_gimbal_lock_for_zyz():

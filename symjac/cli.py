@@ -22,15 +22,21 @@ from symjac.errors import ArgumentError, ExpressionError, FrameError, SymjacErro
 from symjac.expressions import parse_expression
 from symjac.files import write_text
 from symjac.io import catalog, load_robot
-from symjac.jacobian import METHODS, ROW_NAMES, jacobian, point_vector, rows_from_names
+from symjac.jacobian import METHODS, jacobian, point_vector, rows_from_names
 from symjac.model import Robot
 from symjac.printing import prose
-from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, equation_latex, render
-from symjac.printing.json import matrix_strings, metadata, singularity_data
-from symjac.printing.latex import latex
+from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
+from symjac.printing.json import (
+    forward_kinematics_data,
+    jacobian_data,
+    metadata,
+    representation_data,
+    show_data,
+    singularity_data,
+    torques_data,
+)
 from symjac.printing.steps import step_equations
 from symjac.printing.summary import singularity_blocks
-from symjac.printing.tables import dh_rows
 from symjac.propagation import force_propagation, velocity_propagation, wrench_symbols
 from symjac.representations import POSITIONS, REPRESENTATIONS, representation_jacobian
 from symjac.singular_report import singularities
@@ -157,8 +163,7 @@ def _show(args: argparse.Namespace) -> Document:
     matrices = [(tex, plain, _numeric(robot, m, args.numeric)) for tex, plain, m in transforms]
     blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
     blocks += [Block((), (Equation(tex, plain, m),)) for tex, plain, m in matrices]
-    data = {**metadata(robot), "dh_table": dh_rows(robot),
-            "transforms": {plain: matrix_strings(m) for _, plain, m in matrices}}
+    data = show_data(robot, {plain: m for _, plain, m in matrices})
     return Document(f"{robot.name}: DH table and link transforms", robot.name, tuple(blocks), data)
 
 
@@ -169,7 +174,7 @@ def _fk(args: argparse.Namespace) -> Document:
     target: Frame = "tool" if robot.tool else robot.dof
     T = _progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
     T = _numeric(robot, T, args.numeric)
-    data = {**metadata(robot), "source": source, "target": target, "entries": matrix_strings(T), "latex": latex(T)}
+    data = forward_kinematics_data(robot, T, source, target)
     equation = Equation(f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", T)
     return Document(f"{robot.name}: forward kinematics", robot.name, (Block((), (equation,)),), data)
 
@@ -187,10 +192,7 @@ def _jacobian(args: argparse.Namespace) -> Document:
     equation = Equation(f"{{}}^{{{frame}}}J", f"J in frame {frame}", J)
     caption = f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}"
     blocks = [Block((), (step,)) for step in steps] + [Block((caption,), (equation,))]
-    data = {**metadata(robot), "frame": frame, "point": args.point, "method": args.method,
-            "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
-            "entries": matrix_strings(J), "latex": equation_latex(equation),
-            **({"steps": [equation_latex(step) for step in steps]} if args.steps else {})}
+    data = jacobian_data(robot, equation, frame, args.point, args.method, steps if args.steps else None)
     return Document(f"{robot.name}: Jacobian in frame {frame}", robot.name, tuple(blocks), data)
 
 
@@ -205,11 +207,7 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
               Block((f"Representation Jacobian at the {args.point} point",),
                     (Equation(rf"J_x = E(x)\,{{}}^{{{rj.frame}}}J", f"J_x = E(x) J_{rj.frame}", (rj.E, J_0)),))]
     blocks += [Block((note,)) for note in notes]
-    data = {**metadata(robot), "frame": rj.frame, "point": args.point,
-            "orientation": args.representation, "position": args.position,
-            "coordinates": [str(c) for c in rj.coordinates], "E": matrix_strings(rj.E),
-            "J_0": matrix_strings(J_0), "representation_singularities": [str(s) for s in rj.singularities],
-            "latex": equation_latex(Equation("J_x", "J_x", (rj.E, J_0)))}
+    data = representation_data(robot, rj, J_0, args.point, args.representation, args.position)
     title = f"{robot.name}: {args.representation} representation Jacobian"
     return Document(title, robot.name, tuple(blocks), data, comments=True)
 
@@ -239,9 +237,7 @@ def _torques(args: argparse.Namespace) -> Document:
     tau = _numeric(robot, tau, args.numeric)
     equation = Equation(r"\tau", "tau", tau)
     caption = f"Joint torques for a wrench in frame {frame} at the {args.point} point"
-    data = {**metadata(robot), "frame": frame, "point": args.point,
-            "wrench": args.wrench or [str(s) for s in wrench_symbols()], "q": args.q,
-            "torques": [sp.sstr(t) for t in tau], "latex": equation_latex(equation)}
+    data = torques_data(robot, equation, frame, args.point, args.wrench, args.q, [str(s) for s in wrench_symbols()])
     return Document(f"{robot.name}: joint torques", robot.name, (Block((caption,), (equation,)),), data)
 
 

@@ -15,6 +15,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum, StrEnum
 from itertools import combinations
+from typing import Literal
 
 import numpy as np
 import sympy as sp
@@ -63,7 +64,7 @@ class Relation(Enum):
 class Landmark:
     """A point or line a finding is about: the reference point, the origin of a frame, or a joint's axis."""
 
-    kind: str  # "reference point", "frame origin" or "joint axis"
+    kind: Literal["reference point", "frame origin", "joint axis"]
     index: int | None = None  # the frame (origin) or the 0-based joint (axis)
 
 

@@ -523,3 +523,12 @@ def test_no_handler_branches_on_the_format():
     import symjac.cli as cli
 
     assert "args.format" not in inspect.getsource(cli).replace("render(result, args.format", "")
+
+
+def test_printing_package_exports_a_sorted_all():
+    import symjac.printing as printing
+
+    # constants first, then classes and functions, as in symjac.__all__ (ruff's RUF022 order)
+    assert printing.__all__ == sorted(printing.__all__, key=lambda name: (not name.isupper(), name))
+    assert all(hasattr(printing, name) for name in printing.__all__)
+    assert {"latex", "pretty", "propagation_steps", "singularity_summary", "render"} <= set(printing.__all__)

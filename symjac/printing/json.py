@@ -7,12 +7,27 @@ from typing import Any
 import sympy as sp
 
 from symjac._version import __version__
+from symjac.chain import Frame
+from symjac.jacobian import ROW_NAMES
 from symjac.model import Robot
 from symjac.printing import prose
+from symjac.printing.document import Equation, equation_latex
+from symjac.printing.latex import latex
+from symjac.printing.tables import dh_rows
 from symjac.singular_report import SingularityReport
 from symjac.singularity import Determinant
 
-__all__ = ["determinant_data", "matrix_strings", "metadata", "singularity_data"]
+__all__ = [
+    "determinant_data",
+    "forward_kinematics_data",
+    "jacobian_data",
+    "matrix_strings",
+    "metadata",
+    "representation_data",
+    "show_data",
+    "singularity_data",
+    "torques_data",
+]
 
 
 def metadata(robot: Robot) -> dict[str, Any]:
@@ -51,3 +66,44 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
             "self_motion_words": prose.self_motion_words(f),
         } for f in report.factors],
     }
+
+
+def show_data(robot: Robot, transforms: dict[str, sp.MatrixBase]) -> dict[str, Any]:
+    """``symjac show``: the DH table as rows of strings and each named transform as a matrix of strings."""
+    return {**metadata(robot), "dh_table": dh_rows(robot),
+            "transforms": {name: matrix_strings(m) for name, m in transforms.items()}}
+
+
+def forward_kinematics_data(robot: Robot, T: sp.MatrixBase, source: Frame, target: Frame) -> dict[str, Any]:
+    """``symjac fk``: the pose between two frames, as strings and as LaTeX."""
+    return {**metadata(robot), "source": source, "target": target, "entries": matrix_strings(T), "latex": latex(T)}
+
+
+def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, method: str,
+                  steps: list[Equation] | None = None) -> dict[str, Any]:
+    """``symjac jacobian``: the basic Jacobian (``equation.rhs``, in ``frame``), with the propagation steps if any."""
+    J = equation.rhs
+    return {**metadata(robot), "frame": frame, "point": point, "method": method,
+            "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
+            "entries": matrix_strings(J), "latex": equation_latex(equation),
+            **({"steps": [equation_latex(step) for step in steps]} if steps is not None else {})}
+
+
+def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, point: str, orientation: str,
+                        position: str) -> dict[str, Any]:
+    """``symjac jacobian --representation``: coordinates, the rate matrix E, the basic Jacobian and its singularities.
+
+    ``result`` is a :class:`symjac.representations.RepresentationJacobian` (fields ``coordinates``, ``E``, ``frame``,
+    ``singularities``).
+    """
+    return {**metadata(robot), "frame": result.frame, "point": point, "orientation": orientation,
+            "position": position, "coordinates": [str(c) for c in result.coordinates], "E": matrix_strings(result.E),
+            "J_0": matrix_strings(J_0), "representation_singularities": [str(s) for s in result.singularities],
+            "latex": equation_latex(Equation("J_x", "J_x", (result.E, J_0)))}
+
+
+def torques_data(robot: Robot, equation: Equation, frame: Frame, point: str, wrench: str | None,
+                 q: str | None, wrench_names: list[str]) -> dict[str, Any]:
+    """``symjac torques``: the joint torques (``equation.rhs``) for the wrench given (or the symbolic one)."""
+    return {**metadata(robot), "frame": frame, "point": point, "wrench": wrench or wrench_names, "q": q,
+            "torques": [sp.sstr(t) for t in equation.rhs], "latex": equation_latex(equation)}

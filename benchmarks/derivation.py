@@ -25,7 +25,7 @@ from symjac.io import catalog, load_robot
 from symjac.jacobian import jacobian
 from symjac.model import Robot, robot_from_mapping
 from symjac.propagation import force_propagation, velocity_propagation
-from symjac.singularity import singularities
+from symjac.singular_report import singularities
 
 __all__ = ["DerivationTiming", "main", "snake", "time_derivation", "time_singularities"]
 

@@ -26,7 +26,7 @@ from symjac.jacobian import jacobian
 from symjac.model import Robot
 from symjac.propagation import force_propagation, velocity_propagation
 from symjac.robot_file import robot_from_mapping
-from symjac.singularity import singularities
+from symjac.singular_report import singularities
 
 __all__ = ["DerivationTiming", "main", "snake", "time_derivation", "time_singularities"]
 

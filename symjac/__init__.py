@@ -49,7 +49,8 @@ from symjac.representations import (
 )
 from symjac.robot_file import robot_from_mapping, robot_to_mapping
 from symjac.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
-from symjac.singularity import Determinant, SingularFactor, SingularityReport, determinant, singularities
+from symjac.singular_report import SingularFactor, SingularityReport, singularities
+from symjac.singularity import Determinant, determinant
 from symjac.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
 from symjac.statics import joint_torques, wrench_between
 from symjac.transforms import twist_transform, wrench_transform

@@ -7,7 +7,6 @@ is a terminal. Any symjac error prints one line and exits with status 2.
 from __future__ import annotations
 
 import argparse
-import json
 import shlex
 import sys
 import time
@@ -24,16 +23,25 @@ from symjac.errors import ArgumentError, ExpressionError, FrameError, SymjacErro
 from symjac.expressions import parse_expression
 from symjac.files import write_text
 from symjac.io import catalog, load_robot
-from symjac.jacobian import METHODS, ROW_NAMES, jacobian, point_vector, rows_from_names
+from symjac.jacobian import METHODS, jacobian, point_vector, rows_from_names
 from symjac.model import Robot
-from symjac.printing import latex, pretty, propagation_steps, singularity_summary
+from symjac.printing import prose
+from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
+from symjac.printing.json import (
+    forward_kinematics_data,
+    jacobian_data,
+    metadata,
+    representation_data,
+    show_data,
+    singularity_data,
+    torques_data,
+)
+from symjac.printing.steps import step_equations
+from symjac.printing.summary import singularity_blocks
 from symjac.propagation import force_propagation, velocity_propagation, wrench_symbols
 from symjac.representations import POSITIONS, REPRESENTATIONS, representation_jacobian
-from symjac.resources import render_template
-from symjac.singularity import report_data, singularities
+from symjac.singular_report import singularities
 from symjac.statics import joint_torques
-
-FORMATS = ("latex", "pretty", "json")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -42,7 +50,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     args.argv = list(sys.argv[1:] if argv is None else argv)  # the command as typed, for generated headers
     try:
-        text = args.handler(args)
+        result = args.handler(args)
+        text = result if isinstance(result, str) else render(result, args.format, args.standalone)
         _emit(text, args.output)
     except SymjacError as error:
         print(f"symjac: error: {error}", file=sys.stderr)
@@ -58,7 +67,8 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"symjac {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    def command(name: str, handler: Callable[[argparse.Namespace], str], help_text: str) -> argparse.ArgumentParser:
+    def command(name: str, handler: Callable[[argparse.Namespace], str | Document],
+                help_text: str) -> argparse.ArgumentParser:
         sub = commands.add_parser(name, help=help_text, description=help_text)
         sub.set_defaults(handler=handler)
         sub.add_argument("-o", "--output", type=Path, help="write the result to this file instead of stdout")
@@ -141,7 +151,7 @@ def _convert(args: argparse.Namespace) -> str:
     return "".join(f"# {note}\n" for note in notes) + text
 
 
-def _show(args: argparse.Namespace) -> str:
+def _show(args: argparse.Namespace) -> Document:
     robot = load_robot(args.robot)
     chain = chain_of(robot)
     transforms = [(f"{{}}^{{{i - 1}}}_{{{i}}}T", f"T_{i - 1}_{i}", chain.simplified_transform(i - 1, i))
@@ -151,41 +161,26 @@ def _show(args: argparse.Namespace) -> str:
         if fixed is not None:
             source, target = ("world", 0) if key == "base" else (robot.dof, "tool")
             transforms.append((f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", fixed.matrix))
-    rows = _dh_rows(robot)
-    if args.format == "json":
-        return _json({**_metadata(robot), "dh_table": rows,
-                      "transforms": {plain: _matrix_strings(_numeric(robot, m, args.numeric))
-                                     for _, plain, m in transforms}})
-    if args.format == "pretty":
-        kind = "general chain (URDF-style origin and axis)" if robot.convention == "general" else (
-            f"{robot.convention.value} DH")
-        header = f"{robot.name}: {robot.description}\n{kind}\n"
-        table = _text_table(["joint", "type", *_dh_headers(robot)], rows)
-        texts = [f"{plain} =\n{pretty(_numeric(robot, m, args.numeric))}" for _, plain, m in transforms]
-        return header + table + "\n" + "\n\n".join(texts) + "\n"
-    blocks = [{"caption": "Denavit-Hartenberg table", "latex": _latex_table(robot, rows)}]
-    blocks += [{"caption": "", "latex": f"{tex} = {latex(_numeric(robot, m, args.numeric))}"}
-               for tex, _, m in transforms]
-    return _latex_output(args, robot, f"{robot.name}: DH table and link transforms", blocks)
+    matrices = [(tex, plain, _numeric(robot, m, args.numeric)) for tex, plain, m in transforms]
+    blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
+    blocks += [Block((), (Equation(tex, plain, m),)) for tex, plain, m in matrices]
+    data = show_data(robot, {plain: m for _, plain, m in matrices})
+    return Document(f"{robot.name}: DH table and link transforms", robot.name, tuple(blocks), data)
 
 
-def _fk(args: argparse.Namespace) -> str:
+def _fk(args: argparse.Namespace) -> Document:
     robot = load_robot(args.robot)
     chain = chain_of(robot)
     source: Frame = "world" if robot.base else 0
     target: Frame = "tool" if robot.tool else robot.dof
     T = _progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
     T = _numeric(robot, T, args.numeric)
-    if args.format == "json":
-        return _json({**_metadata(robot), "source": source, "target": target, "entries": _matrix_strings(T),
-                      "latex": latex(T)})
-    if args.format == "pretty":
-        return f"T_{source}_{target} =\n{pretty(T)}\n"
-    block = {"caption": "", "latex": f"{{}}^{{{source}}}_{{{target}}}T = {latex(T)}"}
-    return _latex_output(args, robot, f"{robot.name}: forward kinematics", [block])
+    data = forward_kinematics_data(robot, T, source, target)
+    equation = Equation(f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", T)
+    return Document(f"{robot.name}: forward kinematics", robot.name, (Block((), (equation,)),), data)
 
 
-def _jacobian(args: argparse.Namespace) -> str:
+def _jacobian(args: argparse.Namespace) -> Document:
     robot = load_robot(args.robot)
     frame = _parse_frame(args.frame)
     point = _parse_point(args.point, robot)
@@ -195,49 +190,31 @@ def _jacobian(args: argparse.Namespace) -> str:
     J = _progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
     J = _numeric(robot, J, args.numeric)
-    name = f"{{}}^{{{frame}}}J"
-    if args.format == "json":
-        return _json({**_metadata(robot), "frame": frame, "point": args.point, "method": args.method,
-                      "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
-                      "entries": _matrix_strings(J), "latex": f"{name} = {latex(J)}",
-                      **({"steps": steps} if args.steps else {})})
-    if args.format == "pretty":
-        shown = "".join(f"{step}\n\n" for step in steps)
-        return f"{shown}J in frame {frame}, point {args.point}, method {args.method}:\n{pretty(J)}\n"
-    blocks = [{"caption": "", "latex": step} for step in steps]
-    blocks.append({"caption": f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}",
-                   "latex": f"{name} = {latex(J)}"})
-    return _latex_output(args, robot, f"{robot.name}: Jacobian in frame {frame}", blocks)
+    equation = Equation(f"{{}}^{{{frame}}}J", f"J in frame {frame}", J)
+    caption = f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}"
+    blocks = [Block((), (step,)) for step in steps] + [Block((caption,), (equation,))]
+    data = jacobian_data(robot, equation, frame, args.point, args.method, steps if args.steps else None)
+    return Document(f"{robot.name}: Jacobian in frame {frame}", robot.name, tuple(blocks), data)
 
 
-def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> str:
+def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> Document:
     """``jacobian --representation``: x, E(x), the basic Jacobian and J_x = E(x) J_0, then E's own singularities."""
     rj = _progress(f"{args.representation} representation Jacobian of {robot.name}",
                    lambda: representation_jacobian(robot, args.representation, args.position, point, frame))
     J_0 = _numeric(robot, jacobian(robot, frame=rj.frame, point=point), args.numeric)
-    x = sp.Matrix(rj.coordinates)
-    notes = [f"representation singularity (not kinematic): {s}" for s in rj.singularities]
-    if args.format == "json":
-        return _json({**_metadata(robot), "frame": rj.frame, "point": args.point,
-                      "orientation": args.representation, "position": args.position,
-                      "coordinates": [str(c) for c in rj.coordinates], "E": _matrix_strings(rj.E),
-                      "J_0": _matrix_strings(J_0), "representation_singularities": [str(s) for s in rj.singularities],
-                      "latex": rf"J_x = {latex(rj.E)} {latex(J_0)}"})
-    if args.format == "pretty":
-        return (f"x =\n{pretty(x)}\n\nE(x) =\n{pretty(rj.E)}\n\nJ_0 =\n{pretty(J_0)}\n\nJ_x = E(x) J_0\n"
-                + "".join(f"\n{note}" for note in notes) + "\n")
-    blocks = [{"caption": "Representation coordinates", "latex": f"x = {latex(x)}"},
-              {"caption": "Rate matrix, xdot = E(x) [v; omega]", "latex": f"E(x) = {latex(rj.E)}"},
-              {"caption": f"Representation Jacobian at the {args.point} point",
-               "latex": rf"J_x = E(x)\,{{}}^{{{rj.frame}}}J = {latex(rj.E)} {latex(J_0)}"}]
-    if args.standalone:
-        blocks += [{"caption": note, "latex": r"\quad"} for note in notes]
-        return _latex_output(args, robot, f"{robot.name}: {args.representation} representation Jacobian", blocks)
-    return "".join(f"% {b['caption']}\n{b['latex']}\n" for b in blocks) + "".join(f"% {n}\n" for n in notes)
+    notes = [prose.representation_note(s) for s in rj.singularities]
+    blocks = [Block(("Representation coordinates",), (Equation("x", "x", sp.Matrix(rj.coordinates)),)),
+              Block(("Rate matrix, xdot = E(x) [v; omega]",), (Equation("E(x)", "E(x)", rj.E),)),
+              Block((f"Representation Jacobian at the {args.point} point",),
+                    (Equation(rf"J_x = E(x)\,{{}}^{{{rj.frame}}}J", f"J_x = E(x) J_{rj.frame}", (rj.E, J_0)),))]
+    blocks += [Block((note,)) for note in notes]
+    data = representation_data(robot, rj, J_0, args.point, args.representation, args.position)
+    title = f"{robot.name}: {args.representation} representation Jacobian"
+    return Document(title, robot.name, tuple(blocks), data, comments=True)
 
 
-def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[str]:
-    """The propagation steps of ``--steps``, in the output format (LaTeX for latex and json)."""
+def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[Equation]:
+    """The propagation steps of ``--steps``."""
     tip = None if point == "tool" else point_vector(robot, point)
     derive: dict[str, Callable[[], Any]] = {
         "velocity_propagation": lambda: velocity_propagation(robot, tip),
@@ -246,11 +223,10 @@ def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[str]:
     if args.method not in derive:
         raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
     propagation = _progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
-    style = "pretty" if args.format == "pretty" else "latex"
-    return propagation_steps(propagation, style, values=_numeric_values(robot) if args.numeric else None)
+    return step_equations(propagation, values=_numeric_values(robot) if args.numeric else None)
 
 
-def _torques(args: argparse.Namespace) -> str:
+def _torques(args: argparse.Namespace) -> Document:
     robot = load_robot(args.robot)
     frame = _parse_frame(args.frame)
     point = _parse_point(args.point, robot)
@@ -260,33 +236,21 @@ def _torques(args: argparse.Namespace) -> str:
     tau = _progress(f"joint torques of {robot.name}",
                     lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q))
     tau = _numeric(robot, tau, args.numeric)
-    if args.format == "json":
-        return _json({**_metadata(robot), "frame": frame, "point": args.point,
-                      "wrench": args.wrench or [str(s) for s in wrench_symbols()], "q": args.q,
-                      "torques": [sp.sstr(t) for t in tau], "latex": rf"\tau = {latex(tau)}"})
-    if args.format == "pretty":
-        return f"tau (wrench in frame {frame} at the {args.point} point) =\n{pretty(tau)}\n"
-    block = {"caption": f"Joint torques for a wrench in frame {frame} at the {args.point} point",
-             "latex": rf"\tau = {latex(tau)}"}
-    return _latex_output(args, robot, f"{robot.name}: joint torques", [block])
+    equation = Equation(r"\tau", "tau", tau)
+    caption = f"Joint torques for a wrench in frame {frame} at the {args.point} point"
+    data = torques_data(robot, equation, frame, args.point, args.wrench, args.q, [str(s) for s in wrench_symbols()])
+    return Document(f"{robot.name}: joint torques", robot.name, (Block((caption,), (equation,)),), data)
 
 
-def _singularities(args: argparse.Namespace) -> str:
+def _singularities(args: argparse.Namespace) -> Document:
     robot = load_robot(args.robot)
     frame = None if args.frame is None else _parse_frame(args.frame)
     point = None if args.point is None else _parse_point(args.point, robot)
     rows = None if args.rows is None else _parse_rows(args.rows)
     report = _progress(f"singularities of {robot.name}",
                        lambda: singularities(robot, rows=rows, frame=frame, point=point, numeric=args.numeric))
-    if args.format == "json":
-        return _json({**_metadata(robot), **report_data(report)})
-    lines = singularity_summary(report, args.format)
-    if args.format == "pretty":
-        return "".join(f"{caption}\n{body}\n\n" if body else f"{caption}\n\n" for caption, body in lines)
-    if args.standalone:
-        blocks = [{"caption": caption, "latex": body or r"\quad"} for caption, body in lines]
-        return _latex_output(args, robot, f"{robot.name}: singular configurations", blocks)
-    return "".join(f"% {caption}\n{body}\n" if body else f"% {caption}\n" for caption, body in lines)
+    return Document(f"{robot.name}: singular configurations", robot.name, tuple(singularity_blocks(report)),
+                    {**metadata(robot), **singularity_data(report)}, comments=True)
 
 
 def _codegen(args: argparse.Namespace) -> str:
@@ -366,67 +330,6 @@ def _numeric(robot: Robot, matrix: sp.MatrixBase, numeric: bool) -> sp.MatrixBas
 def _numeric_values(robot: Robot) -> dict[sp.Symbol, sp.Float]:
     """The parameters' defaults as short decimals (``0.4318``, not ``2159/5000``)."""
     return {symbol: sp.Float(repr(float(value))) for symbol, value in robot.defaults.items()}
-
-
-def _metadata(robot: Robot) -> dict[str, Any]:
-    return {"symjac": __version__, "robot": robot.name, "convention": robot.convention.value,
-            "joint_variables": [str(q) for q in robot.q],
-            "parameters": {p.name: float(p.default) for p in robot.parameters}}
-
-
-def _matrix_strings(matrix: sp.MatrixBase) -> list[list[str]]:
-    return [[sp.sstr(matrix[r, c]) for c in range(matrix.cols)] for r in range(matrix.rows)]
-
-
-def _json(data: dict[str, Any]) -> str:
-    return json.dumps(data, indent=2) + "\n"
-
-
-def _dh_headers(robot: Robot) -> list[str]:
-    if robot.convention == "general":  # origin and axis per joint, as in URDF
-        return ["xyz", "rpy", "axis", "d_i", "theta_i"]
-    return ["alpha_{i-1}", "a_{i-1}", "d_i", "theta_i"] if robot.convention == "modified" else [
-        "alpha_i", "a_i", "d_i", "theta_i"]
-
-
-def _dh_rows(robot: Robot) -> list[list[str]]:
-    if robot.convention == "general":
-        zero = (sp.S.Zero,) * 3
-        return [[str(joint.index), joint.type.value,
-                 *(sp.sstr(list(v)) for v in (joint.origin.xyz if joint.origin else zero,
-                                              joint.origin.rpy if joint.origin else zero,
-                                              joint.axis or (0, 0, 1))),
-                 sp.sstr(joint.offset), sp.sstr(joint.angle)] for joint in robot.joints]
-    return [[str(joint.index), joint.type.value, *(sp.sstr(e) for e in (joint.alpha, joint.a, joint.offset,
-                                                                         joint.angle))]
-            for joint in robot.joints]
-
-
-def _text_table(headers: list[str], rows: list[list[str]]) -> str:
-    widths = [max(len(row[i]) for row in [headers, *rows]) for i in range(len(headers))]
-    lines = ["  ".join(cell.ljust(width) for cell, width in zip(row, widths, strict=True)).rstrip()
-             for row in [headers, *rows]]
-    return "\n".join(lines) + "\n"
-
-
-def _latex_table(robot: Robot, rows: list[list[str]]) -> str:
-    if robot.convention == "general":
-        cells = r" \\ ".join(" & ".join(row[:1] + [rf"\text{{{cell}}}" for cell in row[1:]]) for row in rows)
-        columns = r"\text{type} & \text{xyz} & \text{rpy} & \text{axis} & d_i & \theta_i"
-        return r"\begin{array}{c|cccccc} i & " + columns + r" \\ \hline " + cells + r" \end{array}"
-    headers = [r"\alpha_{i-1}", "a_{i-1}", "d_i", r"\theta_i"] if robot.convention == "modified" else [
-        r"\alpha_i", "a_i", "d_i", r"\theta_i"]
-    body = r" \\ ".join(" & ".join([str(joint.index)] + [latex(e) for e in (joint.alpha, joint.a, joint.offset,
-                                                                              joint.angle)])
-                        for joint in robot.joints)
-    return r"\begin{array}{c|cccc} i & " + " & ".join(headers) + r" \\ \hline " + body + r" \end{array}"
-
-
-def _latex_output(args: argparse.Namespace, robot: Robot, title: str, blocks: list[dict[str, str]]) -> str:
-    if args.standalone:
-        return render_template("latex_document.tex.j2", version=__version__, robot=robot.name, title=title,
-                               blocks=blocks)
-    return "".join(f"{block['latex']}\n" for block in blocks)
 
 
 def _emit(text: str, output: Path | None) -> None:

@@ -486,3 +486,49 @@ def test_jacobian_with_a_representation_prints_e_and_its_own_singularities(capsy
     assert len(data["E"]) == 7 and data["coordinates"][:3] == ["x", "y", "z"]
     assert main(["jacobian", "puma560", "--representation", "zyz", "--frame", "3"]) == 2
     assert "fixed frame" in capsys.readouterr().err
+
+
+# --- JSON keys stay as they were before the printing layer was split out ----------------------------------------
+
+META = {"symjac", "robot", "convention", "joint_variables", "parameters"}
+JSON_KEYS = {
+    ("singularities", "articulated3r"): META | {"rows", "frame", "point", "redundant", "determinant", "minors",
+                                                "factors"},
+    ("jacobian", "planar2r"): META | {"frame", "point", "method", "shape", "rows", "columns", "entries", "latex"},
+    ("show", "stanford"): META | {"dh_table", "transforms"},
+}
+
+
+@pytest.mark.parametrize(("command", "robot"), sorted(JSON_KEYS))
+def test_json_output_round_trips_with_the_same_keys(capsys, command, robot):
+    out = ok(capsys, command, robot, "--format", "json")
+    data = json.loads(out)
+    assert set(data) == JSON_KEYS[command, robot]
+    assert json.dumps(data, indent=2) + "\n" == out
+    if command == "singularities":
+        assert set(data["determinant"]) == {"expression", "coefficient", "factors", "columns"}
+        for factor in data["factors"]:
+            assert set(factor) == {"expression", "multiplicity", "kind", "reason", "solutions", "existence",
+                                   "exists_for_defaults", "sample", "lost_direction", "lost", "self_motion",
+                                   "self_motion_words"}
+        kinds = {factor["kind"] for factor in data["factors"]}
+        assert kinds == {"parameter", "elbow", "shoulder"}
+        (elbow,) = [factor for factor in data["factors"] if factor["kind"] == "elbow"]
+        assert elbow["lost"].startswith("cannot") and len(elbow["lost_direction"]) == len(data["rows"])
+
+
+def test_no_handler_branches_on_the_format():
+    import inspect
+
+    import symjac.cli as cli
+
+    assert "args.format" not in inspect.getsource(cli).replace("render(result, args.format", "")
+
+
+def test_printing_package_exports_a_sorted_all():
+    import symjac.printing as printing
+
+    # constants first, then classes and functions, as in symjac.__all__ (ruff's RUF022 order)
+    assert printing.__all__ == sorted(printing.__all__, key=lambda name: (not name.isupper(), name))
+    assert all(hasattr(printing, name) for name in printing.__all__)
+    assert {"latex", "pretty", "propagation_steps", "singularity_summary", "render"} <= set(printing.__all__)

@@ -11,11 +11,14 @@ from hypothesis import HealthCheck, given, settings
 from reference import finite_difference_jacobian, frames, random_configuration
 from strategies import robots
 
-from symjac import load_robot, robot_from_mapping, robot_to_mapping
+from symjac import load_robot, robot_from_mapping, robot_to_mapping, singularities
 from symjac.cli import main
 from symjac.errors import ArgumentError, FrameError
+from symjac.printing import prose
 from symjac.simplify import AngleBasis, is_identity
-from symjac.singularity import _admissible, determinant, singularities, solve_factor
+from symjac.singular_report import LostDirection, SelfMotion, SingularityKind
+from symjac.singular_solve import solve_factor
+from symjac.singularity import determinant, is_admissible_frame
 from symjac.spaces import jacobian_spaces, numeric_jacobian, symbolic_spaces, task_rows
 
 SQUARE = ["planar2r", "planar3r", "articulated3r", "scara", "stanford", "puma560", "ur5"]
@@ -47,9 +50,9 @@ def test_planar_2r_determinant_is_l1_l2_s2_and_singular_at_stretched_and_folded(
     q = np.array(factor.sample)
     reach = frames(robot, q)[robot.dof + 1][:3, 3]
     R_0_k = frames(robot, q)[det.frame + 1][:3, :3]
-    lost = R_0_k @ np.append(np.array(factor.lost_direction), 0.0)
+    lost = R_0_k @ np.append(np.array(factor.lost_direction.vector), 0.0)
     assert abs(abs(lost @ reach) / np.linalg.norm(reach) - 1) < 1e-9
-    assert "radially" in factor.lost_words
+    assert "radially" in prose.lost_words(factor)
 
 
 def test_articulated_3r_determinant_matches_seed_002_with_its_existence_condition():
@@ -65,8 +68,8 @@ def test_articulated_3r_determinant_matches_seed_002_with_its_existence_conditio
     assert sp.simplify(shoulder.existence.lhs - shoulder.existence.rhs - (L2 + L3 - L1)) == 0
     assert shoulder.exists_for_defaults is True
     # seed 002: case 1 loses x of frame {4}, case 2 loses z of frame {4} (the tool frame, parallel to {3})
-    assert "x of frame {3}" in elbow.lost_words and "z of frame {3}" in shoulder.lost_words
-    assert "origin" not in shoulder.reason and "axis of joint 1" in shoulder.reason
+    assert "x of frame {3}" in prose.lost_words(elbow) and "z of frame {3}" in prose.lost_words(shoulder)
+    assert "origin" not in prose.reason(shoulder) and "axis of joint 1" in prose.reason(shoulder)
 
 
 def test_existence_condition_fails_for_a_short_arm():
@@ -100,7 +103,7 @@ def test_determinant_does_not_depend_on_the_frame(name):
     rows = chosen.rows
     frames_checked = 0
     for frame in range(robot.dof + 1):
-        if not _admissible(robot, rows, frame):
+        if not is_admissible_frame(robot, rows, frame):
             continue
         other = determinant(robot, rows=rows, frame=frame)
         assert is_identity(other.expression, chosen.expression, _basis(robot)), frame
@@ -164,16 +167,17 @@ def test_every_six_joint_factor_is_classified_and_explained():
         report = singularities(load_robot(name))
         assert {f.kind for f in report.factors} == kinds, name
         for factor in report.factors:
-            assert factor.reason
+            assert prose.reason(factor)
             if factor.kind != "parameter":
-                assert factor.lost_words.startswith("cannot") and "move nothing" in factor.self_motion_words
+                assert prose.lost_words(factor).startswith("cannot")
+                assert "move nothing" in prose.self_motion_words(factor)
 
 
 def test_puma_wrist_self_motion_turns_joints_4_and_6_against_each_other():
     report = singularities(load_robot("puma560"))
     (wrist,) = [f for f in report.factors if f.kind == "wrist"]
     assert is_identity(wrist.expression, sp.sin(t5), AngleBasis.of([t5]))
-    motion = np.array(wrist.self_motion)
+    motion = np.array(wrist.self_motion.rates)
     assert np.allclose(np.abs(motion), [0, 0, 0, np.sqrt(0.5), 0, np.sqrt(0.5)], atol=1e-9)
 
 
@@ -269,3 +273,39 @@ def test_symbolic_spaces_at_the_seed_002_elbow_singularity():
     assert sp.Matrix([[1, 0, 0]]) == spaces.left_null_space.T  # cannot move along x of frame {4}
     (motion,) = spaces.null_space.T.tolist()
     assert spaces.jacobian * sp.Matrix(motion) == sp.zeros(3, 1) and motion[0] == 0 and motion[2] != 0
+
+
+def test_kinds_are_an_enum_that_still_compares_with_strings():
+    report = singularities(load_robot("articulated3r"))
+    assert all(isinstance(f.kind, SingularityKind) for f in report.factors)
+    assert {f.kind for f in report.factors} == {"parameter", "elbow", "shoulder"}
+    assert json.dumps([f.kind for f in report.factors]) == '["parameter", "parameter", "elbow", "shoulder"]'
+
+
+def test_lost_directions_carry_their_frame_and_rows_and_self_motions_their_columns():
+    report = singularities(load_robot("articulated3r"))
+    for factor in report.factors:
+        if factor.kind == "parameter":
+            assert factor.lost_direction is None and factor.self_motion is None
+            continue
+        lost = factor.lost_direction
+        assert isinstance(lost, LostDirection)
+        assert lost.frame == report.frame and lost.rows == report.determinant.rows
+        assert len(lost.vector) == len(lost.rows) and np.linalg.norm(lost.vector) == pytest.approx(1)
+        assert np.allclose(lost.full[list(lost.rows)], lost.vector)
+        assert isinstance(factor.self_motion, SelfMotion)
+        assert factor.self_motion.columns == report.determinant.columns
+        # u^T J = 0 and J qdot = 0 at the sample, in the report's frame and rows
+        J = numeric_jacobian(load_robot("articulated3r"), factor.sample, report.frame, report.determinant.point)
+        J = J[list(lost.rows), :]
+        assert np.allclose(np.array(lost.vector) @ J, 0, atol=1e-9)
+        assert np.allclose(J @ np.array(factor.self_motion.rates), 0, atol=1e-9)
+
+
+def test_findings_are_data_and_prose_words_them():
+    report = singularities(load_robot("puma560"))
+    (wrist,) = [f for f in report.factors if f.kind == "wrist"]
+    (finding,) = wrist.cause.findings
+    assert finding.joints == (3, 5) and finding.kind == "wrist"
+    assert prose.finding_sentence(finding) == "the axes of joints 4 and 6 are collinear"
+    assert prose.reason(wrist).startswith("the axes of joints 4 and 6 are collinear: two wrist rotations")

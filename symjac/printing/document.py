@@ -1,0 +1,165 @@
+r"""One renderer for every result: a :class:`Document` of captioned equations, as LaTeX, pretty text or JSON.
+
+A CLI command (or a notebook) builds a :class:`Document` (a title, blocks of caption + math, and the JSON data) and
+:func:`render` lays it out:
+
+* ``latex``: one line per equation (captions as ``%`` comments when the document asks for them), or with
+  ``standalone`` a complete document through the ``latex_document.tex.j2`` template;
+* ``pretty``: each block's caption, then its equations in Unicode (``name =`` above a matrix);
+* ``json``: the document's data, indented.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import sympy as sp
+
+from symjac._version import __version__
+from symjac.errors import ArgumentError
+from symjac.model import Robot
+from symjac.printing.latex import latex
+from symjac.printing.pretty import pretty, pretty_side_by_side
+from symjac.printing.tables import dh_table_latex, dh_table_text
+from symjac.resources import render_template
+
+__all__ = [
+    "FORMATS",
+    "Block",
+    "DHTable",
+    "Document",
+    "Equation",
+    "Style",
+    "blocks_as_pairs",
+    "caption_text",
+    "equation_latex",
+    "equation_text",
+    "math_text",
+    "render",
+]
+
+FORMATS = ("latex", "pretty", "json")
+Style = Literal["latex", "pretty"]
+
+
+@dataclass(frozen=True)
+class Equation:
+    r"""``lhs = rhs``: the left side spelled for LaTeX (``{}^{0}J``) and for text (``J_0``), the right side SymPy.
+
+    ``rhs`` is one SymPy object, or a tuple of them printed side by side (a product :math:`E(x)\,J_0`). With empty
+    names the right side prints alone (a solution ``theta2 = 0`` is already an equation).
+    """
+
+    tex: str
+    text: str
+    rhs: Any
+
+
+@dataclass(frozen=True)
+class DHTable:
+    """The Denavit-Hartenberg table (or the origins and axes of a general chain) of ``robot``."""
+
+    robot: Robot
+
+
+Math = Equation | DHTable
+
+
+@dataclass(frozen=True)
+class Block:
+    """A caption and the math under it (several equations print side by side in LaTeX, one per line in text).
+
+    ``caption`` is words with inline math: strings print as they are, SymPy objects in the output's notation.
+    """
+
+    caption: tuple[str | sp.Basic, ...] = ()
+    math: tuple[Math, ...] = ()
+
+
+@dataclass(frozen=True)
+class Document:
+    """A result ready to render: ``title`` and ``robot`` head a standalone document, ``data`` is the JSON output.
+
+    ``comments`` keeps the captions in bare LaTeX output as ``%`` lines (for results whose captions explain, such
+    as singularities); otherwise bare LaTeX is the equations alone, one per line.
+    """
+
+    title: str
+    robot: str
+    blocks: tuple[Block, ...]
+    data: Mapping[str, Any] = field(default_factory=dict)
+    comments: bool = False
+
+
+def _check(style: str) -> None:
+    if style not in ("latex", "pretty"):
+        raise ArgumentError(f"style must be 'latex' or 'pretty', got {style!r}")
+
+
+def caption_text(block: Block, style: Style) -> str:
+    """The caption with its inline math in ``style``."""
+    _check(style)
+    show = latex if style == "latex" else pretty
+    return "".join(part if isinstance(part, str) else show(part) for part in block.caption)
+
+
+def equation_latex(equation: Equation) -> str:
+    r"""One equation as a LaTeX line: ``{}^{0}J = \begin{bmatrix}...``."""
+    parts = equation.rhs if isinstance(equation.rhs, tuple) else (equation.rhs,)
+    rhs = " ".join(latex(part) for part in parts)
+    return f"{equation.tex} = {rhs}" if equation.tex else rhs
+
+
+def equation_text(equation: Equation) -> str:
+    """One equation in Unicode: ``name =`` above a matrix, ``name = value`` on one line for a scalar."""
+    if isinstance(equation.rhs, tuple):
+        return f"{equation.text} =\n{pretty_side_by_side(*equation.rhs)}"
+    if not equation.text:
+        return pretty(equation.rhs)
+    if isinstance(equation.rhs, sp.MatrixBase):
+        return f"{equation.text} =\n{pretty(equation.rhs)}"
+    return pretty(sp.Eq(sp.Symbol(equation.text), equation.rhs, evaluate=False))
+
+
+def math_text(block: Block, style: Style) -> str:
+    r"""The block's math in ``style`` (``""`` when it has none); LaTeX equations joined by ``,\quad``."""
+    _check(style)
+    if style == "latex":
+        return r",\quad ".join(
+            dh_table_latex(m.robot) if isinstance(m, DHTable) else equation_latex(m) for m in block.math)
+    return "\n".join(dh_table_text(m.robot).rstrip("\n") if isinstance(m, DHTable) else equation_text(m)
+                     for m in block.math)
+
+
+def render(document: Document, fmt: str, standalone: bool = False) -> str:
+    """``document`` as text in ``fmt`` (one of :data:`FORMATS`); ``standalone`` makes LaTeX a whole document."""
+    if fmt == "json":
+        return json.dumps(document.data, indent=2) + "\n"
+    if fmt == "pretty":
+        shown = []
+        for block in document.blocks:
+            lines = [text for text in (caption_text(block, "pretty"), math_text(block, "pretty")) if text]
+            shown.append("\n".join(lines))
+        return "\n\n".join(shown) + "\n"
+    if fmt != "latex":
+        raise ArgumentError(f"unknown format {fmt!r}; choose one of {', '.join(FORMATS)}")
+    if standalone:
+        blocks = [{"caption": caption_text(block, "latex"), "latex": math_text(block, "latex") or r"\quad"}
+                  for block in document.blocks]
+        return render_template("latex_document.tex.j2", version=__version__, robot=document.robot,
+                               title=document.title, blocks=blocks)
+    return "".join(_bare_latex(block, document.comments) for block in document.blocks)
+
+
+def _bare_latex(block: Block, comments: bool) -> str:
+    caption = caption_text(block, "latex") if comments else ""
+    body = math_text(block, "latex")
+    return (f"% {caption}\n" if caption else "") + (f"{body}\n" if body else "")
+
+
+def blocks_as_pairs(blocks: Sequence[Block], style: Style) -> list[tuple[str, str]]:
+    """Blocks as (caption, math) string pairs in ``style``, for notebooks that lay them out themselves."""
+    return [(caption_text(block, style), math_text(block, style)) for block in blocks]

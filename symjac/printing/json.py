@@ -1,0 +1,109 @@
+"""JSON-ready data for every result: plain dicts and lists, expressions as SymPy strings (``sp.sstr``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy as sp
+
+from symjac._version import __version__
+from symjac.chain import Frame
+from symjac.jacobian import ROW_NAMES
+from symjac.model import Robot
+from symjac.printing import prose
+from symjac.printing.document import Equation, equation_latex
+from symjac.printing.latex import latex
+from symjac.printing.tables import dh_rows
+from symjac.singular_report import SingularityReport
+from symjac.singularity import Determinant
+
+__all__ = [
+    "determinant_data",
+    "forward_kinematics_data",
+    "jacobian_data",
+    "matrix_strings",
+    "metadata",
+    "representation_data",
+    "show_data",
+    "singularity_data",
+    "torques_data",
+]
+
+
+def metadata(robot: Robot) -> dict[str, Any]:
+    """What every JSON output starts with: symjac's version, the robot, its variables and parameters."""
+    return {"symjac": __version__, "robot": robot.name, "convention": robot.convention.value,
+            "joint_variables": [str(q) for q in robot.q],
+            "parameters": {p.name: float(p.default) for p in robot.parameters}}
+
+
+def matrix_strings(matrix: sp.MatrixBase) -> list[list[str]]:
+    """A matrix as rows of SymPy strings."""
+    return [[sp.sstr(matrix[r, c]) for c in range(matrix.cols)] for r in range(matrix.rows)]
+
+
+def determinant_data(det: Determinant) -> dict[str, Any]:
+    """A factored determinant: the product, its coefficient, ``[factor, multiplicity]`` pairs, 1-based columns."""
+    return {"expression": sp.sstr(det.expression), "coefficient": sp.sstr(det.coefficient),
+            "factors": [[sp.sstr(f), m] for f, m in det.factors], "columns": [c + 1 for c in det.columns]}
+
+
+def singularity_data(report: SingularityReport) -> dict[str, Any]:
+    """A singularity report: rows, frame, point, determinant (or minors), and each factor with its explanation."""
+    det = report.determinant
+    return {
+        "rows": list(det.row_names), "frame": det.frame, "point": [sp.sstr(c) for c in det.point],
+        "redundant": report.redundant, "determinant": determinant_data(det),
+        "minors": [determinant_data(m) for m in report.minors],
+        "factors": [{
+            "expression": sp.sstr(f.expression), "multiplicity": f.multiplicity, "kind": str(f.kind),
+            "reason": prose.reason(f), "solutions": [sp.sstr(s.equation) for s in f.solutions],
+            "existence": None if f.existence is None else sp.sstr(f.existence),
+            "exists_for_defaults": f.exists_for_defaults, "sample": f.sample,
+            "lost_direction": None if f.lost_direction is None else f.lost_direction.vector,
+            "lost": prose.lost_words(f),
+            "self_motion": None if f.self_motion is None else f.self_motion.rates,
+            "self_motion_words": prose.self_motion_words(f),
+        } for f in report.factors],
+    }
+
+
+def show_data(robot: Robot, transforms: dict[str, sp.MatrixBase]) -> dict[str, Any]:
+    """``symjac show``: the DH table as rows of strings and each named transform as a matrix of strings."""
+    return {**metadata(robot), "dh_table": dh_rows(robot),
+            "transforms": {name: matrix_strings(m) for name, m in transforms.items()}}
+
+
+def forward_kinematics_data(robot: Robot, T: sp.MatrixBase, source: Frame, target: Frame) -> dict[str, Any]:
+    """``symjac fk``: the pose between two frames, as strings and as LaTeX."""
+    return {**metadata(robot), "source": source, "target": target, "entries": matrix_strings(T), "latex": latex(T)}
+
+
+def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, method: str,
+                  steps: list[Equation] | None = None) -> dict[str, Any]:
+    """``symjac jacobian``: the basic Jacobian (``equation.rhs``, in ``frame``), with the propagation steps if any."""
+    J = equation.rhs
+    return {**metadata(robot), "frame": frame, "point": point, "method": method,
+            "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
+            "entries": matrix_strings(J), "latex": equation_latex(equation),
+            **({"steps": [equation_latex(step) for step in steps]} if steps is not None else {})}
+
+
+def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, point: str, orientation: str,
+                        position: str) -> dict[str, Any]:
+    """``symjac jacobian --representation``: coordinates, the rate matrix E, the basic Jacobian and its singularities.
+
+    ``result`` is a :class:`symjac.representations.RepresentationJacobian` (fields ``coordinates``, ``E``, ``frame``,
+    ``singularities``).
+    """
+    return {**metadata(robot), "frame": result.frame, "point": point, "orientation": orientation,
+            "position": position, "coordinates": [str(c) for c in result.coordinates], "E": matrix_strings(result.E),
+            "J_0": matrix_strings(J_0), "representation_singularities": [str(s) for s in result.singularities],
+            "latex": equation_latex(Equation("J_x", "J_x", (result.E, J_0)))}
+
+
+def torques_data(robot: Robot, equation: Equation, frame: Frame, point: str, wrench: str | None,
+                 q: str | None, wrench_names: list[str]) -> dict[str, Any]:
+    """``symjac torques``: the joint torques (``equation.rhs``) for the wrench given (or the symbolic one)."""
+    return {**metadata(robot), "frame": frame, "point": point, "wrench": wrench or wrench_names, "q": q,
+            "torques": [sp.sstr(t) for t in equation.rhs], "latex": equation_latex(equation)}

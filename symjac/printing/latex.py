@@ -1,0 +1,66 @@
+r"""LaTeX in textbook shorthand: :math:`s_1 = \sin\theta_1`, :math:`c_{23} = \cos(\theta_2 + \theta_3)`.
+
+The shorthand lives only in the printers (a subclass of SymPy's LaTeX printer here, :mod:`.pretty` for Unicode):
+the math keeps ordinary ``sin``/``cos`` of joint variables.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy as sp
+from sympy.printing.latex import LatexPrinter
+
+from symjac.printing.shorthand import GREEK, shorthand_indices, textbook_factors
+
+__all__ = ["TextbookLatexPrinter", "latex"]
+
+
+class TextbookLatexPrinter(LatexPrinter):
+    """LaTeX with :math:`s_{ij}, c_{ij}` shorthand and ``bmatrix`` matrices."""
+
+    def __init__(self, settings: dict[str, Any] | None = None):
+        super().__init__({"mat_str": "bmatrix", "mat_delim": "", **(settings or {})})
+
+    def _shorthand(self, letter: str, expr: sp.Function, exp: str | None) -> str | None:
+        indices = shorthand_indices(expr.args[0])
+        if indices is None:
+            argument = expr.args[0]
+            if not (isinstance(argument, sp.Symbol) and argument.name in GREEK):
+                return None
+            indices = "\\" + argument.name  # s_{\beta}: representation angles get the shorthand too
+        text = f"{letter}_{{{indices}}}"
+        return f"{text}^{{{exp}}}" if exp else text
+
+    def _print_sin(self, expr: sp.Function, exp: str | None = None) -> str:
+        return self._shorthand("s", expr, exp) or self._plain_function(expr, exp)
+
+    def _print_cos(self, expr: sp.Function, exp: str | None = None) -> str:
+        return self._shorthand("c", expr, exp) or self._plain_function(expr, exp)
+
+    def _plain_function(self, expr: sp.Function, exp: str | None) -> str:
+        r"""``\cos^{2}{\left(\beta \right)}`` as SymPy prints it (its own dispatch would come back here)."""
+        plain = LatexPrinter({"mat_str": "bmatrix", "mat_delim": ""})
+        return LatexPrinter._print_Function(plain, expr, exp)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        ordered = textbook_factors(expr)
+        if ordered is None:
+            return super()._print_Mul(expr)
+        coefficient, factors = ordered
+        parts = [r"\left(" + self._print(f) + r"\right)" if f.is_Add else self._print(f) for f in factors]
+        if abs(coefficient) != 1:
+            parts.insert(0, str(abs(coefficient)))
+        return ("- " if coefficient < 0 else "") + " ".join(parts)
+
+
+def latex(expr: Any, **settings: Any) -> str:
+    r"""LaTeX of an expression or matrix in textbook shorthand.
+
+    Examples
+    --------
+    >>> t1, t2 = sp.symbols("theta1 theta2", real=True)
+    >>> latex(sp.Matrix([[sp.cos(t1) * sp.sin(t1 + t2)]]))
+    '\\begin{bmatrix}c_{1} s_{12}\\end{bmatrix}'
+    """
+    return TextbookLatexPrinter(settings).doprint(expr)

@@ -1,0 +1,161 @@
+"""Every English sentence symjac prints: why a factor is singular, what the arm loses, captions of results.
+
+The analyses return data (:class:`~symjac.singular_geometry.Finding`, :class:`~symjac.singular_report.LostDirection`,
+...); this module is the one place that puts them into words, so wording changes in one file.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from symjac.jacobian import ROW_NAMES
+from symjac.model import Robot
+from symjac.singular_geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
+from symjac.singular_report import DirectionPart, LostDirection, SingularFactor, SingularityReport
+
+__all__ = [
+    "KIND_REASONS",
+    "axis_name",
+    "dh_caption",
+    "existence_words",
+    "finding_sentence",
+    "landmark_name",
+    "lost_words",
+    "reason",
+    "redundant_caption",
+    "representation_note",
+    "rows_caption",
+    "self_motion_words",
+]
+
+KIND_REASONS = {
+    SingularityKind.WRIST: "two wrist rotations do the same thing, so one orientation direction is lost",
+    SingularityKind.SHOULDER: "rotating joint 1 no longer moves it sideways, so a direction is lost inside the "
+                              "workspace",
+    SingularityKind.ELBOW: "the arm is stretched out or folded back, on the boundary of its reach, and cannot move "
+                           "along that line",
+}
+"""What each textbook kind of singularity means for the arm."""
+
+_AXIS_NAMES = ("x", "y", "z")
+
+
+def landmark_name(landmark: Landmark) -> str:
+    """``the reference point``, ``the origin of frame {4}``, ``the axis of joint 3``."""
+    if landmark.kind == "frame origin":
+        return f"the origin of frame {{{landmark.index}}}"
+    if landmark.kind == "joint axis":
+        return f"the axis of joint {int(landmark.index or 0) + 1}"
+    return "the reference point"
+
+
+def finding_sentence(finding: Finding) -> str:
+    """A geometric fact in words: ``the axes of joints 4 and 6 are collinear``."""
+    joints = [j + 1 for j in finding.joints]
+    name = "" if finding.landmark is None else landmark_name(finding.landmark)
+    if finding.relation is Relation.PARALLEL_AXES:
+        shape = "collinear" if finding.collinear else "parallel"
+        return f"the axes of joints {joints[0]} and {joints[1]} are {shape}"
+    if finding.relation is Relation.ON_FIRST_AXIS:
+        return f"{name} lies on the axis of joint 1"
+    if finding.relation is Relation.IN_SHOULDER_PLANE:
+        return f"{name} lies in the plane through the axis of joint 1 parallel to the axis of joint 2"
+    return f"{name} lies in the plane of the parallel axes of joints {joints[0]} and {joints[1]}"
+
+
+def _cause_words(cause: Cause) -> str:
+    if cause.kind in KIND_REASONS and cause.findings:
+        return f"{finding_sentence(cause.findings[0])}: {KIND_REASONS[cause.kind]}"
+    if cause.wrist_joints:
+        return f"the factor depends only on the wrist joints {', '.join(str(j + 1) for j in cause.wrist_joints)}"
+    if cause.findings:
+        return "; ".join(sorted(finding_sentence(finding) for finding in cause.findings))
+    return "no aligned axes found; see the lost direction and the self-motion"
+
+
+def reason(factor: SingularFactor) -> str:
+    """Why ``factor`` is singular, in one sentence (without the final full stop)."""
+    if factor.kind is SingularityKind.PARAMETER:
+        return (f"{factor.expression} depends on parameters only: a design with {factor.expression} = 0 would be "
+                "singular everywhere; the default parameters are not")
+    return _cause_words(factor.cause)
+
+
+def axis_name(axis: FrameAxis) -> str:
+    """``x of frame {3}``, ``z of the tool frame``."""
+    label = f"frame {{{axis.frame}}}" if isinstance(axis.frame, int) else f"the {axis.frame} frame"
+    return f"{_AXIS_NAMES[axis.axis]} of {label}"
+
+
+def _part_name(part: DirectionPart) -> str:
+    """A named axis, or the unit vector's components to three decimals."""
+    return axis_name(part.axis) if part.axis is not None else str(np.round(np.array(part.unit), 3).tolist())
+
+
+def _direction(lost: LostDirection, words: tuple[str, str, str, str]) -> str:
+    """``words`` = (linear alone, angular alone, angular after a linear part, joiner)."""
+    linear = None if lost.linear is None else _part_name(lost.linear)
+    angular = None if lost.angular is None else _part_name(lost.angular)
+    if linear and angular:
+        return f"{words[0]} along {linear} {words[3]} {words[2]} about {angular}"
+    if linear:
+        return f"{words[0]} along {linear}"
+    return f"{words[1]} about {angular}" if angular else "nothing"
+
+
+def lost_words(factor: SingularFactor) -> str:
+    """What the arm cannot do on the singular set, and the wrench it holds for free there (``""`` if unknown)."""
+    lost = factor.lost_direction
+    if lost is None:
+        return ""
+    radial = " (radially: along the line from the origin of frame {0} to the point)" if lost.radial else ""
+    motion = _direction(lost, ("translate", "rotate", "rotating", "while"))
+    wrench = _direction(lost, ("a force", "a moment", "a moment", "with"))
+    return f"cannot {motion}{radial}, and it holds {wrench} with zero joint torque"
+
+
+def self_motion_words(factor: SingularFactor) -> str:
+    """The joint motion that moves nothing, in words (``""`` if unknown)."""
+    motion = factor.self_motion
+    if motion is None:
+        return ""
+    rates = ", ".join(f"{rate:+.3g} on joint {motion.columns[i] + 1}" for i, rate in enumerate(motion.rates)
+                      if abs(rate) > 1e-9)
+    return f"joint rates {rates} move nothing"
+
+
+def existence_words(factor: SingularFactor) -> str:
+    """When the factor's zeros exist, if that depends on the parameters (``""`` when they always exist)."""
+    if factor.existence is None or factor.existence is sp.true:
+        return ""
+    verdict = {True: "holds", False: "does not hold", None: "unknown"}[factor.exists_for_defaults]
+    return (f"Exists only if {sp.sstr(factor.existence)} (assuming positive lengths; {verdict} for the default "
+            "parameters).")
+
+
+def rows_caption(report: SingularityReport) -> str:
+    """``Determinant of rows v_x, v_y of the Jacobian in frame {2}:``."""
+    det = report.determinant
+    rows = ", ".join(ROW_NAMES[r] for r in det.rows)
+    return f"Determinant of rows {rows} of the Jacobian in frame {{{det.frame}}}:"
+
+
+def redundant_caption(report: SingularityReport) -> str:
+    """Why a redundant arm's report lists minors instead of one determinant."""
+    det = report.determinant
+    rows = ", ".join(ROW_NAMES[r] for r in det.rows)
+    return (f"Redundant arm: {report.robot} has more joints than task rows ({rows}); it is singular only where every "
+            f"square minor below vanishes (where sqrt(det(J J^T)) = 0). Minors in frame {{{det.frame}}}.")
+
+
+def dh_caption(robot: Robot) -> str:
+    """The robot and the kind of its table: ``puma560: Unimation PUMA 560 ..., standard DH table``."""
+    kind = "general chain (URDF-style origin and axis)" if robot.convention == "general" else (
+        f"{robot.convention.value} Denavit-Hartenberg table")
+    return f"{robot.name}: {robot.description}, {kind}"
+
+
+def representation_note(singularity: object) -> str:
+    """A singularity of a representation's rate matrix, told apart from a kinematic one."""
+    return f"representation singularity (not kinematic): {singularity}"

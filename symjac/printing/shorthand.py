@@ -1,0 +1,82 @@
+r"""Textbook shorthand, shared by the LaTeX and pretty printers: which sines and cosines abbreviate, factor order.
+
+A sine or cosine is abbreviated when its argument is a sum of revolute joint variables ``theta{i}`` (all with
+coefficient +1): :math:`s_1 = \sin\theta_1`, :math:`c_{23} = \cos(\theta_2 + \theta_3)`; anything else prints in
+full. The math keeps ordinary ``sin``/``cos``; only the printers abbreviate.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+import sympy as sp
+
+__all__ = ["GREEK", "SUBSCRIPTS", "shorthand_indices", "textbook_factors"]
+
+_JOINT_ANGLE = re.compile(r"theta(\d+)\Z")
+_RATE = re.compile(r"(theta|d)dot\d+\Z")
+GREEK = frozenset({"alpha", "beta", "gamma", "phi", "psi", "vartheta", "eta"})
+"""Representation angles that get the shorthand too (:math:`s_{\beta}`)."""
+SUBSCRIPTS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉\u201a")  # U+201A, a low comma: c₈‚₉‚₁₀
+
+
+def shorthand_indices(argument: sp.Expr) -> str | None:
+    """The subscript of a trig shorthand: ``theta1 + theta2 -> "12"`` (``"8,9,10"`` past 9); ``None`` if none.
+
+    Examples
+    --------
+    >>> t2, t3 = sp.symbols("theta2 theta3", real=True)
+    >>> shorthand_indices(t2 + t3)
+    '23'
+    >>> shorthand_indices(t2 - t3) is None
+    True
+    """
+    terms = sp.Add.make_args(argument)
+    indices = []
+    for term in terms:
+        match = _JOINT_ANGLE.match(term.name) if isinstance(term, sp.Symbol) else None
+        if match is None:
+            return None
+        indices.append(int(match.group(1)))
+    indices.sort()
+    separator = "," if any(i > 9 for i in indices) else ""
+    return separator.join(str(i) for i in indices)
+
+
+def _factor_key(factor: sp.Expr) -> tuple[Any, ...]:
+    """Textbook order of a product's factors: parameters, cosines, sines (each by joint index), then sums."""
+    base = factor.base if isinstance(factor, sp.Pow) else factor
+    if isinstance(base, sp.cos | sp.sin):
+        indices = shorthand_indices(base.args[0])
+        if indices is not None:
+            digits = indices.split(",") if "," in indices else list(indices)
+            return (1 if isinstance(base, sp.cos) else 2, [int(i) for i in digits], sp.default_sort_key(factor))
+    if isinstance(base, sp.Add):
+        return (4, [], sp.default_sort_key(factor))
+    if isinstance(base, sp.Symbol) and _RATE.match(base.name):  # rates last, as in L_1 s_2 \dot\theta_1
+        return (3, [], sp.default_sort_key(factor))
+    if isinstance(base, sp.Function):
+        return (3, [], sp.default_sort_key(factor))
+    return (0, [], sp.default_sort_key(factor))
+
+
+def textbook_factors(product: sp.Expr) -> tuple[int, list[sp.Expr]] | None:
+    """An integer coefficient and the other factors in textbook order (``c_1 s_{23}``, ``a_2 c_2 (...)``).
+
+    ``None`` for products this ordering does not cover (fractions, negative powers, non-commutative factors),
+    which print as SymPy prints them.
+
+    Examples
+    --------
+    >>> t1, t2, L = sp.symbols("theta1 theta2 L", real=True)
+    >>> textbook_factors(-2 * sp.sin(t1 + t2) * sp.cos(t1) * L)
+    (-2, [L, cos(theta1), sin(theta1 + theta2)])
+    """
+    if not isinstance(product, sp.Mul) or not product.is_commutative:
+        return None
+    coefficient, rest = product.as_coeff_Mul()
+    factors = sp.Mul.make_args(rest)
+    if not coefficient.is_Integer or any(f.is_Pow and f.exp.is_negative for f in factors):
+        return None
+    return int(coefficient), sorted(factors, key=_factor_key)

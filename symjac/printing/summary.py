@@ -1,0 +1,51 @@
+r"""A singularity report laid out for reading: the determinant, then each factor, its solutions and its meaning."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from symjac.printing import prose
+from symjac.printing.document import Block, Equation, Style, blocks_as_pairs
+from symjac.singular_report import SingularityReport
+
+__all__ = ["singularity_blocks", "singularity_summary"]
+
+
+def _det(value: sp.Expr) -> Equation:
+    return Equation(r"\det J", "det J", value)
+
+
+def singularity_blocks(report: SingularityReport) -> list[Block]:
+    r"""The report as captioned blocks: :math:`\det J` (or every minor of a redundant arm), then each factor."""
+    if report.redundant:
+        blocks = [Block((prose.redundant_caption(report),))]
+        for minor in report.minors:
+            locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
+            blocks.append(Block((f"Joint {locked + 1} locked:",), (_det(minor.expression),)))
+        return blocks
+    blocks = [Block((prose.rows_caption(report),), (_det(report.determinant.expression),))]
+    for factor in report.factors:
+        head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): {prose.reason(factor)}."]
+        if factor.solutions:
+            existence = prose.existence_words(factor)
+            if existence:
+                head.append(f" {existence}")
+            if factor.lost_direction is not None:
+                head.append(f" There it {prose.lost_words(factor)}; {prose.self_motion_words(factor)}.")
+        blocks.append(Block(tuple(head), tuple(Equation("", "", s.equation) for s in factor.solutions)))
+    return blocks
+
+
+def singularity_summary(report: SingularityReport, style: Style = "latex") -> list[tuple[str, str]]:
+    r"""A singularity report as (caption, equation) pairs: the determinant, then each factor with its meaning.
+
+    ``style`` is ``"latex"`` (equations in LaTeX, captions in plain words) or ``"pretty"`` (Unicode).
+
+    Examples
+    --------
+    >>> from symjac import load_robot, singularities
+    >>> summary = singularity_summary(singularities(load_robot("planar2r")))
+    >>> summary[0][1]
+    '\\det J = L_{1} L_{2} s_{2}'
+    """
+    return blocks_as_pairs(singularity_blocks(report), style)

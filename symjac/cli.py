@@ -43,6 +43,7 @@ from symjac.representations import POSITIONS, REPRESENTATIONS, representation_ja
 from symjac.singular_report import singularities
 from symjac.statics import joint_torques
 
+__all__ = ["main"]
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status (0 success, 2 usage or input error)."""

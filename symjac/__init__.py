@@ -10,6 +10,13 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 """
 
 from symjac._version import __version__
+from symjac.acceleration import (
+    DERIVATIVE_METHODS,
+    bias_acceleration,
+    hessian,
+    hessian_slice,
+    jacobian_derivative,
+)
 from symjac.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
 from symjac.codegen import JacobianRequest, generate, write_module
 from symjac.errors import (
@@ -57,6 +64,7 @@ from symjac.transforms import twist_transform, wrench_transform
 from symjac.urdf import robot_from_urdf
 
 __all__ = [
+    "DERIVATIVE_METHODS",
     "METHODS",
     "REPRESENTATIONS",
     "ROW_NAMES",
@@ -90,6 +98,7 @@ __all__ = [
     "VelocityPropagation",
     "__version__",
     "as_chain",
+    "bias_acceleration",
     "catalog",
     "chain_of",
     "change_frame",
@@ -101,9 +110,12 @@ __all__ = [
     "force_propagation",
     "forward_kinematics",
     "generate",
+    "hessian",
+    "hessian_slice",
     "inverse_rates",
     "is_identity",
     "jacobian",
+    "jacobian_derivative",
     "jacobian_of",
     "jacobian_spaces",
     "joint_rates",

@@ -17,6 +17,7 @@ from typing import Any
 import sympy as sp
 
 from symjac._version import __version__
+from symjac.acceleration import bias_acceleration, carried_joints, hessian, hessian_slice, jacobian_derivative
 from symjac.chain import Frame, chain_of
 from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
 from symjac.errors import ArgumentError, ExpressionError, FrameError, SymjacError
@@ -29,7 +30,9 @@ from symjac.printing import prose
 from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
 from symjac.printing.json import (
     forward_kinematics_data,
+    hessian_data,
     jacobian_data,
+    jacobian_derivative_data,
     metadata,
     representation_data,
     show_data,
@@ -38,7 +41,7 @@ from symjac.printing.json import (
 )
 from symjac.printing.steps import step_equations
 from symjac.printing.summary import singularity_blocks
-from symjac.propagation import force_propagation, velocity_propagation, wrench_symbols
+from symjac.propagation import force_propagation, joint_rates, velocity_propagation, wrench_symbols
 from symjac.representations import POSITIONS, REPRESENTATIONS, representation_jacobian
 from symjac.singular_report import singularities
 from symjac.statics import joint_torques
@@ -98,6 +101,7 @@ def _parser() -> argparse.ArgumentParser:
         ("show", _show, "show the DH table and the link transforms"),
         ("fk", _fk, "print the forward kinematics"),
         ("jacobian", _jacobian, "print the basic Jacobian [v; omega]"),
+        ("hessian", _hessian, "print the kinematic Hessian: dJ/dq_k for every joint k"),
         ("torques", _torques, "print the joint torques tau = J^T F that hold a wrench"),
         ("singularities", _singularities, "factor det J, solve every factor and explain what the arm loses there"),
     ):
@@ -106,7 +110,7 @@ def _parser() -> argparse.ArgumentParser:
         sub.add_argument("--format", choices=FORMATS, default="latex", help="output format (default: latex)")
         sub.add_argument("--numeric", action="store_true", help="substitute the parameters' numeric defaults")
         sub.add_argument("--standalone", action="store_true", help="with --format latex: a complete LaTeX document")
-        if name in ("jacobian", "torques"):
+        if name in ("jacobian", "torques", "hessian"):
             sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
             sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
         if name == "jacobian":
@@ -117,6 +121,8 @@ def _parser() -> argparse.ArgumentParser:
                              help="print the representation Jacobian J_x = E(x) J_0 for these orientation coordinates")
             sub.add_argument("--position", choices=POSITIONS, default="cartesian",
                              help="with --representation: position coordinates (default cartesian)")
+            sub.add_argument("--derivative", action="store_true",
+                             help="print the time derivative dJ/dt and the bias acceleration Jdot qdot instead")
         if name == "singularities":
             sub.add_argument("--frame", default=None, help="frame to analyse in (default: the most compact one)")
             sub.add_argument("--point", default=None, help="wrist, tool, or x,y,z in frame {n} (default: tool if "
@@ -187,6 +193,8 @@ def _jacobian(args: argparse.Namespace) -> Document:
     point = _parse_point(args.point, robot)
     if args.representation is not None:
         return _representation(args, robot, frame, point)
+    if args.derivative:
+        return _derivative(args, robot, frame, point)
     steps = _steps(args, robot, point) if args.steps else []
     J = _progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
@@ -212,6 +220,38 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
     data = representation_data(robot, rj, J_0, args.point, args.representation, args.position)
     title = f"{robot.name}: {args.representation} representation Jacobian"
     return Document(title, robot.name, tuple(blocks), data, comments=True)
+
+
+def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> Document:
+    """``jacobian --derivative``: the time derivative of the Jacobian and the bias acceleration."""
+    if args.steps:
+        raise ArgumentError("--steps does not combine with --derivative")
+    Jdot = _progress(f"Jacobian derivative of {robot.name} in frame {frame}",
+                     lambda: jacobian_derivative(robot, frame=frame, point=point))
+    bias = bias_acceleration(robot, frame=frame, point=point)
+    Jdot, bias = _numeric(robot, Jdot, args.numeric), _numeric(robot, bias, args.numeric)
+    moving = " (in a moving frame: its rotation is differentiated too)" if carried_joints(robot, frame) else ""
+    blocks = (Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",),
+                    (Equation(rf"{{}}^{{{frame}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot),)),
+              Block(("Bias acceleration, the acceleration at zero joint acceleration",),
+                    (Equation(rf"{{}}^{{{frame}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias),)))
+    data = jacobian_derivative_data(robot, Jdot, bias, frame, args.point, [str(r) for r in joint_rates(robot)])
+    return Document(f"{robot.name}: time derivative of the Jacobian in frame {frame}", robot.name, blocks, data)
+
+
+def _hessian(args: argparse.Namespace) -> Document:
+    """``hessian``: one 6 x n slice dJ/dq_k per joint."""
+    robot = load_robot(args.robot)
+    frame = _parse_frame(args.frame)
+    point = _parse_point(args.point, robot)
+    H = _progress(f"Hessian of {robot.name} in frame {frame}", lambda: hessian(robot, frame=frame, point=point))
+    slices = [_numeric(robot, hessian_slice(H, k), args.numeric) for k in range(robot.dof)]
+    blocks = tuple(Block((f"Derivative of the Jacobian with respect to joint {k + 1}",),
+                         (Equation(rf"\frac{{\partial\,{{}}^{{{frame}}}J}}{{\partial {sp.latex(q)}}}",
+                                   f"dJ/d{q}", slices[k]),))
+                   for k, q in enumerate(robot.q))
+    data = hessian_data(robot, slices, frame, args.point)
+    return Document(f"{robot.name}: kinematic Hessian in frame {frame}", robot.name, blocks, data)
 
 
 def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[Equation]:

@@ -20,7 +20,9 @@ from symjac.singularity import Determinant
 __all__ = [
     "determinant_data",
     "forward_kinematics_data",
+    "hessian_data",
     "jacobian_data",
+    "jacobian_derivative_data",
     "matrix_strings",
     "metadata",
     "representation_data",
@@ -87,6 +89,24 @@ def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, me
             "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
             "entries": matrix_strings(J), "latex": equation_latex(equation),
             **({"steps": [equation_latex(step) for step in steps]} if steps is not None else {})}
+
+
+def jacobian_derivative_data(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, frame: Frame, point: str,
+                             rates: list[str]) -> dict[str, Any]:
+    """``symjac jacobian --derivative``: dJ/dt and the bias acceleration Jdot qdot, in the joint rates ``rates``."""
+    return {**metadata(robot), "frame": frame, "point": point, "rates": rates, "shape": list(Jdot.shape),
+            "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q], "entries": matrix_strings(Jdot),
+            "bias_acceleration": [sp.sstr(b) for b in bias], "latex": latex(Jdot), "bias_latex": latex(bias)}
+
+
+def hessian_data(robot: Robot, slices: list[sp.MatrixBase], frame: Frame, point: str) -> dict[str, Any]:
+    """``symjac hessian``: ``entries[i][j][k]`` = dJ[i, j]/dq_k (layout (6, n, n)), and each slice dJ/dq_k."""
+    n = robot.dof
+    entries = [[[sp.sstr(slices[k][i, j]) for k in range(n)] for j in range(n)] for i in range(6)]
+    return {**metadata(robot), "frame": frame, "point": point, "shape": [6, n, n],
+            "layout": "entries[i][j][k] = d J[i][j] / d q[k]", "rows": list(ROW_NAMES),
+            "columns": [str(q) for q in robot.q], "entries": entries,
+            "slices": {str(q): matrix_strings(slices[k]) for k, q in enumerate(robot.q)}}
 
 
 def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, point: str, orientation: str,

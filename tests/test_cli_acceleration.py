@@ -1,0 +1,97 @@
+"""The command line at the acceleration level: ``jacobian --derivative`` and ``hessian``, checked numerically."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from symjac.cli import main
+from symjac.io import load_robot
+from symjac.numeric import numeric_at, numeric_jacobian
+
+STEP = 1e-6
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def json_of(capsys: pytest.CaptureFixture[str], *argv: str) -> dict:
+    status, out, err = run(capsys, *argv, "--format", "json")
+    assert status == 0, err
+    return json.loads(out)
+
+
+def numeric(robot, strings, q, rates=None):
+    """Entries printed by the CLI (SymPy strings) as floats at q (and joint rates)."""
+    names = {str(s): s for s in (*robot.q, *robot.parameter_symbols)}
+    matrix = sp.Matrix(sp.sympify(strings, locals=names))
+    if rates is not None:
+        matrix = matrix.xreplace({s: rates[str(s)] for s in matrix.free_symbols if str(s) in rates})
+    return numeric_at(robot, matrix, list(q))
+
+
+@pytest.mark.parametrize(("name", "frame"), [("planar3r", "0"), ("stanford", "0"), ("stanford", "3")])
+def test_derivative_json_matches_differences_of_the_jacobian(capsys, name, frame):
+    robot = load_robot(name)
+    data = json_of(capsys, "jacobian", name, "--derivative", "--frame", frame)
+    rng = np.random.default_rng(7)
+    q, qdot = rng.uniform(-1, 1, robot.dof), rng.uniform(-1, 1, robot.dof)
+    rates = dict(zip(data["rates"], qdot, strict=True))
+    jdot = numeric(robot, data["entries"], q, rates)
+    bias = numeric(robot, data["bias_acceleration"], q, rates).ravel()
+    J = lambda x: numeric_jacobian(robot, list(x), frame=int(frame))  # noqa: E731
+    expected = (J(q + STEP * qdot) - J(q - STEP * qdot)) / (2 * STEP)
+    assert np.allclose(jdot, expected, atol=1e-7)
+    assert np.allclose(bias, expected @ qdot, atol=1e-7)
+    assert data["shape"] == [6, robot.dof]
+
+
+def test_hessian_json_layout_matches_differences(capsys):
+    robot = load_robot("stanford")
+    data = json_of(capsys, "hessian", "stanford")
+    assert data["shape"] == [6, 6, 6]
+    q = np.linspace(-0.9, 0.8, 6)
+    H = np.stack([np.stack([numeric(robot, row, q) for row in rows]) for rows in
+                  ([[entry] for entry in data["entries"][i][j]] for i in range(6) for j in range(6))])
+    H = H.reshape(6, 6, 6)
+    for k in range(6):
+        step = STEP * np.eye(6)[k]
+        expected = (numeric_jacobian(robot, list(q + step)) - numeric_jacobian(robot, list(q - step))) / (2 * STEP)
+        assert np.allclose(H[:, :, k], expected, atol=1e-7), k
+        assert np.allclose(numeric(robot, data["slices"][str(robot.q[k])], q), expected, atol=1e-7)
+
+
+def test_derivative_latex_and_pretty(capsys):
+    status, out, err = run(capsys, "jacobian", "planar2r", "--derivative")
+    assert status == 0, err
+    jdot, bias = out.splitlines()
+    assert jdot.startswith(r"{}^{0}\dot{J} = \begin{bmatrix}")
+    assert r"\left(\dot{\theta}_{1} + \dot{\theta}_{2}\right)^{2}" in bias  # the textbook square of the sum
+    status, out, _ = run(capsys, "jacobian", "planar2r", "--derivative", "--frame", "2", "--format", "pretty")
+    assert status == 0
+    assert "moving frame" in out
+
+
+def test_hessian_latex_has_one_slice_per_joint(capsys):
+    status, out, err = run(capsys, "hessian", "stanford", "--numeric")
+    assert status == 0, err
+    lines = out.splitlines()
+    assert [line.split(" = ")[0] for line in lines] == [
+        rf"\frac{{\partial\,{{}}^{{0}}J}}{{\partial {q}}}" for q in
+        (r"\theta_{1}", r"\theta_{2}", "d_{3}", r"\theta_{4}", r"\theta_{5}", r"\theta_{6}")]
+    assert "d_{2}" not in out  # --numeric substituted the parameter
+
+
+@pytest.mark.parametrize("argv", [("jacobian", "planar2r", "--derivative", "--steps"),
+                                  ("hessian", "planar2r", "--frame", "7"),
+                                  ("hessian", "planar2r", "--point", "1,2")])
+def test_bad_acceleration_requests_are_one_line_errors(capsys, argv):
+    status, out, err = run(capsys, *argv)
+    assert (status, out, len(err.splitlines())) == (2, "", 1), err
+    assert err.startswith("symjac: error: ")

@@ -144,11 +144,25 @@ def _derive(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> 
     def layout(step: AccelerationStep) -> AccelerationStep:
         frame = chain.n if step.frame == "point" else step.frame
         stacked = sp.Matrix.vstack(step.omega, step.omegadot, step.v, step.vdot)
-        flat = simplify_matrix(stacked, chain.angle_bases(frame))  # type: ignore[arg-type]
+        flat = _collect_rates(simplify_matrix(stacked, chain.angle_bases(frame)), raw.rates)  # type: ignore[arg-type]
         parts = [sp.ImmutableMatrix(flat[i:i + 3, :]) for i in (0, 3, 6, 9)]
         return AccelerationStep(step.frame, *parts)
 
     return AccelerationPropagation(raw.rates, raw.accelerations, tuple(layout(step) for step in raw.steps))
+
+
+def _collect_rates(matrix: sp.MatrixBase, rates: tuple[sp.Symbol, ...]) -> sp.Matrix:
+    """Factor sums of rates where that is shorter: ``thetadot1*(thetadot1 + 2*thetadot2) + thetadot2**2``."""
+    symbols = frozenset(rates)
+
+    def is_rate_sum(expr: sp.Expr) -> bool:
+        return expr.is_Add and bool(expr.free_symbols) and expr.free_symbols <= symbols
+
+    def shorter(expr: sp.Expr) -> sp.Expr:
+        factored = sp.factor(expr)
+        return factored if sp.count_ops(factored) < sp.count_ops(expr) else expr
+
+    return sp.Matrix(matrix).applyfunc(lambda entry: entry.replace(is_rate_sum, shorter))
 
 
 def _rigid(omega: sp.Matrix, omegadot: sp.Matrix, v: sp.Matrix, vdot: sp.Matrix,

@@ -23,6 +23,7 @@ Propagation = VelocityPropagation | AccelerationPropagation | ForcePropagation
 def step_equations(propagation: Propagation, values: Mapping[Any, Any] | None = None) -> list[Equation]:
     """Every step of a propagation as an :class:`Equation`, in order (``values`` substituted first)."""
     rows: list[tuple[Any, ...]]
+    names: tuple[tuple[str, str], ...]
     if isinstance(propagation, VelocityPropagation):
         rows = list(propagation.velocities())
         names = ((r"\omega", "ω"), ("v", "v"))

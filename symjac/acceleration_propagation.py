@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from symjac.chain import Chain, Frame, as_chain
+from symjac.jacobian import point_vector
 from symjac.model import Robot
 from symjac.propagation import joint_rates
 from symjac.simplify import simplify_matrix
@@ -132,7 +133,7 @@ def acceleration_propagation(
     Matrix([[0, 0, thetaddot1 + thetaddot2]])
     """
     chain = as_chain(robot)
-    tip = None if point is None else tuple(sp.sympify(c) for c in point)
+    tip = None if point is None else point_vector(chain, point)  # validated; floats become exact rationals
     return chain.memo(("acceleration_propagation", tip, simplify), lambda: _derive(chain, tip, simplify))
 
 
@@ -142,9 +143,9 @@ def _derive(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> 
     raw = acceleration_propagation(chain, point, simplify=False)
 
     def layout(step: AccelerationStep) -> AccelerationStep:
-        frame = chain.n if step.frame == "point" else step.frame
+        frame: Frame = chain.n if step.frame == "point" else step.frame  # type: ignore[assignment]  # "point": {n}
         stacked = sp.Matrix.vstack(step.omega, step.omegadot, step.v, step.vdot)
-        flat = _collect_rates(simplify_matrix(stacked, chain.angle_bases(frame)), raw.rates)  # type: ignore[arg-type]
+        flat = _collect_rates(simplify_matrix(stacked, chain.angle_bases(frame)), raw.rates)
         parts = [sp.ImmutableMatrix(flat[i:i + 3, :]) for i in (0, 3, 6, 9)]
         return AccelerationStep(step.frame, *parts)
 

@@ -15,7 +15,7 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from reference import frame_index, frames, random_configuration
-from strategies import robots
+from strategies import general_robots, robots
 
 from symjac import (
     catalog,
@@ -365,3 +365,18 @@ def test_random_chains_hessian_and_three_bias_routes(robot):
     fd_bias = (numeric_jacobian(robot, q + h * qd) - numeric_jacobian(robot, q - h * qd)) / (2 * h) @ qd
     for bias in values[1:]:
         assert _close(bias[:, 0], fd_bias)
+
+
+@settings(max_examples=3, deadline=None)
+@given(robot=general_robots(max_joints=4))
+def test_random_general_chains_propagate_the_bias(robot):
+    n = robot.dof
+    q, qd, qdd = _state(robot, seed=n)
+    result = acceleration_propagation(robot, None, simplify=False)
+    R = chain_of(robot).rotation(0, "tool")
+    propagated = sp.Matrix.vstack(R * result.acceleration[:3, :], R * result.acceleration[3:, :])
+    J = jacobian(robot, 0, "tool" if robot.tool else "wrist", simplify=False)
+    expected = J * sp.Matrix(joint_accelerations(robot)) + bias_acceleration(
+        robot, 0, "tool" if robot.tool else "wrist", simplify=False)
+    computed, wanted = _compile(robot, [propagated, expected])(q, qd, qdd)
+    assert _close(computed, wanted)

@@ -81,9 +81,8 @@ def _cases():
 
     SymPy's derivative of a Jacobian expressed in a far moving frame is ten times the size of the Hessian route
     (Panda in its tool frame: about 200k operations against 20k), so that route is checked numerically in {0} and a
-    middle frame of the arms up to six joints, and symbolically in {0} on every arm
-    (test_three_routes_to_the_bias_agree_symbolically). ``"world"`` is
-    {0} for every built-in arm (none has a base transform): it is exercised on an arm given one, and by hypothesis.
+    middle frame of the arms up to six joints, and symbolically in {0} on every arm (test_three_routes_...).
+    ``"world"`` is {0} for every built-in arm (none has a base transform): an arm given one exercises it.
     """
     both, hessian_only = ("hessian", "differentiation"), ("hessian",)
     for name in ROBOTS:
@@ -221,8 +220,8 @@ def test_moving_frame_derivative_is_the_rotated_fixed_one_minus_the_frame_spin(n
     J_0 = numeric_jacobian(robot, q, 0, point)
     Jdot_0 = _numeric_derivatives(name, 0, point)(q, qd, qdd)[1]
     index = frame_index(robot, frame)
-    R_0_k = frames(robot, q)[index][:3, :3] if robot.base is None else (
-        np.linalg.inv(frames(robot, q)[1]) @ frames(robot, q)[index])[:3, :3]
+    poses = frames(robot, q)
+    R_0_k = (np.linalg.inv(poses[1]) @ poses[index])[:3, :3]  # poses[1] is {0} in the world
     carried = min(index - 1, n)  # joints 1..k turn {k}
     w = R_0_k.T @ (J_0[3:, :carried] @ qd[:carried])
     W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])

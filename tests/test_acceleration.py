@@ -91,7 +91,8 @@ def _cases():
         yield name, 0, "wrist", both if n < 7 else hessian_only
         if not name.endswith(".urdf"):  # the URDF arms are catalog arms in the general convention
             yield name, n // 2, "wrist", both if n < 7 else hessian_only
-        yield (name, "tool", "tool", hessian_only) if robot.tool else (name, n, "wrist", hessian_only)
+        if name != "panda":  # its tool frame is panda.urdf's (the same arm); planar3r, articulated3r: modified DH
+            yield (name, "tool", "tool", hessian_only) if robot.tool else (name, n, "wrist", hessian_only)
     yield "articulated3r+base", "world", "tool", both
     yield "articulated3r+base", 0, "wrist", both
     yield "articulated3r+base", "tool", "wrist", both

@@ -15,7 +15,7 @@ import sympy as sp
 __all__ = ["GREEK", "SUBSCRIPTS", "shorthand_indices", "textbook_factors"]
 
 _JOINT_ANGLE = re.compile(r"theta(\d+)\Z")
-_RATE = re.compile(r"(theta|d)dot\d+\Z")
+_RATE = re.compile(r"(theta|d)d?dot\d+\Z")  # rates and accelerations
 GREEK = frozenset({"alpha", "beta", "gamma", "phi", "psi", "vartheta", "eta"})
 """Representation angles that get the shorthand too (:math:`s_{\beta}`)."""
 SUBSCRIPTS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉\u201a")  # U+201A, a low comma: c₈‚₉‚₁₀

@@ -1,6 +1,7 @@
-r"""Velocity and force propagation step by step, as equations for lecture notes.
+r"""Velocity, acceleration and force propagation step by step, as equations for lecture notes.
 
-Outward :math:`{}^{i}\omega_i, {}^{i}v_i`, inward :math:`{}^{i}f_i, {}^{i}n_i`, then :math:`\tau`.
+Outward :math:`{}^{i}\omega_i, {}^{i}v_i` (and :math:`{}^{i}\dot\omega_i, {}^{i}\dot v_i`), inward
+:math:`{}^{i}f_i, {}^{i}n_i`, then :math:`\tau`.
 """
 
 from __future__ import annotations
@@ -8,29 +9,36 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from symjac.acceleration_propagation import AccelerationPropagation
 from symjac.errors import ArgumentError
 from symjac.printing.document import Equation, Style, equation_latex, equation_text
 from symjac.propagation import ForcePropagation, VelocityPropagation
 
-__all__ = ["propagation_steps", "step_equations"]
+__all__ = ["Propagation", "propagation_steps", "step_equations"]
 
 
-def step_equations(
-    propagation: VelocityPropagation | ForcePropagation, values: Mapping[Any, Any] | None = None
-) -> list[Equation]:
+Propagation = VelocityPropagation | AccelerationPropagation | ForcePropagation
+
+
+def step_equations(propagation: Propagation, values: Mapping[Any, Any] | None = None) -> list[Equation]:
     """Every step of a propagation as an :class:`Equation`, in order (``values`` substituted first)."""
+    rows: list[tuple[Any, ...]]
+    names: tuple[tuple[str, str], ...]
     if isinstance(propagation, VelocityPropagation):
-        rows = propagation.velocities()
+        rows = list(propagation.velocities())
         names = ((r"\omega", "ω"), ("v", "v"))
+    elif isinstance(propagation, AccelerationPropagation):
+        rows = [(s.frame, s.omega, s.omegadot, s.v, s.vdot) for s in propagation.steps]
+        names = ((r"\omega", "ω"), (r"\dot\omega", "ω̇"), ("v", "v"), (r"\dot v", "v̇"))
     else:
-        rows = propagation.wrenches()
+        rows = list(propagation.wrenches())
         names = (("f", "f"), ("n", "n"))
     substitution = dict(values or {})
-    last = max(frame for frame, _, _ in rows if isinstance(frame, int))
+    last = max(row[0] for row in rows if isinstance(row[0], int))
     equations = []
-    for frame, first, second in rows:
+    for frame, *vectors in rows:
         where, subscript = {"tool": ("T", "T"), "point": (str(last), "P")}.get(str(frame), (str(frame), str(frame)))
-        for (tex_name, text_name), vector in zip(names, (first, second), strict=True):
+        for (tex_name, text_name), vector in zip(names, vectors, strict=True):
             equations.append(Equation(f"{{}}^{{{where}}}{tex_name}_{{{subscript}}}",
                                       f"{text_name}_{subscript} (in frame {where})", vector.xreplace(substitution)))
     if isinstance(propagation, ForcePropagation):
@@ -39,9 +47,9 @@ def step_equations(
 
 
 def propagation_steps(
-    propagation: VelocityPropagation | ForcePropagation, style: Style = "latex", values: Mapping[Any, Any] | None = None
+    propagation: Propagation, style: Style = "latex", values: Mapping[Any, Any] | None = None
 ) -> list[str]:
-    r"""Every step of a velocity or force propagation, one equation per string, ready for lecture notes.
+    r"""Every step of a velocity, acceleration or force propagation, one equation per string, ready for lecture notes.
 
     ``style`` is ``"latex"`` or ``"pretty"`` (Unicode); ``values`` (symbol -> number) are substituted first.
 
@@ -50,6 +58,9 @@ def propagation_steps(
     >>> from symjac import load_robot, velocity_propagation
     >>> propagation_steps(velocity_propagation(load_robot("planar2r")))[3]
     '{}^{1}v_{1} = \\begin{bmatrix}0\\\\L_{1} \\dot{\\theta}_{1}\\\\0\\end{bmatrix}'
+    >>> from symjac.acceleration_propagation import acceleration_propagation
+    >>> propagation_steps(acceleration_propagation(load_robot("planar2r")))[7]
+    '{}^{1}\\dot v_{1} = \\begin{bmatrix}- L_{1} \\dot{\\theta}_{1}^{2}\\\\L_{1} \\ddot{\\theta}_{1}\\\\0\\end{bmatrix}'
     """
     if style not in ("latex", "pretty"):
         raise ArgumentError(f"style must be 'latex' or 'pretty', got {style!r}")

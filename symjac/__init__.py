@@ -2,7 +2,8 @@
 
 The public API, in pipeline order: load a robot (:func:`load_robot`, :func:`robot_from_mapping`), derive its
 kinematics (:func:`chain_of`, :func:`forward_kinematics`) and Jacobians (:func:`jacobian`, by four methods; the
-iterations themselves with :func:`velocity_propagation` and :func:`force_propagation`), statics
+iterations themselves with :func:`velocity_propagation` and :func:`force_propagation`), the acceleration level
+(:func:`hessian`, :func:`jacobian_derivative`, :func:`bias_acceleration`, :func:`acceleration_propagation`), statics
 (:func:`joint_torques`, :func:`wrench_transform`, :func:`twist_transform`), singular configurations
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
 :func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`); print them
@@ -16,6 +17,12 @@ from symjac.acceleration import (
     hessian,
     hessian_slice,
     jacobian_derivative,
+)
+from symjac.acceleration_propagation import (
+    AccelerationPropagation,
+    AccelerationStep,
+    acceleration_propagation,
+    joint_accelerations,
 )
 from symjac.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
 from symjac.codegen import JacobianRequest, generate, write_module
@@ -68,6 +75,8 @@ __all__ = [
     "METHODS",
     "REPRESENTATIONS",
     "ROW_NAMES",
+    "AccelerationPropagation",
+    "AccelerationStep",
     "AngleBasis",
     "ArgumentError",
     "Chain",
@@ -97,6 +106,7 @@ __all__ = [
     "UnknownRobotError",
     "VelocityPropagation",
     "__version__",
+    "acceleration_propagation",
     "as_chain",
     "bias_acceleration",
     "catalog",
@@ -118,6 +128,7 @@ __all__ = [
     "jacobian_derivative",
     "jacobian_of",
     "jacobian_spaces",
+    "joint_accelerations",
     "joint_rates",
     "joint_torques",
     "latex",

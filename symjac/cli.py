@@ -18,6 +18,7 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.acceleration import bias_acceleration, carried_joints, hessian, hessian_slice, jacobian_derivative
+from symjac.acceleration_propagation import acceleration_propagation
 from symjac.chain import Frame, chain_of
 from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
 from symjac.errors import ArgumentError, ExpressionError, FrameError, SymjacError
@@ -116,7 +117,7 @@ def _parser() -> argparse.ArgumentParser:
         if name == "jacobian":
             sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
             sub.add_argument("--steps", action="store_true",
-                             help="with a propagation method: print every propagation step before the Jacobian")
+                             help="with a propagation method (or --derivative): print every propagation step first")
             sub.add_argument("--representation", choices=REPRESENTATIONS, default=None,
                              help="print the representation Jacobian J_x = E(x) J_0 for these orientation coordinates")
             sub.add_argument("--position", choices=POSITIONS, default="cartesian",
@@ -224,18 +225,24 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
 
 def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> Document:
     """``jacobian --derivative``: the time derivative of the Jacobian and the bias acceleration."""
+    tip = None if point == "tool" else point_vector(robot, point)
+    steps = []
     if args.steps:
-        raise ArgumentError("--steps does not combine with --derivative")
+        propagation = _progress(f"acceleration propagation of {robot.name}",
+                                lambda: acceleration_propagation(robot, tip))
+        steps = step_equations(propagation, values=_numeric_values(robot) if args.numeric else None)
     Jdot = _progress(f"Jacobian derivative of {robot.name} in frame {frame}",
                      lambda: jacobian_derivative(robot, frame=frame, point=point))
     bias = bias_acceleration(robot, frame=frame, point=point)
     Jdot, bias = _numeric(robot, Jdot, args.numeric), _numeric(robot, bias, args.numeric)
     moving = " (in a moving frame: its rotation is differentiated too)" if carried_joints(robot, frame) else ""
-    blocks = (Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",),
+    blocks = (*(Block((), (step,)) for step in steps),
+              Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",),
                     (Equation(rf"{{}}^{{{frame}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot),)),
               Block(("Bias acceleration, the acceleration at zero joint acceleration",),
                     (Equation(rf"{{}}^{{{frame}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias),)))
-    data = jacobian_derivative_data(robot, Jdot, bias, frame, args.point, [str(r) for r in joint_rates(robot)])
+    data = jacobian_derivative_data(robot, Jdot, bias, frame, args.point, [str(r) for r in joint_rates(robot)],
+                                    steps if args.steps else None)
     return Document(f"{robot.name}: time derivative of the Jacobian in frame {frame}", robot.name, blocks, data)
 
 

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from symjac.chain import chain_of
 from symjac.cli import main
 from symjac.io import load_robot
 from symjac.numeric import numeric_at, numeric_jacobian
@@ -88,10 +89,26 @@ def test_hessian_latex_has_one_slice_per_joint(capsys):
     assert "d_{2}" not in out  # --numeric substituted the parameter
 
 
-@pytest.mark.parametrize("argv", [("jacobian", "planar2r", "--derivative", "--steps"),
+@pytest.mark.parametrize("argv", [("jacobian", "planar2r", "--derivative", "--steps", "--point", "tool"),
                                   ("hessian", "planar2r", "--frame", "7"),
                                   ("hessian", "planar2r", "--point", "1,2")])
 def test_bad_acceleration_requests_are_one_line_errors(capsys, argv):
     status, out, err = run(capsys, *argv)
     assert (status, out, len(err.splitlines())) == (2, "", 1), err
     assert err.startswith("symjac: error: ")
+
+
+def test_derivative_steps_end_with_the_bias_in_the_tip_frame(capsys):
+    robot = load_robot("stanford")
+    data = json_of(capsys, "jacobian", "stanford", "--derivative", "--steps")
+    names = [step["name"] for step in data["steps"]]
+    assert len(names) == 4 * (robot.dof + 1) and names[-1].startswith("v̇_6")
+    rng = np.random.default_rng(3)
+    q, qdot = rng.uniform(-1, 1, 6), rng.uniform(-1, 1, 6)
+    values = {**dict(zip(data["rates"], qdot, strict=True)), **{f"thetaddot{i}": 0.0 for i in range(1, 7)},
+              "dddot3": 0.0}
+    vdot_6 = numeric(robot, [[e] for e in data["steps"][-1]["entries"]], q, values).ravel()
+    bias_0 = numeric(robot, [[e] for e in data["bias_acceleration"]], q, values).ravel()
+    R_0_6 = numeric_at(robot, chain_of(robot).rotation(0, 6), list(q))
+    assert np.allclose(R_0_6 @ vdot_6, bias_0[:3], atol=1e-12)
+    assert np.linalg.norm(bias_0[:3]) > 0.01  # not trivially zero

@@ -92,11 +92,16 @@ def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, me
 
 
 def jacobian_derivative_data(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, frame: Frame, point: str,
-                             rates: list[str]) -> dict[str, Any]:
-    """``symjac jacobian --derivative``: dJ/dt and the bias acceleration Jdot qdot, in the joint rates ``rates``."""
+                             rates: list[str], steps: list[Equation] | None = None) -> dict[str, Any]:
+    """``symjac jacobian --derivative``: dJ/dt and the bias acceleration Jdot qdot, in the joint rates ``rates``.
+
+    With ``steps`` (the acceleration propagation), each step as ``{"name", "latex", "entries"}``.
+    """
     return {**metadata(robot), "frame": frame, "point": point, "rates": rates, "shape": list(Jdot.shape),
             "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q], "entries": matrix_strings(Jdot),
-            "bias_acceleration": [sp.sstr(b) for b in bias], "latex": latex(Jdot), "bias_latex": latex(bias)}
+            "bias_acceleration": [sp.sstr(b) for b in bias], "latex": latex(Jdot), "bias_latex": latex(bias),
+            **({"steps": [{"name": step.text, "latex": equation_latex(step), "entries": [sp.sstr(e) for e in step.rhs]}
+                          for step in steps]} if steps is not None else {})}
 
 
 def hessian_data(robot: Robot, slices: list[sp.MatrixBase], frame: Frame, point: str) -> dict[str, Any]:

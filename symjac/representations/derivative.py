@@ -35,7 +35,14 @@ from symjac.errors import ArgumentError, RepresentationError
 from symjac.jacobian import Point, point_vector
 from symjac.model import Robot
 from symjac.propagation import joint_rates
-from symjac.representations.conventions import Orientation, Position, Representation, representation
+from symjac.representations.conventions import (
+    Orientation,
+    OrientationSpec,
+    Position,
+    PositionSpec,
+    Representation,
+    representation,
+)
 from symjac.representations.jacobian import representation_jacobian, representation_jacobian_at
 from symjac.representations.rates import position_rate_matrix, rate_matrix
 
@@ -71,7 +78,7 @@ def coordinate_rates(name: str | Representation) -> tuple[sp.Symbol, ...]:
 
 
 @cache
-def _rate_map(x_p: Representation, x_r: Representation) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
+def _rate_map(x_p: PositionSpec, x_r: OrientationSpec) -> tuple[sp.ImmutableMatrix, sp.ImmutableMatrix]:
     r""":math:`E = \mathrm{diag}(E_p, E_r)` and :math:`\dot E = \sum_i \partial E / \partial x_i\,\dot x_i`."""
     E = sp.diag(position_rate_matrix(x_p), rate_matrix(x_r))
     coords = (*x_p.coordinates, *x_r.coordinates)

@@ -65,7 +65,7 @@ def _resolve_rows(chain: Chain, rows: Rows | None, point: tuple[sp.Expr, ...]) -
     if rows is None:
         chosen = task_rows(chain, list(point))
     elif isinstance(rows, str) or all(isinstance(r, str) for r in rows):
-        chosen = rows_from_names(rows)  # type: ignore[arg-type]
+        chosen = rows_from_names(rows if isinstance(rows, str) else [str(r) for r in rows])
     else:
         indices = [int(r) if isinstance(r, int | np.integer) and not isinstance(r, bool) else -1 for r in rows]
         if not indices or any(not 0 <= r < 6 for r in indices) or len(set(indices)) != len(indices):

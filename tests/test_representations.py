@@ -757,7 +757,7 @@ def test_Jdot_x_in_the_world_frame_at_the_tool_point():
     """A base transform and a tool: x measured in "world" at the tool frame, against differences of J_x."""
     joints = [{"type": "revolute", "alpha": "pi/2", "a": 0.3, "d": 0.1, "theta": 0},
               {"type": "prismatic", "alpha": "-pi/2", "a": 0.05, "d": 0.2, "theta": 0.4},
-              {"type": "revolute", "alpha": "pi/3", "a": 0.25, "d": 0, "theta": 0}]
+              {"type": "revolute", "alpha": "pi/2", "a": 0.25, "d": 0, "theta": 0}]
     robot = robot_from_mapping({"name": "based", "convention": "standard", "joints": joints,
                                 "base": {"xyz": [0.2, -0.1, 0.5], "rpy": [0.4, 0.1, -0.3]},
                                 "tool": {"xyz": [0.1, 0, 0.2], "rpy": [0.3, -0.2, 0.5]}})

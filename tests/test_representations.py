@@ -18,6 +18,9 @@ from reference import frames, random_configuration
 from strategies import robots
 
 from symjac import load_robot, robot_from_mapping
+from symjac.acceleration import jacobian_derivative
+from symjac.errors import ArgumentError
+from symjac.propagation import joint_rates
 from symjac.representations import (
     EULER_CONVENTIONS,
     EULER_ORDERS,
@@ -26,6 +29,7 @@ from symjac.representations import (
     EulerConvention,
     RepresentationError,
     angular_velocity_matrix,
+    coordinate_rates,
     coordinates,
     extract,
     extract_position,
@@ -35,6 +39,8 @@ from symjac.representations import (
     representation,
     representation_jacobian,
     representation_jacobian_at,
+    representation_jacobian_derivative,
+    representation_jacobian_derivative_at,
     representation_singularities,
     rotation_from,
 )
@@ -675,6 +681,135 @@ def test_random_chains_against_finite_differences(robot, data):
     q = _configuration(robot, rng, orientation, position, frame, point, tries=5)
     assume(q is not None)
     _check_against_finite_differences(robot, q, rng.normal(size=robot.dof), orientation, position, frame, point)
+
+
+# --- time derivative of J_x: the bias term of an analytic-Jacobian controller --------------------------------------
+
+DERIVATIVE_ROBOT = "puma560"  # the full sweep runs on one six-joint arm; the symbolic identities on the 2R arm
+
+
+def _away_from_branch_cuts(orientation, x, margin=0.05):
+    """Extraction is continuous here: no quaternion sign flip (eta ~ 0), no axis-angle flip (vartheta ~ pi)."""
+    if orientation == "quaternion":
+        return x[3] > margin
+    if orientation == "axis_angle":
+        return x[6] < math.pi - margin
+    return True
+
+
+def _derivative_state(robot, rng, orientation, position):
+    for _ in range(30):
+        q = random_configuration(robot, rng)
+        try:
+            value = representation_jacobian_at(robot, q, orientation, position)
+        except RepresentationError:
+            continue
+        if _far_from_representation_singularities(value, 0.1) and _away_from_branch_cuts(orientation, value.x):
+            return q, rng.normal(size=robot.dof)
+    raise AssertionError(f"no configuration away from the singularities of {orientation}/{position}")
+
+
+@pytest.fixture(scope="module")
+def derivative_robot():
+    return load_robot(DERIVATIVE_ROBOT)
+
+
+@pytest.mark.parametrize("position", POSITIONS)
+@pytest.mark.parametrize("orientation", REPRESENTATIONS)
+def test_Jdot_x_is_the_derivative_of_J_x_along_the_motion(derivative_robot, orientation, position):
+    robot = derivative_robot
+    rng = np.random.default_rng(sum(map(ord, orientation + position)))
+    q, q_dot = _derivative_state(robot, rng, orientation, position)
+    value = representation_jacobian_derivative_at(robot, q, q_dot, orientation, position)
+    h = 1e-5
+
+    def J_x(t):
+        return representation_jacobian_at(robot, q + t * q_dot, orientation, position).J_x
+
+    difference = (J_x(h) - J_x(-h)) / (2 * h)
+    scale = max(np.abs(difference).max(), 1.0)
+    np.testing.assert_allclose(value.Jdot_x, difference, rtol=1e-6, atol=1e-6 * scale)
+    np.testing.assert_allclose(value.bias, value.Jdot_x @ q_dot, atol=1e-12)
+    np.testing.assert_allclose(value.x_dot, value.J_x @ q_dot, atol=1e-12)
+
+
+@pytest.mark.parametrize(("orientation", "position"), [("zyz", "cartesian"), ("rpy", "spherical"),
+                                                       ("quaternion", "cylindrical")])
+def test_bias_is_the_second_derivative_of_extracted_coordinates(derivative_robot, orientation, position):
+    """At zero joint acceleration (q = q0 + t q_dot), x'' is the bias: second differences of reference FK."""
+    robot = derivative_robot
+    rng = np.random.default_rng(5)
+    q, q_dot = _derivative_state(robot, rng, orientation, position)
+    value = representation_jacobian_derivative_at(robot, q, q_dot, orientation, position)
+    h = 1e-4
+
+    def x_at(t):
+        return _reference_x(robot, q + t * q_dot, orientation, position, 0, "wrist")
+
+    centre = x_at(0.0)
+    aligned = [np.concatenate([align(position, x[:3], centre[:3]), align(orientation, x[3:], centre[3:])])
+               for x in (x_at(h), x_at(-h))]
+    second = (aligned[0] - 2 * centre + aligned[1]) / h**2
+    np.testing.assert_allclose(value.bias, second, rtol=1e-4, atol=1e-4)
+
+
+def test_Jdot_x_in_the_world_frame_at_the_tool_point():
+    """A base transform and a tool: x measured in "world" at the tool frame, against differences of J_x."""
+    joints = [{"type": "revolute", "alpha": "pi/2", "a": 0.3, "d": 0.1, "theta": 0},
+              {"type": "prismatic", "alpha": "-pi/2", "a": 0.05, "d": 0.2, "theta": 0.4},
+              {"type": "revolute", "alpha": "pi/2", "a": 0.25, "d": 0, "theta": 0}]
+    robot = robot_from_mapping({"name": "based", "convention": "standard", "joints": joints,
+                                "base": {"xyz": [0.2, -0.1, 0.5], "rpy": [0.4, 0.1, -0.3]},
+                                "tool": {"xyz": [0.1, 0, 0.2], "rpy": [0.3, -0.2, 0.5]}})
+    q, q_dot, h = np.array([0.4, 0.5, -0.7]), np.array([0.6, -0.3, 1.1]), 1e-5
+    for orientation, position in [("zyx", "cylindrical"), ("direction_cosines", "spherical")]:
+        value = representation_jacobian_derivative_at(robot, q, q_dot, orientation, position, "tool", "world")
+        plus, minus = (representation_jacobian_at(robot, q + t * q_dot, orientation, position, "tool", "world").J_x
+                       for t in (h, -h))
+        np.testing.assert_allclose(value.Jdot_x, (plus - minus) / (2 * h), rtol=1e-6, atol=1e-8)
+
+
+def test_symbolic_Jdot_x_matches_the_numeric_evaluation(derivative_robot):
+    robot = derivative_robot
+    rng = np.random.default_rng(41)
+    for orientation, position in [("zyz", "spherical"), ("axis_angle", "cartesian")]:
+        result = representation_jacobian_derivative(robot, orientation, position)
+        q, q_dot = _derivative_state(robot, rng, orientation, position)
+        value = representation_jacobian_derivative_at(robot, q, q_dot, orientation, position)
+        values = {**dict(zip(result.coordinates, value.x, strict=True)), **dict(zip(robot.q, q, strict=True)),
+                  **dict(zip(result.joint_rates, q_dot, strict=True)), **robot.defaults}
+        np.testing.assert_allclose(numeric(result.Jdot_x.xreplace(values)), value.Jdot_x, atol=1e-9)
+        np.testing.assert_allclose(numeric(result.bias.xreplace(values)).ravel(), value.bias, atol=1e-9)
+        rates = dict(zip(result.coordinate_rates, value.x_dot, strict=True))
+        np.testing.assert_allclose(numeric(result.E_dot.xreplace({**values, **rates})), value.E_dot, atol=1e-9)
+        assert result.coordinate_rates == (*coordinate_rates(position), *coordinate_rates(orientation))
+
+
+def test_planar_arm_Jdot_x_identities():
+    robot = load_robot("planar2r")
+    result = representation_jacobian_derivative(robot, "rpy", "cartesian")
+    # the yaw of a planar arm is theta1 + theta2, so its rate row is constant
+    assert result.Jdot_x[5, :] == sp.zeros(1, 2)
+    # cartesian coordinates have E_p = I: their rows are those of the basic Jacobian's derivative, exactly
+    assert result.Jdot_x[:3, :] == jacobian_derivative(robot)[:3, :]
+    assert result.E_dot[:3, :] == sp.zeros(3, 6)
+    assert set(result.Jdot_x.free_symbols) <= {*robot.q, *robot.parameter_symbols, *joint_rates(robot),
+                                               *result.coordinates}
+    # cylindrical coordinates: the rho row of E_p, [c_phi, s_phi, 0], turns with the azimuth phi_c
+    cylindrical = representation_jacobian_derivative(robot, "rpy", "cylindrical")
+    phi_c, phidot_c = coordinates("cylindrical")[1], coordinate_rates("cylindrical")[1]
+    assert cylindrical.E_dot[0, :3] == sp.Matrix([[-sp.sin(phi_c), sp.cos(phi_c), 0]]) * phidot_c
+    assert cylindrical.Jdot_x[5, :] == sp.zeros(1, 2)
+
+
+def test_representation_jacobian_derivative_errors(derivative_robot):
+    robot = derivative_robot
+    with pytest.raises(ArgumentError, match="q_dot must be 6 finite numbers"):
+        representation_jacobian_derivative_at(robot, [0.1] * 6, [0.1] * 5)
+    with pytest.raises(RepresentationError, match=r"sin\(beta\) = 0"):
+        representation_jacobian_derivative_at(load_robot("planar2r"), [0.3, 0.4], [1.0, 1.0], "zyz")
+    with pytest.raises(RepresentationError, match="fixed frame"):
+        representation_jacobian_derivative(robot, frame=3)
 
 
 # --- API errors --------------------------------------------------------------------------------------------------

@@ -31,6 +31,7 @@ FLOORS: dict[str, int] = {
     # analyses
     "symjac.spaces": 4, "symjac.singularity": 4, "symjac.singular": 4, "symjac.rates": 4, "symjac.representations": 4,
     "symjac.exercises": 4,
+    "symjac.manipulability": 4,
     # outputs
     "symjac.printing": 5, "symjac.codegen": 5, "symjac.cli": 5, "symjac.__main__": 5,
 }

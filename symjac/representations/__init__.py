@@ -46,8 +46,9 @@ angles of seed 002 give the matrix below.
 
 Modules: :mod:`.conventions` (the representation values, their names and coordinates, the registry),
 :mod:`.rates` (symbolic :math:`R`, :math:`p`, :math:`B`, :math:`E` and singularities), :mod:`.extraction` (NumPy),
-:mod:`.jacobian` (robots). Adding a representation: a value type and its registry entry in ``conventions.py``, its
-maps in ``rates.py``, its extraction in ``extraction.py``.
+:mod:`.jacobian` (robots), :mod:`.derivative` (:math:`\dot J_x` and the bias :math:`\dot J_x \dot q` of an
+analytic-Jacobian controller). Adding a representation: a value type and its registry entry in ``conventions.py``,
+its maps in ``rates.py``, its extraction in ``extraction.py``.
 
 Examples
 --------
@@ -78,6 +79,13 @@ from symjac.representations.conventions import (
     coordinates,
     representation,
 )
+from symjac.representations.derivative import (
+    NumericRepresentationJacobianDerivative,
+    RepresentationJacobianDerivative,
+    coordinate_rates,
+    representation_jacobian_derivative,
+    representation_jacobian_derivative_at,
+)
 from symjac.representations.extraction import GIMBAL_LOCK_TOLERANCE, extract, extract_position
 from symjac.representations.jacobian import (
     NumericRepresentationJacobian,
@@ -106,15 +114,18 @@ __all__ = [
     "DirectionCosines",
     "EulerConvention",
     "NumericRepresentationJacobian",
+    "NumericRepresentationJacobianDerivative",
     "Orientation",
     "Position",
     "Quaternion",
     "Representation",
     "RepresentationError",
     "RepresentationJacobian",
+    "RepresentationJacobianDerivative",
     "RepresentationSingularity",
     "Spherical",
     "angular_velocity_matrix",
+    "coordinate_rates",
     "coordinates",
     "extract",
     "extract_position",
@@ -124,6 +135,8 @@ __all__ = [
     "representation",
     "representation_jacobian",
     "representation_jacobian_at",
+    "representation_jacobian_derivative",
+    "representation_jacobian_derivative_at",
     "representation_singularities",
     "rotation_from",
 ]

@@ -3,7 +3,8 @@
 The public API, in pipeline order: load a robot (:func:`load_robot`, :func:`robot_from_mapping`), derive its
 kinematics (:func:`chain_of`, :func:`forward_kinematics`) and Jacobians (:func:`jacobian`, by four methods; the
 iterations themselves with :func:`velocity_propagation` and :func:`force_propagation`), the acceleration level
-(:func:`hessian`, :func:`jacobian_derivative`, :func:`bias_acceleration`, :func:`acceleration_propagation`), statics
+(:func:`hessian`, :func:`jacobian_derivative`, :func:`bias_acceleration`, :func:`acceleration_propagation`,
+:func:`manipulability_gradient`, :func:`log_det_gradient`, :func:`representation_jacobian_derivative`), statics
 (:func:`joint_torques`, :func:`wrench_transform`, :func:`twist_transform`), singular configurations
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
 :func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`); print them
@@ -39,6 +40,13 @@ from symjac.errors import (
 )
 from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
 from symjac.jacobian import METHODS, ROW_NAMES, change_frame, jacobian, jacobian_of, rows_from_names, shift_point
+from symjac.manipulability import (
+    BarrierTerm,
+    LogDetGradient,
+    ManipulabilityGradient,
+    log_det_gradient,
+    manipulability_gradient,
+)
 from symjac.model import Convention, FixedTransform, Joint, JointType, Parameter, Robot
 from symjac.numeric import evaluate_at, numeric_jacobian
 from symjac.printing import latex, pretty
@@ -55,10 +63,14 @@ from symjac.representations import (
     REPRESENTATIONS,
     EulerConvention,
     RepresentationJacobian,
+    RepresentationJacobianDerivative,
+    coordinate_rates,
     extract,
     rate_matrix,
     representation_jacobian,
     representation_jacobian_at,
+    representation_jacobian_derivative,
+    representation_jacobian_derivative_at,
     rotation_from,
 )
 from symjac.robot_file import robot_from_mapping, robot_to_mapping
@@ -79,6 +91,7 @@ __all__ = [
     "AccelerationStep",
     "AngleBasis",
     "ArgumentError",
+    "BarrierTerm",
     "Chain",
     "CodegenError",
     "Convention",
@@ -94,9 +107,12 @@ __all__ = [
     "JacobianSpaces",
     "Joint",
     "JointType",
+    "LogDetGradient",
+    "ManipulabilityGradient",
     "Parameter",
     "RepresentationError",
     "RepresentationJacobian",
+    "RepresentationJacobianDerivative",
     "Robot",
     "RobotFileError",
     "SingularFactor",
@@ -113,6 +129,7 @@ __all__ = [
     "chain_of",
     "change_frame",
     "clear_caches",
+    "coordinate_rates",
     "damped_least_squares",
     "determinant",
     "evaluate_at",
@@ -133,12 +150,16 @@ __all__ = [
     "joint_torques",
     "latex",
     "load_robot",
+    "log_det_gradient",
+    "manipulability_gradient",
     "numeric_jacobian",
     "pretty",
     "rate_matrix",
     "rates_along_path",
     "representation_jacobian",
     "representation_jacobian_at",
+    "representation_jacobian_derivative",
+    "representation_jacobian_derivative_at",
     "robot_from_mapping",
     "robot_from_toml",
     "robot_from_urdf",

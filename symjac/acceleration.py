@@ -82,7 +82,8 @@ def hessian(
         As for :func:`symjac.jacobian`: the Hessian is that of exactly the Jacobian ``jacobian(robot, frame,
         point)``, moving frame included (see the module docstring).
     simplify : bool
-        Compact textbook form (default), or the raw products.
+        Compact textbook form (default), or the cross products of the (compact) Jacobian's columns as they come,
+        unexpanded.
 
     Returns
     -------

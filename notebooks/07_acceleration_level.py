@@ -41,6 +41,8 @@ from symjac import (
     joint_rates,
     latex,
     load_robot,
+    log_det_gradient,
+    manipulability_gradient,
 )
 from symjac.exercises import check
 
@@ -162,5 +164,81 @@ fig.savefig(OUTPUT / "07_resolved_acceleration.png", dpi=100)
 print(f"error after 4 s: {error_with[-1]:.2e} m with the bias term, {error_without[-1]:.2e} m without")
 
 # %% [markdown]
-# With the bias term the error decays as the PD gains prescribe (down to the integration error); without it, the
-# arm settles into a steady lag around the circle.
+# With the bias term the error decays exactly as the PD gains prescribe, $e(t) \propto (1 + 5t)\,e^{-5t}$; without
+# it, the centripetal terms leave a steady error of about a centimetre around the circle.
+
+# %% [markdown]
+# ## The gradient of manipulability
+#
+# Manipulability $w = \sqrt{\det(J J^T)}$ vanishes at a singularity. Its gradient tells which joint motion raises
+# it fastest, and it too comes from the Hessian: $\partial w/\partial q_k = w\,\mathrm{tr}(J^+\,\partial J/\partial
+# q_k)$. For a square Jacobian the logarithm is simpler still. With the factored determinant
+# $\det J = c\,\prod_i f_i^{m_i}$,
+#
+# $$\frac{\partial \log|\det J|}{\partial q} = \sum_i m_i \frac{\nabla f_i}{f_i},$$
+#
+# one *barrier term* per singular factor, which grows without bound as its own singularity approaches. For the
+# PUMA 560:
+
+# %%
+puma = load_robot("puma560")
+barrier = log_det_gradient(puma)
+for term in barrier.terms:
+    display(Math(rf"f = {latex(term.factor)}: \quad \frac{{\nabla f}}{{f}} = " + latex(term.gradient.T)))
+
+# %% [markdown]
+# The wrist factor $s_5$ gives $\cot\theta_5$ in the $\theta_5$ slot and nothing else: pushing along that term alone
+# moves the wrist away from its singularity without touching the elbow or the shoulder. Now climb the full
+# gradient from a configuration close to the wrist singularity ($\theta_5 = 0.05$), in small normalised steps:
+
+# %%
+q = np.array([0.2, -0.6, 0.3, 0.4, 0.05, 0.0])
+history = []
+for _ in range(60):
+    w, gradient = manipulability_gradient(puma, q)
+    history.append((w, q[4]))
+    q = q + 0.05 * gradient / np.linalg.norm(gradient)
+history = np.array(history)
+fig, (left, right) = plt.subplots(1, 2, figsize=(9, 3.5))
+left.plot(history[:, 0])
+left.set_xlabel("step")
+left.set_ylabel("manipulability w")
+right.plot(history[:, 1])
+right.set_xlabel("step")
+right.set_ylabel("theta5 (rad)")
+fig.tight_layout()
+fig.savefig(OUTPUT / "07_manipulability_ascent.png", dpi=100)
+print(f"w grew from {history[0, 0]:.2e} to {history[-1, 0]:.2e}; theta5 from {history[0, 1]:.2f} "
+      f"to {history[-1, 1]:.2f} rad")
+
+# %% [markdown]
+# Nearly every step goes into $\theta_5$: near the wrist singularity its barrier term $\cot\theta_5$ dominates the
+# gradient. It fades as $\theta_5$ approaches $\pi/2$ (where $s_5 = 1$ is largest), the elbow and shoulder terms
+# finish the climb, and the ascent settles at a local maximum of $w$ (the small wiggle is the fixed step length).
+#
+# ## Exercises
+#
+# 1. Write the $x$ component of the planar 2R arm's bias acceleration $\dot J\dot q$ in frame {0} (use the rate
+#    symbols `joint_rates(planar)`).
+# 2. The planar 2R arm's determinant is $L_1 L_2 s_2$. What is its barrier term $\partial \log|\det J| /
+#    \partial\theta_2$?
+# 3. The 2R arm is stretched out ($\theta_1 = \theta_2 = 0$) and turns as a whole at $\dot\theta_1 = 1$ rad/s,
+#    $\dot\theta_2 = 0$. How large is the hand's acceleration (in m/s^2, with the default lengths) when no joint
+#    accelerates?
+
+# %%
+L1, L2 = sp.symbols("L1 L2", real=True)
+theta1, theta2 = planar.q
+thetadot1, thetadot2 = rates
+answer_1 = -L1 * sp.cos(theta1) * thetadot1**2 - L2 * sp.cos(theta1 + theta2) * (thetadot1 + thetadot2) ** 2
+check(answer_1, bias_acceleration(planar)[0], planar)
+
+# %%
+answer_2 = sp.cos(theta2) / sp.sin(theta2)
+check(answer_2, log_det_gradient(planar).total[1], planar)
+
+# %%
+answer_3 = 0.9
+stretched = bias_acceleration(planar).xreplace({**values, theta1: 0, theta2: 0, thetadot1: 1, thetadot2: 0})
+check(answer_3, float(sp.sqrt(stretched[0] ** 2 + stretched[1] ** 2)))
+print("all answers correct")

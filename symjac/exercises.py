@@ -22,12 +22,15 @@ def check(answer: Any, expected: Any, robot: Robot | None = None, *, tolerance: 
     """``True`` if ``answer`` equals ``expected``; otherwise an ``AssertionError`` saying which entry differs.
 
     Symbolic answers (expressions or matrices) are compared exactly as functions of the robot's joint angles (or of
-    every symbol named ``theta<i>`` if no robot is given); numeric answers entry by entry to ``tolerance``.
+    every symbol named ``theta<i>`` if no robot is given), fractions and tan/cot/sec/csc included; numeric answers
+    entry by entry to ``tolerance``.
 
     Examples
     --------
     >>> t = sp.Symbol("theta1", real=True)
     >>> check(2 * sp.sin(t) * sp.cos(t), sp.sin(2 * t))
+    True
+    >>> check(sp.cos(t) / sp.sin(t), sp.cot(t))
     True
     """
     left, right = _as_matrix(answer), _as_matrix(expected)
@@ -36,13 +39,29 @@ def check(answer: Any, expected: Any, robot: Robot | None = None, *, tolerance: 
     basis = _basis(robot, [*left, *right])
     for index, (a, b) in enumerate(zip(left, right, strict=True)):
         if a.free_symbols or b.free_symbols:
-            same = is_identity(a, b, basis)
+            same = _same_function(a, b, basis)
         else:
             same = abs(complex(a) - complex(b)) <= tolerance * max(1.0, abs(complex(b)))
         if not same:
             where = f"entry {divmod(index, left.cols)}" if left.shape != (1, 1) else "the answer"
             raise AssertionError(f"{where} is {a}, expected {b}")
     return True
+
+
+def _same_function(a: sp.Expr, b: sp.Expr, basis: AngleBasis) -> bool:
+    """Whether ``a == b`` identically.
+
+    tan, cot, sec and csc are written with sin and cos, the difference is put over one denominator, and its
+    numerator is reduced to the normal form (a fraction is zero where its numerator is).
+    """
+    numerator, _ = sp.fraction(sp.together(_sines_and_cosines(a) - _sines_and_cosines(b)))
+    return is_identity(numerator, sp.S.Zero, basis)
+
+
+def _sines_and_cosines(expr: sp.Expr) -> sp.Expr:
+    return sp.sympify(expr).replace(sp.tan, lambda u: sp.sin(u) / sp.cos(u)).replace(
+        sp.cot, lambda u: sp.cos(u) / sp.sin(u)).replace(sp.sec, lambda u: 1 / sp.cos(u)).replace(
+        sp.csc, lambda u: 1 / sp.sin(u))
 
 
 def _as_matrix(value: Any) -> sp.Matrix:

@@ -1,0 +1,47 @@
+"""The notebooks' answer checker: equivalent forms pass, wrong answers fail with the entry that differs."""
+
+from __future__ import annotations
+
+import pytest
+import sympy as sp
+
+from symjac import load_robot
+from symjac.exercises import check
+
+t1, t2 = sp.symbols("theta1 theta2", real=True)
+
+
+@pytest.mark.parametrize(("answer", "expected"), [
+    (2 * sp.sin(t1) * sp.cos(t1), sp.sin(2 * t1)),
+    (sp.cos(t2) / sp.sin(t2), sp.cot(t2)),
+    (1 / sp.cos(t1) ** 2, 1 + sp.tan(t1) ** 2),
+    (sp.sin(t1 + t2) / (sp.cos(t1) * sp.cos(t2)), sp.tan(t1) + sp.tan(t2)),
+    (sp.Matrix([[sp.csc(t1)], [sp.sec(t2)]]), sp.Matrix([[1 / sp.sin(t1)], [1 / sp.cos(t2)]])),
+])
+def test_equivalent_forms_pass(answer, expected):
+    assert check(answer, expected)
+
+
+@pytest.mark.parametrize(("answer", "expected"), [
+    (sp.cos(t2) / sp.sin(t2), sp.tan(t2)),
+    (sp.sin(t1) * sp.cos(t1), sp.sin(2 * t1)),
+    (sp.cot(t1), sp.cot(t2)),
+])
+def test_wrong_answers_fail(answer, expected):
+    with pytest.raises(AssertionError, match="expected"):
+        check(answer, expected)
+
+
+def test_matrix_answers_name_the_entry_and_shapes_must_match():
+    robot = load_robot("planar2r")
+    q1, q2 = robot.q
+    with pytest.raises(AssertionError, match=r"entry \(1, 0\)"):
+        check(sp.Matrix([[sp.sin(q1)], [sp.cos(q2)]]), sp.Matrix([[sp.sin(q1)], [sp.sin(q2)]]), robot)
+    with pytest.raises(AssertionError, match="shape"):
+        check(sp.Matrix([1, 2]), sp.Matrix([[1, 2]]))
+
+
+def test_numbers_are_compared_to_a_tolerance():
+    assert check(0.9 + 1e-12, 0.9)
+    with pytest.raises(AssertionError):
+        check(0.91, 0.9)

@@ -26,7 +26,8 @@ FLOORS: dict[str, int] = {
     # derived data
     "symjac.chain": 2,
     # kinematics
-    "symjac.jacobian": 3, "symjac.propagation": 3, "symjac.acceleration": 3, "symjac.statics": 3, "symjac.numeric": 3, "symjac.convert": 3,
+    "symjac.jacobian": 3, "symjac.propagation": 3, "symjac.acceleration": 3, "symjac.statics": 3, "symjac.numeric": 3,
+    "symjac.convert": 3,
     # analyses
     "symjac.spaces": 4, "symjac.singularity": 4, "symjac.singular": 4, "symjac.rates": 4, "symjac.representations": 4,
     "symjac.exercises": 4,

@@ -25,7 +25,8 @@ import sympy as sp
 from symjac import Chain, Parameter, clear_caches, joint_rates, load_robot
 from symjac.acceleration import bias_acceleration, hessian
 from symjac.codegen import BACKENDS, TARGETS, CodegenError, JacobianRequest, generate, write_module
-from symjac.codegen.lower import lowered_bias_acceleration, lowered_jacobian
+from symjac.codegen.acceleration import lowered_bias_acceleration
+from symjac.codegen.lower import lowered_jacobian
 from symjac.numeric import numeric_at
 
 REPO = Path(__file__).resolve().parent.parent

@@ -11,6 +11,7 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.chain import Chain, Frame, as_chain
+from symjac.codegen.acceleration import lowered_bias_acceleration, lowered_hessian
 from symjac.codegen.backends import backend
 from symjac.codegen.description import (
     Argument,
@@ -24,9 +25,7 @@ from symjac.codegen.lower import (
     LoweredFunction,
     angle_expansion,
     lower_function,
-    lowered_bias_acceleration,
     lowered_forward_kinematics,
-    lowered_hessian,
     lowered_jacobian,
     lowered_kinematics,
     lowered_torques,

@@ -228,3 +228,18 @@ def test_command_line_option(tmp_path):
                         command=shlex.join(["symjac", *argv]), acceleration=True)
     assert path.read_text(encoding="utf-8") == expected
     assert "def manipulability_gradient(" in expected
+
+
+def test_frames_carried_by_every_joint_and_long_names():
+    # the tool frame turns with every joint (the moving-frame terms of all of them), "world" with none; the long
+    # function names must still fit the line width in every target (the C kernels' signatures are wrapped)
+    robot = load_robot("planar3r")
+    requests = [JacobianRequest("world", "tool"), JacobianRequest("tool", "tool", (0, 1, 5))]
+    namespace: dict = {}
+    exec(compile(generate(robot, "python", jacobians=requests, acceleration=True), "planar3r.py", "exec"), namespace)
+    assert namespace["selftest"](samples=5) < 1e-6
+    q, qdot = [0.3, -0.7, 1.1], [0.5, -0.2, 0.9]
+    expected = numeric_at(robot, bias_acceleration(robot, "tool", "tool", simplify=False).xreplace(
+        dict(zip(joint_rates(robot), map(sp.Float, qdot), strict=True))), q).ravel()[[0, 1, 5]]
+    np.testing.assert_allclose(namespace["bias_acceleration_tool_tool_r015"](q, qdot), expected, atol=1e-12)
+    assert "k_bias_acceleration_tool_tool_r015(" in generate(robot, "c", jacobians=requests, acceleration=True)

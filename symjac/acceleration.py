@@ -196,7 +196,7 @@ def jacobian_derivative(
                                 lambda: _jacobian_derivative(chain, frame, xyz, method, simplify)))
 
 
-def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], method: str,
+def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], method: DerivativeMethod,
                          simplify: bool) -> sp.ImmutableMatrix:
     if simplify:
         raw = jacobian_derivative(chain, frame, list(point), method, simplify=False)

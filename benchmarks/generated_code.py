@@ -10,6 +10,11 @@ imports the modules from a temporary folder and measures, in the same run:
   preallocated array, and the generated ``numpy``, ``lambdify`` and ``c`` modules (new result array; ``c`` and
   ``numpy`` use up to ``THREADS`` threads, the number of CPUs by default).
 
+With ``acceleration=True`` modules it then compares the bias acceleration ``Jdot qdot`` with the Jacobian: the
+operations after CSE of each generated function (the ``# total ops`` of the generated code; the issue's target is
+that PUMA's ``Jdot qdot`` costs at most twice its J) and the time per call (``python``, ``c`` one configuration into
+``out``) and per batched configuration (``numpy``, ``c``).
+
 It reports best-of-several timings and asserts nothing. Targets on a 2-core machine, PUMA 560: python <= 1.5 us,
 numpy <= 100 ns/config, c <= 0.5 us and <= 50 ns/config. The C kernels are cached in ``$SYMJAC_CACHE_DIR``
 (``~/.cache/symjac`` by default), so the first run also compiles them.
@@ -30,12 +35,12 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symjac.codegen import TARGETS, generate, write_module
+from symjac.codegen import TARGETS, describe, generate, write_module
 from symjac.io import load_robot
 from symjac.jacobian import jacobian
 from symjac.model import Robot
 
-__all__ = ["Measurement", "main", "measure"]
+__all__ = ["Measurement", "main", "measure", "measure_acceleration"]
 
 
 @dataclass(frozen=True)
@@ -126,6 +131,36 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
     return rows
 
 
+def measure_acceleration(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Measurement]:
+    """Time ``jacobian`` against ``bias_acceleration`` (Jdot qdot) in modules generated with acceleration=True."""
+    rng = np.random.default_rng(0)
+    q, qdot = rng.uniform(-np.pi, np.pi, robot.dof), rng.uniform(-1.0, 1.0, robot.dof)
+    batch, rates = rng.uniform(-np.pi, np.pi, (count, robot.dof)), rng.uniform(-1.0, 1.0, (count, robot.dof))
+    names: dict[str, Any] = {"q": q, "qdot": qdot, "q_list": [float(v) for v in q],
+                             "qdot_list": [float(v) for v in qdot], "batch": batch, "rates": rates,
+                             "J_out": np.empty((6, robot.dof)), "bias_out": np.empty(6)}
+    rows: list[Measurement] = []
+    with tempfile.TemporaryDirectory() as folder:
+        for target in ("python", "numpy", "c"):
+            path = Path(folder) / f"bench_{robot.name}_{target}_acceleration.py"
+            write_module(path, generate(robot, target, acceleration=True))
+            names[target] = _import(path, f"bench_{robot.name}_{target}_acceleration")
+        functions = {f.name: f for f in describe(robot, "python", acceleration=True).functions}
+        for name, call, batched, out in (("jacobian", "(q_list)", "(batch)", "J_out"),
+                                         ("bias_acceleration", "(q_list, qdot_list)", "(batch, rates)", "bias_out")):
+            spec = functions[name]
+            note = f"{spec.op_count} ops after CSE + {spec.trig_count} sin/cos"
+            rows.append(Measurement(robot.name, f"python {name}", _best(f"python.{name}{call}", names, seconds) * 1e6,
+                                    float("nan"), note))
+            rows.append(Measurement(robot.name, f"numpy {name}", float("nan"),
+                                    _best(f"numpy.{name}{batched}", names, seconds) * 1e9 / count, note))
+            if names["c"].BACKEND == "c":
+                c_call = call.replace("_list", "").replace(")", f", {out})")
+                rows.append(Measurement(robot.name, f"c {name}", _best(f"c.{name}{c_call}", names, seconds) * 1e6,
+                                        _best(f"c.{name}{batched}", names, seconds) * 1e9 / count, note))
+    return rows
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Print one line per robot and implementation: us per call and ns per configuration."""
     parser = argparse.ArgumentParser(prog="python benchmarks/generated_code.py", description=__doc__.splitlines()[0])
@@ -139,6 +174,16 @@ def main(argv: Sequence[str] | None = None) -> int:
             us = "-" if np.isnan(row.us_per_call) else f"{row.us_per_call:.2f}"
             ns = "-" if np.isnan(row.ns_per_config) else f"{row.ns_per_config:.1f}"
             print(f"{row.robot:<10}{row.implementation:<32}{us:>9}{ns:>11}  {row.note}", flush=True)
+    print(f"\n{'robot':<10}{'acceleration=True module':<32}{'us/call':>9}{'ns/config':>11}  operations")
+    for name in args.robots:
+        robot = load_robot(name)
+        functions = {f.name: f for f in describe(robot, "python", acceleration=True).functions}
+        for row in measure_acceleration(robot, args.n, args.seconds):
+            us = "-" if np.isnan(row.us_per_call) else f"{row.us_per_call:.2f}"
+            ns = "-" if np.isnan(row.ns_per_config) else f"{row.ns_per_config:.1f}"
+            print(f"{row.robot:<10}{row.implementation:<32}{us:>9}{ns:>11}  {row.note}", flush=True)
+        J, bias = functions["jacobian"].op_count, functions["bias_acceleration"].op_count
+        print(f"{robot.name:<10}Jdot qdot / J operations: {bias} / {J} = {bias / J:.2f} (target <= 2)", flush=True)
     return 0
 
 

@@ -92,6 +92,8 @@ def _parser() -> argparse.ArgumentParser:
                            help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z (default all)")
     generator.add_argument("--strategy", choices=STRATEGIES, default="fastest",
                            help="expressions to start from (default: fewest operations after CSE)")
+    generator.add_argument("--acceleration", action="store_true",
+                           help="also generate hessian, bias_acceleration (Jdot qdot) and manipulability_gradient")
     converter = command("convert", _convert, "print the robot as a TOML robot file, converted to a DH convention")
     converter.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
     converter.add_argument("--to", choices=("modified", "standard", "toml"), required=True,
@@ -309,7 +311,7 @@ def _codegen(args: argparse.Namespace) -> str:
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
     return _progress(f"{args.target} module for {robot.name}",
                      lambda: generate(robot, args.target, jacobians=requests, strategy=args.strategy,
-                                      command=shlex.join(["symjac", *args.argv])))
+                                      command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration))
 
 
 # --- argument parsing helpers --------------------------------------------------------------------------------

@@ -27,7 +27,8 @@ __all__ = [
     "generated_function",
 ]
 
-FunctionKind = Literal["forward_kinematics", "jacobian", "joint_torques", "scalar", "kinematics"]
+FunctionKind = Literal["forward_kinematics", "jacobian", "joint_torques", "scalar", "kinematics", "hessian",
+                       "bias_acceleration"]
 
 
 @dataclass(frozen=True)
@@ -194,6 +195,9 @@ class JacobianInfo:
     rows: tuple[int, ...]
     row_names: tuple[str, ...]
     wrench_names: tuple[str, ...]
+    hessian: str | None = None
+    bias_acceleration: str | None = None
+    manipulability_gradient: str | None = None
 
 
 @dataclass(frozen=True)
@@ -224,6 +228,17 @@ class ModuleDescription:
     imports: tuple[str, ...] = ()
     parameter_lines: tuple[str, ...] = ()
     extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    rates: tuple[str, ...] = ()
+
+    @property
+    def acceleration(self) -> bool:
+        """Whether the module has the acceleration-level functions (Hessian, bias acceleration, gradient)."""
+        return any(info.hessian for info in self.jacobians)
+
+    @property
+    def rate_names_text(self) -> str:
+        """``"thetadot1 ddot2"``: the joint rate names as one Python string literal."""
+        return '"' + " ".join(self.rates) + '"'
 
     @property
     def parameter_names(self) -> tuple[str, ...]:

@@ -100,13 +100,13 @@ def tuple_literal(items: Iterable[str]) -> str:
 
 
 def indices(shape: tuple[int, ...]) -> list[str]:
-    """Subscripts of every entry in row-major order: ``...`` for a scalar, ``3`` for a vector, ``1, 2`` else."""
+    """Subscripts of every entry in row-major order: ``...`` for a scalar, ``3`` for a vector, ``1, 2``, ``1, 2, 0``."""
     if not shape:
         return ["..."]
-    if len(shape) == 1:
-        return [str(i) for i in range(shape[0])]
-    rows, columns = shape
-    return [f"{r}, {c}" for r in range(rows) for c in range(columns)]
+    subscripts = [""]
+    for extent in shape:
+        subscripts = [f"{head}, {i}" if head else str(i) for head in subscripts for i in range(extent)]
+    return subscripts
 
 
 def entry_names(lowered: LoweredFunction, names: SymbolNames, symbols: Sequence[sp.Symbol]) -> list[str]:

@@ -263,6 +263,9 @@ def symbol_names(robot: Robot, lowered: LoweredFunction, taken: Iterable[str]) -
         if argument == "wrench":
             for symbol in symbols:  # _F0 .. _F5: the row each multiplies
                 names.fresh(symbol, WRENCH_NAMES[int(symbol.name.removeprefix("_F"))])
+        elif argument == "qdot":
+            for symbol in symbols:  # thetadot1, ddot3, ...
+                names.fresh(symbol, symbol.name)
     for k, (symbol, _) in enumerate(lowered.temporaries):
         names.fresh(symbol, f"x{k}")
     return names

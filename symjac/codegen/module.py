@@ -11,6 +11,7 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.chain import Chain, Frame, as_chain
+from symjac.codegen.acceleration import lowered_bias_acceleration, lowered_hessian
 from symjac.codegen.backends import backend
 from symjac.codegen.description import (
     Argument,
@@ -48,6 +49,7 @@ from symjac.files import write_text
 from symjac.io import catalog, load_robot
 from symjac.jacobian import ROW_NAMES, Point
 from symjac.model import Robot
+from symjac.propagation import joint_rates
 from symjac.resources import render_template
 
 Strategy = Literal["fastest", "raw", "simplified"]
@@ -67,6 +69,7 @@ def describe(
     scalars: Mapping[str, sp.Expr] | None = None,
     strategy: Strategy = "fastest",
     command: str | None = None,
+    acceleration: bool = False,
 ) -> ModuleDescription:
     """The frozen description of the module :func:`generate` renders (see there for the parameters)."""
     spec = backend(target)
@@ -83,6 +86,7 @@ def describe(
 
     taken = frozenset(RESERVED) | {p.name for p in model.parameters}
     q_argument = Argument("q", tuple(s.name for s in model.q), "Joint values")
+    rates = tuple(s.name for s in joint_rates(chain)) if acceleration else ()
     lowered_functions: list[tuple[LoweredFunction, FunctionSpec]] = []
 
     def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:
@@ -95,7 +99,8 @@ def describe(
         point_name, point = point_text(model, request.point)
         selected = check_rows(request.rows)
         names = {kind: f"{kind}{label}" for kind in ("jacobian", "joint_torques", "manipulability",
-                                                      "jacobian_determinant", "_kinematics")}
+                                                      "jacobian_determinant", "_kinematics", "hessian",
+                                                      "bias_acceleration", "manipulability_gradient")}
         if any(info.jacobian == names["jacobian"] for info in infos):
             raise CodegenError(f"the Jacobian in frame {request.frame} at point {point_name} is requested twice")
         J = lowered_jacobian(chain, request.frame, point, selected, strategy)
@@ -106,6 +111,13 @@ def describe(
             Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected), "Wrench (force, moment) at the point"))
         add(lowered_kinematics(chain, request.frame, point), names["_kinematics"], "kinematics",
             "Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)")
+        if acceleration:
+            add(lowered_hessian(chain, request.frame, point, selected, strategy), names["hessian"], "hessian",
+                f"The kinematic Hessian H[i, j, m] = dJ[i, j]/dq_m of ``{names['jacobian']}``")
+            add(lowered_bias_acceleration(chain, request.frame, point, selected, strategy),
+                names["bias_acceleration"], "bias_acceleration",
+                f"The bias acceleration Jdot qdot of ``{names['jacobian']}`` (the acceleration at zero qddot)",
+                Argument("qdot", rates, "Joint rates"))
         infos.append(JacobianInfo(
             jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
             determinant=names["jacobian_determinant"] if len(selected) == model.dof else None,
@@ -113,10 +125,13 @@ def describe(
             point_values=tuple(float_literal(v.subs(model.defaults)) for v in point),  # type: ignore[arg-type]
             rows=selected, row_names=tuple(ROW_NAMES[r] for r in selected),
             wrench_names=tuple(WRENCH_NAMES[r] for r in selected),
+            **({"hessian": names["hessian"], "bias_acceleration": names["bias_acceleration"],
+                "manipulability_gradient": names["manipulability_gradient"]} if acceleration else {}),
         ))
 
     defined = {s.name for _, s in lowered_functions} | {i.manipulability for i in infos}
     defined |= {i.determinant for i in infos if i.determinant}
+    defined |= {i.manipulability_gradient for i in infos if i.manipulability_gradient}
     for scalar_name, expr in (scalars or {}).items():
         check_identifier(scalar_name, "scalar function name", {**RESERVED, **{n: "a function" for n in defined}})
         if scalar_name.startswith("_") or scalar_name in {p.name for p in model.parameters}:
@@ -130,13 +145,14 @@ def describe(
     extras = spec.extras(chain, lowered_functions, taken) if spec.extras is not None else {}
     exports = ({"PARAMETERS", "JOINTS", "ROBOT", "selftest", *spec.exports}
                | {f.name for f in functions if not f.name.startswith("_")}
-               | {i.manipulability for i in infos} | {i.determinant for i in infos if i.determinant})
+               | {i.manipulability for i in infos} | {i.determinant for i in infos if i.determinant}
+               | {i.manipulability_gradient for i in infos if i.manipulability_gradient})
     parameter_names = [p.name for p in model.parameters]
     parameter_lines = wrap_statement("    parameters = ", "(" + ", ".join(parameter_names)
                                      + ("," if len(parameter_names) == 1 else "") + ")")
     if command is None:
         catalog_robot = load_robot(model.name) if model.name in catalog() else None
-        command = python_call(model, target, requests, scalars or {}, strategy, catalog_robot)
+        command = python_call(model, target, requests, scalars or {}, strategy, catalog_robot, acceleration)
         command_lines = comment_lines(command)
     else:
         command_lines = comment_lines(command, continuation=" \\")  # a shell line continues with a backslash
@@ -150,7 +166,7 @@ def describe(
         exports=tuple(_sorted_exports(exports)), command=command, command_lines=command_lines,
         title=spec.title, description_text=spec.description, nan_policy=spec.nan_policy,
         imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(spec.imports))),
-        parameter_lines=tuple(parameter_lines), extras=extras,
+        parameter_lines=tuple(parameter_lines), extras=extras, rates=rates,
     )
 
 
@@ -177,6 +193,7 @@ def generate(
     scalars: Mapping[str, sp.Expr] | None = None,
     strategy: Strategy = "fastest",
     command: str | None = None,
+    acceleration: bool = False,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -203,6 +220,13 @@ def generate(
     command : str, optional
         How to regenerate the module, for its header: the command line that was typed (the CLI passes it).
         Default: the equivalent ``symjac.generate(...)`` call, written from the request.
+    acceleration : bool
+        Also generate, for every Jacobian ``jacobian<suffix>``, the acceleration-level functions with the same
+        suffix: ``hessian<suffix>(q)`` (shape rows x n x n, ``H[i, j, m] = dJ[i, j]/dq_m``),
+        ``bias_acceleration<suffix>(q, qdot)`` (``Jdot qdot``, one value per row) and
+        ``manipulability_gradient<suffix>(q)`` (``dw/dq_m = w trace(J^+ dJ/dq_m)``, n values), all checked by the
+        module's ``selftest`` against central differences of its own Jacobian. Off by default: the Hessian has
+        rows x n x n entries, which would more than double the size of every module.
 
     Returns
     -------
@@ -226,7 +250,7 @@ def generate(
     [[-0.4, -0.4], [1.0, 0.0]]
     """
     return render_module(describe(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
-                                  strategy=strategy, command=command))
+                                  strategy=strategy, command=command, acceleration=acceleration))
 
 
 def render_module(description: ModuleDescription) -> str:

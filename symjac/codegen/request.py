@@ -35,8 +35,8 @@ WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
 
 # Names every generated module defines or imports for itself, with the reason a parameter may not take them.
 RESERVED: Mapping[str, str] = {
-    **{name: "an argument of the generated functions" for name in ("q", "out", "wrench", "samples", "seed",
-                                                                    "tolerance", "threads")},
+    **{name: "an argument of the generated functions" for name in ("q", "qdot", "out", "wrench", "samples",
+                                                                    "seed", "tolerance", "threads")},
     **{name: "an import of the generated module" for name in ("annotations", "np", "sympy", "math", "os", "sys",
                                                                "cos", "sin", "sqrt", "pi", "random", "threading",
                                                                "importlib", "sysconfig", "hashlib", "shutil",
@@ -47,7 +47,8 @@ RESERVED: Mapping[str, str] = {
                                                                 "BUILD_ERROR", "DOF")},
     **{name: "a function of the generated module" for name in ("selftest", "forward_kinematics", "jacobian",
                                                                 "joint_torques", "manipulability",
-                                                                "jacobian_determinant")},
+                                                                "jacobian_determinant", "hessian",
+                                                                "bias_acceleration", "manipulability_gradient")},
 }
 
 
@@ -171,7 +172,7 @@ def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[s
 
 def python_call(
     robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
-    catalog_robot: Robot | None,
+    catalog_robot: Robot | None, acceleration: bool = False,
 ) -> str:
     """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
 
@@ -193,6 +194,8 @@ def python_call(
         parts.append("scalars={" + ", ".join(f'"{name}": {expr}' for name, expr in scalars.items()) + "}")
     if strategy != "fastest":
         parts.append(f'strategy="{strategy}"')
+    if acceleration:
+        parts.append("acceleration=True")
     return f"symjac.generate({', '.join(parts)})"
 
 

@@ -41,7 +41,7 @@ def python_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, 
 
 
 def _return_lines(outputs: Sequence[str], shape: tuple[int, ...], indent: str) -> tuple[str, ...]:
-    """``return (...)``: a float, a tuple, or a tuple of row tuples (tuples build faster than lists)."""
+    """``return (...)``: a float, a tuple, or nested tuples row by row (tuples build faster than lists)."""
     if len(shape) == 0:
         return tuple(wrap_statement(f"{indent}return ", outputs[0]))
     if len(shape) == 1:
@@ -51,6 +51,13 @@ def _return_lines(outputs: Sequence[str], shape: tuple[int, ...], indent: str) -
         lines = [f"{indent}return ("]
         for value in outputs:
             lines += wrap_statement(f"{indent}    ", value, ",")
+        return (*lines, f"{indent})")
+    if len(shape) == 3:  # one tuple of rows per leading index: H[i][j][m]
+        size = shape[1] * shape[2]
+        lines = [f"{indent}return ("]
+        for i in range(shape[0]):
+            lines += [f"{indent}    (", *_return_lines(outputs[i * size:(i + 1) * size], shape[1:], indent + "    ")
+                      [1:-1], f"{indent}    ),"]
         return (*lines, f"{indent})")
     rows, columns = shape
     lines = [f"{indent}return ("]

@@ -59,9 +59,7 @@ def joint_accelerations(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
     (thetaddot1, thetaddot2, dddot3, thetaddot4)
     """
     model = as_chain(robot).robot
-    return tuple(
-        sp.Symbol(f"{'theta' if joint.is_revolute else 'd'}ddot{joint.index}", real=True) for joint in model.joints
-    )
+    return tuple(joint.acceleration for joint in model.joints)
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,15 @@ import sympy as sp
 
 from symjac.errors import ExpressionError
 
-__all__ = ["ANGLE_SNAP_TOLERANCE", "exact_number", "expression_text", "is_valid_name", "parse_expression", "snap_angle"]
+__all__ = [
+    "ANGLE_SNAP_TOLERANCE",
+    "exact_number",
+    "expression_text",
+    "is_valid_name",
+    "name_problem",
+    "parse_expression",
+    "snap_angle",
+]
 
 MAX_EXPRESSION_LENGTH = 200
 MAX_EXPONENT = 8
@@ -34,7 +42,34 @@ _IDENTIFIER = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 
 def is_valid_name(name: str) -> bool:
     """Return whether ``name`` may name a parameter: an ASCII identifier, not a Python keyword, not ``pi``."""
-    return bool(_IDENTIFIER.match(name)) and not keyword.iskeyword(name) and name != "pi"
+    return name_problem(name) is None
+
+
+def name_problem(name: object) -> str | None:
+    """Why ``name`` cannot name a parameter or a robot, in plain words, or ``None`` when it can.
+
+    Examples
+    --------
+    >>> name_problem("__import__")
+    'names must start with a letter (names starting with an underscore are not allowed)'
+    >>> name_problem("L1") is None
+    True
+    """
+    if not isinstance(name, str):
+        return f"names must be strings, got {type(name).__name__}"
+    if not name:
+        return "the name is empty"
+    if name.startswith("_"):
+        return "names must start with a letter (names starting with an underscore are not allowed)"
+    if not _IDENTIFIER.match(name):
+        if not name[0].isascii() or not name[0].isalpha():
+            return "names must start with a letter (A-Z, a-z)"
+        return "names may contain only ASCII letters, digits and underscores"
+    if keyword.iskeyword(name):
+        return f"{name!r} is a Python keyword"
+    if name == "pi":
+        return "'pi' is the constant pi"
+    return None
 
 
 def exact_number(value: int | float) -> sp.Rational:
@@ -137,7 +172,39 @@ def _build(node: ast.AST, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
         if bits * abs(int(power)) > MAX_POWER_BITS:
             raise ExpressionError(f"number too large in {text!r}")
         return _small_powers(base**power, text)
-    raise ExpressionError(f"{type(node).__name__} is not allowed in {text!r}: use numbers, names, + - * / ** and pi")
+    raise ExpressionError(f"{_what(node)} not allowed in {text!r}: use numbers, names, + - * / ** and pi")
+
+
+_OPERATORS = {
+    ast.FloorDiv: "//", ast.Mod: "%", ast.MatMult: "@", ast.LShift: "<<", ast.RShift: ">>", ast.BitOr: "|",
+    ast.BitXor: "^", ast.BitAnd: "&", ast.Not: "not", ast.Invert: "~",
+}
+_KINDS: dict[type, str] = {
+    ast.Call: "function calls are", ast.IfExp: "conditional expressions (x if c else y) are",
+    ast.JoinedStr: "string formatting (f-strings) is", ast.FormattedValue: "string formatting (f-strings) is",
+    ast.Attribute: "attributes (x.y) are", ast.Subscript: "indexing (x[i]) is", ast.Lambda: "lambda functions are",
+    ast.Compare: "comparisons are", ast.BoolOp: "'and' and 'or' are", ast.NamedExpr: "assignments (:=) are",
+    ast.List: "lists are", ast.Tuple: "tuples (commas) are", ast.Set: "sets are", ast.Dict: "dictionaries are",
+    ast.ListComp: "comprehensions are", ast.SetComp: "comprehensions are", ast.DictComp: "comprehensions are",
+    ast.GeneratorExp: "comprehensions are", ast.Starred: "starred expressions (*x) are",
+    ast.Await: "'await' is", ast.Yield: "'yield' is", ast.YieldFrom: "'yield' is", ast.Slice: "slices are",
+}
+
+
+def _what(node: ast.AST) -> str:
+    """The construct ``node`` is, in plain words, with its verb: ``"function calls are"``."""
+    if isinstance(node, ast.BinOp | ast.UnaryOp):
+        return f"the operator {_OPERATORS.get(type(node.op), type(node.op).__name__)} is"
+    if isinstance(node, ast.Constant):
+        value = node.value
+        if isinstance(value, str | bytes):
+            return "strings are"
+        if isinstance(value, complex):
+            return "complex numbers are"
+        if value is Ellipsis:
+            return "'...' is"
+        return f"{value!r} is"  # True, False, None
+    return _KINDS.get(type(node), "this kind of expression is")
 
 
 def _small_powers(expr: sp.Expr, text: str) -> sp.Expr:

@@ -44,7 +44,8 @@ def urdf_catalog() -> dict[str, str]:
 def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_link: str | None = None) -> Robot:
     """Load a robot: a catalog name (see :func:`catalog`), the path of a TOML robot file, or a URDF file.
 
-    A ``.urdf`` argument is a path, or, when no such file exists and it has no directory part, a built-in URDF file
+    A file whose text starts with ``<`` is read as URDF whatever its extension (``arm.xml``). A ``.urdf`` argument
+    is a path, or, when no such file exists and it has no directory part, a built-in URDF file
     (see :func:`urdf_catalog`). ``base_link`` and ``tip_link`` choose the URDF chain (defaults: the root link and the
     only leaf); see :mod:`symjac.urdf`.
 
@@ -63,7 +64,7 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
     7
     """
     path = Path(name_or_path)
-    if path.suffix.lower() == ".urdf":
+    if path.suffix.lower() == ".urdf" or _is_xml(path):
         return _load_urdf(name_or_path, path, base_link, tip_link)
     if base_link is not None or tip_link is not None:
         raise RobotFileError("base_link and tip_link apply to URDF files only", source=str(name_or_path))
@@ -79,6 +80,18 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
         return robot_from_toml(text, source=str(path))
     known = ", ".join(catalog())
     raise UnknownRobotError(f"{str(name_or_path)!r} is neither a built-in robot ({known}) nor a robot file")
+
+
+def _is_xml(path: Path) -> bool:
+    """Whether ``path`` is a file whose text starts with ``<`` (a URDF whatever its name): TOML never does."""
+    if not path.is_file():  # a directory, a FIFO (opening it would block), or nothing
+        return False
+    try:
+        with path.open("rb") as file:
+            start = file.read(4096).removeprefix(b"\xef\xbb\xbf").lstrip()
+    except OSError:  # not a file, or unreadable: the caller says so in its own words
+        return False
+    return start.startswith(b"<")
 
 
 def _load_urdf(name_or_path: str | Path, path: Path, base_link: str | None, tip_link: str | None) -> Robot:
@@ -102,10 +115,17 @@ def _load_urdf(name_or_path: str | Path, path: Path, base_link: str | None, tip_
 
 def robot_from_toml(text: str, source: str = "<string>") -> Robot:
     """Parse and validate the text of a TOML robot file."""
+    if not text.strip():
+        raise RobotFileError("the file is empty: a robot file needs 'name', 'convention' and [[joints]]",
+                             source=source)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise RobotFileError(f"invalid TOML: {error}", source=source) from None
+    except ValueError:  # tomllib lets int() refuse an integer over Python's 4300-digit limit
+        raise RobotFileError("invalid TOML: a number has too many digits", source=source) from None
+    except RecursionError:
+        raise RobotFileError("invalid TOML: arrays or tables nested too deeply", source=source) from None
     return robot_from_mapping(data, source=source)
 
 

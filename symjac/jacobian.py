@@ -46,7 +46,7 @@ import sympy as sp
 
 from symjac.chain import Chain, Frame, as_chain
 from symjac.errors import ArgumentError, FrameError
-from symjac.model import Robot
+from symjac.model import VELOCITY_NAMES, Robot
 from symjac.propagation import force_propagation, velocity_propagation
 from symjac.simplify import AngleBasis, simplify_matrix
 from symjac.transforms import block_rotation, point_shift
@@ -56,7 +56,7 @@ Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
 
 METHODS: tuple[str, ...] = get_args(Method)
 
-ROW_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
+ROW_NAMES: tuple[str, ...] = VELOCITY_NAMES
 """The six rows of a basic Jacobian, linear velocity first: the one spelling symjac reads and prints."""
 
 __all__ = [

@@ -40,11 +40,19 @@ from enum import StrEnum
 
 import sympy as sp
 
+from symjac.errors import RobotFileError
 from symjac.expressions import snap_angle
 from symjac.transforms import homogeneous, rotation_rpy
 
-__all__ = ["Convention", "FixedTransform", "Joint", "JointType", "Parameter", "Robot", "fixed_transform_from_matrix",
-           "unit_vector"]
+__all__ = ["VELOCITY_NAMES", "WRENCH_NAMES", "Convention", "FixedTransform", "Joint", "JointType", "Parameter",
+           "Robot", "fixed_transform_from_matrix", "reserved_names", "unit_vector"]
+
+WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
+"""The components of a symbolic wrench (:func:`symjac.wrench_symbols`): force first, then moment."""
+
+VELOCITY_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
+"""The six rows of a basic Jacobian, linear velocity first (:data:`symjac.jacobian.ROW_NAMES`), and the symbols of
+commanded velocity components (:data:`symjac.rates.RATE_SYMBOLS`)."""
 
 
 class Convention(StrEnum):
@@ -103,8 +111,21 @@ class Joint:
     @property
     def variable(self) -> sp.Symbol:
         """The joint variable: ``theta{i}`` for a revolute joint, ``d{i}`` for a prismatic one."""
-        prefix = "theta" if self.is_revolute else "d"
-        return sp.Symbol(f"{prefix}{self.index}", real=True)
+        return sp.Symbol(f"{self._prefix}{self.index}", real=True)
+
+    @property
+    def rate(self) -> sp.Symbol:
+        r"""The joint rate :math:`\dot\theta_i` (``thetadot{i}``) or :math:`\dot d_i` (``ddot{i}``)."""
+        return sp.Symbol(f"{self._prefix}dot{self.index}", real=True)
+
+    @property
+    def acceleration(self) -> sp.Symbol:
+        r"""The joint acceleration :math:`\ddot\theta_i` (``thetaddot{i}``) or :math:`\ddot d_i` (``dddot{i}``)."""
+        return sp.Symbol(f"{self._prefix}ddot{self.index}", real=True)
+
+    @property
+    def _prefix(self) -> str:
+        return "theta" if self.is_revolute else "d"
 
     @property
     def angle(self) -> sp.Expr:
@@ -168,6 +189,14 @@ class Robot:
     tool: FixedTransform | None = None
     source: str = field(default="<mapping>", compare=False)
 
+    def __post_init__(self) -> None:
+        """Refuse a parameter named like a symbol symjac generates: the two would silently mix in every result."""
+        reserved = reserved_names([joint.type for joint in self.joints])
+        for parameter in self.parameters:
+            if parameter.name in reserved:
+                raise RobotFileError(f"{parameter.name!r} is reserved: {reserved[parameter.name]}",
+                                     source=self.source, field=f"parameters.{parameter.name}")
+
     @property
     def dof(self) -> int:
         """Number of joints n."""
@@ -187,6 +216,34 @@ class Robot:
     def defaults(self) -> dict[sp.Symbol, sp.Rational]:
         """Exact numeric default of every parameter, keyed by symbol (for ``expr.subs(robot.defaults)``)."""
         return {parameter.symbol: parameter.default for parameter in self.parameters}
+
+
+def reserved_names(joint_types: Sequence[JointType]) -> dict[str, str]:
+    """The names a robot with these joints cannot give a parameter, each with the reason, in plain words.
+
+    They are the names of the symbols symjac generates for it: joint variables (``theta{i}`` for every joint, as it
+    prints as joint *i*'s angle, and ``d{i}`` for prismatic joints; ``d{i}`` of a revolute joint stays free for the
+    DH offset), joint rates and accelerations of either kind, wrench components and velocity components.
+
+    Examples
+    --------
+    >>> reserved_names([JointType.REVOLUTE])["f_x"]
+    'symjac names the wrench components f_x .. n_z'
+    >>> sorted(name for name in reserved_names([JointType.PRISMATIC]) if name.endswith("1"))
+    ['d1', 'ddot1', 'dddot1', 'theta1', 'thetadot1', 'thetaddot1']
+    """
+    reserved = dict.fromkeys(WRENCH_NAMES, "symjac names the wrench components f_x .. n_z")
+    reserved |= dict.fromkeys(VELOCITY_NAMES, "symjac names the velocity components v_x .. omega_z")
+    zero = sp.S.Zero
+    for index, kind in enumerate(joint_types, start=1):
+        for probe_kind in JointType:
+            probe = Joint(index=index, type=probe_kind, alpha=zero, a=zero, d=zero, theta=zero)
+            reserved[probe.rate.name] = "symjac names the joint rates thetadot<i> and ddot<i>"
+            reserved[probe.acceleration.name] = "symjac names the joint accelerations thetaddot<i> and dddot<i>"
+            if probe_kind is kind or probe_kind is JointType.REVOLUTE:
+                reserved[probe.variable.name] = ("taken by a joint variable (symjac names the variable of revolute "
+                                                 "joint i theta<i>, of prismatic joint i d<i>)")
+    return reserved
 
 
 def fixed_transform_from_matrix(T: sp.MatrixBase) -> FixedTransform:

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from symjac.chain import Chain, Frame, as_chain
-from symjac.model import Robot
+from symjac.model import WRENCH_NAMES, Robot
 from symjac.simplify import simplify_matrix
 from symjac.transforms import skew
 
@@ -62,14 +62,12 @@ def joint_rates(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
     (thetadot1, thetadot2, ddot3, thetadot4, thetadot5, thetadot6)
     """
     robot = as_chain(robot).robot
-    return tuple(
-        sp.Symbol(f"{'theta' if joint.is_revolute else 'd'}dot{joint.index}", real=True) for joint in robot.joints
-    )
+    return tuple(joint.rate for joint in robot.joints)
 
 
 def wrench_symbols() -> tuple[sp.Symbol, ...]:
     r"""The components :math:`f_x, f_y, f_z, n_x, n_y, n_z` of a symbolic wrench."""
-    return sp.symbols("f_x f_y f_z n_x n_y n_z", real=True)
+    return tuple(sp.Symbol(name, real=True) for name in WRENCH_NAMES)
 
 
 @dataclass(frozen=True)

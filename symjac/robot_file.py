@@ -14,8 +14,8 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
-from symjac.expressions import exact_number, expression_text, is_valid_name, parse_expression
-from symjac.model import Convention, FixedTransform, Joint, JointType, Parameter, Robot
+from symjac.expressions import exact_number, expression_text, name_problem, parse_expression
+from symjac.model import Convention, FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
 
 __all__ = ["robot_from_mapping", "robot_to_mapping"]
 
@@ -65,13 +65,23 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     if unknown:
         raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(_TOP_KEYS))}")
 
-    name = data.get("name")
-    if not isinstance(name, str) or not is_valid_name(name):
-        raise fail(f"'name' must be an identifier (letters, digits, underscore), got {name!r}", field="name")
+    if not data:
+        raise fail("the robot description is empty: a robot file needs 'name', 'convention' and [[joints]]")
+    if "name" not in data:
+        raise fail("'name' is required: give the robot a name (an identifier: letters, digits, underscore)",
+                   field="name")
+    name = data["name"]
+    problem = name_problem(name)
+    if problem is not None:
+        raise fail(f"'name' must be an identifier (letters, digits, underscore), got {name!r}: {problem}",
+                   field="name")
     description = data.get("description", "")
     if not isinstance(description, str):
         raise fail("'description' must be a string", field="description")
-    convention_text = data.get("convention")
+    if "convention" not in data:
+        raise fail("'convention' is required (there is no default): say 'standard', 'modified' or 'general'",
+                   field="convention")
+    convention_text = data["convention"]
     if not isinstance(convention_text, str) or convention_text not in {c.value for c in Convention}:
         raise fail(f"'convention' is required and must be 'standard', 'modified' or 'general', got "
                    f"{convention_text!r}", field="convention")
@@ -81,7 +91,10 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         raise fail(f"'angle_unit' must be 'rad' or 'deg', got {unit!r}", field="angle_unit")
     angle_scale = sp.pi / 180 if unit == "deg" else sp.S.One
 
-    joints_data = data.get("joints")
+    if "joints" not in data:
+        raise fail("'joints' is required: a robot file needs a non-empty list of joint tables ([[joints]])",
+                   field="joints")
+    joints_data = data["joints"]
     if not isinstance(joints_data, Sequence) or isinstance(joints_data, str) or not joints_data:
         raise fail("'joints' must be a non-empty list of joint tables", field="joints")
     joint_types: list[JointType] = []
@@ -92,11 +105,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         if not isinstance(kind, str) or kind not in {t.value for t in JointType}:
             raise fail(f"'type' must be 'revolute' or 'prismatic', got {kind!r}", joint=number, field="type")
         joint_types.append(JointType(kind))
-    reserved = {f"theta{i}" for i in range(1, len(joint_types) + 1)} | {
-        f"d{i}" for i, kind in enumerate(joint_types, start=1) if kind is JointType.PRISMATIC
-    }
-
-    parameters = _parameters(data.get("parameters", {}), reserved, fail)
+    parameters = _parameters(data.get("parameters", {}), reserved_names(joint_types), fail)
     names = {parameter.name: parameter.symbol for parameter in parameters}
     defaults = {parameter.symbol: parameter.default for parameter in parameters}
 
@@ -183,16 +192,17 @@ def _general_fields(joint_data: Mapping[str, Any], number: int, value: Any, defa
     return extra
 
 
-def _parameters(raw: Any, reserved: set[str], fail: Any) -> tuple[Parameter, ...]:
+def _parameters(raw: Any, reserved: Mapping[str, str], fail: Any) -> tuple[Parameter, ...]:
     if not isinstance(raw, Mapping):
         raise fail("'parameters' must be a table of name = number", field="parameters")
     parameters = []
     for name, default in raw.items():
         where = f"parameters.{name}"
-        if not isinstance(name, str) or not is_valid_name(name):
-            raise fail(f"parameter name {name!r} is not an identifier (letters, digits, underscore)", field=where)
+        problem = name_problem(name)
+        if problem is not None:
+            raise fail(f"parameter name {name!r} is not allowed: {problem}", field=where)
         if name in reserved:
-            raise fail(f"parameter name {name!r} is taken by a joint variable", field=where)
+            raise fail(f"parameter name {name!r} is reserved: {reserved[name]}", field=where)
         try:
             parameters.append(Parameter(name, exact_number(default)))
         except ExpressionError as error:

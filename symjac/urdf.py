@@ -3,7 +3,8 @@ r"""Reading URDF files: the serial chain between two links as a general-conventi
 What is read
     ``<robot name>``, every ``<link name>``, and every ``<joint name type>`` with its ``<parent link>``,
     ``<child link>``, ``<origin xyz rpy>``, ``<axis xyz>``, ``<limit lower upper>`` and ``<mimic>``. Visual,
-    collision, inertial, transmission and gazebo elements are ignored.
+    collision, inertial, transmission and gazebo elements are ignored. Limits with ``lower = upper = 0`` (URDF's
+    default) mean "no limits"; any other pair must have ``lower < upper``.
 
 The chain
     From ``base_link`` (default: the root link) to ``tip_link`` (default: the only leaf; with several leaves the
@@ -24,7 +25,9 @@ Numbers
 Safety
     The file is parsed with the standard library's expat parser, after refusing any document type declaration
     (``<!DOCTYPE``/``<!ENTITY``): no entity is ever expanded and no other file or URL is ever read (no external
-    entities, no xacro, no ``package://`` lookups). Only UTF-8/ASCII files up to :data:`MAX_URDF_BYTES` are read.
+    entities, no ``package://`` lookups). A xacro file (``<xacro:...>`` elements, ``${...}`` substitutions) is
+    refused with the command that expands it. Files up to :data:`MAX_URDF_BYTES` in UTF-8, or in US-ASCII or
+    ISO-8859-1 when the XML declaration says so, are read.
     Every problem raises :class:`~symjac.errors.RobotFileError` naming the file and the element.
 """
 
@@ -49,7 +52,12 @@ MAX_URDF_BYTES = 5_000_000
 _MOVING = {"revolute": JointType.REVOLUTE, "continuous": JointType.REVOLUTE, "prismatic": JointType.PRISMATIC}
 _KNOWN_TYPES = {*_MOVING, "fixed", "floating", "planar"}
 _DECLARATION = re.compile(rb"<!\s*(DOCTYPE|ENTITY|ELEMENT|ATTLIST)", re.IGNORECASE)
-_ENCODING = re.compile(r"""^\s*<\?xml[^>]*encoding\s*=\s*["']([^"']+)["']""")
+_ENCODING = re.compile(rb"""^(?:\xef\xbb\xbf)?\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+_ENCODINGS = {"utf-8": "utf-8", "utf8": "utf-8", "us-ascii": "ascii", "ascii": "ascii", "iso-8859-1": "latin-1",
+              "iso8859-1": "latin-1", "latin-1": "latin-1", "latin1": "latin-1", "l1": "latin-1"}
+# an xacro element or a ${...} / $(...) substitution in an attribute value; not the xmlns:xacro declaration alone,
+# which xacro itself leaves on the <robot> of the URDF files it writes
+_XACRO = re.compile(r"""<\s*xacro:|=\s*(?:"[^"]*|'[^']*)\$[{(]""")
 _NAME_CHARS = re.compile(r"[^A-Za-z0-9_]")
 
 
@@ -115,26 +123,44 @@ def _fail(source: str, message: str, element: str | None = None) -> RobotFileErr
 
 
 def _parse(content: str | bytes, source: str) -> ET.Element:
-    data = content.encode("utf-8") if isinstance(content, str) else bytes(content)
+    if isinstance(content, str):
+        try:
+            data = content.encode("utf-8")
+        except UnicodeEncodeError as error:  # lone surrogates
+            raise _fail(source, f"not UTF-8 text: {error}") from None
+    else:
+        data = bytes(content)
     if len(data) > MAX_URDF_BYTES:
         raise _fail(source, f"file larger than {MAX_URDF_BYTES} bytes")
     if b"\x00" in data:
         raise _fail(source, "not a UTF-8 text file (NUL bytes)")
+    declared = _ENCODING.match(data)
+    encoding = "utf-8"
+    if declared:
+        encoding = _ENCODINGS.get(declared.group(1).decode("ascii").lower().replace("_", "-"), "")
+        if not encoding:
+            raise _fail(source, f"only UTF-8, ASCII and ISO-8859-1 files are read, this one declares "
+                                f"{declared.group(1).decode('ascii')!r}")
     try:
-        text = data.decode("utf-8")
+        text = data.decode(encoding)
     except UnicodeDecodeError as error:
-        raise _fail(source, f"not UTF-8 text: {error}") from None
+        raise _fail(source, f"not {'UTF-8' if encoding == 'utf-8' else encoding.upper()} text: {error}") from None
     # A document type declaration is where entities (billion laughs, external files) live: refuse it outright,
     # before the parser sees anything, rather than trusting the parser's limits.
     if _DECLARATION.search(data):
         raise _fail(source, "document type and entity declarations (<!DOCTYPE, <!ENTITY) are not allowed in URDF")
-    declared = _ENCODING.match(text)
-    if declared and declared.group(1).lower().replace("_", "-") not in ("utf-8", "utf8", "us-ascii", "ascii"):
-        raise _fail(source, f"only UTF-8 files are read, this one declares {declared.group(1)!r}")
+    if _XACRO.search(text):
+        name = Path(source).name if source != "<urdf>" else "FILE"
+        output = name.removesuffix(".xacro").removesuffix(".urdf") + ".urdf"
+        raise _fail(source, f"this is a xacro file (macros and ${{...}} substitutions are not URDF): run "
+                            f"`xacro {name} > {output}` first and load {output}")
     try:
+        # expat reads the declared encoding itself (UTF-8, US-ASCII and ISO-8859-1 are built in)
         root = ET.fromstring(data)
     except ET.ParseError as error:
         raise _fail(source, f"invalid XML: {error}") from None
+    except RecursionError:  # pragma: no cover - expat is iterative; kept for tree builders that are not
+        raise _fail(source, "invalid XML: elements nested too deeply") from None
     if root.tag != "robot":
         raise _fail(source, f"the root element must be <robot>, got <{root.tag}>")
     return root
@@ -205,7 +231,10 @@ def _read(root: ET.Element, source: str) -> tuple[set[str], dict[str, _UrdfJoint
             bounds = [_number(limit_element.get(key, "0"), source, f"{where} limit") for key in ("lower", "upper")]
             if kind == "revolute":
                 bounds = [snap_angle(b) for b in bounds]
-            if float(bounds[0]) < float(bounds[1]):  # lower = upper = 0 is the common "no limits given"
+            if bounds[0] != 0 or bounds[1] != 0:  # lower = upper = 0 is the common "no limits given"
+                if not float(bounds[0]) < float(bounds[1]):  # the TOML reader's wording
+                    raise _fail(source, f"'limits' must be finite with lower < upper, got "
+                                        f"[{float(bounds[0])}, {float(bounds[1])}]", f"{where} limit")
                 limits = (bounds[0], bounds[1])
         joints[joint_name] = _UrdfJoint(joint_name, kind, ends[0], ends[1],
                                         FixedTransform(xyz=tuple(xyz), rpy=tuple(rpy)),  # type: ignore[arg-type]

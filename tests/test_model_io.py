@@ -11,16 +11,23 @@ import tomllib
 import pytest
 import sympy as sp
 
+from symjac.acceleration_propagation import joint_accelerations
+from symjac.codegen.request import WRENCH_NAMES as codegen_wrench_names
 from symjac.errors import RobotFileError, SymjacError, UnknownRobotError
 from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml
+from symjac.jacobian import ROW_NAMES
 from symjac.model import (
+    WRENCH_NAMES,
     Convention,
     FixedTransform,
     Joint,
     JointType,
     Parameter,
     Robot,
+    reserved_names,
 )
+from symjac.propagation import joint_rates, wrench_symbols
+from symjac.rates import RATE_SYMBOLS
 from symjac.robot_file import robot_from_mapping, robot_to_mapping
 
 SOURCE = "arm.toml"
@@ -393,9 +400,25 @@ def test_angle_unit_must_be_rad_or_deg(unit):
     load_error(minimal(angle_unit=unit), field="angle_unit")
 
 
-@pytest.mark.parametrize("name", ["2x", "a-b", "class", "pi", "lambda", "_x", "a b", "Lé", ""])
-def test_parameter_name_must_be_an_identifier(name):
-    load_error(minimal(parameters={"L1": 1, "L2": 1, name: 1}), field=f"parameters.{name}", message="identifier")
+@pytest.mark.parametrize(
+    ("name", "reason"),
+    [
+        ("2x", "must start with a letter"),
+        ("a-b", "only ASCII letters, digits and underscores"),
+        ("class", "'class' is a Python keyword"),
+        ("pi", "'pi' is the constant pi"),
+        ("lambda", "is a Python keyword"),
+        ("_x", r"names starting with an underscore are not allowed"),
+        ("__import__", r"names starting with an underscore are not allowed"),
+        ("a b", "only ASCII letters, digits and underscores"),
+        ("Lé", "only ASCII letters, digits and underscores"),
+        ("éL", "must start with a letter"),
+        ("", "the name is empty"),
+    ],
+)
+def test_parameter_name_refused_with_the_true_reason(name, reason):
+    error = load_error(minimal(parameters={"L1": 1, "L2": 1, name: 1}), field=f"parameters.{name}", message=reason)
+    assert "not an identifier" not in str(error)  # '__import__' is one, in Python's sense: say what is wrong
 
 
 def test_parameter_names_must_be_strings():
@@ -406,7 +429,47 @@ def test_parameter_names_must_be_strings():
 def test_parameter_name_clashing_with_a_joint_variable(name):
     data = minimal(parameters={"L1": 1, "L2": 1, name: 0.5})
     data["joints"].append({"type": "prismatic"})
-    load_error(data, field=f"parameters.{name}", message="taken by a joint variable")
+    load_error(data, field=f"parameters.{name}", message="is reserved: taken by a joint variable")
+
+
+@pytest.mark.parametrize(
+    ("name", "reason"),
+    [
+        ("f_x", "symjac names the wrench components f_x .. n_z"),
+        ("n_z", "symjac names the wrench components f_x .. n_z"),
+        ("thetadot1", "symjac names the joint rates thetadot<i> and ddot<i>"),
+        ("ddot2", "symjac names the joint rates thetadot<i> and ddot<i>"),
+        ("thetaddot2", "symjac names the joint accelerations thetaddot<i> and dddot<i>"),
+        ("dddot1", "symjac names the joint accelerations thetaddot<i> and dddot<i>"),
+        ("omega_z", "symjac names the velocity components v_x .. omega_z"),
+    ],
+)
+def test_parameter_named_like_a_generated_symbol_is_refused(name, reason):
+    data = minimal(parameters={"L1": 1, "L2": 1, name: 0.5})
+    load_error(data, field=f"parameters.{name}", message=re.escape(f"parameter name {name!r} is reserved: {reason}"))
+    with pytest.raises(RobotFileError, match=re.escape(f"'{name}' is reserved: {reason}")):
+        robot_from_toml(robot_to_toml(robot_from_mapping(minimal())).replace("L2 = ", f"{name} = 1\nL2 = "))
+
+
+@pytest.mark.parametrize("name", ["thetadot3", "ddot3", "d1", "fx", "f_x1", "theta_dot1", "omega"])
+def test_names_beside_the_generated_symbols_stay_free(name):
+    robot = robot_from_mapping(minimal(parameters={"L1": 1, "L2": 1, name: 0.5}))
+    assert name in {parameter.name for parameter in robot.parameters}
+
+
+def test_robot_built_directly_refuses_a_reserved_parameter_name():
+    robot = robot_from_mapping(minimal())
+    with pytest.raises(RobotFileError, match=r"built\.py, field 'parameters\.f_y': 'f_y' is reserved: .*wrench"):
+        dataclasses.replace(robot, parameters=(Parameter("f_y", sp.Integer(1)),), source="built.py")
+
+
+def test_reserved_names_are_the_symbols_symjac_generates():
+    robot = load_robot("stanford")
+    generated = {*joint_rates(robot), *joint_accelerations(robot), *wrench_symbols(), *robot.q, *RATE_SYMBOLS}
+    reserved = reserved_names([joint.type for joint in robot.joints])
+    assert {symbol.name for symbol in generated} <= set(reserved)
+    assert set(ROW_NAMES) | set(WRENCH_NAMES) <= set(reserved)
+    assert codegen_wrench_names == WRENCH_NAMES
 
 
 @pytest.mark.parametrize("default", [math.nan, math.inf, -math.inf, "0.5", True, None, [1], {"value": 1}])

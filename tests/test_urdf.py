@@ -235,6 +235,81 @@ def test_hostile_or_malformed_urdf_gives_a_typed_error_quickly(case, tmp_path):
     assert str(info.value).startswith(str(path))
 
 
+@pytest.mark.parametrize("name", ["arm.xml", "arm", "arm.txt", "arm.toml"])
+def test_urdf_is_recognised_by_its_content_whatever_its_name(name, tmp_path):
+    path = tmp_path / name
+    text = _arm(FINGERS).removeprefix('<?xml version="1.0"?>')  # a declaration must come first: keep it out
+    path.write_bytes(b"\xef\xbb\xbf\n  " + text.encode("utf-8"))  # a byte order mark and blank space first
+    robot = load_robot(path, tip_link="tip")
+    assert [joint.name for joint in robot.joints] == ["j1", "j2"]
+    assert robot.source == str(path)
+
+
+def test_cli_reads_a_urdf_saved_as_xml(capsys, tmp_path):
+    from symjac.cli import main
+
+    path = tmp_path / "arm.xml"
+    path.write_text(_arm(), encoding="utf-8")
+    assert main(["show", str(path), "--format", "pretty"]) == 0
+    assert "general chain" in capsys.readouterr().out
+
+
+XACRO = {
+    "xacro element": '<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:property name="L" '
+                     'value="0.4"/><link name="b"/></robot>',
+    "substitution": _arm().replace('xyz="0.4 0 0"', 'xyz="${L} 0 0"'),
+    "find": _arm().replace('<link name="tip"/>', '<link name="tip"><visual><geometry><mesh '
+                                                 'filename="$(find arm)/tip.stl"/></geometry></visual></link>'),
+}
+
+
+@pytest.mark.parametrize("case", sorted(XACRO))
+@pytest.mark.parametrize("name", ["arm.urdf.xacro", "arm.xacro", "arm.urdf"])
+def test_xacro_file_is_refused_with_the_command_that_expands_it(case, name, tmp_path):
+    path = tmp_path / name
+    path.write_text(XACRO[case], encoding="utf-8")
+    with pytest.raises(RobotFileError, match=re.escape(f"{path}: this is a xacro file")) as info:
+        load_robot(path)
+    assert "run `xacro " in str(info.value) and " > arm.urdf` first" in str(info.value)
+    assert "finite number" not in str(info.value)
+
+
+def test_xacro_namespace_alone_is_plain_urdf():
+    # xacro leaves xmlns:xacro on the <robot> of the URDF files it writes: such a file is expanded already
+    robot = robot_from_urdf(_arm().replace('<robot name="arm">', '<robot name="arm" xmlns:xacro="x">'))
+    assert robot.dof == 2
+
+
+@pytest.mark.parametrize(("lower", "upper"), [("3", "-3"), ("0.5", "0.5"), ("0.1", "0")])
+def test_reversed_urdf_limits_are_refused_naming_file_and_joint(lower, upper, tmp_path):
+    path = tmp_path / "arm.urdf"
+    path.write_text(_arm().replace('lower="-3" upper="3"', f'lower="{lower}" upper="{upper}"'), encoding="utf-8")
+    expected = f"{path}, field 'joint j1 limit': 'limits' must be finite with lower < upper, got "
+    with pytest.raises(RobotFileError, match=re.escape(expected + f"[{float(lower)}, {float(upper)}]")):
+        load_robot(path)
+    toml = robot_to_toml(load_robot("planar2r")).replace('type = "revolute"', f'type = "revolute"\nlimits = '
+                                                         f'[{lower}, {upper}]', 1)
+    with pytest.raises(RobotFileError, match=re.escape("'limits' must be finite with lower < upper, got ")):
+        robot_from_toml(toml)  # the TOML reader says it in the same words
+
+
+def test_urdf_zero_limits_mean_no_limits():
+    robot = robot_from_urdf(_arm().replace('lower="-3" upper="3"', 'lower="0" upper="0"'))
+    assert robot.joints[0].limits is None and robot.joints[1].limits == (0, sp.Rational(1, 2))
+
+
+@pytest.mark.parametrize("encoding", ["ISO-8859-1", "iso-8859-1", "latin1", "US-ASCII", "utf-8"])
+def test_declared_latin_1_and_ascii_files_are_read(encoding, tmp_path):
+    text = _arm().replace('<?xml version="1.0"?>', f'<?xml version="1.0" encoding="{encoding}"?>')
+    if encoding != "US-ASCII":
+        text = text.replace('name="j2"', 'name="coude_\xe9"')
+    path = tmp_path / "arm.urdf"
+    path.write_bytes(text.encode("ascii" if encoding == "US-ASCII" else
+                                 "utf-8" if encoding == "utf-8" else "latin-1"))
+    robot = load_robot(path)
+    assert robot.joints[1].name == ("j2" if encoding == "US-ASCII" else "coude_\xe9")
+
+
 def test_unknown_urdf_name_is_an_unknown_robot():
     with pytest.raises(UnknownRobotError, match=re.escape("panda.urdf, ur5.urdf")):
         load_robot("kuka.urdf")

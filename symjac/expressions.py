@@ -17,6 +17,7 @@ import ast
 import keyword
 import math
 import re
+import warnings
 from collections.abc import Mapping
 from fractions import Fraction
 
@@ -116,6 +117,16 @@ def parse_expression(text: str, names: Mapping[str, sp.Symbol]) -> sp.Expr:
     >>> parse_expression("L1 + 0.5*L2", {"L1": L1, "L2": L2})
     L1 + L2/2
     """
+    expr = _parse(text, names)
+    written = expression_text(expr)
+    if isinstance(written, str) and len(written) > MAX_EXPRESSION_LENGTH:
+        # what is read must be writable back (robot_to_toml) and readable again: refuse it here, not on the way back
+        raise ExpressionError(f"{text!r} is {len(written)} characters long written exactly ({written[:30]}...), "
+                              f"more than {MAX_EXPRESSION_LENGTH}: use numbers with fewer digits")
+    return expr
+
+
+def _parse(text: str, names: Mapping[str, sp.Symbol]) -> sp.Expr:
     if not isinstance(text, str):
         raise ExpressionError(f"expected a string expression, got {type(text).__name__}")
     if len(text) > MAX_EXPRESSION_LENGTH:
@@ -123,7 +134,9 @@ def parse_expression(text: str, names: Mapping[str, sp.Symbol]) -> sp.Expr:
     if not text.strip():
         raise ExpressionError("empty expression")
     try:
-        tree = ast.parse(text.strip(), mode="eval")
+        with warnings.catch_warnings():  # "invalid escape sequence", "is with a literal": the tree says it plainer
+            warnings.simplefilter("ignore", SyntaxWarning)
+            tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError:
         raise ExpressionError(f"cannot parse {text!r}: not a valid expression") from None
     return _build(tree.body, names, text)
@@ -229,7 +242,7 @@ def expression_text(expr: sp.Expr) -> int | float | str:
             return as_float
     text = sp.sstr(expr)
     try:  # sstr can regroup: 1/(2*(L1 + L2)) reads back as 1/(2*L1 + 2*L2), a different tree
-        if parse_expression(text, {symbol.name: symbol for symbol in expr.free_symbols}) == expr:
+        if _parse(text, {symbol.name: symbol for symbol in expr.free_symbols}) == expr:
             return text
     except ExpressionError:
         pass
@@ -268,7 +281,10 @@ def snap_angle(value: sp.Rational) -> sp.Expr:
     >>> snap_angle(sp.Rational(3, 10))
     3/10
     """
-    k = round(float(value) / (math.pi / 12))
+    turns = float(value) / (math.pi / 12)
+    if not math.isfinite(turns):  # beyond float range: no multiple of pi/12 to snap to
+        return value
+    k = round(turns)
     if abs(float(value) - k * math.pi / 12) < ANGLE_SNAP_TOLERANCE:
         return sp.pi * sp.Rational(k, 12)
     return value

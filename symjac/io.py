@@ -115,9 +115,6 @@ def _load_urdf(name_or_path: str | Path, path: Path, base_link: str | None, tip_
 
 def robot_from_toml(text: str, source: str = "<string>") -> Robot:
     """Parse and validate the text of a TOML robot file."""
-    if not text.strip():
-        raise RobotFileError("the file is empty: a robot file needs 'name', 'convention' and [[joints]]",
-                             source=source)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
@@ -126,6 +123,9 @@ def robot_from_toml(text: str, source: str = "<string>") -> Robot:
         raise RobotFileError("invalid TOML: a number has too many digits", source=source) from None
     except RecursionError:
         raise RobotFileError("invalid TOML: arrays or tables nested too deeply", source=source) from None
+    if not data:  # blank, or only comments
+        raise RobotFileError("the file is empty: a robot file needs 'name', 'convention' and [[joints]]",
+                             source=source)
     return robot_from_mapping(data, source=source)
 
 

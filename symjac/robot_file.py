@@ -181,7 +181,7 @@ def _general_fields(joint_data: Mapping[str, Any], number: int, value: Any, defa
         numbers = [entry.subs(defaults) for entry in axis]
         if not all(entry.is_number and _is_finite(entry) for entry in numbers):
             raise fail(f"'axis' must be 3 finite numbers, got {list(axis)}", joint=number, field="axis")
-        if sum(float(entry) ** 2 for entry in numbers) < 1e-18:
+        if max(abs(float(entry)) for entry in numbers) < 1e-9:  # no squares: [1e308, 0, 1] must not overflow
             raise fail("'axis' must not be the zero vector", joint=number, field="axis")
         if axis != (0, 0, 1):
             extra["axis"] = axis

@@ -49,6 +49,7 @@ from symjac.transforms import alignment, compose, homogeneous, inverse_motions
 __all__ = ["MAX_URDF_BYTES", "robot_from_urdf"]
 
 MAX_URDF_BYTES = 5_000_000
+MAX_URDF_ANGLE = 10**9  # radians; a float angle this large has lost every digit below 1e-7 rad anyway
 _MOVING = {"revolute": JointType.REVOLUTE, "continuous": JointType.REVOLUTE, "prismatic": JointType.PRISMATIC}
 _KNOWN_TYPES = {*_MOVING, "fixed", "floating", "planar"}
 _DECLARATION = re.compile(rb"<!\s*(DOCTYPE|ENTITY|ELEMENT|ATTLIST)", re.IGNORECASE)
@@ -220,6 +221,8 @@ def _read(root: ET.Element, source: str) -> tuple[set[str], dict[str, _UrdfJoint
         xyz = _vector(origin_element.get("xyz") if origin_element is not None else None, source, f"{where} origin")
         rpy = [snap_angle(v) for v in _vector(origin_element.get("rpy") if origin_element is not None else None,
                                               source, f"{where} origin")]
+        if any(abs(v) > MAX_URDF_ANGLE for v in rpy):  # SymPy cannot reduce sin(1e308) when fixed joints merge
+            raise _fail(source, f"an rpy angle is larger than {MAX_URDF_ANGLE:.0e} rad in size", f"{where} origin")
         axis_element = joint.find("axis")
         axis = _vector(axis_element.get("xyz") if axis_element is not None else None, source, f"{where} axis",
                        (1, 0, 0))

@@ -959,3 +959,38 @@ def test_readme_robot_file_example_loads_and_matches_the_catalog_puma():
     puma = load_robot("puma560")
     assert [(j.alpha, j.a, j.d, j.theta) for j in robot.joints] == [(j.alpha, j.a, j.d, j.theta) for j in puma.joints]
     assert robot.tool is not None and robot.tool.xyz == (0, 0, sp.Rational(1, 10))
+
+
+# --------------------------------------------------------------------------------------------- messages in plain words
+
+@pytest.mark.parametrize("text", ["", "\n  \n", "# only a comment\n"])
+def test_empty_robot_file_says_so(text, tmp_path):
+    path = tmp_path / "arm.toml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(RobotFileError, match=rf"^{re.escape(str(path))}: the file is empty: a robot file") as info:
+        load_robot(path)
+    assert "None" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("alpha", "words"),
+    [
+        ("sin(L1)", "function calls are not allowed in 'sin(L1)'"),
+        ("L1 if L2 else 0", "conditional expressions (x if c else y) are not allowed"),
+        ("f'{L1}'", "string formatting (f-strings) is not allowed"),
+        ("L1 % 2", "the operator % is not allowed"),
+        ("__import__('os')", "function calls are not allowed"),
+    ],
+)
+def test_expression_errors_in_a_robot_file_use_plain_words(alpha, words):
+    data = minimal()
+    data["joints"][1]["alpha"] = alpha
+    error = load_error(data, joint=2, field="alpha", message=re.escape(words))
+    assert str(error).startswith(f"arm.toml, joint 2, field 'alpha': {words}")
+    assert not re.search(r"\b(Call|IfExp|JoinedStr|BinOp)\b", str(error))
+
+
+@pytest.mark.parametrize("text", ["a = " + "9" * 5000, "a = " + "[" * 10_000, "x = {" * 3000])
+def test_toml_beyond_the_parser_limits_is_a_robot_file_error(text):
+    with pytest.raises(RobotFileError, match=r"^arm\.toml: invalid TOML"):
+        robot_from_toml(text, source="arm.toml")

@@ -230,7 +230,7 @@ def reserved_names(joint_types: Sequence[JointType]) -> dict[str, str]:
     >>> reserved_names([JointType.REVOLUTE])["f_x"]
     'symjac names the wrench components f_x .. n_z'
     >>> sorted(name for name in reserved_names([JointType.PRISMATIC]) if name.endswith("1"))
-    ['d1', 'ddot1', 'dddot1', 'theta1', 'thetadot1', 'thetaddot1']
+    ['d1', 'dddot1', 'ddot1', 'theta1', 'thetaddot1', 'thetadot1']
     """
     reserved = dict.fromkeys(WRENCH_NAMES, "symjac names the wrench components f_x .. n_z")
     reserved |= dict.fromkeys(VELOCITY_NAMES, "symjac names the velocity components v_x .. omega_z")

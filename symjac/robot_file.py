@@ -101,7 +101,9 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     for number, joint_data in enumerate(joints_data, start=1):
         if not isinstance(joint_data, Mapping):
             raise fail(f"expected a table, got {type(joint_data).__name__}", joint=number)
-        kind = joint_data.get("type")
+        if "type" not in joint_data:
+            raise fail("'type' is required: say 'revolute' or 'prismatic'", joint=number, field="type")
+        kind = joint_data["type"]
         if not isinstance(kind, str) or kind not in {t.value for t in JointType}:
             raise fail(f"'type' must be 'revolute' or 'prismatic', got {kind!r}", joint=number, field="type")
         joint_types.append(JointType(kind))

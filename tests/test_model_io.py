@@ -990,6 +990,21 @@ def test_expression_errors_in_a_robot_file_use_plain_words(alpha, words):
     assert not re.search(r"\b(Call|IfExp|JoinedStr|BinOp)\b", str(error))
 
 
+@pytest.mark.parametrize(
+    ("data", "field", "message"),
+    [
+        ({"convention": "standard", "joints": [{"type": "revolute"}]}, "name", "'name' is required"),
+        ({"name": "arm", "joints": [{"type": "revolute"}]}, "convention", "'convention' is required"),
+        ({"name": "arm", "convention": "standard"}, "joints", "'joints' is required"),
+        ({"name": "arm", "convention": "standard", "joints": [{"a": 1}]}, "type", "'type' is required"),
+    ],
+)
+def test_missing_field_is_called_missing_not_none(data, field, message):
+    with pytest.raises(RobotFileError, match=re.escape(f"field '{field}': {message}")) as info:
+        robot_from_mapping(data, source=SOURCE)
+    assert "None" not in str(info.value)
+
+
 @pytest.mark.parametrize("text", ["a = " + "9" * 5000, "a = " + "[" * 10_000, "x = {" * 3000])
 def test_toml_beyond_the_parser_limits_is_a_robot_file_error(text):
     with pytest.raises(RobotFileError, match=r"^arm\.toml: invalid TOML"):

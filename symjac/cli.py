@@ -1,7 +1,10 @@
 """The ``symjac`` command: list robots, show DH tables and transforms, print forward kinematics and Jacobians.
 
-Results go to stdout (or ``-o FILE``, written only once complete); progress of slow steps goes to stderr when it
-is a terminal. Any symjac error prints one line and exits with status 2.
+Results go to stdout (or ``-o FILE``, written only once complete: see :func:`symjac.files.write_text`; ``-o -`` is
+stdout); progress of slow steps goes to stderr when it is a terminal. Any failure after the arguments are parsed
+prints one line and exits with status 2, Ctrl-C prints ``symjac: interrupted`` and exits with 130 (:func:`main`).
+Turning option text into API arguments lives in :mod:`symjac.cli_args`, output and error lines in
+:mod:`symjac.cli_output`.
 """
 
 from __future__ import annotations
@@ -11,7 +14,6 @@ import os
 import shlex
 import sys
 from collections.abc import Callable, Sequence
-from pathlib import Path
 from typing import Any
 
 import sympy as sp
@@ -99,7 +101,7 @@ def _parser() -> argparse.ArgumentParser:
                 help_text: str) -> argparse.ArgumentParser:
         sub = commands.add_parser(name, help=help_text, description=help_text)
         sub.set_defaults(handler=handler)
-        sub.add_argument("-o", "--output", type=Path,
+        sub.add_argument("-o", "--output", metavar="FILE",  # kept as typed: "./-" is a file, "-" is stdout
                          help="write the result to this file instead of stdout (- for stdout)")
         return sub
 

@@ -6,7 +6,6 @@ import os
 import sys
 import time
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 from symjac.errors import SymjacError
@@ -32,9 +31,9 @@ def progress(what: str, compute: Callable[[], Any]) -> Any:
     return result
 
 
-def emit(text: str, output: Path | None) -> None:
+def emit(text: str, output: str | None) -> None:
     """Write the finished text to stdout (no ``-o``, or ``-o -``), or to ``output`` (:func:`.write_text`)."""
-    if output is None or str(output) == "-":
+    if output is None or output == "-":
         sys.stdout.write(text)
         sys.stdout.flush()  # a closed pipe shows here, inside main, not at interpreter exit
     else:

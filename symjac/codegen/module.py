@@ -263,5 +263,8 @@ def render_module(description: ModuleDescription) -> str:
 
 
 def write_module(path: str | os.PathLike[str], text: str) -> Path:
-    """Write a generated module to ``path`` atomically (:func:`symjac.files.write_text`): never a partial file."""
+    """Write a generated module to ``path`` as ``symjac codegen -o`` does (:func:`symjac.files.write_text`).
+
+    A regular file is replaced atomically (never a partial file) and keeps its permissions; a new one gets the umask's.
+    """
     return write_text(path, text)

@@ -14,7 +14,7 @@ import os
 import shlex
 import sys
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, NoReturn
 
 import sympy as sp
 
@@ -92,8 +92,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with usage errors on one line, like every other error (the usage is one ``--help`` away)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"symjac: error: {message} (see '{self.prog} --help')\n")
+
+
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="symjac", description="Symbolic kinematics and Jacobians of serial arms.")
+    parser = _Parser(prog="symjac", description="Symbolic kinematics and Jacobians of serial arms.")
     parser.add_argument("--version", action="version", version=f"symjac {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 

@@ -64,3 +64,10 @@ def test_plain_symbols_are_matched_by_name():
         check(-L2 * sp.sin(p1 - p2), J[0, 1], robot)
     with pytest.raises(AssertionError, match="expected"):
         check(-sp.Symbol("L3") * sp.sin(p1 + p2), J[0, 1], robot)
+
+
+def test_a_placeholder_is_not_an_answer():
+    with pytest.raises(AssertionError, match="no answer yet"):
+        check(..., sp.sin(t1))
+    with pytest.raises(AssertionError, match="no answer yet"):
+        check(None, 0.5)

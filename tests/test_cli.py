@@ -510,7 +510,8 @@ def test_json_output_round_trips_with_the_same_keys(capsys, command, robot):
         for factor in data["factors"]:
             assert set(factor) == {"expression", "multiplicity", "kind", "reason", "solutions", "existence",
                                    "exists_for_defaults", "sample", "lost_direction", "lost", "self_motion",
-                                   "self_motion_words"}
+                                   "self_motion_words", "solution_limits", "reachable_within_limits",
+                                   "limits_words"}
         kinds = {factor["kind"] for factor in data["factors"]}
         assert kinds == {"parameter", "elbow", "shoulder"}
         (elbow,) = [factor for factor in data["factors"] if factor["kind"] == "elbow"]

@@ -125,8 +125,8 @@ display(Math(r"\det J = " + latex(det)))
 # %% [markdown]
 # ## Exercises
 #
-# Replace each answer with your own, in any equivalent form, and run the cell: `check` compares it exactly with
-# what symjac derives.
+# Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
+# with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
 #
 # 1. Write down $\partial x / \partial \theta_2$ for this arm.
 # 2. At $\theta_1 = 0$, $\theta_2 = \pi/2$, which hand velocity $(v_x, v_y)$ do the joint rates $(1, 0)$ produce
@@ -135,14 +135,14 @@ display(Math(r"\det J = " + latex(det)))
 
 # %%
 L1_s, L2_s = sp.symbols("L1 L2", real=True)
-answer_1 = -L2_s * sp.sin(theta1 + theta2)
+answer_1 = ...  # your answer here
 check(answer_1, J_f[0, 1], robot)
 
 # %%
-answer_2 = sp.Matrix([-L2_s, L1_s])
+answer_2 = ...  # your answer here
 check(answer_2, (J_f * sp.Matrix([1, 0])).subs({theta1: 0, theta2: sp.pi / 2}), robot)
 
 # %%
-answer_3 = {0, sp.pi}
+answer_3 = ...  # your answer here
 assert answer_3 == set(sp.solveset(sp.sin(theta2), theta2, sp.Interval.Ropen(0, 2 * sp.pi)))
 print("all answers correct")

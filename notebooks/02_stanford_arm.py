@@ -150,20 +150,23 @@ assert misprints(chain.simplified_transform(1, 2), printed_T_1_2) == [(3, 2)]
 # %% [markdown]
 # ## Exercises
 #
+# Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
+# with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+#
 # 1. Column 3 belongs to the prismatic joint $d_3$. Write it down (linear and angular part) in frame {0}.
 # 2. Write the linear part of column 1, $z_1 \times p_{16}$, in frame {0}.
 # 3. Which entry of ${}^3J$ is the rate at which $d_3$ moves the wrist along $z_3$?
 
 # %%
-answer_1 = sp.Matrix([c1 * s2, s1 * s2, c2, 0, 0, 0])
+answer_1 = ...  # your answer here
 check(answer_1, J_diff[:, 2], robot)
 
 # %%
 p = T_0_6[:3, 3]
-answer_2 = sp.Matrix([-p[1], p[0], 0])
+answer_2 = ...  # your answer here
 check(answer_2, J_diff[:3, 0], robot)
 
 # %%
-answer_3 = J_3[2, 2]
+answer_3 = ...  # your answer here
 check(answer_3, 1, robot)
 print("all answers correct")

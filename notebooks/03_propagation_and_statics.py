@@ -136,6 +136,9 @@ fig.savefig(OUTPUT / "03_holding_torques.png", dpi=100)
 # %% [markdown]
 # ## Exercises
 #
+# Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
+# with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+#
 # 1. For the planar 3R arm, what is $\tau_3$ when the tip (tool point) pushes with $f_y$ along $y$ of the tool
 #    frame? (Hint: only the last link's length matters.)
 # 2. In the velocity propagation, what is ${}^1\omega_1$?
@@ -143,15 +146,15 @@ fig.savefig(OUTPUT / "03_holding_torques.png", dpi=100)
 
 # %%
 L3 = sp.Symbol("L3", real=True)
-answer_1 = L3 * f_y
+answer_1 = ...  # your answer here
 check(answer_1, tip[2], robot)
 
 # %%
-answer_2 = sp.Matrix([0, 0, sp.Symbol("thetadot1", real=True)])
+answer_2 = ...  # your answer here
 check(answer_2, propagation.velocities()[1][1], robot)
 
 # %%
 stretched = joint_torques(robot, wrench=[1, 0, 0, 0, 0, 0], frame=0, point="tool", q=[0, 0, 0])
-answer_3 = True
+answer_3 = ...  # your answer here
 assert answer_3 == all(abs(float(t)) < 1e-12 for t in stretched)
 print("all answers correct")

@@ -142,6 +142,9 @@ show(singularities(load_robot("puma560")))
 # %% [markdown]
 # ## Exercises
 #
+# Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
+# with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+#
 # 1. What is $\det J$ of the planar 2R arm? Give it as an expression in $L_1, L_2, \theta_2$.
 # 2. For which $\theta_5$ is the PUMA 560 in its wrist singularity (give the set in $[0, 2\pi)$)?
 # 3. Make the 3R arm's first link long, $L_1 = 1$, with $L_2 = 0.25$, $L_3 = 0.5$. Can it reach its shoulder
@@ -149,13 +152,13 @@ show(singularities(load_robot("puma560")))
 
 # %%
 L1_s, L2_s = sp.symbols("L1 L2", real=True)
-answer_1 = L1_s * L2_s * sp.sin(planar.q[1])
+answer_1 = ...  # your answer here
 check(answer_1, report_2r.determinant.expression, planar)
 
 # %%
 puma_report = singularities(load_robot("puma560"))
 (wrist,) = [f for f in puma_report.factors if f.kind == "wrist"]
-answer_2 = {0, sp.pi}
+answer_2 = ...  # your answer here
 assert answer_2 == {s.rhs for s in wrist.solutions}
 
 # %%
@@ -165,7 +168,7 @@ data = robot_to_mapping(arm)
 data["parameters"] = {"L1": 1, "L2": 0.25, "L3": 0.5}
 short = singularities(robot_from_mapping(data))
 shoulder = next(f for f in short.factors if f.expression.has(arm.q[1]))
-answer_3 = False
+answer_3 = ...  # your answer here
 assert answer_3 == shoulder.exists_for_defaults
 print(shoulder.existence, "->", shoulder.exists_for_defaults)
 print("all answers correct")

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
-import sympy as sp
+import sympy as sp  # noqa: F401  # for your answers to the exercises
 from IPython.display import Math, display
 
 from symjac import (
@@ -133,21 +133,24 @@ print("angles from R at gimbal lock:", extract("zyz", R).round(6))
 # %% [markdown]
 # ## Exercises
 #
+# Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
+# with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+#
 # 1. Where is the roll-pitch-yaw description singular? Give the factor that vanishes.
 # 2. Compute by hand the Z-Y-Z angles of $R_z(0.3)$ (a pure rotation about $z$), using the convention above.
 # 3. Which row of $E_r$ for Z-Y-Z angles never divides by $\sin\beta$? (Give the row as a 1 x 3 matrix.)
 
 # %%
 theta_rpy = representation_jacobian(puma, "rpy").coordinates[4]
-answer_1 = sp.cos(theta_rpy)
+answer_1 = ...  # your answer here
 check(answer_1, representation_jacobian(puma, "rpy").singularities[0].factor)
 
 # %%
-answer_2 = [0.0, 0.0, 0.3]
+answer_2 = ...  # your answer here
 check(answer_2, list(extract("zyz", np.array(rotation_from("zyz", [0, 0, 0.3]), dtype=float))))
 
 # %%
 alpha = zyz.coordinates[3]
-answer_3 = sp.Matrix([[-sp.sin(alpha), sp.cos(alpha), 0]])
+answer_3 = ...  # your answer here
 check(answer_3, E_r[1, :])
 print("all answers correct")

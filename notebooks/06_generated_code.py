@@ -114,6 +114,9 @@ fig.savefig(OUTPUT / "06_timings.png", dpi=100)
 # %% [markdown]
 # ## Exercises
 #
+# Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
+# with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+#
 # 1. The generated modules take the robot's parameters as keyword arguments. What is entry (1, 1) of the
 #    Jacobian (row $v_x$, column $\theta_1$) at $q = 0$ when $d_3 = 0.2$? Compute it with the plain-Python module
 #    and compare with the symbolic Jacobian.
@@ -122,12 +125,12 @@ fig.savefig(OUTPUT / "06_timings.png", dpi=100)
 
 # %%
 d3 = sp.Symbol("d3", real=True)
-answer_1 = plain.jacobian([0.0] * 6, d3=0.2)[0][0]
+answer_1 = ...  # your answer here
 expected_1 = jacobian(robot)[0, 0].xreplace({**robot.defaults, d3: sp.Rational(1, 5), **dict.fromkeys(q_sym, 0)})
 check(answer_1, expected_1)
 
 # %%
-answer_2 = batched.manipulability(batch[:50]).ravel()
+answer_2 = ...  # your answer here
 expected_2 = [abs(np.linalg.det(numeric_jacobian(robot, q))) for q in batch[:50]]
-check(list(answer_2), expected_2, tolerance=1e-9)
+check(answer_2, expected_2, tolerance=1e-9)
 print("all answers correct")

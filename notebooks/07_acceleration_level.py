@@ -218,6 +218,9 @@ print(f"w grew from {history[0, 0]:.2e} to {history[-1, 0]:.2e}; theta5 from {hi
 #
 # ## Exercises
 #
+# Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
+# with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+#
 # 1. Write the $x$ component of the planar 2R arm's bias acceleration $\dot J\dot q$ in frame {0} (use the rate
 #    symbols `joint_rates(planar)`).
 # 2. The planar 2R arm's determinant is $L_1 L_2 s_2$. What is its barrier term $\partial \log|\det J| /
@@ -230,15 +233,15 @@ print(f"w grew from {history[0, 0]:.2e} to {history[-1, 0]:.2e}; theta5 from {hi
 L1, L2 = sp.symbols("L1 L2", real=True)
 theta1, theta2 = planar.q
 thetadot1, thetadot2 = rates
-answer_1 = -L1 * sp.cos(theta1) * thetadot1**2 - L2 * sp.cos(theta1 + theta2) * (thetadot1 + thetadot2) ** 2
+answer_1 = ...  # your answer here
 check(answer_1, bias_acceleration(planar)[0], planar)
 
 # %%
-answer_2 = sp.cos(theta2) / sp.sin(theta2)
+answer_2 = ...  # your answer here
 check(answer_2, log_det_gradient(planar).total[1], planar)
 
 # %%
-answer_3 = 0.9
+answer_3 = ...  # your answer here
 stretched = bias_acceleration(planar).xreplace({**values, theta1: 0, theta2: 0, thetadot1: 1, thetadot2: 0})
 check(answer_3, float(sp.sqrt(stretched[0] ** 2 + stretched[1] ** 2)))
 print("all answers correct")

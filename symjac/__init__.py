@@ -75,7 +75,7 @@ from symjac.representations import (
 )
 from symjac.robot_file import robot_from_mapping, robot_to_mapping
 from symjac.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
-from symjac.singular_report import SingularFactor, SingularityReport, singularities
+from symjac.singular_report import LimitStatus, SingularFactor, SingularityReport, singularities
 from symjac.singularity import Determinant, determinant
 from symjac.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
 from symjac.statics import joint_torques, wrench_between
@@ -107,6 +107,7 @@ __all__ = [
     "JacobianSpaces",
     "Joint",
     "JointType",
+    "LimitStatus",
     "LogDetGradient",
     "ManipulabilityGradient",
     "Parameter",

@@ -1,18 +1,20 @@
 """The ``symjac`` command: list robots, show DH tables and transforms, print forward kinematics and Jacobians.
 
-Results go to stdout (or ``-o FILE``, written only once complete); progress of slow steps goes to stderr when it
-is a terminal. Any symjac error prints one line and exits with status 2.
+Results go to stdout (or ``-o FILE``, written only once complete: see :func:`symjac.files.write_text`; ``-o -`` is
+stdout); progress of slow steps goes to stderr when it is a terminal. Any failure after the arguments are parsed
+prints one line and exits with status 2, Ctrl-C prints ``symjac: interrupted`` and exits with 130 (:func:`main`).
+Turning option text into API arguments lives in :mod:`symjac.cli_args`, output and error lines in
+:mod:`symjac.cli_output`.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import shlex
 import sys
-import time
 from collections.abc import Callable, Sequence
-from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 import sympy as sp
 
@@ -20,12 +22,20 @@ from symjac._version import __version__
 from symjac.acceleration import bias_acceleration, carried_joints, hessian, hessian_slice, jacobian_derivative
 from symjac.acceleration_propagation import acceleration_propagation
 from symjac.chain import Frame, chain_of
+from symjac.cli_args import (
+    add_robot_arguments,
+    load,
+    parse_frame,
+    parse_point,
+    parse_rows,
+    parse_values,
+    refuse_ignored_options,
+)
+from symjac.cli_output import emit, one_line, progress, silence_stdout
 from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
-from symjac.errors import ArgumentError, ExpressionError, FrameError, SymjacError
-from symjac.expressions import parse_expression
-from symjac.files import write_text
-from symjac.io import catalog, load_robot
-from symjac.jacobian import METHODS, jacobian, point_vector, rows_from_names
+from symjac.errors import ArgumentError, SymjacError
+from symjac.io import catalog
+from symjac.jacobian import METHODS, jacobian, point_vector
 from symjac.model import Robot
 from symjac.printing import prose
 from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
@@ -50,25 +60,47 @@ from symjac.statics import joint_torques
 __all__ = ["main"]
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; return the exit status (0 success, 2 usage or input error)."""
+    """Run the command line; return the exit status.
+
+    0 on success; 2 on a usage or input error, reported as one line ``symjac: error: ...`` on stderr; 130 when
+    interrupted (Ctrl-C), reported as ``symjac: interrupted``. When stdout is closed early (``symjac show puma560 |
+    head -1``) the command stops quietly with status 141, as a program ended by SIGPIPE does. Set the environment
+    variable ``SYMJAC_TRACEBACK=1`` to get the full traceback of an unexpected error instead of its one line.
+    """
     parser = _parser()
     args = parser.parse_args(argv)
     args.argv = list(sys.argv[1:] if argv is None else argv)  # the command as typed, for generated headers
     try:
+        refuse_ignored_options(args)
         result = args.handler(args)
         text = result if isinstance(result, str) else render(result, args.format, args.standalone)
-        _emit(text, args.output)
-    except SymjacError as error:
-        print(f"symjac: error: {error}", file=sys.stderr)
-        return 2
-    except OSError as error:
-        print(f"symjac: error: {error}", file=sys.stderr)
+        emit(text, args.output)
+    except KeyboardInterrupt:
+        print("symjac: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError as error:
+        if error.filename is not None:  # an -o FIFO whose reader went away: a real error
+            print(f"symjac: error: {one_line(error)}", file=sys.stderr)
+            return 2
+        silence_stdout()
+        return 141
+    except Exception as error:  # every failure is one line; SYMJAC_TRACEBACK=1 shows the unexpected ones in full
+        if os.environ.get("SYMJAC_TRACEBACK") and not isinstance(error, SymjacError | OSError):
+            raise
+        print(f"symjac: error: {one_line(error)}", file=sys.stderr)
         return 2
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with usage errors on one line, like every other error (the usage is one ``--help`` away)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"symjac: error: {message} (see '{self.prog} --help')\n")
+
+
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="symjac", description="Symbolic kinematics and Jacobians of serial arms.")
+    parser = _Parser(prog="symjac", description="Symbolic kinematics and Jacobians of serial arms.")
     parser.add_argument("--version", action="version", version=f"symjac {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
@@ -76,12 +108,13 @@ def _parser() -> argparse.ArgumentParser:
                 help_text: str) -> argparse.ArgumentParser:
         sub = commands.add_parser(name, help=help_text, description=help_text)
         sub.set_defaults(handler=handler)
-        sub.add_argument("-o", "--output", type=Path, help="write the result to this file instead of stdout")
+        sub.add_argument("-o", "--output", metavar="FILE",  # kept as typed: "./-" is a file, "-" is stdout
+                         help="write the result to this file instead of stdout (- for stdout)")
         return sub
 
     command("robots", _robots, "list the built-in robots")
     generator = command("codegen", _codegen, "generate a numeric module: forward kinematics, Jacobians, torques")
-    generator.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
+    add_robot_arguments(generator)
     generator.add_argument("--target", choices=TARGETS, default="python",
                            help="; ".join(f"{b.name} ({b.summary})" for b in BACKENDS.values()) + "; default python")
     generator.add_argument("--frame", action="append", default=None, metavar="K",
@@ -95,11 +128,9 @@ def _parser() -> argparse.ArgumentParser:
     generator.add_argument("--acceleration", action="store_true",
                            help="also generate hessian, bias_acceleration (Jdot qdot) and manipulability_gradient")
     converter = command("convert", _convert, "print the robot as a TOML robot file, converted to a DH convention")
-    converter.add_argument("robot", metavar="ROBOT", help="a built-in robot name, a TOML file or a URDF file")
+    add_robot_arguments(converter)
     converter.add_argument("--to", choices=("modified", "standard", "toml"), required=True,
                            help="the DH convention to convert to, or toml to keep the robot as it is")
-    converter.add_argument("--base-link", default=None, help="URDF only: first link of the chain (default: root)")
-    converter.add_argument("--tip-link", default=None, help="URDF only: last link of the chain (default: the leaf)")
     for name, handler, help_text in (
         ("show", _show, "show the DH table and the link transforms"),
         ("fk", _fk, "print the forward kinematics"),
@@ -109,7 +140,7 @@ def _parser() -> argparse.ArgumentParser:
         ("singularities", _singularities, "factor det J, solve every factor and explain what the arm loses there"),
     ):
         sub = command(name, handler, help_text)
-        sub.add_argument("robot", metavar="ROBOT", help="a built-in robot name (see 'symjac robots') or a TOML file")
+        add_robot_arguments(sub)
         sub.add_argument("--format", choices=FORMATS, default="latex", help="output format (default: latex)")
         sub.add_argument("--numeric", action="store_true", help="substitute the parameters' numeric defaults")
         sub.add_argument("--standalone", action="store_true", help="with --format latex: a complete LaTeX document")
@@ -122,7 +153,7 @@ def _parser() -> argparse.ArgumentParser:
                              help="with a propagation method (or --derivative): print every propagation step first")
             sub.add_argument("--representation", choices=REPRESENTATIONS, default=None,
                              help="print the representation Jacobian J_x = E(x) J_0 for these orientation coordinates")
-            sub.add_argument("--position", choices=POSITIONS, default="cartesian",
+            sub.add_argument("--position", choices=POSITIONS, default=None,
                              help="with --representation: position coordinates (default cartesian)")
             sub.add_argument("--derivative", action="store_true",
                              help="print the time derivative dJ/dt and the bias acceleration Jdot qdot instead")
@@ -153,7 +184,7 @@ def _convert(args: argparse.Namespace) -> str:
     from symjac.io import robot_to_toml
     from symjac.model import Convention
 
-    robot = load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
+    robot = load(args)
     notes: tuple[str, ...] = ()
     if args.to != "toml" and robot.convention is Convention.GENERAL:
         notes = dh_from_general(robot).notes  # whether the table needs a base or tool transform, in words
@@ -162,7 +193,7 @@ def _convert(args: argparse.Namespace) -> str:
 
 
 def _show(args: argparse.Namespace) -> Document:
-    robot = load_robot(args.robot)
+    robot = load(args)
     chain = chain_of(robot)
     transforms = [(f"{{}}^{{{i - 1}}}_{{{i}}}T", f"T_{i - 1}_{i}", chain.simplified_transform(i - 1, i))
                   for i in range(1, robot.dof + 1)]
@@ -179,11 +210,11 @@ def _show(args: argparse.Namespace) -> Document:
 
 
 def _fk(args: argparse.Namespace) -> Document:
-    robot = load_robot(args.robot)
+    robot = load(args)
     chain = chain_of(robot)
     source: Frame = "world" if robot.base else 0
     target: Frame = "tool" if robot.tool else robot.dof
-    T = _progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
+    T = progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
     T = _numeric(robot, T, args.numeric)
     data = forward_kinematics_data(robot, T, source, target)
     equation = Equation(f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", T)
@@ -191,15 +222,15 @@ def _fk(args: argparse.Namespace) -> Document:
 
 
 def _jacobian(args: argparse.Namespace) -> Document:
-    robot = load_robot(args.robot)
-    frame = _parse_frame(args.frame)
-    point = _parse_point(args.point, robot)
+    robot = load(args)
+    frame = parse_frame(args.frame)
+    point = parse_point(args.point, robot)
     if args.representation is not None:
         return _representation(args, robot, frame, point)
     if args.derivative:
         return _derivative(args, robot, frame, point)
     steps = _steps(args, robot, point) if args.steps else []
-    J = _progress(f"Jacobian of {robot.name} in frame {frame}",
+    J = progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
     J = _numeric(robot, J, args.numeric)
     equation = Equation(f"{{}}^{{{frame}}}J", f"J in frame {frame}", J)
@@ -211,8 +242,9 @@ def _jacobian(args: argparse.Namespace) -> Document:
 
 def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> Document:
     """``jacobian --representation``: x, E(x), the basic Jacobian and J_x = E(x) J_0, then E's own singularities."""
-    rj = _progress(f"{args.representation} representation Jacobian of {robot.name}",
-                   lambda: representation_jacobian(robot, args.representation, args.position, point, frame))
+    position = args.position or "cartesian"
+    rj = progress(f"{args.representation} representation Jacobian of {robot.name}",
+                   lambda: representation_jacobian(robot, args.representation, position, point, frame))
     J_0 = _numeric(robot, jacobian(robot, frame=rj.frame, point=point), args.numeric)
     notes = [prose.representation_note(s) for s in rj.singularities]
     blocks = [Block(("Representation coordinates",), (Equation("x", "x", sp.Matrix(rj.coordinates)),)),
@@ -220,7 +252,7 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
               Block((f"Representation Jacobian at the {args.point} point",),
                     (Equation(rf"J_x = E(x)\,{{}}^{{{rj.frame}}}J", f"J_x = E(x) J_{rj.frame}", (rj.E, J_0)),))]
     blocks += [Block((note,)) for note in notes]
-    data = representation_data(robot, rj, J_0, args.point, args.representation, args.position)
+    data = representation_data(robot, rj, J_0, args.point, args.representation, position)
     title = f"{robot.name}: {args.representation} representation Jacobian"
     return Document(title, robot.name, tuple(blocks), data, comments=True)
 
@@ -230,10 +262,10 @@ def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any
     tip = None if point == "tool" else point_vector(robot, point)
     steps = []
     if args.steps:
-        propagation = _progress(f"acceleration propagation of {robot.name}",
+        propagation = progress(f"acceleration propagation of {robot.name}",
                                 lambda: acceleration_propagation(robot, tip))
         steps = step_equations(propagation, values=_numeric_values(robot) if args.numeric else None)
-    Jdot = _progress(f"Jacobian derivative of {robot.name} in frame {frame}",
+    Jdot = progress(f"Jacobian derivative of {robot.name} in frame {frame}",
                      lambda: jacobian_derivative(robot, frame=frame, point=point))
     bias = bias_acceleration(robot, frame=frame, point=point)
     Jdot, bias = _numeric(robot, Jdot, args.numeric), _numeric(robot, bias, args.numeric)
@@ -250,10 +282,10 @@ def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any
 
 def _hessian(args: argparse.Namespace) -> Document:
     """``hessian``: one 6 x n slice dJ/dq_k per joint."""
-    robot = load_robot(args.robot)
-    frame = _parse_frame(args.frame)
-    point = _parse_point(args.point, robot)
-    H = _progress(f"Hessian of {robot.name} in frame {frame}", lambda: hessian(robot, frame=frame, point=point))
+    robot = load(args)
+    frame = parse_frame(args.frame)
+    point = parse_point(args.point, robot)
+    H = progress(f"Hessian of {robot.name} in frame {frame}", lambda: hessian(robot, frame=frame, point=point))
     slices = [_numeric(robot, hessian_slice(H, k), args.numeric) for k in range(robot.dof)]
     blocks = tuple(Block((f"Derivative of the Jacobian with respect to joint {k + 1}",),
                          (Equation(rf"\frac{{\partial\,{{}}^{{{frame}}}J}}{{\partial {sp.latex(q)}}}",
@@ -272,18 +304,17 @@ def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[Equation]
     }
     if args.method not in derive:
         raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
-    propagation = _progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
+    propagation = progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
     return step_equations(propagation, values=_numeric_values(robot) if args.numeric else None)
 
 
 def _torques(args: argparse.Namespace) -> Document:
-    robot = load_robot(args.robot)
-    frame = _parse_frame(args.frame)
-    point = _parse_point(args.point, robot)
-    names = {parameter.name: parameter.symbol for parameter in robot.parameters}
-    wrench = None if args.wrench is None else _parse_list(args.wrench, 6, "--wrench", names)
-    q = None if args.q is None else _parse_list(args.q, robot.dof, "--q", {})
-    tau = _progress(f"joint torques of {robot.name}",
+    robot = load(args)
+    frame = parse_frame(args.frame)
+    point = parse_point(args.point, robot)
+    wrench = None if args.wrench is None else parse_values(args.wrench, 6, "--wrench", robot)
+    q = None if args.q is None else parse_values(args.q, robot.dof, "--q", robot, parameters=False)
+    tau = progress(f"joint torques of {robot.name}",
                     lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q))
     tau = _numeric(robot, tau, args.numeric)
     equation = Equation(r"\tau", "tau", tau)
@@ -293,83 +324,28 @@ def _torques(args: argparse.Namespace) -> Document:
 
 
 def _singularities(args: argparse.Namespace) -> Document:
-    robot = load_robot(args.robot)
-    frame = None if args.frame is None else _parse_frame(args.frame)
-    point = None if args.point is None else _parse_point(args.point, robot)
-    rows = None if args.rows is None else _parse_rows(args.rows)
-    report = _progress(f"singularities of {robot.name}",
+    robot = load(args)
+    frame = None if args.frame is None else parse_frame(args.frame)
+    point = None if args.point is None else parse_point(args.point, robot)
+    rows = None if args.rows is None else parse_rows(args.rows)
+    report = progress(f"singularities of {robot.name}",
                        lambda: singularities(robot, rows=rows, frame=frame, point=point, numeric=args.numeric))
     return Document(f"{robot.name}: singular configurations", robot.name, tuple(singularity_blocks(report)),
                     {**metadata(robot), **singularity_data(report)}, comments=True)
 
 
 def _codegen(args: argparse.Namespace) -> str:
-    robot = load_robot(args.robot)
-    frames = [_parse_frame(text) for text in (args.frame or ["0"])]
-    points = [_parse_point(text, robot) for text in (args.point or ["wrist"])]
-    rows = None if args.rows is None else _parse_rows(args.rows)
+    robot = load(args)
+    frames = [parse_frame(text) for text in (args.frame or ["0"])]
+    points = [parse_point(text, robot) for text in (args.point or ["wrist"])]
+    rows = None if args.rows is None else parse_rows(args.rows)
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
-    return _progress(f"{args.target} module for {robot.name}",
+    return progress(f"{args.target} module for {robot.name}",
                      lambda: generate(robot, args.target, jacobians=requests, strategy=args.strategy,
                                       command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration))
 
 
-# --- argument parsing helpers --------------------------------------------------------------------------------
-
-
-def _parse_rows(text: str) -> tuple[int, ...]:
-    """Task rows by name (``v_x .. omega_z``, :data:`symjac.jacobian.ROW_NAMES`) -> indices 0..5."""
-    try:
-        return rows_from_names(text)
-    except ArgumentError as error:
-        raise ArgumentError(f"--rows: {error}") from None
-
-
-def _parse_frame(text: str) -> Frame:
-    if text in ("world", "tool"):
-        return text  # type: ignore[return-value]
-    try:
-        return int(text)
-    except ValueError:
-        raise FrameError(f"--frame must be a frame number, 'world' or 'tool', got {text!r}") from None
-
-
-def _parse_point(text: str, robot: Robot) -> Any:
-    if text in ("wrist", "tool"):
-        return text
-    parts = text.split(",")
-    if len(parts) != 3:
-        raise FrameError(f"--point must be 'wrist', 'tool' or three coordinates x,y,z, got {text!r}")
-    names = {parameter.name: parameter.symbol for parameter in robot.parameters}
-    try:
-        return tuple(parse_expression(part.strip(), names) for part in parts)
-    except ExpressionError as error:
-        raise FrameError(f"--point: {error}") from None
-
-
-def _parse_list(text: str, length: int, option: str, names: dict[str, sp.Symbol]) -> list[sp.Expr]:
-    parts = text.split(",")
-    if len(parts) != length:
-        raise ArgumentError(f"{option} needs {length} comma-separated values, got {len(parts)} in {text!r}")
-    try:
-        return [parse_expression(part, names) for part in parts]
-    except ExpressionError as error:
-        raise ArgumentError(f"{option}: {error}") from None
-
-
 # --- output helpers ------------------------------------------------------------------------------------------
-
-
-def _progress(what: str, compute: Callable[[], Any]) -> Any:
-    """Run ``compute``, telling a human on a terminal what is happening and how long it took."""
-    interactive = sys.stderr.isatty()
-    if interactive:
-        print(f"deriving {what} ...", end="", file=sys.stderr, flush=True)
-    start = time.perf_counter()
-    result = compute()
-    if interactive:
-        print(f" {time.perf_counter() - start:.2f} s", file=sys.stderr)
-    return result
 
 
 def _numeric(robot: Robot, matrix: sp.MatrixBase, numeric: bool) -> sp.MatrixBase:
@@ -380,14 +356,6 @@ def _numeric(robot: Robot, matrix: sp.MatrixBase, numeric: bool) -> sp.MatrixBas
 def _numeric_values(robot: Robot) -> dict[sp.Symbol, sp.Float]:
     """The parameters' defaults as short decimals (``0.4318``, not ``2159/5000``)."""
     return {symbol: sp.Float(repr(float(value))) for symbol, value in robot.defaults.items()}
-
-
-def _emit(text: str, output: Path | None) -> None:
-    """Write the finished text to stdout, or atomically to ``output`` (never a partial file)."""
-    if output is None:
-        sys.stdout.write(text)
-    else:
-        write_text(output, text)
 
 
 if __name__ == "__main__":  # pragma: no cover

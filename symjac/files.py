@@ -2,35 +2,79 @@
 
 from __future__ import annotations
 
+import errno
 import os
+import stat
 import tempfile
 from pathlib import Path
 
 __all__ = ["write_text"]
 
+# Paths that name a process's own streams or kernel objects (``/dev/stdout`` resolves through ``/proc/self/fd/1``
+# to whatever the shell redirected it to): always written through, never replaced.
+_SPECIAL_ROOTS = ("/dev/", "/proc/")
+
 
 def write_text(path: str | os.PathLike[str], text: str) -> Path:
-    """Write ``text`` (UTF-8, newline line ends) to ``path`` atomically and return the path.
+    """Write ``text`` (UTF-8, newline line ends) to ``path`` and return the path.
 
-    The text goes to a temporary file in the same folder, which then replaces ``path`` (:func:`os.replace`). A
-    failure at any point leaves no partial file and an existing file untouched. A new file gets the permissions the
-    umask allows (0644 under the usual umask 022); a replaced file keeps its own.
+    What is at ``path`` decides how:
+
+    - nothing, or a regular file: the text goes to a temporary file in the same folder, which then replaces the file
+      (:func:`os.replace`), so a failure leaves no partial file and an existing file untouched. A new file gets the
+      permissions the umask allows (0644 under the usual umask 022, 0640 under 027); a replaced file keeps its own.
+    - a symbolic link: the same, done to the file the link points to; the link stays a link.
+    - a FIFO, a device (``/dev/null``, ``/dev/stdout``) or a socket: opened and written through, never replaced.
+    - a directory: :class:`IsADirectoryError`.
+
+    Every :class:`OSError` raised names ``path`` as given, never the temporary file.
     """
     target = Path(path)
-    directory = target.parent if str(target.parent) else Path(".")
     try:
-        mode = target.stat().st_mode & 0o7777
+        if _is_special(target):
+            with open(target, "w", encoding="utf-8", newline="\n") as stream:
+                stream.write(text)
+        else:
+            _replace(Path(os.path.realpath(target)), text)
+    except OSError as error:
+        raise _naming(error, target) from None
+    return target
+
+
+def _is_special(target: Path) -> bool:
+    """Whether ``target`` is to be written through: anything that exists and is not a regular file."""
+    try:
+        mode: int | None = target.stat().st_mode  # follows symbolic links
+    except FileNotFoundError:
+        mode = None  # a new file, or a dangling link: created where the link points
+    if mode is not None and stat.S_ISDIR(mode):
+        raise IsADirectoryError(errno.EISDIR, "is a directory, not a file", str(target))
+    if str(target.absolute()).startswith(_SPECIAL_ROOTS):
+        return True
+    return mode is not None and not stat.S_ISREG(mode)
+
+
+def _replace(real: Path, text: str) -> None:
+    """Atomically replace (or create) the regular file ``real``, keeping an existing file's permissions."""
+    try:
+        mode = real.stat().st_mode & 0o7777
     except FileNotFoundError:
         umask = os.umask(0)
         os.umask(umask)
         mode = 0o666 & ~umask
-    handle, temporary = tempfile.mkstemp(dir=directory, prefix=f".{target.name}.", suffix=".tmp")
+    handle, temporary = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".tmp")
     try:
         with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
             stream.write(text)
         os.chmod(temporary, mode)
-        os.replace(temporary, target)
+        os.replace(temporary, real)
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
-    return target
+
+
+def _naming(error: OSError, target: Path) -> OSError:
+    """The same error, naming the user's path (and no second, internal file name)."""
+    if error.errno is None:  # pragma: no cover - every OSError the calls above raise carries an errno
+        return error
+    return type(error)(error.errno, error.strerror, str(target))

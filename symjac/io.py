@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import re
+import sys
 import tomllib
 from importlib import resources
 from pathlib import Path
@@ -119,14 +120,27 @@ def robot_from_toml(text: str, source: str = "<string>") -> Robot:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise RobotFileError(f"invalid TOML: {error}", source=source) from None
-    except ValueError:  # tomllib lets int() refuse an integer over Python's 4300-digit limit
-        raise RobotFileError("invalid TOML: a number has too many digits", source=source) from None
+    except ValueError:  # tomllib's int() past Python's int-string limit (sys.get_int_max_str_digits())
+        raise _huge_integer(text, source) from None
     except RecursionError:
         raise RobotFileError("invalid TOML: arrays or tables nested too deeply", source=source) from None
     if not data:  # blank, or only comments
         raise RobotFileError("the file is empty: a robot file needs 'name', 'convention' and [[joints]]",
                              source=source)
     return robot_from_mapping(data, source=source)
+
+
+def _huge_integer(text: str, source: str) -> RobotFileError:
+    """The error for a decimal integer too long to read, naming its field and line when they can be found."""
+    limit = sys.get_int_max_str_digits()
+    match = re.search(rf"[0-9][0-9_]{{{limit},}}", text)
+    if match is None:  # pragma: no cover - tomllib raises a plain ValueError only for such an integer
+        return RobotFileError(f"a number is too long (more than {limit} digits)", source=source)
+    line = text.count("\n", 0, match.start()) + 1
+    key = re.match(r"\s*([\w\"'.-]+)\s*=", text.splitlines()[line - 1])
+    digits = sum(c.isdigit() for c in match.group())
+    return RobotFileError(f"integer with {digits} digits on line {line}; at most {limit} digits are read",
+                          source=source, field=key.group(1).strip("\"'") if key else None)
 
 
 def robot_to_toml(robot: Robot) -> str:

@@ -85,8 +85,9 @@ def rows_from_names(names: str | Sequence[str]) -> tuple[int, ...]:
     unknown = [part for part in parts if part not in ROW_NAMES]
     if unknown or not parts:
         raise ArgumentError(f"unknown row {unknown[0] if unknown else ''!r}; use {', '.join(ROW_NAMES)}")
-    if len(set(parts)) != len(parts):
-        raise ArgumentError(f"rows must not repeat, got {', '.join(parts)}")
+    repeated = next((part for i, part in enumerate(parts) if part in parts[:i]), None)
+    if repeated is not None:
+        raise ArgumentError(f"rows must not repeat: {repeated} is given twice in {', '.join(parts)}")
     return tuple(ROW_NAMES.index(part) for part in parts)
 
 

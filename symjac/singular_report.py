@@ -33,12 +33,14 @@ from symjac.singular_geometry import (
     named_axis,
     parallel,
 )
+from symjac.singular_limits import LimitStatus, limit_status
 from symjac.singular_solve import Solution, solution_sample, solve_factor
 from symjac.singularity import Determinant, determinant
 from symjac.spaces import jacobian_spaces, task_rows
 
 __all__ = [
     "DirectionPart",
+    "LimitStatus",
     "LostDirection",
     "SelfMotion",
     "SingularFactor",
@@ -94,7 +96,8 @@ class SingularFactor:
 
     ``cause`` holds the :class:`~symjac.singular_geometry.SingularityKind` and its evidence. ``sample`` is a
     configuration on the singular set (parameters at their defaults); ``lost_direction`` what the arm cannot do
-    there, ``self_motion`` a joint motion that moves nothing.
+    there, ``self_motion`` a joint motion that moves nothing. ``limits`` says, for each solution, whether it lies
+    inside the joint limits (:func:`symjac.singular_limits.limit_status`).
     """
 
     expression: sp.Expr
@@ -106,6 +109,21 @@ class SingularFactor:
     sample: tuple[float, ...] | None = None
     lost_direction: LostDirection | None = None
     self_motion: SelfMotion | None = None
+    limits: tuple[LimitStatus, ...] = ()
+
+    @property
+    def reachable(self) -> bool | None:
+        """Whether the arm can reach this singular set within its joint limits.
+
+        ``False`` when every solution lies outside the limits, ``True`` when one lies (at least partly) inside or
+        involves only joints without limits, ``None`` when that could not be decided or there are no solutions.
+        """
+        if not self.limits:
+            return None
+        if all(status is LimitStatus.OUTSIDE for status in self.limits):
+            return False
+        reached = (LimitStatus.INSIDE, LimitStatus.PARTLY, LimitStatus.UNLIMITED)
+        return True if any(status in reached for status in self.limits) else None
 
     @property
     def kind(self) -> SingularityKind:
@@ -192,8 +210,10 @@ def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int,
         if sample is not None:
             break
     factor_joints = {i for i, joint in enumerate(model.joints) if factor.has(joint.variable)}
+    limits = tuple(limit_status(chain, solution) for solution in solutions)
     if sample is None:
-        return SingularFactor(factor, multiplicity, solutions, existence, holds, classify((), factor_joints, chain))
+        return SingularFactor(factor, multiplicity, solutions, existence, holds, classify((), factor_joints, chain),
+                              limits=limits)
     geometry = geometry_at(chain, sample, det.point)
     new = [finding for finding in findings(chain, geometry) if finding.key not in known]
     cause = classify(new, factor_joints, chain)
@@ -205,7 +225,8 @@ def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int,
     motion = None
     if spaces.null_space.shape[1]:
         motion = SelfMotion(tuple(float(x) for x in _canonical(spaces.null_space[:, 0])), det.columns)
-    return SingularFactor(factor, multiplicity, solutions, existence, holds, cause, tuple(sample), lost, motion)
+    return SingularFactor(factor, multiplicity, solutions, existence, holds, cause, tuple(sample), lost, motion,
+                          limits)
 
 
 def _lost_direction(chain: Chain, det: Determinant, sample: Sequence[float], geometry: Geometry,

@@ -134,7 +134,7 @@ def test_module_agrees_with_references(workspace, name, target):
     middle, label = robot.dof // 2, "tool" if robot.tool is not None else "p1"
     names = [tuple(f"{kind}{suffix}" for kind in ("jacobian", "joint_torques", "manipulability",
                                                    "jacobian_determinant"))
-             for suffix in ("_0_wrist", f"_{middle}_{label}")]
+             for suffix in ("", f"_{middle}_{label}")]
     for case in _references(name):
         q, wrench = case["q"], case["wrench"]
         np.testing.assert_allclose(_call(module, target, "forward_kinematics", q), case["pose"], atol=1e-12)
@@ -153,9 +153,9 @@ def test_module_agrees_with_references(workspace, name, target):
                 assert not hasattr(module, det_name)
     configurations = np.array([case["q"] for case in _references(name)])
     if target in BATCHED:
-        batched = module.jacobian_0_wrist(configurations.reshape(2, 2, robot.dof))
+        batched = module.jacobian(configurations.reshape(2, 2, robot.dof))
         assert batched.shape == (2, 2, 6, robot.dof)
-        singles = np.array([module.jacobian_0_wrist(q) for q in configurations]).reshape(batched.shape)
+        singles = np.array([module.jacobian(q) for q in configurations]).reshape(batched.shape)
         np.testing.assert_allclose(batched, singles, atol=1e-15, rtol=1e-14)
 
 
@@ -171,7 +171,7 @@ def test_parameters_are_overridable_per_call(workspace, target):
 
 
 def _call_kw(module, target, q, **parameters):
-    return np.array(module.jacobian_0_wrist(q if BACKENDS[target].batched else list(q), **parameters), dtype=float)
+    return np.array(module.jacobian(q if BACKENDS[target].batched else list(q), **parameters), dtype=float)
 
 
 @pytest.mark.parametrize("target", TARGETS)
@@ -179,24 +179,24 @@ def test_wrong_shapes_raise_and_nan_propagates(workspace, target):
     module = _module(workspace, "planar2r", target)
     if not BACKENDS[target].batched:
         with pytest.raises(ValueError, match="q must be a sequence of 2 numbers, got 3 values"):
-            module.jacobian_0_wrist([0.1, 0.2, 0.3])
+            module.jacobian([0.1, 0.2, 0.3])
         with pytest.raises(ValueError, match="q must be a sequence of 2 numbers, got float"):
-            module.jacobian_0_wrist(0.5)
+            module.jacobian(0.5)
         with pytest.raises(ValueError, match="wrench must be a sequence of 6 numbers"):
-            module.joint_torques_0_wrist([0.1, 0.2], [1.0, 2.0])
-        J = np.array(module.jacobian_0_wrist([float("nan"), 0.2]))
+            module.joint_torques([0.1, 0.2], [1.0, 2.0])
+        J = np.array(module.jacobian([float("nan"), 0.2]))
     else:
         with pytest.raises(ValueError, match=r"q must have shape \(\.\.\., 2\), got shape \(3,\)"):
-            module.jacobian_0_wrist(np.zeros(3))
+            module.jacobian(np.zeros(3))
         with pytest.raises(ValueError, match="out"):
-            module.jacobian_0_wrist(np.zeros((4, 2)), out=np.empty((4, 2, 6)))
+            module.jacobian(np.zeros((4, 2)), out=np.empty((4, 2, 6)))
         with pytest.raises(ValueError, match="wrench must have shape"):
-            module.joint_torques_0_wrist(np.zeros(2), np.zeros(5))
-        J = module.jacobian_0_wrist(np.array([np.nan, 0.2]))
+            module.joint_torques(np.zeros(2), np.zeros(5))
+        J = module.jacobian(np.array([np.nan, 0.2]))
         out = np.empty((3, 6, 2))
-        assert module.jacobian_0_wrist(np.zeros((3, 2)), out=out) is out
+        assert module.jacobian(np.zeros((3, 2)), out=out) is out
         # broadcasting of q against the wrench
-        torques = module.joint_torques_0_wrist(np.zeros(2), np.ones((5, 6)))
+        torques = module.joint_torques(np.zeros(2), np.ones((5, 6)))
         assert torques.shape == (5, 2)
     assert np.isnan(J[:2]).all()  # v depends on theta1
     np.testing.assert_array_equal(J[5], [1.0, 1.0])  # omega_z does not
@@ -204,7 +204,7 @@ def test_wrong_shapes_raise_and_nan_propagates(workspace, target):
 
 def test_python_module_uses_floats_only_and_returns_nested_tuples(workspace):
     module = _module(workspace, "ur5", "python")
-    J = module.jacobian_0_wrist([0.1] * 6)
+    J = module.jacobian([0.1] * 6)
     assert isinstance(J, tuple) and all(isinstance(row, tuple) and len(row) == 6 for row in J)
     assert all(type(value) is float for row in J for value in row)
 
@@ -349,7 +349,7 @@ def test_c_kernels_match_the_numpy_fallback(workspace):
     assert module.BACKEND == "c", module.BUILD_ERROR
     q = np.random.default_rng(5).uniform(-3, 3, (20000, 7))  # large enough for threads and vectorised sines
     parameters = tuple(module.PARAMETERS.values())
-    for function, kernel in ((module.jacobian_0_wrist, module._jacobian_0_wrist_kernel),
+    for function, kernel in ((module.jacobian, module._jacobian_kernel),
                              (module.forward_kinematics, module._forward_kinematics_kernel)):
         fast = function(q)
         reference = module._evaluate(kernel, ((q, 7, "q"),), fast.shape[1:], None, parameters)
@@ -358,8 +358,8 @@ def test_c_kernels_match_the_numpy_fallback(workspace):
         assert function(q, out) is out
         np.testing.assert_array_equal(out, fast)
     # non-contiguous and integer inputs take the converting path
-    np.testing.assert_allclose(module.jacobian_0_wrist(q[::2].astype(np.float32).astype(int)),
-                               module._evaluate(module._jacobian_0_wrist_kernel, ((q[::2].astype(int), 7, "q"),),
+    np.testing.assert_allclose(module.jacobian(q[::2].astype(np.float32).astype(int)),
+                               module._evaluate(module._jacobian_kernel, ((q[::2].astype(int), 7, "q"),),
                                                 (6, 7), None, parameters), atol=1e-13)
 
 

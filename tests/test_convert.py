@@ -146,7 +146,7 @@ def test_cli_convert_urdf_links(capsys):
     assert main(["convert", "panda.urdf", "--to", "toml", "--tip-link", "panda_link8"]) == 0
     assert robot_from_toml(capsys.readouterr().out).tool.rpy == (0, 0, 0)
     assert main(["convert", "panda.urdf", "--to", "toml", "--tip-link", "nowhere"]) == 2
-    assert "tip_link 'nowhere' is not a link" in capsys.readouterr().err
+    assert "--tip-link 'nowhere' is not a link" in capsys.readouterr().err
 
 
 def test_convert_command_says_when_the_table_needs_a_tool_transform(capsys):

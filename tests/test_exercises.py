@@ -45,3 +45,29 @@ def test_numbers_are_compared_to_a_tolerance():
     assert check(0.9 + 1e-12, 0.9)
     with pytest.raises(AssertionError):
         check(0.91, 0.9)
+
+
+def test_plain_symbols_are_matched_by_name():
+    """Issue 14: symbols without assumptions are the robot's symbols of the same name."""
+    from symjac import jacobian
+
+    robot = load_robot("planar2r")
+    J = jacobian(robot)
+    L1, L2 = sp.symbols("L1 L2")
+    p1, p2 = sp.symbols("theta1 theta2")
+    assert check(-L2 * sp.sin(p1 + p2), J[0, 1], robot)
+    assert check(sp.Matrix([-L1 * sp.sin(p1) - L2 * sp.sin(p1 + p2), -L2 * sp.sin(p1 + p2)]).T, J[0, :], robot)
+    assert check(-L2 * sp.sin(p1) * sp.cos(p2) - L2 * sp.cos(p1) * sp.sin(p2), J[0, 1])  # no robot: by expected
+    with pytest.raises(AssertionError, match="expected"):
+        check(-L1 * sp.sin(p1 + p2), J[0, 1], robot)
+    with pytest.raises(AssertionError, match="expected"):
+        check(-L2 * sp.sin(p1 - p2), J[0, 1], robot)
+    with pytest.raises(AssertionError, match="expected"):
+        check(-sp.Symbol("L3") * sp.sin(p1 + p2), J[0, 1], robot)
+
+
+def test_a_placeholder_is_not_an_answer():
+    with pytest.raises(AssertionError, match="no answer yet"):
+        check(..., sp.sin(t1))
+    with pytest.raises(AssertionError, match="no answer yet"):
+        check(None, 0.5)

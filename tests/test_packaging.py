@@ -207,3 +207,22 @@ def test_editable_install_finds_the_templates(tmp_path, outside):
     out = _run([symjac, "fk", "planar2r", "--standalone"], cwd=outside)
     assert r"\documentclass{article}" in out
     assert out.rstrip().endswith(r"\end{document}")
+
+
+def test_the_jupyter_extra_brings_a_front_end_that_ci_does_not_install():
+    """Issue 14 point 8: ``pip install -e '.[jupyter]'`` gives JupyterLab with jupytext; ``.[test]`` does not."""
+    import re
+    import tomllib
+
+    extras = tomllib.loads((REPO / "pyproject.toml").read_text(encoding="utf-8"))["project"]["optional-dependencies"]
+
+    def names(extra: str) -> set[str]:
+        found = set()
+        for requirement in extras[extra]:
+            name = re.split(r"[<>=\[ ;]", requirement, maxsplit=1)[0].lower()
+            nested = re.fullmatch(r"symjac\[(\w+)\]", requirement)
+            found |= names(nested.group(1)) if nested else {name}
+        return found
+
+    assert {"jupyterlab", "jupytext", "ipykernel"} <= names("jupyter")
+    assert "jupyterlab" not in names("test") and "notebook" not in names("test")

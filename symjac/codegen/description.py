@@ -11,7 +11,7 @@ from types import MappingProxyType
 from typing import Literal
 
 from symjac.chain import Chain
-from symjac.codegen.layout import LINE_WIDTH, tuple_literal, wrap_statement
+from symjac.codegen.layout import LINE_WIDTH, comment_lines, tuple_literal, wrap_statement
 from symjac.codegen.lower import LoweredFunction
 
 __all__ = [
@@ -204,8 +204,9 @@ class JacobianInfo:
 class ModuleDescription:
     """The whole generated module as data: what :func:`symjac.codegen.render_module` renders.
 
-    ``command`` is how to regenerate the module (the command line typed, or the equivalent Python call) and
-    ``command_lines`` the same broken into header comment lines.
+    ``command`` is how to regenerate the module (the command line typed, or the equivalent Python call),
+    ``command_lines`` the same broken into header comment lines and ``command_note`` what else the reader needs to
+    know to run it (the folder a relative path is relative to, which robot ``robot`` is), or nothing.
     """
 
     target: str
@@ -229,11 +230,17 @@ class ModuleDescription:
     parameter_lines: tuple[str, ...] = ()
     extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     rates: tuple[str, ...] = ()
+    command_note: str = ""
 
     @property
     def acceleration(self) -> bool:
         """Whether the module has the acceleration-level functions (Hessian, bias acceleration, gradient)."""
         return any(info.hessian for info in self.jacobians)
+
+    @property
+    def command_note_lines(self) -> tuple[str, ...]:
+        """``command_note`` in parentheses, broken into header comment lines (none without a note)."""
+        return comment_lines(f"({self.command_note})") if self.command_note else ()
 
     @property
     def rate_names_text(self) -> str:

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import itertools
 import os
+import shlex
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Literal, get_args
@@ -44,7 +46,7 @@ from symjac.codegen.request import (
     requests_from,
     validate_robot,
 )
-from symjac.errors import CodegenError
+from symjac.errors import CodegenError, SymjacError
 from symjac.files import write_text
 from symjac.io import catalog, load_robot
 from symjac.jacobian import ROW_NAMES, Point
@@ -101,8 +103,6 @@ def describe(
         names = {kind: f"{kind}{label}" for kind in ("jacobian", "joint_torques", "manipulability",
                                                       "jacobian_determinant", "_kinematics", "hessian",
                                                       "bias_acceleration", "manipulability_gradient")}
-        if any(info.jacobian == names["jacobian"] for info in infos):
-            raise CodegenError(f"the Jacobian in frame {request.frame} at point {point_name} is requested twice")
         J = lowered_jacobian(chain, request.frame, point, selected, strategy)
         where, at = frame_text(request.frame), point_words(point_name)
         add(J, names["jacobian"], "jacobian", f"The basic Jacobian [v; omega] at the {at}, in frame {where}")
@@ -151,11 +151,13 @@ def describe(
     parameter_lines = wrap_statement("    parameters = ", "(" + ", ".join(parameter_names)
                                      + ("," if len(parameter_names) == 1 else "") + ")")
     if command is None:
-        catalog_robot = load_robot(model.name) if model.name in catalog() else None
-        command = python_call(model, target, requests, scalars or {}, strategy, catalog_robot, acceleration)
+        loader, command_note = _robot_loader(robot if isinstance(robot, Robot) else model)  # chains are shared
+        command = python_call(model, target, requests, scalars or {}, strategy, loader, acceleration)
         command_lines = comment_lines(command)
     else:
         command_lines = comment_lines(command, continuation=" \\")  # a shell line continues with a backslash
+        source = robot.source if isinstance(robot, Robot) else model.source
+        command_note = "in the folder it was run in" if _names_relative_file(source, command) else ""
     return ModuleDescription(
         target=target, template=spec.template, version=__version__, robot=model.name,
         convention=model.convention.value, dof=model.dof,
@@ -164,10 +166,50 @@ def describe(
         functions=functions, jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
         exports=tuple(_sorted_exports(exports)), command=command, command_lines=command_lines,
+        command_note=command_note,
         title=spec.title, description_text=spec.description, nan_policy=spec.nan_policy,
         imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(spec.imports))),
         parameter_lines=tuple(parameter_lines), extras=extras, rates=rates,
     )
+
+
+def _robot_loader(robot: Robot) -> tuple[str, str]:
+    """How the header's Python call gets ``robot`` back, and a note when that needs saying.
+
+    A catalog robot loads by name, a robot from a file by the file's path as it was given (the note says from which
+    folder when it is relative) as long as loading it again gives the same robot; anything else (a mapping, a URDF
+    that needed ``tip_link``) is written ``robot`` and the note says which robot that is.
+    """
+    candidates = [robot.name] if robot.name in catalog() else []
+    candidates += [robot.source] if robot.source not in ("<mapping>", "<string>") else []
+    for candidate in candidates:
+        try:
+            same = load_robot(candidate) == robot
+        except SymjacError:
+            continue
+        if same:
+            path = Path(candidate)
+            relative = candidate not in catalog() and not path.is_absolute() and path.is_file()
+            return f"symjac.load_robot({_string(candidate)})", "in the folder it was run in" if relative else ""
+    origin = "a mapping" if robot.source in ("<mapping>", "<string>") else robot.source
+    return "robot", f"robot: the Robot given to symjac.generate, from {origin}"
+
+
+def _string(text: str) -> str:
+    """A Python string literal for ``text`` in double quotes (the form the header's calls use)."""
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _names_relative_file(source: str, command: str) -> bool:
+    """Whether the command line refers to the robot file, or writes its output, through a relative path."""
+    try:
+        words = shlex.split(command)
+    except ValueError:
+        return False
+    outputs = [after for before, after in itertools.pairwise(words) if before in ("-o", "--output")]
+    outputs += [word.split("=", 1)[1] for word in words if word.startswith("--output=")]
+    paths = [source] if Path(source).is_file() and source in words else []
+    return any(not Path(path).is_absolute() and path != "-" for path in paths + outputs)
 
 
 def _sorted_exports(names: Iterable[str]) -> list[str]:
@@ -218,8 +260,10 @@ def generate(
         Which Jacobian expressions to start from: the candidate with fewest operations after CSE (default), the raw
         chain products only, or the compact textbook form only.
     command : str, optional
-        How to regenerate the module, for its header: the command line that was typed (the CLI passes it).
-        Default: the equivalent ``symjac.generate(...)`` call, written from the request.
+        How to regenerate the module, for its header: the command line that was typed (the CLI passes it; the
+        header adds "in the folder it was run in" when it names a relative path). Default: the equivalent
+        ``symjac.generate(...)`` call, which loads a catalog robot by name and a robot read from a file by the
+        path it was read from; any other robot is written ``robot`` and the header says so.
     acceleration : bool
         Also generate, for every Jacobian ``jacobian<suffix>``, the acceleration-level functions with the same
         suffix: ``hessian<suffix>(q)`` (shape rows x n x n, ``H[i, j, m] = dJ[i, j]/dq_m``),
@@ -231,7 +275,11 @@ def generate(
     Returns
     -------
     str
-        The module source; identical input gives byte-identical output.
+        The module source; identical input gives byte-identical output. The first Jacobian requested is always
+        ``jacobian`` (with ``joint_torques``, ``manipulability``, ``jacobian_determinant`` and, with
+        ``acceleration``, ``hessian``, ``bias_acceleration``, ``manipulability_gradient``); every other one adds
+        the suffix ``_<frame>_<point>`` and, with ``rows``, ``_r<rows>``: ``jacobian_3_tool``, ``jacobian_0_p1``
+        (``p1``, ``p2``: explicit points in the order given), ``hessian_0_wrist_r012``.
 
     Raises
     ------
@@ -263,5 +311,8 @@ def render_module(description: ModuleDescription) -> str:
 
 
 def write_module(path: str | os.PathLike[str], text: str) -> Path:
-    """Write a generated module to ``path`` atomically (:func:`symjac.files.write_text`): never a partial file."""
+    """Write a generated module to ``path`` as ``symjac codegen -o`` does (:func:`symjac.files.write_text`).
+
+    A regular file is replaced atomically (never a partial file) and keeps its permissions; a new one gets the umask's.
+    """
     return write_text(path, text)

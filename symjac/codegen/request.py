@@ -154,9 +154,24 @@ def frame_text(frame: Frame) -> str:
 
 
 def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[str]:
-    """Function-name suffixes: none for a single Jacobian, else ``_<frame>_<point>`` (``_3_tool``, ``_0_p1``)."""
-    if len(requests) == 1:
-        return [""]
+    """Function-name suffixes: none for the first request, ``_<frame>_<point>[_r<rows>]`` for every other one.
+
+    The first Jacobian requested is always ``jacobian`` (and ``joint_torques``, ``manipulability``, ``hessian``,
+    ...), however many follow, so code written against a one-Jacobian module keeps working when a frame is added.
+    The others are named by frame, point and rows: ``_3_tool``, ``_0_wrist_r01`` (rows v_x, v_y), ``_0_p1`` (the
+    first explicit point; ``p2`` the second distinct one, and so on).
+
+    Raises
+    ------
+    CodegenError
+        If two requests are the same Jacobian (same frame, point and rows).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> function_labels(load_robot("planar2r"), [JacobianRequest(0), JacobianRequest("tool", "wrist", (0, 1))])
+    ['', '_tool_wrist_r01']
+    """
     labels = []
     custom: dict[tuple[sp.Expr, ...], str] = {}
     for request in requests:
@@ -166,30 +181,32 @@ def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[s
         else:
             point = custom.setdefault(point_vector(robot, request.point), f"p{len(custom) + 1}")
         rows = "" if request.rows is None else "_r" + "".join(str(r) for r in request.rows)
-        labels.append(f"_{frame}_{point}{rows}")
-    return labels
+        label = f"_{frame}_{point}{rows}"
+        if label in labels:
+            raise CodegenError(f"the Jacobian in frame {request.frame} at point {point} is requested twice")
+        labels.append(label)
+    return ["", *labels[1:]]
 
 
 def python_call(
     robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
-    catalog_robot: Robot | None, acceleration: bool = False,
+    loader: str, acceleration: bool = False,
 ) -> str:
     """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
 
-    ``catalog_robot`` is the catalog robot of the same name if there is one; only when it equals ``robot`` does the
-    call load it by name (a robot from a URDF or a mapping is ``robot``, the one the header's Robot line names).
+    ``loader`` is the Python expression that gives the robot back: ``symjac.load_robot("planar2r")`` for a catalog
+    robot or one read from a file, ``robot`` for one the call cannot load (the header then says which it is).
 
     Examples
     --------
     >>> from symjac import load_robot
     >>> robot = load_robot("planar2r")
     >>> python_call(robot, "numpy", [JacobianRequest(0), JacobianRequest("tool", (1, 0, 0), (0, 1))], {}, "raw",
-    ...             robot)
+    ...             'symjac.load_robot("planar2r")')
     'symjac.generate(symjac.load_robot("planar2r"), "numpy", jacobians=[symjac.JacobianRequest(0, "wrist"), symjac.JacobianRequest("tool", (1, 0, 0), (0, 1))], strategy="raw")'
     """  # noqa: E501  # a doctest's expected output cannot be wrapped
-    loaded = f'symjac.load_robot("{robot.name}")' if catalog_robot == robot else "robot"
     items = [_request_text(robot, request) for request in requests]
-    parts = [loaded, f'"{target}"', f"jacobians=[{', '.join(items)}]"]
+    parts = [loader, f'"{target}"', f"jacobians=[{', '.join(items)}]"]
     if scalars:
         parts.append("scalars={" + ", ".join(f'"{name}": {expr}' for name, expr in scalars.items()) + "}")
     if strategy != "fastest":

@@ -66,6 +66,8 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
             "lost": prose.lost_words(f),
             "self_motion": None if f.self_motion is None else f.self_motion.rates,
             "self_motion_words": prose.self_motion_words(f),
+            "solution_limits": [str(status) for status in f.limits], "reachable_within_limits": f.reachable,
+            "limits_words": prose.limit_text(f),
         } for f in report.factors],
     }
 

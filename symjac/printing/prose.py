@@ -12,7 +12,7 @@ import sympy as sp
 from symjac.jacobian import ROW_NAMES
 from symjac.model import Robot
 from symjac.singular_geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
-from symjac.singular_report import DirectionPart, LostDirection, SingularFactor, SingularityReport
+from symjac.singular_report import DirectionPart, LimitStatus, LostDirection, SingularFactor, SingularityReport
 
 __all__ = [
     "KIND_REASONS",
@@ -21,6 +21,8 @@ __all__ = [
     "existence_words",
     "finding_sentence",
     "landmark_name",
+    "limit_parts",
+    "limit_text",
     "lost_words",
     "reason",
     "redundant_caption",
@@ -132,6 +134,40 @@ def existence_words(factor: SingularFactor) -> str:
     verdict = {True: "holds", False: "does not hold", None: "unknown"}[factor.exists_for_defaults]
     return (f"Exists only if {sp.sstr(factor.existence)} (assuming positive lengths; {verdict} for the default "
             "parameters).")
+
+
+_LIMIT_WORDS = {
+    LimitStatus.INSIDE: "is inside them",
+    LimitStatus.OUTSIDE: "is outside them",
+    LimitStatus.PARTLY: "is partly inside them (depending on the other joints)",
+    LimitStatus.UNKNOWN: "could not be checked",
+}
+
+
+def limit_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
+    """Where each solution lies relative to the joint limits, as caption parts (words and equations).
+
+    Nothing when no solution involves a joint with limits; a factor whose every solution lies outside them is
+    "not reachable within the joint limits".
+    """
+    marked = [(solution.equation, status) for solution, status in zip(factor.solutions, factor.limits, strict=True)
+              if status is not LimitStatus.UNLIMITED]
+    if not marked:
+        return ()
+    parts: list[str | sp.Basic] = [" Not reachable within the joint limits:" if factor.reachable is False
+                                   else " Joint limits:"]
+    for number, (equation, status) in enumerate(marked):
+        parts += [" " if number == 0 else "; ", equation, f" {_LIMIT_WORDS[status]}"]
+    parts.append(".")
+    return tuple(parts)
+
+
+def limit_text(factor: SingularFactor) -> str:
+    """:func:`limit_parts` as one line of plain text (``""`` when there is nothing to say)."""
+    def plain(part: str | sp.Basic) -> str:
+        return part if isinstance(part, str) else f"{sp.sstr(part.lhs)} = {sp.sstr(part.rhs)}"  # type: ignore[attr-defined]
+
+    return "".join(plain(part) for part in limit_parts(factor)).strip()
 
 
 def rows_caption(report: SingularityReport) -> str:

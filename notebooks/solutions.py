@@ -1,0 +1,44 @@
+"""Worked answers to the notebooks" exercises, kept out of the notebooks so students write their own.
+
+Each notebook"s exercise cells hold ``answer_N = ...  # your answer here``; ``SOLUTIONS[notebook][name]`` is the
+line that replaces it (``tests/test_notebooks.py`` runs every notebook with these in place and checks that the
+placeholders fail). Peek only after trying.
+"""
+
+SOLUTIONS: dict[str, dict[str, str]] = {
+    "01_differential_motion_2r": {
+        "answer_1": "answer_1 = -L2_s * sp.sin(theta1 + theta2)",
+        "answer_2": "answer_2 = sp.Matrix([-L2_s, L1_s])",
+        "answer_3": "answer_3 = {0, sp.pi}",
+    },
+    "02_stanford_arm": {
+        "answer_1": "answer_1 = sp.Matrix([c1 * s2, s1 * s2, c2, 0, 0, 0])",
+        "answer_2": "answer_2 = sp.Matrix([-p[1], p[0], 0])",
+        "answer_3": "answer_3 = J_3[2, 2]",
+    },
+    "03_propagation_and_statics": {
+        "answer_1": "answer_1 = L3 * f_y",
+        "answer_2": 'answer_2 = sp.Matrix([0, 0, sp.Symbol("thetadot1", real=True)])',
+        "answer_3": "answer_3 = True",
+    },
+    "04_singularities": {
+        "answer_1": "answer_1 = L1_s * L2_s * sp.sin(planar.q[1])",
+        "answer_2": "answer_2 = {0, sp.pi}",
+        "answer_3": "answer_3 = False",
+    },
+    "05_representation_jacobians": {
+        "answer_1": "answer_1 = sp.cos(theta_rpy)",
+        "answer_2": "answer_2 = [0.0, 0.0, 0.3]",
+        "answer_3": "answer_3 = sp.Matrix([[-sp.sin(alpha), sp.cos(alpha), 0]])",
+    },
+    "06_generated_code": {
+        "answer_1": "answer_1 = plain.jacobian([0.0] * 6, d3=0.2)[0][0]",
+        "answer_2": "answer_2 = batched.manipulability(batch[:50]).ravel()",
+    },
+    "07_acceleration_level": {
+        "answer_1": ("answer_1 = -L1 * sp.cos(theta1) * thetadot1**2"
+                     " - L2 * sp.cos(theta1 + theta2) * (thetadot1 + thetadot2) ** 2"),
+        "answer_2": "answer_2 = sp.cos(theta2) / sp.sin(theta2)",
+        "answer_3": "answer_3 = 0.9",
+    },
+}

@@ -1,0 +1,318 @@
+"""The paths around the main job (issue 14): output paths, URDF chains, one-line failures, options that say no."""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+import threading
+
+import pytest
+
+import symjac.cli
+from symjac import write_module
+from symjac.cli import main
+from symjac.io import catalog, urdf_catalog
+
+# A 2R arm whose flange carries two fingers: two leaf links, so the chain's end must be chosen.
+GRIPPER_URDF = """<?xml version="1.0"?>
+<robot name="gripper_arm">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="flange"/>
+  <link name="finger_a"/><link name="finger_b"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <origin xyz="0 0 0.5" rpy="0 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0.4 0 0" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/><limit lower="-2" upper="2"/></joint>
+  <joint name="mount" type="fixed"><parent link="l2"/><child link="flange"/><origin xyz="0.3 0 0"/></joint>
+  <joint name="fa" type="fixed"><parent link="flange"/><child link="finger_a"/><origin xyz="0 0.02 0.05"/></joint>
+  <joint name="fb" type="fixed"><parent link="flange"/><child link="finger_b"/><origin xyz="0 -0.02 0.05"/></joint>
+</robot>
+"""
+
+FK_PLANAR2R = ["fk", "planar2r", "--format", "pretty"]
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def one_line_error(capsys: pytest.CaptureFixture[str], *argv: str) -> str:
+    """Run a command that must fail with one line on stderr and status 2; return that line."""
+    status, out, err = run(capsys, *argv)
+    assert (status, out) == (2, ""), err
+    assert len(err.splitlines()) == 1 and err.startswith("symjac: error: "), err
+    assert "Traceback" not in err
+    return err.strip()
+
+
+@pytest.fixture
+def expected(capsys: pytest.CaptureFixture[str]) -> str:
+    """What ``symjac fk planar2r --format pretty`` prints on stdout."""
+    status, out, _ = run(capsys, *FK_PLANAR2R)
+    assert status == 0 and out.startswith("T_0_2 =")
+    return out
+
+
+@pytest.fixture
+def umask_027():
+    previous = os.umask(0o027)
+    yield
+    os.umask(previous)
+
+
+# --- 1. -o output paths ---------------------------------------------------------------------------------------------
+
+
+def test_dash_means_stdout(capsys, tmp_path, monkeypatch, expected):
+    monkeypatch.chdir(tmp_path)
+    assert run(capsys, *FK_PLANAR2R, "-o", "-") == (0, expected, "")
+    assert list(tmp_path.iterdir()) == []  # no file named "-"
+    assert run(capsys, *FK_PLANAR2R, "-o", "./-") == (0, "", "")  # unless asked for
+    assert (tmp_path / "-").read_text(encoding="utf-8") == expected
+
+
+def test_new_files_follow_the_umask_for_o_and_write_module_alike(capsys, tmp_path, umask_027, expected):
+    assert run(capsys, *FK_PLANAR2R, "-o", str(tmp_path / "fk.txt")) == (0, "", "")
+    assert run(capsys, "codegen", "planar2r", "-o", str(tmp_path / "cli_module.py")) == (0, "", "")
+    write_module(tmp_path / "api_module.py", "x = 1\n")
+    for name in ("fk.txt", "cli_module.py", "api_module.py"):
+        assert stat.S_IMODE((tmp_path / name).stat().st_mode) == 0o640, name
+    assert (tmp_path / "fk.txt").read_text(encoding="utf-8") == expected
+
+
+def test_a_replaced_file_is_a_new_file_with_the_old_mode(capsys, tmp_path, expected):
+    target = tmp_path / "fk.txt"
+    target.write_text("old\n", encoding="utf-8")
+    target.chmod(0o604)
+    before = target.stat().st_ino
+    assert run(capsys, *FK_PLANAR2R, "-o", str(target)) == (0, "", "")
+    assert target.read_text(encoding="utf-8") == expected
+    assert stat.S_IMODE(target.stat().st_mode) == 0o604
+    assert target.stat().st_ino != before  # renamed into place, so a reader never sees half a file
+    assert [p.name for p in tmp_path.iterdir()] == ["fk.txt"]
+
+
+@pytest.mark.parametrize("existing", [True, False], ids=["to a file", "dangling"])
+def test_a_symlink_is_written_through_and_stays_a_link(capsys, tmp_path, expected, existing):
+    real = tmp_path / "real" / "fk.txt"
+    real.parent.mkdir()
+    if existing:
+        real.write_text("old\n", encoding="utf-8")
+    link = tmp_path / "link.txt"
+    link.symlink_to(real)
+    assert run(capsys, *FK_PLANAR2R, "-o", str(link)) == (0, "", "")
+    assert link.is_symlink() and link.readlink() == real
+    assert real.read_text(encoding="utf-8") == expected
+    assert sorted(p.name for p in tmp_path.rglob("*")) == ["fk.txt", "link.txt", "real"]
+
+
+def test_a_fifo_is_written_through_not_replaced(capsys, tmp_path, expected):
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    received: list[str] = []
+    reader = threading.Thread(target=lambda: received.append(fifo.read_text(encoding="utf-8")), daemon=True)
+    reader.start()
+    assert run(capsys, *FK_PLANAR2R, "-o", str(fifo)) == (0, "", "")
+    reader.join(timeout=10)
+    assert received == [expected]
+    assert stat.S_ISFIFO(fifo.stat().st_mode)
+    assert [p.name for p in tmp_path.iterdir()] == ["pipe"]
+
+
+def test_a_process_stream_is_written_through(tmp_path, expected):
+    # /dev/stdout is /proc/self/fd/1; with stdout redirected to a file, that resolves to the file, and renaming over
+    # it would leave the text where the shell's descriptor no longer points. The test uses its own descriptor under
+    # /proc/self/fd rather than /dev/stdout, so that a regression can never replace a node in /dev.
+    redirected = tmp_path / "stdout.txt"
+    with open(redirected, "w", encoding="utf-8") as stream:
+        status = main([*FK_PLANAR2R, "-o", f"/proc/self/fd/{stream.fileno()}"])
+        written = os.fstat(stream.fileno())
+    assert status == 0
+    assert written.st_ino == redirected.stat().st_ino
+    assert redirected.read_text(encoding="utf-8") == expected
+
+
+def test_a_directory_is_refused_in_one_line(capsys, tmp_path):
+    line = one_line_error(capsys, *FK_PLANAR2R, "-o", str(tmp_path))
+    assert line == f"symjac: error: {tmp_path}: is a directory, not a file"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_errors_name_the_users_path_not_the_temporary_file(capsys, tmp_path, monkeypatch):
+    def full_disk(source, destination):
+        raise OSError(28, "No space left on device", source, destination)
+
+    monkeypatch.setattr(os, "replace", full_disk)
+    target = tmp_path / "fk.txt"
+    line = one_line_error(capsys, *FK_PLANAR2R, "-o", str(target))
+    assert line == f"symjac: error: {target}: No space left on device"
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(OSError, match="No space") as caught:
+        write_module(target, "x = 1\n")
+    assert caught.value.filename == str(target) and caught.value.filename2 is None
+
+
+def test_missing_folder_names_the_path(capsys, tmp_path):
+    target = tmp_path / "missing" / "fk.txt"
+    assert one_line_error(capsys, *FK_PLANAR2R, "-o", str(target)) == \
+        f"symjac: error: {target}: No such file or directory"
+
+
+# --- 2. --base-link / --tip-link on every command that takes ROBOT --------------------------------------------------
+
+COMMANDS = {
+    "show": [], "fk": [], "jacobian": [], "hessian": [], "torques": [], "singularities": [], "codegen": [],
+    "convert": ["--to", "toml"],
+}
+
+
+@pytest.fixture
+def gripper(tmp_path) -> str:
+    path = tmp_path / "arm.urdf"
+    path.write_text(GRIPPER_URDF, encoding="utf-8")
+    return str(path)
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_every_robot_command_takes_the_urdf_chain(capsys, gripper, command):
+    line = one_line_error(capsys, command, gripper, *COMMANDS[command])
+    assert "choose --tip-link" in line and "finger_a, finger_b" in line
+    status, out, err = run(capsys, command, gripper, *COMMANDS[command], "--tip-link", "finger_a")
+    assert (status, err) == (0, "") and out
+    status, out, err = run(capsys, command, gripper, *COMMANDS[command], "--base-link", "l1", "--tip-link",
+                           "flange")
+    assert (status, err) == (0, "") and out
+
+
+def test_the_links_decide_the_chain(capsys, gripper):
+    def data(*argv: str) -> dict:
+        status, out, err = run(capsys, *argv, "--format", "json")
+        assert (status, err) == (0, "")
+        return json.loads(out)
+
+    to_flange = data("fk", gripper, "--tip-link", "flange")
+    to_finger = data("fk", gripper, "--tip-link", "finger_a")
+    # finger_a sits 0.02 along the flange's y and 0.05 along its z: the orientation is the same, the position is not
+    assert [row[:3] for row in to_flange["entries"]] == [row[:3] for row in to_finger["entries"]]
+    assert [row[3] for row in to_flange["entries"]] != [row[3] for row in to_finger["entries"]]
+    assert data("jacobian", gripper, "--tip-link", "flange")["shape"] == [6, 2]
+    assert data("jacobian", gripper, "--base-link", "l1", "--tip-link", "flange")["shape"] == [6, 1]
+
+
+@pytest.mark.parametrize("option", ["--tip-link", "--base-link"])
+@pytest.mark.parametrize("command", COMMANDS)
+def test_links_are_refused_for_a_toml_robot(capsys, command, option):
+    line = one_line_error(capsys, command, "planar2r", *COMMANDS[command], option, "tip")
+    assert line == f"symjac: error: {option} applies to URDF files only; 'planar2r' is not one"
+
+
+def test_help_names_all_three_kinds_of_robot(capsys):
+    for command in COMMANDS:
+        with pytest.raises(SystemExit):
+            main([command, "--help"])
+        text = " ".join(capsys.readouterr().out.split())
+        assert "a TOML file or a URDF file" in text and "--tip-link" in text and "--base-link" in text, command
+
+
+# --- 3. every failure is one line -----------------------------------------------------------------------------------
+
+
+def test_a_huge_integer_in_a_robot_file_is_one_line_naming_file_and_field(capsys, tmp_path):
+    path = tmp_path / "huge.toml"
+    path.write_text('name = "huge"\nconvention = "standard"\n\n[parameters]\nL1 = ' + "1" * 5000 + "\n\n"
+                    '[[joints]]\ntype = "revolute"\nalpha = 0\na = "L1"\nd = 0\ntheta = 0\n', encoding="utf-8")
+    line = one_line_error(capsys, "fk", str(path))
+    assert line.startswith(f"symjac: error: {path}, field 'L1': integer with 5000 digits on line 5")
+
+
+def test_ctrl_c_during_a_derivation_is_one_line_and_status_130(capsys, monkeypatch):
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(symjac.cli, "jacobian", interrupted)
+    try:
+        result = run(capsys, "jacobian", "planar2r")
+    except KeyboardInterrupt:  # pragma: no cover - only when the CLI lets it through
+        pytest.fail("Ctrl-C escaped symjac.cli.main")
+    assert result == (130, "", "symjac: interrupted\n")
+
+
+@pytest.mark.parametrize(("error", "message"), [
+    (ValueError("Exceeds the limit (4300 digits)\nfor integer string conversion"),
+     "ValueError: Exceeds the limit (4300 digits) for integer string conversion"),
+    (RecursionError("maximum recursion depth exceeded"), "the input is nested too deeply to process"),
+    (ZeroDivisionError("division by zero"), "ZeroDivisionError: division by zero"),
+])
+def test_unexpected_errors_are_one_line(capsys, monkeypatch, error, message):
+    def failing(*args, **kwargs):
+        raise error
+
+    monkeypatch.setattr(symjac.cli, "jacobian", failing)
+    assert one_line_error(capsys, "jacobian", "planar2r") == f"symjac: error: {message}"
+    monkeypatch.setenv("SYMJAC_TRACEBACK", "1")  # a developer can still see where it came from
+    with pytest.raises(type(error)):
+        main(["jacobian", "planar2r"])
+
+
+def test_a_closed_stdout_ends_quietly(capsys, monkeypatch):
+    read_end, write_end = os.pipe()
+    os.close(read_end)  # as `| head -1` does once it has its line
+    with open(write_end, "w", encoding="utf-8") as closed:
+        monkeypatch.setattr("sys.stdout", closed)
+        status = main(["show", "planar2r"])
+        monkeypatch.undo()
+    assert status == 141
+    assert capsys.readouterr().err == ""
+
+
+# --- 4. messages a person understands -------------------------------------------------------------------------------
+
+
+def test_q_says_plainly_what_it_takes(capsys):
+    line = one_line_error(capsys, "torques", "planar2r", "--q", "L1,0")
+    assert "none declared" not in line
+    assert line == ("symjac: error: --q takes numbers and expressions with pi only (joint angles in radians, "
+                    "prismatic offsets in metres), got 'L1'")
+    assert run(capsys, "torques", "planar2r", "--q", "pi/2, -pi/4")[0] == 0
+
+
+def test_wrench_takes_parameter_names(capsys):
+    status, out, _ = run(capsys, "torques", "planar2r", "--wrench", "L1,0,0,0,0,0", "--format", "pretty")
+    assert status == 0 and "L₁" in out
+
+
+@pytest.mark.parametrize("command", ["codegen", "singularities"])
+def test_a_repeated_row_is_named(capsys, command):
+    line = one_line_error(capsys, command, "planar2r", "--rows", "v_x,v_y,v_x")
+    assert line == "symjac: error: --rows: rows must not repeat: v_x is given twice in v_x, v_y, v_x"
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["jacobian", "planar2r", "--position", "cylindrical"], "--position needs --representation"),
+    (["jacobian", "planar2r", "--standalone", "--format", "json"],
+     "--standalone applies to --format latex only, not --format json"),
+    (["fk", "planar2r", "--standalone", "--format", "pretty"],
+     "--standalone applies to --format latex only, not --format pretty"),
+    (["jacobian", "planar2r", "--derivative", "--method", "cross_product"],
+     "--method cross_product does not apply with --derivative"),
+    (["jacobian", "planar2r", "--representation", "zyz", "--method", "velocity_propagation"],
+     "--method velocity_propagation does not apply with --representation"),
+    (["jacobian", "planar2r", "--representation", "zyz", "--steps"], "--steps does not apply with --representation"),
+    (["jacobian", "planar2r", "--steps"], "--steps needs --method velocity_propagation or --method force_propagation"),
+])
+def test_options_that_would_be_ignored_are_refused(capsys, argv, message):
+    assert one_line_error(capsys, *argv).startswith(f"symjac: error: {message}")
+
+
+def test_position_with_a_representation_still_works(capsys):
+    status, out, err = run(capsys, "jacobian", "articulated3r", "--representation", "zyz", "--position",
+                           "cylindrical", "--format", "json")
+    assert (status, err) == (0, "") and "cylindrical" in out
+
+
+def test_robot_descriptions_speak_to_a_user():
+    for name, description in {**catalog(), **urdf_catalog()}.items():
+        assert "seed" not in description and "section" not in description, name
+        assert "\n" not in description and 20 < len(description) <= 120, name

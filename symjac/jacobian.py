@@ -65,6 +65,7 @@ __all__ = [
     "Method",
     "Point",
     "change_frame",
+    "check_row_indices",
     "jacobian",
     "jacobian_of",
     "point_vector",
@@ -85,10 +86,25 @@ def rows_from_names(names: str | Sequence[str]) -> tuple[int, ...]:
     unknown = [part for part in parts if part not in ROW_NAMES]
     if unknown or not parts:
         raise ArgumentError(f"unknown row {unknown[0] if unknown else ''!r}; use {', '.join(ROW_NAMES)}")
-    repeated = next((part for i, part in enumerate(parts) if part in parts[:i]), None)
+    return check_row_indices(tuple(ROW_NAMES.index(part) for part in parts))
+
+
+def check_row_indices(rows: Sequence[int]) -> tuple[int, ...]:
+    """Task rows as distinct indices 0..5; the error names the rows (``v_x is given twice in v_x, v_y, v_x``).
+
+    Examples
+    --------
+    >>> check_row_indices([0, 1, 5])
+    (0, 1, 5)
+    """
+    values = tuple(rows)
+    shown = ", ".join(ROW_NAMES[r] if isinstance(r, int) and 0 <= r < 6 else repr(r) for r in values)
+    if not values or any(isinstance(r, bool) or not isinstance(r, int) or not 0 <= r < 6 for r in values):
+        raise ArgumentError(f"rows must be row numbers 0..5 ({', '.join(ROW_NAMES)}), got [{shown}]")
+    repeated = next((r for i, r in enumerate(values) if r in values[:i]), None)
     if repeated is not None:
-        raise ArgumentError(f"rows must not repeat: {repeated} is given twice in {', '.join(parts)}")
-    return tuple(ROW_NAMES.index(part) for part in parts)
+        raise ArgumentError(f"rows must not repeat: {ROW_NAMES[repeated]} is given twice in {shown}")
+    return values
 
 
 def jacobian(

@@ -29,7 +29,7 @@ from sympy.polys.matrices import DomainMatrix
 from symjac.angles import AngleBasis
 from symjac.chain import Chain, Frame, as_chain
 from symjac.errors import ArgumentError, FrameError
-from symjac.jacobian import ROW_NAMES, Point, jacobian, point_vector
+from symjac.jacobian import ROW_NAMES, Point, check_row_indices, jacobian, point_vector
 from symjac.model import Robot
 from symjac.numeric import numeric_at
 from symjac.simplify import simplify_expr
@@ -168,8 +168,7 @@ def determinant(
     rows = task_rows(robot, point_xyz) if rows is None else tuple(rows)
     if len(rows) != len(columns) or not rows:
         raise ArgumentError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
-    if any(not 0 <= r < 6 for r in rows) or len(set(rows)) != len(rows):
-        raise ArgumentError(f"rows must be distinct indices 0..5 (v_x .. omega_z), got {rows}")
+    rows = check_row_indices(rows)
     if any(not 0 <= c < robot.dof for c in columns) or len(set(columns)) != len(columns):
         raise ArgumentError(f"columns must be distinct joint indices 0..{robot.dof - 1}, got {columns}")
     # Factoring costs seconds on a six-joint arm and the singularity report, the rates and the CLI all ask for it:

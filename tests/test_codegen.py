@@ -396,7 +396,7 @@ def test_unusable_parameter_names_are_refused(parameter, message):
         ({"strategy": "best"}, CodegenError, "unknown strategy 'best'"),
         ({"frames": (9,)}, FrameError, "frame 9 does not exist"),
         ({"points": ("elbow",)}, FrameError, "unknown point 'elbow'"),
-        ({"rows": (0, 7)}, CodegenError, "rows must be a non-empty sequence of row numbers 0..5"),
+        ({"rows": (0, 7)}, CodegenError, r"rows must be row numbers 0..5 .*got \[v_x, 7\]"),
         ({"rows": (1, 1)}, CodegenError, "must not repeat"),
         ({"points": ((0, 0, sp.Symbol("z")),)}, CodegenError, "uses z, which is not a parameter of planar2r"),
         ({"scalars": {"f": sp.exp(sp.Symbol("theta1", real=True))}}, CodegenError, "exp.* is not supported"),

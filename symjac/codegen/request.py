@@ -13,8 +13,8 @@ import sympy as sp
 
 from symjac.chain import Chain, Frame
 from symjac.codegen.printers import check_expression, check_identifier, float_literal
-from symjac.errors import CodegenError
-from symjac.jacobian import ROW_NAMES, Point, point_vector
+from symjac.errors import ArgumentError, CodegenError
+from symjac.jacobian import Point, check_row_indices, point_vector
 from symjac.model import Robot
 
 __all__ = [
@@ -112,13 +112,10 @@ def check_rows(rows: Sequence[int] | None) -> tuple[int, ...]:
     """The task rows as a tuple of distinct indices 0..5 (all six if ``rows`` is None)."""
     if rows is None:
         return tuple(range(6))
-    values = tuple(rows)
-    if not values or any(isinstance(r, bool) or not isinstance(r, int) or not 0 <= r < 6 for r in values):
-        raise CodegenError(f"rows must be a non-empty sequence of row numbers 0..5 "
-                           f"({', '.join(ROW_NAMES)}), got {rows!r}")
-    if len(set(values)) != len(values):
-        raise CodegenError(f"rows must not repeat a row, got {rows!r}")
-    return values
+    try:
+        return check_row_indices(rows)
+    except ArgumentError as error:
+        raise CodegenError(str(error)) from None
 
 
 def point_text(robot: Robot, point: Point) -> tuple[str, tuple[sp.Expr, sp.Expr, sp.Expr]]:

@@ -33,6 +33,7 @@ from symjac.cli_args import (
 )
 from symjac.cli_output import emit, one_line, progress, silence_stdout
 from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
+from symjac.errata import SHEET_FORMATS, errata_sheet
 from symjac.errors import ArgumentError, SymjacError
 from symjac.io import catalog
 from symjac.jacobian import METHODS, jacobian, point_vector
@@ -113,6 +114,8 @@ def _parser() -> argparse.ArgumentParser:
         return sub
 
     command("robots", _robots, "list the built-in robots")
+    errata = command("errata", _errata, "the errata sheet of the course notes: every printed formula checked")
+    errata.add_argument("--format", choices=SHEET_FORMATS, default="markdown", help="output format (default markdown)")
     generator = command("codegen", _codegen, "generate a numeric module: forward kinematics, Jacobians, torques")
     add_robot_arguments(generator)
     generator.add_argument("--target", choices=TARGETS, default="python",
@@ -177,6 +180,10 @@ def _robots(args: argparse.Namespace) -> str:
     robots = catalog()
     width = max(map(len, robots))
     return "".join(f"{name:<{width}}  {description}\n" for name, description in robots.items())
+
+
+def _errata(args: argparse.Namespace) -> str:
+    return progress("the errata sheet", lambda: errata_sheet(args.format))
 
 
 def _convert(args: argparse.Namespace) -> str:

@@ -1,0 +1,153 @@
+r"""What symjac derives for each printed formula, and the exact comparison that decides whether the print is right.
+
+Each ``quantity`` of the data file names a function here that returns the derived matrix for the formula's robot
+and ``args``. A ``relation`` is a prose formula (a recursion, :math:`\tau = J^T F`) checked by evaluating both sides
+on an example arm: its printed matrix is the left side, and the function returns the right side.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import sympy as sp
+
+from symjac.angles import AngleBasis
+from symjac.chain import chain_of
+from symjac.errata.formulas import Formula
+from symjac.jacobian import jacobian, rows_from_names
+from symjac.model import Robot
+from symjac.propagation import force_propagation, velocity_propagation
+from symjac.representations import angular_velocity_matrix, rate_matrix, rotation_from
+from symjac.simplify import is_identity
+from symjac.singularity import determinant
+from symjac.transforms import skew
+
+__all__ = ["QUANTITIES", "Comparison", "compare", "derive"]
+
+
+def _robot(f: Formula) -> Robot:
+    if f.robot is None:
+        raise KeyError(f"{f.id}: quantity {f.quantity!r} needs a robot")
+    return f.robot
+
+
+def _transform(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:
+    chain = chain_of(_robot(f))
+    return sp.Matrix(chain.simplified_transform(source, chain.n if target is None else target))
+
+
+def _rotation(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:
+    return _transform(f, source, target)[:3, :3]
+
+
+def _position(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:
+    return _transform(f, source, target)[:3, 3]
+
+
+def _jacobian(f: Formula, frame: Any = 0, point: Any = "wrist", rows: Any = None, order: str = "v_first") -> sp.Matrix:
+    J = jacobian(_robot(f), frame=frame, point=point)
+    if order == "omega_first":
+        J = sp.Matrix.vstack(J[3:, :], J[:3, :])
+    return J if rows is None else J.extract(list(rows_from_names(rows)), list(range(J.cols)))
+
+
+def _velocity(f: Formula, frame: Any, part: str = "v", point: Any = None) -> sp.Matrix:
+    tip = (sp.S.Zero,) * 3 if point is None else (None if point == "tool" else tuple(point))
+    for step_frame, omega, v in velocity_propagation(_robot(f), tip).velocities():
+        if step_frame == frame:
+            return omega if part == "omega" else v
+    raise KeyError(f"{f.id}: no velocity step for frame {frame!r}")
+
+
+def _force(f: Formula, frame: Any, part: str = "f") -> sp.Matrix:
+    for step_frame, force, moment in force_propagation(_robot(f)).wrenches():
+        if step_frame == frame:
+            return force if part == "f" else moment
+    raise KeyError(f"{f.id}: no force step for frame {frame!r}")
+
+
+def _torques(f: Formula) -> sp.Matrix:
+    return force_propagation(_robot(f)).joint_torques()
+
+
+def _determinant(f: Formula, rows: Any = None, frame: Any = None) -> sp.Matrix:
+    chosen = None if rows is None else rows_from_names(rows)
+    return sp.Matrix([[determinant(_robot(f), rows=chosen, frame=frame).expression]])
+
+
+def _representation(function: Callable[..., sp.Matrix]) -> Callable[..., sp.Matrix]:
+    def derive(f: Formula, representation: str) -> sp.Matrix:
+        return sp.Matrix(function(representation, f.symbols[:3] if len(f.symbols) >= 3 else None))
+
+    return derive
+
+
+def _skew(f: Formula) -> sp.Matrix:
+    return skew(sp.Matrix(f.symbols[:3]))
+
+
+QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
+    "transform": _transform,
+    "rotation": _rotation,
+    "position": _position,
+    "jacobian": _jacobian,
+    "velocity": _velocity,
+    "force": _force,
+    "torques": _torques,
+    "determinant": _determinant,
+    "rate_matrix": _representation(rate_matrix),
+    "rotation_of": _representation(rotation_from),
+    "angular_velocity_matrix": _representation(angular_velocity_matrix),
+    "skew": _skew,
+}
+
+
+def derive(f: Formula) -> sp.Matrix:
+    """The matrix symjac derives for formula ``f``."""
+    if f.quantity not in QUANTITIES:
+        raise KeyError(f"{f.id}: unknown quantity {f.quantity!r}; known: {', '.join(QUANTITIES)}")
+    return sp.Matrix(QUANTITIES[f.quantity](f, **f.args))
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """The printed matrix against the derived one: entries (1-based) that differ, and the verdict they give."""
+
+    formula: Formula
+    derived: sp.Matrix
+    differing: tuple[tuple[int, int], ...]
+    corrected_holds: bool | None
+
+    @property
+    def verdict(self) -> str:
+        """``"erratum"`` when the print differs; ``"convention"`` or ``"ok"`` (as recorded) when it holds."""
+        if self.differing:
+            return "erratum"
+        return "convention" if self.formula.verdict == "convention" else "ok"
+
+
+def _basis(f: Formula) -> AngleBasis:
+    angles = [j.variable for j in f.robot.joints if j.is_revolute] if f.robot is not None else []
+    return AngleBasis.of([*angles, *f.symbols])
+
+
+def _differs(left: sp.Expr, right: sp.Expr, basis: AngleBasis) -> bool:
+    numerator, _ = sp.fraction(sp.together(left - right))
+    return not is_identity(numerator, sp.S.Zero, basis)
+
+
+def _differing(printed: sp.MatrixBase, derived: sp.MatrixBase, basis: AngleBasis) -> tuple[tuple[int, int], ...]:
+    if printed.shape != derived.shape:
+        return ((0, 0),)
+    return tuple((r + 1, c + 1) for r in range(printed.rows) for c in range(printed.cols)
+                 if _differs(printed[r, c], derived[r, c], basis))
+
+
+def compare(f: Formula) -> Comparison:
+    """Compare the printed (and the corrected) matrix of ``f`` with the derivation, exactly."""
+    derived = derive(f)
+    basis = _basis(f)
+    corrected = None if f.corrected is None else not _differing(f.corrected, derived, basis)
+    return Comparison(f, derived, _differing(f.printed, derived, basis), corrected)

@@ -24,7 +24,10 @@ from symjac.simplify import is_identity
 from symjac.singularity import determinant
 from symjac.transforms import skew
 
-__all__ = ["QUANTITIES", "Comparison", "compare", "derive"]
+__all__ = ["QUANTITIES", "RELATIONS", "RELATION_TOLERANCE", "Comparison", "compare", "derive"]
+
+RELATION_TOLERANCE = 1e-9
+"""A relation holds when its residual on the example arm is below this (relative to the size of the terms)."""
 
 
 def _robot(f: Formula) -> Robot:
@@ -104,6 +107,11 @@ QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
 }
 
 
+RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {}
+"""Checks of prose formulas: ``check(formula, "printed" | "corrected")`` is the relative residual of that form on an
+example arm (0 when it holds); each check's docstring quotes the formula it evaluates."""
+
+
 def derive(f: Formula) -> sp.Matrix:
     """The matrix symjac derives for formula ``f``."""
     if f.quantity not in QUANTITIES:
@@ -146,7 +154,15 @@ def _differing(printed: sp.MatrixBase, derived: sp.MatrixBase, basis: AngleBasis
 
 
 def compare(f: Formula) -> Comparison:
-    """Compare the printed (and the corrected) matrix of ``f`` with the derivation, exactly."""
+    """Compare the printed (and the corrected) matrix of ``f`` with the derivation, exactly.
+
+    A relation is compared numerically on its example arm (:data:`RELATIONS`, :data:`RELATION_TOLERANCE`).
+    """
+    if f.quantity == "relation":
+        check = RELATIONS[f.args["check"]]
+        printed_holds = check(f, "printed") <= RELATION_TOLERANCE
+        corrected = None if not f.corrected_text else check(f, "corrected") <= RELATION_TOLERANCE
+        return Comparison(f, sp.Matrix([[0]]), () if printed_holds else ((1, 1),), corrected)
     derived = derive(f)
     basis = _basis(f)
     corrected = None if f.corrected is None else not _differing(f.corrected, derived, basis)

@@ -15,6 +15,10 @@ Fields: ``id`` (unique), ``document`` (``"000"``, ``"002"`` or ``"003"``), ``whe
 (a catalog name or an inline robot table), ``symbols`` (extra symbol names), ``printed`` (rows of entries as
 printed), ``verdict`` (``"ok"``, ``"erratum"`` or ``"convention"``) and, for an erratum, ``corrected`` (the printed
 matrix with the fix applied) and ``why`` (one line); for a convention note, ``convention`` (what differs).
+
+A prose formula (``quantity = "relation"``, ``args = { check = NAME }``) has ``printed`` (and ``corrected``) as
+LaTeX text instead of a matrix: the named check in :data:`symjac.errata.derive.RELATIONS` evaluates that form on an
+example arm against the derivation.
 """
 
 from __future__ import annotations
@@ -64,6 +68,8 @@ class Formula:
     corrected: sp.ImmutableMatrix | None = None
     why: str = ""
     convention: str = ""
+    printed_text: str = ""
+    corrected_text: str = ""
     names: Mapping[str, sp.Expr] = field(default_factory=dict, repr=False, compare=False)
 
 
@@ -121,12 +127,18 @@ def _formula(table: Mapping[str, Any], index: int) -> Formula:
     corrected = table.get("corrected")
     if (verdict == "erratum") != (corrected is not None and bool(table.get("why"))):
         raise ValueError(f"{where}: an erratum (and only an erratum) has 'corrected' and 'why'")
+    relation = table["quantity"] == "relation"
+    if relation and not (isinstance(table["printed"], str) and isinstance(corrected, str | None)):
+        raise ValueError(f"{where}: a relation is printed (and corrected) as LaTeX text")
     return Formula(
         id=table["id"], document=table["document"], where=table["where"], what=table["what"],
         quantity=table["quantity"], args=dict(table.get("args", {})), robot=robot, symbols=symbols,
-        printed=_matrix(table["printed"], names, where), verdict=verdict,
-        corrected=None if corrected is None else _matrix(corrected, names, where), why=table.get("why", ""),
-        convention=table.get("convention", ""), names=names)
+        printed=sp.ImmutableMatrix([[0]]) if relation else _matrix(table["printed"], names, where), verdict=verdict,
+        corrected=None if corrected is None else (
+            sp.ImmutableMatrix([[0]]) if relation else _matrix(corrected, names, where)),
+        why=table.get("why", ""), convention=table.get("convention", ""),
+        printed_text=table["printed"] if relation else "", corrected_text=corrected if relation and corrected else "",
+        names=names)
 
 
 @cache

@@ -40,6 +40,9 @@ def _entries(matrix: sp.MatrixBase, cells: Sequence[tuple[int, int]]) -> list[sp
 
 
 def _cell_text(result: Comparison, matrix: sp.MatrixBase, style: str) -> str:
+    if result.formula.quantity == "relation":
+        text = result.formula.printed_text if matrix is result.formula.printed else result.formula.corrected_text
+        return f"${text}$" if style == "latex" else f"`{text}`"
     cells = result.differing
     if matrix.shape == (1, 1) or cells == ((0, 0),):
         return f"${latex(matrix[0, 0] if matrix.shape == (1, 1) else matrix)}$" if style == "latex" else (
@@ -67,14 +70,14 @@ def errata_sheet(fmt: str = "markdown") -> str:
         lines += ["", "## Errata", "", "| where | as printed | corrected | why |", "| --- | --- | --- | --- |"]
         for r in errata:
             lines.append(f"| {r.formula.document}, {r.formula.where}: {r.formula.what} | "
-                         f"{_cell_text(r, r.formula.printed, 'markdown')} | {_cell_text(r, r.derived, 'markdown')} | "
+                         f"{_cell_text(r, r.formula.printed, 'markdown')} | {_cell_text(r, _right(r), 'markdown')} | "
                          f"{r.formula.why} |")
         lines += ["", "## Convention notes", "", "| where | what differs |", "| --- | --- |"]
         lines += [f"| {r.formula.document}, {r.formula.where}: {r.formula.what} | {r.formula.convention} |"
                   for r in notes]
         return "\n".join(lines) + "\n"
     rows = [rf"{_tex(r.formula.document + ', ' + r.formula.where + ': ' + r.formula.what)} & "
-            rf"{_cell_text(r, r.formula.printed, 'latex')} & {_cell_text(r, r.derived, 'latex')} & "
+            rf"{_cell_text(r, r.formula.printed, 'latex')} & {_cell_text(r, _right(r), 'latex')} & "
             rf"{_tex(r.formula.why)} \\ \hline" for r in errata]
     notes_tex = [rf"\item {_tex(r.formula.where + ': ' + r.formula.what)}: {_tex(r.formula.convention)}" for r in notes]
     counts_tex = [rf"{doc} & {c['checked']} & {c['ok']} & {c['erratum']} & {c['convention']} \\"
@@ -88,6 +91,11 @@ def errata_sheet(fmt: str = "markdown") -> str:
         *rows, r"\end{longtable}", "", r"\subsection*{Convention notes}",
         r"\begin{itemize}" if notes_tex else "", *notes_tex, r"\end{itemize}" if notes_tex else "",
         r"\end{document}", ""])
+
+
+def _right(result: Comparison) -> sp.MatrixBase:
+    """What the corrected column shows: the derivation (for a relation, the corrected text)."""
+    return result.derived if result.formula.quantity != "relation" else result.formula.corrected or result.derived
 
 
 def _tex(text: str) -> str:

@@ -277,7 +277,8 @@ def _rotation_velocity(f: Formula, variant: str) -> float:
 def _rotating_vector(f: Formula, variant: str) -> float:
     r"""Eqs. (4.49)-(4.50): :math:`{}^A\dot p = ({}^A_B\dot R\, {}^A_BR^T)\, {}^Ap`.
 
-    A vector fixed in the end link, {B} = {n}, {A} = {0}.
+    A vector fixed in the end link, {B} = {n}, {A} = {0}; also the unnumbered step
+    :math:`{}^A\dot p = {}^A_B\dot R\,{}^Bp` before eq. (4.48).
     """
     arm = _example(f)
     n = len(arm.T) - 1
@@ -397,6 +398,20 @@ def _pure_translation(f: Formula, variant: str) -> float:
     return _residual(T24dot * point, T23dot[:, 3] + T23 * (T34dot * point))
 
 
+def _pure_rotation(f: Formula, variant: str) -> float:
+    r"""Section 4.4.3, eq. (4.47) and the unnumbered step after it.
+
+    :math:`{}^Ap = {}^A_BR\,{}^Bp` and :math:`{}^A\dot p = {}^A_B\dot R\,{}^Bp + {}^A_BR\,{}^B\dot p` for frames with
+    a common origin: {A} = {0}, {B} = link 1 (its origin is the base origin), P the origin of frame 3, which moves in
+    {B} with joints 2 and 3 (:math:`{}^Bp` from symjac's transform :math:`{}^1_3T`).
+    """
+    arm = _example(f)
+    R1, R1dot, p3, p3dot = arm.R(1), arm.Tdot[1][:3, :3], arm.p(3), arm.Tdot[3][:3, 3]
+    bp = (arm.T[1].inv() * arm.T[3])[:3, 3]
+    bpdot = R1dot.T * p3 + R1.T * p3dot
+    return max(_residual(p3, R1 * bp), _residual(p3dot, R1dot * bp + R1 * bpdot))
+
+
 RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {
     # helper A
     "position_rate": _position_rate,
@@ -413,6 +428,7 @@ RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {
     "base_frame_velocities": _base_frame_velocities,
     "euler_representation_jacobian": _euler_representation_jacobian,
     "pure_translation": _pure_translation,
+    "pure_rotation": _pure_rotation,
 }
 """Checks of prose formulas: ``check(formula, "printed" | "corrected")`` is the relative residual of that form on an
 example arm (0 when it holds); each check's docstring quotes the formula it evaluates."""

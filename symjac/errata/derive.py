@@ -111,8 +111,8 @@ def _rotation_rate(f: Formula, representation: str, coords: Any, rates: Any, par
     x = [parse_expression(str(c), f.names) for c in coords]
     xdot = sp.Matrix([parse_expression(str(c), f.names) for c in rates])
     R = sp.Matrix(rotation_from(representation, x))
+    # the coordinates are symbols or constants: the chain rule over the symbols
     Rdot = sum((R.diff(c) * r for c, r in zip(x, xdot, strict=True) if isinstance(c, sp.Symbol)), sp.zeros(3, 3))
-    # (the coordinates are symbols or constants)
     omega = sp.Matrix(angular_velocity_matrix(representation, x)) * xdot
     values = {"R": R, "Rdot": Rdot, "RdotRT": Rdot * R.T, "omega": omega, "omega_hat": skew(omega)}
     return values[part].applyfunc(sp.simplify)
@@ -167,14 +167,6 @@ def _arm(robot: Robot) -> _Arm:
 def _residual(left: sp.Matrix, right: sp.Matrix) -> float:
     """Relative size of left - right (0 when the two sides agree)."""
     return float((left - right).norm() / max(1.0, left.norm() + right.norm()))
-
-
-def _vee(m: sp.Matrix) -> sp.Matrix:
-    return sp.Matrix([m[2, 1], m[0, 2], m[1, 0]])
-
-
-def _block(*blocks: sp.Matrix) -> sp.Matrix:
-    return sp.diag(*blocks)
 
 
 QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
@@ -246,7 +238,7 @@ def _representation_jacobian(f: Formula, variant: str) -> float:
     """
     arm = _example(f)
     n = len(arm.T) - 1
-    E = _block(position_rate_matrix("cartesian"), rate_matrix("direction_cosines", list(arm.R(n).reshape(9, 1))))
+    E = sp.diag(position_rate_matrix("cartesian"), rate_matrix("direction_cosines", list(arm.R(n).reshape(9, 1))))
     return _residual(arm.Jx, E * arm.J)
 
 
@@ -350,7 +342,7 @@ def _base_frame_velocities(f: Formula, variant: str) -> float:
     arm = _example(f)
     n = len(arm.T) - 1
     R = arm.R(n)
-    E = _block(R, R)
+    E = sp.diag(R, R)
     if variant == "printed":
         E[3:, :3] = n * sp.eye(3)
     local = sp.Matrix.vstack(arm.local[n][1], arm.local[n][0])
@@ -374,7 +366,7 @@ def _euler_representation_jacobian(f: Formula, variant: str) -> float:
 
     angles = [sp.atan2(R[0, 2], -R[1, 2]), sp.acos(R[2, 2]), sp.atan2(R[2, 0], R[2, 1])]
     rates = sp.Matrix([atan2_rate(2, 5, -1), -Rdot[2, 2] / sp.sqrt(1 - R[2, 2]**2), atan2_rate(6, 7, 1)])
-    E = _block(sp.eye(3), rate_matrix("zxz", angles))
+    E = sp.diag(sp.eye(3), rate_matrix("zxz", angles))
     return _residual(sp.Matrix.vstack(arm.Tdot[n][:3, 3], rates), E * arm.J * arm.qdot)
 
 

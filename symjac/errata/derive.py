@@ -16,9 +16,10 @@ import sympy as sp
 from symjac.angles import AngleBasis
 from symjac.chain import chain_of
 from symjac.errata.formulas import Formula
+from symjac.expressions import parse_expression
 from symjac.jacobian import jacobian, rows_from_names
 from symjac.model import Robot
-from symjac.propagation import force_propagation, velocity_propagation
+from symjac.propagation import force_propagation, joint_rates, velocity_propagation
 from symjac.representations import angular_velocity_matrix, rate_matrix, rotation_from
 from symjac.simplify import is_identity
 from symjac.singularity import determinant
@@ -91,6 +92,68 @@ def _skew(f: Formula) -> sp.Matrix:
     return skew(sp.Matrix(f.symbols[:3]))
 
 
+def _block(f: Formula, of: str, r: Any = None, c: Any = None, at: Any = None, **inner: Any) -> sp.Matrix:
+    """Rows ``r`` and columns ``c`` (1-based) of quantity ``of``, optionally at a configuration ``at``.
+
+    ``at`` maps names to values (``{ theta2 = "0" }``): a printed 2 x 2 block of a rotation, a Jacobian at a
+    singularity. The other arguments go to ``of``.
+    """
+    M = sp.Matrix(QUANTITIES[of](f, **inner))
+    if at:
+        M = M.subs({f.names[name]: parse_expression(str(value), f.names) for name, value in dict(at).items()})
+    rows = list(range(M.rows)) if r is None else [i - 1 for i in r]
+    cols = list(range(M.cols)) if c is None else [j - 1 for j in c]
+    return M.extract(rows, cols)
+
+
+def _z_cross_p(f: Formula, joint: Any = None, tool: Any = None, frame: Any = None) -> sp.Matrix:
+    r"""The explicit form's :math:`{}^iz_i \times {}^ip_{in} = \hat Z\,{}^ip_{in}`, rotated into ``frame`` if given.
+
+    :math:`p_{in}` runs from joint ``joint``'s frame to the origin of frame ``tool`` (default {n}); without a joint,
+    :math:`\hat Z p` for the formula's symbols :math:`p = (p_x, p_y, p_z)`.
+    """
+    z_hat = skew(sp.Matrix([0, 0, 1]))
+    if joint is None:
+        return z_hat * sp.Matrix(f.symbols[:3])
+    chain = chain_of(_robot(f))
+    axis = chain.axis_frame(joint)
+    result = z_hat * sp.Matrix(chain.simplified_transform(axis, chain.n if tool is None else tool))[:3, 3]
+    return result if frame is None else sp.Matrix(chain.rotation(frame, axis)) * result
+
+
+def _point_shift(f: Formula, frame: Any = 0, part: str = "p") -> sp.Matrix:
+    r"""The wrist-to-tool shift of section 4.9 in frame {k}.
+
+    :math:`{}^kp_{WE}` (``part = "p"``), its cross-product matrix (``"p_hat"``) or the term
+    :math:`-{}^k\hat p_{WE}\,{}^kJ_{\omega(W)}` (``"term"``).
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    p = sp.Matrix(chain.simplified_transform(frame, "tool"))[:3, 3] - sp.Matrix(
+        chain.simplified_transform(frame, chain.n))[:3, 3]
+    p = sp.Matrix([sp.trigsimp(e) for e in p])
+    if part == "p":
+        return p
+    if part == "p_hat":
+        return skew(p)
+    return -skew(p) * jacobian(robot, frame=frame)[3:, :]
+
+
+def _point_velocity(f: Formula, target: Any = None, part: str = "v") -> sp.Matrix:
+    r"""Velocity in {0} of the origin of frame ``target`` (default {n}), in the joint rates.
+
+    :math:`\frac{d}{dt}{}^0p_k` (``part = "v"``), or the angular velocity :math:`{}^0\omega_n` of the last link
+    (``"omega"``).
+    """
+    robot = _robot(f)
+    rates = sp.Matrix(joint_rates(robot))
+    if part == "omega":
+        return jacobian(robot, frame=0)[3:, :] * rates
+    chain = chain_of(robot)
+    p = sp.Matrix(chain.simplified_transform(0, chain.n if target is None else target))[:3, 3]
+    return p.jacobian(sp.Matrix(robot.q)) * rates
+
+
 QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
     "transform": _transform,
     "rotation": _rotation,
@@ -104,6 +167,11 @@ QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
     "rotation_of": _representation(rotation_from),
     "angular_velocity_matrix": _representation(angular_velocity_matrix),
     "skew": _skew,
+    # helper B
+    "block": _block,
+    "z_cross_p": _z_cross_p,
+    "point_shift": _point_shift,
+    "point_velocity": _point_velocity,
 }
 
 

@@ -19,7 +19,7 @@ from symjac.errata.formulas import Formula
 from symjac.expressions import parse_expression
 from symjac.jacobian import jacobian, rows_from_names
 from symjac.model import Robot
-from symjac.propagation import force_propagation, joint_rates, velocity_propagation
+from symjac.propagation import force_propagation, joint_rates, velocity_propagation, wrench_symbols
 from symjac.representations import angular_velocity_matrix, rate_matrix, rotation_from
 from symjac.simplify import is_identity
 from symjac.singularity import determinant
@@ -175,7 +175,262 @@ QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
 }
 
 
-RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {}
+# helper B: checks of the prose formulas of document 000, sections 4.7 to the end, on an example configuration
+
+
+def _example(robot: Robot) -> dict[sp.Symbol, sp.Expr]:
+    """Fixed generic values for the joint variables, parameters, joint rates and wrench of ``robot``."""
+    values: dict[sp.Symbol, sp.Expr] = {}
+    for k, symbol in enumerate(robot.q):
+        values[symbol] = sp.Rational(3, 10) + sp.Rational(37, 100) * k
+    for k, symbol in enumerate(robot.parameter_symbols):
+        values[symbol] = sp.Rational(2, 5) + sp.Rational(13, 100) * k
+    for k, symbol in enumerate(joint_rates(robot)):
+        values[symbol] = sp.Rational(1, 2) - sp.Rational(21, 100) * k
+    for k, symbol in enumerate(wrench_symbols()):
+        values[symbol] = sp.Rational(7, 10) - sp.Rational(3, 10) * k
+    return values
+
+
+def _at(robot: Robot, expression: Any) -> sp.Matrix:
+    """``expression`` evaluated at the example configuration of ``robot`` (floats)."""
+    return sp.Matrix(sp.Matrix(expression).subs(_example(robot)).evalf())
+
+
+def _residual(left: sp.MatrixBase, right: sp.MatrixBase) -> float:
+    """Relative size of ``left - right``."""
+    size = max(1.0, float(sp.Matrix(left).norm()) + float(sp.Matrix(right).norm()))
+    return float((sp.Matrix(left) - sp.Matrix(right)).norm()) / size
+
+
+def _diag(R: sp.MatrixBase) -> sp.Matrix:
+    return sp.diag(sp.Matrix(R), sp.Matrix(R))
+
+
+def _frame_change(f: Formula, variant: str) -> float:
+    r"""Eq. (4.98): :math:`{}^BJ = \mathrm{diag}({}^B_AR, {}^B_AR)\,{}^AJ` (A = {0}, B = {3})."""
+    robot = _robot(f)
+    R = chain_of(robot).rotation(3, 0)
+    return _residual(_at(robot, jacobian(robot, frame=3)), _at(robot, _diag(R) * jacobian(robot, frame=0)))
+
+
+def _determinant_frame_change(f: Formula, variant: str) -> float:
+    r"""Eq. (4.106): :math:`\det[{}^BJ] = \det[\mathrm{diag}({}^B_AR, {}^B_AR)]\,\det[{}^AJ]` (A = {0}, B = {3})."""
+    robot = _robot(f)
+    R = _at(robot, chain_of(robot).rotation(3, 0))
+    left = _at(robot, jacobian(robot, frame=3)).det()
+    right = _diag(R).det() * _at(robot, jacobian(robot, frame=0)).det()
+    return _residual(sp.Matrix([left]), sp.Matrix([right]))
+
+
+def _shift_parts(robot: Robot) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
+    """Wrist Jacobian, end-point Jacobian (frame {0}) and :math:`{}^0p_{WE}`, at the example configuration."""
+    chain = chain_of(robot)
+    p = sp.Matrix(chain.transform(0, "tool"))[:3, 3] - sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    return (_at(robot, jacobian(robot, frame=0)), _at(robot, jacobian(robot, frame=0, point="tool")), _at(robot, p))
+
+
+def _point_shift_velocity(f: Formula, variant: str) -> float:
+    r"""Check of Eqs. (4.110)-(4.111) as printed in document 000.
+
+    Eqs. (4.110)-(4.111): :math:`v_e = v_n + \omega_n \times p_{ne} = v_n - p_{ne} \times \omega_n`,
+    :math:`\omega_e = \omega_n`.
+    """
+    robot = _robot(f)
+    J_n, J_e, p = _shift_parts(robot)
+    rates = _at(robot, sp.Matrix(joint_rates(robot)))
+    twist_n, twist_e = J_n * rates, J_e * rates
+    v_n, omega = twist_n[:3, :], twist_n[3:, :]
+    return _residual(twist_e, sp.Matrix.vstack(v_n - p.cross(omega), omega))
+
+
+def _point_shift_jacobian(f: Formula, variant: str) -> float:
+    r"""Check of Eqs. (4.112), (4.118), (4.120) as printed in document 000.
+
+    Eqs. (4.112), (4.118), (4.120): :math:`{}^0J_e = \begin{pmatrix} I & -{}^0\hat p_{ne} \\ 0 & I
+    \end{pmatrix} {}^0J_n`.
+    """
+    robot = _robot(f)
+    J_n, J_e, p = _shift_parts(robot)
+    shift = sp.Matrix(sp.BlockMatrix([[sp.eye(3), -skew(p)], [sp.zeros(3), sp.eye(3)]]))
+    return _residual(J_e, shift * J_n)
+
+
+def _force_recursion(f: Formula, variant: str) -> float:
+    r"""Check of Eqs. (4.123)-(4.130) as printed in document 000.
+
+    Eqs. (4.123)-(4.130): :math:`{}^i f_i = {}^i_{i+1}R\,{}^{i+1}f_{i+1}`, :math:`{}^i n_i = {}^i_{i+1}R\,
+    {}^{i+1}n_{i+1} + {}^ip_{i+1} \times {}^if_i` from :math:`{}^nf_n = {}^nf`, :math:`{}^nn_n = {}^nn`
+    (wrench at the wrist), then :math:`\tau_i = n_i^T z_i` (revolute) or :math:`f_i^T z_i` (prismatic).
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    wrench = _at(robot, sp.Matrix(wrench_symbols()))
+    force, moment = wrench[:3, :], wrench[3:, :]
+    z = sp.Matrix([0, 0, 1])
+    torques = [sp.S.Zero] * robot.dof
+    for i in range(robot.dof, 0, -1):
+        if i < robot.dof:
+            T = _at(robot, chain.transform(i, i + 1))
+            force = T[:3, :3] * force
+            moment = T[:3, :3] * moment + T[:3, 3].cross(force)
+        torques[i - 1] = (z.T * (moment if robot.joints[i - 1].is_revolute else force))[0]
+    return _residual(sp.Matrix(torques), _at(robot, force_propagation(robot).joint_torques()))
+
+
+def _velocity_recursion(robot: Robot, rotate_v: bool) -> tuple[sp.Matrix, sp.Matrix]:
+    """Eqs. (4.131)-(4.132) run from the base to frame {n}; without ``rotate_v`` the linear step is not rotated."""
+    chain = chain_of(robot)
+    rates = _at(robot, sp.Matrix(joint_rates(robot)))
+    z = sp.Matrix([0, 0, 1])
+    omega, v = sp.zeros(3, 1), sp.zeros(3, 1)
+    for i in range(robot.dof):
+        T = _at(robot, chain.transform(i + 1, i))  # {i+1}_i T
+        R, p = T[:3, :3], _at(robot, chain.transform(i, i + 1))[:3, 3]
+        revolute = robot.joints[i].is_revolute
+        v = (R if rotate_v else sp.eye(3)) * (v + omega.cross(p)) + (sp.S.Zero if revolute else rates[i]) * z
+        omega = R * omega + (rates[i] if revolute else sp.S.Zero) * z
+    return omega, v
+
+
+def _angular_velocity_recursion(f: Formula, variant: str) -> float:
+    r"""Eq. (4.131): :math:`{}^{i+1}\omega_{i+1} = {}^{i+1}_iR\,{}^i\omega_i + \dot\theta_{i+1}\,{}^{i+1}z_{i+1}`."""
+    robot = _robot(f)
+    omega, _ = _velocity_recursion(robot, True)
+    J = _at(robot, jacobian(robot, frame=robot.dof)) * _at(robot, sp.Matrix(joint_rates(robot)))
+    return _residual(omega, J[3:, :])
+
+
+def _linear_velocity_recursion(f: Formula, variant: str) -> float:
+    r"""Check of Eq. (4.132) as printed in document 000.
+
+    Eq. (4.132): :math:`{}^{i+1}v_{i+1} = {}^{i+1}R_{i+1}({}^iv_i + {}^i\omega_i \times {}^ip_{i+1})
+    + \dot d_{i+1}\,{}^{i+1}z_{i+1}` as printed (:math:`{}^{i+1}R_{i+1} = I`); corrected with :math:`{}^{i+1}_iR`.
+    """
+    robot = _robot(f)
+    _, v = _velocity_recursion(robot, variant == "corrected")
+    J = _at(robot, jacobian(robot, frame=robot.dof)) * _at(robot, sp.Matrix(joint_rates(robot)))
+    return _residual(v, J[:3, :])
+
+
+def _torques_jacobian_transpose(f: Formula, variant: str) -> float:
+    r"""Section 4.10.1 and eq. (4.145): :math:`\tau = J^T F` (J and F in frame {n}, F at the wrist)."""
+    robot = _robot(f)
+    wrench = _at(robot, sp.Matrix(wrench_symbols()))
+    tau = _at(robot, force_propagation(robot).joint_torques())
+    return _residual(tau, _at(robot, jacobian(robot, frame=robot.dof)).T * wrench)
+
+
+def _virtual_work(f: Formula, variant: str) -> float:
+    r"""Eq. (4.144): :math:`\tau^T \delta q + (-F)^T \delta x = 0` with :math:`\delta x = J\,\delta q`."""
+    robot = _robot(f)
+    wrench = _at(robot, sp.Matrix(wrench_symbols()))
+    tau = _at(robot, force_propagation(robot).joint_torques())
+    dq = sp.Matrix([sp.Rational(k + 2, 7) for k in range(robot.dof)])
+    work = (tau.T * dq)[0] - (wrench.T * _at(robot, jacobian(robot, frame=robot.dof)) * dq)[0]
+    return _residual(sp.Matrix([work]), sp.Matrix([0]))
+
+
+def _explicit_form(f: Formula, variant: str) -> float:
+    r"""Check of Eqs. (4.68)-(4.69), (4.149)-(4.150) as printed in document 000.
+
+    Eqs. (4.68)-(4.69), (4.149)-(4.150): column i of :math:`{}^0J` is :math:`({}^0_iR(\epsilon_iZ + \bar\epsilon_i
+    \hat Z\,{}^ip_{in});\ {}^0_iR\,\bar\epsilon_iZ)`, with :math:`\epsilon_i = 1` for a prismatic joint.
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    Z, Z_hat = sp.Matrix([0, 0, 1]), skew(sp.Matrix([0, 0, 1]))
+    columns = []
+    for i, joint in enumerate(robot.joints, start=1):
+        T = chain.transform(i, chain.n)
+        R = sp.Matrix(chain.rotation(0, i))
+        linear = R * (Z_hat * sp.Matrix(T)[:3, 3] if joint.is_revolute else Z)
+        columns.append(sp.Matrix.vstack(linear, R * Z if joint.is_revolute else sp.zeros(3, 1)))
+    return _residual(_at(robot, sp.Matrix.hstack(*columns)), _at(robot, jacobian(robot, frame=0)))
+
+
+def _differentiation_form(f: Formula, variant: str) -> float:
+    r"""Eqs. (4.80)-(4.81), (4.85): :math:`{}^0J = (\partial\,{}^0x_P / \partial q_i;\ \bar\epsilon_i\,{}^0_iR\,z)`."""
+    robot = _robot(f)
+    chain = chain_of(robot)
+    x_p = sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    angular = [sp.Matrix(chain.rotation(0, i))[:, 2] if j.is_revolute else sp.zeros(3, 1)
+               for i, j in enumerate(robot.joints, start=1)]
+    J = sp.Matrix.vstack(x_p.jacobian(sp.Matrix(robot.q)), sp.Matrix.hstack(*angular))
+    return _residual(_at(robot, J), _at(robot, jacobian(robot, frame=0)))
+
+
+def _stanford_explicit(f: Formula, variant: str) -> float:
+    r"""Check of Eq. (4.151) as printed in document 000.
+
+    Eq. (4.151): :math:`{}^0J = \begin{pmatrix} {}^0(z_1 \times p_{13}) & {}^0(z_2 \times p_{23}) & {}^0z_3 & 0 & 0
+    & 0 \\ {}^0z_1 & {}^0z_2 & 0 & {}^0z_4 & {}^0z_5 & {}^0z_6 \end{pmatrix}` (all vectors in {0}).
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    z = [sp.Matrix(chain.rotation(0, i))[:, 2] for i in range(robot.dof + 1)]
+    o = [sp.Matrix(chain.transform(0, i))[:3, 3] for i in range(robot.dof + 1)]
+    zero = sp.zeros(3, 1)
+    top = [z[1].cross(o[3] - o[1]), z[2].cross(o[3] - o[2]), z[3], zero, zero, zero]
+    bottom = [z[1], z[2], zero, z[4], z[5], z[6]]
+    J = sp.Matrix.vstack(sp.Matrix.hstack(*top), sp.Matrix.hstack(*bottom))
+    return _residual(_at(robot, J), _at(robot, jacobian(robot, frame=0)))
+
+
+def _p_in_from_base(f: Formula, variant: str) -> float:
+    r"""Check of Section 4.11.2 as printed in document 000.
+
+    Section 4.11.2: :math:`p_{in} = x_p - p_{0i}`, so :math:`{}^0_iR\,\hat Z\,{}^ip_{in} = ({}^0_iR\,\hat Z\,
+    {}^0_iR^T)({}^0x_p - {}^0p_{0i})`, for every joint i.
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    Z_hat = skew(sp.Matrix([0, 0, 1]))
+    x_p = sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    left, right = [], []
+    for i in range(1, robot.dof + 1):
+        R = sp.Matrix(chain.rotation(0, i))
+        left.append(R * Z_hat * sp.Matrix(chain.transform(i, chain.n))[:3, 3])
+        right.append(R * Z_hat * R.T * (x_p - sp.Matrix(chain.transform(0, i))[:3, 3]))
+    return _residual(_at(robot, sp.Matrix.hstack(*left)), _at(robot, sp.Matrix.hstack(*right)))
+
+
+def _planar_point_recursion(f: Formula, variant: str) -> float:
+    r"""Check of Eqs. (4.133)-(4.135), (4.137) as printed in document 000.
+
+    Eqs. (4.133)-(4.135), (4.137): :math:`v_{P_1} = 0`, :math:`v_{P_{k+1}} = v_{P_k} + \omega_k \times
+    p_{k,k+1}` (P_k the joints of the planar 3R arm, :math:`p_{k,k+1}` from :math:`P_k` to :math:`P_{k+1}`,
+    :math:`\omega_k = (\dot\theta_1 + \dots + \dot\theta_k) z_0`).
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    rates = sp.Matrix(joint_rates(robot))
+    points = [sp.Matrix(chain.transform(0, k))[:3, 3] for k in (1, 2, 3)]
+    exact = [P.jacobian(sp.Matrix(robot.q)) * rates for P in points]
+    v = [sp.zeros(3, 1)]
+    for k in range(2):
+        omega = sp.Matrix([0, 0, sum(rates[: k + 1])])
+        v.append(v[-1] + omega.cross(points[k + 1] - points[k]))
+    return _residual(_at(robot, sp.Matrix.hstack(*v)), _at(robot, sp.Matrix.hstack(*exact)))
+
+
+RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {
+    # helper B
+    "frame_change": _frame_change,
+    "determinant_frame_change": _determinant_frame_change,
+    "point_shift_velocity": _point_shift_velocity,
+    "point_shift_jacobian": _point_shift_jacobian,
+    "force_recursion": _force_recursion,
+    "angular_velocity_recursion": _angular_velocity_recursion,
+    "linear_velocity_recursion": _linear_velocity_recursion,
+    "torques_jacobian_transpose": _torques_jacobian_transpose,
+    "virtual_work": _virtual_work,
+    "explicit_form": _explicit_form,
+    "differentiation_form": _differentiation_form,
+    "stanford_explicit": _stanford_explicit,
+    "p_in_from_base": _p_in_from_base,
+    "planar_point_recursion": _planar_point_recursion,
+}
 """Checks of prose formulas: ``check(formula, "printed" | "corrected")`` is the relative residual of that form on an
 example arm (0 when it holds); each check's docstring quotes the formula it evaluates."""
 

@@ -414,6 +414,62 @@ def _planar_point_recursion(f: Formula, variant: str) -> float:
     return _residual(_at(robot, sp.Matrix.hstack(*v)), _at(robot, sp.Matrix.hstack(*exact)))
 
 
+
+def _stanford_differentiation(f: Formula, variant: str) -> float:
+    r"""Check of eq. (4.97) as printed in document 000.
+
+    :math:`J = \begin{pmatrix} \partial x_P/\partial q_1 & \partial x_P/\partial q_2 & \partial x_P/\partial q_3
+    & 0 & 0 & 0 \\ {}^0z_1 & {}^0z_2 & 0 & {}^0z_4 & {}^0z_5 & {}^0z_6 \end{pmatrix}` for the Stanford arm.
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    x_p = sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    top = x_p.jacobian(sp.Matrix(robot.q[:3])).row_join(sp.zeros(3, 3))
+    z = [sp.Matrix(chain.rotation(0, i))[:, 2] for i in range(robot.dof + 1)]
+    bottom = sp.Matrix.hstack(z[1], z[2], sp.zeros(3, 1), z[4], z[5], z[6])
+    return _residual(_at(robot, sp.Matrix.vstack(top, bottom)), _at(robot, jacobian(robot, frame=0)))
+
+
+def _singular_displacement(f: Formula, variant: str) -> float:
+    r"""Check of eqs. (4.108)-(4.109) as printed in document 000.
+
+    At :math:`\theta_2 = 0`: :math:`{}^1\delta x = 0`, :math:`{}^1\delta y = (l_1 + l_2)\delta\theta_1 +
+    l_2\delta\theta_2` (planar 2R arm, parameters ``l1``, ``l2``).
+    """
+    robot = _robot(f)
+    values = _example(robot)
+    l1, l2 = (f.names["l1"], f.names["l2"])
+    singular = jacobian(robot, frame=1)[:2, :].subs(robot.q[1], 0)
+    dq = sp.Matrix([sp.Rational(2, 7), sp.Rational(-3, 7)])
+    printed = sp.Matrix([0, (l1 + l2) * dq[0] + l2 * dq[1]])
+    return _residual(sp.Matrix((singular * dq).subs(values)).evalf(), sp.Matrix(printed.subs(values)).evalf())
+
+
+
+def _linear_jacobian_columns(f: Formula, variant: str) -> float:
+    r"""Check of eq. (4.148) as printed in document 000.
+
+    :math:`J_v = [\epsilon_1 z_1 + \bar\epsilon_1 (z_1 \times p_{1n}) \ \cdots\ \epsilon_n z_n + \bar\epsilon_n
+    (z_n \times p_{nn})]\,\dot q` as printed (a 3-vector, not the 3 x n matrix J_v; residual 1); corrected without
+    the trailing :math:`\dot q`, the columns of :math:`J_v` in {0}.
+    """
+    robot = _robot(f)
+    chain = chain_of(robot)
+    Z_hat = skew(sp.Matrix([0, 0, 1]))
+    columns = []
+    for i, joint in enumerate(robot.joints, start=1):
+        R = sp.Matrix(chain.rotation(0, i))
+        p = sp.Matrix(chain.transform(i, chain.n))[:3, 3]
+        columns.append(R * (Z_hat * p if joint.is_revolute else sp.Matrix([0, 0, 1])))
+    right = sp.Matrix.hstack(*columns)
+    if variant == "printed":
+        right = right * sp.Matrix(joint_rates(robot))
+    J_v = jacobian(robot, frame=0)[:3, :]
+    if right.shape != J_v.shape:
+        return 1.0  # as printed the right side is v = J_v q-dot, a 3-vector: it cannot equal the 3 x n matrix J_v
+    return _residual(_at(robot, right), _at(robot, J_v))
+
+
 RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {
     # helper B
     "frame_change": _frame_change,
@@ -430,6 +486,9 @@ RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {
     "stanford_explicit": _stanford_explicit,
     "p_in_from_base": _p_in_from_base,
     "planar_point_recursion": _planar_point_recursion,
+    "stanford_differentiation": _stanford_differentiation,
+    "singular_displacement": _singular_displacement,
+    "linear_jacobian_columns": _linear_jacobian_columns,
 }
 """Checks of prose formulas: ``check(formula, "printed" | "corrected")`` is the relative residual of that form on an
 example arm (0 when it holds); each check's docstring quotes the formula it evaluates."""

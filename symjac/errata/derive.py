@@ -106,13 +106,15 @@ def _block(f: Formula, of: str, r: Any = None, c: Any = None, at: Any = None, **
     return M.extract(rows, cols)
 
 
-def _z_cross_p(f: Formula, joint: Any = None, tool: Any = None, frame: Any = None) -> sp.Matrix:
+def _z_cross_p(f: Formula, joint: Any = None, tool: Any = None, frame: Any = None, matrix: bool = False) -> sp.Matrix:
     r"""The explicit form's :math:`{}^iz_i \times {}^ip_{in} = \hat Z\,{}^ip_{in}`, rotated into ``frame`` if given.
 
     :math:`p_{in}` runs from joint ``joint``'s frame to the origin of frame ``tool`` (default {n}); without a joint,
-    :math:`\hat Z p` for the formula's symbols :math:`p = (p_x, p_y, p_z)`.
+    :math:`\hat Z p` for the formula's symbols :math:`p = (p_x, p_y, p_z)`; with ``matrix``, :math:`\hat Z` itself.
     """
     z_hat = skew(sp.Matrix([0, 0, 1]))
+    if matrix:
+        return z_hat
     if joint is None:
         return z_hat * sp.Matrix(f.symbols[:3])
     chain = chain_of(_robot(f))
@@ -194,7 +196,7 @@ def _example(robot: Robot) -> dict[sp.Symbol, sp.Expr]:
 
 def _at(robot: Robot, expression: Any) -> sp.Matrix:
     """``expression`` evaluated at the example configuration of ``robot`` (floats)."""
-    return sp.Matrix(sp.Matrix(expression).subs(_example(robot)).evalf())
+    return sp.Matrix(sp.Matrix(expression).xreplace(_example(robot)).evalf())
 
 
 def _residual(left: sp.MatrixBase, right: sp.MatrixBase) -> float:

@@ -100,40 +100,20 @@ print("operations in frame 0:", sp.count_ops(J_diff), " in frame 3:", sp.count_o
 # %% [markdown]
 # ## Where the printed notes disagree with the derivation
 #
-# Lecture notes are typed by hand. Below are two matrices as a set of course notes prints them (transcribed here as
-# data). Comparing each entry with symjac's result, exactly, finds the misprints; the derivation then tells which
-# side is right (a second derivation method agreeing with the first is strong evidence).
+# Lecture notes are typed by hand. symjac keeps every printed formula of its course notes as data
+# (`symjac/errata/formulas.toml`: where it is, and its entries as printed) and compares each one exactly with the
+# derivation; `symjac errata` prints the whole errata sheet. Two of the Stanford arm's matrices have misprints:
 
 # %%
-s1, c1 = sp.sin(robot.q[0]), sp.cos(robot.q[0])
-s2, c2 = sp.sin(robot.q[1]), sp.cos(robot.q[1])
-s4, c4 = sp.sin(robot.q[3]), sp.cos(robot.q[3])
-s5, c5 = sp.sin(robot.q[4]), sp.cos(robot.q[4])
-d2 = sp.Symbol("d2", real=True)
-d3 = robot.q[2]
+from symjac.errata import compare, formula  # noqa: E402
 
-printed_T_1_2 = sp.Matrix([[c2, -s2, 0, 0], [0, 0, 1, d2], [-s2, c2, 0, 0], [0, 0, 0, 1]])
-printed_J = sp.Matrix([
-    [-c1 * d2 - s1 * s2 * d3, c1 * c2 * d3, c1 * s2, 0, 0, 0],
-    [-s1 * d2 + c1 * s2 * d3, s1 * c2 * d3, s1 * s2, 0, 0, 0],
-    [0, -s2 * d3, c2, 0, 0, 0],
-    [0, -s1, 0, c1 * s2, -s1 * c2 * s4 + c1 * c4, c1 * c2 * c4 * s5 - s1 * s4 * s5 + c1 * s2 * s5],
-    [0, c1, 0, s1 * s2, -s1 * c2 * s4 + c1 * c4, s1 * c2 * c4 * s5 + c1 * s4 * s5 + s1 * s2 * s5],
-    [1, 0, 0, c2, s2 * s4, -s2 * c4 * s5 + c5 * c2],
-])
-
-
-def misprints(derived, printed):
-    """Entries (1-based) where the printed matrix is not identically equal to the derived one."""
-    return [(r + 1, c + 1) for r in range(printed.rows) for c in range(printed.cols)
-            if not is_identity(derived[r, c], printed[r, c], basis)]
-
-
-for name, derived, printed in (("1_2T", chain.simplified_transform(1, 2), printed_T_1_2),
-                               ("0J", J_diff, printed_J)):
-    for r, c in misprints(derived, printed):
-        display(Math(f"{name}_{{{r}{c}}}:\\ \\text{{printed}}\\ {latex(printed[r - 1, c - 1])},"
-                     f"\\quad \\text{{derived}}\\ {latex(derived[r - 1, c - 1])}"))
+for identifier in ("000-eq4.87", "000-s4.11.1-J"):
+    result = compare(formula(identifier))
+    print(f"{result.formula.where}: {result.formula.what}")
+    for r, c in result.differing:
+        display(Math(f"({r},{c}):\\ \\text{{printed}}\\ {latex(result.formula.printed[r - 1, c - 1])},"
+                     f"\\quad \\text{{derived}}\\ {latex(result.derived[r - 1, c - 1])}"))
+    print("why:", result.formula.why)
 
 # %% [markdown]
 # Reading the differences:
@@ -142,10 +122,16 @@ for name, derived, printed in (("1_2T", chain.simplified_transform(1, 2), printe
 # * ${}^0J_{45}$: the print repeats the entry below it; the axis $z_5 = {}^0_4R\,[0, 1, 0]^T$ gives
 #   $-c_1 c_2 s_4 - s_1 c_4$.
 # * ${}^0J_{46}$, ${}^0J_{56}$: the last term should carry $c_5$, not $s_5$ (the third column of ${}^0_6R$).
+#
+# The same comparison, entry by entry with `is_identity`, is all there is to it: the printed matrix as data, the
+# derived one from symjac, and an exact test per entry.
 
 # %%
-assert misprints(J_diff, printed_J) == [(4, 5), (4, 6), (5, 6)]
-assert misprints(chain.simplified_transform(1, 2), printed_T_1_2) == [(3, 2)]
+assert compare(formula("000-s4.11.1-J")).differing == ((4, 5), (4, 6), (5, 6))
+assert compare(formula("000-eq4.87")).differing == ((3, 2),)
+printed_J = formula("000-s4.11.1-J").printed
+assert [(r + 1, c + 1) for r in range(6) for c in range(6)
+        if not is_identity(J_diff[r, c], printed_J[r, c], basis)] == [(4, 5), (4, 6), (5, 6)]
 
 # %% [markdown]
 # ## Exercises

@@ -7,6 +7,7 @@ convention notes (a formula that holds in another stated convention) are listed 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import cache
 
 import sympy as sp
 
@@ -20,9 +21,10 @@ __all__ = ["SHEET_FORMATS", "comparisons", "errata_sheet", "summary"]
 SHEET_FORMATS = ("markdown", "latex")
 
 
-def comparisons() -> list[Comparison]:
-    """Every formula of the data file compared with the derivation, in file order."""
-    return [compare(f) for f in formulas()]
+@cache
+def comparisons() -> tuple[Comparison, ...]:
+    """Every formula of the data file compared with the derivation, in file order (computed once)."""
+    return tuple(compare(f) for f in formulas())
 
 
 def summary(results: Sequence[Comparison]) -> dict[str, dict[str, int]]:

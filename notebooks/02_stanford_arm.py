@@ -134,6 +134,13 @@ assert [(r + 1, c + 1) for r in range(6) for c in range(6)
         if not is_identity(J_diff[r, c], printed_J[r, c], basis)] == [(4, 5), (4, 6), (5, 6)]
 
 # %% [markdown]
+# For the exercises, the textbook shorthand as SymPy expressions:
+
+# %%
+s1, c1 = sp.sin(robot.q[0]), sp.cos(robot.q[0])
+s2, c2 = sp.sin(robot.q[1]), sp.cos(robot.q[1])
+
+# %% [markdown]
 # ## Exercises
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly

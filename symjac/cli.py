@@ -115,7 +115,8 @@ def _parser() -> argparse.ArgumentParser:
 
     command("robots", _robots, "list the built-in robots")
     errata = command("errata", _errata, "the errata sheet of the course notes: every printed formula checked")
-    errata.add_argument("--format", choices=SHEET_FORMATS, default="markdown", help="output format (default markdown)")
+    errata.add_argument("--format", dest="sheet_format", choices=SHEET_FORMATS, default="markdown",
+                        help="markdown or a standalone LaTeX document (default markdown)")
     generator = command("codegen", _codegen, "generate a numeric module: forward kinematics, Jacobians, torques")
     add_robot_arguments(generator)
     generator.add_argument("--target", choices=TARGETS, default="python",
@@ -183,7 +184,8 @@ def _robots(args: argparse.Namespace) -> str:
 
 
 def _errata(args: argparse.Namespace) -> str:
-    return progress("the errata sheet", lambda: errata_sheet(args.format))
+    """``errata``: a sheet, not a Document; its formats are its own, hence its own ``dest``."""
+    return progress("the errata sheet", lambda: errata_sheet(args.sheet_format))
 
 
 def _convert(args: argparse.Namespace) -> str:

@@ -20,8 +20,7 @@ from symjac.representations import angular_velocity_matrix, rate_matrix, rotatio
 from symjac.singularity import determinant
 from symjac.transforms import skew
 
-__all__ = ["BASE_QUANTITIES", "position_of", "representation_quantity", "robot_of"]
-
+__all__ = ["BASE_QUANTITIES", "jacobian_of", "position_of", "representation_quantity", "robot_of"]
 
 
 def robot_of(f: Formula) -> Robot:
@@ -45,7 +44,9 @@ def position_of(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:
     return _transform(f, source, target)[:3, 3]
 
 
-def _jacobian(f: Formula, frame: Any = 0, point: Any = "wrist", rows: Any = None, order: str = "v_first") -> sp.Matrix:
+def jacobian_of(f: Formula, frame: Any = 0, point: Any = "wrist", rows: Any = None,
+                order: str = "v_first") -> sp.Matrix:
+    """The Jacobian of the formula's robot; some ``rows`` by name, or with the angular rows first."""
     J = jacobian(robot_of(f), frame=frame, point=point)
     if order == "omega_first":
         J = sp.Matrix.vstack(J[3:, :], J[:3, :])
@@ -92,7 +93,7 @@ BASE_QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
     "transform": _transform,
     "rotation": _rotation,
     "position": position_of,
-    "jacobian": _jacobian,
+    "jacobian": jacobian_of,
     "velocity": _velocity,
     "force": _force,
     "torques": _torques,

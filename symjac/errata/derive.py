@@ -17,6 +17,9 @@ from symjac.angles import AngleBasis
 from symjac.errata.base import BASE_QUANTITIES
 from symjac.errata.checks_000a import QUANTITIES_000A, RELATIONS_000A
 from symjac.errata.checks_000b import QUANTITIES_000B, RELATIONS_000B
+from symjac.errata.checks_matrices import QUANTITIES_SLIDES_NOTES
+from symjac.errata.checks_notes import NOTE_RELATIONS
+from symjac.errata.checks_slides import SLIDE_RELATIONS
 from symjac.errata.formulas import Formula
 from symjac.simplify import is_identity
 
@@ -25,10 +28,14 @@ __all__ = ["QUANTITIES", "RELATIONS", "RELATION_TOLERANCE", "Comparison", "compa
 RELATION_TOLERANCE = 1e-9
 """A relation holds when its residual on the example arm is below this (relative to the size of the terms)."""
 
-QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {**BASE_QUANTITIES, **QUANTITIES_000A, **QUANTITIES_000B}
+QUANTITIES: Mapping[str, Callable[..., sp.Matrix]] = {
+    **BASE_QUANTITIES, **QUANTITIES_000A, **QUANTITIES_000B, **QUANTITIES_SLIDES_NOTES,
+}
 
 
-RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {**RELATIONS_000A, **RELATIONS_000B}
+RELATIONS: Mapping[str, Callable[[Formula, str], float]] = {
+    **RELATIONS_000A, **RELATIONS_000B, **SLIDE_RELATIONS, **NOTE_RELATIONS,
+}
 """Checks of prose formulas: ``check(formula, "printed" | "corrected")`` is the relative residual of that form on an
 example arm (0 when it holds); each check's docstring quotes the formula it evaluates."""
 

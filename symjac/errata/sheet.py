@@ -86,7 +86,7 @@ def errata_sheet(fmt: str = "markdown") -> str:
                   for doc, c in counts.items()]
     return "\n".join([
         r"\documentclass[10pt]{article}", r"\usepackage[margin=1.5cm,landscape]{geometry}",
-        r"\usepackage{amsmath,longtable,array}", r"\begin{document}", r"\section*{Errata for the course notes}",
+        r"\usepackage{amsmath,amssymb,longtable,array}", r"\begin{document}", r"\section*{Errata for the course notes}",
         r"\begin{tabular}{lrrrr} document & checked & confirmed & errata & convention notes \\ \hline",
         *counts_tex, r"\end{tabular}", "",
         r"\begin{longtable}{|p{5cm}|p{6cm}|p{6cm}|p{6cm}|} \hline where & as printed & corrected & why \\ \hline",

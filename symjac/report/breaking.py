@@ -18,9 +18,10 @@ from xml.dom.minidom import Element
 
 import sympy as sp
 
+from symjac.printing.shorthand import textbook_factors
 from symjac.report.mathml import TextbookMathMLPrinter, math_element, mathml_node
 
-__all__ = ["BUDGET_EM", "Display", "displays", "estimated_width"]
+__all__ = ["BUDGET_EM", "Display", "Piece", "displays", "estimated_width"]
 
 BUDGET_EM = 40.0
 """Widest display (estimated em) laid out on one line; the page's column is wider than this by a margin."""
@@ -71,34 +72,73 @@ def _element(printer: TextbookMathMLPrinter, tag: str, text: str | None = None) 
     return element
 
 
-def _lines(printer: TextbookMathMLPrinter, expr: sp.Expr, budget: float) -> Element:
-    """``expr`` printed within ``budget``: as it is, or (a sum) over left-aligned lines of terms."""
+Piece = list[Element]
+"""Nodes that stay together on one line; a line may break between two pieces."""
+
+
+def _pieces(printer: TextbookMathMLPrinter, expr: sp.Expr, budget: float) -> list[Piece]:
+    """``expr`` cut where a line may break: between the terms of a sum, and inside a long sum within a product."""
     node = mathml_node(expr, printer)
-    if estimated_width(node) <= budget or not isinstance(expr, sp.Add):
-        return node
+    if estimated_width(node) <= budget:
+        return [[node]]
+    if isinstance(expr, sp.Add):
+        pieces: list[Piece] = []
+        for number, term in enumerate(expr.as_ordered_terms()):
+            negative = term.could_extract_minus_sign()
+            inner = _pieces(printer, -term if negative else term, budget)
+            if number or negative:
+                inner[0].insert(0, _element(printer, "mo", "\u2212" if negative else "+"))
+            pieces += inner
+        return pieces
+    ordered = textbook_factors(expr) if isinstance(expr, sp.Mul) else None
+    if ordered is None:
+        return [[node]]
+    coefficient, factors = ordered
+    pieces = []
+    prefix = [_element(printer, "mo", "\u2212")] if coefficient < 0 else []
+    if abs(coefficient) != 1:
+        prefix.append(_element(printer, "mn", str(abs(coefficient))))
+    for factor in factors:
+        if factor.is_Add:
+            inner = _pieces(printer, factor, budget)
+            inner[0].insert(0, _element(printer, "mo", "("))
+            inner[-1].append(_element(printer, "mo", ")"))
+        else:
+            inner = [[mathml_node(factor, printer)]]
+        pieces += inner
+    pieces[0][:0] = prefix
+    return pieces
+
+
+def _lines(printer: TextbookMathMLPrinter, expr: sp.Expr, budget: float) -> Element:
+    """``expr`` printed within ``budget``: as it is, or over left-aligned lines broken between pieces."""
+    pieces = _pieces(printer, expr, budget)
+    if len(pieces) == 1:
+        return pieces[0][0] if len(pieces[0]) == 1 else _row(printer, pieces[0])
     table = _element(printer, "mtable")
     table.setAttribute("class", "lines")
-    line = _element(printer, "mrow")
+    lines: list[list[Element]] = [[]]
     width = 0.0
-    for number, term in enumerate(expr.as_ordered_terms()):
-        negative = term.could_extract_minus_sign()
-        printed = mathml_node(-term if negative else term, printer)
-        term_width = estimated_width(printed) + 1.3
-        if width and width + term_width > budget:
-            row, cell = _element(printer, "mtr"), _element(printer, "mtd")
-            cell.appendChild(line)
-            row.appendChild(cell)
-            table.appendChild(row)
-            line, width = _element(printer, "mrow"), 0.0
-        if number or negative:
-            line.appendChild(_element(printer, "mo", "-" if negative else "+"))
-        line.appendChild(printed)
-        width += term_width
-    row, cell = _element(printer, "mtr"), _element(printer, "mtd")
-    cell.appendChild(line)
-    row.appendChild(cell)
-    table.appendChild(row)
+    for piece in pieces:
+        piece_width = sum(estimated_width(node) for node in piece)
+        if lines[-1] and width + piece_width > budget:
+            lines.append([])
+            width = 0.0
+        lines[-1] += piece
+        width += piece_width
+    for line in lines:
+        row, cell = _element(printer, "mtr"), _element(printer, "mtd")
+        cell.appendChild(_row(printer, line))
+        row.appendChild(cell)
+        table.appendChild(row)
     return table
+
+
+def _row(printer: TextbookMathMLPrinter, nodes: list[Element]) -> Element:
+    row = _element(printer, "mrow")
+    for node in nodes:
+        row.appendChild(node)
+    return row
 
 
 def _matrix(printer: TextbookMathMLPrinter, cells: list[list[Element]]) -> Element:

@@ -87,15 +87,17 @@ def rates_svg(path: SingularPath, names: list[str]) -> str:
         colour = _JOINT_COLOURS[joint % len(_JOINT_COLOURS)]
         exact = np.abs(path.rates.exact[:, joint])
         damped = np.abs(path.rates.damped[:, joint])
-        if np.any(exact > 1e-12):
+        shown = np.any(exact > 1e-12)
+        if shown:
             axes.plot(path.t, np.where(exact > 1e-12, exact, np.nan), color=colour, linewidth=1.6, label=name)
         if np.any(damped > 1e-12):
             axes.plot(path.t, np.where(damped > 1e-12, damped, np.nan), color=colour, linewidth=1.0,
-                      linestyle="dashed")
+                      linestyle="dashed", label=None if shown else name)
     axes.axvline(0.0, color="black", linewidth=0.8, linestyle="dotted")
     axes.set_yscale("log")
     axes.set_xlabel("path parameter t (rad from the singular configuration)")
     axes.set_ylabel("|joint rate| for a unit command")
-    axes.legend(loc="upper right", fontsize="small", ncols=2, title="exact (solid), damped (dashed)",
-                title_fontsize="small")
+    exact = bool(np.any(np.isfinite(path.rates.exact)))
+    axes.legend(loc="upper right", fontsize="small", ncols=2, title_fontsize="small",
+                title="exact (solid), damped (dashed)" if exact else "damped least squares")
     return _svg(figure, "symjac-rates")

@@ -104,8 +104,8 @@ def core_elements(node: Element) -> Element:
         if isinstance(child, Element):
             core_elements(child)
     text = node.firstChild
-    if node.tagName == "mo" and isinstance(text, Text) and text.data == "-":
-        text.data = "\u2212"  # the minus sign, not the hyphen
+    if node.tagName in ("mo", "mn") and isinstance(text, Text) and text.data.startswith("-"):
+        text.data = "\u2212" + text.data[1:]  # the minus sign, not the hyphen
     document, parent = node.ownerDocument, node.parentNode
     if node.tagName != "mfenced" or document is None or parent is None:
         return node

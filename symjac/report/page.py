@@ -140,10 +140,13 @@ def _rates_section(robot: Robot, path: SingularPath) -> Section:
     command = ", ".join(f"{ROW_NAMES[r]} {value:+.3f}" for r, value in zip(path.rows, path.xdot, strict=True))
     crossing = "" if path.curve is None else (" crossing the singular set of the factor "
                                              + inline_math(path.curve.factor.expression))
+    square = len(path.rows) == robot.dof
+    behaviour = ("The exact rates (solid) grow like 1/|t|; the damped least-squares rates (dashed) stay bounded at "
+                 "the price of a tracking error." if square else
+                 "The arm is redundant, so J has no inverse: the rates shown are the damped least-squares ones.")
     text = (f"<p>Joint rates q&#775; = J<sup>-1</sup> x&#775; for a constant commanded velocity x&#775; = "
             f"({html.escape(command)}) (the direction lost at the singular configuration), along the straight path "
-            f"of the map{crossing} at t = 0. The exact rates (solid) grow like 1/|t|; the damped least-squares rates "
-            "(dashed) stay bounded at the price of a tracking error.</p>")
+            f"of the map{crossing} at t = 0. {behaviour}</p>")
     return Section("rates", "Joint rates through a singularity", f'<div class="figure">{rates_svg(path, names)}</div>'
                    + text)
 

@@ -46,7 +46,7 @@ class Curve:
     solutions: tuple[Solution, ...]  # the solutions drawn exactly (empty: the zero contour of ``values``)
     points: tuple[np.ndarray, np.ndarray] | None  # x, y with nan between pieces (solved form)
     values: np.ndarray | None  # the exact factor on the fine grid (no solved form): its zero contour is the curve
-    crossing: tuple[float, float] | None  # a point of the curve inside the plane, near its centre
+    crossing: tuple[float, float] | None  # a point to cross the curve at: simply singular, near the centre
 
 
 @dataclass(frozen=True)
@@ -166,8 +166,16 @@ def _function(expr: sp.Expr, variable: sp.Symbol) -> Callable[[np.ndarray], np.n
     return lambda values: np.broadcast_to(np.asarray(compiled(values), dtype=float), values.shape)
 
 
+def _crossing(inside: list[np.ndarray], centre: np.ndarray,
+              rank_margin: Callable[[np.ndarray], float]) -> tuple[float, float]:
+    """The point of a curve to cross: simply singular (no other singular set through it), then near the centre."""
+    step = max(1, len(inside) // 240)
+    best = max(inside[::step], key=lambda p: (round(rank_margin(p), 3), -float(np.hypot(*(p - centre)))))
+    return float(best[0]), float(best[1])
+
+
 def _curve(robot: Robot, factor: SingularFactor, plane: tuple[int, int], fixed: dict[sp.Symbol, sp.Expr],
-           grids: tuple[np.ndarray, np.ndarray]) -> Curve | None:
+           grids: tuple[np.ndarray, np.ndarray], rank_margin: Callable[[np.ndarray], float]) -> Curve | None:
     a, b = (robot.q[i] for i in plane)
     if not factor.expression.free_symbols & {a, b}:
         return None
@@ -200,10 +208,7 @@ def _curve(robot: Robot, factor: SingularFactor, plane: tuple[int, int], fixed: 
             keep = np.isfinite(shifted) & (shifted >= low) & (shifted <= high)
             inside += [np.array(p) for p in zip(pair[0][keep], pair[1][keep], strict=True)]
     if drawn:
-        crossing = None
-        if inside:
-            nearest = min(inside, key=lambda p: float(np.hypot(*(p - centre))))
-            crossing = (float(nearest[0]), float(nearest[1]))
+        crossing = _crossing(inside, centre, rank_margin) if inside else None
         return Curve(factor, tuple(drawn), (np.concatenate(xs), np.concatenate(ys)), None, crossing)
     exact = sp.lambdify([a, b], factor.expression.xreplace(fixed), modules="numpy")
     X, Y = np.meshgrid(*grids)
@@ -231,8 +236,15 @@ def manipulability_map(robot: Robot, report: SingularityReport, size: int = 121,
              if k not in plane}
     fixed.update(robot.defaults)
     grids = (np.linspace(*bounds[0], fine), np.linspace(*bounds[1], fine))
+
+    def rank_margin(point: np.ndarray) -> float:
+        """The second smallest singular value of J at ``point`` of the plane, relative to the largest."""
+        q[plane[0]], q[plane[1]] = point
+        sigma = np.linalg.svd(numeric_jacobian(robot, q.tolist(), det.frame, det.point)[rows, :], compute_uv=False)
+        return float(sigma[-2] / sigma[0]) if len(sigma) > 1 else 1.0
+
     curves = [curve for factor in _plotted(report)
-              if (curve := _curve(robot, factor, plane, fixed, grids)) is not None]
+              if (curve := _curve(robot, factor, plane, fixed, grids, rank_margin)) is not None]
     measure = "|det J|" if len(rows) == robot.dof else "sqrt(det(J J^T))"
     return ManipulabilityMap(plane, tuple(configuration), x, y, w, measure, tuple(curves), det.rows, det.frame,
                              det.point)

@@ -173,7 +173,7 @@ def displays(rhs: sp.Basic, lhs: Element | None = None, budget: float = BUDGET_E
     --------
     >>> t1 = sp.Symbol("theta1", real=True)
     >>> [d.columns for d in displays(sp.Matrix([[sp.cos(t1)] * 30]))]
-    [(0, 16), (16, 30)]
+    [(0, 18), (18, 30)]
     """
     printer = TextbookMathMLPrinter()
     lhs_width = 0.0 if lhs is None else estimated_width(lhs) + 1.5

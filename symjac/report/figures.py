@@ -41,11 +41,6 @@ def _svg(figure: Any, salt: str) -> str:
     return text[text.index("<svg"):].strip() + "\n"
 
 
-def _label(robot_q: Any, joint: int) -> str:
-    name = str(robot_q[joint])
-    return f"θ{name[5:]}" if name.startswith("theta") else name
-
-
 def map_svg(plane: ManipulabilityMap, names: tuple[str, str], path: SingularPath | None = None) -> str:
     """The manipulability heat map with the singular curves (one colour per factor) and the path, as SVG."""
     _, Figure = _matplotlib()

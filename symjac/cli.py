@@ -131,6 +131,8 @@ def _parser() -> argparse.ArgumentParser:
                            help="expressions to start from (default: fewest operations after CSE)")
     generator.add_argument("--acceleration", action="store_true",
                            help="also generate hessian, bias_acceleration (Jdot qdot) and manipulability_gradient")
+    reporter = command("report", _report, "write the whole derivation as one self-contained HTML page")
+    add_robot_arguments(reporter)
     converter = command("convert", _convert, "print the robot as a TOML robot file, converted to a DH convention")
     add_robot_arguments(converter)
     converter.add_argument("--to", choices=("modified", "standard", "toml"), required=True,
@@ -199,6 +201,14 @@ def _convert(args: argparse.Namespace) -> str:
         notes = dh_from_general(robot).notes  # whether the table needs a base or tool transform, in words
     text = robot_to_toml(robot if args.to == "toml" else convert(robot, args.to))
     return "".join(f"# {note}\n" for note in notes) + text
+
+
+def _report(args: argparse.Namespace) -> str:
+    """``report``: one HTML page (matplotlib is imported only for this command)."""
+    from symjac.report import derivation_report  # only this command needs it (and matplotlib)
+
+    robot = load(args)
+    return progress(f"derivation report of {robot.name}", lambda: derivation_report(robot, args.robot))
 
 
 def _show(args: argparse.Namespace) -> Document:

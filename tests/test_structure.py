@@ -33,7 +33,7 @@ FLOORS: dict[str, int] = {
     "symjac.exercises": 4,
     "symjac.manipulability": 4,
     # outputs
-    "symjac.errata": 5,
+    "symjac.errata": 5, "symjac.report": 5,
     "symjac.printing": 5, "symjac.codegen": 5, "symjac.cli": 5, "symjac.cli_args": 5, "symjac.cli_output": 5,
     "symjac.__main__": 5,
 }

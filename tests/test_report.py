@@ -1,0 +1,236 @@
+"""``symjac report``: one self-contained HTML page, checked structurally, numerically and in a real browser.
+
+The browser test renders the PUMA 560 page and a URDF arm's page in headless Chromium: a copy of each page gets a
+test-only script that writes what it measured (page width against the window, MathML and SVG counts, ``merror``
+elements, whether ``<math>`` is laid out as MathML) into the DOM, which ``--dump-dom`` prints. A screenshot of each
+page goes to ``$SYMJAC_ARTIFACTS`` (default ``tests/artifacts/``). Without Chromium the test is skipped (``.ci/run``
+installs it).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from html.parser import HTMLParser
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from symjac import load_robot
+from symjac.cli import main
+from symjac.errors import SymjacError
+from symjac.report import derivation_report
+from symjac.report.figures import map_svg
+from symjac.report.plane import manipulability_map, singular_path
+from symjac.singular_report import singularities
+
+ARTIFACTS = Path(os.environ.get("SYMJAC_ARTIFACTS", Path(__file__).parent / "artifacts"))
+
+# A two-joint arm with two leaves: the chain is chosen by --tip-link.
+TWO_LEAVES_URDF = """<?xml version="1.0"?>
+<robot name="two_leaves">
+  <link name="base"/><link name="l1"/><link name="l2"/><link name="finger_a"/><link name="finger_b"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <origin xyz="0 0 0.5" rpy="0 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3"/></joint>
+  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
+    <origin xyz="0.4 0 0" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/><limit lower="-2" upper="2"/></joint>
+  <joint name="fa" type="fixed"><parent link="l2"/><child link="finger_a"/><origin xyz="0.3 0.02 0"/></joint>
+  <joint name="fb" type="fixed"><parent link="l2"/><child link="finger_b"/><origin xyz="0.3 -0.02 0"/></joint>
+</robot>
+"""
+
+VOID = {"meta", "br", "img", "input", "link", "hr", "wbr", "col", "area", "base", "source", "track", "embed"}
+
+
+@pytest.fixture(scope="module")
+def pages(tmp_path_factory) -> dict[str, Path]:
+    """The PUMA 560 page (through the API) and the UR5 URDF page (through the command line)."""
+    folder = tmp_path_factory.mktemp("report")
+    puma = folder / "puma560.html"
+    puma.write_text(derivation_report(load_robot("puma560"), "puma560"), encoding="utf-8")
+    ur5 = folder / "ur5.html"
+    assert main(["report", "ur5.urdf", "-o", str(ur5)]) == 0
+    return {"puma560": puma, "ur5.urdf": ur5}
+
+
+class _Checker(HTMLParser):
+    """Every element closed in order; every src/href kept local."""
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.stack: list[str] = []
+        self.problems: list[str] = []
+        self.links: list[str] = []
+        self.tags: dict[str, int] = {}
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.tags[tag] = self.tags.get(tag, 0) + 1
+        self.links += [value or "" for name, value in attrs if name in ("src", "href", "xlink:href")]
+        if tag not in VOID:
+            self.stack.append(tag)
+
+    def handle_startendtag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        self.tags[tag] = self.tags.get(tag, 0) + 1
+        self.links += [value or "" for name, value in attrs if name in ("src", "href", "xlink:href")]
+
+    def handle_endtag(self, tag: str) -> None:
+        if not self.stack or self.stack[-1] != tag:
+            self.problems.append(f"</{tag}> closes {self.stack[-1] if self.stack else 'nothing'}")
+            return
+        self.stack.pop()
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5.urdf"])
+def test_page_is_well_formed_and_self_contained(pages, name):
+    text = pages[name].read_text(encoding="utf-8")
+    checker = _Checker()
+    checker.feed(text)
+    checker.close()
+    assert not checker.problems and not checker.stack, (checker.problems[:5], checker.stack[-5:])
+    assert all(link.startswith(("#", "data:")) for link in checker.links), [
+        link[:60] for link in checker.links if not link.startswith(("#", "data:"))]
+    assert not re.search(r"(src|href)\s*=\s*[\"']?\s*(https?:)?//", text)
+    assert "<script" not in text and "@import" not in text and "url(http" not in text
+    assert "mfenced" not in text and "merror" not in text
+    assert checker.tags["svg"] == 2 and checker.tags["math"] > 40 and checker.tags["table"] >= 2
+    for words in ("Denavit-Hartenberg table", "Forward kinematics", "All four methods agree",
+                  "Singular configurations", "drawn exactly from its solutions", "Joint rates"):
+        assert words in text, words
+    assert "<msub><mi>c</mi><mn>23</mn></msub>" in text  # textbook shorthand c_23
+
+
+def test_page_is_deterministic(pages, tmp_path):
+    again = tmp_path / "again.html"
+    assert main(["report", "ur5.urdf", "-o", str(again)]) == 0
+    assert again.read_bytes() == pages["ur5.urdf"].read_bytes()
+
+
+def test_the_tip_link_chooses_a_urdf_chain(tmp_path, capsys):
+    arm = tmp_path / "two.urdf"
+    arm.write_text(TWO_LEAVES_URDF, encoding="utf-8")
+    assert main(["report", str(arm), "-o", str(tmp_path / "x.html")]) == 2
+    assert "choose --tip-link" in capsys.readouterr().err
+    assert main(["report", str(arm), "--tip-link", "finger_a", "-o", "-"]) == 0
+    text = capsys.readouterr().out
+    assert "two_leaves: derivation report" in text and text.count("<svg") == 2
+
+
+def test_user_strings_are_escaped(tmp_path, capsys):
+    planar = (Path(__file__).parent.parent / "symjac" / "robots" / "planar2r.toml").read_text(encoding="utf-8")
+    odd = re.sub(r'(?m)^description = .*$', 'description = "<script>alert(1)</script> & <b>more</b>"', planar)
+    path = tmp_path / "odd<&>.toml"
+    path.write_text(odd, encoding="utf-8")
+    assert main(["report", str(path), "-o", "-"]) == 0
+    text = capsys.readouterr().out
+    assert "&lt;script&gt;alert(1)&lt;/script&gt; &amp; &lt;b&gt;more&lt;/b&gt;" in text
+    assert "odd&lt;&amp;&gt;.toml" in text
+    assert "<script" not in text and "<b>more" not in text and "odd<&>" not in text
+    checker = _Checker()
+    checker.feed(text)
+    assert not checker.problems and not checker.stack
+
+
+@pytest.mark.parametrize(("argv", "message"), [
+    (["report", "nosuch"], "'nosuch' is neither a built-in robot"),
+    (["report", "planar2r", "-o", "/nonexistent-dir/page.html"], "/nonexistent-dir/page.html: No such file"),
+])
+def test_bad_input_gives_one_clean_line(capsys, argv, message):
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and len(err.splitlines()) == 1 and err.startswith("symjac: error: ") and message in err
+
+
+def test_the_singular_curves_are_the_solved_factors_and_the_rates_blow_up_at_them():
+    robot = load_robot("puma560")
+    report = singularities(robot)
+    plane = manipulability_map(robot, report, size=21)
+    assert plane is not None and plane.joints == (1, 2)  # theta2 and theta3: the elbow and shoulder factors
+    assert {str(curve.factor.kind) for curve in plane.curves} == {"elbow", "shoulder"}
+    fixed = {v: value for k, (v, value) in enumerate(zip(robot.q, plane.configuration, strict=True))
+             if k not in plane.joints}
+    a, b = (robot.q[k] for k in plane.joints)
+    for curve in plane.curves:
+        assert curve.solutions and curve.points is not None  # drawn from the solved form, not a contour
+        factor = sp.lambdify([a, b], curve.factor.expression.xreplace({**fixed, **robot.defaults}))
+        x, y = curve.points
+        shown = np.isfinite(x) & np.isfinite(y) & (np.abs(x) <= math.pi) & (np.abs(y) <= math.pi)
+        assert shown.sum() > 100
+        assert np.max(np.abs(factor(x[shown], y[shown]))) < 1e-12
+    path = singular_path(robot, plane)
+    exact = np.nan_to_num(np.abs(path.rates.exact), nan=np.inf).max(axis=1)
+    assert exact[len(exact) // 2] > 100 * max(exact[0], exact[-1])  # grows like 1/|t| at the crossing
+    assert np.abs(path.rates.damped).max() < 50
+
+
+def test_a_missing_matplotlib_is_a_clear_error(monkeypatch):
+    robot = load_robot("planar2r")
+    plane = manipulability_map(robot, singularities(robot), size=5)
+    assert plane is not None
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+    monkeypatch.setitem(sys.modules, "matplotlib.figure", None)
+    with pytest.raises(SymjacError, match=r"pip install 'symjac\[report\]'"):
+        map_svg(plane, ("a", "b"))
+
+
+PROBE = """<script>
+(function () {
+  var root = document.documentElement, width = window.innerWidth, wide = [];
+  document.querySelectorAll("body *").forEach(function (e) {
+    var r = e.getBoundingClientRect();
+    if (r.right > width + 0.5 && wide.length < 5) wide.push(e.tagName + " right " + Math.round(r.right));
+  });
+  var maths = document.querySelectorAll("math"), empty = 0;
+  maths.forEach(function (m) { if (m.getBoundingClientRect().width < 1) empty++; });
+  var out = {scrollWidth: root.scrollWidth, innerWidth: width, math: maths.length, emptyMath: empty,
+             svg: document.querySelectorAll("svg").length, merror: document.querySelectorAll("merror").length,
+             mathDisplay: maths.length ? getComputedStyle(maths[0]).display : "", wide: wide,
+             height: root.scrollHeight, text: document.body.innerText.length};
+  var pre = document.createElement("pre");
+  pre.id = "symjac-probe";
+  pre.textContent = JSON.stringify(out);
+  document.body.appendChild(pre);
+})();
+</script>"""
+
+
+def _chromium() -> str | None:
+    return next((path for name in ("chromium", "chromium-browser") if (path := shutil.which(name))), None)
+
+
+def _browser(binary: str, *arguments: str) -> subprocess.CompletedProcess[str]:
+    with tempfile.TemporaryDirectory() as profile:  # a fresh, empty profile: nothing from earlier runs
+        command = [binary, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                   "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                   f"--user-data-dir={profile}", "--window-size=1280,2000", *arguments]
+        return subprocess.run(command, capture_output=True, text=True, timeout=60, check=False)
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5.urdf"])
+def test_the_page_renders_in_chromium(pages, tmp_path, name):
+    binary = _chromium()
+    if binary is None:
+        pytest.skip("chromium is not installed (.ci/run installs it: apt-get install chromium)")
+    page = pages[name]
+    probed = tmp_path / "probed.html"
+    probed.write_text(page.read_text(encoding="utf-8").replace("</body>", PROBE + "</body>"), encoding="utf-8")
+    result = _browser(binary, "--dump-dom", probed.as_uri())
+    found = re.search(r'<pre id="symjac-probe">(.*?)</pre>', result.stdout)
+    assert found, result.stderr[-2000:]
+    seen = json.loads(found.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    assert seen["merror"] == 0 and seen["emptyMath"] == 0, seen
+    assert seen["math"] > 40 and seen["svg"] == 2 and seen["text"] > 2000 and seen["height"] > 2000, seen
+    assert "math" in seen["mathDisplay"], seen  # laid out as MathML, not as unknown inline elements
+    assert seen["scrollWidth"] <= seen["innerWidth"] and not seen["wide"], seen  # nothing wider than the page
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    screenshot = ARTIFACTS / f"report-{name.replace('.', '-')}.png"
+    screenshot.unlink(missing_ok=True)
+    _browser(binary, f"--screenshot={screenshot}", page.as_uri())
+    assert screenshot.is_file() and screenshot.stat().st_size > 20_000

@@ -39,7 +39,7 @@ from symjac.io import catalog
 from symjac.jacobian import METHODS, jacobian, point_vector
 from symjac.model import Robot
 from symjac.printing import prose
-from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
+from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, Inline, render
 from symjac.printing.json import (
     forward_kinematics_data,
     hessian_data,
@@ -55,6 +55,7 @@ from symjac.printing.steps import step_equations
 from symjac.printing.summary import singularity_blocks
 from symjac.propagation import force_propagation, joint_rates, velocity_propagation, wrench_symbols
 from symjac.representations import POSITIONS, REPRESENTATIONS, representation_jacobian
+from symjac.simplify import simplify_matrix
 from symjac.singular_report import singularities
 from symjac.statics import joint_torques
 
@@ -210,7 +211,7 @@ def _show(args: argparse.Namespace) -> Document:
         fixed = getattr(robot, key)
         if fixed is not None:
             source, target = ("world", 0) if key == "base" else (robot.dof, "tool")
-            transforms.append((f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", fixed.matrix))
+            transforms.append((f"{{}}^{{{_tex(source)}}}_{{{_tex(target)}}}T", f"T_{source}_{target}", fixed.matrix))
     matrices = [(tex, plain, _numeric(robot, m, args.numeric)) for tex, plain, m in transforms]
     blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
     blocks += [Block((), (Equation(tex, plain, m),)) for tex, plain, m in matrices]
@@ -226,7 +227,7 @@ def _fk(args: argparse.Namespace) -> Document:
     T = progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
     T = _numeric(robot, T, args.numeric)
     data = forward_kinematics_data(robot, T, source, target)
-    equation = Equation(f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", T)
+    equation = Equation(f"{{}}^{{{_tex(source)}}}_{{{_tex(target)}}}T", f"T_{source}_{target}", T)
     return Document(f"{robot.name}: forward kinematics", robot.name, (Block((), (equation,)),), data)
 
 
@@ -242,7 +243,7 @@ def _jacobian(args: argparse.Namespace) -> Document:
     J = progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
     J = _numeric(robot, J, args.numeric)
-    equation = Equation(f"{{}}^{{{frame}}}J", f"J in frame {frame}", J)
+    equation = Equation(f"{{}}^{{{_tex(frame)}}}J", f"J in frame {frame}", J)
     caption = f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}"
     blocks = [Block((), (step,)) for step in steps] + [Block((caption,), (equation,))]
     data = jacobian_data(robot, equation, frame, args.point, args.method, steps if args.steps else None)
@@ -256,12 +257,15 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
                    lambda: representation_jacobian(robot, args.representation, position, point, frame))
     J_0 = _numeric(robot, jacobian(robot, frame=rj.frame, point=point), args.numeric)
     notes = [prose.representation_note(s) for s in rj.singularities]
+    J_x = simplify_matrix(rj.E * J_0, chain_of(robot).angle_basis(rj.frame)).applyfunc(
+        lambda entry: sp.factor_terms(sp.together(entry)))  # multiplied out, then over one denominator
     blocks = [Block(("Representation coordinates",), (Equation("x", "x", sp.Matrix(rj.coordinates)),)),
-              Block(("Rate matrix, xdot = E(x) [v; omega]",), (Equation("E(x)", "E(x)", rj.E),)),
+              Block(("Rate matrix, ", Inline(r"\dot{x} = E(x)\,[v;\ \omega]", "xdot = E(x) [v; omega]")),
+                    (Equation("E(x)", "E(x)", rj.E),)),
               Block((f"Representation Jacobian at the {args.point} point",),
-                    (Equation(rf"J_x = E(x)\,{{}}^{{{rj.frame}}}J", f"J_x = E(x) J_{rj.frame}", (rj.E, J_0)),))]
+                    (Equation(rf"J_x = E(x)\,{{}}^{{{_tex(rj.frame)}}}J", f"J_x = E(x) J_{rj.frame}", J_x),))]
     blocks += [Block((note,)) for note in notes]
-    data = representation_data(robot, rj, J_0, args.point, args.representation, position)
+    data = representation_data(robot, rj, J_0, J_x, args.point, args.representation, position)
     title = f"{robot.name}: {args.representation} representation Jacobian"
     return Document(title, robot.name, tuple(blocks), data, comments=True)
 
@@ -281,9 +285,9 @@ def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any
     moving = " (in a moving frame: its rotation is differentiated too)" if carried_joints(robot, frame) else ""
     blocks = (*(Block((), (step,)) for step in steps),
               Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",),
-                    (Equation(rf"{{}}^{{{frame}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot),)),
+                    (Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot),)),
               Block(("Bias acceleration, the acceleration at zero joint acceleration",),
-                    (Equation(rf"{{}}^{{{frame}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias),)))
+                    (Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias),)))
     data = jacobian_derivative_data(robot, Jdot, bias, frame, args.point, [str(r) for r in joint_rates(robot)],
                                     steps if args.steps else None)
     return Document(f"{robot.name}: time derivative of the Jacobian in frame {frame}", robot.name, blocks, data)
@@ -297,7 +301,7 @@ def _hessian(args: argparse.Namespace) -> Document:
     H = progress(f"Hessian of {robot.name} in frame {frame}", lambda: hessian(robot, frame=frame, point=point))
     slices = [_numeric(robot, hessian_slice(H, k), args.numeric) for k in range(robot.dof)]
     blocks = tuple(Block((f"Derivative of the Jacobian with respect to joint {k + 1}",),
-                         (Equation(rf"\frac{{\partial\,{{}}^{{{frame}}}J}}{{\partial {sp.latex(q)}}}",
+                         (Equation(rf"\frac{{\partial\,{{}}^{{{_tex(frame)}}}J}}{{\partial {sp.latex(q)}}}",
                                    f"dJ/d{q}", slices[k]),))
                    for k, q in enumerate(robot.q))
     data = hessian_data(robot, slices, frame, args.point)
@@ -355,6 +359,11 @@ def _codegen(args: argparse.Namespace) -> str:
 
 
 # --- output helpers ------------------------------------------------------------------------------------------
+
+
+def _tex(frame: Frame | str) -> str:
+    r"""A frame as a LaTeX index: ``3``, or an upright name (``\mathrm{tool}``)."""
+    return str(frame) if isinstance(frame, int) else rf"\mathrm{{{frame}}}"
 
 
 def _numeric(robot: Robot, matrix: sp.MatrixBase, numeric: bool) -> sp.MatrixBase:

@@ -116,17 +116,18 @@ def hessian_data(robot: Robot, slices: list[sp.MatrixBase], frame: Frame, point:
             "slices": {str(q): matrix_strings(slices[k]) for k, q in enumerate(robot.q)}}
 
 
-def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, point: str, orientation: str,
-                        position: str) -> dict[str, Any]:
+def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, J_x: sp.MatrixBase, point: str,
+                        orientation: str, position: str) -> dict[str, Any]:
     """``symjac jacobian --representation``: coordinates, the rate matrix E, the basic Jacobian and its singularities.
 
     ``result`` is a :class:`symjac.representations.RepresentationJacobian` (fields ``coordinates``, ``E``, ``frame``,
-    ``singularities``).
+    ``singularities``); ``J_x`` is E(x) J_0 multiplied out.
     """
     return {**metadata(robot), "frame": result.frame, "point": point, "orientation": orientation,
             "position": position, "coordinates": [str(c) for c in result.coordinates], "E": matrix_strings(result.E),
-            "J_0": matrix_strings(J_0), "representation_singularities": [str(s) for s in result.singularities],
-            "latex": equation_latex(Equation("J_x", "J_x", (result.E, J_0)))}
+            "J_0": matrix_strings(J_0), "J_x": matrix_strings(J_x),
+            "representation_singularities": [str(s) for s in result.singularities],
+            "latex": equation_latex(Equation(r"J_x = E(x)\,J_0", "J_x", J_x))}
 
 
 def torques_data(robot: Robot, equation: Equation, frame: Frame, point: str, wrench: str | None,

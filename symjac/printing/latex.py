@@ -13,7 +13,10 @@ from sympy.printing.latex import LatexPrinter
 
 from symjac.printing.shorthand import GREEK, shorthand_indices, textbook_factors
 
-__all__ = ["TextbookLatexPrinter", "latex"]
+__all__ = ["TextbookLatexPrinter", "escape_text", "latex"]
+
+_TEXT_ESCAPES = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "_": r"\_", "#": r"\#", "%": r"\%", "&": r"\&",
+                 "$": r"\$", "^": r"\^{}", "~": r"\~{}", "<": r"\textless{}", ">": r"\textgreater{}"}
 
 
 class TextbookLatexPrinter(LatexPrinter):
@@ -43,6 +46,10 @@ class TextbookLatexPrinter(LatexPrinter):
         plain = LatexPrinter({"mat_str": "bmatrix", "mat_delim": ""})
         return LatexPrinter._print_Function(plain, expr, exp)
 
+    def _print_atan2(self, expr: sp.Function, exp: str | None = None) -> str:
+        text = r"\operatorname{atan2}\left(" + ", ".join(self._print(a) for a in expr.args) + r"\right)"
+        return f"{text}^{{{exp}}}" if exp else text
+
     def _print_Mul(self, expr: sp.Mul) -> str:
         ordered = textbook_factors(expr)
         if ordered is None:
@@ -64,3 +71,14 @@ def latex(expr: Any, **settings: Any) -> str:
     '\\begin{bmatrix}c_{1} s_{12}\\end{bmatrix}'
     """
     return TextbookLatexPrinter(settings).doprint(expr)
+
+
+def escape_text(text: str) -> str:
+    r"""Words for LaTeX text mode: ``_ # % & $ { } ^ ~ \ < >`` made printable.
+
+    Examples
+    --------
+    >>> escape_text("my_arm: 50% of {3}")
+    'my\\_arm: 50\\% of \\{3\\}'
+    """
+    return "".join(_TEXT_ESCAPES.get(character, character) for character in text)

@@ -11,9 +11,12 @@ from typing import Any
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
-from symjac.printing.shorthand import GREEK, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import GREEK, file_decimal, shorthand_indices, textbook_factors
 
-__all__ = ["TextbookLatexPrinter", "escape_text", "latex"]
+__all__ = ["DIGITS", "TextbookLatexPrinter", "escape_text", "latex", "rounded"]
+
+DIGITS = 4
+"""Significant digits of the numbers in ``--numeric`` results unless ``--digits`` says otherwise."""
 
 _TEXT_ESCAPES = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "_": r"\_", "#": r"\#", "%": r"\%", "&": r"\&",
                  "$": r"\$", "^": r"\^{}", "~": r"\~{}", "<": r"\textless{}", ">": r"\textgreater{}"}
@@ -50,7 +53,16 @@ class TextbookLatexPrinter(LatexPrinter):
         text = r"\operatorname{atan2}\left(" + ", ".join(self._print(a) for a in expr.args) + r"\right)"
         return f"{text}^{{{exp}}}" if exp else text
 
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return file_decimal(expr) or super()._print_Rational(expr)
+
     def _print_Mul(self, expr: sp.Mul) -> str:
+        coefficient, rest = expr.as_coeff_Mul()
+        decimal = file_decimal(abs(coefficient))
+        if decimal is not None:  # 0.089159 s_{1}, as the robot file wrote it
+            body = self._print(rest)
+            body = rf"\left({body}\right)" if rest.is_Add else body
+            return ("- " if coefficient < 0 else "") + f"{decimal} {body}"
         ordered = textbook_factors(expr)
         if ordered is None:
             return super()._print_Mul(expr)
@@ -82,3 +94,16 @@ def escape_text(text: str) -> str:
     'my\\_arm: 50\\% of \\{3\\}'
     """
     return "".join(_TEXT_ESCAPES.get(character, character) for character in text)
+
+
+def rounded(expr: Any, digits: int = DIGITS) -> Any:
+    """``expr`` (or a matrix) with every number a decimal of ``digits`` significant digits; integers stay integers.
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> rounded(sp.Rational(2159, 5000) * x + sp.Rational(1, 3) + 2 * sp.sin(x), 3)
+    0.432*x + 2*sin(x) + 0.333
+    """
+    value = sp.sympify(expr).evalf(digits)
+    return value.xreplace({f: sp.Integer(int(f)) for f in value.atoms(sp.Float) if float(f).is_integer()})

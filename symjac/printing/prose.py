@@ -18,6 +18,7 @@ __all__ = [
     "KIND_REASONS",
     "axis_name",
     "dh_caption",
+    "existence_parts",
     "existence_words",
     "finding_sentence",
     "landmark_name",
@@ -25,9 +26,11 @@ __all__ = [
     "limit_text",
     "lost_words",
     "reason",
+    "reason_parts",
     "redundant_caption",
     "representation_note",
     "rows_caption",
+    "rows_parts",
     "self_motion_words",
 ]
 
@@ -84,6 +87,15 @@ def reason(factor: SingularFactor) -> str:
     return _cause_words(factor.cause)
 
 
+def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
+    """:func:`reason` as caption parts, its formulas as SymPy objects (printed as math)."""
+    if factor.kind is SingularityKind.PARAMETER:
+        return (factor.expression, " depends on parameters only: a design with ",
+                sp.Eq(factor.expression, 0, evaluate=False), " would be singular everywhere; the default parameters "
+                "are not")
+    return (_cause_words(factor.cause),)
+
+
 def axis_name(axis: FrameAxis) -> str:
     """``x of frame {3}``, ``z of the tool frame``."""
     label = f"frame {{{axis.frame}}}" if isinstance(axis.frame, int) else f"the {axis.frame} frame"
@@ -136,6 +148,15 @@ def existence_words(factor: SingularFactor) -> str:
             "parameters).")
 
 
+def existence_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
+    """:func:`existence_words` as caption parts, the condition as a SymPy relation (``()`` when none)."""
+    if factor.existence is None or factor.existence is sp.true:
+        return ()
+    verdict = {True: "holds", False: "does not hold", None: "unknown"}[factor.exists_for_defaults]
+    return ("Exists only if ", factor.existence, f" (assuming positive lengths; {verdict} for the default "
+            "parameters).")
+
+
 _LIMIT_WORDS = {
     LimitStatus.INSIDE: "is inside them",
     LimitStatus.OUTSIDE: "is outside them",
@@ -175,6 +196,15 @@ def rows_caption(report: SingularityReport) -> str:
     det = report.determinant
     rows = ", ".join(ROW_NAMES[r] for r in det.rows)
     return f"Determinant of rows {rows} of the Jacobian in frame {{{det.frame}}}:"
+
+
+def rows_parts(report: SingularityReport) -> tuple[str | sp.Basic, ...]:
+    r""":func:`rows_caption` as caption parts, the rows as symbols (:math:`v_x, \omega_z`)."""
+    det = report.determinant
+    parts: list[str | sp.Basic] = ["Determinant of rows "]
+    for number, row in enumerate(det.rows):
+        parts += [", "] * bool(number) + [sp.Symbol(ROW_NAMES[row])]
+    return (*parts, f" of the Jacobian in frame {{{det.frame}}}:")
 
 
 def redundant_caption(report: SingularityReport) -> str:

@@ -23,13 +23,14 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
             locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
             blocks.append(Block((f"Joint {locked + 1} locked:",), (_det(minor.expression),)))
         return blocks
-    blocks = [Block((prose.rows_caption(report),), (_det(report.determinant.expression),))]
+    blocks = [Block(prose.rows_parts(report), (_det(report.determinant.expression),))]
     for factor in report.factors:
-        head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): {prose.reason(factor)}."]
+        head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): ",
+                                      *prose.reason_parts(factor), "."]
         if factor.solutions:
-            existence = prose.existence_words(factor)
+            existence = prose.existence_parts(factor)
             if existence:
-                head.append(f" {existence}")
+                head += [" ", *existence]
             if factor.lost_direction is not None:
                 head.append(f" There it {prose.lost_words(factor)}; {prose.self_motion_words(factor)}.")
             head.extend(prose.limit_parts(factor))

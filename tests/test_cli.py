@@ -79,7 +79,7 @@ def test_jacobian_in_another_frame(capsys):
 
 def test_jacobian_in_the_tool_frame(capsys):
     line = latex_line(capsys, "jacobian", "planar3r", "--frame", "tool")
-    assert line.startswith(r"{}^{tool}J = " + BMATRIX)
+    assert line.startswith(r"{}^{\mathrm{tool}}J = " + BMATRIX)  # frame names upright
     # Expressed in the last frame, the velocity of a planar arm depends only on the relative angles.
     assert "s_{1}" not in line
     assert "c_{1}" not in line
@@ -438,7 +438,7 @@ def test_force_propagation_steps_run_from_the_tip_and_end_with_the_torques(capsy
 
 def test_steps_at_the_tool_tip_end_in_the_tool_frame(capsys):
     out = ok(capsys, "jacobian", "planar3r", "--method", "velocity_propagation", "--steps", "--point", "tool")
-    assert r"{}^{T}v_{T} = " in out
+    assert r"{}^{\mathrm{T}}v_{T} = " in out  # frame names upright
     out = ok(capsys, "jacobian", "planar3r", "--method", "velocity_propagation", "--steps", "--point", "0,L3,0")
     assert r"{}^{3}v_{P} = " in out
 

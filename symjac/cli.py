@@ -231,8 +231,8 @@ def _fk(args: argparse.Namespace) -> Document:
     target: Frame = "tool" if robot.tool else robot.dof
     T = progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
     T = _numeric(robot, T, args)
-    data = forward_kinematics_data(robot, T, source, target)
     equation = Equation(f"{{}}^{{{_tex(source)}}}_{{{_tex(target)}}}T", f"T_{source}_{target}", T)
+    data = forward_kinematics_data(robot, equation, source, target)
     return Document(f"{robot.name}: forward kinematics", robot.name, (Block((), (equation,)),), data)
 
 
@@ -289,13 +289,13 @@ def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any
     bias = bias_acceleration(robot, frame=frame, point=point)
     Jdot, bias = _numeric(robot, Jdot, args), _numeric(robot, bias, args)
     moving = " (in a moving frame: its rotation is differentiated too)" if carried_joints(robot, frame) else ""
+    Jdot_equation = Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot)
+    bias_equation = Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias)
     blocks = (*(Block((), (step,)) for step in steps),
-              Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",),
-                    (Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot),)),
-              Block(("Bias acceleration, the acceleration at zero joint acceleration",),
-                    (Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias),)))
-    data = jacobian_derivative_data(robot, Jdot, bias, frame, args.point, [str(r) for r in joint_rates(robot)],
-                                    steps if args.steps else None)
+              Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",), (Jdot_equation,)),
+              Block(("Bias acceleration, the acceleration at zero joint acceleration",), (bias_equation,)))
+    data = jacobian_derivative_data(robot, Jdot_equation, bias_equation, frame, args.point,
+                                    [str(r) for r in joint_rates(robot)], steps if args.steps else None)
     return Document(f"{robot.name}: time derivative of the Jacobian in frame {frame}", robot.name, blocks, data)
 
 
@@ -305,12 +305,11 @@ def _hessian(args: argparse.Namespace) -> Document:
     frame = parse_frame(args.frame)
     point = parse_point(args.point, robot)
     H = progress(f"Hessian of {robot.name} in frame {frame}", lambda: hessian(robot, frame=frame, point=point))
-    slices = [_numeric(robot, hessian_slice(H, k), args) for k in range(robot.dof)]
-    blocks = tuple(Block((f"Derivative of the Jacobian with respect to joint {k + 1}",),
-                         (Equation(rf"\frac{{\partial\,{{}}^{{{_tex(frame)}}}J}}{{\partial {sp.latex(q)}}}",
-                                   f"dJ/d{q}", slices[k]),))
-                   for k, q in enumerate(robot.q))
-    data = hessian_data(robot, slices, frame, args.point)
+    equations = [Equation(rf"\frac{{\partial\,{{}}^{{{_tex(frame)}}}J}}{{\partial {sp.latex(q)}}}", f"dJ/d{q}",
+                          _numeric(robot, hessian_slice(H, k), args)) for k, q in enumerate(robot.q)]
+    blocks = tuple(Block((f"Derivative of the Jacobian with respect to joint {k + 1}",), (equation,))
+                   for k, equation in enumerate(equations))
+    data = hessian_data(robot, equations, frame, args.point)
     return Document(f"{robot.name}: kinematic Hessian in frame {frame}", robot.name, blocks, data)
 
 

@@ -203,7 +203,7 @@ def test_fk_puma560(capsys, fmt):
         assert data["target"] == 6
         assert len(data["entries"]) == 4
         assert data["entries"][3] == ["0", "0", "0", "1"]
-        assert data["latex"].startswith(BMATRIX)
+        assert data["latex"].startswith(r"{}^{0}_{6}T = " + BMATRIX)  # named as the Jacobian's is
     elif fmt == "pretty":
         assert out.startswith("T_0_6 =\n")
         assert "c₂₃" in out
@@ -449,7 +449,8 @@ def test_steps_in_pretty_and_json_and_numeric(capsys):
     assert "L₁⋅θ̇₁" in out  # the rate of joint 1 in Unicode, after the length
     data = json.loads(ok(capsys, "jacobian", "planar2r", "--method", "force_propagation", "--steps", "--format",
                          "json"))
-    assert data["steps"][-1].startswith(r"\tau = ")
+    assert data["steps"][-1]["latex"].startswith(r"\tau = ")
+    assert data["steps"][-1]["name"] == "tau" and len(data["steps"][-1]["entries"]) == 2  # entries, not only LaTeX
     out = ok(capsys, "jacobian", "planar2r", "--method", "velocity_propagation", "--steps", "--numeric")
     assert "L_{1}" not in out and "0.5" in out
 

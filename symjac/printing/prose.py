@@ -25,6 +25,7 @@ __all__ = [
     "limit_parts",
     "limit_text",
     "lost_words",
+    "readable_number",
     "reason",
     "reason_parts",
     "redundant_caption",
@@ -102,15 +103,31 @@ def axis_name(axis: FrameAxis) -> str:
     return f"{_AXIS_NAMES[axis.axis]} of {label}"
 
 
-def _part_name(part: DirectionPart) -> str:
-    """A named axis, or the unit vector's components to three decimals."""
-    return axis_name(part.axis) if part.axis is not None else str(np.round(np.array(part.unit), 3).tolist())
+def readable_number(value: float) -> str:
+    """A computed number as a reader writes it: exact when it is a simple surd (``sqrt(2)/2``), else 3 decimals.
+
+    Examples
+    --------
+    >>> readable_number(0.7071067811865476), readable_number(-0.5), readable_number(0.55412)
+    ('sqrt(2)/2', '-1/2', '0.554')
+    """
+    exact = sp.nsimplify(value, [sp.sqrt(2), sp.sqrt(3), sp.sqrt(5)], tolerance=1e-9)
+    if sp.count_ops(exact) <= 4 and all(abs(n) <= 12 for n in exact.atoms(sp.Integer)):
+        return sp.sstr(exact)
+    return f"{value:.3f}".rstrip("0").rstrip(".") if abs(value) >= 5e-4 else "0"
+
+
+def _part_name(part: DirectionPart, frame: object) -> str:
+    """A named axis, or the unit vector's components (exact when simple, else rounded) in ``frame``."""
+    if part.axis is not None:
+        return axis_name(part.axis)
+    return f"({', '.join(readable_number(float(c)) for c in np.asarray(part.unit))}) in frame {{{frame}}}"
 
 
 def _direction(lost: LostDirection, words: tuple[str, str, str, str]) -> str:
     """``words`` = (linear alone, angular alone, angular after a linear part, joiner)."""
-    linear = None if lost.linear is None else _part_name(lost.linear)
-    angular = None if lost.angular is None else _part_name(lost.angular)
+    linear = None if lost.linear is None else _part_name(lost.linear, lost.frame)
+    angular = None if lost.angular is None else _part_name(lost.angular, lost.frame)
     if linear and angular:
         return f"{words[0]} along {linear} {words[3]} {words[2]} about {angular}"
     if linear:
@@ -123,6 +140,11 @@ def lost_words(factor: SingularFactor) -> str:
     lost = factor.lost_direction
     if lost is None:
         return ""
+    if lost.radial and lost.angular is None:  # the line says it exactly; the sample vector only illustrates it
+        line = "the line from the origin of frame {0} to the point"
+        return (f"cannot translate radially, along {line}, and it holds a force along that line with zero joint "
+                f"torque (at one such configuration: along {_part_name(lost.linear, lost.frame)})"
+                if lost.linear is not None else "")
     radial = " (radially: along the line from the origin of frame {0} to the point)" if lost.radial else ""
     motion = _direction(lost, ("translate", "rotate", "rotating", "while"))
     wrench = _direction(lost, ("a force", "a moment", "a moment", "with"))
@@ -134,8 +156,8 @@ def self_motion_words(factor: SingularFactor) -> str:
     motion = factor.self_motion
     if motion is None:
         return ""
-    rates = ", ".join(f"{rate:+.3g} on joint {motion.columns[i] + 1}" for i, rate in enumerate(motion.rates)
-                      if abs(rate) > 1e-9)
+    shown = [(readable_number(rate), motion.columns[i] + 1) for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
+    rates = ", ".join(f"{'' if value.startswith('-') else '+'}{value} on joint {joint}" for value, joint in shown)
     return f"joint rates {rates} move nothing"
 
 

@@ -22,7 +22,23 @@ _TEXT_ESCAPES = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "_": r"\_", 
                  "$": r"\$", "^": r"\^{}", "~": r"\~{}", "<": r"\textless{}", ">": r"\textgreater{}"}
 
 
-class TextbookLatexPrinter(LatexPrinter):
+class _DecimalLatexPrinter(LatexPrinter):
+    """SymPy's LaTeX with numbers from files as the decimals they were written as (:func:`.file_decimal`)."""
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return file_decimal(expr) or super()._print_Rational(expr)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        coefficient, rest = expr.as_coeff_Mul()
+        decimal = file_decimal(abs(coefficient))
+        if decimal is None:
+            return super()._print_Mul(expr)
+        body = self._print(rest)  # 0.089159 s_{1}, as the robot file wrote it
+        body = rf"\left({body}\right)" if rest.is_Add else body
+        return ("- " if coefficient < 0 else "") + f"{decimal} {body}"
+
+
+class TextbookLatexPrinter(_DecimalLatexPrinter):
     """LaTeX with :math:`s_{ij}, c_{ij}` shorthand and ``bmatrix`` matrices."""
 
     def __init__(self, settings: dict[str, Any] | None = None):
@@ -46,23 +62,16 @@ class TextbookLatexPrinter(LatexPrinter):
 
     def _plain_function(self, expr: sp.Function, exp: str | None) -> str:
         r"""``\cos^{2}{\left(\beta \right)}`` as SymPy prints it (its own dispatch would come back here)."""
-        plain = LatexPrinter({"mat_str": "bmatrix", "mat_delim": ""})
+        plain = _DecimalLatexPrinter({"mat_str": "bmatrix", "mat_delim": ""})
         return LatexPrinter._print_Function(plain, expr, exp)
 
     def _print_atan2(self, expr: sp.Function, exp: str | None = None) -> str:
         text = r"\operatorname{atan2}\left(" + ", ".join(self._print(a) for a in expr.args) + r"\right)"
         return f"{text}^{{{exp}}}" if exp else text
 
-    def _print_Rational(self, expr: sp.Rational) -> str:
-        return file_decimal(expr) or super()._print_Rational(expr)
-
     def _print_Mul(self, expr: sp.Mul) -> str:
-        coefficient, rest = expr.as_coeff_Mul()
-        decimal = file_decimal(abs(coefficient))
-        if decimal is not None:  # 0.089159 s_{1}, as the robot file wrote it
-            body = self._print(rest)
-            body = rf"\left({body}\right)" if rest.is_Add else body
-            return ("- " if coefficient < 0 else "") + f"{decimal} {body}"
+        if file_decimal(abs(expr.as_coeff_Mul()[0])) is not None:
+            return super()._print_Mul(expr)
         ordered = textbook_factors(expr)
         if ordered is None:
             return super()._print_Mul(expr)

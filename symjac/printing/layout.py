@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from symjac.printing.latex import TextbookLatexPrinter
-from symjac.printing.shorthand import textbook_factors
+from symjac.printing.shorthand import file_decimal, textbook_factors
 
 __all__ = ["TEXT_WIDTH", "Display", "entry_namer", "fit_equation", "fit_side_by_side", "tex_width"]
 
@@ -127,6 +127,10 @@ class _BreakingPrinter(TextbookLatexPrinter):
             numerator, denominator = sp.fraction(expr)
             if denominator != 1:
                 return [rf"\frac{{1}}{{{self.doprint(denominator)}}}", *self._grouped(numerator, limit)]
+            coefficient, rest = expr.as_coeff_Mul()
+            if coefficient.is_Float or file_decimal(abs(coefficient)) is not None:  # 0.4318 (...), --numeric
+                head = ("- " if coefficient < 0 else "") + self.doprint(abs(coefficient))
+                return _glue([head, *(self._grouped(rest, limit) if rest.is_Add else self.pieces(rest, limit))])
             ordered = textbook_factors(expr)
             if ordered is not None:
                 coefficient, factors = ordered

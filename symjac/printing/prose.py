@@ -11,6 +11,7 @@ import sympy as sp
 
 from symjac.jacobian import ROW_NAMES
 from symjac.model import Robot
+from symjac.printing.document import Inline
 from symjac.singular_geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
 from symjac.singular_report import DirectionPart, LimitStatus, LostDirection, SingularFactor, SingularityReport
 
@@ -220,12 +221,12 @@ def rows_caption(report: SingularityReport) -> str:
     return f"Determinant of rows {rows} of the Jacobian in frame {{{det.frame}}}:"
 
 
-def rows_parts(report: SingularityReport) -> tuple[str | sp.Basic, ...]:
-    r""":func:`rows_caption` as caption parts, the rows as symbols (:math:`v_x, \omega_z`)."""
+def rows_parts(report: SingularityReport) -> tuple[str | Inline, ...]:
+    r""":func:`rows_caption` as caption parts, the rows as math (:math:`v_x, \omega_z`)."""
     det = report.determinant
-    parts: list[str | sp.Basic] = ["Determinant of rows "]
+    parts: list[str | Inline] = ["Determinant of rows "]
     for number, row in enumerate(det.rows):
-        parts += [", "] * bool(number) + [sp.Symbol(ROW_NAMES[row])]
+        parts += [", "] * bool(number) + [Inline(sp.latex(sp.Symbol(ROW_NAMES[row])), ROW_NAMES[row])]
     return (*parts, f" of the Jacobian in frame {{{det.frame}}}:")
 
 

@@ -86,15 +86,15 @@ def textbook_factors(product: sp.Expr) -> tuple[int, list[sp.Expr]] | None:
 def file_decimal(number: sp.Expr) -> str | None:
     """A number read from a decimal in a file, as that decimal: ``89159/1000000 -> "0.089159"``; else ``None``.
 
-    Exact fractions whose denominator is a power-of-ten divisor above 16 print as decimals (the math stays exact);
-    ``1/2``, ``1/3`` and ``3/16`` stay fractions.
+    Exact fractions whose denominator divides a power of ten print as decimals (``1/10 -> 0.1``, the math stays
+    exact), except halves, quarters, eighths and sixteenths; ``1/2``, ``1/3`` and ``3/16`` stay fractions.
 
     Examples
     --------
-    >>> file_decimal(sp.Rational(89159, 1000000)), file_decimal(sp.Rational(1, 3))
-    ('0.089159', None)
+    >>> file_decimal(sp.Rational(89159, 1000000)), file_decimal(sp.Rational(1, 10)), file_decimal(sp.Rational(1, 2))
+    ('0.089159', '0.1', None)
     """
-    if not isinstance(number, sp.Rational) or number.is_Integer or number.q <= 16:
+    if not isinstance(number, sp.Rational) or number.is_Integer or (number.q <= 16 and number.q % 5):
         return None
     rest = int(number.q)
     for prime in (2, 5):

@@ -230,12 +230,13 @@ def rows_parts(report: SingularityReport) -> tuple[str | Inline, ...]:
     return (*parts, f" of the Jacobian in frame {{{det.frame}}}:")
 
 
-def redundant_caption(report: SingularityReport) -> str:
-    """Why a redundant arm's report lists minors instead of one determinant."""
+def redundant_caption(report: SingularityReport) -> tuple[str | Inline, ...]:
+    """Why a redundant arm's report lists minors instead of one determinant, as caption parts."""
     det = report.determinant
-    rows = ", ".join(ROW_NAMES[r] for r in det.rows)
-    return (f"Redundant arm: {report.robot} has more joints than task rows ({rows}); it is singular only where every "
-            f"square minor below vanishes (where sqrt(det(J J^T)) = 0). Minors in frame {{{det.frame}}}.")
+    rows = rows_parts(report)[1:-1]  # the row names between "Determinant of rows " and the frame
+    condition = Inline(r"\sqrt{\det(J J^{T})} = 0", "sqrt(det(J J^T)) = 0")
+    return (f"Redundant arm: {report.robot} has more joints than task rows (", *rows, "); it is singular only where "
+            "every square minor below vanishes (where ", condition, f"). Minors in frame {{{det.frame}}}.")
 
 
 def dh_caption(robot: Robot) -> str:

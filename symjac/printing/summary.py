@@ -18,7 +18,7 @@ def _det(value: sp.Expr) -> Equation:
 def singularity_blocks(report: SingularityReport) -> list[Block]:
     r"""The report as captioned blocks: :math:`\det J` (or every minor of a redundant arm), then each factor."""
     if report.redundant:
-        blocks = [Block((prose.redundant_caption(report),))]
+        blocks = [Block(prose.redundant_caption(report))]
         for minor in report.minors:
             locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
             blocks.append(Block((f"Joint {locked + 1} locked:",), (_det(minor.expression),)))

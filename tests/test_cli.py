@@ -534,3 +534,18 @@ def test_printing_package_exports_a_sorted_all():
     assert printing.__all__ == sorted(printing.__all__, key=lambda name: (not name.isupper(), name))
     assert all(hasattr(printing, name) for name in printing.__all__)
     assert {"latex", "pretty", "propagation_steps", "singularity_summary", "render"} <= set(printing.__all__)
+
+
+def test_numbers_read_as_written(capsys):
+    """--numeric rounds to --digits after the exact derivation; decimals from files print as written."""
+    assert "0.432" in latex_line(capsys, "jacobian", "puma560", "--numeric", "--digits", "3")
+    assert "0.4318" in latex_line(capsys, "jacobian", "puma560", "--numeric")  # default: 4 significant digits
+    fk = latex_line(capsys, "fk", "ur5.urdf")
+    assert "0.089159" in fk and "89159" not in fk.replace("0.089159", "")
+    status, _out, err = run(capsys, "jacobian", "planar2r", "--digits", "3")
+    assert status == 2 and "--digits needs --numeric" in err
+
+
+def test_representation_json_has_the_multiplied_out_jacobian(capsys):
+    data = json.loads(ok(capsys, "jacobian", "planar2r", "--representation", "zyz", "--format", "json"))
+    assert len(data["J_x"]) == 6 and data["latex"].startswith(r"J_x = E(x)\,J_0 = ")

@@ -10,6 +10,7 @@ Turning option text into API arguments lives in :mod:`symjac.cli_args`, output a
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
 import shlex
 import sys
@@ -39,7 +40,7 @@ from symjac.io import catalog
 from symjac.jacobian import METHODS, jacobian, point_vector
 from symjac.model import Robot
 from symjac.printing import prose
-from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
+from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, Inline, render
 from symjac.printing.json import (
     forward_kinematics_data,
     hessian_data,
@@ -51,10 +52,12 @@ from symjac.printing.json import (
     singularity_data,
     torques_data,
 )
+from symjac.printing.latex import DIGITS, rounded
 from symjac.printing.steps import step_equations
 from symjac.printing.summary import singularity_blocks
 from symjac.propagation import force_propagation, joint_rates, velocity_propagation, wrench_symbols
 from symjac.representations import POSITIONS, REPRESENTATIONS, representation_jacobian
+from symjac.simplify import simplify_matrix
 from symjac.singular_report import singularities
 from symjac.statics import joint_torques
 
@@ -150,6 +153,9 @@ def _parser() -> argparse.ArgumentParser:
         sub.add_argument("--format", choices=FORMATS, default="latex", help="output format (default: latex)")
         sub.add_argument("--numeric", action="store_true", help="substitute the parameters' numeric defaults")
         sub.add_argument("--standalone", action="store_true", help="with --format latex: a complete LaTeX document")
+        if name != "singularities":
+            sub.add_argument("--digits", type=int, default=None, metavar="N",
+                             help=f"with --numeric (or torques --q): significant digits printed (default {DIGITS})")
         if name in ("jacobian", "torques", "hessian"):
             sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
             sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
@@ -220,8 +226,8 @@ def _show(args: argparse.Namespace) -> Document:
         fixed = getattr(robot, key)
         if fixed is not None:
             source, target = ("world", 0) if key == "base" else (robot.dof, "tool")
-            transforms.append((f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", fixed.matrix))
-    matrices = [(tex, plain, _numeric(robot, m, args.numeric)) for tex, plain, m in transforms]
+            transforms.append((f"{{}}^{{{_tex(source)}}}_{{{_tex(target)}}}T", f"T_{source}_{target}", fixed.matrix))
+    matrices = [(tex, plain, _numeric(robot, m, args)) for tex, plain, m in transforms]
     blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
     blocks += [Block((), (Equation(tex, plain, m),)) for tex, plain, m in matrices]
     data = show_data(robot, {plain: m for _, plain, m in matrices})
@@ -234,9 +240,9 @@ def _fk(args: argparse.Namespace) -> Document:
     source: Frame = "world" if robot.base else 0
     target: Frame = "tool" if robot.tool else robot.dof
     T = progress(f"forward kinematics of {robot.name}", lambda: chain.simplified_transform(source, target))
-    T = _numeric(robot, T, args.numeric)
-    data = forward_kinematics_data(robot, T, source, target)
-    equation = Equation(f"{{}}^{{{source}}}_{{{target}}}T", f"T_{source}_{target}", T)
+    T = _numeric(robot, T, args)
+    equation = Equation(f"{{}}^{{{_tex(source)}}}_{{{_tex(target)}}}T", f"T_{source}_{target}", T)
+    data = forward_kinematics_data(robot, equation, source, target)
     return Document(f"{robot.name}: forward kinematics", robot.name, (Block((), (equation,)),), data)
 
 
@@ -251,8 +257,8 @@ def _jacobian(args: argparse.Namespace) -> Document:
     steps = _steps(args, robot, point) if args.steps else []
     J = progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
-    J = _numeric(robot, J, args.numeric)
-    equation = Equation(f"{{}}^{{{frame}}}J", f"J in frame {frame}", J)
+    J = _numeric(robot, J, args)
+    equation = Equation(f"{{}}^{{{_tex(frame)}}}J", f"J in frame {frame}", J)
     caption = f"Basic Jacobian at the {args.point} point, {args.method.replace('_', ' ')}"
     blocks = [Block((), (step,)) for step in steps] + [Block((caption,), (equation,))]
     data = jacobian_data(robot, equation, frame, args.point, args.method, steps if args.steps else None)
@@ -264,14 +270,18 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
     position = args.position or "cartesian"
     rj = progress(f"{args.representation} representation Jacobian of {robot.name}",
                    lambda: representation_jacobian(robot, args.representation, position, point, frame))
-    J_0 = _numeric(robot, jacobian(robot, frame=rj.frame, point=point), args.numeric)
+    J_0 = jacobian(robot, frame=rj.frame, point=point)
     notes = [prose.representation_note(s) for s in rj.singularities]
+    J_x = simplify_matrix(rj.E * J_0, chain_of(robot).angle_basis(rj.frame)).applyfunc(
+        lambda entry: sp.factor_terms(sp.together(entry)))  # multiplied out, then over one denominator
+    J_0, J_x = _numeric(robot, J_0, args), _numeric(robot, J_x, args)
     blocks = [Block(("Representation coordinates",), (Equation("x", "x", sp.Matrix(rj.coordinates)),)),
-              Block(("Rate matrix, xdot = E(x) [v; omega]",), (Equation("E(x)", "E(x)", rj.E),)),
+              Block(("Rate matrix, ", Inline(r"\dot{x} = E(x)\,[v;\ \omega]", "xdot = E(x) [v; omega]")),
+                    (Equation("E(x)", "E(x)", rj.E),)),
               Block((f"Representation Jacobian at the {args.point} point",),
-                    (Equation(rf"J_x = E(x)\,{{}}^{{{rj.frame}}}J", f"J_x = E(x) J_{rj.frame}", (rj.E, J_0)),))]
+                    (Equation(rf"J_x = E(x)\,{{}}^{{{_tex(rj.frame)}}}J", f"J_x = E(x) J_{rj.frame}", J_x),))]
     blocks += [Block((note,)) for note in notes]
-    data = representation_data(robot, rj, J_0, args.point, args.representation, position)
+    data = representation_data(robot, rj, J_0, J_x, args.point, args.representation, position)
     title = f"{robot.name}: {args.representation} representation Jacobian"
     return Document(title, robot.name, tuple(blocks), data, comments=True)
 
@@ -283,19 +293,19 @@ def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any
     if args.steps:
         propagation = progress(f"acceleration propagation of {robot.name}",
                                 lambda: acceleration_propagation(robot, tip))
-        steps = step_equations(propagation, values=_numeric_values(robot) if args.numeric else None)
+        steps = _numeric_steps(robot, step_equations(propagation), args)
     Jdot = progress(f"Jacobian derivative of {robot.name} in frame {frame}",
                      lambda: jacobian_derivative(robot, frame=frame, point=point))
     bias = bias_acceleration(robot, frame=frame, point=point)
-    Jdot, bias = _numeric(robot, Jdot, args.numeric), _numeric(robot, bias, args.numeric)
+    Jdot, bias = _numeric(robot, Jdot, args), _numeric(robot, bias, args)
     moving = " (in a moving frame: its rotation is differentiated too)" if carried_joints(robot, frame) else ""
+    Jdot_equation = Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot)
+    bias_equation = Equation(rf"{{}}^{{{_tex(frame)}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias)
     blocks = (*(Block((), (step,)) for step in steps),
-              Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",),
-                    (Equation(rf"{{}}^{{{frame}}}\dot{{J}}", f"Jdot in frame {frame}", Jdot),)),
-              Block(("Bias acceleration, the acceleration at zero joint acceleration",),
-                    (Equation(rf"{{}}^{{{frame}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}", bias),)))
-    data = jacobian_derivative_data(robot, Jdot, bias, frame, args.point, [str(r) for r in joint_rates(robot)],
-                                    steps if args.steps else None)
+              Block((f"Time derivative of the basic Jacobian at the {args.point} point{moving}",), (Jdot_equation,)),
+              Block(("Bias acceleration, the acceleration at zero joint acceleration",), (bias_equation,)))
+    data = jacobian_derivative_data(robot, Jdot_equation, bias_equation, frame, args.point,
+                                    [str(r) for r in joint_rates(robot)], steps if args.steps else None)
     return Document(f"{robot.name}: time derivative of the Jacobian in frame {frame}", robot.name, blocks, data)
 
 
@@ -305,12 +315,11 @@ def _hessian(args: argparse.Namespace) -> Document:
     frame = parse_frame(args.frame)
     point = parse_point(args.point, robot)
     H = progress(f"Hessian of {robot.name} in frame {frame}", lambda: hessian(robot, frame=frame, point=point))
-    slices = [_numeric(robot, hessian_slice(H, k), args.numeric) for k in range(robot.dof)]
-    blocks = tuple(Block((f"Derivative of the Jacobian with respect to joint {k + 1}",),
-                         (Equation(rf"\frac{{\partial\,{{}}^{{{frame}}}J}}{{\partial {sp.latex(q)}}}",
-                                   f"dJ/d{q}", slices[k]),))
-                   for k, q in enumerate(robot.q))
-    data = hessian_data(robot, slices, frame, args.point)
+    equations = [Equation(rf"\frac{{\partial\,{{}}^{{{_tex(frame)}}}J}}{{\partial {sp.latex(q)}}}", f"dJ/d{q}",
+                          _numeric(robot, hessian_slice(H, k), args)) for k, q in enumerate(robot.q)]
+    blocks = tuple(Block((f"Derivative of the Jacobian with respect to joint {k + 1}",), (equation,))
+                   for k, equation in enumerate(equations))
+    data = hessian_data(robot, equations, frame, args.point)
     return Document(f"{robot.name}: kinematic Hessian in frame {frame}", robot.name, blocks, data)
 
 
@@ -324,7 +333,7 @@ def _steps(args: argparse.Namespace, robot: Robot, point: Any) -> list[Equation]
     if args.method not in derive:
         raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
     propagation = progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
-    return step_equations(propagation, values=_numeric_values(robot) if args.numeric else None)
+    return _numeric_steps(robot, step_equations(propagation), args)
 
 
 def _torques(args: argparse.Namespace) -> Document:
@@ -335,7 +344,9 @@ def _torques(args: argparse.Namespace) -> Document:
     q = None if args.q is None else parse_values(args.q, robot.dof, "--q", robot, parameters=False)
     tau = progress(f"joint torques of {robot.name}",
                     lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q))
-    tau = _numeric(robot, tau, args.numeric)
+    tau = _numeric(robot, tau, args)
+    if q is not None:  # evaluated at a configuration: numbers, shown as decimals
+        tau = rounded(tau, args.digits or DIGITS)
     equation = Equation(r"\tau", "tau", tau)
     caption = f"Joint torques for a wrench in frame {frame} at the {args.point} point"
     data = torques_data(robot, equation, frame, args.point, args.wrench, args.q, [str(s) for s in wrench_symbols()])
@@ -367,14 +378,23 @@ def _codegen(args: argparse.Namespace) -> str:
 # --- output helpers ------------------------------------------------------------------------------------------
 
 
-def _numeric(robot: Robot, matrix: sp.MatrixBase, numeric: bool) -> sp.MatrixBase:
-    """With ``--numeric``, replace the parameters by their defaults, printed as short decimals."""
-    return matrix.xreplace(_numeric_values(robot)) if numeric else matrix
+def _tex(frame: Frame | str) -> str:
+    r"""A frame as a LaTeX index: ``3``, or an upright name (``\mathrm{tool}``)."""
+    return str(frame) if isinstance(frame, int) else rf"\mathrm{{{frame}}}"
 
 
-def _numeric_values(robot: Robot) -> dict[sp.Symbol, sp.Float]:
-    """The parameters' defaults as short decimals (``0.4318``, not ``2159/5000``)."""
-    return {symbol: sp.Float(repr(float(value))) for symbol, value in robot.defaults.items()}
+def _numeric(robot: Robot, matrix: sp.MatrixBase, args: argparse.Namespace) -> sp.MatrixBase:
+    """With ``--numeric``, the parameters' defaults substituted and every number a decimal of ``--digits`` digits.
+
+    The derivation stays exact; only the printed result is rounded (``0.4318``, not ``2159/5000``).
+    """
+    if not args.numeric:
+        return matrix
+    return rounded(matrix.xreplace(robot.defaults), args.digits or DIGITS)
+
+
+def _numeric_steps(robot: Robot, steps: list[Equation], args: argparse.Namespace) -> list[Equation]:
+    return [dataclasses.replace(step, rhs=_numeric(robot, step.rhs, args)) for step in steps]
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -60,6 +60,11 @@ def refuse_ignored_options(args: argparse.Namespace) -> None:
     """Refuse an option that would have no effect with the others given, instead of ignoring it silently."""
     if getattr(args, "standalone", False) and args.format != "latex":
         raise ArgumentError(f"--standalone applies to --format latex only, not --format {args.format}")
+    if getattr(args, "digits", None) is not None:
+        if not (args.numeric or getattr(args, "q", None)):
+            raise ArgumentError("--digits needs --numeric (or torques --q): only numbers are rounded")
+        if args.digits < 1:
+            raise ArgumentError(f"--digits must be at least 1, got {args.digits}")
     representation = getattr(args, "representation", None)
     if getattr(args, "position", None) is not None and representation is None:
         raise ArgumentError("--position needs --representation (it chooses the representation's position part)")

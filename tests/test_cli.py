@@ -79,7 +79,7 @@ def test_jacobian_in_another_frame(capsys):
 
 def test_jacobian_in_the_tool_frame(capsys):
     line = latex_line(capsys, "jacobian", "planar3r", "--frame", "tool")
-    assert line.startswith(r"{}^{tool}J = " + BMATRIX)
+    assert line.startswith(r"{}^{\mathrm{tool}}J = " + BMATRIX)  # frame names upright
     # Expressed in the last frame, the velocity of a planar arm depends only on the relative angles.
     assert "s_{1}" not in line
     assert "c_{1}" not in line
@@ -203,7 +203,7 @@ def test_fk_puma560(capsys, fmt):
         assert data["target"] == 6
         assert len(data["entries"]) == 4
         assert data["entries"][3] == ["0", "0", "0", "1"]
-        assert data["latex"].startswith(BMATRIX)
+        assert data["latex"].startswith(r"{}^{0}_{6}T = " + BMATRIX)  # named as the Jacobian's is
     elif fmt == "pretty":
         assert out.startswith("T_0_6 =\n")
         assert "c₂₃" in out
@@ -438,7 +438,7 @@ def test_force_propagation_steps_run_from_the_tip_and_end_with_the_torques(capsy
 
 def test_steps_at_the_tool_tip_end_in_the_tool_frame(capsys):
     out = ok(capsys, "jacobian", "planar3r", "--method", "velocity_propagation", "--steps", "--point", "tool")
-    assert r"{}^{T}v_{T} = " in out
+    assert r"{}^{\mathrm{T}}v_{T} = " in out  # frame names upright
     out = ok(capsys, "jacobian", "planar3r", "--method", "velocity_propagation", "--steps", "--point", "0,L3,0")
     assert r"{}^{3}v_{P} = " in out
 
@@ -449,7 +449,8 @@ def test_steps_in_pretty_and_json_and_numeric(capsys):
     assert "L₁⋅θ̇₁" in out  # the rate of joint 1 in Unicode, after the length
     data = json.loads(ok(capsys, "jacobian", "planar2r", "--method", "force_propagation", "--steps", "--format",
                          "json"))
-    assert data["steps"][-1].startswith(r"\tau = ")
+    assert data["steps"][-1]["latex"].startswith(r"\tau = ")
+    assert data["steps"][-1]["name"] == "tau" and len(data["steps"][-1]["entries"]) == 2  # entries, not only LaTeX
     out = ok(capsys, "jacobian", "planar2r", "--method", "velocity_propagation", "--steps", "--numeric")
     assert "L_{1}" not in out and "0.5" in out
 
@@ -533,3 +534,18 @@ def test_printing_package_exports_a_sorted_all():
     assert printing.__all__ == sorted(printing.__all__, key=lambda name: (not name.isupper(), name))
     assert all(hasattr(printing, name) for name in printing.__all__)
     assert {"latex", "pretty", "propagation_steps", "singularity_summary", "render"} <= set(printing.__all__)
+
+
+def test_numbers_read_as_written(capsys):
+    """--numeric rounds to --digits after the exact derivation; decimals from files print as written."""
+    assert "0.432" in latex_line(capsys, "jacobian", "puma560", "--numeric", "--digits", "3")
+    assert "0.4318" in latex_line(capsys, "jacobian", "puma560", "--numeric")  # default: 4 significant digits
+    fk = latex_line(capsys, "fk", "ur5.urdf")
+    assert "0.089159" in fk and "89159" not in fk.replace("0.089159", "")
+    status, _out, err = run(capsys, "jacobian", "planar2r", "--digits", "3")
+    assert status == 2 and "--digits needs --numeric" in err
+
+
+def test_representation_json_has_the_multiplied_out_jacobian(capsys):
+    data = json.loads(ok(capsys, "jacobian", "planar2r", "--representation", "zyz", "--format", "json"))
+    assert len(data["J_x"]) == 6 and data["latex"].startswith(r"J_x = E(x)\,J_0 = ")

@@ -89,7 +89,8 @@ def errata_sheet(fmt: str = "markdown") -> str:
         r"\usepackage{amsmath,amssymb,longtable,array}", r"\begin{document}", r"\section*{Errata for the course notes}",
         r"\begin{tabular}{lrrrr} document & checked & confirmed & errata & convention notes \\ \hline",
         *counts_tex, r"\end{tabular}", "",
-        r"\begin{longtable}{|p{5cm}|p{6cm}|p{6cm}|p{6cm}|} \hline where & as printed & corrected & why \\ \hline",
+        r"\small\setlength{\tabcolsep}{4pt}",  # the widest printed formulas fit their cells
+        r"\begin{longtable}{|p{4cm}|p{7.5cm}|p{7.5cm}|p{4.5cm}|} \hline where & as printed & corrected & why \\ \hline",
         *rows, r"\end{longtable}", "", r"\subsection*{Convention notes}",
         r"\begin{itemize}" if notes_tex else "", *notes_tex, r"\end{itemize}" if notes_tex else "",
         r"\end{document}", ""])

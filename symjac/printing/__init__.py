@@ -3,7 +3,7 @@
 Analyses return data; these modules print it. :mod:`.latex` and :mod:`.pretty` print SymPy objects in textbook
 shorthand, :mod:`.tables` DH tables, :mod:`.prose` every sentence, :mod:`.steps` propagation steps,
 :mod:`.summary` singularity reports, :mod:`.json` JSON-ready data, and :mod:`.document` lays any result out as
-LaTeX (bare or a standalone document), pretty text or JSON.
+LaTeX (bare or a standalone document, whose long results :mod:`.layout` breaks to fit the page), pretty text or JSON.
 """
 
 from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render

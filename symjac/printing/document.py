@@ -21,7 +21,8 @@ import sympy as sp
 from symjac._version import __version__
 from symjac.errors import ArgumentError
 from symjac.model import Robot
-from symjac.printing.latex import latex
+from symjac.printing.latex import escape_text, latex
+from symjac.printing.layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
 from symjac.printing.pretty import pretty, pretty_side_by_side
 from symjac.printing.tables import dh_table_latex, dh_table_text
 from symjac.resources import render_template
@@ -32,6 +33,7 @@ __all__ = [
     "DHTable",
     "Document",
     "Equation",
+    "Inline",
     "Style",
     "blocks_as_pairs",
     "caption_text",
@@ -69,13 +71,22 @@ Math = Equation | DHTable
 
 
 @dataclass(frozen=True)
+class Inline:
+    r"""Math written by hand for a caption: ``tex`` inside ``$...$`` in LaTeX, ``text`` in pretty output."""
+
+    tex: str
+    text: str
+
+
+@dataclass(frozen=True)
 class Block:
     """A caption and the math under it (several equations print side by side in LaTeX, one per line in text).
 
-    ``caption`` is words with inline math: strings print as they are, SymPy objects in the output's notation.
+    ``caption`` is words with inline math: strings are text (escaped for LaTeX), SymPy objects and :class:`Inline`
+    math in the output's notation (``$...$`` in LaTeX).
     """
 
-    caption: tuple[str | sp.Basic, ...] = ()
+    caption: tuple[str | sp.Basic | Inline, ...] = ()
     math: tuple[Math, ...] = ()
 
 
@@ -100,10 +111,17 @@ def _check(style: str) -> None:
 
 
 def caption_text(block: Block, style: Style) -> str:
-    """The caption with its inline math in ``style``."""
+    """The caption in ``style``: LaTeX text (words escaped, math in ``$...$``) or plain Unicode text."""
     _check(style)
-    show = latex if style == "latex" else pretty
-    return "".join(part if isinstance(part, str) else show(part) for part in block.caption)
+
+    def show(part: str | sp.Basic | Inline) -> str:
+        if isinstance(part, str):
+            return escape_text(part) if style == "latex" else part
+        if isinstance(part, Inline):
+            return f"${part.tex}$" if style == "latex" else part.text
+        return f"${latex(part)}$" if style == "latex" else pretty(part)
+
+    return "".join(show(part) for part in block.caption)
 
 
 def equation_latex(equation: Equation) -> str:
@@ -147,11 +165,22 @@ def render(document: Document, fmt: str, standalone: bool = False) -> str:
     if fmt != "latex":
         raise ArgumentError(f"unknown format {fmt!r}; choose one of {', '.join(FORMATS)}")
     if standalone:
-        blocks = [{"caption": caption_text(block, "latex"), "latex": math_text(block, "latex") or r"\quad"}
-                  for block in document.blocks]
+        blocks = [{"caption": caption_text(block, "latex"), "latex": _fitted(block)} for block in document.blocks]
         return render_template("latex_document.tex.j2", version=__version__, robot=document.robot,
-                               title=document.title, blocks=blocks)
+                               title=escape_text(document.title), blocks=blocks)
     return "".join(_bare_latex(block, document.comments) for block in document.blocks)
+
+
+def _fitted(block: Block) -> str:
+    """The block's math laid out to fit the page (:mod:`.layout`), ``""`` when it has none."""
+    equations = [m for m in block.math if isinstance(m, Equation)]
+    if len(block.math) == 1 and equations and not isinstance(equations[0].rhs, tuple):
+        return fit_equation(equations[0].tex, equations[0].rhs).body()
+    texts = [dh_table_latex(m.robot) if isinstance(m, DHTable) else equation_latex(m) for m in block.math]
+    if all(tex_width(text) <= TEXT_WIDTH for text in texts):
+        return fit_side_by_side(texts) if texts else ""
+    return "\n".join(fit_equation(m.tex, m.rhs).body() if isinstance(m, Equation) else rf"\[ {text} \]"
+                     for m, text in zip(block.math, texts, strict=True))
 
 
 def _bare_latex(block: Block, comments: bool) -> str:

@@ -12,7 +12,6 @@ from symjac.jacobian import ROW_NAMES
 from symjac.model import Robot
 from symjac.printing import prose
 from symjac.printing.document import Equation, equation_latex
-from symjac.printing.latex import latex
 from symjac.printing.tables import dh_rows
 from symjac.singular_report import SingularityReport
 from symjac.singularity import Determinant
@@ -28,6 +27,7 @@ __all__ = [
     "representation_data",
     "show_data",
     "singularity_data",
+    "step_data",
     "torques_data",
 ]
 
@@ -78,9 +78,15 @@ def show_data(robot: Robot, transforms: dict[str, sp.MatrixBase]) -> dict[str, A
             "transforms": {name: matrix_strings(m) for name, m in transforms.items()}}
 
 
-def forward_kinematics_data(robot: Robot, T: sp.MatrixBase, source: Frame, target: Frame) -> dict[str, Any]:
-    """``symjac fk``: the pose between two frames, as strings and as LaTeX."""
-    return {**metadata(robot), "source": source, "target": target, "entries": matrix_strings(T), "latex": latex(T)}
+def forward_kinematics_data(robot: Robot, equation: Equation, source: Frame, target: Frame) -> dict[str, Any]:
+    r"""``symjac fk``: the pose (``equation.rhs``) between two frames, as strings and as LaTeX (``{}^{0}_{6}T =``)."""
+    return {**metadata(robot), "source": source, "target": target, "entries": matrix_strings(equation.rhs),
+            "latex": equation_latex(equation)}
+
+
+def step_data(step: Equation) -> dict[str, Any]:
+    """One propagation step: its name in words, its LaTeX equation and its entries as SymPy strings."""
+    return {"name": step.text, "latex": equation_latex(step), "entries": [sp.sstr(e) for e in step.rhs]}
 
 
 def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, method: str,
@@ -90,43 +96,47 @@ def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, me
     return {**metadata(robot), "frame": frame, "point": point, "method": method,
             "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
             "entries": matrix_strings(J), "latex": equation_latex(equation),
-            **({"steps": [equation_latex(step) for step in steps]} if steps is not None else {})}
+            **({"steps": [step_data(step) for step in steps]} if steps is not None else {})}
 
 
-def jacobian_derivative_data(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, frame: Frame, point: str,
+def jacobian_derivative_data(robot: Robot, Jdot: Equation, bias: Equation, frame: Frame, point: str,
                              rates: list[str], steps: list[Equation] | None = None) -> dict[str, Any]:
     """``symjac jacobian --derivative``: dJ/dt and the bias acceleration Jdot qdot, in the joint rates ``rates``.
 
-    With ``steps`` (the acceleration propagation), each step as ``{"name", "latex", "entries"}``.
+    ``Jdot`` and ``bias`` are the equations printed; with ``steps`` (the acceleration propagation), each step as
+    :func:`step_data`.
     """
-    return {**metadata(robot), "frame": frame, "point": point, "rates": rates, "shape": list(Jdot.shape),
-            "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q], "entries": matrix_strings(Jdot),
-            "bias_acceleration": [sp.sstr(b) for b in bias], "latex": latex(Jdot), "bias_latex": latex(bias),
-            **({"steps": [{"name": step.text, "latex": equation_latex(step), "entries": [sp.sstr(e) for e in step.rhs]}
-                          for step in steps]} if steps is not None else {})}
+    return {**metadata(robot), "frame": frame, "point": point, "rates": rates, "shape": list(Jdot.rhs.shape),
+            "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q], "entries": matrix_strings(Jdot.rhs),
+            "bias_acceleration": [sp.sstr(b) for b in bias.rhs], "latex": equation_latex(Jdot),
+            "bias_latex": equation_latex(bias),
+            **({"steps": [step_data(step) for step in steps]} if steps is not None else {})}
 
 
-def hessian_data(robot: Robot, slices: list[sp.MatrixBase], frame: Frame, point: str) -> dict[str, Any]:
-    """``symjac hessian``: ``entries[i][j][k]`` = dJ[i, j]/dq_k (layout (6, n, n)), and each slice dJ/dq_k."""
+def hessian_data(robot: Robot, equations: list[Equation], frame: Frame, point: str) -> dict[str, Any]:
+    """``symjac hessian``: ``entries[i][j][k]`` = dJ[i, j]/dq_k (layout (6, n, n)), each slice dJ/dq_k and its LaTeX."""
     n = robot.dof
+    slices = [equation.rhs for equation in equations]
     entries = [[[sp.sstr(slices[k][i, j]) for k in range(n)] for j in range(n)] for i in range(6)]
     return {**metadata(robot), "frame": frame, "point": point, "shape": [6, n, n],
             "layout": "entries[i][j][k] = d J[i][j] / d q[k]", "rows": list(ROW_NAMES),
             "columns": [str(q) for q in robot.q], "entries": entries,
-            "slices": {str(q): matrix_strings(slices[k]) for k, q in enumerate(robot.q)}}
+            "slices": {str(q): matrix_strings(slices[k]) for k, q in enumerate(robot.q)},
+            "slices_latex": {str(q): equation_latex(equations[k]) for k, q in enumerate(robot.q)}}
 
 
-def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, point: str, orientation: str,
-                        position: str) -> dict[str, Any]:
+def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, J_x: sp.MatrixBase, point: str,
+                        orientation: str, position: str) -> dict[str, Any]:
     """``symjac jacobian --representation``: coordinates, the rate matrix E, the basic Jacobian and its singularities.
 
     ``result`` is a :class:`symjac.representations.RepresentationJacobian` (fields ``coordinates``, ``E``, ``frame``,
-    ``singularities``).
+    ``singularities``); ``J_x`` is E(x) J_0 multiplied out.
     """
     return {**metadata(robot), "frame": result.frame, "point": point, "orientation": orientation,
             "position": position, "coordinates": [str(c) for c in result.coordinates], "E": matrix_strings(result.E),
-            "J_0": matrix_strings(J_0), "representation_singularities": [str(s) for s in result.singularities],
-            "latex": equation_latex(Equation("J_x", "J_x", (result.E, J_0)))}
+            "J_0": matrix_strings(J_0), "J_x": matrix_strings(J_x),
+            "representation_singularities": [str(s) for s in result.singularities],
+            "latex": equation_latex(Equation(r"J_x = E(x)\,J_0", "J_x", J_x))}
 
 
 def torques_data(robot: Robot, equation: Equation, frame: Frame, point: str, wrench: str | None,

@@ -11,12 +11,34 @@ from typing import Any
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
-from symjac.printing.shorthand import GREEK, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import GREEK, file_decimal, shorthand_indices, textbook_factors
 
-__all__ = ["TextbookLatexPrinter", "latex"]
+__all__ = ["DIGITS", "TextbookLatexPrinter", "escape_text", "latex", "rounded"]
+
+DIGITS = 4
+"""Significant digits of the numbers in ``--numeric`` results unless ``--digits`` says otherwise."""
+
+_TEXT_ESCAPES = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "_": r"\_", "#": r"\#", "%": r"\%", "&": r"\&",
+                 "$": r"\$", "^": r"\^{}", "~": r"\~{}", "<": r"\textless{}", ">": r"\textgreater{}"}
 
 
-class TextbookLatexPrinter(LatexPrinter):
+class _DecimalLatexPrinter(LatexPrinter):
+    """SymPy's LaTeX with numbers from files as the decimals they were written as (:func:`.file_decimal`)."""
+
+    def _print_Rational(self, expr: sp.Rational) -> str:
+        return file_decimal(expr) or super()._print_Rational(expr)
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        coefficient, rest = expr.as_coeff_Mul()
+        decimal = file_decimal(abs(coefficient))
+        if decimal is None:
+            return super()._print_Mul(expr)
+        body = self._print(rest)  # 0.089159 s_{1}, as the robot file wrote it
+        body = rf"\left({body}\right)" if rest.is_Add else body
+        return ("- " if coefficient < 0 else "") + f"{decimal} {body}"
+
+
+class TextbookLatexPrinter(_DecimalLatexPrinter):
     """LaTeX with :math:`s_{ij}, c_{ij}` shorthand and ``bmatrix`` matrices."""
 
     def __init__(self, settings: dict[str, Any] | None = None):
@@ -40,10 +62,16 @@ class TextbookLatexPrinter(LatexPrinter):
 
     def _plain_function(self, expr: sp.Function, exp: str | None) -> str:
         r"""``\cos^{2}{\left(\beta \right)}`` as SymPy prints it (its own dispatch would come back here)."""
-        plain = LatexPrinter({"mat_str": "bmatrix", "mat_delim": ""})
+        plain = _DecimalLatexPrinter({"mat_str": "bmatrix", "mat_delim": ""})
         return LatexPrinter._print_Function(plain, expr, exp)
 
+    def _print_atan2(self, expr: sp.Function, exp: str | None = None) -> str:
+        text = r"\operatorname{atan2}\left(" + ", ".join(self._print(a) for a in expr.args) + r"\right)"
+        return f"{text}^{{{exp}}}" if exp else text
+
     def _print_Mul(self, expr: sp.Mul) -> str:
+        if file_decimal(abs(expr.as_coeff_Mul()[0])) is not None:
+            return super()._print_Mul(expr)
         ordered = textbook_factors(expr)
         if ordered is None:
             return super()._print_Mul(expr)
@@ -64,3 +92,27 @@ def latex(expr: Any, **settings: Any) -> str:
     '\\begin{bmatrix}c_{1} s_{12}\\end{bmatrix}'
     """
     return TextbookLatexPrinter(settings).doprint(expr)
+
+
+def escape_text(text: str) -> str:
+    r"""Words for LaTeX text mode: ``_ # % & $ { } ^ ~ \ < >`` made printable.
+
+    Examples
+    --------
+    >>> escape_text("my_arm: 50% of {3}")
+    'my\\_arm: 50\\% of \\{3\\}'
+    """
+    return "".join(_TEXT_ESCAPES.get(character, character) for character in text)
+
+
+def rounded(expr: Any, digits: int = DIGITS) -> Any:
+    """``expr`` (or a matrix) with every number a decimal of ``digits`` significant digits; integers stay integers.
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> rounded(sp.Rational(2159, 5000) * x + sp.Rational(1, 3) + 2 * sp.sin(x), 3)
+    0.432*x + 2*sin(x) + 0.333
+    """
+    value = sp.sympify(expr).evalf(digits)
+    return value.xreplace({f: sp.Integer(int(f)) for f in value.atoms(sp.Float) if float(f).is_integer()})

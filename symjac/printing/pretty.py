@@ -8,7 +8,7 @@ import sympy as sp
 from sympy.printing.pretty.pretty import PrettyPrinter
 from sympy.printing.pretty.stringpict import prettyForm, stringPict
 
-from symjac.printing.shorthand import SUBSCRIPTS, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import SUBSCRIPTS, file_decimal, shorthand_indices, textbook_factors
 
 __all__ = ["TextbookPrettyPrinter", "pretty", "pretty_side_by_side"]
 
@@ -31,7 +31,17 @@ class TextbookPrettyPrinter(PrettyPrinter):
     def _print_cos(self, expr: sp.Function) -> prettyForm:
         return self._shorthand("c", expr) or self._print_Function(expr)
 
+    def _print_Rational(self, expr: sp.Rational) -> prettyForm:
+        decimal = file_decimal(expr)
+        return prettyForm(decimal) if decimal is not None else super()._print_Rational(expr)
+
     def _print_Mul(self, product: sp.Mul) -> prettyForm:
+        coefficient, rest = product.as_coeff_Mul()
+        decimal = file_decimal(abs(coefficient))
+        if decimal is not None:  # 0.089159⋅s₁, as the robot file wrote it
+            body = self._print(rest)
+            form = prettyForm.__mul__(prettyForm(decimal), prettyForm(*body.parens()) if rest.is_Add else body)
+            return prettyForm(*form.left("-")) if coefficient < 0 else form
         ordered = textbook_factors(product)
         if ordered is None:
             return super()._print_Mul(product)

@@ -11,6 +11,7 @@ import sympy as sp
 
 from symjac.jacobian import ROW_NAMES
 from symjac.model import Robot
+from symjac.printing.document import Inline
 from symjac.singular_geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
 from symjac.singular_report import DirectionPart, LimitStatus, LostDirection, SingularFactor, SingularityReport
 
@@ -18,16 +19,20 @@ __all__ = [
     "KIND_REASONS",
     "axis_name",
     "dh_caption",
+    "existence_parts",
     "existence_words",
     "finding_sentence",
     "landmark_name",
     "limit_parts",
     "limit_text",
     "lost_words",
+    "readable_number",
     "reason",
+    "reason_parts",
     "redundant_caption",
     "representation_note",
     "rows_caption",
+    "rows_parts",
     "self_motion_words",
 ]
 
@@ -84,21 +89,46 @@ def reason(factor: SingularFactor) -> str:
     return _cause_words(factor.cause)
 
 
+def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
+    """:func:`reason` as caption parts, its formulas as SymPy objects (printed as math)."""
+    if factor.kind is SingularityKind.PARAMETER:
+        return (factor.expression, " depends on parameters only: a design with ",
+                sp.Eq(factor.expression, 0, evaluate=False), " would be singular everywhere; the default parameters "
+                "are not")
+    return (_cause_words(factor.cause),)
+
+
 def axis_name(axis: FrameAxis) -> str:
     """``x of frame {3}``, ``z of the tool frame``."""
     label = f"frame {{{axis.frame}}}" if isinstance(axis.frame, int) else f"the {axis.frame} frame"
     return f"{_AXIS_NAMES[axis.axis]} of {label}"
 
 
-def _part_name(part: DirectionPart) -> str:
-    """A named axis, or the unit vector's components to three decimals."""
-    return axis_name(part.axis) if part.axis is not None else str(np.round(np.array(part.unit), 3).tolist())
+def readable_number(value: float) -> str:
+    """A computed number as a reader writes it: exact when it is a simple surd (``sqrt(2)/2``), else 3 decimals.
+
+    Examples
+    --------
+    >>> readable_number(0.7071067811865476), readable_number(-0.5), readable_number(0.55412)
+    ('sqrt(2)/2', '-1/2', '0.554')
+    """
+    exact = sp.nsimplify(value, [sp.sqrt(2), sp.sqrt(3), sp.sqrt(5)], tolerance=1e-9)
+    if sp.count_ops(exact) <= 4 and all(abs(n) <= 12 for n in exact.atoms(sp.Integer)):
+        return sp.sstr(exact)
+    return f"{value:.3f}".rstrip("0").rstrip(".") if abs(value) >= 5e-4 else "0"
+
+
+def _part_name(part: DirectionPart, frame: object) -> str:
+    """A named axis, or the unit vector's components (exact when simple, else rounded) in ``frame``."""
+    if part.axis is not None:
+        return axis_name(part.axis)
+    return f"({', '.join(readable_number(float(c)) for c in np.asarray(part.unit))}) in frame {{{frame}}}"
 
 
 def _direction(lost: LostDirection, words: tuple[str, str, str, str]) -> str:
     """``words`` = (linear alone, angular alone, angular after a linear part, joiner)."""
-    linear = None if lost.linear is None else _part_name(lost.linear)
-    angular = None if lost.angular is None else _part_name(lost.angular)
+    linear = None if lost.linear is None else _part_name(lost.linear, lost.frame)
+    angular = None if lost.angular is None else _part_name(lost.angular, lost.frame)
     if linear and angular:
         return f"{words[0]} along {linear} {words[3]} {words[2]} about {angular}"
     if linear:
@@ -111,6 +141,11 @@ def lost_words(factor: SingularFactor) -> str:
     lost = factor.lost_direction
     if lost is None:
         return ""
+    if lost.radial and lost.angular is None:  # the line says it exactly; the sample vector only illustrates it
+        line = "the line from the origin of frame {0} to the point"
+        return (f"cannot translate radially, along {line}, and it holds a force along that line with zero joint "
+                f"torque (at one such configuration: along {_part_name(lost.linear, lost.frame)})"
+                if lost.linear is not None else "")
     radial = " (radially: along the line from the origin of frame {0} to the point)" if lost.radial else ""
     motion = _direction(lost, ("translate", "rotate", "rotating", "while"))
     wrench = _direction(lost, ("a force", "a moment", "a moment", "with"))
@@ -122,8 +157,8 @@ def self_motion_words(factor: SingularFactor) -> str:
     motion = factor.self_motion
     if motion is None:
         return ""
-    rates = ", ".join(f"{rate:+.3g} on joint {motion.columns[i] + 1}" for i, rate in enumerate(motion.rates)
-                      if abs(rate) > 1e-9)
+    shown = [(readable_number(rate), motion.columns[i] + 1) for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
+    rates = ", ".join(f"{'' if value.startswith('-') else '+'}{value} on joint {joint}" for value, joint in shown)
     return f"joint rates {rates} move nothing"
 
 
@@ -133,6 +168,15 @@ def existence_words(factor: SingularFactor) -> str:
         return ""
     verdict = {True: "holds", False: "does not hold", None: "unknown"}[factor.exists_for_defaults]
     return (f"Exists only if {sp.sstr(factor.existence)} (assuming positive lengths; {verdict} for the default "
+            "parameters).")
+
+
+def existence_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
+    """:func:`existence_words` as caption parts, the condition as a SymPy relation (``()`` when none)."""
+    if factor.existence is None or factor.existence is sp.true:
+        return ()
+    verdict = {True: "holds", False: "does not hold", None: "unknown"}[factor.exists_for_defaults]
+    return ("Exists only if ", factor.existence, f" (assuming positive lengths; {verdict} for the default "
             "parameters).")
 
 
@@ -177,12 +221,22 @@ def rows_caption(report: SingularityReport) -> str:
     return f"Determinant of rows {rows} of the Jacobian in frame {{{det.frame}}}:"
 
 
-def redundant_caption(report: SingularityReport) -> str:
-    """Why a redundant arm's report lists minors instead of one determinant."""
+def rows_parts(report: SingularityReport) -> tuple[str | Inline, ...]:
+    r""":func:`rows_caption` as caption parts, the rows as math (:math:`v_x, \omega_z`)."""
     det = report.determinant
-    rows = ", ".join(ROW_NAMES[r] for r in det.rows)
-    return (f"Redundant arm: {report.robot} has more joints than task rows ({rows}); it is singular only where every "
-            f"square minor below vanishes (where sqrt(det(J J^T)) = 0). Minors in frame {{{det.frame}}}.")
+    parts: list[str | Inline] = ["Determinant of rows "]
+    for number, row in enumerate(det.rows):
+        parts += [", "] * bool(number) + [Inline(sp.latex(sp.Symbol(ROW_NAMES[row])), ROW_NAMES[row])]
+    return (*parts, f" of the Jacobian in frame {{{det.frame}}}:")
+
+
+def redundant_caption(report: SingularityReport) -> tuple[str | Inline, ...]:
+    """Why a redundant arm's report lists minors instead of one determinant, as caption parts."""
+    det = report.determinant
+    rows = rows_parts(report)[1:-1]  # the row names between "Determinant of rows " and the frame
+    condition = Inline(r"\sqrt{\det(J J^{T})} = 0", "sqrt(det(J J^T)) = 0")
+    return (f"Redundant arm: {report.robot} has more joints than task rows (", *rows, "); it is singular only where "
+            "every square minor below vanishes (where ", condition, f"). Minors in frame {{{det.frame}}}.")
 
 
 def dh_caption(robot: Robot) -> str:

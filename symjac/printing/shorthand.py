@@ -8,11 +8,12 @@ full. The math keeps ordinary ``sin``/``cos``; only the printers abbreviate.
 from __future__ import annotations
 
 import re
+from decimal import Decimal
 from typing import Any
 
 import sympy as sp
 
-__all__ = ["GREEK", "SUBSCRIPTS", "shorthand_indices", "textbook_factors"]
+__all__ = ["GREEK", "SUBSCRIPTS", "file_decimal", "shorthand_indices", "textbook_factors"]
 
 _JOINT_ANGLE = re.compile(r"theta(\d+)\Z")
 _RATE = re.compile(r"(theta|d)d?dot\d+\Z")  # rates and accelerations
@@ -80,3 +81,25 @@ def textbook_factors(product: sp.Expr) -> tuple[int, list[sp.Expr]] | None:
     if not coefficient.is_Integer or any(f.is_Pow and f.exp.is_negative for f in factors):
         return None
     return int(coefficient), sorted(factors, key=_factor_key)
+
+
+def file_decimal(number: sp.Expr) -> str | None:
+    """A number read from a decimal in a file, as that decimal: ``89159/1000000 -> "0.089159"``; else ``None``.
+
+    Exact fractions whose denominator divides a power of ten print as decimals (``1/10 -> 0.1``, the math stays
+    exact), except halves, quarters, eighths and sixteenths; ``1/2``, ``1/3`` and ``3/16`` stay fractions.
+
+    Examples
+    --------
+    >>> file_decimal(sp.Rational(89159, 1000000)), file_decimal(sp.Rational(1, 10)), file_decimal(sp.Rational(1, 2))
+    ('0.089159', '0.1', None)
+    """
+    if not isinstance(number, sp.Rational) or number.is_Integer or (number.q <= 16 and number.q % 5):
+        return None
+    rest = int(number.q)
+    for prime in (2, 5):
+        while rest % prime == 0:
+            rest //= prime
+    if rest != 1:
+        return None
+    return format(Decimal(int(number.p)) / Decimal(int(number.q)), "f")

@@ -39,7 +39,8 @@ def step_equations(propagation: Propagation, values: Mapping[Any, Any] | None = 
     for frame, *vectors in rows:
         where, subscript = {"tool": ("T", "T"), "point": (str(last), "P")}.get(str(frame), (str(frame), str(frame)))
         for (tex_name, text_name), vector in zip(names, vectors, strict=True):
-            equations.append(Equation(f"{{}}^{{{where}}}{tex_name}_{{{subscript}}}",
+            upright = where if where.isdigit() else rf"\mathrm{{{where}}}"
+            equations.append(Equation(f"{{}}^{{{upright}}}{tex_name}_{{{subscript}}}",
                                       f"{text_name}_{subscript} (in frame {where})", vector.xreplace(substitution)))
     if isinstance(propagation, ForcePropagation):
         equations.append(Equation(r"\tau", "tau", propagation.joint_torques().xreplace(substitution)))

@@ -18,18 +18,19 @@ def _det(value: sp.Expr) -> Equation:
 def singularity_blocks(report: SingularityReport) -> list[Block]:
     r"""The report as captioned blocks: :math:`\det J` (or every minor of a redundant arm), then each factor."""
     if report.redundant:
-        blocks = [Block((prose.redundant_caption(report),))]
+        blocks = [Block(prose.redundant_caption(report))]
         for minor in report.minors:
             locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
             blocks.append(Block((f"Joint {locked + 1} locked:",), (_det(minor.expression),)))
         return blocks
-    blocks = [Block((prose.rows_caption(report),), (_det(report.determinant.expression),))]
+    blocks = [Block(prose.rows_parts(report), (_det(report.determinant.expression),))]
     for factor in report.factors:
-        head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): {prose.reason(factor)}."]
+        head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): ",
+                                      *prose.reason_parts(factor), "."]
         if factor.solutions:
-            existence = prose.existence_words(factor)
+            existence = prose.existence_parts(factor)
             if existence:
-                head.append(f" {existence}")
+                head += [" ", *existence]
             if factor.lost_direction is not None:
                 head.append(f" There it {prose.lost_words(factor)}; {prose.self_motion_words(factor)}.")
             head.extend(prose.limit_parts(factor))

@@ -50,10 +50,19 @@ def dh_table_text(robot: Robot) -> str:
 
 
 def dh_table_latex(robot: Robot) -> str:
-    r"""The DH table as a LaTeX ``array`` (entries in textbook shorthand, ``\text{...}`` for a general chain)."""
+    r"""The DH table as a LaTeX ``array`` (entries in textbook shorthand; a general chain's vectors in brackets)."""
     if robot.convention == "general":
-        rows = dh_rows(robot)
-        cells = r" \\ ".join(" & ".join(row[:1] + [rf"\text{{{cell}}}" for cell in row[1:]]) for row in rows)
+        zero = (sp.S.Zero,) * 3
+
+        def vector(values: tuple[sp.Expr, ...]) -> str:
+            return r"\left[" + ",\\ ".join(latex(v) for v in values) + r"\right]"
+
+        cells = r" \\ ".join(" & ".join([str(joint.index), rf"\text{{{joint.type.value}}}",
+                                          *(vector(tuple(v)) for v in (joint.origin.xyz if joint.origin else zero,
+                                                                       joint.origin.rpy if joint.origin else zero,
+                                                                       joint.axis or (0, 0, 1))),
+                                          latex(joint.offset), latex(joint.angle)])
+                              for joint in robot.joints)
         columns = r"\text{type} & \text{xyz} & \text{rpy} & \text{axis} & d_i & \theta_i"
         return r"\begin{array}{c|cccccc} i & " + columns + r" \\ \hline " + cells + r" \end{array}"
     headers = [r"\alpha_{i-1}", "a_{i-1}", "d_i", r"\theta_i"] if robot.convention == "modified" else [

@@ -1,0 +1,259 @@
+r"""Long results broken to fit a page, the way a textbook breaks them: short matrices, named entries, "where" lines.
+
+A matrix wider than the page keeps its shape: its widest entries are replaced by names (:math:`r_{11}`, :math:`J_{23}`,
+:math:`\tau_1`) and listed below it, each ``name = value`` on its own line of an ``align*``, a value too long for one
+line continued on the next ones, broken before a ``+`` or ``-`` (inside parentheses if it has to). A column vector
+whose entries are all too long is listed component by component. Widths are estimated from the LaTeX (in points,
+10 pt Computer Modern), on the safe side, against :data:`TEXT_WIDTH`.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import sympy as sp
+
+from symjac.printing.latex import TextbookLatexPrinter
+from symjac.printing.shorthand import file_decimal, textbook_factors
+
+__all__ = ["TEXT_WIDTH", "Display", "entry_namer", "fit_equation", "fit_side_by_side", "tex_width"]
+
+TEXT_WIDTH = 680.0
+"""Points available for a display: a landscape US-letter page with 1.5 cm margins is 709 pt wide."""
+
+_LINE = TEXT_WIDTH - 30.0  # continuation lines start after a \quad and the alignment point
+_COLUMN_GAP = 10.0  # 2 \arraycolsep
+_BRACKETS = 16.0
+
+_GLYPH = {"+": 12.5, "-": 12.5, "=": 14.0, ",": 4.5, ";": 4.5, "(": 4.0, ")": 4.0, "[": 3.0, "]": 3.0,
+          "|": 3.0, " ": 0.0, "&": 0.0, "'": 3.0, ".": 3.0, "<": 14.0, ">": 14.0, "/": 5.0}
+_COMMANDS = {"left": 0.0, "right": 0.0, "bigl": 0.0, "bigr": 0.0, ",": 1.7, ";": 2.8, "quad": 10.0, "qquad": 20.0,
+             "cdot": 8.0, "geq": 14.0, "leq": 14.0, "neq": 14.0, "to": 14.0, "times": 12.5, "pi": 6.0,
+             "omega": 6.5, "mathrm": 0.0, "operatorname": 0.0, "text": 0.0, "dot": 0.0, "ddot": 0.0, "hat": 0.0,
+             "partial": 6.0, "det": 16.0, "sin": 15.0, "cos": 17.0, "tan": 17.0, "operatorname*": 0.0}
+_TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_]|[^\\{}^_]")
+
+
+def _group(tokens: list[str], start: int) -> tuple[list[str], int]:
+    """The tokens of the argument starting at ``start`` (a braced group or one token) and the index after it."""
+    if start >= len(tokens):
+        return [], start
+    if tokens[start] != "{":
+        return [tokens[start]], start + 1
+    depth, index = 0, start
+    while index < len(tokens):
+        depth += {"{": 1, "}": -1}.get(tokens[index], 0)
+        if depth == 0:
+            return tokens[start + 1:index], index + 1
+        index += 1
+    return tokens[start + 1:], len(tokens)
+
+
+def _width(tokens: list[str], scale: float) -> float:
+    total, index = 0.0, 0
+    while index < len(tokens):
+        token = tokens[index]
+        index += 1
+        if token in ("^", "_"):
+            argument, index = _group(tokens, index)
+            total += _width(argument, scale * 0.72)
+        elif token == "\\frac":
+            numerator, index = _group(tokens, index)
+            denominator, index = _group(tokens, index)
+            total += max(_width(numerator, scale * 0.8), _width(denominator, scale * 0.8)) + 3.0 * scale
+        elif token == "\\sqrt":
+            argument, index = _group(tokens, index)
+            total += _width(argument, scale) + 9.0 * scale
+        elif token in ("\\text", "\\mathrm", "\\operatorname"):
+            argument, index = _group(tokens, index)
+            total += 5.0 * scale * sum(1 for t in argument if t not in "{}")
+        elif token in ("{", "}"):
+            continue
+        elif token.startswith("\\"):
+            total += _COMMANDS.get(token[1:], 6.5) * scale
+        else:
+            total += _GLYPH.get(token, 6.2) * scale
+    return total
+
+
+def tex_width(tex: str, scale: float = 1.0) -> float:
+    r"""Estimated width in points of LaTeX math ``tex`` (slightly more than TeX gives; ``\frac`` in text style).
+
+    Examples
+    --------
+    >>> 20 < tex_width("a_{2} c_{2} + a_{3} c_{23}") < 60
+    True
+    """
+    return _width(_TOKEN.findall(tex), scale)
+
+
+@dataclass(frozen=True)
+class Display:
+    r"""One equation laid out: the display (``\[...\]`` body, or ``align*`` lines) and the "where" lines after it."""
+
+    main: str
+    lines: tuple[str, ...] = ()
+    where: tuple[str, ...] = ()
+
+    def body(self) -> str:
+        """The LaTeX of the whole layout: the equation, then ``where`` and its aligned definitions."""
+        text = rf"\[ {self.main} \]" if self.main else ""
+        if self.lines:
+            text += "\\begin{align*}\n" + " \\\\\n".join(self.lines) + "\n\\end{align*}"
+        if self.where:
+            text += "\n\\noindent where\n\\begin{align*}\n" + " \\\\\n".join(self.where) + "\n\\end{align*}"
+        return text.strip()
+
+
+class _BreakingPrinter(TextbookLatexPrinter):
+    """The textbook printer, plus pieces of a long expression with the places it may break between them."""
+
+    def pieces(self, expr: sp.Expr, limit: float) -> list[str]:
+        """LaTeX chunks; a line may break before any chunk that starts with a sign (``"+ ..."``, ``"- ..."``)."""
+        tex = self.doprint(expr)
+        if tex_width(tex) <= limit:
+            return [tex]
+        if isinstance(expr, sp.Add):
+            chunks: list[str] = []
+            for number, term in enumerate(self._as_ordered_terms(expr)):
+                negative = term.could_extract_minus_sign()
+                parts = self.pieces(-term if negative else term, limit)
+                sign = "- " if negative else ("+ " if number else "")
+                chunks += [sign + parts[0], *parts[1:]] if number or negative else parts
+            return chunks
+        if isinstance(expr, sp.Mul):
+            numerator, denominator = sp.fraction(expr)
+            if denominator != 1:
+                return [rf"\frac{{1}}{{{self.doprint(denominator)}}}", *self._grouped(numerator, limit)]
+            coefficient, rest = expr.as_coeff_Mul()
+            if coefficient.is_Float or file_decimal(abs(coefficient)) is not None:  # 0.4318 (...), --numeric
+                head = ("- " if coefficient < 0 else "") + self.doprint(abs(coefficient))
+                return _glue([head, *(self._grouped(rest, limit) if rest.is_Add else self.pieces(rest, limit))])
+            ordered = textbook_factors(expr)
+            if ordered is not None:
+                coefficient, factors = ordered
+                head = ("- " if coefficient < 0 else "") + (str(abs(coefficient)) if abs(coefficient) != 1 else "")
+                chunks = [head.strip()] if head.strip() else []
+                for factor in factors:
+                    chunks += self._grouped(factor, limit) if factor.is_Add else [self.doprint(factor)]
+                return _glue(chunks)
+        return [tex]
+
+    def _grouped(self, expr: sp.Expr, limit: float) -> list[str]:
+        inner = self.pieces(expr, limit)
+        if len(inner) == 1:
+            return [rf"\left({inner[0]}\right)" if expr.is_Add else inner[0]]
+        return _glue([r"\bigl(" + inner[0], *inner[1:-1], inner[-1] + r"\bigr)"])
+
+
+def _glue(chunks: list[str]) -> list[str]:
+    """Join chunks that do not start with a sign to the chunk before (a line breaks only before + or -)."""
+    glued: list[str] = []
+    for chunk in chunks:
+        if glued and not chunk.startswith(("+ ", "- ")):
+            glued[-1] = f"{glued[-1]} {chunk}"
+        else:
+            glued.append(chunk)
+    return glued
+
+
+def _lines(expr: sp.Expr, first: float) -> list[str]:
+    """``expr`` as lines: the first at most ``first`` points wide, the others :data:`_LINE`."""
+    printer = _BreakingPrinter()
+    lines: list[str] = []
+    current, room = "", first
+    for chunk in printer.pieces(expr, _LINE * 0.9):
+        if current and tex_width(current) + tex_width(chunk) > room:
+            lines.append(current)
+            current, room = "", _LINE
+        current = f"{current} {chunk}".strip()
+    return [*lines, current]
+
+
+def _aligned(name: str, expr: sp.Expr) -> str:
+    r"""``name &= value``, continued on ``&\quad`` lines when too long."""
+    lines = _lines(expr, TEXT_WIDTH - tex_width(name) - 20.0)
+    return " \\\\\n".join([f"{name} &= {lines[0]}", *(rf"&\quad {line}" for line in lines[1:])])
+
+
+def entry_namer(lhs: str, matrix: sp.MatrixBase) -> Callable[[int, int], str]:
+    r"""Names for the entries of ``lhs``: a pose's :math:`r_{11}..p_z`, a matrix's :math:`J_{23}` or :math:`(J_x)_{23}`.
+
+    A 3-vector's components are :math:`{}^{3}f_{3x}`, other vectors' :math:`\tau_{1}`.
+
+    Examples
+    --------
+    >>> entry_namer("{}^{0}J", sp.zeros(6, 2))(1, 0)
+    'J_{21}'
+    """
+    rows, cols = matrix.shape
+    name = lhs.split("=")[0].strip()
+    if name.startswith(r"\frac"):
+        name = "h"
+    if cols == 1:
+        if rows == 3 and (match := re.fullmatch(r"(.*)_\{([^{}]*)\}", name)):
+            return lambda i, j: f"{match.group(1)}_{{{match.group(2)}{'xyz'[i]}}}"
+        return lambda i, j: f"{_letter(name)}_{{{i + 1}}}"
+    letter = _letter(name)
+    if (rows, cols) == (4, 4) and letter == "T":
+        return lambda i, j: f"p_{{{'xyz'[i]}}}" if j == 3 else f"r_{{{i + 1}{j + 1}}}"
+    comma = "," if max(rows, cols) > 9 else ""
+    return lambda i, j: f"{letter}_{{{i + 1}{comma}{j + 1}}}"
+
+
+def _letter(name: str) -> str:
+    """``{}^{0}_{6}T -> T``, ``J_x -> (J_x)`` (a name with a subscript is wrapped before it gets another)."""
+    letter = re.sub(r"^\{\}\^\{[^{}]*\}(_\{[^{}]*\})?", "", name).strip() or "m"
+    return f"({letter})" if "_" in letter else letter
+
+
+def _matrix_width(widths: Sequence[Sequence[float]]) -> float:
+    columns = [max(column) for column in zip(*widths, strict=True)]
+    return sum(columns) + _COLUMN_GAP * (len(columns) - 1) + _BRACKETS
+
+
+def fit_equation(lhs: str, rhs: sp.Basic) -> Display:
+    r"""``lhs = rhs`` laid out to fit :data:`TEXT_WIDTH` (the entries it names: :func:`entry_namer`).
+
+    Examples
+    --------
+    >>> x = sp.Symbol("x")
+    >>> fit_equation("y", x).main
+    'y = x'
+    """
+    printer = TextbookLatexPrinter()
+    head = f"{lhs} = " if lhs else ""
+    room = TEXT_WIDTH - tex_width(head)
+    if not isinstance(rhs, sp.MatrixBase):
+        tex = printer.doprint(rhs)
+        if tex_width(tex) <= room:
+            return Display(head + tex)
+        return Display("", (_aligned(lhs, rhs),))
+    entries = [[printer.doprint(rhs[i, j]) for j in range(rhs.cols)] for i in range(rhs.rows)]
+    widths = [[tex_width(e) for e in row] for row in entries]
+    if _matrix_width(widths) <= room:
+        return Display(head + printer.doprint(rhs))
+    namer = entry_namer(lhs, rhs)
+    for limit in sorted({w for row in widths for w in row}, reverse=True):
+        named = {(i, j) for i in range(rhs.rows) for j in range(rhs.cols) if widths[i][j] >= limit}
+        shown = [[tex_width(namer(i, j)) if (i, j) in named else widths[i][j] for j in range(rhs.cols)]
+                 for i in range(rhs.rows)]
+        if _matrix_width(shown) <= room:
+            break
+    where = tuple(_aligned(namer(i, j), rhs[i, j]) for i in range(rhs.rows) for j in range(rhs.cols)
+                  if (i, j) in named)
+    if rhs.cols == 1 and len(named) == rhs.rows:  # a vector: its components are the equations
+        return Display("", where)
+    cells = r" \\ ".join(" & ".join(namer(i, j) if (i, j) in named else entries[i][j] for j in range(rhs.cols))
+                         for i in range(rhs.rows))
+    return Display(head + r"\begin{bmatrix}" + cells + r"\end{bmatrix}", (), where)
+
+
+def fit_side_by_side(texts: Sequence[str]) -> str:
+    r"""Short equations on one line joined by ``,\quad``, or one per line of a ``gather*`` when they do not fit."""
+    if sum(tex_width(t) for t in texts) + 25.0 * (len(texts) - 1) <= TEXT_WIDTH:
+        joined = r",\quad ".join(texts)
+        return rf"\[ {joined} \]"
+    return "\\begin{gather*}\n" + " \\\\\n".join(texts) + "\n\\end{gather*}"

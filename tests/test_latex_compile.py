@@ -1,0 +1,175 @@
+"""Every standalone LaTeX document symjac writes compiles with pdflatex and fits its page.
+
+Each command (show, fk, every Jacobian method with its steps, torques, singularities, representation Jacobians,
+``--numeric``, the Hessian and the time derivative) runs on every catalog robot, a URDF robot and a robot whose name,
+description and parameters carry underscores and other TeX specials. Documents are generated in-process with
+``symjac.cli.main`` (two worker processes, one robot's commands per task so the chain's caches serve them all) and
+compiled two at a time while the rest are still being derived. A document fails on any TeX error and on any box
+more than :data:`TOLERANCE` points too wide or too tall.
+
+pdflatex comes from Debian's texlive-latex-base and texlive-latex-recommended (``.ci/run`` installs them when
+missing); without it locally, these tests are skipped and say why.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import re
+import shutil
+import subprocess
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+import sympy as sp
+
+from symjac.cli import main
+from symjac.io import catalog
+from symjac.printing import Block, Document, Equation, render
+from symjac.printing import document as document_module
+from symjac.printing.layout import Display
+
+PDFLATEX = shutil.which("pdflatex")
+pytestmark = pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed (Debian: apt-get install "
+                                "texlive-latex-base texlive-latex-recommended); .ci/run installs it")
+
+TOLERANCE = 3.0  # points; TeX's own \hfuzz is 0.1 pt, a few points are invisible on the page
+_BOX = re.compile(r"Overfull \\[hv]box \((\d+(?:\.\d+)?)pt too (?:wide|high)\)")
+
+MY_ARM = """\
+name = "my_arm"
+description = "My_arm: a test arm with 100% of the #TeX specials & an under_score"
+convention = "standard"
+
+[parameters]
+link_1 = 0.3
+L_2 = 0.25
+d_off = 0.089159
+
+[[joints]]
+type = "revolute"
+alpha = "pi/2"
+a = 0
+d = "d_off"
+theta = 0
+
+[[joints]]
+type = "revolute"
+alpha = 0
+a = "link_1"
+d = 0
+theta = 0
+limits = [-1.5, 1.5]
+
+[[joints]]
+type = "prismatic"
+alpha = 0
+a = "L_2"
+d = 0
+theta = 0
+limits = [0.1, 0.4]
+"""
+
+COMMANDS: dict[str, list[str]] = {
+    "show": ["show"],
+    "show-numeric": ["show", "--numeric"],
+    "fk": ["fk"],
+    "fk-numeric": ["fk", "--numeric", "--digits", "3"],
+    "jacobian": ["jacobian"],
+    "jacobian-numeric": ["jacobian", "--numeric"],
+    "cross-product": ["jacobian", "--method", "cross_product", "--frame", "2"],
+    "velocity-steps": ["jacobian", "--method", "velocity_propagation", "--steps"],
+    "force-steps": ["jacobian", "--method", "force_propagation", "--steps"],
+    "force-steps-numeric": ["jacobian", "--method", "force_propagation", "--steps", "--numeric"],
+    "torques": ["torques"],
+    "singularities": ["singularities"],
+    "zyz": ["jacobian", "--representation", "zyz"],
+    "quaternion-numeric": ["jacobian", "--representation", "quaternion", "--numeric"],
+    "hessian": ["hessian"],
+    "derivative-steps": ["jacobian", "--derivative", "--steps"],
+}
+ROBOTS = [*catalog(), "ur5.urdf", "my_arm"]
+SLOW_FIRST = ("panda", "ur5.urdf", "ur5", "puma560")  # longest derivations start first, so both workers finish together
+DOCUMENTS = [f"{robot}-{name}" for robot in ROBOTS for name in COMMANDS] + ["errata"]
+
+
+def problems(log: str) -> list[str]:
+    """What is wrong with a compiled document, from its pdflatex log: errors, then boxes too wide or too tall."""
+    found = [line for line in log.splitlines() if line.startswith("!")]
+    found += [f"{match.group(0)}" for match in _BOX.finditer(log) if float(match.group(1)) > TOLERANCE]
+    return found
+
+
+def compile_tex(path: Path) -> list[str]:
+    """Run pdflatex on ``path`` (in its folder) and return :func:`problems`, or why it did not run."""
+    assert PDFLATEX is not None
+    try:
+        subprocess.run([PDFLATEX, "-halt-on-error", "-interaction=nonstopmode", "-no-shell-escape", path.name],
+                       cwd=path.parent, capture_output=True, timeout=180, check=False)
+    except subprocess.TimeoutExpired:
+        return ["pdflatex timed out"]
+    log = path.with_suffix(".log")
+    return problems(log.read_text(encoding="latin-1")) if log.exists() else ["pdflatex wrote no log"]
+
+
+def _generate(robot: str, folder: str) -> list[tuple[str, int]]:
+    """Every command's standalone document for one robot (one process: the chain's caches serve all of them)."""
+    source = str(Path(folder) / "my_arm.toml") if robot == "my_arm" else robot
+    stem = robot.replace(".", "_")
+    statuses = []
+    for name, command in COMMANDS.items():
+        path = Path(folder) / f"{stem}-{name}.tex"
+        statuses.append((f"{robot}-{name}", main([command[0], source, *command[1:], "--standalone", "-o", str(path)])))
+    return statuses
+
+
+@pytest.fixture(scope="module")
+def compiled(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[str]]:
+    """Each document's problems (``[]`` when it compiled cleanly), keyed ``robot-command``."""
+    folder = tmp_path_factory.mktemp("latex")
+    (folder / "my_arm.toml").write_text(MY_ARM, encoding="utf-8")
+    assert main(["errata", "--format", "latex", "-o", str(folder / "errata.tex")]) == 0
+    order = sorted(ROBOTS, key=lambda robot: SLOW_FIRST.index(robot) if robot in SLOW_FIRST else len(SLOW_FIRST))
+    results: dict[str, list[str]] = {}
+    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("fork")) as derive, \
+            ThreadPoolExecutor(2) as tex:
+        tasks = [derive.submit(_generate, robot, str(folder)) for robot in order]  # forked before any thread starts
+        compiles = {"errata": tex.submit(compile_tex, folder / "errata.tex")}
+        for task in tasks:
+            for name, status in task.result():
+                if status != 0:
+                    results[name] = [f"symjac exited with status {status}"]
+                else:
+                    compiles[name] = tex.submit(compile_tex, folder / f"{name.replace('.urdf', '_urdf')}.tex")
+        results.update({name: future.result() for name, future in compiles.items()})
+    return results
+
+
+@pytest.mark.parametrize("name", DOCUMENTS)
+def test_document_compiles_and_fits(compiled, name):
+    assert compiled[name] == [], f"{name}.tex: {compiled[name]}"
+
+
+# --- the check itself can fail ----------------------------------------------------------------------------------
+
+
+def _render_and_compile(tmp_path: Path, document: Document) -> list[str]:
+    path = tmp_path / "doc.tex"
+    path.write_text(render(document, "latex", standalone=True), encoding="utf-8")
+    return compile_tex(path)
+
+
+def test_an_unescaped_caption_fails(tmp_path, monkeypatch):
+    monkeypatch.setattr(document_module, "escape_text", lambda text: text)  # captions as they were before escaping
+    document = Document("a_b", "demo", (Block(("Determinant of rows v_x, v_y:",), ()),))
+    assert any("Missing $ inserted" in problem for problem in _render_and_compile(tmp_path, document))
+
+
+def test_a_matrix_wider_than_the_page_fails_unless_laid_out(tmp_path, monkeypatch):
+    x = sp.Symbol("x")
+    wide = sp.Matrix([[sum(x**k for k in range(1, 40)) for _ in range(3)]])
+    document = Document("wide", "demo", (Block((), (Equation("M", "M", wide),)),))
+    assert _render_and_compile(tmp_path, document) == []  # laid out: entries named and broken over lines
+    unbroken = lambda lhs, rhs: Display(f"{lhs} = {document_module.latex(rhs)}")  # noqa: E731
+    monkeypatch.setattr(document_module, "fit_equation", unbroken)
+    assert any("Overfull" in problem for problem in _render_and_compile(tmp_path, document))

@@ -72,10 +72,14 @@ Math = Equation | DHTable
 
 @dataclass(frozen=True)
 class Inline:
-    r"""Math written by hand for a caption: ``tex`` inside ``$...$`` in LaTeX, ``text`` in pretty output."""
+    r"""Math written by hand for a caption: ``tex`` inside ``$...$`` in LaTeX, ``text`` in pretty output.
+
+    ``expr``, when given, is the same math as a SymPy object, for outputs that typeset SymPy themselves (MathML).
+    """
 
     tex: str
     text: str
+    expr: sp.Basic | None = None
 
 
 @dataclass(frozen=True)

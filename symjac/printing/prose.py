@@ -221,12 +221,17 @@ def rows_caption(report: SingularityReport) -> str:
     return f"Determinant of rows {rows} of the Jacobian in frame {{{det.frame}}}:"
 
 
+def _row_symbol(name: str) -> Inline:
+    symbol = sp.Symbol(name)
+    return Inline(sp.latex(symbol), name, symbol)
+
+
 def rows_parts(report: SingularityReport) -> tuple[str | Inline, ...]:
     r""":func:`rows_caption` as caption parts, the rows as math (:math:`v_x, \omega_z`)."""
     det = report.determinant
     parts: list[str | Inline] = ["Determinant of rows "]
     for number, row in enumerate(det.rows):
-        parts += [", "] * bool(number) + [Inline(sp.latex(sp.Symbol(ROW_NAMES[row])), ROW_NAMES[row])]
+        parts += [", "] * bool(number) + [_row_symbol(ROW_NAMES[row])]
     return (*parts, f" of the Jacobian in frame {{{det.frame}}}:")
 
 

@@ -16,7 +16,7 @@ import sympy as sp
 from symjac.chain import Frame, chain_of
 from symjac.jacobian import METHODS, Method, jacobian
 from symjac.model import Robot
-from symjac.printing.document import Block, Equation
+from symjac.printing.document import Block, Equation, Inline
 from symjac.report.breaking import displays
 from symjac.report.mathml import TextbookMathMLPrinter, math_element, mathml_node
 
@@ -95,8 +95,19 @@ def equation_html(rhs: sp.Basic, lhs: Element | None = None) -> str:
     return f'<p class="note">{name}by columns (too wide for one line):</p><div class="blocks">{"".join(parts)}</div>\n'
 
 
-def _caption_html(parts: Sequence[str | sp.Basic]) -> str:
-    return "".join(html.escape(part) if isinstance(part, str) else inline_math(part) for part in parts)
+def _caption_part_html(part: str | sp.Basic | Inline) -> str:
+    """Words escaped; SymPy objects as MathML; math written by hand (:class:`Inline`) as its expression or its text."""
+    if isinstance(part, str):
+        return html.escape(part)
+    if isinstance(part, Inline) and part.expr is None:
+        return f'<span class="math-text">{html.escape(part.text)}</span>'
+    if isinstance(part, Inline):
+        return inline_math(part.expr)
+    return inline_math(part)
+
+
+def _caption_html(parts: Sequence[str | sp.Basic | Inline]) -> str:
+    return "".join(_caption_part_html(part) for part in parts)
 
 
 def block_html(block: Block) -> str:

@@ -201,9 +201,11 @@ def image_of(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[TrigImage, li
         elif isinstance(expr, sp.Mul):
             result = polynomial_ring.one
             for arg in expr.args:
-                result *= convert(arg)
+                result = reduce_image(result * convert(arg), image)
         elif isinstance(expr, sp.Pow) and expr.exp.is_Integer and expr.exp > 0:
-            result = convert(expr.base) ** int(expr.exp)
+            base, result = convert(expr.base), polynomial_ring.one
+            for _ in range(int(expr.exp)):
+                result = reduce_image(result * base, image)
         elif isinstance(expr, sp.sin | sp.cos):
             decomposed = basis.decompose(expr.args[0]) if _is_joint_trig(expr, variables) else None
             if decomposed is None:  # a constant angle (a joint angle that does not decompose is an atom)

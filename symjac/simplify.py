@@ -66,17 +66,18 @@ def simplify_matrix(
     """
     bases = [basis] if isinstance(basis, AngleBasis) else list(basis)
     layout: Callable[[PolyElement, TrigImage], sp.Expr] = nested_expr if nested else expanded_expr
-    entries = list(matrix)
-    best: list[sp.Expr] = []
-    best_ops: list[int] = []
-    for candidate in bases:
-        image, polys = image_of(entries, candidate)
-        for index, poly in enumerate(polys):
-            expr = layout(poly, image)
-            if index == len(best):
-                best.append(expr)
-                best_ops.append(sp.count_ops(expr) if len(bases) > 1 else 0)
-            else:
+    image, polys = image_of(list(matrix), bases[0])
+    best = [layout(poly, image) for poly in polys]
+    if len(bases) > 1:
+        # The other bases start from the first one's result, not from the raw products: the normal form is unique,
+        # so it is the same, and the first result is a small fraction of the raw tree (linear instead of quadratic
+        # total cost over the n + 1 bases of a long parallel run).
+        start = list(best)
+        best_ops = [sp.count_ops(expr) for expr in best]
+        for candidate in bases[1:]:
+            image, polys = image_of(start, candidate)
+            for index, poly in enumerate(polys):
+                expr = layout(poly, image)
                 ops = sp.count_ops(expr)
                 if ops < best_ops[index]:
                     best[index], best_ops[index] = expr, ops

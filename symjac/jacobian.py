@@ -48,6 +48,7 @@ from symjac.chain import Chain, Frame, as_chain
 from symjac.errors import ArgumentError, FrameError
 from symjac.model import VELOCITY_NAMES, Robot
 from symjac.propagation import force_propagation, velocity_propagation
+from symjac.reporting import report
 from symjac.simplify import AngleBasis, simplify_matrix
 from symjac.transforms import block_rotation, point_shift
 
@@ -182,8 +183,9 @@ def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr],
     derive = {"differentiation": _differentiation, "cross_product": _cross_product,
               "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
     if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
-        return sp.ImmutableMatrix(simplify_matrix(jacobian(chain, frame, point, method, simplify=False),
-                                                  chain.angle_bases(frame)))
+        raw = jacobian(chain, frame, point, method, simplify=False)
+        report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
+        return sp.ImmutableMatrix(simplify_matrix(raw, chain.angle_bases(frame)))
     return sp.ImmutableMatrix(derive(chain, frame, point))
 
 
@@ -193,6 +195,7 @@ def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> 
     x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
     J_0 = sp.zeros(6, chain.n)
     for i, joint in enumerate(robot.joints):
+        report(f"differentiation, joint {i + 1} of {chain.n}")
         J_0[:3, i] = x_P.applyfunc(_Derivative(joint.variable))
         if joint.is_revolute:
             J_0[3:, i] = chain.rotation(0, chain.axis_frame(joint.index))[:, 2]
@@ -251,6 +254,7 @@ class _Derivative:
 def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
     J = sp.zeros(6, chain.n)
     for i, joint in enumerate(chain.robot.joints):
+        report(f"cross product, joint {i + 1} of {chain.n}")
         a = chain.axis_frame(joint.index)
         R_k_a = chain.rotation(frame, a)
         if joint.is_revolute:

@@ -28,6 +28,7 @@ import sympy as sp
 from sympy.polys.rings import PolyElement
 
 from symjac.angles import AngleBasis
+from symjac.reporting import report
 from symjac.trigpoly import TrigImage, expanded_expr, image_of, nested_expr
 
 __all__ = ["is_identity", "simplify_expr", "simplify_matrix", "trig_normal_form"]
@@ -74,7 +75,8 @@ def simplify_matrix(
         # total cost over the n + 1 bases of a long parallel run).
         start = list(best)
         best_ops = [sp.count_ops(expr) for expr in best]
-        for candidate in bases[1:]:
+        for number, candidate in enumerate(bases[1:], start=2):
+            report(f"simplifying: angle basis {number} of {len(bases)}")
             image, polys = image_of(start, candidate)
             for index, poly in enumerate(polys):
                 expr = layout(poly, image)

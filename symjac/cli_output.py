@@ -12,7 +12,10 @@ from symjac.errors import SymjacError
 from symjac.files import write_text
 from symjac.reporting import reporting_to
 
-__all__ = ["emit", "one_line", "progress", "silence_stdout"]
+__all__ = ["LARGE_CHAIN", "emit", "note_if_large", "one_line", "progress", "silence_stdout"]
+
+LARGE_CHAIN = 40
+"""Joints above which the command line says, before it starts, that a symbolic result will take long."""
 
 
 def progress(what: str, compute: Callable[[], Any]) -> Any:
@@ -43,6 +46,14 @@ def progress(what: str, compute: Callable[[], Any]) -> Any:
         raise
     print(f"\r{head} {time.perf_counter() - start:.2f} s\x1b[K", file=sys.stderr)
     return result
+
+
+def note_if_large(name: str, dof: int) -> None:
+    """Say on stderr, before a derivation starts, that a chain with more than :data:`LARGE_CHAIN` joints is slow."""
+    if dof > LARGE_CHAIN:
+        print(f"symjac: note: {name} has {dof} joints; symbolic results this long can take minutes. Narrow the "
+              "request to a sub-chain (a robot file with fewer joints, or --base-link/--tip-link of a URDF file); "
+              "Ctrl-C stops cleanly.", file=sys.stderr, flush=True)
 
 
 def emit(text: str, output: str | None) -> None:

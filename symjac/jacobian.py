@@ -268,11 +268,28 @@ def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp
 
 
 def _velocity_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    return block_rotation(chain.rotation(frame, chain.n)) * velocity_propagation(chain, point, simplify=False).jacobian
+    return _from_tip_frame(chain, frame, velocity_propagation(chain, point, simplify=False).jacobian)
 
 
 def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    return block_rotation(chain.rotation(frame, chain.n)) * force_propagation(chain, point, simplify=False).jacobian
+    return _from_tip_frame(chain, frame, force_propagation(chain, point, simplify=False).jacobian)
+
+
+def _from_tip_frame(chain: Chain, frame: Frame, J_n: sp.Matrix) -> sp.Matrix:
+    r"""Move :math:`{}^nJ` into frame {k} one link at a time: :math:`{}^kJ = D_{k,k+1} \cdots D_{n-1,n}\,{}^nJ`.
+
+    With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`. The product is the same as one rotation by
+    :math:`{}^k_nR`, but nested link by link every intermediate is the Jacobian in a frame between, whose normal form
+    stays small; the whole :math:`{}^k_nR` times :math:`{}^nJ` multiplies two large sums (a 12-joint snake went from
+    minutes to seconds).
+    """
+    J = J_n
+    position, target = chain.n, chain.position(frame)
+    while position != target:
+        step = position - 1 if target < position else position + 1
+        J = block_rotation(chain.rotation(chain.frame_name(step), chain.frame_name(position))) * J
+        position = step
+    return J
 
 
 def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:

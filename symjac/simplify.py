@@ -91,8 +91,8 @@ def simplify_matrix(
     best = [layout(poly, image) for poly in polys]
     if len(bases) > 1:
         # The other bases start from the first one's result, not from the raw products: the normal form is unique,
-        # so it is the same, and the first result is a small fraction of the raw tree (linear instead of quadratic
-        # total cost over the n + 1 bases of a long parallel run).
+        # so it is the same, and the first result is a small fraction of the raw tree (a long parallel run has n + 1
+        # bases: planar 16R went from 0.3 s to a few ms per basis).
         start = list(best)
         best_ops = [printed_ops(expr) for expr in best]
         for number, candidate in enumerate(bases[1:], start=2):

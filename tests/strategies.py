@@ -23,10 +23,10 @@ GENERIC_TWIST_JOINTS = 7
 
 
 @st.composite
-def joint_rows(draw: st.DrawFn, twists: st.SearchStrategy[Any] = TWISTS) -> dict[str, Any]:
+def joint_rows(draw: st.DrawFn) -> dict[str, Any]:
     return {
         "type": draw(st.sampled_from(["revolute", "revolute", "prismatic"])),
-        "alpha": draw(twists),
+        "alpha": draw(TWISTS),
         "a": draw(LENGTHS),
         "d": draw(LENGTHS),
         "theta": draw(OFFSETS),
@@ -45,11 +45,10 @@ def robots(draw: st.DrawFn, max_joints: int = 10) -> Robot:
         "name": "random",
         "convention": draw(st.sampled_from(["standard", "modified"])),
         "parameters": {"L": 0.35},
-        "joints": [],
+        "joints": draw(st.lists(joint_rows(), min_size=1, max_size=max_joints)),
     }
-    count = draw(st.integers(1, max_joints), label="joints")
-    twists = TWISTS if count <= GENERIC_TWIST_JOINTS else SPECIAL_TWISTS
-    data["joints"] = [draw(joint_rows(twists)) for _ in range(count)]
+    if len(data["joints"]) > GENERIC_TWIST_JOINTS:
+        data["joints"] = [{**row, "alpha": draw(SPECIAL_TWISTS)} for row in data["joints"]]
     if draw(st.booleans()):
         data["base"] = draw(fixed_transforms())
     if draw(st.booleans()):

@@ -19,6 +19,7 @@ import sympy as sp
 
 from symjac.errors import FrameError
 from symjac.model import Convention, FixedTransform, Joint, Robot
+from symjac.reporting import report
 from symjac.simplify import AngleBasis, simplify_matrix
 from symjac.transforms import Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
 
@@ -138,6 +139,7 @@ class Chain:
         key = (self.position(source), self.position(target))
         if key not in self._simplified:
             raw = self.transform(source, target)
+            report(f"simplifying the transform from frame {source} to frame {target}")
             self._simplified[key] = sp.ImmutableMatrix(simplify_matrix(raw, self.angle_bases(source)))
         return self._simplified[key]
 

@@ -32,7 +32,7 @@ from symjac.cli_args import (
     parse_values,
     refuse_ignored_options,
 )
-from symjac.cli_output import emit, one_line, progress, silence_stdout
+from symjac.cli_output import emit, note_if_large, one_line, progress, silence_stdout
 from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
 from symjac.errata import SHEET_FORMATS, errata_sheet
 from symjac.errors import ArgumentError, SymjacError
@@ -219,6 +219,7 @@ def _report(args: argparse.Namespace) -> str:
 
 def _show(args: argparse.Namespace) -> Document:
     robot = load(args)
+    note_if_large(robot.name, robot.dof)
     chain = chain_of(robot)
     transforms = [(f"{{}}^{{{i - 1}}}_{{{i}}}T", f"T_{i - 1}_{i}", chain.simplified_transform(i - 1, i))
                   for i in range(1, robot.dof + 1)]
@@ -236,6 +237,7 @@ def _show(args: argparse.Namespace) -> Document:
 
 def _fk(args: argparse.Namespace) -> Document:
     robot = load(args)
+    note_if_large(robot.name, robot.dof)
     chain = chain_of(robot)
     source: Frame = "world" if robot.base else 0
     target: Frame = "tool" if robot.tool else robot.dof
@@ -248,6 +250,7 @@ def _fk(args: argparse.Namespace) -> Document:
 
 def _jacobian(args: argparse.Namespace) -> Document:
     robot = load(args)
+    note_if_large(robot.name, robot.dof)
     frame = parse_frame(args.frame)
     point = parse_point(args.point, robot)
     if args.representation is not None:

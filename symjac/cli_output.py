@@ -10,25 +10,50 @@ from typing import Any
 
 from symjac.errors import SymjacError
 from symjac.files import write_text
+from symjac.reporting import reporting_to
 
-__all__ = ["emit", "one_line", "progress", "silence_stdout"]
+__all__ = ["LARGE_CHAIN", "emit", "note_if_large", "one_line", "progress", "silence_stdout"]
+
+LARGE_CHAIN = 40
+"""Joints above which the command line says, before it starts, that a symbolic result will take long."""
 
 
 def progress(what: str, compute: Callable[[], Any]) -> Any:
-    """Run ``compute``, telling a human on a terminal what is happening and how long it took."""
+    """Run ``compute``, telling a human on a terminal what is happening and how long it took.
+
+    After the first second, the stage the derivation has reached (what :func:`symjac.reporting.report` was last
+    told: a link, a joint, an angle basis) replaces the end of the line, at most a few times a second.
+    """
     interactive = sys.stderr.isatty()
-    if interactive:
-        print(f"deriving {what} ...", end="", file=sys.stderr, flush=True)
+    if not interactive:
+        return compute()
+    head = f"deriving {what} ..."
+    print(head, end="", file=sys.stderr, flush=True)
     start = time.perf_counter()
+    shown = [start]  # when the line was last rewritten
+
+    def show(stage: str) -> None:
+        now = time.perf_counter()
+        if now - start >= 1.0 and now - shown[0] >= 0.2:
+            shown[0] = now
+            print(f"\r{head} {now - start:.0f} s, {stage}\x1b[K", end="", file=sys.stderr, flush=True)
+
     try:
-        result = compute()
+        with reporting_to(show):
+            result = compute()
     except BaseException:
-        if interactive:
-            print(file=sys.stderr)  # end the progress line, so the error or "interrupted" starts its own
+        print(file=sys.stderr)  # end the progress line, so the error or "interrupted" starts its own
         raise
-    if interactive:
-        print(f" {time.perf_counter() - start:.2f} s", file=sys.stderr)
+    print(f"\r{head} {time.perf_counter() - start:.2f} s\x1b[K", file=sys.stderr)
     return result
+
+
+def note_if_large(name: str, dof: int) -> None:
+    """Say on stderr, before a derivation starts, that a chain with more than :data:`LARGE_CHAIN` joints is slow."""
+    if dof > LARGE_CHAIN:
+        print(f"symjac: note: {name} has {dof} joints; symbolic results this long can take minutes. Narrow the "
+              "request to a sub-chain (a robot file with fewer joints, or --base-link/--tip-link of a URDF file); "
+              "Ctrl-C stops cleanly.", file=sys.stderr, flush=True)
 
 
 def emit(text: str, output: str | None) -> None:

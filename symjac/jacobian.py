@@ -48,6 +48,7 @@ from symjac.chain import Chain, Frame, as_chain
 from symjac.errors import ArgumentError, FrameError
 from symjac.model import VELOCITY_NAMES, Robot
 from symjac.propagation import force_propagation, velocity_propagation
+from symjac.reporting import report
 from symjac.simplify import AngleBasis, simplify_matrix
 from symjac.transforms import block_rotation, point_shift
 
@@ -182,8 +183,9 @@ def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr],
     derive = {"differentiation": _differentiation, "cross_product": _cross_product,
               "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
     if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
-        return sp.ImmutableMatrix(simplify_matrix(jacobian(chain, frame, point, method, simplify=False),
-                                                  chain.angle_bases(frame)))
+        raw = jacobian(chain, frame, point, method, simplify=False)
+        report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
+        return sp.ImmutableMatrix(simplify_matrix(raw, chain.angle_bases(frame)))
     return sp.ImmutableMatrix(derive(chain, frame, point))
 
 
@@ -193,7 +195,8 @@ def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> 
     x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
     J_0 = sp.zeros(6, chain.n)
     for i, joint in enumerate(robot.joints):
-        J_0[:3, i] = x_P.diff(joint.variable)
+        report(f"differentiation, joint {i + 1} of {chain.n}")
+        J_0[:3, i] = x_P.applyfunc(_Derivative(joint.variable))
         if joint.is_revolute:
             J_0[3:, i] = chain.rotation(0, chain.axis_frame(joint.index))[:, 2]
     if chain.position(frame) == 0:
@@ -201,9 +204,57 @@ def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> 
     return block_rotation(chain.rotation(frame, 0)) * J_0
 
 
+class _Derivative:
+    r""":math:`\partial e / \partial x` by SymPy's own rules (the very same result), each shared node once.
+
+    ``expr.diff(x)`` walks a chain product as a tree: every level repeats the free-symbol search and the
+    differentiation of the subexpressions it shares with its neighbours, so its cost doubles with each link. The
+    same product rule, :math:`(uv)' = u'v + uv'`, :math:`\sin(u)' = \cos(u)\,u'`, applied once per distinct node,
+    gives the identical expression in time linear in the number of nodes.
+    """
+
+    def __init__(self, variable: sp.Symbol):
+        self.variable = variable
+        self._memo: dict[sp.Expr, sp.Expr] = {}
+        self._depends: dict[sp.Expr, bool] = {}
+
+    def depends(self, expr: sp.Expr) -> bool:
+        """Whether ``expr`` contains the variable (memoized per node, unlike ``free_symbols``)."""
+        if expr.is_Atom:
+            return expr == self.variable
+        if expr not in self._depends:
+            self._depends[expr] = any(self.depends(arg) for arg in expr.args)
+        return self._depends[expr]
+
+    def __call__(self, expr: sp.Expr) -> sp.Expr:
+        if not self.depends(expr):
+            return sp.S.Zero
+        if expr in self._memo:
+            return self._memo[expr]
+        if expr.is_Atom:
+            result: sp.Expr = sp.S.One
+        elif isinstance(expr, sp.Add):
+            result = sp.Add(*[self(arg) for arg in expr.args])
+        elif isinstance(expr, sp.Mul):
+            args, terms = list(expr.args), []
+            for i, arg in enumerate(args):
+                d = self(arg)
+                if d:
+                    terms.append(sp.Mul(*args[:i], d, *args[i + 1:]))
+            result = sp.Add(*terms)
+        elif isinstance(expr, sp.sin | sp.cos) and self(expr.args[0]):
+            outer = sp.cos(expr.args[0]) if isinstance(expr, sp.sin) else -sp.sin(expr.args[0])
+            result = sp.Add(outer * self(expr.args[0]))
+        else:
+            result = expr.diff(self.variable)
+        self._memo[expr] = result
+        return result
+
+
 def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
     J = sp.zeros(6, chain.n)
     for i, joint in enumerate(chain.robot.joints):
+        report(f"cross product, joint {i + 1} of {chain.n}")
         a = chain.axis_frame(joint.index)
         R_k_a = chain.rotation(frame, a)
         if joint.is_revolute:
@@ -217,11 +268,28 @@ def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp
 
 
 def _velocity_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    return block_rotation(chain.rotation(frame, chain.n)) * velocity_propagation(chain, point, simplify=False).jacobian
+    return _from_tip_frame(chain, frame, velocity_propagation(chain, point, simplify=False).jacobian)
 
 
 def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    return block_rotation(chain.rotation(frame, chain.n)) * force_propagation(chain, point, simplify=False).jacobian
+    return _from_tip_frame(chain, frame, force_propagation(chain, point, simplify=False).jacobian)
+
+
+def _from_tip_frame(chain: Chain, frame: Frame, J_n: sp.Matrix) -> sp.Matrix:
+    r"""Move :math:`{}^nJ` into frame {k} one link at a time: :math:`{}^kJ = D_{k,k+1} \cdots D_{n-1,n}\,{}^nJ`.
+
+    With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`. The product is the same as one rotation by
+    :math:`{}^k_nR`, but nested link by link every intermediate is the Jacobian in a frame between, whose normal form
+    stays small; the whole :math:`{}^k_nR` times :math:`{}^nJ` multiplies two large sums (a 12-joint snake went from
+    minutes to seconds).
+    """
+    J = J_n
+    position, target = chain.n, chain.position(frame)
+    while position != target:
+        step = position - 1 if target < position else position + 1
+        J = block_rotation(chain.rotation(chain.frame_name(step), chain.frame_name(position))) * J
+        position = step
+    return J
 
 
 def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:

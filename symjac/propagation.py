@@ -34,6 +34,7 @@ import sympy as sp
 
 from symjac.chain import Chain, Frame, as_chain
 from symjac.model import WRENCH_NAMES, Robot
+from symjac.reporting import report
 from symjac.simplify import simplify_matrix
 from symjac.transforms import skew
 
@@ -212,6 +213,7 @@ def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simpl
     omega, v = sp.zeros(3, n), sp.zeros(3, n)
     steps = [VelocityStep(0, sp.ImmutableMatrix(omega), sp.ImmutableMatrix(v))]
     for k, joint in enumerate(robot.joints, start=1):
+        report(f"velocity propagation, link {k} of {n}")
         R_k_prev = chain.rotation(k, k - 1)
         p_prev_k = chain.transform(k - 1, k)[:3, 3]
         v = sp.Matrix(R_k_prev * (v + skew(-p_prev_k) * omega))  # w x p = -p x w
@@ -286,6 +288,7 @@ def _force_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify
         moment = R_n_t * moment + skew(p_n_t) * force
     frames: dict[int, ForceStep] = {}
     for k in range(n, -1, -1):
+        report(f"force propagation, frame {k} of {n}")
         if k < n:
             R_k_next, p_k_next = chain.rotation(k, k + 1), chain.transform(k, k + 1)[:3, 3]
             force = R_k_next * force

@@ -274,7 +274,7 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
     rj = progress(f"{args.representation} representation Jacobian of {robot.name}",
                    lambda: representation_jacobian(robot, args.representation, position, point, frame))
     J_0 = jacobian(robot, frame=rj.frame, point=point)
-    notes = [prose.representation_note(s) for s in rj.singularities]
+    notes = [prose.representation_parts(s) for s in rj.singularities]
     J_x = simplify_matrix(rj.E * J_0, chain_of(robot).angle_basis(rj.frame)).applyfunc(
         lambda entry: sp.factor_terms(sp.together(entry)))  # multiplied out, then over one denominator
     J_0, J_x = _numeric(robot, J_0, args), _numeric(robot, J_x, args)
@@ -283,7 +283,7 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
                     (Equation("E(x)", "E(x)", rj.E),)),
               Block((f"Representation Jacobian at the {args.point} point",),
                     (Equation(rf"J_x = E(x)\,{{}}^{{{_tex(rj.frame)}}}J", f"J_x = E(x) J_{rj.frame}", J_x),))]
-    blocks += [Block((note,)) for note in notes]
+    blocks += [Block(note) for note in notes]
     data = representation_data(robot, rj, J_0, J_x, args.point, args.representation, position)
     title = f"{robot.name}: {args.representation} representation Jacobian"
     return Document(title, robot.name, tuple(blocks), data, comments=True)

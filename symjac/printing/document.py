@@ -123,7 +123,10 @@ def caption_text(block: Block, style: Style) -> str:
             return escape_text(part) if style == "latex" else part
         if isinstance(part, Inline):
             return f"${part.tex}$" if style == "latex" else part.text
-        return f"${latex(part)}$" if style == "latex" else pretty(part)
+        if style == "latex":
+            return f"${latex(part)}$"
+        text = pretty(part)
+        return text if "\n" not in text else sp.sstr(part)  # a caption stays one line: sqrt(2)/2, not a 2-D fraction
 
     return "".join(show(part) for part in block.caption)
 

@@ -12,6 +12,7 @@ import sympy as sp
 from symjac.jacobian import ROW_NAMES
 from symjac.model import Robot
 from symjac.printing.document import Inline
+from symjac.representations import RepresentationSingularity
 from symjac.singular_geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
 from symjac.singular_report import DirectionPart, LimitStatus, LostDirection, SingularFactor, SingularityReport
 
@@ -27,12 +28,14 @@ __all__ = [
     "limit_text",
     "lost_words",
     "readable_number",
+    "readable_value",
     "reason",
     "reason_parts",
     "redundant_caption",
-    "representation_note",
+    "representation_parts",
     "rows_caption",
     "rows_parts",
+    "self_motion_parts",
     "self_motion_words",
 ]
 
@@ -112,10 +115,18 @@ def readable_number(value: float) -> str:
     >>> readable_number(0.7071067811865476), readable_number(-0.5), readable_number(0.55412)
     ('sqrt(2)/2', '-1/2', '0.554')
     """
+    return sp.sstr(readable_value(value))
+
+
+def readable_value(value: float) -> sp.Expr:
+    """:func:`readable_number` as a SymPy number, for math: the simple surd, else a float with 3 decimals."""
     exact = sp.nsimplify(value, [sp.sqrt(2), sp.sqrt(3), sp.sqrt(5)], tolerance=1e-9)
     if sp.count_ops(exact) <= 4 and all(abs(n) <= 12 for n in exact.atoms(sp.Integer)):
-        return sp.sstr(exact)
-    return f"{value:.3f}".rstrip("0").rstrip(".") if abs(value) >= 5e-4 else "0"
+        return exact
+    if abs(value) < 5e-4:
+        return sp.S.Zero
+    text = f"{value:.3f}".rstrip("0").rstrip(".")
+    return sp.Float(text, len(text.lstrip("-").replace(".", "").lstrip("0")))  # as many digits as shown
 
 
 def _part_name(part: DirectionPart, frame: object) -> str:
@@ -152,14 +163,32 @@ def lost_words(factor: SingularFactor) -> str:
     return f"cannot {motion}{radial}, and it holds {wrench} with zero joint torque"
 
 
-def self_motion_words(factor: SingularFactor) -> str:
-    """The joint motion that moves nothing, in words (``""`` if unknown)."""
+def _self_motion_rates(factor: SingularFactor) -> list[tuple[float, int]]:
+    """The nonzero rates of the motion that moves nothing, with their joint numbers (1-based)."""
     motion = factor.self_motion
     if motion is None:
+        return []
+    return [(rate, motion.columns[i] + 1) for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
+
+
+def self_motion_words(factor: SingularFactor) -> str:
+    """The joint motion that moves nothing, in words (``""`` if unknown)."""
+    shown = [(readable_number(rate), joint) for rate, joint in _self_motion_rates(factor)]
+    if not shown:
         return ""
-    shown = [(readable_number(rate), motion.columns[i] + 1) for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
     rates = ", ".join(f"{'' if value.startswith('-') else '+'}{value} on joint {joint}" for value, joint in shown)
     return f"joint rates {rates} move nothing"
+
+
+def self_motion_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
+    """:func:`self_motion_words` as caption parts, each rate a number in math (``()`` if unknown)."""
+    shown = _self_motion_rates(factor)
+    if not shown:
+        return ()
+    parts: list[str | sp.Basic] = ["joint rates "]
+    for number, (rate, joint) in enumerate(shown):
+        parts += [", "] * bool(number) + [readable_value(rate), f" on joint {joint}"]
+    return (*parts, " move nothing")
 
 
 def existence_words(factor: SingularFactor) -> str:
@@ -251,6 +280,10 @@ def dh_caption(robot: Robot) -> str:
     return f"{robot.name}: {robot.description}, {kind}"
 
 
-def representation_note(singularity: object) -> str:
-    """A singularity of a representation's rate matrix, told apart from a kinematic one."""
-    return f"representation singularity (not kinematic): {singularity}"
+def representation_parts(singularity: RepresentationSingularity) -> tuple[str | sp.Basic, ...]:
+    """A singularity of a representation's rate matrix, told apart from a kinematic one, as caption parts."""
+    values: list[str | sp.Basic] = []
+    for number, value in enumerate(singularity.solutions):
+        values += [" or "] * bool(number) + [sp.Eq(singularity.variable, value, evaluate=False)]
+    return ("Representation singularity (not kinematic): ", sp.Eq(singularity.factor, 0, evaluate=False), ", that is ",
+            *values, f": {singularity.explanation}.")

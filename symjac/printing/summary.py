@@ -32,7 +32,7 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
             if existence:
                 head += [" ", *existence]
             if factor.lost_direction is not None:
-                head.append(f" There it {prose.lost_words(factor)}; {prose.self_motion_words(factor)}.")
+                head += [f" There it {prose.lost_words(factor)}; ", *prose.self_motion_parts(factor), "."]
             head.extend(prose.limit_parts(factor))
         blocks.append(Block(tuple(head), tuple(Equation("", "", s.equation) for s in factor.solutions)))
     return blocks

@@ -14,21 +14,6 @@ from symjac import write_module
 from symjac.cli import main
 from symjac.io import catalog, urdf_catalog
 
-# A 2R arm whose flange carries two fingers: two leaf links, so the chain's end must be chosen.
-GRIPPER_URDF = """<?xml version="1.0"?>
-<robot name="gripper_arm">
-  <link name="base"/><link name="l1"/><link name="l2"/><link name="flange"/>
-  <link name="finger_a"/><link name="finger_b"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <origin xyz="0 0 0.5" rpy="0 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <origin xyz="0.4 0 0" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/><limit lower="-2" upper="2"/></joint>
-  <joint name="mount" type="fixed"><parent link="l2"/><child link="flange"/><origin xyz="0.3 0 0"/></joint>
-  <joint name="fa" type="fixed"><parent link="flange"/><child link="finger_a"/><origin xyz="0 0.02 0.05"/></joint>
-  <joint name="fb" type="fixed"><parent link="flange"/><child link="finger_b"/><origin xyz="0 -0.02 0.05"/></joint>
-</robot>
-"""
-
 FK_PLANAR2R = ["fk", "planar2r", "--format", "pretty"]
 
 
@@ -166,13 +151,6 @@ COMMANDS = {
     "show": [], "fk": [], "jacobian": [], "hessian": [], "torques": [], "singularities": [], "codegen": [],
     "convert": ["--to", "toml"],
 }
-
-
-@pytest.fixture
-def gripper(tmp_path) -> str:
-    path = tmp_path / "arm.urdf"
-    path.write_text(GRIPPER_URDF, encoding="utf-8")
-    return str(path)
 
 
 @pytest.mark.parametrize("command", COMMANDS)

@@ -34,19 +34,6 @@ from symjac.singular_report import singularities
 
 ARTIFACTS = Path(os.environ.get("SYMJAC_ARTIFACTS", Path(__file__).parent / "artifacts"))
 
-# A two-joint arm with two leaves: the chain is chosen by --tip-link.
-TWO_LEAVES_URDF = """<?xml version="1.0"?>
-<robot name="two_leaves">
-  <link name="base"/><link name="l1"/><link name="l2"/><link name="finger_a"/><link name="finger_b"/>
-  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
-    <origin xyz="0 0 0.5" rpy="0 0 0"/><axis xyz="0 0 1"/><limit lower="-3" upper="3"/></joint>
-  <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
-    <origin xyz="0.4 0 0" rpy="1.5707963267948966 0 0"/><axis xyz="0 0 1"/><limit lower="-2" upper="2"/></joint>
-  <joint name="fa" type="fixed"><parent link="l2"/><child link="finger_a"/><origin xyz="0.3 0.02 0"/></joint>
-  <joint name="fb" type="fixed"><parent link="l2"/><child link="finger_b"/><origin xyz="0.3 -0.02 0"/></joint>
-</robot>
-"""
-
 VOID = {"meta", "br", "img", "input", "link", "hr", "wbr", "col", "area", "base", "source", "track", "embed"}
 
 
@@ -113,14 +100,12 @@ def test_page_is_deterministic(pages, tmp_path):
     assert again.read_bytes() == pages["ur5.urdf"].read_bytes()
 
 
-def test_the_tip_link_chooses_a_urdf_chain(tmp_path, capsys):
-    arm = tmp_path / "two.urdf"
-    arm.write_text(TWO_LEAVES_URDF, encoding="utf-8")
-    assert main(["report", str(arm), "-o", str(tmp_path / "x.html")]) == 2
+def test_the_tip_link_chooses_a_urdf_chain(gripper, tmp_path, capsys):
+    assert main(["report", gripper, "-o", str(tmp_path / "x.html")]) == 2
     assert "choose --tip-link" in capsys.readouterr().err
-    assert main(["report", str(arm), "--tip-link", "finger_a", "-o", "-"]) == 0
+    assert main(["report", gripper, "--tip-link", "finger_a", "-o", "-"]) == 0
     text = capsys.readouterr().out
-    assert "two_leaves: derivation report" in text and text.count("<svg") == 2
+    assert "gripper_arm: derivation report" in text and text.count("<svg") == 2
 
 
 def test_user_strings_are_escaped(tmp_path, capsys):

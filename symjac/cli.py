@@ -273,11 +273,10 @@ def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point:
     position = args.position or "cartesian"
     rj = progress(f"{args.representation} representation Jacobian of {robot.name}",
                    lambda: representation_jacobian(robot, args.representation, position, point, frame))
-    J_0 = jacobian(robot, frame=rj.frame, point=point)
     notes = [prose.representation_parts(s) for s in rj.singularities]
-    J_x = simplify_matrix(rj.E * J_0, chain_of(robot).angle_basis(rj.frame)).applyfunc(
+    J_x = simplify_matrix(rj.J_x, chain_of(robot).angle_basis(rj.frame)).applyfunc(
         lambda entry: sp.factor_terms(sp.together(entry)))  # multiplied out, then over one denominator
-    J_0, J_x = _numeric(robot, J_0, args), _numeric(robot, J_x, args)
+    J_0, J_x = _numeric(robot, rj.J_0, args), _numeric(robot, J_x, args)
     blocks = [Block(("Representation coordinates",), (Equation("x", "x", sp.Matrix(rj.coordinates)),)),
               Block(("Rate matrix, ", Inline(r"\dot{x} = E(x)\,[v;\ \omega]", "xdot = E(x) [v; omega]")),
                     (Equation("E(x)", "E(x)", rj.E),)),

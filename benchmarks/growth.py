@@ -7,10 +7,14 @@ How the cost of the simplified Jacobian in frame {0} grows with the number of jo
 - ``generic``: N revolute joints with a generic twist 0.3 rad and offsets a = 0.1, d = 0.05.
 
 Every point (family, N, method) runs in a fresh Python process (cold: no SymPy cache, no derived chain), with a time
-limit; once a method exceeds it, larger N of that family are skipped for it. The table gives seconds and the result's
-operation count (``sympy.count_ops``); the summary fits :math:`t \approx c\,N^k` by least squares in log-log
-coordinates and prints the exponent k per family and method. ``--plot`` saves the log-log plot (matplotlib, imported
-only then). It measures and asserts nothing, so it never flakes.
+limit; once a method exceeds it, larger N of that family are skipped for it. A result too large to write out
+(more than ``symjac.trigpoly.TERM_LIMIT`` terms: the frame-{0} Jacobian of a long 3-D snake, which grows about 1.8x
+per joint) is refused by symjac within seconds; the table says "too large" and how long the refusal took.
+``--frame middle`` asks for the Jacobian in frame {N // 2} instead, where each half of the chain stays short.
+
+The table gives seconds and the result's operation count (``sympy.count_ops``); the summary fits
+:math:`t \approx c\,N^k` by least squares in log-log coordinates and prints the exponent k per family and method.
+``--plot`` saves the log-log plot (matplotlib, imported only then). It measures and asserts nothing, so it never flakes.
 """
 
 from __future__ import annotations
@@ -40,6 +44,7 @@ class GrowthPoint:
     method: str
     seconds: float | None
     ops: int | None
+    refused: bool = False  # symjac refused a result too large to write out (after ``seconds``)
 
 
 def chain_of_family(family: str, n: int):  # type: ignore[no-untyped-def]  # a Robot; imported lazily
@@ -59,33 +64,40 @@ def chain_of_family(family: str, n: int):  # type: ignore[no-untyped-def]  # a R
                                "joints": joints})
 
 
-def _one(family: str, n: int, method: str) -> None:
+def _one(family: str, n: int, method: str, frame: int) -> None:
     """Measure one point in this process and print it as JSON (the child side of :func:`measure`)."""
     import sympy as sp
 
+    from symjac.errors import ResultTooLargeError
     from symjac.jacobian import jacobian
 
     robot = chain_of_family(family, n)
     start = time.perf_counter()
-    J = jacobian(robot, frame=0, method=method)  # type: ignore[arg-type]
+    try:
+        J = jacobian(robot, frame=frame, method=method)  # type: ignore[arg-type]
+    except ResultTooLargeError:
+        print(json.dumps({"seconds": time.perf_counter() - start, "ops": None, "refused": True}))
+        return
     seconds = time.perf_counter() - start
-    print(json.dumps({"seconds": seconds, "ops": int(sp.count_ops(J))}))
+    print(json.dumps({"seconds": seconds, "ops": int(sp.count_ops(J)), "refused": False}))
 
 
-def measure(family: str, n: int, method: str, limit: float) -> GrowthPoint:
+def measure(family: str, n: int, method: str, limit: float, frame: str = "0") -> GrowthPoint:
     """Time one point in a fresh process; ``None`` values if it does not finish within ``limit`` seconds."""
-    command = [sys.executable, __file__, "--one", family, str(n), method]
+    at = n // 2 if frame == "middle" else int(frame)
+    command = [sys.executable, __file__, "--one", family, str(n), method, str(at)]
     try:
         done = subprocess.run(command, capture_output=True, text=True, timeout=limit, check=True)
     except subprocess.TimeoutExpired:
         return GrowthPoint(family, n, method, None, None)
     result = json.loads(done.stdout.strip().splitlines()[-1])
-    return GrowthPoint(family, n, method, result["seconds"], result["ops"])
+    return GrowthPoint(family, n, method, result["seconds"], result["ops"], result["refused"])
 
 
 def fitted_exponent(points: Sequence[GrowthPoint]) -> float | None:
     r"""The least-squares slope k of :math:`\log t = k \log N + b` over the finished points with N >= 4."""
-    data = [(math.log(p.n), math.log(p.seconds)) for p in points if p.seconds is not None and p.n >= 4]
+    data = [(math.log(p.n), math.log(p.seconds)) for p in points
+            if p.seconds is not None and not p.refused and p.n >= 4]
     if len(data) < 2:
         return None
     mean_x = sum(x for x, _ in data) / len(data)
@@ -103,7 +115,8 @@ def _plot(points: Sequence[GrowthPoint], path: str) -> None:
     figure, axes = plt.subplots(figsize=(7, 5))
     for family in FAMILIES:
         for method in METHODS:
-            done = [p for p in points if p.family == family and p.method == method and p.seconds is not None]
+            done = [p for p in points if p.family == family and p.method == method and p.seconds is not None
+                    and not p.refused]
             if done:
                 axes.loglog([p.n for p in done], [p.seconds for p in done], marker="o",
                             label=f"{family}, {method.replace('_', ' ')}")
@@ -123,23 +136,30 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--method", action="append", choices=METHODS, help="repeatable (default: all four)")
     parser.add_argument("--sizes", type=int, nargs="+", help="joint counts (default: per family)")
     parser.add_argument("--limit", type=float, default=60.0, help="seconds per point before giving up (default 60)")
+    parser.add_argument("--frame", choices=("0", "middle"), default="0",
+                        help="the Jacobian's frame: {0} (default) or {N // 2}")
     parser.add_argument("--plot", metavar="FILE", help="save a log-log plot (PNG) here")
-    parser.add_argument("--one", nargs=3, metavar=("FAMILY", "N", "METHOD"), help=argparse.SUPPRESS)
+    parser.add_argument("--one", nargs=4, metavar=("FAMILY", "N", "METHOD", "FRAME"), help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.one:
-        _one(args.one[0], int(args.one[1]), args.one[2])
+        _one(args.one[0], int(args.one[1]), args.one[2], int(args.one[3]))
         return 0
     points: list[GrowthPoint] = []
+    print(f"frame {'{N // 2}' if args.frame == 'middle' else '{0}'}")
     print(f"{'family':<9}{'N':>4}  {'method':<22}{'seconds':>9}{'ops':>9}", flush=True)
     for family in args.family or FAMILIES:
         for method in args.method or METHODS:
             for n in args.sizes or FAMILIES[family]:
-                point = measure(family, n, method, args.limit)
+                point = measure(family, n, method, args.limit, args.frame)
                 points.append(point)
-                shown = (f"{point.seconds:>9.2f}{point.ops:>9}" if point.seconds is not None
-                         else f"{'> ' + format(args.limit, 'g'):>9}{'-':>9}")
-                print(f"{family:<9}{n:>4}  {method:<22}{shown}", flush=True)
                 if point.seconds is None:
+                    shown = f"{'> ' + format(args.limit, 'g'):>9}{'-':>9}"
+                elif point.refused:
+                    shown = f"{point.seconds:>9.2f}  too large (refused)"
+                else:
+                    shown = f"{point.seconds:>9.2f}{point.ops:>9}"
+                print(f"{family:<9}{n:>4}  {method:<22}{shown}", flush=True)
+                if point.seconds is None or point.refused:
                     break
     print("\nfitted growth t ~ N^k (points with N >= 4)")
     for family in args.family or FAMILIES:

@@ -43,7 +43,7 @@ class AngleBasis:
 
     variables: tuple[sp.Symbol, ...]
     angles: tuple[sp.Expr, ...]
-    _inverse: list[list[Fraction]] = field(init=False, repr=False, compare=False)
+    _inverse: list[dict[int, int]] = field(init=False, repr=False, compare=False)  # sparse rows of M^-1
     _offsets: tuple[sp.Expr, ...] = field(init=False, repr=False, compare=False)
     _decompositions: dict[sp.Expr, tuple[tuple[int, ...], sp.Expr] | None] = field(
         init=False, repr=False, compare=False, default_factory=dict)
@@ -56,7 +56,7 @@ class AngleBasis:
         inverse = _integer_inverse([row[0] for row in parts]) if len(parts) == len(rows) else None
         if inverse is None:
             raise ValueError(f"basis angles {self.angles} are not a unimodular combination of {self.variables}")
-        object.__setattr__(self, "_inverse", inverse)
+        object.__setattr__(self, "_inverse", [{j: int(c) for j, c in enumerate(row) if c} for row in inverse])
         object.__setattr__(self, "_offsets", tuple(row[1] for row in parts))
 
     def _linear_part(self, argument: sp.Expr) -> tuple[list[Fraction], sp.Expr] | None:
@@ -94,16 +94,18 @@ class AngleBasis:
         if linear is None:
             return None
         coefficients, constant = linear
-        multiples = [Fraction(0)] * len(self.variables)
+        sparse: dict[int, Fraction] = {}  # M^-1 is an integer matrix with few entries per row: add only those
         for c, row in zip(coefficients, self._inverse, strict=True):
-            if c:  # arguments involve few joints: skip the zero rows
-                multiples = [m + c * entry for m, entry in zip(multiples, row, strict=True)]
-        if any(m.denominator != 1 for m in multiples):
+            if c:
+                for j, entry in row.items():
+                    sparse[j] = sparse.get(j, Fraction(0)) + c * entry
+        if any(m.denominator != 1 for m in sparse.values()):
             return None
-        offsets = [int(m) * offset for m, offset in zip(multiples, self._offsets, strict=True) if m and offset]
+        multiples = [int(sparse.get(j, 0)) for j in range(len(self.variables))]
+        offsets = [m * offset for m, offset in zip(multiples, self._offsets, strict=True) if m and offset]
         if offsets:
             constant = sp.expand(constant - sp.Add(*offsets))
-        return tuple(int(m) for m in multiples), constant
+        return tuple(multiples), constant
 
 
 

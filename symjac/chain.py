@@ -20,7 +20,7 @@ import sympy as sp
 from symjac.errors import FrameError
 from symjac.model import Convention, FixedTransform, Joint, Robot
 from symjac.reporting import report
-from symjac.simplify import AngleBasis, simplify_matrix
+from symjac.simplify import AngleBasis, simplify_product
 from symjac.transforms import Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
@@ -135,12 +135,20 @@ class Chain:
         return self._transforms[key]
 
     def simplified_transform(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
-        """:meth:`transform` in compact textbook form, written in the angle basis of ``source``."""
+        """:meth:`transform` in compact textbook form, written in the angle basis of ``source``.
+
+        The link transforms are multiplied on normal forms (:func:`symjac.simplify.simplify_product`), so every
+        partial product is reduced as it is formed, and a result too large to write out is refused within seconds
+        (:class:`~symjac.errors.ResultTooLargeError`) instead of being built.
+        """
         key = (self.position(source), self.position(target))
         if key not in self._simplified:
-            raw = self.transform(source, target)
+            start, end = key
+            step = 1 if end >= start else -1
+            links = [self.transform(self.frame_name(k), self.frame_name(k + step)) for k in range(start, end, step)]
             report(f"simplifying the transform from frame {source} to frame {target}")
-            self._simplified[key] = sp.ImmutableMatrix(simplify_matrix(raw, self.angle_bases(source)))
+            factors = links or [self.transform(source, target)]
+            self._simplified[key] = sp.ImmutableMatrix(simplify_product(factors, self.angle_bases(source)))
         return self._simplified[key]
 
     def rotation(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
@@ -232,6 +240,8 @@ class Chain:
 
         A textbook entry may mix references (the seed 002 arm in its tool frame has :math:`s_3` next to
         :math:`L_1 + L_2 c_2 + L_3 c_{23}`); :func:`symjac.simplify.simplify_matrix` keeps, per entry, the shortest.
+        The other references of a group are its two ends and the frames next to ``frame`` (see
+        :func:`_alternative_references`).
         """
         default = self.angle_basis(frame)
         k = self.position(frame)
@@ -240,9 +250,8 @@ class Chain:
         for index, group in enumerate(self.parallel_groups):
             if sum(self.robot.joints[i - 1].is_revolute for i in group) < 2:
                 continue
-            for reference in range(group[0] - 1, group[-1] + 1):
-                if reference != references[index]:
-                    bases.append(self._basis((*references[:index], reference, *references[index + 1:])))
+            for reference in _alternative_references(group, references[index]):
+                bases.append(self._basis((*references[:index], reference, *references[index + 1:])))
         return tuple(bases)
 
     def all_angle_bases(self) -> tuple[AngleBasis, ...]:
@@ -283,6 +292,19 @@ class Chain:
                     seen.add(varying)
                     angles.append(value)
         return AngleBasis(variables, _order_like(tuple(angles), variables))
+
+
+def _alternative_references(group: tuple[int, ...], reference: int) -> list[int]:
+    r"""The frames of a parallel group, other than ``reference``, worth measuring its angles from.
+
+    Those are where textbook forms start: either end of the group (:math:`\theta_1, \theta_{12}, \dots` from its
+    first frame, relative angles from its last) and the frames next to the reference. A group of up to three
+    joints keeps all its frames; a longer run keeps at most five, so laying out an n-joint planar arm costs its
+    :math:`O(n^2)` entries times a constant rather than times n (30 joints: 4 bases instead of 31).
+    """
+    first, last = group[0] - 1, group[-1]
+    near = {first, first + 1, last - 1, last, reference - 1, reference + 1}
+    return [frame for frame in range(first, last + 1) if frame in near and frame != reference]
 
 
 def _order_like(angles: tuple[sp.Expr, ...], variables: tuple[sp.Symbol, ...]) -> tuple[sp.Expr, ...]:

@@ -13,6 +13,7 @@ __all__ = [
     "ExpressionError",
     "FrameError",
     "RepresentationError",
+    "ResultTooLargeError",
     "RobotFileError",
     "SymjacError",
     "UnknownRobotError",
@@ -77,3 +78,19 @@ class CodegenError(SymjacError, ValueError):
 
 class ConversionError(SymjacError, ValueError):
     """A robot cannot be written in the requested convention."""
+
+
+class ResultTooLargeError(SymjacError, ArithmeticError):
+    """A symbolic result would be too large to write out (see :data:`symjac.trigpoly.TERM_LIMIT`).
+
+    Raised early, as soon as the normal forms pass the limit, so that a request whose answer grows exponentially
+    with the chain (the frame-{0} Jacobian of a long chain of non-parallel axes) ends in seconds, not hours.
+    """
+
+    def __init__(self, terms: int, limit: int):
+        self.terms, self.limit = terms, limit
+        super().__init__(
+            f"written out, this result has more than {limit:,} terms ({terms:,} so far) and it grows with every link; "
+            "narrow the request: fewer joints; a frame in the middle of the chain, where each half stays short (for a "
+            "Jacobian: --frame K --method cross_product); or numeric code (`symjac generate`; simplify=False in "
+            "Python), which shares subexpressions instead")

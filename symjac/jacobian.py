@@ -15,9 +15,13 @@ Methods (all return the same matrix, simplified to the same unique normal form):
     :math:`J_v = \partial\,{}^0x_P/\partial q` of the forward kinematics, :math:`J_\omega` from the z-axes
     :math:`{}^0z_i = {}^0_iR\,[0, 0, 1]^T`, then rotated into {k}.
 ``"cross_product"``
-    :math:`z_i \times p_{iP}` computed in frame {i}, where :math:`{}^iz_i = [0,0,1]^T` makes it
-    :math:`[-p_y, p_x, 0]^T` of :math:`{}^ip_{iP}` (the last column of :math:`{}^i_PT`), then rotated into {k}:
-    :math:`{}^k(z_i \times p_{iP}) = {}^k_iR\,(\hat{Z}\,{}^ip_{iP})`.
+    :math:`{}^k(z_i \times p_{iP})` with every vector read where it is shortest. Usually both are read in {k}:
+    :math:`{}^kz_i \times ({}^kp_P - {}^kp_i)` from :math:`{}^k_iT` and :math:`{}^k_nT` (in frame {0} the familiar
+    :math:`z_{i-1} \times (o_n - o_{i-1})`). When P is nearer the axis than {k} is, counted in turns of the joint
+    axes (a vector spanning m turns has about :math:`1.8^m` terms), :math:`p_{iP}` is read in {i}, where
+    :math:`{}^iz_i = [0, 0, 1]^T` makes the cross product :math:`[-p_y, p_x, 0]^T`, and rotated:
+    :math:`{}^k_iR\,(\hat{Z}\,{}^ip_{iP})`. A frame in the middle of a long chain then gives short results where
+    frame {0} cannot.
 ``"velocity_propagation"``
     Link velocities iterated outward (:func:`symjac.propagation.velocity_propagation`); the last step *is*
     :math:`{}^nJ`, then rotated into {k}.
@@ -31,7 +35,7 @@ Which frame each method yields directly, and the 6 x 6 rotation that moves it to
 method                   natural result       to frame {k}
 =======================  ===================  =============================================================
 differentiation          :math:`{}^0J`        :math:`\mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J`
-cross_product            :math:`{}^kJ`        computed in {k} directly (each column rotated from {i})
+cross_product            :math:`{}^kJ`        computed column by column in {k} (vectors read in {k} or {i})
 velocity_propagation     :math:`{}^nJ`        :math:`\mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`
 force_propagation        :math:`{}^nJ^T`      transpose, then :math:`\mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`
 =======================  ===================  =============================================================
@@ -49,7 +53,7 @@ from symjac.errors import ArgumentError, FrameError
 from symjac.model import VELOCITY_NAMES, Robot
 from symjac.propagation import force_propagation, velocity_propagation
 from symjac.reporting import report
-from symjac.simplify import AngleBasis, simplify_matrix
+from symjac.simplify import AngleBasis, simplify_matrix, simplify_product
 from symjac.transforms import block_rotation, point_shift
 
 Method = Literal["differentiation", "cross_product", "velocity_propagation", "force_propagation"]
@@ -180,12 +184,19 @@ def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, 
 
 def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
             simplify: bool) -> sp.ImmutableMatrix:
-    derive = {"differentiation": _differentiation, "cross_product": _cross_product,
-              "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
+    if simplify and method in ("velocity_propagation", "force_propagation"):  # frame change on normal forms
+        report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
+        if method == "velocity_propagation":
+            J_n = velocity_propagation(chain, point, simplify=False).jacobian
+        else:
+            J_n = force_propagation(chain, point, simplify=False).jacobian
+        return sp.ImmutableMatrix(simplify_product([*_tip_rotations(chain, frame), J_n], chain.angle_bases(frame)))
     if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
         raw = jacobian(chain, frame, point, method, simplify=False)
         report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
         return sp.ImmutableMatrix(simplify_matrix(raw, chain.angle_bases(frame)))
+    derive = {"differentiation": _differentiation, "cross_product": _cross_product,
+              "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
     return sp.ImmutableMatrix(derive(chain, frame, point))
 
 
@@ -252,19 +263,35 @@ class _Derivative:
 
 
 def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+    k = chain.position(frame)
+    T_k_n = chain.transform(frame, chain.n)
+    p_kP = T_k_n[:3, :3] * sp.Matrix(point) + T_k_n[:3, 3]  # the point P, in {k}
     J = sp.zeros(6, chain.n)
     for i, joint in enumerate(chain.robot.joints):
         report(f"cross product, joint {i + 1} of {chain.n}")
         a = chain.axis_frame(joint.index)
-        R_k_a = chain.rotation(frame, a)
-        if joint.is_revolute:
+        T_k_a = chain.transform(frame, a)
+        z_a = T_k_a[:3, 2]
+        if not joint.is_revolute:
+            J[:3, i] = z_a
+            continue
+        if _turns(chain, k, chain.n) <= _turns(chain, a, chain.n):  # p_P is no longer in {k}: read all in {k}
+            J[:3, i] = z_a.cross(p_kP - T_k_a[:3, 3])
+        else:  # p_aP is shorter in {a}, where z_a = [0, 0, 1]: take the cross product there, then rotate
             T_a_n = chain.transform(a, chain.n)
             p_aP = T_a_n[:3, :3] * sp.Matrix(point) + T_a_n[:3, 3]
-            J[:3, i] = R_k_a * sp.Matrix([-p_aP[1], p_aP[0], 0])  # Z^ p = z x p in frame {a}
-            J[3:, i] = R_k_a[:, 2]
-        else:
-            J[:3, i] = R_k_a[:, 2]
+            J[:3, i] = T_k_a[:3, :3] * sp.Matrix([-p_aP[1], p_aP[0], 0])
+        J[3:, i] = z_a
     return J
+
+
+def _turns(chain: Chain, start: int, end: int) -> int:
+    """How many times the joint axis turns (leaves a parallel group) between frame positions ``start`` and ``end``.
+
+    A vector spanning m turns of a chain has about :math:`1.8^m` terms in normal form; parallel joints add none.
+    """
+    low, high = sorted((start, end))
+    return sum(low <= group[-1] < high for group in chain.parallel_groups[:-1])
 
 
 def _velocity_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
@@ -275,20 +302,30 @@ def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr
     return _from_tip_frame(chain, frame, force_propagation(chain, point, simplify=False).jacobian)
 
 
+def _tip_rotations(chain: Chain, frame: Frame) -> list[sp.Matrix]:
+    r"""The link-by-link frame changes from {n} to {k}: :math:`D_{k,k\pm1}, \dots, D_{n\mp1,n}`, leftmost first.
+
+    With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`, their product is :math:`\mathrm{diag}({}^k_nR, {}^k_nR)`.
+    """
+    rotations = []
+    position, target = chain.position(frame), chain.n
+    while position != target:
+        step = position + 1 if position < target else position - 1
+        rotations.append(block_rotation(chain.rotation(chain.frame_name(position), chain.frame_name(step))))
+        position = step
+    return rotations
+
+
 def _from_tip_frame(chain: Chain, frame: Frame, J_n: sp.Matrix) -> sp.Matrix:
     r"""Move :math:`{}^nJ` into frame {k} one link at a time: :math:`{}^kJ = D_{k,k+1} \cdots D_{n-1,n}\,{}^nJ`.
 
-    With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`. The product is the same as one rotation by
-    :math:`{}^k_nR`, but nested link by link every intermediate is the Jacobian in a frame between, whose normal form
-    stays small; the whole :math:`{}^k_nR` times :math:`{}^nJ` multiplies two large sums (a 12-joint snake went from
-    minutes to seconds).
+    The product is the same as one rotation by :math:`{}^k_nR`, but nested link by link every intermediate is the
+    Jacobian in a frame between, whose terms stay few; the whole :math:`{}^k_nR` times :math:`{}^nJ` multiplies two
+    large sums (a 12-joint snake went from minutes to seconds).
     """
     J = J_n
-    position, target = chain.n, chain.position(frame)
-    while position != target:
-        step = position - 1 if target < position else position + 1
-        J = block_rotation(chain.rotation(chain.frame_name(step), chain.frame_name(position))) * J
-        position = step
+    for rotation in reversed(_tip_rotations(chain, frame)):
+        J = rotation * J
     return J
 
 

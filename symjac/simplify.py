@@ -29,9 +29,9 @@ from sympy.polys.rings import PolyElement
 
 from symjac.angles import AngleBasis
 from symjac.reporting import report
-from symjac.trigpoly import TrigImage, expanded_expr, image_of, nested_expr
+from symjac.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, product_image
 
-__all__ = ["is_identity", "printed_ops", "simplify_expr", "simplify_matrix", "trig_normal_form"]
+__all__ = ["is_identity", "printed_ops", "simplify_expr", "simplify_matrix", "simplify_product", "trig_normal_form"]
 
 
 def trig_normal_form(expr: sp.Expr, basis: AngleBasis) -> sp.Expr:
@@ -86,21 +86,47 @@ def simplify_matrix(
     kept (the first basis wins ties). All entries written in one basis share one polynomial ring.
     """
     bases = [basis] if isinstance(basis, AngleBasis) else list(basis)
-    layout: Callable[[PolyElement, TrigImage], sp.Expr] = nested_expr if nested else expanded_expr
     image, polys = image_of(list(matrix), bases[0])
+    return _laid_out(image, polys, (matrix.rows, matrix.cols), bases[1:], nested)
+
+
+def simplify_product(
+    factors: Sequence[sp.MatrixBase], basis: AngleBasis | Sequence[AngleBasis], *, nested: bool = True
+) -> sp.Matrix:
+    r"""``simplify_matrix(F_1 * F_2 * ... * F_m)``, the product taken on normal forms (:func:`product_image`).
+
+    The result is the same matrix; the raw product is never built (frame changes of long chains, where a chain of
+    rotations multiplies a Jacobian, spent most of their time in SymPy's own products).
+
+    Examples
+    --------
+    >>> t = sp.Symbol("theta1", real=True)
+    >>> R = sp.Matrix([[sp.cos(t), -sp.sin(t)], [sp.sin(t), sp.cos(t)]])
+    >>> simplify_product([R, R], AngleBasis.of([t]))[1, 0]
+    2*sin(theta1)*cos(theta1)
+    """
+    bases = [basis] if isinstance(basis, AngleBasis) else list(basis)
+    image, polys, shape = product_image(factors, bases[0])
+    return _laid_out(image, polys, shape, bases[1:], nested)
+
+
+def _laid_out(image: TrigImage, polys: Sequence[PolyElement], shape: tuple[int, int],
+              other_bases: Sequence[AngleBasis], nested: bool) -> sp.Matrix:
+    """Normal forms laid out as a matrix, each entry in the shortest of its first basis and ``other_bases``."""
+    layout: Callable[[PolyElement, TrigImage], sp.Expr] = nested_expr if nested else expanded_expr
     best = [layout(poly, image) for poly in polys]
-    if len(bases) > 1:
+    if other_bases:
         # The other bases start from the first one's result, not from the raw products: the normal form is unique,
         # so it is the same, and the first result is a small fraction of the raw tree (a long parallel run has n + 1
         # bases: planar 16R went from 0.3 s to a few ms per basis).
         start = list(best)
         best_ops = [printed_ops(expr) for expr in best]
-        for number, candidate in enumerate(bases[1:], start=2):
-            report(f"simplifying: angle basis {number} of {len(bases)}")
+        for number, candidate in enumerate(other_bases, start=2):
+            report(f"simplifying: angle basis {number} of {len(other_bases) + 1}")
             image, polys = image_of(start, candidate)
             for index, poly in enumerate(polys):
                 expr = layout(poly, image)
                 ops = printed_ops(expr)
                 if ops < best_ops[index]:
                     best[index], best_ops[index] = expr, ops
-    return sp.Matrix(matrix.rows, matrix.cols, best)
+    return sp.Matrix(*shape, best)

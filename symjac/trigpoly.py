@@ -9,6 +9,7 @@ lays normal forms out for people; determinants and singular factors are computed
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -20,8 +21,19 @@ from sympy.polys.domains import QQ
 from sympy.polys.rings import PolyElement, ring
 
 from symjac.angles import AngleBasis
+from symjac.errors import ResultTooLargeError
 
-__all__ = ["TrigImage", "expanded_expr", "image_of", "nested_expr", "reduce_image"]
+__all__ = ["TERM_LIMIT", "TrigImage", "expanded_expr", "image_of", "nested_expr", "product_image", "reduce_image"]
+
+
+TERM_LIMIT = 200_000
+"""The most terms the normal forms of one result may have together (and any intermediate on its own).
+
+Past it, :func:`image_of` and :func:`product_image` raise :class:`~symjac.errors.ResultTooLargeError` at once. A
+result that large is millions of operations once written out: nobody reads it, SymPy takes minutes to build it,
+and it usually means a quantity that grows exponentially with the chain (the frame-{0} Jacobian of a 20-joint
+snake). Raw forms (``simplify=False``) and generated code share subexpressions and have no such limit.
+"""
 
 
 @dataclass
@@ -222,11 +234,78 @@ def image_of(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[TrigImage, li
             result = cos_part if isinstance(expr, sp.cos) else sin_part
         else:  # pragma: no cover - every other node was made an atom by _collect_atoms
             raise TypeError(f"cannot convert {expr!r}")
+        if len(result) > TERM_LIMIT:
+            raise ResultTooLargeError(len(result), TERM_LIMIT)
         memo[id(expr)] = (expr, result)
         return result
 
-    polys = [reduce_image(convert(sp.sympify(expr)), image) for expr in exprs]
+    polys, total = [], 0
+    for expr in exprs:
+        polys.append(reduce_image(convert(sp.sympify(expr)), image))
+        total += len(polys[-1])
+        if total > TERM_LIMIT:
+            raise ResultTooLargeError(total, TERM_LIMIT)
     return image, polys
+
+
+def product_image(
+    factors: Sequence[sp.MatrixBase], basis: AngleBasis
+) -> tuple[TrigImage, list[PolyElement], tuple[int, int]]:
+    r"""The normal form of the matrix product :math:`F_1 F_2 \cdots F_m`, multiplied in the image.
+
+    Each factor is converted on its own (one ring for all) and the product is taken right to left on normal forms,
+    reducing every entry after each step. This is :func:`image_of` of the product without ever building the product
+    as a SymPy tree: raw SymPy products re-sort and re-flatten every partial sum (a 30-joint arm spent a third of
+    its time there) and hand the conversion a tree much larger than the result.
+
+    Returns the image, the entries of the product row by row, and its shape.
+
+    Examples
+    --------
+    >>> t = sp.Symbol("theta1", real=True)
+    >>> R = sp.Matrix([[sp.cos(t), -sp.sin(t)], [sp.sin(t), sp.cos(t)]])
+    >>> image, polys, shape = product_image([R.T, R], AngleBasis.of([t]))
+    >>> [expanded_expr(poly, image) for poly in polys], shape
+    ([1, 0, 0, 1], (2, 2))
+    """
+    if not factors:
+        raise ValueError("product_image needs at least one factor")
+    for left, right in itertools.pairwise(factors):
+        if left.cols != right.rows:
+            raise ValueError(f"cannot multiply a {left.rows} x {left.cols} by a {right.rows} x {right.cols} matrix")
+    image, polys = image_of([entry for factor in factors for entry in factor], basis)
+    matrices, start = [], 0
+    for factor in factors:
+        flat = polys[start:start + factor.rows * factor.cols]
+        matrices.append([flat[r * factor.cols:(r + 1) * factor.cols] for r in range(factor.rows)])
+        start += factor.rows * factor.cols
+    product = matrices[-1]
+    for matrix in reversed(matrices[:-1]):
+        product = _multiply(matrix, product, image)
+    return image, [entry for row in product for entry in row], (factors[0].rows, factors[-1].cols)
+
+
+def _multiply(
+    left: list[list[PolyElement]], right: list[list[PolyElement]], image: TrigImage
+) -> list[list[PolyElement]]:
+    """The product of two matrices of normal forms, reduced (zero entries, most of a rotation's block, skipped)."""
+    zero = image.ring_and_gens[0].zero
+    columns = range(len(right[0]))
+    product, total = [], 0
+    for row in left:
+        terms = [(a, right[k]) for k, a in enumerate(row) if a]
+        entries = []
+        for j in columns:
+            entry = zero
+            for a, right_row in terms:
+                if right_row[j]:
+                    entry += a * right_row[j]
+            entries.append(reduce_image(entry, image))
+            total += len(entries[-1])
+            if total > TERM_LIMIT:
+                raise ResultTooLargeError(total, TERM_LIMIT)
+        product.append(entries)
+    return product
 
 
 def reduce_image(poly: PolyElement, image: TrigImage) -> PolyElement:

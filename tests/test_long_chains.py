@@ -7,9 +7,11 @@ import pytest
 import sympy as sp
 from reference import evaluate, finite_difference_jacobian, random_configuration
 
-from symjac import Chain, jacobian, robot_from_mapping
+from symjac import Chain, ResultTooLargeError, jacobian, robot_from_mapping, trigpoly
+from symjac.cli import main
 from symjac.jacobian import METHODS
 from symjac.reporting import reporting_to
+from symjac.simplify import simplify_matrix, simplify_product
 
 LENGTH = sp.Rational(1, 10)
 
@@ -56,3 +58,55 @@ def test_long_derivations_report_their_stages():
         jacobian(Chain(planar(4)), method="velocity_propagation")
     assert "velocity propagation, link 4 of 4" in stages
     assert any(stage.startswith("simplifying") for stage in stages)
+
+
+@pytest.mark.parametrize("frame", [0, 3, 6, "tool"])
+def test_cross_product_in_any_frame_equals_differentiation(frame):
+    """The cross-product method reads each column in {k} or in the axis frame (by the turns it spans): both exact."""
+    robot = robot_from_mapping({"name": "mixed6", "convention": "standard", "parameters": {"L": 0.1},
+                                "tool": {"xyz": [0, 0, "L"]},
+                                "joints": [{"type": "revolute", "alpha": alpha, "a": "L"}
+                                           for alpha in ("pi/2", 0, "-pi/2", "pi/2", 0, 0)]})
+    chain = Chain(robot)
+    assert jacobian(chain, frame, method="cross_product") == jacobian(chain, frame, method="differentiation")
+
+
+def test_middle_frame_keeps_a_long_snake_short():
+    """Frame {0} of a 3-D snake grows about 1.8x per joint; its middle frame spans half the chain each way."""
+    chain = Chain(snake(8))
+    size = {frame: sum(len(sp.Add.make_args(sp.expand(e))) for e in jacobian(chain, frame, method="cross_product"))
+            for frame in (0, 4)}
+    assert size[4] < size[0] / 3
+
+
+def test_simplify_product_is_simplify_matrix_of_the_product():
+    chain = Chain(snake(5))
+    factors = [chain.transform(k, k + 1) for k in range(5)]
+    bases = chain.angle_bases(0)
+    assert simplify_product(factors, bases) == simplify_matrix(sp.Matrix(chain.transform(0, 5)), bases)
+    with pytest.raises(ValueError, match="cannot multiply a 4 x 4 by a 3 x 3"):
+        simplify_product([factors[0], sp.eye(3)], bases)
+
+
+@pytest.mark.parametrize("derive", [
+    lambda chain: chain.simplified_transform(0, chain.n),  # the product on normal forms
+    lambda chain: jacobian(chain, method="differentiation"),  # a raw tree converted
+    lambda chain: jacobian(chain, method="velocity_propagation"),  # raw tip-frame Jacobian times rotations
+], ids=["fk", "differentiation", "velocity"])
+def test_results_too_large_to_write_out_are_refused_early(monkeypatch, derive):
+    monkeypatch.setattr(trigpoly, "TERM_LIMIT", 100)
+    with pytest.raises(ResultTooLargeError, match="more than 100 terms") as raised:
+        derive(Chain(snake(8)))
+    assert raised.value.limit == 100 and raised.value.terms > 100
+    assert "--frame K --method cross_product" in str(raised.value)
+
+
+def test_the_command_line_refuses_a_huge_result_in_one_line(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(trigpoly, "TERM_LIMIT", 100)
+    path = tmp_path / "snake8.toml"
+    path.write_text('name = "snake8"\nconvention = "standard"\n[parameters]\nL = 0.1\n'
+                    + "".join(f'[[joints]]\ntype = "revolute"\nalpha = "{"pi/2" if i % 2 else "-pi/2"}"\na = "L"\n'
+                              for i in range(8)))
+    assert main(["fk", str(path)]) == 2
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and error[0].startswith("symjac: ") and "more than 100 terms" in error[0]

@@ -66,12 +66,12 @@ def chain_of_family(family: str, n: int):  # type: ignore[no-untyped-def]  # a R
 
 def _one(family: str, n: int, method: str, frame: int) -> None:
     """Measure one point in this process and print it as JSON (the child side of :func:`measure`)."""
+    robot = chain_of_family(family, n)  # imports symjac before SymPy: symjac sizes SymPy's cache (see the README)
     import sympy as sp
 
     from symjac.errors import ResultTooLargeError
     from symjac.jacobian import jacobian
 
-    robot = chain_of_family(family, n)
     start = time.perf_counter()
     try:
         J = jacobian(robot, frame=frame, method=method)  # type: ignore[arg-type]

@@ -21,7 +21,7 @@ from symjac.errors import FrameError
 from symjac.model import Convention, FixedTransform, Joint, Robot
 from symjac.reporting import report
 from symjac.simplify import AngleBasis, simplify_product
-from symjac.transforms import Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
+from symjac.transforms import Composition, Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
 T = TypeVar("T")
@@ -59,6 +59,7 @@ class Chain:
     def __init__(self, robot: Robot):
         self.robot = robot
         self._transforms: dict[tuple[int, int], sp.ImmutableMatrix] = {}
+        self._compositions: dict[tuple[int, int], Composition] = {}
         self._simplified: dict[tuple[int, int], sp.ImmutableMatrix] = {}
         self._memo: dict[Hashable, object] = {}
         self._relations: dict[int, tuple[sp.Expr, sp.Expr]] = {}
@@ -119,20 +120,34 @@ class Chain:
         current = joints[joint - 1]
         return (*inverse_motions(previous), *origin_motions(current.origin), *alignment(current.unit_axis))
 
-    def _motions(self, start: int, end: int) -> list[Motion | sp.Matrix]:
-        if start <= end:
-            return [m for k in range(start + 1, end + 1) for m in self._steps[k]]
-        return [m for k in range(start, end, -1) for m in inverse_motions(self._steps[k])]
-
     # --- transforms ---------------------------------------------------------------------------------------
 
     def transform(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
         r"""The raw structured product :math:`{}^{\text{source}}_{\text{target}}T` (pose of target in source)."""
         key = (self.position(source), self.position(target))
         if key not in self._transforms:
-            rotation_matrix, position = compose(self._motions(*key))
+            rotation_matrix, position = self._composition(*key).result()
             self._transforms[key] = sp.ImmutableMatrix(homogeneous(rotation_matrix, position))
         return self._transforms[key]
+
+    def _composition(self, start: int, end: int) -> Composition:
+        """The motions from position ``start`` to ``end`` multiplied, continuing the nearest shorter product kept.
+
+        Going out (``end > start``) each step k adds the motions of link k; going in, their inverses in reverse. The
+        same product :func:`~symjac.transforms.compose` gives for all the motions at once, built one link at a time,
+        so that the transforms from one frame to all others cost one link each and share their partial products.
+        """
+        direction = 1 if end >= start else -1
+        reached = end
+        while (start, reached) not in self._compositions and reached != start:
+            reached -= direction
+        composition = self._compositions.get((start, reached), Composition())
+        while reached != end:
+            reached += direction
+            step = self._steps[reached] if direction == 1 else inverse_motions(self._steps[reached + 1])
+            composition = composition.then(step)
+            self._compositions[(start, reached)] = composition
+        return composition
 
     def simplified_transform(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
         """:meth:`transform` in compact textbook form, written in the angle basis of ``source``.

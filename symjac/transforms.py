@@ -19,6 +19,7 @@ Axis = Literal["x", "y", "z"]
 
 __all__ = [
     "Axis",
+    "Composition",
     "Motion",
     "alignment",
     "block_rotation",
@@ -251,32 +252,55 @@ def compose(motions: Iterable[Motion | sp.Matrix]) -> tuple[sp.Matrix, sp.Matrix
     R : sympy.Matrix, shape (3, 3)
     p : sympy.Matrix, shape (3, 1)
     """
-    rotation_matrix, position = sp.eye(3), sp.zeros(3, 1)
-    pending: Motion | None = None  # a rotation not yet multiplied into rotation_matrix
+    return Composition().then(motions).result()
 
-    def flush() -> None:
-        nonlocal rotation_matrix, pending
-        if pending is not None and pending.value != 0:
-            rotation_matrix = rotation_matrix * rotation(pending.axis, pending.value)
-        pending = None
 
-    for motion in motions:
-        if isinstance(motion, sp.MatrixBase):
-            flush()
-            position = position + rotation_matrix * motion[:3, 3]
-            rotation_matrix = rotation_matrix * motion[:3, :3]
-        elif motion.kind == "R":
-            if pending is not None and pending.axis == motion.axis:
-                pending = Motion("R", motion.axis, pending.value + motion.value)
-            else:
-                flush()
-                pending = motion
-        elif motion.value != 0:
-            if pending is not None and pending.axis != motion.axis:
-                flush()
-            # a translation along the pending rotation's own axis is not changed by that rotation
-            unit = sp.zeros(3, 1)
-            unit[_AXIS_INDEX[motion.axis]] = motion.value
-            position = position + rotation_matrix * unit
-    flush()
-    return rotation_matrix, position
+class Composition:
+    """A product of motions in progress (see :func:`compose`), which can be continued without starting over.
+
+    :meth:`then` returns a new composition and leaves this one as it was, so the transforms from one frame to every
+    later frame are built one link each, sharing their partial products, instead of each from scratch (a 30-joint
+    chain asks for hundreds of them).
+    """
+
+    __slots__ = ("pending", "position", "rotation")
+
+    def __init__(self, rotation: sp.Matrix | None = None, position: sp.Matrix | None = None,
+                 pending: Motion | None = None):
+        self.rotation = sp.eye(3) if rotation is None else rotation
+        self.position = sp.zeros(3, 1) if position is None else position
+        self.pending = pending  # a rotation not yet multiplied into self.rotation, merged with the next if it can be
+
+    def _flushed(self) -> sp.Matrix:
+        if self.pending is not None and self.pending.value != 0:
+            return self.rotation * rotation(self.pending.axis, self.pending.value)
+        return self.rotation
+
+    def then(self, motions: Iterable[Motion | sp.Matrix]) -> Composition:
+        """The product so far followed by ``motions`` (a new composition)."""
+        rotation_matrix, position, pending = self.rotation, self.position, self.pending
+        for motion in motions:
+            if isinstance(motion, sp.MatrixBase):
+                rotation_matrix = Composition(rotation_matrix, position, pending)._flushed()
+                pending = None
+                position = position + rotation_matrix * motion[:3, 3]
+                rotation_matrix = rotation_matrix * motion[:3, :3]
+            elif motion.kind == "R":
+                if pending is not None and pending.axis == motion.axis:
+                    pending = Motion("R", motion.axis, pending.value + motion.value)
+                else:
+                    rotation_matrix = Composition(rotation_matrix, position, pending)._flushed()
+                    pending = motion
+            elif motion.value != 0:
+                if pending is not None and pending.axis != motion.axis:
+                    rotation_matrix = Composition(rotation_matrix, position, pending)._flushed()
+                    pending = None
+                # a translation along the pending rotation's own axis is not changed by that rotation
+                unit = sp.zeros(3, 1)
+                unit[_AXIS_INDEX[motion.axis]] = motion.value
+                position = position + rotation_matrix * unit
+        return Composition(rotation_matrix, position, pending)
+
+    def result(self) -> tuple[sp.Matrix, sp.Matrix]:
+        """:math:`(R, p)` of the product so far."""
+        return self._flushed(), self.position

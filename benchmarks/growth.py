@@ -113,13 +113,13 @@ def _plot(points: Sequence[GrowthPoint], path: str) -> None:
     import matplotlib.pyplot as plt
 
     figure, axes = plt.subplots(figsize=(7, 5))
-    for family in FAMILIES:
-        for method in METHODS:
+    for family, style in zip(FAMILIES, ("-", "--", ":"), strict=True):  # one line style per family
+        for method, colour in zip(METHODS, ("C0", "C1", "C2", "C3"), strict=True):  # one colour per method
             done = [p for p in points if p.family == family and p.method == method and p.seconds is not None
                     and not p.refused]
             if done:
-                axes.loglog([p.n for p in done], [p.seconds for p in done], marker="o",
-                            label=f"{family}, {method.replace('_', ' ')}")
+                axes.loglog([p.n for p in done], [p.seconds for p in done], marker="o", linestyle=style,
+                            color=colour, label=f"{family}, {method.replace('_', ' ')}")
     axes.set_xlabel("joints N")
     axes.set_ylabel("seconds (cold process, frame {0})")
     axes.set_title("symjac: cost of the simplified Jacobian")

@@ -284,6 +284,10 @@ class Chain:
         return self.memo(("all_angle_bases",), compute)
 
     def _basis(self, references: tuple[int, ...]) -> AngleBasis:
+        """The angle basis measuring each parallel group from its reference frame (kept: frames share most)."""
+        return self.memo(("angle_basis", references), lambda: self._new_basis(references))
+
+    def _new_basis(self, references: tuple[int, ...]) -> AngleBasis:
         joints = self.robot.joints
         variables = tuple(joint.variable for joint in joints if joint.is_revolute)
         angles: list[sp.Expr] = []

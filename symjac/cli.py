@@ -63,6 +63,10 @@ from symjac.statics import joint_torques
 
 __all__ = ["main"]
 
+RECURSION_LIMIT = 10_000
+"""Python frames the command line allows (see :func:`main`)."""
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit status.
 
@@ -74,6 +78,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
     args.argv = list(sys.argv[1:] if argv is None else argv)  # the command as typed, for generated headers
+    # SymPy walks raw chain products recursively (``is_number``, printing), a few frames per link: 200 links need
+    # more than Python's default 1000 frames.
+    sys.setrecursionlimit(max(sys.getrecursionlimit(), RECURSION_LIMIT))
     try:
         refuse_ignored_options(args)
         result = args.handler(args)

@@ -92,5 +92,5 @@ class ResultTooLargeError(SymjacError, ArithmeticError):
         super().__init__(
             f"written out, this result has more than {limit:,} terms ({terms:,} so far) and it grows with every link; "
             "narrow the request: fewer joints; a frame in the middle of the chain, where each half stays short (for a "
-            "Jacobian: --frame K --method cross_product); or numeric code (`symjac generate`; simplify=False in "
+            "Jacobian: --frame K --method cross_product); or numeric code (`symjac codegen`; simplify=False in "
             "Python), which shares subexpressions instead")

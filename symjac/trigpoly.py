@@ -48,6 +48,7 @@ class TrigImage:
     constant_angles: list[sp.Expr]
     atoms: list[sp.Expr]
     relations: list[tuple[int, int]] = field(default_factory=list)  # (index of sqrt(n) generator, n)
+    _back: dict[int, sp.Expr] = field(default_factory=dict, repr=False)
 
     @property
     def angle_count(self) -> int:
@@ -75,13 +76,21 @@ class TrigImage:
         """The generator :math:`C_j` of angle j."""
         return self.gens[2 * j + 1]
 
-    @cached_property
-    def back(self) -> list[sp.Expr]:
-        """Generator index -> SymPy expression."""
-        exprs: list[sp.Expr] = []
-        for angle in (*self.basis.angles, *self.constant_angles):
-            exprs += [sp.sin(angle), sp.cos(angle)]
-        return exprs + list(self.atoms)
+    def back(self, index: int) -> sp.Expr:
+        """The SymPy expression of generator ``index``, built when first asked for.
+
+        A long chain's ring has hundreds of generators and a link uses two of them: building every sine and cosine of
+        every basis angle up front took most of ``symjac show`` on a 200-joint arm.
+        """
+        if index not in self._back:
+            angles = len(self.basis.angles) + len(self.constant_angles)
+            if index < 2 * angles:
+                k, basis_count = index // 2, len(self.basis.angles)
+                angle = self.basis.angles[k] if k < basis_count else self.constant_angles[k - basis_count]
+                self._back[index] = sp.cos(angle) if index % 2 else sp.sin(angle)
+            else:
+                self._back[index] = self.atoms[index - 2 * angles]
+        return self._back[index]
 
     @cached_property
     def ideal(self) -> list[PolyElement]:
@@ -347,7 +356,7 @@ def reduce_image(poly: PolyElement, image: TrigImage) -> PolyElement:
 
 
 def _monomial_expr(monomial: tuple[int, ...], image: TrigImage) -> sp.Expr:
-    return sp.Mul(*[image.back[i] ** e for i, e in enumerate(monomial) if e])
+    return sp.Mul(*[image.back(i) ** e for i, e in enumerate(monomial) if e])
 
 
 def _coefficient_expr(coefficient: Any) -> sp.Rational:
@@ -385,7 +394,7 @@ def _nest(terms: list[tuple[tuple[int, ...], Any]], image: TrigImage) -> sp.Expr
         else:
             outside.append((monomial, coefficient))
     inner = _nest(inside, image)
-    factor = image.back[best]
+    factor = image.back(best)
     # keep a leading minus outside the parentheses: -c1*(x + y) rather than c1*(-x - y)
     negated = isinstance(inner, sp.Add) and inner.could_extract_minus_sign()
     product = -(factor * (-inner)) if negated else factor * inner

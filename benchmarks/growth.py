@@ -8,7 +8,7 @@ How the cost of the simplified Jacobian in frame {0} grows with the number of jo
 
 Every point (family, N, method) runs in a fresh Python process (cold: no SymPy cache, no derived chain), with a time
 limit; once a method exceeds it, larger N of that family are skipped for it. A result too large to write out
-(more than ``symjac.trigpoly.TERM_LIMIT`` terms: the frame-{0} Jacobian of a long 3-D snake, which grows about 1.8x
+(more than ``symjac.limits.TERM_LIMIT`` terms: the frame-{0} Jacobian of a long 3-D snake, which grows about 1.8x
 per joint) is refused by symjac within seconds; the table says "too large" and how long the refusal took.
 ``--frame middle`` asks for the Jacobian in frame {N // 2} instead, where each half of the chain stays short.
 

@@ -10,11 +10,13 @@ one ``cos`` per joint).
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 
 import sympy as sp
+
+from symjac.dag import rebuild, with_args
 
 __all__ = ["AngleBasis", "AngleExpansion", "fold_numbers"]
 
@@ -164,13 +166,16 @@ class AngleExpansion:
 
     def expand(self, expr: sp.Expr) -> sp.Expr:
         """``expr`` with every joint-dependent sine/cosine expanded and numeric subexpressions folded to floats."""
-        expanded = expr.replace(
-            lambda e: isinstance(e, sp.sin | sp.cos) and bool(e.free_symbols & self.variables),
-            lambda e: self.sin_cos(e.args[0])[0 if isinstance(e, sp.sin) else 1],
-        )
-        return fold_numbers(expanded)
+        return self.expand_all([expr])[0]
 
+    def expand_all(self, exprs: Sequence[sp.Expr]) -> list[sp.Expr]:
+        """:meth:`expand` of each of ``exprs``, every subexpression they share rewritten once (:mod:`symjac.dag`)."""
+        def step(node: sp.Basic, args: tuple[sp.Basic, ...]) -> sp.Basic:
+            if isinstance(node, sp.sin | sp.cos) and node.args[0].free_symbols & self.variables:
+                return self.sin_cos(node.args[0])[0 if isinstance(node, sp.sin) else 1]
+            return with_args(node, args)
 
+        return _fold_all(rebuild(exprs, step))
 
 
 def _integer_inverse(matrix: list[list[Fraction]]) -> list[list[Fraction]] | None:
@@ -227,9 +232,31 @@ def _dense_integer_inverse(matrix: list[list[Fraction]]) -> list[list[Fraction]]
 
 
 def fold_numbers(expr: sp.Expr) -> sp.Expr:
-    """Replace every numeric subexpression that is not a plain number (``sqrt(2)/2``, ``cos(1/5)``) by a float."""
-    if expr.is_Atom:
-        return expr
-    if expr.is_number:
-        return sp.Float(sp.N(expr, 20), 17)
-    return expr.func(*(fold_numbers(arg) for arg in expr.args))
+    """Replace every numeric subexpression that is not a plain number (``sqrt(2)/2``, ``cos(1/5)``) by a float.
+
+    Examples
+    --------
+    >>> fold_numbers(sp.Symbol("x") * sp.sqrt(2) / 2 + sp.Rational(1, 4))
+    0.70710678118654752*x + 1/4
+    """
+    return _fold_all([expr])[0]
+
+
+def _fold_all(exprs: Sequence[sp.Expr]) -> list[sp.Expr]:
+    """:func:`fold_numbers` of each of ``exprs``, every shared subexpression visited once (:mod:`symjac.dag`).
+
+    A node is numeric when it is a number or every argument is numeric (``Expr.is_number``, computed once per node
+    here); the largest numeric subexpressions are evaluated to 20 digits and stored as 17-digit floats.
+    """
+    numeric: dict[int, bool] = {}  # by identity, as in symjac.dag
+
+    def step(node: sp.Basic, args: tuple[sp.Basic, ...]) -> sp.Basic:
+        if node.is_Atom:
+            numeric[id(node)] = bool(node.is_number)
+            return node
+        numeric[id(node)] = all(numeric[id(arg)] for arg in node.args)
+        if numeric[id(node)]:
+            return sp.Float(sp.N(node, 20), 17)  # from the exact node: the arguments' floats are not used
+        return with_args(node, args)
+
+    return rebuild(exprs, step)

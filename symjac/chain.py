@@ -163,7 +163,8 @@ class Chain:
             links = [self.transform(self.frame_name(k), self.frame_name(k + step)) for k in range(start, end, step)]
             report(f"simplifying the transform from frame {source} to frame {target}")
             factors = links or [self.transform(source, target)]
-            self._simplified[key] = sp.ImmutableMatrix(simplify_product(factors, self.angle_bases(source)))
+            bases = self._one_link_bases(max(key)) if abs(end - start) == 1 else self.angle_bases(source)
+            self._simplified[key] = sp.ImmutableMatrix(simplify_product(factors, bases))
         return self._simplified[key]
 
     def rotation(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
@@ -282,6 +283,17 @@ class Chain:
             return tuple(bases)
 
         return self.memo(("all_angle_bases",), compute)
+
+    def _one_link_bases(self, position: int) -> tuple[AngleBasis, ...]:
+        """The basis of the one link ending at frame position ``position``: its own joint angle, if revolute.
+
+        A link transform depends on no other joint, so a basis of all n angles (and their alternatives) would write
+        the same result after n times the work: a 200-joint ``symjac show`` built 200 such bases.
+        """
+        joint = self.robot.joints[position - 1] if 1 <= position <= self.n else None
+        if joint is None or not joint.is_revolute:
+            return (AngleBasis((), ()),)
+        return (AngleBasis((joint.variable,), (joint.angle,)),)
 
     def _basis(self, references: tuple[int, ...]) -> AngleBasis:
         """The angle basis measuring each parallel group from its reference frame (kept: frames share most)."""

@@ -191,6 +191,10 @@ def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr],
         else:
             J_n = force_propagation(chain, point, simplify=False).jacobian
         return sp.ImmutableMatrix(simplify_product([*_tip_rotations(chain, frame), J_n], chain.angle_bases(frame)))
+    if simplify and method == "differentiation" and chain.position(frame) != 0:  # frame change on normal forms
+        J_0 = jacobian(chain, 0, point, method, simplify=False)
+        report(f"simplifying the differentiation Jacobian in frame {frame}")
+        return sp.ImmutableMatrix(simplify_product([*_link_rotations(chain, frame, 0), J_0], chain.angle_bases(frame)))
     if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
         raw = jacobian(chain, frame, point, method, simplify=False)
         report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
@@ -307,10 +311,15 @@ def _tip_rotations(chain: Chain, frame: Frame) -> list[sp.Matrix]:
 
     With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`, their product is :math:`\mathrm{diag}({}^k_nR, {}^k_nR)`.
     """
+    return _link_rotations(chain, frame, chain.n)
+
+
+def _link_rotations(chain: Chain, frame: Frame, source: int) -> list[sp.Matrix]:
+    r"""The link-by-link frame changes from {s} to {k}, leftmost first; their product is diag(^k_sR, ^k_sR)."""
     rotations = []
-    position, target = chain.position(frame), chain.n
-    while position != target:
-        step = position + 1 if position < target else position - 1
+    position = chain.position(frame)
+    while position != source:
+        step = position + 1 if position < source else position - 1
         rotations.append(block_rotation(chain.rotation(chain.frame_name(position), chain.frame_name(step))))
         position = step
     return rotations

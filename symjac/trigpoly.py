@@ -22,18 +22,9 @@ from sympy.polys.rings import PolyElement, ring
 
 from symjac.angles import AngleBasis
 from symjac.errors import ResultTooLargeError
+from symjac.limits import current_term_limit
 
-__all__ = ["TERM_LIMIT", "TrigImage", "expanded_expr", "image_of", "nested_expr", "product_image", "reduce_image"]
-
-
-TERM_LIMIT = 200_000
-"""The most terms the normal forms of one result may have together (and any intermediate on its own).
-
-Past it, :func:`image_of` and :func:`product_image` raise :class:`~symjac.errors.ResultTooLargeError` at once. A
-result that large is millions of operations once written out: nobody reads it, SymPy takes minutes to build it,
-and it usually means a quantity that grows exponentially with the chain (the frame-{0} Jacobian of a 20-joint
-snake). Raw forms (``simplify=False``) and generated code share subexpressions and have no such limit.
-"""
+__all__ = ["TrigImage", "expanded_expr", "image_of", "nested_expr", "product_image", "reduce_image"]
 
 
 @dataclass
@@ -182,6 +173,7 @@ def image_of(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[TrigImage, li
     angle_index = {angle: len(basis.angles) + k for k, angle in enumerate(constant_angles)}
     polynomial_ring, gens = image.ring_and_gens
     variables = frozenset(basis.variables)
+    limit = current_term_limit()
     # Subexpressions are remembered by identity, each kept alive next to its image so that its id stays its own:
     # chain products share subtrees, and a dictionary keyed by the expressions themselves compares equal but
     # distinct trees node by node, as trees, which was measured at 51 of 84 s for a planar 16R arm.
@@ -243,8 +235,8 @@ def image_of(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[TrigImage, li
             result = cos_part if isinstance(expr, sp.cos) else sin_part
         else:  # pragma: no cover - every other node was made an atom by _collect_atoms
             raise TypeError(f"cannot convert {expr!r}")
-        if len(result) > TERM_LIMIT:
-            raise ResultTooLargeError(len(result), TERM_LIMIT)
+        if len(result) > limit:
+            raise ResultTooLargeError(len(result), limit)
         memo[id(expr)] = (expr, result)
         return result
 
@@ -252,8 +244,8 @@ def image_of(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[TrigImage, li
     for expr in exprs:
         polys.append(reduce_image(convert(sp.sympify(expr)), image))
         total += len(polys[-1])
-        if total > TERM_LIMIT:
-            raise ResultTooLargeError(total, TERM_LIMIT)
+        if total > limit:
+            raise ResultTooLargeError(total, limit)
     return image, polys
 
 
@@ -299,6 +291,7 @@ def _multiply(
 ) -> list[list[PolyElement]]:
     """The product of two matrices of normal forms, reduced (zero entries, most of a rotation's block, skipped)."""
     zero = image.ring_and_gens[0].zero
+    limit = current_term_limit()
     columns = range(len(right[0]))
     product, total = [], 0
     for row in left:
@@ -311,8 +304,8 @@ def _multiply(
                     entry += a * right_row[j]
             entries.append(reduce_image(entry, image))
             total += len(entries[-1])
-            if total > TERM_LIMIT:
-                raise ResultTooLargeError(total, TERM_LIMIT)
+            if total > limit:
+                raise ResultTooLargeError(total, limit)
         product.append(entries)
     return product
 

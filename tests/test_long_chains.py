@@ -7,7 +7,7 @@ import pytest
 import sympy as sp
 from reference import evaluate, finite_difference_jacobian, random_configuration
 
-from symjac import Chain, ResultTooLargeError, jacobian, robot_from_mapping, trigpoly
+from symjac import Chain, ResultTooLargeError, jacobian, limits, robot_from_mapping
 from symjac.cli import main
 from symjac.jacobian import METHODS
 from symjac.reporting import reporting_to
@@ -94,7 +94,7 @@ def test_simplify_product_is_simplify_matrix_of_the_product():
     lambda chain: jacobian(chain, method="velocity_propagation"),  # raw tip-frame Jacobian times rotations
 ], ids=["fk", "differentiation", "velocity"])
 def test_results_too_large_to_write_out_are_refused_early(monkeypatch, derive):
-    monkeypatch.setattr(trigpoly, "TERM_LIMIT", 100)
+    monkeypatch.setattr(limits, "TERM_LIMIT", 100)
     with pytest.raises(ResultTooLargeError, match="more than 100 terms") as raised:
         derive(Chain(snake(8)))
     assert raised.value.limit == 100 and raised.value.terms > 100
@@ -102,7 +102,7 @@ def test_results_too_large_to_write_out_are_refused_early(monkeypatch, derive):
 
 
 def test_the_command_line_refuses_a_huge_result_in_one_line(tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(trigpoly, "TERM_LIMIT", 100)
+    monkeypatch.setattr(limits, "TERM_LIMIT", 100)
     path = tmp_path / "snake8.toml"
     path.write_text('name = "snake8"\nconvention = "standard"\n[parameters]\nL = 0.1\n'
                     + "".join(f'[[joints]]\ntype = "revolute"\nalpha = "{"pi/2" if i % 2 else "-pi/2"}"\na = "L"\n'
@@ -110,3 +110,26 @@ def test_the_command_line_refuses_a_huge_result_in_one_line(tmp_path, monkeypatc
     assert main(["fk", str(path)]) == 2
     error = capsys.readouterr().err.strip().splitlines()
     assert len(error) == 1 and error[0].startswith("symjac: ") and "more than 100 terms" in error[0]
+
+
+def test_term_limit_lowers_the_limit_within_its_block_only():
+    with limits.term_limit(100), limits.term_limit(1000):  # the lower of the nested limits holds
+        assert limits.current_term_limit() == 100
+        with pytest.raises(ResultTooLargeError, match="more than 100 terms"):
+            Chain(snake(8)).simplified_transform(0, 8)
+    assert limits.current_term_limit() == limits.TERM_LIMIT
+    Chain(snake(8)).simplified_transform(0, 8)  # refused in the block, derived outside it
+
+
+def test_link_transforms_are_simplified_in_their_own_joint_angle_only(monkeypatch):
+    """`symjac show` on 200 joints took minutes building a 200-angle basis per link; one angle per link suffices."""
+    def refuse(self, frame):
+        raise AssertionError("a basis of every joint angle was built for one link")
+
+    chain = Chain(snake(60))
+    monkeypatch.setattr(Chain, "angle_bases", refuse)
+    T = chain.simplified_transform(29, 30)
+    theta = chain.robot.joints[29].variable
+    assert T.free_symbols - {theta} <= set(chain.robot.parameter_symbols)
+    assert sp.simplify(T - chain.transform(29, 30)) == sp.zeros(4, 4)
+    assert T[0, 0] == sp.cos(theta) and T[0, 3] == sp.Symbol("L", real=True) * sp.cos(theta)

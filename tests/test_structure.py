@@ -21,7 +21,7 @@ FLOORS: dict[str, int] = {
     # foundations: no robot yet
     "symjac._version": 0, "symjac.errors": 0, "symjac.expressions": 0, "symjac.transforms": 0, "symjac.angles": 0,
     "symjac.trigpoly": 0, "symjac.simplify": 0, "symjac.files": 0, "symjac.resources": 0,
-    "symjac.reporting": 0,
+    "symjac.reporting": 0, "symjac.dag": 0, "symjac.limits": 0,
     # the model and its files
     "symjac.robots": 1, "symjac.model": 1, "symjac.robot_file": 1, "symjac.urdf": 1, "symjac.io": 1,
     # derived data

@@ -11,7 +11,7 @@ from types import MappingProxyType
 from typing import Literal
 
 from symjac.chain import Chain
-from symjac.codegen.layout import LINE_WIDTH, comment_lines, tuple_literal, wrap_statement
+from symjac.codegen.layout import LINE_WIDTH, comment_lines, tuple_lines, tuple_literal, wrap_statement
 from symjac.codegen.lower import LoweredFunction
 
 __all__ = [
@@ -243,9 +243,9 @@ class ModuleDescription:
         return comment_lines(f"({self.command_note})") if self.command_note else ()
 
     @property
-    def rate_names_text(self) -> str:
-        """``"thetadot1 ddot2"``: the joint rate names as one Python string literal."""
-        return '"' + " ".join(self.rates) + '"'
+    def rate_names_lines(self) -> tuple[str, ...]:
+        """``_RATE_NAMES = ("thetadot1", "ddot2")``: the joint rate names as Python source lines."""
+        return tuple(tuple_lines("_RATE_NAMES = ", (f'"{name}"' for name in self.rates)))
 
     @property
     def parameter_names(self) -> tuple[str, ...]:
@@ -263,21 +263,11 @@ class ModuleDescription:
         return tuple(kind == "revolute" for _, kind in self.joints)
 
     @property
-    def joint_names_text(self) -> str:
-        """``"theta1 theta2"``: the joint names as one Python string literal."""
-        return '"' + " ".join(self.joint_names) + '"'
+    def joints_lines(self) -> tuple[str, ...]:
+        """``JOINTS = ("theta1", "theta2")`` as Python source lines."""
+        return tuple(tuple_lines("JOINTS = ", (f'"{name}"' for name in self.joint_names)))
 
     @property
-    def parameter_names_text(self) -> str:
-        """``"a2 d3"``: the parameter names as one Python string literal."""
-        return '"' + " ".join(self.parameter_names) + '"'
-
-    @property
-    def joints_literal(self) -> str:
-        """``("theta1", "theta2")`` as Python source."""
-        return tuple_literal(f'"{name}"' for name in self.joint_names)
-
-    @property
-    def revolute_literal(self) -> str:
-        """``(True, False)`` as Python source."""
-        return tuple_literal(str(flag) for flag in self.revolute)
+    def revolute_lines(self) -> tuple[str, ...]:
+        """``_REVOLUTE = (True, False)`` as Python source lines."""
+        return tuple(tuple_lines("_REVOLUTE = ", (str(flag) for flag in self.revolute)))

@@ -23,6 +23,7 @@ __all__ = [
     "indices",
     "input_lines",
     "temporary_lines",
+    "tuple_lines",
     "tuple_literal",
     "unpack",
     "wrap_statement",
@@ -99,6 +100,33 @@ def tuple_literal(items: Iterable[str]) -> str:
     return f"({entries[0]},)" if len(entries) == 1 else f"({', '.join(entries)})"
 
 
+def tuple_lines(head: str, items: Iterable[str], *, width: int = LINE_WIDTH) -> list[str]:
+    """``head`` followed by the tuple of ``items``: one line if it fits, else one item group per line (black style).
+
+    Examples
+    --------
+    >>> tuple_lines("X = ", ["1", "2"])
+    ['X = (1, 2)']
+    >>> tuple_lines("X = ", ["10", "20", "30"], width=12)
+    ['X = (', '    10, 20,', '    30,', ')']
+    """
+    entries = list(items)
+    line = head + tuple_literal(entries)
+    if len(line) <= width:
+        return [line]
+    indent = " " * (len(head) - len(head.lstrip()) + 4)
+    lines = [f"{head}("]
+    current = indent
+    for entry in entries:
+        addition = f"{entry}," if current == indent else f" {entry},"
+        if len(current) + len(addition) > width and current != indent:
+            lines.append(current)
+            current, addition = indent, f"{entry},"
+        current += addition
+    lines += [current, f"{indent[:-4]})"]
+    return lines
+
+
 def indices(shape: tuple[int, ...]) -> list[str]:
     """Subscripts of every entry in row-major order: ``...`` for a scalar, ``3`` for a vector, ``1, 2``, ``1, 2, 0``."""
     if not shape:
@@ -120,9 +148,8 @@ def unpack(names: Sequence[str], value: str, indent: str) -> list[str]:
     line = f"{indent}{', '.join(names)}{',' if len(names) == 1 else ''} = {value}"
     if len(line) <= LINE_WIDTH:
         return [line]
-    lines = [f"{indent}("]
-    lines += wrap_statement(f"{indent}    ", ", ".join(names), ",")
-    lines.append(f"{indent}) = {value}")
+    lines = tuple_lines(indent, names)  # "(", the names a group per line, ")"
+    lines[-1] += f" = {value}"
     return lines
 
 

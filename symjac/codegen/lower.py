@@ -8,7 +8,9 @@ r"""Lowering: from a robot's symbolic quantities to target-independent straight-
    sines and cosines of the joint angles themselves (:class:`~symjac.angles.AngleExpansion`): a module evaluates
    exactly one ``sin`` and one ``cos`` per revolute joint.
 3. **CSE.** Flatten, check that every free symbol is an argument (the error names the others),
-   ``sympy.cse(order="canonical")``.
+   ``sympy.cse(order="canonical")`` (:mod:`symjac.codegen.cse`: on a long chain, shared subexpressions named first).
+4. **Compact candidates within a budget.** The "fastest" strategy derives a compact candidate only up to
+   :data:`COMPACT_TERMS` terms; on a long 3-D chain it is skipped and the raw products compete alone.
 
 Everything derived here is kept in the robot's :class:`~symjac.chain.Chain` (:meth:`~symjac.chain.Chain.memo`, keys
 starting with ``"codegen"``), so generating several targets for one robot derives and lowers each function once.
@@ -16,18 +18,22 @@ starting with ``"codegen"``), so generating several targets for one robot derive
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Hashable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, partial
+from typing import TypeVar
 
 import sympy as sp
 
 from symjac.angles import AngleExpansion
 from symjac.chain import Chain, Frame
+from symjac.codegen.cse import eliminate_common
 from symjac.codegen.printers import check_expression
 from symjac.codegen.request import WRENCH_NAMES, frame_text
-from symjac.errors import CodegenError
+from symjac.dag import free_symbols
+from symjac.errors import CodegenError, ResultTooLargeError
 from symjac.jacobian import jacobian
+from symjac.limits import term_limit
 from symjac.model import Robot
 from symjac.transforms import block_rotation
 
@@ -45,6 +51,7 @@ __all__ = [
 ]
 
 Inputs = tuple[tuple[str, tuple[sp.Symbol, ...]], ...]
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -106,16 +113,15 @@ def lower(
     ...
     symjac.errors.CodegenError: expressions depend on y, which is not an argument (arguments: x)
     """
-    flat = list(outputs)
+    flat = [sp.sympify(e) for e in outputs]
     allowed = set(arguments)
-    unknown = set().union(*(sp.sympify(e).free_symbols for e in flat)) - allowed if flat else set()
+    unknown = free_symbols(flat) - allowed
     if unknown:
         names = ", ".join(sorted(map(str, unknown)))
         known = ", ".join(sorted(map(str, allowed))) or "none"
         raise CodegenError(f"expressions depend on {names}, which is not an argument (arguments: {known})")
-    for expr in flat:
-        check_expression(sp.sympify(expr))
-    temporaries, reduced = sp.cse(flat, symbols=sp.numbered_symbols("_x", real=True), order="canonical")
+    check_expression(*flat)
+    temporaries, reduced = eliminate_common(flat)
     return tuple(temporaries), tuple(reduced)
 
 
@@ -129,7 +135,9 @@ def lower_function(
     expanded: bool = False,
 ) -> LoweredFunction:
     """Expand the angles of ``exprs`` (unless ``expanded``), lower them and count operations and sines/cosines."""
-    flat = [sp.sympify(e) for e in exprs] if expanded else [angles.expand(sp.sympify(e)) for e in exprs]
+    flat = [sp.sympify(e) for e in exprs]
+    if not expanded:
+        flat = angles.expand_all(flat)
     arguments = {s for _, symbols in inputs for s in symbols} | set(parameters) | set(angles.sines)
     arguments |= set(angles.cosines)
     temporaries, outputs = lower(flat, arguments)
@@ -150,6 +158,27 @@ def angle_expansion(chain: Chain) -> AngleExpansion:
     return chain.memo(("codegen", "angles"), compute)
 
 
+COMPACT_TERMS = 20_000
+"""The most terms a compact candidate of the "fastest" strategy may have (:func:`symjac.limits.term_limit`).
+
+Deriving a normal form costs time in proportion to its terms, and past a few ten thousand terms (a 3-D chain of 14
+or more joints, whose expanded normal form grows about 1.8x per joint) the raw products, whose subexpressions CSE
+shares, are as small after CSE: the compact candidate is then skipped rather than derived for seconds or minutes.
+"""
+
+
+def _compact_or_none(chain: Chain, key: Hashable, compute: Callable[[], T]) -> T | None:
+    """``compute()`` within :data:`COMPACT_TERMS`, or ``None`` past it (remembered: it is not tried again)."""
+    def attempt() -> T | None:
+        try:
+            with term_limit(COMPACT_TERMS):
+                return compute()
+        except ResultTooLargeError:
+            return None
+
+    return chain.memo(("codegen", "compact or none", key), attempt)
+
+
 def _jacobian_candidates(
     chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], strategy: str
 ) -> Iterator[tuple[str, sp.Matrix]]:
@@ -158,16 +187,20 @@ def _jacobian_candidates(
         yield "raw chain products, differentiated", jacobian(chain, frame, point, "differentiation", simplify=False)
     if strategy == "raw":
         return
-    yield "compact (simplified) Jacobian", jacobian(chain, frame, point, simplify=True)
     if strategy == "simplified":
+        yield "compact (simplified) Jacobian", jacobian(chain, frame, point, simplify=True)
         return
+    compact = _compact_or_none(chain, ("jacobian", frame, point), lambda: jacobian(chain, frame, point))
+    if compact is not None:
+        yield "compact (simplified) Jacobian", compact
     yield "raw chain products, cross-product form", jacobian(chain, frame, point, "cross_product", simplify=False)
     for via in (0, 1):
         if via > chain.n or chain.position(frame) == via:
             continue
         rotation = block_rotation(chain.rotation(frame, via))
-        yield (f"compact Jacobian in frame {{{via}}}, rotated into {where}",
-               rotation * jacobian(chain, via, point, simplify=True))
+        compact = _compact_or_none(chain, ("jacobian", via, point), partial(jacobian, chain, via, point))
+        if compact is not None:
+            yield f"compact Jacobian in frame {{{via}}}, rotated into {where}", rotation * compact
         yield (f"raw cross-product form in frame {{{via}}}, rotated into {where}",
                rotation * jacobian(chain, via, point, "cross_product", simplify=False))
 
@@ -199,8 +232,12 @@ def lowered_forward_kinematics(chain: Chain, strategy: str) -> LoweredFunction:
         candidates = []
         if strategy in ("fastest", "raw"):
             candidates.append(("raw chain product", chain.transform(0, "tool")))
-        if strategy in ("fastest", "simplified"):
+        if strategy == "simplified":
             candidates.append(("compact (simplified) transform", chain.simplified_transform(0, "tool")))
+        elif strategy == "fastest":
+            compact = _compact_or_none(chain, ("transform", 0, "tool"), lambda: chain.simplified_transform(0, "tool"))
+            if compact is not None:
+                candidates.append(("compact (simplified) transform", compact))
         lowered = [lower_function(angle_expansion(chain), list(T), (4, 4), (("q", robot.q),),
                                   robot.parameter_symbols, origin) for origin, T in candidates]
         return min(lowered, key=lambda candidate: candidate.cost)

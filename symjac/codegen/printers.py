@@ -23,6 +23,7 @@ from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 from sympy.printing.str import StrPrinter
 
+from symjac.dag import distinct_nodes
 from symjac.errors import CodegenError
 
 __all__ = [
@@ -287,8 +288,8 @@ class SymPyPrinter(StrPrinter):
         raise CodegenError(f"{type(expr).__name__} ({expr}) is not supported in generated code")
 
 
-def check_expression(expr: sp.Basic) -> None:
-    """Refuse, before anything is printed, every node a generated module cannot evaluate.
+def check_expression(*exprs: sp.Basic) -> None:
+    """Refuse, before anything is printed, every node of ``exprs`` a generated module cannot evaluate.
 
     Allowed: symbols, finite numbers, ``pi``, ``+``, ``*``, powers with rational exponents, ``sin`` and ``cos``.
 
@@ -300,7 +301,7 @@ def check_expression(expr: sp.Basic) -> None:
     ...
     symjac.errors.CodegenError: exp(x) is not supported in generated code (allowed: + * ** sin cos)
     """
-    for node in sp.preorder_traversal(expr):
+    for node in distinct_nodes(exprs):  # each shared subexpression once
         if isinstance(node, sp.Symbol | sp.Add | sp.Mul | sp.sin | sp.cos) or node is sp.pi:
             continue
         if isinstance(node, sp.Number):

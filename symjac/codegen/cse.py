@@ -1,0 +1,115 @@
+r"""Common subexpression elimination that stays fast on long chains.
+
+``sympy.cse(order="canonical")`` orders the arguments of every sum and product by their size *as trees*, and compares
+expressions as trees. The raw products of a long 3-D chain are graphs whose trees are exponentially larger (a
+20-joint snake's Jacobian: a few thousand distinct subexpressions, hundreds of millions of tree nodes), so SymPy's
+CSE alone took most of a minute there. When the trees are that large (more than :data:`TREE_LIMIT` nodes), every
+subexpression the graph shares is first given a name of its own, in evaluation order, which leaves only small trees
+for ``sympy.cse`` to work on. Smaller inputs (every catalog robot) go to ``sympy.cse`` unchanged.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator, Sequence
+
+import sympy as sp
+
+from symjac.dag import distinct_nodes, rebuild, with_args
+
+__all__ = ["TREE_LIMIT", "eliminate_common"]
+
+TREE_LIMIT = 100_000
+"""Tree nodes (shared subexpressions counted once per use) above which shared subexpressions are named first."""
+
+SMALL = 4  # a shared subexpression of fewer tree nodes (-s1, L*c2) is left inline: naming it saves nothing
+
+Temporaries = list[tuple[sp.Symbol, sp.Expr]]
+
+
+def eliminate_common(exprs: Sequence[sp.Expr]) -> tuple[Temporaries, list[sp.Expr]]:
+    """Temporaries ``_x0, _x1, ...`` in evaluation order and ``exprs`` in terms of them (deterministic).
+
+    Examples
+    --------
+    >>> x, y = sp.symbols("x y")
+    >>> eliminate_common([sp.sin(x) * y, sp.sin(x) * y + 1])
+    ([(_x0, y*sin(x))], [_x0, _x0 + 1])
+    """
+    names = sp.numbered_symbols("_x", real=True)
+    sizes = _tree_sizes(exprs)
+    if sum(sizes[id(e)] for e in exprs) <= TREE_LIMIT:
+        found, reduced = sp.cse(list(exprs), symbols=names, order="canonical")
+        return list(found), list(reduced)
+    definitions, named = _name_shared(exprs, sizes)
+    replacements, reduced = sp.cse([d for _, d in definitions] + named, symbols=_fresh("_y"), order="canonical")
+    steps = dict(replacements) | {h: d for (h, _), d in zip(definitions, reduced[:len(definitions)], strict=True)}
+    order = _evaluation_order([h for h, _ in definitions] + [y for y, _ in replacements], steps)
+    renaming: dict[sp.Symbol, sp.Expr] = {}
+    temporaries: Temporaries = []
+    for symbol in order:
+        value = steps[symbol].xreplace(renaming)
+        if value.is_Symbol:  # the shared subexpression was CSE'd to another name: use that one
+            renaming[symbol] = value
+            continue
+        renaming[symbol] = next(names)
+        temporaries.append((renaming[symbol], value))
+    return temporaries, [e.xreplace(renaming) for e in reduced[len(definitions):]]
+
+
+def _tree_sizes(exprs: Sequence[sp.Expr]) -> dict[int, int]:
+    """Each subexpression's size as a tree (by identity), computed once per distinct subexpression."""
+    sizes: dict[int, int] = {}
+    for node in distinct_nodes(exprs):
+        sizes[id(node)] = 1 + sum(sizes[id(arg)] for arg in node.args)
+    return sizes
+
+
+def _fresh(prefix: str) -> Iterator[sp.Symbol]:
+    """Symbols that no input can hold (``Dummy``), printed ``prefix0, prefix1, ...`` while they live."""
+    k = 0
+    while True:
+        yield sp.Dummy(f"{prefix}{k}", real=True)
+        k += 1
+
+
+def _name_shared(exprs: Sequence[sp.Expr], sizes: dict[int, int]) -> tuple[Temporaries, list[sp.Expr]]:
+    """Every subexpression used more than once (and not small) replaced by a name, definitions in evaluation order."""
+    nodes = distinct_nodes(exprs)
+    uses = Counter(id(arg) for node in nodes for arg in node.args)
+    uses.update(id(e) for e in exprs)  # an output used inside another output too
+    shared = {id(node) for node in nodes if uses[id(node)] > 1 and sizes[id(node)] >= SMALL}
+    definitions: Temporaries = []
+    names = _fresh("_h")
+
+    def step(node: sp.Basic, args: tuple[sp.Basic, ...]) -> sp.Basic:
+        value = with_args(node, args)
+        if id(node) not in shared:
+            return value
+        definitions.append((next(names), value))
+        return definitions[-1][0]
+
+    named = rebuild(exprs, step)
+    return definitions, named
+
+
+def _evaluation_order(symbols: list[sp.Symbol], steps: dict[sp.Symbol, sp.Expr]) -> list[sp.Symbol]:
+    """``symbols`` ordered so that each comes after the ones its value uses (depth first, in the given order)."""
+    order: list[sp.Symbol] = []
+    placed: set[sp.Symbol] = set()
+    rank = {symbol: k for k, symbol in enumerate(symbols)}
+    for root in symbols:
+        stack = [(root, False)]
+        while stack:
+            symbol, ready = stack.pop()
+            if symbol in placed:
+                continue
+            if ready:
+                placed.add(symbol)
+                order.append(symbol)
+                continue
+            stack.append((symbol, True))
+            needs = sorted((s for s in steps[symbol].free_symbols if s in steps and s not in placed),
+                           key=rank.__getitem__)
+            stack.extend((s, False) for s in reversed(needs))
+    return order

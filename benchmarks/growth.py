@@ -11,6 +11,8 @@ limit; once a method exceeds it, larger N of that family are skipped for it. A r
 (more than ``symjac.limits.TERM_LIMIT`` terms: the frame-{0} Jacobian of a long 3-D snake, which grows about 1.8x
 per joint) is refused by symjac within seconds; the table says "too large" and how long the refusal took.
 ``--frame middle`` asks for the Jacobian in frame {N // 2} instead, where each half of the chain stays short.
+``--form shared`` times the exact Jacobian with shared subexpressions (``simplify=False``: what code generation
+starts from) and counts its distinct subexpressions, which grow polynomially even where the expanded form cannot.
 
 The table gives seconds and the result's operation count (``sympy.count_ops``); the summary fits
 :math:`t \approx c\,N^k` by least squares in log-log coordinates and prints the exponent k per family and method.
@@ -64,28 +66,30 @@ def chain_of_family(family: str, n: int):  # type: ignore[no-untyped-def]  # a R
                                "joints": joints})
 
 
-def _one(family: str, n: int, method: str, frame: int) -> None:
+def _one(family: str, n: int, method: str, frame: int, form: str) -> None:
     """Measure one point in this process and print it as JSON (the child side of :func:`measure`)."""
     robot = chain_of_family(family, n)  # imports symjac before SymPy: symjac sizes SymPy's cache (see the README)
     import sympy as sp
 
+    from symjac.dag import distinct_nodes
     from symjac.errors import ResultTooLargeError
     from symjac.jacobian import jacobian
 
     start = time.perf_counter()
     try:
-        J = jacobian(robot, frame=frame, method=method)  # type: ignore[arg-type]
+        J = jacobian(robot, frame=frame, method=method, simplify=form == "compact")  # type: ignore[arg-type]
     except ResultTooLargeError:
         print(json.dumps({"seconds": time.perf_counter() - start, "ops": None, "refused": True}))
         return
     seconds = time.perf_counter() - start
-    print(json.dumps({"seconds": seconds, "ops": int(sp.count_ops(J)), "refused": False}))
+    size = int(sp.count_ops(J)) if form == "compact" else len(distinct_nodes(list(J)))  # a shared tree: its graph
+    print(json.dumps({"seconds": seconds, "ops": size, "refused": False}))
 
 
-def measure(family: str, n: int, method: str, limit: float, frame: str = "0") -> GrowthPoint:
+def measure(family: str, n: int, method: str, limit: float, frame: str = "0", form: str = "compact") -> GrowthPoint:
     """Time one point in a fresh process; ``None`` values if it does not finish within ``limit`` seconds."""
     at = n // 2 if frame == "middle" else int(frame)
-    command = [sys.executable, __file__, "--one", family, str(n), method, str(at)]
+    command = [sys.executable, __file__, "--one", family, str(n), method, str(at), form]
     try:
         done = subprocess.run(command, capture_output=True, text=True, timeout=limit, check=True)
     except subprocess.TimeoutExpired:
@@ -138,19 +142,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--limit", type=float, default=60.0, help="seconds per point before giving up (default 60)")
     parser.add_argument("--frame", choices=("0", "middle"), default="0",
                         help="the Jacobian's frame: {0} (default) or {N // 2}")
+    parser.add_argument("--form", choices=("compact", "shared"), default="compact",
+                        help="compact: simplified, operations counted (default); shared: simplify=False, distinct "
+                             "subexpressions counted")
     parser.add_argument("--plot", metavar="FILE", help="save a log-log plot (PNG) here")
-    parser.add_argument("--one", nargs=4, metavar=("FAMILY", "N", "METHOD", "FRAME"), help=argparse.SUPPRESS)
+    parser.add_argument("--one", nargs=5, metavar=("FAMILY", "N", "METHOD", "FRAME", "FORM"), help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.one:
-        _one(args.one[0], int(args.one[1]), args.one[2], int(args.one[3]))
+        _one(args.one[0], int(args.one[1]), args.one[2], int(args.one[3]), args.one[4])
         return 0
     points: list[GrowthPoint] = []
-    print(f"frame {'{N // 2}' if args.frame == 'middle' else '{0}'}")
-    print(f"{'family':<9}{'N':>4}  {'method':<22}{'seconds':>9}{'ops':>9}", flush=True)
+    print(f"frame {'{N // 2}' if args.frame == 'middle' else '{0}'}, {args.form} form")
+    print(f"{'family':<9}{'N':>4}  {'method':<22}{'seconds':>9}{'ops' if args.form == 'compact' else 'nodes':>9}",
+          flush=True)
     for family in args.family or FAMILIES:
         for method in args.method or METHODS:
             for n in args.sizes or FAMILIES[family]:
-                point = measure(family, n, method, args.limit, args.frame)
+                point = measure(family, n, method, args.limit, args.frame, args.form)
                 points.append(point)
                 if point.seconds is None:
                     shown = f"{'> ' + format(args.limit, 'g'):>9}{'-':>9}"

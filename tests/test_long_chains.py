@@ -133,3 +133,15 @@ def test_link_transforms_are_simplified_in_their_own_joint_angle_only(monkeypatc
     assert T.free_symbols - {theta} <= set(chain.robot.parameter_symbols)
     assert sp.simplify(T - chain.transform(29, 30)) == sp.zeros(4, 4)
     assert T[0, 0] == sp.cos(theta) and T[0, 3] == sp.Symbol("L", real=True) * sp.cos(theta)
+
+
+def test_a_long_chain_is_announced_before_fk_but_shown_at_once(tmp_path, capsys):
+    path = tmp_path / "planar45.toml"
+    path.write_text('name = "planar45"\nconvention = "standard"\n'
+                    + '[[joints]]\ntype = "revolute"\nalpha = 0\na = 0.1\n' * 45)
+    assert main(["show", str(path), "--format", "pretty"]) == 0
+    shown = capsys.readouterr()
+    assert shown.err == "" and "T_44_45" in shown.out
+    assert main(["fk", str(path), "--format", "pretty"]) == 0
+    error = capsys.readouterr().err
+    assert error.startswith("symjac: note: planar45 has 45 joints") and "Narrow the request" in error

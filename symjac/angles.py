@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 import sympy as sp
+from sympy.core.function import AppliedUndef
 
 from symjac.dag import rebuild, with_args
 
@@ -254,7 +255,8 @@ def _fold_all(exprs: Sequence[sp.Expr]) -> list[sp.Expr]:
         if node.is_Atom:
             numeric[id(node)] = bool(node.is_number)
             return node
-        numeric[id(node)] = all(numeric[id(arg)] for arg in node.args)
+        numeric[id(node)] = (isinstance(node, sp.Expr) and not isinstance(node, AppliedUndef)
+                             and all(numeric[id(arg)] for arg in node.args))
         if numeric[id(node)]:
             return sp.Float(sp.N(node, 20), 17)  # from the exact node: the arguments' floats are not used
         return with_args(node, args)

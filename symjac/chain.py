@@ -288,12 +288,17 @@ class Chain:
         """The basis of the one link ending at frame position ``position``: its own joint angle, if revolute.
 
         A link transform depends on no other joint, so a basis of all n angles (and their alternatives) would write
-        the same result after n times the work: a 200-joint ``symjac show`` built 200 such bases.
+        the same result after n times the work: a 200-joint ``symjac show`` built 200 such bases. The angle is the
+        one :meth:`_new_basis` measures from the frame before: the joint angle with its offset, plus the constant
+        turn about z from the previous axis when that axis is parallel (general joints), so
+        ``cos(theta3 + pi/6)`` stays one cosine.
         """
         joint = self.robot.joints[position - 1] if 1 <= position <= self.n else None
         if joint is None or not joint.is_revolute:
             return (AngleBasis((), ()),)
-        return (AngleBasis((joint.variable,), (joint.angle,)),)
+        group = next(g for g in self.parallel_groups if position in g)
+        angle = joint.angle + (self._z_offset(position) if position > group[0] else 0)
+        return (AngleBasis((joint.variable,), (angle,)),)
 
     def _basis(self, references: tuple[int, ...]) -> AngleBasis:
         """The angle basis measuring each parallel group from its reference frame (kept: frames share most)."""

@@ -18,11 +18,13 @@ import numpy as np
 import pytest
 import sympy as sp
 from reference import evaluate, finite_difference_jacobian
+from sympy.core.cache import clear_cache
 
 from symjac import Chain, jacobian, load_robot, robot_from_mapping
 from symjac.angles import fold_numbers
 from symjac.codegen import TARGETS, generate, write_module
 from symjac.codegen.cse import eliminate_common
+from symjac.codegen.layout import LINE_WIDTH, unpack
 from symjac.codegen.printers import check_expression
 from symjac.dag import distinct_nodes, free_symbols
 
@@ -74,6 +76,37 @@ def test_naming_shared_subexpressions_keeps_the_values(monkeypatch):
             values[symbol] = value.xreplace(values).evalf()
         assert [float(e.xreplace(values)) for e in reduced] == pytest.approx(
             [float(e.evalf(subs=point)) for e in outputs], rel=1e-12)
+
+
+def test_names_depend_on_structure_not_on_which_equal_subtrees_are_one_object(monkeypatch):
+    monkeypatch.setattr(cse, "TREE_LIMIT", 0)
+    first, x, y = _deep(5)
+    clear_cache()
+    second, _, _ = _deep(5)  # equal to first, but built anew: other objects
+    assert second == first and second is not first
+    assert eliminate_common([first * x, second + y]) == eliminate_common([first * x, first + y])
+
+
+@pytest.mark.parametrize("count", range(1, 40))
+def test_unpacking_fits_the_line_width_whatever_the_count(count):
+    lines = unpack([f"L{k}" for k in range(1, count + 1)], "parameters", "    ")
+    assert all(len(line) <= LINE_WIDTH for line in lines)
+    namespace: dict[str, object] = {"parameters": tuple(range(count))}
+    exec("\n".join(line[4:] for line in lines), namespace)
+    assert [namespace[f"L{k}"] for k in range(1, count + 1)] == list(range(count))
+
+
+def test_long_parameter_lists_are_wrapped_in_every_target():
+    names = [f"length{k:02d}" for k in range(1, 26)]
+    joints = [{"type": "revolute", "alpha": 0, "a": " + ".join(names[8 * i:8 * i + 8] or ["1"])} for i in range(4)]
+    robot = robot_from_mapping({"name": "many", "convention": "standard", "joints": joints,
+                                "parameters": {name: 0.01 for name in names}})
+    assert len(robot.parameters) == 25
+    chain = Chain(robot)
+    for target in ("python", "numpy", "lambdify"):
+        namespace: dict[str, object] = {}
+        exec(compile(generate(chain, target), f"many_{target}.py", "exec"), namespace)  # lines checked on render
+        assert namespace["selftest"](samples=3) < 1e-6  # type: ignore[operator]
 
 
 def test_puma_module_is_the_same_function_with_shared_subexpressions_named_first(monkeypatch):

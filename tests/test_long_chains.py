@@ -12,6 +12,7 @@ from symjac.cli import main
 from symjac.jacobian import METHODS
 from symjac.reporting import reporting_to
 from symjac.simplify import simplify_matrix, simplify_product
+from symjac.urdf import robot_from_urdf
 
 LENGTH = sp.Rational(1, 10)
 
@@ -145,3 +146,16 @@ def test_a_long_chain_is_announced_before_fk_but_shown_at_once(tmp_path, capsys)
     assert main(["fk", str(path), "--format", "pretty"]) == 0
     error = capsys.readouterr().err
     assert error.startswith("symjac: note: planar45 has 45 joints") and "Narrow the request" in error
+
+
+def test_a_general_link_keeps_its_turn_about_z_inside_one_cosine():
+    """A URDF joint whose origin turns pi/6 about a parallel axis: ``cos(theta3 + pi/6)``, as in the full basis."""
+    joints = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l{i - 1}"/><child link="l{i}"/>'
+        f'<origin xyz="{0.1 * i} 0 0" rpy="0 0 {yaw}"/><axis xyz="0 0 1"/><limit lower="-3" upper="3"/></joint>'
+        for i, yaw in ((1, 0), (2, 0), (3, 0.5235987755982988)))
+    links = "".join(f'<link name="l{i}"/>' for i in range(4))
+    robot = robot_from_urdf(f'<robot name="yawed">{links}{joints}</robot>')
+    theta3 = robot.joints[2].variable
+    T = Chain(robot).simplified_transform(2, 3)
+    assert T[0, 0] == sp.cos(theta3 + sp.pi / 6) and T[1, 0] == sp.sin(theta3 + sp.pi / 6)

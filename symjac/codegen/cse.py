@@ -2,7 +2,7 @@ r"""Common subexpression elimination that stays fast on long chains.
 
 ``sympy.cse(order="canonical")`` orders the arguments of every sum and product by their size *as trees*, and compares
 expressions as trees. The raw products of a long 3-D chain are graphs whose trees are exponentially larger (a
-20-joint snake's Jacobian: a few thousand distinct subexpressions, hundreds of millions of tree nodes), so SymPy's
+20-joint snake's Jacobian: a few thousand distinct subexpressions, millions of tree nodes), so SymPy's
 CSE alone took most of a minute there. When the trees are that large (more than :data:`TREE_LIMIT` nodes), every
 subexpression the graph shares is first given a name of its own, in evaluation order, which leaves only small trees
 for ``sympy.cse`` to work on. Smaller inputs (every catalog robot) go to ``sympy.cse`` unchanged.
@@ -11,7 +11,7 @@ for ``sympy.cse`` to work on. Smaller inputs (every catalog robot) go to ``sympy
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterator, Sequence
+from collections.abc import Hashable, Iterator, Sequence
 
 import sympy as sp
 
@@ -74,20 +74,36 @@ def _fresh(prefix: str) -> Iterator[sp.Symbol]:
 
 
 def _name_shared(exprs: Sequence[sp.Expr], sizes: dict[int, int]) -> tuple[Temporaries, list[sp.Expr]]:
-    """Every subexpression used more than once (and not small) replaced by a name, definitions in evaluation order."""
+    """Every subexpression used more than once (and not small) replaced by a name, definitions in evaluation order.
+
+    Subexpressions are told apart by structure, not identity: whether two equal subtrees are one object depends on
+    SymPy's cache, and the generated code must not. Each distinct object gets the index of its structure (its
+    function and its arguments' indices), computed once, so equal trees are never compared as trees.
+    """
     nodes = distinct_nodes(exprs)
-    uses = Counter(id(arg) for node in nodes for arg in node.args)
-    uses.update(id(e) for e in exprs)  # an output used inside another output too
-    shared = {id(node) for node in nodes if uses[id(node)] > 1 and sizes[id(node)] >= SMALL}
+    structure: dict[int, int] = {}  # id(node) -> index of its structure
+    indices: dict[Hashable, int] = {}
+    first: list[sp.Basic] = []  # the first node of each structure
+    for node in nodes:
+        key: Hashable = (type(node), node) if not node.args else (node.func, *(structure[id(a)] for a in node.args))
+        structure[id(node)] = indices.setdefault(key, len(indices))
+        if structure[id(node)] == len(first):
+            first.append(node)
+    uses = Counter(structure[id(arg)] for node in first for arg in node.args)
+    uses.update(structure[id(e)] for e in exprs)  # an output used inside another output too
+    shared = {structure[id(node)] for node in first if uses[structure[id(node)]] > 1 and sizes[id(node)] >= SMALL}
     definitions: Temporaries = []
+    name_of: dict[int, sp.Symbol] = {}
     names = _fresh("_h")
 
     def step(node: sp.Basic, args: tuple[sp.Basic, ...]) -> sp.Basic:
-        value = with_args(node, args)
-        if id(node) not in shared:
-            return value
-        definitions.append((next(names), value))
-        return definitions[-1][0]
+        index = structure[id(node)]
+        if index not in shared:
+            return with_args(node, args)
+        if index not in name_of:
+            name_of[index] = next(names)
+            definitions.append((name_of[index], with_args(node, args)))
+        return name_of[index]
 
     named = rebuild(exprs, step)
     return definitions, named

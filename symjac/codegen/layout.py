@@ -148,8 +148,9 @@ def unpack(names: Sequence[str], value: str, indent: str) -> list[str]:
     line = f"{indent}{', '.join(names)}{',' if len(names) == 1 else ''} = {value}"
     if len(line) <= LINE_WIDTH:
         return [line]
-    lines = tuple_lines(indent, names)  # "(", the names a group per line, ")"
-    lines[-1] += f" = {value}"
+    tail = f" = {value}"
+    lines = tuple_lines(indent, names, width=LINE_WIDTH - len(tail))  # "(", the names a group per line, ")"
+    lines[-1] += tail
     return lines
 
 

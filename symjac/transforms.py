@@ -271,30 +271,22 @@ class Composition:
         self.position = sp.zeros(3, 1) if position is None else position
         self.pending = pending  # a rotation not yet multiplied into self.rotation, merged with the next if it can be
 
-    def _flushed(self) -> sp.Matrix:
-        if self.pending is not None and self.pending.value != 0:
-            return self.rotation * rotation(self.pending.axis, self.pending.value)
-        return self.rotation
-
     def then(self, motions: Iterable[Motion | sp.Matrix]) -> Composition:
         """The product so far followed by ``motions`` (a new composition)."""
         rotation_matrix, position, pending = self.rotation, self.position, self.pending
         for motion in motions:
             if isinstance(motion, sp.MatrixBase):
-                rotation_matrix = Composition(rotation_matrix, position, pending)._flushed()
-                pending = None
+                rotation_matrix, pending = _flush(rotation_matrix, pending), None
                 position = position + rotation_matrix * motion[:3, 3]
                 rotation_matrix = rotation_matrix * motion[:3, :3]
             elif motion.kind == "R":
                 if pending is not None and pending.axis == motion.axis:
                     pending = Motion("R", motion.axis, pending.value + motion.value)
                 else:
-                    rotation_matrix = Composition(rotation_matrix, position, pending)._flushed()
-                    pending = motion
+                    rotation_matrix, pending = _flush(rotation_matrix, pending), motion
             elif motion.value != 0:
                 if pending is not None and pending.axis != motion.axis:
-                    rotation_matrix = Composition(rotation_matrix, position, pending)._flushed()
-                    pending = None
+                    rotation_matrix, pending = _flush(rotation_matrix, pending), None
                 # a translation along the pending rotation's own axis is not changed by that rotation
                 unit = sp.zeros(3, 1)
                 unit[_AXIS_INDEX[motion.axis]] = motion.value
@@ -303,4 +295,11 @@ class Composition:
 
     def result(self) -> tuple[sp.Matrix, sp.Matrix]:
         """:math:`(R, p)` of the product so far."""
-        return self._flushed(), self.position
+        return _flush(self.rotation, self.pending), self.position
+
+
+def _flush(rotation_matrix: sp.Matrix, pending: Motion | None) -> sp.Matrix:
+    """``rotation_matrix`` times the pending rotation about one axis, if there is one (and it is not zero)."""
+    if pending is not None and pending.value != 0:
+        return rotation_matrix * rotation(pending.axis, pending.value)
+    return rotation_matrix

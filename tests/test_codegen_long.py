@@ -61,6 +61,15 @@ def test_graph_walks_visit_each_shared_subexpression_once():
     assert free_symbols([folded]) == {x, y}
 
 
+def test_only_expressions_that_are_numbers_are_folded():
+    x = sp.Symbol("x")
+    undefined = sp.Function("f")(1) * x  # numeric arguments, but not a number: left for lower() to refuse clearly
+    assert fold_numbers(undefined) == undefined
+    folded = fold_numbers(sp.cos(sp.Rational(1, 5)) * x)
+    coefficient, rest = folded.as_coeff_Mul()
+    assert rest == x and isinstance(coefficient, sp.Float) and float(coefficient) == pytest.approx(0.9800665778412416)
+
+
 def test_naming_shared_subexpressions_keeps_the_values(monkeypatch):
     expr, x, y = _deep(6)
     outputs = [expr, expr * x + 1, sp.cos(y)]

@@ -184,17 +184,12 @@ def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, 
 
 def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
             simplify: bool) -> sp.ImmutableMatrix:
-    if simplify and method in ("velocity_propagation", "force_propagation"):  # frame change on normal forms
+    if simplify and method != "cross_product":  # from the frame the method works in, link by link on normal forms
+        source = 0 if method == "differentiation" else chain.n
+        raw = jacobian(chain, source, point, method, simplify=False)
         report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
-        if method == "velocity_propagation":
-            J_n = velocity_propagation(chain, point, simplify=False).jacobian
-        else:
-            J_n = force_propagation(chain, point, simplify=False).jacobian
-        return sp.ImmutableMatrix(simplify_product([*_tip_rotations(chain, frame), J_n], chain.angle_bases(frame)))
-    if simplify and method == "differentiation" and chain.position(frame) != 0:  # frame change on normal forms
-        J_0 = jacobian(chain, 0, point, method, simplify=False)
-        report(f"simplifying the differentiation Jacobian in frame {frame}")
-        return sp.ImmutableMatrix(simplify_product([*_link_rotations(chain, frame, 0), J_0], chain.angle_bases(frame)))
+        factors = [*_link_rotations(chain, frame, source), raw]
+        return sp.ImmutableMatrix(simplify_product(factors, chain.angle_bases(frame)))
     if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
         raw = jacobian(chain, frame, point, method, simplify=False)
         report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
@@ -306,16 +301,12 @@ def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr
     return _from_tip_frame(chain, frame, force_propagation(chain, point, simplify=False).jacobian)
 
 
-def _tip_rotations(chain: Chain, frame: Frame) -> list[sp.Matrix]:
-    r"""The link-by-link frame changes from {n} to {k}: :math:`D_{k,k\pm1}, \dots, D_{n\mp1,n}`, leftmost first.
-
-    With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`, their product is :math:`\mathrm{diag}({}^k_nR, {}^k_nR)`.
-    """
-    return _link_rotations(chain, frame, chain.n)
-
-
 def _link_rotations(chain: Chain, frame: Frame, source: int) -> list[sp.Matrix]:
-    r"""The link-by-link frame changes from {s} to {k}, leftmost first; their product is diag(^k_sR, ^k_sR)."""
+    r"""The link-by-link frame changes from {s} to {k}: :math:`D_{k,k\pm1}, \dots, D_{s\mp1,s}`, leftmost first.
+
+    With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`, their product is :math:`\mathrm{diag}({}^k_sR, {}^k_sR)`;
+    multiplied on normal forms one link at a time, every intermediate is the Jacobian in a frame between.
+    """
     rotations = []
     position = chain.position(frame)
     while position != source:

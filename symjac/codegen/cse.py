@@ -11,7 +11,7 @@ for ``sympy.cse`` to work on. Smaller inputs (every catalog robot) go to ``sympy
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Hashable, Iterator, Sequence
+from collections.abc import Hashable, Sequence
 
 import sympy as sp
 
@@ -42,7 +42,8 @@ def eliminate_common(exprs: Sequence[sp.Expr]) -> tuple[Temporaries, list[sp.Exp
         found, reduced = sp.cse(list(exprs), symbols=names, order="canonical")
         return list(found), list(reduced)
     definitions, named = _name_shared(exprs, sizes)
-    replacements, reduced = sp.cse([d for _, d in definitions] + named, symbols=_fresh("_y"), order="canonical")
+    helpers = sp.numbered_symbols("_y", cls=sp.Dummy, real=True)
+    replacements, reduced = sp.cse([d for _, d in definitions] + named, symbols=helpers, order="canonical")
     steps = dict(replacements) | {h: d for (h, _), d in zip(definitions, reduced[:len(definitions)], strict=True)}
     order = _evaluation_order([h for h, _ in definitions] + [y for y, _ in replacements], steps)
     renaming: dict[sp.Symbol, sp.Expr] = {}
@@ -63,14 +64,6 @@ def _tree_sizes(exprs: Sequence[sp.Expr]) -> dict[int, int]:
     for node in distinct_nodes(exprs):
         sizes[id(node)] = 1 + sum(sizes[id(arg)] for arg in node.args)
     return sizes
-
-
-def _fresh(prefix: str) -> Iterator[sp.Symbol]:
-    """Symbols that no input can hold (``Dummy``), printed ``prefix0, prefix1, ...`` while they live."""
-    k = 0
-    while True:
-        yield sp.Dummy(f"{prefix}{k}", real=True)
-        k += 1
 
 
 def _name_shared(exprs: Sequence[sp.Expr], sizes: dict[int, int]) -> tuple[Temporaries, list[sp.Expr]]:
@@ -94,7 +87,7 @@ def _name_shared(exprs: Sequence[sp.Expr], sizes: dict[int, int]) -> tuple[Tempo
     shared = {structure[id(node)] for node in first if uses[structure[id(node)]] > 1 and sizes[id(node)] >= SMALL}
     definitions: Temporaries = []
     name_of: dict[int, sp.Symbol] = {}
-    names = _fresh("_h")
+    names = sp.numbered_symbols("_h", cls=sp.Dummy, real=True)  # no input can hold a Dummy
 
     def step(node: sp.Basic, args: tuple[sp.Basic, ...]) -> sp.Basic:
         index = structure[id(node)]

@@ -1,8 +1,8 @@
 r"""Acceleration-level benchmark: ``python benchmarks/acceleration.py [ROBOT ...]``.
 
 For each robot (default: the whole catalog, then snake arms of 6, 8 and 10 joints to show how the cost grows) it
-derives, each from a cold start (:func:`symjac.chain.clear_caches`, so the Jacobian is derived again too), the
-simplified kinematic Hessian in frame {0}, the time derivative of the Jacobian and the bias acceleration
+derives, each from a cold start (:func:`symjac.kinematics.chain.clear_caches`, so the Jacobian is derived again too),
+the simplified kinematic Hessian in frame {0}, the time derivative of the Jacobian and the bias acceleration
 :math:`\dot J\dot q`, and prints wall times and operation counts (``sympy.count_ops``). The last column fits the
 growth exponent p of time ~ n^p over the snakes. It measures and asserts nothing, so it never flakes.
 Targets on this 2-core machine (issue 16): PUMA 560 Hessian <= 2 s, Panda Hessian <= 10 s.
@@ -23,10 +23,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the snake arm of the
 
 from derivation import snake
 
-from symjac.acceleration import bias_acceleration, hessian, jacobian_derivative
-from symjac.chain import clear_caches
-from symjac.io import catalog, load_robot
-from symjac.model import Robot
+from symjac.kinematics.acceleration import bias_acceleration, hessian, jacobian_derivative
+from symjac.kinematics.chain import clear_caches
+from symjac.model.io import catalog, load_robot
+from symjac.model.robot import Robot
 
 __all__ = ["cold", "main"]
 

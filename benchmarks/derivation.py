@@ -5,8 +5,8 @@ cached transforms) in frame {0}, then in every other frame, and prints the wall 
 (``sympy.count_ops``) of frame {0} and of the frame with the fewest operations, and the time to derive every
 simplified step of the velocity and the force propagation (what ``symjac jacobian --steps`` prints). It measures;
 it asserts nothing, so it never flakes. ``--snake N`` adds an N-joint snake arm (8 and 10 by default). The last
-column is the time to the full singularity report (:func:`symjac.singularity.singularities`: determinant, factors
-solved, classified and explained, or the minors of a redundant arm) from a cold cache.
+column is the time to the full singularity report (:func:`symjac.analysis.singularity.determinant.singularities`:
+determinant, factors solved, classified and explained, or the minors of a redundant arm) from a cold cache.
 Targets on a 2-core machine: PUMA 560 <= 1 s, UR5 <= 2 s, Panda <= 10 s and <= 1500 operations.
 """
 
@@ -19,14 +19,14 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from symjac.chain import clear_caches
+from symjac.analysis.singularity.singularities import singularities
 from symjac.errors import SymjacError
-from symjac.io import catalog, load_robot
-from symjac.jacobian import jacobian
-from symjac.model import Robot
-from symjac.propagation import force_propagation, velocity_propagation
-from symjac.robot_file import robot_from_mapping
-from symjac.singular_report import singularities
+from symjac.kinematics.chain import clear_caches
+from symjac.kinematics.jacobian import jacobian
+from symjac.kinematics.propagation import force_propagation, velocity_propagation
+from symjac.model.io import catalog, load_robot
+from symjac.model.robot import Robot
+from symjac.model.robot_file import robot_from_mapping
 
 __all__ = ["DerivationTiming", "main", "snake", "time_derivation", "time_singularities"]
 

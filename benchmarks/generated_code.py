@@ -36,9 +36,9 @@ import numpy as np
 import sympy as sp
 
 from symjac.codegen import TARGETS, describe, generate, write_module
-from symjac.io import load_robot
-from symjac.jacobian import jacobian
-from symjac.model import Robot
+from symjac.kinematics.jacobian import jacobian
+from symjac.model.io import load_robot
+from symjac.model.robot import Robot
 
 __all__ = ["Measurement", "main", "measure", "measure_acceleration"]
 

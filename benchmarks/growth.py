@@ -8,7 +8,7 @@ How the cost of the simplified Jacobian in frame {0} grows with the number of jo
 
 Every point (family, N, method) runs in a fresh Python process (cold: no SymPy cache, no derived chain), with a time
 limit; once a method exceeds it, larger N of that family are skipped for it. A result too large to write out
-(more than ``symjac.limits.TERM_LIMIT`` terms: the frame-{0} Jacobian of a long 3-D snake, which grows about 1.8x
+(more than ``symjac.symbolic.size.TERM_LIMIT`` terms: the frame-{0} Jacobian of a long 3-D snake, which grows about 1.8x
 per joint) is refused by symjac within seconds; the table says "too large" and how long the refusal took.
 ``--frame middle`` asks for the Jacobian in frame {N // 2} instead, where each half of the chain stays short.
 ``--form shared`` times the exact Jacobian with shared subexpressions (``simplify=False``: what code generation
@@ -51,7 +51,7 @@ class GrowthPoint:
 
 def chain_of_family(family: str, n: int):  # type: ignore[no-untyped-def]  # a Robot; imported lazily
     """The robot of ``family`` with ``n`` joints (see the module docstring)."""
-    from symjac.robot_file import robot_from_mapping
+    from symjac.model.robot_file import robot_from_mapping
 
     if family == "planar":
         joints = [{"type": "revolute", "alpha": 0, "a": 0.1} for _ in range(n)]
@@ -71,9 +71,9 @@ def _one(family: str, n: int, method: str, frame: int, form: str) -> None:
     robot = chain_of_family(family, n)  # imports symjac before SymPy: symjac sizes SymPy's cache (see the README)
     import sympy as sp
 
-    from symjac.dag import distinct_nodes
     from symjac.errors import ResultTooLargeError
-    from symjac.jacobian import jacobian
+    from symjac.kinematics.jacobian import jacobian
+    from symjac.symbolic.dag import distinct_nodes
 
     start = time.perf_counter()
     try:

@@ -32,7 +32,7 @@ import sympy as sp
 from IPython.display import Math, display
 
 from symjac import forward_kinematics, jacobian, jacobian_of, latex, load_robot, numeric_jacobian
-from symjac.exercises import check
+from symjac.teaching.exercises import check
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)

@@ -28,8 +28,8 @@ import sympy as sp
 from IPython.display import Markdown, Math, display
 
 from symjac import chain_of, change_frame, forward_kinematics, is_identity, jacobian, latex, load_robot
-from symjac.exercises import check
-from symjac.simplify import AngleBasis
+from symjac.symbolic.simplify import AngleBasis
+from symjac.teaching.exercises import check
 
 robot = load_robot("stanford")
 chain = chain_of(robot)
@@ -105,7 +105,7 @@ print("operations in frame 0:", sp.count_ops(J_diff), " in frame 3:", sp.count_o
 # derivation; `symjac errata` prints the whole errata sheet. Two of the Stanford arm's matrices have misprints:
 
 # %%
-from symjac.errata import compare, formula  # noqa: E402
+from symjac.teaching.errata import compare, formula  # noqa: E402
 
 for identifier in ("000-eq4.87", "000-s4.11.1-J"):
     result = compare(formula(identifier))

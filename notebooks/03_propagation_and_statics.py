@@ -41,8 +41,8 @@ from symjac import (
     velocity_propagation,
     wrench_between,
 )
-from symjac.exercises import check
 from symjac.printing import propagation_steps
+from symjac.teaching.exercises import check
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)

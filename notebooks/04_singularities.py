@@ -31,9 +31,9 @@ import sympy as sp
 from IPython.display import Math, display
 
 from symjac import latex, load_robot, numeric_jacobian, rates_along_path, singularities
-from symjac.exercises import check
+from symjac.analysis.spaces import jacobian_spaces, symbolic_spaces
 from symjac.printing import singularity_summary
-from symjac.spaces import jacobian_spaces, symbolic_spaces
+from symjac.teaching.exercises import check
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)

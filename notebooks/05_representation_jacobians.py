@@ -39,7 +39,7 @@ from symjac import (
     representation_jacobian_at,
     rotation_from,
 )
-from symjac.exercises import check
+from symjac.teaching.exercises import check
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)

@@ -33,7 +33,7 @@ import sympy as sp
 
 from symjac import determinant, jacobian, load_robot, numeric_jacobian
 from symjac.codegen import generate, write_module
-from symjac.exercises import check
+from symjac.teaching.exercises import check
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)

@@ -38,13 +38,13 @@ from symjac import (
     hessian_slice,
     jacobian,
     jacobian_derivative,
-    joint_rates,
+    joint_rate_symbols,
     latex,
     load_robot,
     log_det_gradient,
     manipulability_gradient,
 )
-from symjac.exercises import check
+from symjac.teaching.exercises import check
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)
@@ -106,7 +106,7 @@ display(Math(r"\frac{d}{dt}\,{}^2J = " + latex(jacobian_derivative(planar, frame
 # centripetal terms act as a disturbance the PD part has to fight. We compile the symbolic results to NumPy once.
 
 # %%
-rates = joint_rates(planar)
+rates = joint_rate_symbols(planar)
 values = {s: float(v) for s, v in planar.defaults.items()}
 
 x_of = sp.lambdify([planar.q], forward_kinematics(planar)[:2, 3].xreplace(values), "numpy")
@@ -222,7 +222,7 @@ print(f"w grew from {history[0, 0]:.2e} to {history[-1, 0]:.2e}; theta5 from {hi
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
 #
 # 1. Write the $x$ component of the planar 2R arm's bias acceleration $\dot J\dot q$ in frame {0} (use the rate
-#    symbols `joint_rates(planar)`).
+#    symbols `joint_rate_symbols(planar)`).
 # 2. The planar 2R arm's determinant is $L_1 L_2 s_2$. What is its barrier term $\partial \log|\det J| /
 #    \partial\theta_2$?
 # 3. The 2R arm is stretched out ($\theta_1 = \theta_2 = 0$) and turns as a whole at $\dot\theta_1 = 1$ rad/s,

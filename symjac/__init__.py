@@ -19,55 +19,15 @@ import os as _os
 _os.environ.setdefault("SYMPY_CACHE_SIZE", "10000")
 
 from symjac._version import __version__
-from symjac.acceleration import (
-    DERIVATIVE_METHODS,
-    bias_acceleration,
-    hessian,
-    hessian_slice,
-    jacobian_derivative,
-)
-from symjac.acceleration_propagation import (
-    AccelerationPropagation,
-    AccelerationStep,
-    acceleration_propagation,
-    joint_accelerations,
-)
-from symjac.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
-from symjac.codegen import JacobianRequest, generate, write_module
-from symjac.errors import (
-    ArgumentError,
-    CodegenError,
-    ConversionError,
-    ExpressionError,
-    FrameError,
-    RepresentationError,
-    ResultTooLargeError,
-    RobotFileError,
-    SymjacError,
-    UnknownRobotError,
-)
-from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
-from symjac.jacobian import METHODS, ROW_NAMES, change_frame, jacobian, jacobian_of, rows_from_names, shift_point
-from symjac.manipulability import (
+from symjac.analysis.inverse_rates import damped_least_squares, inverse_rates, rates_along_path
+from symjac.analysis.manipulability import (
     BarrierTerm,
     LogDetGradient,
     ManipulabilityGradient,
     log_det_gradient,
     manipulability_gradient,
 )
-from symjac.model import Convention, FixedTransform, Joint, JointType, Parameter, Robot
-from symjac.numeric import evaluate_at, numeric_jacobian
-from symjac.printing import latex, pretty
-from symjac.propagation import (
-    ForcePropagation,
-    VelocityPropagation,
-    force_propagation,
-    joint_rates,
-    velocity_propagation,
-    wrench_symbols,
-)
-from symjac.rates import damped_least_squares, inverse_rates, rates_along_path
-from symjac.representations import (
+from symjac.analysis.representations import (
     REPRESENTATIONS,
     EulerConvention,
     RepresentationJacobian,
@@ -81,14 +41,62 @@ from symjac.representations import (
     representation_jacobian_derivative_at,
     rotation_from,
 )
-from symjac.robot_file import robot_from_mapping, robot_to_mapping
-from symjac.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
-from symjac.singular_report import LimitStatus, SingularFactor, SingularityReport, singularities
-from symjac.singularity import Determinant, determinant
-from symjac.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
-from symjac.statics import joint_torques, wrench_between
-from symjac.transforms import twist_transform, wrench_transform
-from symjac.urdf import robot_from_urdf
+from symjac.analysis.singularity.determinant import Determinant, determinant
+from symjac.analysis.singularity.singularities import LimitStatus, SingularFactor, SingularityReport, singularities
+from symjac.analysis.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
+from symjac.codegen import JacobianRequest, generate, write_module
+from symjac.errors import (
+    ArgumentError,
+    CodegenError,
+    ConversionError,
+    ExpressionError,
+    FrameError,
+    RepresentationError,
+    ResultTooLargeError,
+    RobotFileError,
+    SymjacError,
+    UnknownRobotError,
+)
+from symjac.kinematics.acceleration import (
+    DERIVATIVE_METHODS,
+    bias_acceleration,
+    hessian,
+    hessian_slice,
+    jacobian_derivative,
+)
+from symjac.kinematics.acceleration_propagation import (
+    AccelerationPropagation,
+    AccelerationStep,
+    acceleration_propagation,
+    joint_accelerations,
+)
+from symjac.kinematics.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
+from symjac.kinematics.jacobian import (
+    METHODS,
+    ROW_NAMES,
+    change_frame,
+    jacobian,
+    jacobian_of,
+    rows_from_names,
+    shift_point,
+)
+from symjac.kinematics.numeric import evaluate_at, numeric_jacobian
+from symjac.kinematics.propagation import (
+    ForcePropagation,
+    VelocityPropagation,
+    force_propagation,
+    joint_rate_symbols,
+    velocity_propagation,
+    wrench_symbols,
+)
+from symjac.kinematics.statics import joint_torques, wrench_between
+from symjac.model.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
+from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Parameter, Robot
+from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
+from symjac.model.urdf import robot_from_urdf
+from symjac.printing import latex, pretty
+from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
+from symjac.symbolic.transforms import twist_transform, wrench_transform
 
 __all__ = [
     "DERIVATIVE_METHODS",
@@ -156,7 +164,7 @@ __all__ = [
     "jacobian_of",
     "jacobian_spaces",
     "joint_accelerations",
-    "joint_rates",
+    "joint_rate_symbols",
     "joint_torques",
     "latex",
     "load_robot",

@@ -2,6 +2,6 @@
 
 import sys
 
-from symjac.cli import main
+from symjac.cli.main import main
 
 sys.exit(main())

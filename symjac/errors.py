@@ -81,7 +81,7 @@ class ConversionError(SymjacError, ValueError):
 
 
 class ResultTooLargeError(SymjacError, ArithmeticError):
-    """A symbolic result would be too large to write out (see :data:`symjac.limits.TERM_LIMIT`).
+    """A symbolic result would be too large to write out (see :data:`symjac.symbolic.size.TERM_LIMIT`).
 
     Raised early, as soon as the normal forms pass the limit, so that a request whose answer grows exponentially
     with the chain (the frame-{0} Jacobian of a long chain of non-parallel axes) ends in seconds, not hours.

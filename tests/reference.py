@@ -43,7 +43,8 @@ def _rot_axis(axis: np.ndarray, angle: float) -> np.ndarray:
 
 
 def _alignment(axis: np.ndarray) -> np.ndarray:
-    """symjac's documented choice of frame {i} for a general joint: a rotation A with A e_z = u (see symjac.model)."""
+    """symjac's documented choice of frame {i} for a general joint: a rotation A with A e_z = u (see
+    symjac.model.robot)."""
     u = axis / np.linalg.norm(axis)
     A = np.eye(4)
     if abs(abs(u[2]) - 1) < 1e-15:

@@ -27,13 +27,13 @@ from symjac import (
     robot_to_mapping,
     urdf_catalog,
 )
-from symjac.acceleration import bias_acceleration, hessian, hessian_slice, jacobian_derivative
-from symjac.acceleration_propagation import acceleration_propagation, joint_accelerations
 from symjac.errors import ArgumentError, FrameError
+from symjac.kinematics.acceleration import bias_acceleration, hessian, hessian_slice, jacobian_derivative
+from symjac.kinematics.acceleration_propagation import acceleration_propagation, joint_accelerations
+from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.printing.steps import propagation_steps
-from symjac.propagation import joint_rates
-from symjac.simplify import AngleBasis, is_identity
-from symjac.trigpoly import image_of
+from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.trigpoly import image_of
 
 ROBOTS = sorted(catalog()) + sorted(urdf_catalog())
 RTOL = 1e-6
@@ -65,7 +65,7 @@ def _compile(robot, matrices: list[sp.MatrixBase]):
     shapes = [m.shape for m in matrices]
     stacked = sp.Matrix.vstack(*[sp.Matrix(m).reshape(m.rows * m.cols, 1) for m in matrices])
     stacked = stacked.xreplace(robot.defaults)
-    args = [list(robot.q), list(joint_rates(robot)), list(joint_accelerations(robot))]
+    args = [list(robot.q), list(joint_rate_symbols(robot)), list(joint_accelerations(robot))]
     function = sp.lambdify(args, stacked, modules="numpy", cse=True)
     ends = np.cumsum([rows * cols for rows, cols in shapes])
 
@@ -283,7 +283,7 @@ def test_full_tip_acceleration_is_J_qddot_plus_bias_symbolically():
 def test_planar_2r_bias_is_the_textbook_closed_form():
     robot = _robot("planar2r")
     L1, L2, t1, t2 = sp.symbols("L1 L2 theta1 theta2", real=True)
-    td1, td2 = joint_rates(robot)
+    td1, td2 = joint_rate_symbols(robot)
     expected = [-L1 * sp.cos(t1) * td1**2 - L2 * sp.cos(t1 + t2) * (td1 + td2) ** 2,
                 -L1 * sp.sin(t1) * td1**2 - L2 * sp.sin(t1 + t2) * (td1 + td2) ** 2, 0, 0, 0, 0]
     basis = AngleBasis.of(robot.q)

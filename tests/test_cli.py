@@ -1,4 +1,4 @@
-"""In-process tests of the ``symjac`` command line (``symjac.cli.main``)."""
+"""In-process tests of the ``symjac`` command line (``symjac.cli.main.main``)."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import json
 import pytest
 import sympy as sp
 
-from symjac.cli import main
-from symjac.io import catalog, load_robot, robot_to_toml
+from symjac.cli.main import main
+from symjac.model.io import catalog, load_robot, robot_to_toml
 
 BMATRIX = r"\begin{bmatrix}"
 
@@ -523,7 +523,7 @@ def test_json_output_round_trips_with_the_same_keys(capsys, command, robot):
 def test_no_handler_branches_on_the_format():
     import inspect
 
-    import symjac.cli as cli
+    import symjac.cli.main as cli
 
     assert "args.format" not in inspect.getsource(cli).replace("render(result, args.format", "")
 

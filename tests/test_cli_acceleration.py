@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symjac.chain import chain_of
-from symjac.cli import main
-from symjac.io import load_robot
-from symjac.numeric import numeric_at, numeric_jacobian
+from symjac.cli.main import main
+from symjac.kinematics.chain import chain_of
+from symjac.kinematics.numeric import numeric_at, numeric_jacobian
+from symjac.model.io import load_robot
 
 STEP = 1e-6
 

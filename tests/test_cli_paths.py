@@ -9,10 +9,10 @@ import threading
 
 import pytest
 
-import symjac.cli
+import symjac.cli.main
 from symjac import write_module
-from symjac.cli import main
-from symjac.io import catalog, urdf_catalog
+from symjac.cli.main import main
+from symjac.model.io import catalog, urdf_catalog
 
 FK_PLANAR2R = ["fk", "planar2r", "--format", "pretty"]
 
@@ -209,11 +209,11 @@ def test_ctrl_c_during_a_derivation_is_one_line_and_status_130(capsys, monkeypat
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(symjac.cli, "jacobian", interrupted)
+    monkeypatch.setattr(symjac.cli.main, "jacobian", interrupted)
     try:
         result = run(capsys, "jacobian", "planar2r")
     except KeyboardInterrupt:  # pragma: no cover - only when the CLI lets it through
-        pytest.fail("Ctrl-C escaped symjac.cli.main")
+        pytest.fail("Ctrl-C escaped symjac.cli.main.main")
     assert result == (130, "", "symjac: interrupted\n")
 
 
@@ -227,7 +227,7 @@ def test_unexpected_errors_are_one_line(capsys, monkeypatch, error, message):
     def failing(*args, **kwargs):
         raise error
 
-    monkeypatch.setattr(symjac.cli, "jacobian", failing)
+    monkeypatch.setattr(symjac.cli.main, "jacobian", failing)
     assert one_line_error(capsys, "jacobian", "planar2r") == f"symjac: error: {message}"
     monkeypatch.setenv("SYMJAC_TRACEBACK", "1")  # a developer can still see where it came from
     with pytest.raises(type(error)):

@@ -39,7 +39,7 @@ from symjac.codegen import (
     generate,
     write_module,
 )
-from symjac.codegen.layout import wrap_statement
+from symjac.codegen.source_layout import wrap_statement
 
 REPO = Path(__file__).resolve().parent.parent
 GOLDEN = Path(__file__).resolve().parent / "golden"
@@ -432,7 +432,7 @@ def test_write_module_is_atomic(tmp_path, monkeypatch):
 
 
 def test_command_line_generates_the_same_module(tmp_path, capsys):
-    from symjac.cli import main
+    from symjac.cli.main import main
 
     path = tmp_path / "puma.py"
     argv = ["codegen", "puma560", "--target", "numpy", "--frame", "0", "--frame", "3", "--point", "wrist",
@@ -452,7 +452,7 @@ def test_command_line_generates_the_same_module(tmp_path, capsys):
 
 def test_codegen_works_on_a_chain_loaded_from_urdf(tmp_path):
     from symjac import load_robot
-    from symjac.spaces import numeric_jacobian
+    from symjac.analysis.spaces import numeric_jacobian
 
     robot = load_robot("ur5.urdf")
     namespace: dict = {}
@@ -465,7 +465,7 @@ def test_codegen_works_on_a_chain_loaded_from_urdf(tmp_path):
 
 
 def test_cli_codegen_writes_a_module(tmp_path, capsys):
-    from symjac.cli import main
+    from symjac.cli.main import main
 
     target = tmp_path / "planar.py"
     assert main(["codegen", "planar2r", "--target", "numpy", "-o", str(target)]) == 0

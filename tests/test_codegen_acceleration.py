@@ -1,7 +1,7 @@
 """Generated acceleration-level functions: the Hessian, the bias acceleration Jdot qdot, the manipulability gradient.
 
 They are generated with ``generate(..., acceleration=True)`` (CLI ``--acceleration``) and checked here against
-``symjac.acceleration`` evaluated numerically, against central differences of the module's own Jacobian and
+``symjac.kinematics.acceleration`` evaluated numerically, against central differences of the module's own Jacobian and
 manipulability, and for determinism, ruff and golden files (``tests/golden/*_acceleration*``; regenerate them with
 ``SYMJAC_UPDATE_GOLDEN=1``). Modules without the option must not change (the other golden files check that).
 """
@@ -22,12 +22,12 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symjac import Chain, Parameter, clear_caches, joint_rates, load_robot
-from symjac.acceleration import bias_acceleration, hessian
+from symjac import Chain, Parameter, clear_caches, joint_rate_symbols, load_robot
 from symjac.codegen import BACKENDS, TARGETS, CodegenError, JacobianRequest, generate, write_module
 from symjac.codegen.acceleration import lowered_bias_acceleration
 from symjac.codegen.lower import lowered_jacobian
-from symjac.numeric import numeric_at
+from symjac.kinematics.acceleration import bias_acceleration, hessian
+from symjac.kinematics.numeric import numeric_at
 
 REPO = Path(__file__).resolve().parent.parent
 GOLDEN = Path(__file__).resolve().parent / "golden"
@@ -76,9 +76,10 @@ def _suffixes(name: str) -> list[str]:
 
 @functools.cache
 def _references(name: str) -> list[dict[str, object]]:
-    """Per seeded configuration and request: symjac.acceleration's Hessian and Jdot qdot, evaluated numerically."""
+    """Per seeded configuration and request: symjac.kinematics.acceleration's Hessian and Jdot qdot, evaluated
+    numerically."""
     robot = load_robot(name)
-    rates = joint_rates(robot)
+    rates = joint_rate_symbols(robot)
     rng = np.random.default_rng(5)
     cases = []
     for _ in range(2):
@@ -219,7 +220,7 @@ def test_new_names_are_reserved(parameter, message):
 
 
 def test_command_line_option(tmp_path):
-    from symjac.cli import main
+    from symjac.cli.main import main
 
     path = tmp_path / "planar.py"
     argv = ["codegen", "planar2r", "--target", "numpy", "--acceleration", "-o", str(path)]
@@ -240,6 +241,6 @@ def test_frames_carried_by_every_joint_and_long_names():
     assert namespace["selftest"](samples=5) < 1e-6
     q, qdot = [0.3, -0.7, 1.1], [0.5, -0.2, 0.9]
     expected = numeric_at(robot, bias_acceleration(robot, "tool", "tool", simplify=False).xreplace(
-        dict(zip(joint_rates(robot), map(sp.Float, qdot), strict=True))), q).ravel()[[0, 1, 5]]
+        dict(zip(joint_rate_symbols(robot), map(sp.Float, qdot), strict=True))), q).ravel()[[0, 1, 5]]
     np.testing.assert_allclose(namespace["bias_acceleration_tool_tool_r015"](q, qdot), expected, atol=1e-12)
     assert "k_bias_acceleration_tool_tool_r015(" in generate(robot, "c", jacobians=requests, acceleration=True)

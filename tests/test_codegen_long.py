@@ -2,8 +2,8 @@
 
 A 14-joint 3-D snake is past every threshold that long chains meet: more joints than fit on one line (wrapped
 tuples, unpacking and docstrings), a compact Jacobian larger than ``lower.COMPACT_TERMS`` (skipped), and raw trees
-larger than ``cse.TREE_LIMIT`` (shared subexpressions named before CSE). The graph walks of :mod:`symjac.dag` are
-checked on an expression whose tree has 2**40 nodes: walked as a tree, they would never finish.
+larger than ``cse.TREE_LIMIT`` (shared subexpressions named before CSE). The graph walks of :mod:`symjac.symbolic.dag`
+are checked on an expression whose tree has 2**40 nodes: walked as a tree, they would never finish.
 """
 
 from __future__ import annotations
@@ -21,12 +21,12 @@ from reference import evaluate, finite_difference_jacobian
 from sympy.core.cache import clear_cache
 
 from symjac import Chain, jacobian, load_robot, robot_from_mapping
-from symjac.angles import fold_numbers
 from symjac.codegen import TARGETS, generate, write_module
 from symjac.codegen.cse import eliminate_common
-from symjac.codegen.layout import LINE_WIDTH, unpack
 from symjac.codegen.printers import check_expression
-from symjac.dag import distinct_nodes, free_symbols
+from symjac.codegen.source_layout import LINE_WIDTH, unpack
+from symjac.symbolic.angles import fold_numbers
+from symjac.symbolic.dag import distinct_nodes, free_symbols
 
 REPO = Path(__file__).resolve().parent.parent
 lower = importlib.import_module("symjac.codegen.lower")

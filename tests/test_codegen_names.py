@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 from symjac import load_robot
-from symjac.cli import main
+from symjac.cli.main import main
 from symjac.codegen import JacobianRequest, generate
-from symjac.robot_file import robot_from_mapping
+from symjac.model.robot_file import robot_from_mapping
 
 ARM = """name = "my_arm"
 convention = "standard"

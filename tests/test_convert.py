@@ -10,8 +10,14 @@ from reference import frames, random_configuration
 from strategies import SPECIAL_RPY, general_robots, robots
 
 from symjac import AngleBasis, Convention, catalog, chain_of, is_identity, jacobian, load_robot, robot_from_toml
-from symjac.cli import main
-from symjac.convert import ConversionError, convert, dh_from_general, modified_from_standard, standard_from_modified
+from symjac.cli.main import main
+from symjac.kinematics.convert import (
+    ConversionError,
+    convert,
+    dh_from_general,
+    modified_from_standard,
+    standard_from_modified,
+)
 
 
 def _point(robot):
@@ -150,7 +156,7 @@ def test_cli_convert_urdf_links(capsys):
 
 
 def test_convert_command_says_when_the_table_needs_a_tool_transform(capsys):
-    from symjac.cli import main
+    from symjac.cli.main import main
 
     assert main(["convert", "ur5.urdf", "--to", "modified"]) == 0
     out = capsys.readouterr().out

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import pytest
 
-from symjac.cli import main
-from symjac.errata import DOCUMENTS, compare, comparisons, errata_sheet, formulas, summary
+from symjac.cli.main import main
+from symjac.teaching.errata import DOCUMENTS, compare, comparisons, errata_sheet, formulas, summary
 
 FORMULAS = formulas()
 

@@ -6,7 +6,7 @@ import pytest
 import sympy as sp
 
 from symjac import load_robot
-from symjac.exercises import check
+from symjac.teaching.exercises import check
 
 t1, t2 = sp.symbols("theta1 theta2", real=True)
 

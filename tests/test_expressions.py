@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from symjac.errors import ExpressionError, SymjacError
-from symjac.expressions import (
+from symjac.model.expressions import (
     MAX_EXPONENT,
     MAX_EXPRESSION_LENGTH,
     exact_number,
@@ -210,7 +210,7 @@ def test_nested_powers_cannot_blow_up(base):
     script = (
         "import sympy as sp\n"
         "from symjac.errors import ExpressionError\n"
-        "from symjac.expressions import parse_expression\n"
+        "from symjac.model.expressions import parse_expression\n"
         "try:\n"
         f"    parse_expression({text!r}, {{'L1': sp.Symbol('L1', real=True)}})\n"
         "except ExpressionError as error:\n"

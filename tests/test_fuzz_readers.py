@@ -1,8 +1,8 @@
 """Fuzzing the three readers: any input gives a robot (or an expression) or a typed error, quickly, never a hang.
 
 The readers are what symjac shows the outside world: TOML robot files (:func:`symjac.robot_from_toml`), URDF
-(:func:`symjac.robot_from_urdf`) and the field-expression parser (:func:`symjac.expressions.parse_expression`). Each
-gets random input and the catalog's own files mutated (slices deleted, duplicated or replaced, lines dropped or
+(:func:`symjac.robot_from_urdf`) and the field-expression parser (:func:`symjac.model.expressions.parse_expression`).
+Each gets random input and the catalog's own files mutated (slices deleted, duplicated or replaced, lines dropped or
 repeated, numbers swapped for hostile ones: ``1e999999``, 5000 nines, 10 000 nested parentheses, ...). The answer
 must be a result or a :class:`~symjac.errors.SymjacError` within :data:`LIMIT` seconds; an alarm stops a hang.
 
@@ -28,7 +28,7 @@ from hypothesis import strategies as st
 
 from symjac import Robot, robot_from_toml, robot_from_urdf, robot_to_toml
 from symjac.errors import SymjacError
-from symjac.expressions import parse_expression, snap_angle
+from symjac.model.expressions import parse_expression, snap_angle
 
 EXPLORE = os.environ.get("HYPOTHESIS_PROFILE") == "explore"
 EXAMPLES = 2000 if EXPLORE else 60

@@ -3,7 +3,7 @@
 Each command (show, fk, every Jacobian method with its steps, torques, singularities, representation Jacobians,
 ``--numeric``, the Hessian and the time derivative) runs on every catalog robot, a URDF robot and a robot whose name,
 description and parameters carry underscores and other TeX specials. Documents are generated in-process with
-``symjac.cli.main`` (two worker processes, one robot's commands per task so the chain's caches serve them all) and
+``symjac.cli.main.main`` (two worker processes, one robot's commands per task so the chain's caches serve them all) and
 compiled two at a time while the rest are still being derived. A document fails on any TeX error and on any box
 more than :data:`TOLERANCE` points too wide or too tall.
 
@@ -23,11 +23,11 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from symjac.cli import main
-from symjac.io import catalog
+from symjac.cli.main import main
+from symjac.model.io import catalog
 from symjac.printing import Block, Document, Equation, render
 from symjac.printing import document as document_module
-from symjac.printing.layout import Display
+from symjac.printing.latex_layout import Display
 
 PDFLATEX = shutil.which("pdflatex")
 pytestmark = pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed (Debian: apt-get install "

@@ -7,12 +7,13 @@ import pytest
 import sympy as sp
 from reference import evaluate, finite_difference_jacobian, random_configuration
 
-from symjac import Chain, ResultTooLargeError, jacobian, limits, robot_from_mapping
-from symjac.cli import main
-from symjac.jacobian import METHODS
-from symjac.reporting import reporting_to
-from symjac.simplify import simplify_matrix, simplify_product
-from symjac.urdf import robot_from_urdf
+from symjac import Chain, ResultTooLargeError, jacobian, robot_from_mapping
+from symjac.cli.main import main
+from symjac.kinematics.jacobian import METHODS
+from symjac.model.urdf import robot_from_urdf
+from symjac.progress import reporting_to
+from symjac.symbolic import size as limits
+from symjac.symbolic.simplify import simplify_matrix, simplify_product
 
 LENGTH = sp.Rational(1, 10)
 

@@ -15,13 +15,13 @@ import sympy as sp
 from reference import random_configuration
 
 from symjac import catalog, load_robot, urdf_catalog
-from symjac.chain import chain_of
+from symjac.analysis.manipulability import log_det_gradient, manipulability_gradient
+from symjac.analysis.spaces import task_rows
 from symjac.errors import ArgumentError
-from symjac.jacobian import rows_from_names
-from symjac.manipulability import log_det_gradient, manipulability_gradient
-from symjac.numeric import numeric_jacobian
-from symjac.simplify import is_identity
-from symjac.spaces import task_rows
+from symjac.kinematics.chain import chain_of
+from symjac.kinematics.jacobian import rows_from_names
+from symjac.kinematics.numeric import numeric_jacobian
+from symjac.symbolic.simplify import is_identity
 
 H = 1e-6
 

@@ -11,12 +11,14 @@ import tomllib
 import pytest
 import sympy as sp
 
-from symjac.acceleration_propagation import joint_accelerations
+from symjac.analysis.inverse_rates import RATE_SYMBOLS
 from symjac.codegen.request import WRENCH_NAMES as codegen_wrench_names
 from symjac.errors import RobotFileError, SymjacError, UnknownRobotError
-from symjac.io import catalog, load_robot, robot_from_toml, robot_to_toml
-from symjac.jacobian import ROW_NAMES
-from symjac.model import (
+from symjac.kinematics.acceleration_propagation import joint_accelerations
+from symjac.kinematics.jacobian import ROW_NAMES
+from symjac.kinematics.propagation import joint_rate_symbols, wrench_symbols
+from symjac.model.io import catalog, load_robot, robot_from_toml, robot_to_toml
+from symjac.model.robot import (
     WRENCH_NAMES,
     Convention,
     FixedTransform,
@@ -26,9 +28,7 @@ from symjac.model import (
     Robot,
     reserved_names,
 )
-from symjac.propagation import joint_rates, wrench_symbols
-from symjac.rates import RATE_SYMBOLS
-from symjac.robot_file import robot_from_mapping, robot_to_mapping
+from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
 
 SOURCE = "arm.toml"
 L1, L2 = sp.symbols("L1 L2", real=True)
@@ -465,7 +465,7 @@ def test_robot_built_directly_refuses_a_reserved_parameter_name():
 
 def test_reserved_names_are_the_symbols_symjac_generates():
     robot = load_robot("stanford")
-    generated = {*joint_rates(robot), *joint_accelerations(robot), *wrench_symbols(), *robot.q, *RATE_SYMBOLS}
+    generated = {*joint_rate_symbols(robot), *joint_accelerations(robot), *wrench_symbols(), *robot.q, *RATE_SYMBOLS}
     reserved = reserved_names([joint.type for joint in robot.joints])
     assert {symbol.name for symbol in generated} <= set(reserved)
     assert set(ROW_NAMES) | set(WRENCH_NAMES) <= set(reserved)

@@ -12,7 +12,7 @@ from symjac import (
     chain_of,
     force_propagation,
     jacobian,
-    joint_rates,
+    joint_rate_symbols,
     joint_torques,
     load_robot,
     robot_from_mapping,
@@ -24,8 +24,8 @@ from symjac import (
     wrench_transform,
 )
 from symjac.errors import ArgumentError
-from symjac.simplify import AngleBasis, is_identity
-from symjac.transforms import homogeneous, inverse_transform, rotation_rpy
+from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.transforms import homogeneous, inverse_transform, rotation_rpy
 
 L1, L2, L3 = sp.symbols("L1 L2 L3", real=True)
 t1, t2, t3 = sp.symbols("theta1 theta2 theta3", real=True)
@@ -43,7 +43,7 @@ def _identical(left: sp.MatrixBase, right: sp.MatrixBase, robot) -> bool:
 def test_planar_3r_velocity_propagation_reproduces_seed_000_4_136_to_4_141():
     robot = load_robot("planar3r")
     chain = chain_of(robot)
-    rates = sp.Matrix(joint_rates(robot))
+    rates = sp.Matrix(joint_rate_symbols(robot))
     td1, td2, td3 = rates
     steps = {frame: (omega, v) for frame, omega, v in velocity_propagation(robot).velocities()}
     v_P2 = chain.rotation(0, 2) * steps[2][1]

@@ -1,7 +1,7 @@
 """The README runs: every Python example and every concrete ``symjac`` command in it is executed here.
 
 Python blocks run in order in one namespace (later blocks use the ``robot`` of the first), in a scratch folder.
-Commands run in-process through :func:`symjac.cli.main` in a folder that holds the files the README names:
+Commands run in-process through :func:`symjac.cli.main.main` in a folder that holds the files the README names:
 ``my_arm.toml`` (the README's own robot-file example) and ``arm.urdf`` (a UR5 with a ``tool0`` link). A command
 with a placeholder (``ROBOT``, ``FILE``, ``K``) or alternatives (``a|b``) is a usage line, not an example.
 """
@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from symjac.cli import main
+from symjac.cli.main import main
 
 ROOT = Path(__file__).resolve().parent.parent
 README = ROOT / "README.md"

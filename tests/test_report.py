@@ -25,12 +25,12 @@ import pytest
 import sympy as sp
 
 from symjac import load_robot
-from symjac.cli import main
+from symjac.analysis.manipulability_map import manipulability_map, singular_path
+from symjac.analysis.singularity.singularities import singularities
+from symjac.cli.main import main
 from symjac.errors import SymjacError
 from symjac.report import derivation_report
 from symjac.report.figures import map_svg
-from symjac.report.plane import manipulability_map, singular_path
-from symjac.singular_report import singularities
 
 ARTIFACTS = Path(os.environ.get("SYMJAC_ARTIFACTS", Path(__file__).parent / "artifacts"))
 

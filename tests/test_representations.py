@@ -18,10 +18,7 @@ from reference import frames, random_configuration
 from strategies import robots
 
 from symjac import load_robot, robot_from_mapping
-from symjac.acceleration import jacobian_derivative
-from symjac.errors import ArgumentError
-from symjac.propagation import joint_rates
-from symjac.representations import (
+from symjac.analysis.representations import (
     EULER_CONVENTIONS,
     EULER_ORDERS,
     POSITIONS,
@@ -44,7 +41,10 @@ from symjac.representations import (
     representation_singularities,
     rotation_from,
 )
-from symjac.transforms import rotation_rpy, skew
+from symjac.errors import ArgumentError
+from symjac.kinematics.acceleration import jacobian_derivative
+from symjac.kinematics.propagation import joint_rate_symbols
+from symjac.symbolic.transforms import rotation_rpy, skew
 
 SETTINGS = settings(deadline=None, max_examples=20, suppress_health_check=[HealthCheck.too_slow])
 # all 24 Euler / Tait-Bryan conventions (12 intrinsic, 12 extrinsic including "rpy")
@@ -144,7 +144,7 @@ def test_rpy_is_the_robot_file_convention_and_reversed_zyx():
 
 @pytest.mark.parametrize("order", EULER_ORDERS)
 def test_euler_rotation_is_the_product_about_moving_axes(order):
-    from symjac.transforms import rotation
+    from symjac.symbolic.transforms import rotation
 
     a, b, g = coordinates(order)
     assert rotation_from(order) == rotation(order[0], a) * rotation(order[1], b) * rotation(order[2], g)
@@ -206,7 +206,7 @@ def test_rpy_is_the_extrinsic_xyz_convention():
 @pytest.mark.parametrize("convention", EULER_CONVENTIONS, ids=lambda c: c.name)
 def test_convention_rotation_is_the_product_of_elementary_rotations(convention):
     """Intrinsic: about the moving axes, left to right; extrinsic: about the fixed axes, so right to left."""
-    from symjac.transforms import rotation
+    from symjac.symbolic.transforms import rotation
 
     a, b, c = coordinates(convention)
     first, second, third = (rotation(axis, angle) for axis, angle in zip(convention.axes, (a, b, c), strict=True))
@@ -284,7 +284,7 @@ def test_a_convention_value_is_accepted_wherever_a_name_is():
 
 
 def test_package_all_is_sorted_and_complete():
-    import symjac.representations as package
+    import symjac.analysis.representations as package
 
     def group(name):
         return (0 if name.isupper() else 1 if name[0].isupper() else 2, name)
@@ -777,7 +777,7 @@ def test_symbolic_Jdot_x_matches_the_numeric_evaluation(derivative_robot):
         q, q_dot = _derivative_state(robot, rng, orientation, position)
         value = representation_jacobian_derivative_at(robot, q, q_dot, orientation, position)
         values = {**dict(zip(result.coordinates, value.x, strict=True)), **dict(zip(robot.q, q, strict=True)),
-                  **dict(zip(result.joint_rates, q_dot, strict=True)), **robot.defaults}
+                  **dict(zip(result.joint_rate_symbols, q_dot, strict=True)), **robot.defaults}
         np.testing.assert_allclose(numeric(result.Jdot_x.xreplace(values)), value.Jdot_x, atol=1e-9)
         np.testing.assert_allclose(numeric(result.bias.xreplace(values)).ravel(), value.bias, atol=1e-9)
         rates = dict(zip(result.coordinate_rates, value.x_dot, strict=True))
@@ -793,7 +793,7 @@ def test_planar_arm_Jdot_x_identities():
     # cartesian coordinates have E_p = I: their rows are those of the basic Jacobian's derivative, exactly
     assert result.Jdot_x[:3, :] == jacobian_derivative(robot)[:3, :]
     assert result.E_dot[:3, :] == sp.zeros(3, 6)
-    assert set(result.Jdot_x.free_symbols) <= {*robot.q, *robot.parameter_symbols, *joint_rates(robot),
+    assert set(result.Jdot_x.free_symbols) <= {*robot.q, *robot.parameter_symbols, *joint_rate_symbols(robot),
                                                *result.coordinates}
     # cylindrical coordinates: the rho row of E_p, [c_phi, s_phi, 0], turns with the azimuth phi_c
     cylindrical = representation_jacobian_derivative(robot, "rpy", "cylindrical")

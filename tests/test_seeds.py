@@ -1,8 +1,8 @@
 """The closed forms printed in the course notes (shared/seeds), asserted as exact symbolic identities.
 
 Each expected matrix is typed from the notes in their own notation; `assert_identical` checks every entry with the
-exact normal form of symjac.simplify (not by comparing printed strings). Where the notes have a typo, the test says
-which entry the derivation corrects and checks both the correction and that the printed value is really wrong.
+exact normal form of symjac.symbolic.simplify (not by comparing printed strings). Where the notes have a typo, the test
+says which entry the derivation corrects and checks both the correction and that the printed value is really wrong.
 """
 
 from __future__ import annotations

@@ -12,9 +12,9 @@ import math
 import sympy as sp
 
 from symjac import LimitStatus, load_robot, singularities
-from symjac.cli import main
-from symjac.singular_limits import limit_status
-from symjac.singular_solve import Solution
+from symjac.analysis.singularity.joint_limits import limit_status
+from symjac.analysis.singularity.solve import Solution
+from symjac.cli.main import main
 
 RP_ARM = """name = "rp_arm"
 convention = "standard"

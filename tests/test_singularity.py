@@ -12,14 +12,14 @@ from reference import finite_difference_jacobian, frames, random_configuration
 from strategies import robots
 
 from symjac import load_robot, robot_from_mapping, robot_to_mapping, singularities
-from symjac.cli import main
+from symjac.analysis.singularity.determinant import determinant, is_admissible_frame
+from symjac.analysis.singularity.singularities import LostDirection, SelfMotion, SingularityKind
+from symjac.analysis.singularity.solve import solve_factor
+from symjac.analysis.spaces import jacobian_spaces, numeric_jacobian, symbolic_spaces, task_rows
+from symjac.cli.main import main
 from symjac.errors import ArgumentError, FrameError
 from symjac.printing import prose
-from symjac.simplify import AngleBasis, is_identity
-from symjac.singular_report import LostDirection, SelfMotion, SingularityKind
-from symjac.singular_solve import solve_factor
-from symjac.singularity import determinant, is_admissible_frame
-from symjac.spaces import jacobian_spaces, numeric_jacobian, symbolic_spaces, task_rows
+from symjac.symbolic.simplify import AngleBasis, is_identity
 
 SQUARE = ["planar2r", "planar3r", "articulated3r", "scara", "stanford", "puma560", "ur5"]
 

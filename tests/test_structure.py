@@ -15,29 +15,37 @@ import symjac
 REPO = Path(__file__).resolve().parent.parent
 PACKAGE = REPO / "symjac"
 
-# Each module's floor; a module may import modules on its own floor or below, never above (data flows one way:
-# model -> chain -> kinematics -> analyses -> outputs). A new module must be given a floor here.
-FLOORS: dict[str, int] = {
-    # foundations: no robot yet
-    "symjac._version": 0, "symjac.errors": 0, "symjac.expressions": 0, "symjac.transforms": 0, "symjac.angles": 0,
-    "symjac.trigpoly": 0, "symjac.simplify": 0, "symjac.files": 0, "symjac.resources": 0,
-    "symjac.reporting": 0, "symjac.dag": 0, "symjac.limits": 0,
-    # the model and its files
-    "symjac.robots": 1, "symjac.model": 1, "symjac.robot_file": 1, "symjac.urdf": 1, "symjac.io": 1,
-    # derived data
-    "symjac.chain": 2,
-    # kinematics
-    "symjac.jacobian": 3, "symjac.propagation": 3, "symjac.statics": 3, "symjac.numeric": 3, "symjac.convert": 3,
-    "symjac.acceleration": 3,
-    # analyses
-    "symjac.spaces": 4, "symjac.singularity": 4, "symjac.singular": 4, "symjac.rates": 4, "symjac.representations": 4,
-    "symjac.exercises": 4,
-    "symjac.manipulability": 4,
-    # outputs
-    "symjac.errata": 5, "symjac.report": 5,
-    "symjac.printing": 5, "symjac.codegen": 5, "symjac.cli": 5, "symjac.cli_args": 5, "symjac.cli_output": 5,
-    "symjac.__main__": 5,
-}
+# The pipeline's stages, bottom to top: a module may import from its own stage or one below, never above (data flows
+# one way). Modules directly under ``symjac/`` (errors, files, resources, progress, _version, the robot catalog's
+# data) are the foundation below every stage; the package root and ``__main__`` sit on top.
+STAGES: list[tuple[str, ...]] = [
+    ("symbolic",),
+    ("model",),
+    ("kinematics",),
+    ("analysis",),
+    ("printing",),
+    ("report", "codegen", "teaching"),
+    ("cli",),
+]
+
+
+def _floor(module: str) -> int:
+    parts = module.split(".")
+    if module in ("symjac", "symjac.__main__"):
+        return len(STAGES) + 1
+    for level, stage in enumerate(STAGES, start=1):
+        if parts[1] in stage:
+            return level
+    assert len(parts) == 2 or parts[1] == "robots", (
+        f"{module} sits in a folder that is no pipeline stage: add the folder to STAGES in tests/test_structure.py")
+    return 0
+
+
+def test_every_folder_is_a_stage():
+    folders = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()} - {"robots"}
+    staged = {name for stage in STAGES for name in stage}
+    assert folders == staged, (
+        f"folders without a stage: {sorted(folders - staged)}; stages without a folder: {sorted(staged - folders)}")
 
 
 def _modules() -> list[str]:
@@ -46,13 +54,6 @@ def _modules() -> list[str]:
         if info.name != "symjac.__main__":  # importing it runs the command line
             names.append(info.name)
     return sorted(names)
-
-
-def _floor(module: str) -> int:
-    for prefix in sorted(FLOORS, key=len, reverse=True):
-        if module == prefix or module.startswith((prefix + ".", prefix + "_")):
-            return FLOORS[prefix]
-    raise AssertionError(f"{module} has no floor in tests/test_structure.py FLOORS: give it one")
 
 
 def _source_files() -> list[Path]:

@@ -25,9 +25,9 @@ from symjac import (
     robot_from_toml,
     robot_to_toml,
 )
-from symjac.expressions import snap_angle
-from symjac.io import urdf_catalog
-from symjac.urdf import robot_from_urdf
+from symjac.model.expressions import snap_angle
+from symjac.model.io import urdf_catalog
+from symjac.model.urdf import robot_from_urdf
 
 PANDA_URDF = resources.files("symjac.robots").joinpath("urdf", "panda.urdf").read_text(encoding="utf-8")
 
@@ -246,7 +246,7 @@ def test_urdf_is_recognised_by_its_content_whatever_its_name(name, tmp_path):
 
 
 def test_cli_reads_a_urdf_saved_as_xml(capsys, tmp_path):
-    from symjac.cli import main
+    from symjac.cli.main import main
 
     path = tmp_path / "arm.xml"
     path.write_text(_arm(), encoding="utf-8")
@@ -321,7 +321,7 @@ def test_links_apply_to_urdf_only():
 
 
 def test_cli_reads_a_urdf_file(capsys, tmp_path):
-    from symjac.cli import main
+    from symjac.cli.main import main
 
     path = tmp_path / "arm.urdf"
     path.write_text(_arm(), encoding="utf-8")

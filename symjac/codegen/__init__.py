@@ -10,10 +10,11 @@ Pipeline (one function at a time)
 1. **Request** (:mod:`~symjac.codegen.request`): validate names, points, rows; every name and number that reaches
    the generated text is checked first, so nothing partial is ever written.
 2. **Lowering** (:mod:`~symjac.codegen.lower`): candidate expressions, angle expansion, ``sympy.cse``, operation
-   counts; cached in the robot's :class:`~symjac.chain.Chain`. With ``acceleration=True`` the Hessian and the bias
-   acceleration are lowered on top of the lowered Jacobian, as cross products of its entries
+   counts; cached in the robot's :class:`~symjac.kinematics.chain.Chain`. With ``acceleration=True`` the Hessian and the
+   bias acceleration are lowered on top of the lowered Jacobian, as cross products of its entries
    (:mod:`~symjac.codegen.acceleration`).
-3. **Printing** (:mod:`~symjac.codegen.printers`, :mod:`~symjac.codegen.layout`): printer subclasses map symbols to
+3. **Printing** (:mod:`~symjac.codegen.printers`, :mod:`~symjac.codegen.source_layout`): printer subclasses map symbols
+to
    validated names; statements are laid out within the line width by the target's backend.
 4. **Rendering** (:mod:`~symjac.codegen.module`): a frozen :class:`ModuleDescription` fills the target's template
    through the single jinja2 environment (:mod:`symjac.resources`); :func:`write_module` replaces a file atomically.

@@ -2,8 +2,9 @@ r"""Lowering of the acceleration-level functions: the kinematic Hessian and the 
 
 Both are built on top of a lowered Jacobian (:func:`~symjac.codegen.lower.lowered_jacobian`, all six rows): every
 entry of J gets a name, and the new quantities are written as cross products of those names (the closed forms of
-:mod:`symjac.acceleration`), instead of differentiating and expanding J's expressions again. J is thus computed
-exactly once, as the ``jacobian`` function computes it, and the new code on top is a few dozen operations per joint.
+:mod:`symjac.kinematics.acceleration`), instead of differentiating and expanding J's expressions again. J is thus
+computed exactly once, as the ``jacobian`` function computes it, and the new code on top is a few dozen operations per
+joint.
 """
 
 from __future__ import annotations
@@ -12,11 +13,11 @@ from collections.abc import Iterable, Sequence
 
 import sympy as sp
 
-from symjac.acceleration import carried_joints
-from symjac.chain import Chain, Frame
 from symjac.codegen.lower import Inputs, LoweredFunction, angle_expansion, lowered_jacobian
 from symjac.codegen.request import frame_text
-from symjac.propagation import joint_rates
+from symjac.kinematics.acceleration import carried_joints
+from symjac.kinematics.chain import Chain, Frame
+from symjac.kinematics.propagation import joint_rate_symbols
 
 __all__ = ["lowered_bias_acceleration", "lowered_hessian"]
 
@@ -93,7 +94,7 @@ def lowered_hessian(
         [\omega_j \times v_m;\ 0]\ (m \ge j)
 
     in a fixed frame; a joint m that turns the frame {k} the Jacobian is expressed in also contributes
-    :math:`-[\omega_m \times v_j;\ \omega_m \times \omega_j]` (:mod:`symjac.acceleration`). Each entry is one
+    :math:`-[\omega_m \times v_j;\ \omega_m \times \omega_j]` (:mod:`symjac.kinematics.acceleration`). Each entry is one
     component of a cross product of two Jacobian columns, and CSE shares the products the linear rows repeat (they
     are symmetric in j and m in a fixed frame).
     """
@@ -153,7 +154,7 @@ def _bias_in(chain: Chain, frame: Frame, via: Frame, point: tuple[sp.Expr, ...],
     """
     robot = chain.robot
     n = chain.n
-    rates = joint_rates(chain)
+    rates = joint_rate_symbols(chain)
     program = _Program(chain, lowered_jacobian(chain, via, point, tuple(range(6)), strategy))
     columns = program.columns()
     zero: Vector = (sp.S.Zero, sp.S.Zero, sp.S.Zero)

@@ -15,7 +15,7 @@ from collections.abc import Hashable, Sequence
 
 import sympy as sp
 
-from symjac.dag import distinct_nodes, rebuild, with_args
+from symjac.symbolic.dag import distinct_nodes, rebuild, with_args
 
 __all__ = ["TREE_LIMIT", "eliminate_common"]
 

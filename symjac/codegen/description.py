@@ -10,9 +10,9 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Literal
 
-from symjac.chain import Chain
-from symjac.codegen.layout import LINE_WIDTH, comment_lines, tuple_lines, tuple_literal, wrap_statement
 from symjac.codegen.lower import LoweredFunction
+from symjac.codegen.source_layout import LINE_WIDTH, comment_lines, tuple_lines, tuple_literal, wrap_statement
+from symjac.kinematics.chain import Chain
 
 __all__ = [
     "Argument",

@@ -5,15 +5,16 @@ r"""Lowering: from a robot's symbolic quantities to target-independent straight-
    (raw chain products won on Panda with an earlier simplifier), so nothing is assumed: every candidate is lowered
    and the one with the fewest operations after CSE is kept (ties: the first).
 2. **Angles.** Every sine/cosine of a joint-angle combination is expanded by the angle-addition formulas into the
-   sines and cosines of the joint angles themselves (:class:`~symjac.angles.AngleExpansion`): a module evaluates
-   exactly one ``sin`` and one ``cos`` per revolute joint.
+   sines and cosines of the joint angles themselves (:class:`~symjac.symbolic.angles.AngleExpansion`): a module
+   evaluates exactly one ``sin`` and one ``cos`` per revolute joint.
 3. **CSE.** Flatten, check that every free symbol is an argument (the error names the others),
    ``sympy.cse(order="canonical")`` (:mod:`symjac.codegen.cse`: on a long chain, shared subexpressions named first).
 4. **Compact candidates within a budget.** The "fastest" strategy derives a compact candidate only up to
    :data:`COMPACT_TERMS` terms; on a long 3-D chain it is skipped and the raw products compete alone.
 
-Everything derived here is kept in the robot's :class:`~symjac.chain.Chain` (:meth:`~symjac.chain.Chain.memo`, keys
-starting with ``"codegen"``), so generating several targets for one robot derives and lowers each function once.
+Everything derived here is kept in the robot's :class:`~symjac.kinematics.chain.Chain`
+(:meth:`~symjac.kinematics.chain.Chain.memo`, keys starting with ``"codegen"``), so generating several targets for one
+robot derives and lowers each function once.
 """
 
 from __future__ import annotations
@@ -25,17 +26,17 @@ from typing import TypeVar
 
 import sympy as sp
 
-from symjac.angles import AngleExpansion
-from symjac.chain import Chain, Frame
 from symjac.codegen.cse import eliminate_common
 from symjac.codegen.printers import check_expression
 from symjac.codegen.request import WRENCH_NAMES, frame_text
-from symjac.dag import free_symbols
 from symjac.errors import CodegenError, ResultTooLargeError
-from symjac.jacobian import jacobian
-from symjac.limits import term_limit
-from symjac.model import Robot
-from symjac.transforms import block_rotation
+from symjac.kinematics.chain import Chain, Frame
+from symjac.kinematics.jacobian import jacobian
+from symjac.model.robot import Robot
+from symjac.symbolic.angles import AngleExpansion
+from symjac.symbolic.dag import free_symbols
+from symjac.symbolic.size import term_limit
+from symjac.symbolic.transforms import block_rotation
 
 __all__ = [
     "LoweredFunction",
@@ -159,7 +160,7 @@ def angle_expansion(chain: Chain) -> AngleExpansion:
 
 
 COMPACT_TERMS = 20_000
-"""The most terms a compact candidate of the "fastest" strategy may have (:func:`symjac.limits.term_limit`).
+"""The most terms a compact candidate of the "fastest" strategy may have (:func:`symjac.symbolic.size.term_limit`).
 
 Deriving a normal form costs time in proportion to its terms, and past a few ten thousand terms (a 3-D chain of 14
 or more joints, whose expanded normal form grows about 1.8x per joint) the raw products, whose subexpressions CSE

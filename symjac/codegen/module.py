@@ -12,7 +12,6 @@ from typing import Literal, get_args
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.chain import Chain, Frame, as_chain
 from symjac.codegen.acceleration import lowered_bias_acceleration, lowered_hessian
 from symjac.codegen.backends import backend
 from symjac.codegen.description import (
@@ -22,7 +21,6 @@ from symjac.codegen.description import (
     JacobianInfo,
     ModuleDescription,
 )
-from symjac.codegen.layout import LINE_WIDTH, comment_lines, wrap_statement
 from symjac.codegen.lower import (
     LoweredFunction,
     angle_expansion,
@@ -46,12 +44,14 @@ from symjac.codegen.request import (
     requests_from,
     validate_robot,
 )
+from symjac.codegen.source_layout import LINE_WIDTH, comment_lines, wrap_statement
 from symjac.errors import CodegenError, SymjacError
 from symjac.files import write_text
-from symjac.io import catalog, load_robot
-from symjac.jacobian import ROW_NAMES, Point
-from symjac.model import Robot
-from symjac.propagation import joint_rates
+from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.jacobian import ROW_NAMES, Point
+from symjac.kinematics.propagation import joint_rate_symbols
+from symjac.model.io import catalog, load_robot
+from symjac.model.robot import Robot
 from symjac.resources import render_template
 
 Strategy = Literal["fastest", "raw", "simplified"]
@@ -88,7 +88,7 @@ def describe(
 
     taken = frozenset(RESERVED) | {p.name for p in model.parameters}
     q_argument = Argument("q", tuple(s.name for s in model.q), "Joint values")
-    rates = tuple(s.name for s in joint_rates(chain)) if acceleration else ()
+    rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
     lowered_functions: list[tuple[LoweredFunction, FunctionSpec]] = []
 
     def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:

@@ -4,7 +4,7 @@ Each printer is a subclass of a SymPy code printer that maps every symbol to a *
 ``_print_Symbol`` (never a regex over printed text), prints every number as a finite float literal (or an exact
 SymPy constructor), writes small integer powers as products (``x*x`` is faster than ``x**2`` in every target) and
 refuses anything it does not know (an unknown function, a symbol without a name, an infinite number) with a
-:class:`~symjac.errors.SymjacError` before any text is produced. :func:`symjac.codegen.layout.wrap_statement`
+:class:`~symjac.errors.SymjacError` before any text is produced. :func:`symjac.codegen.source_layout.wrap_statement`
 then breaks long statements at operator spaces so that generated files stay within the line length ruff checks.
 """
 
@@ -23,8 +23,8 @@ from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 from sympy.printing.str import StrPrinter
 
-from symjac.dag import distinct_nodes
 from symjac.errors import CodegenError
+from symjac.symbolic.dag import distinct_nodes
 
 __all__ = [
     "CPrinter",

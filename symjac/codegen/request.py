@@ -11,11 +11,11 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from symjac.chain import Chain, Frame
 from symjac.codegen.printers import check_expression, check_identifier, float_literal
 from symjac.errors import ArgumentError, CodegenError
-from symjac.jacobian import Point, check_row_indices, point_vector
-from symjac.model import Robot
+from symjac.kinematics.chain import Chain, Frame
+from symjac.kinematics.jacobian import Point, check_row_indices, point_vector
+from symjac.model.robot import Robot
 
 __all__ = [
     "RESERVED",
@@ -61,7 +61,7 @@ class JacobianRequest:
     frame : int or "world" or "tool"
         Frame {k} the Jacobian is expressed in.
     point : "wrist", "tool" or three coordinates in frame {n}
-        Where the linear velocity is taken (see :func:`symjac.jacobian`).
+        Where the linear velocity is taken (see :func:`symjac.kinematics.jacobian`).
     rows : tuple of int, optional
         Task rows to keep, from 0..5 = v_x, v_y, v_z, omega_x, omega_y, omega_z (default all six). With as many rows
         as joints the Jacobian is square and the module gets a ``jacobian_determinant`` function.

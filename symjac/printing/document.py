@@ -20,9 +20,9 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.errors import ArgumentError
-from symjac.model import Robot
+from symjac.model.robot import Robot
 from symjac.printing.latex import escape_text, latex
-from symjac.printing.layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
+from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
 from symjac.printing.pretty import pretty, pretty_side_by_side
 from symjac.printing.tables import dh_table_latex, dh_table_text
 from symjac.resources import render_template

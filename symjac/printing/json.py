@@ -7,14 +7,14 @@ from typing import Any
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.chain import Frame
-from symjac.jacobian import ROW_NAMES
-from symjac.model import Robot
+from symjac.analysis.singularity.determinant import Determinant
+from symjac.analysis.singularity.singularities import SingularityReport
+from symjac.kinematics.chain import Frame
+from symjac.kinematics.jacobian import ROW_NAMES
+from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Equation, equation_latex
 from symjac.printing.tables import dh_rows
-from symjac.singular_report import SingularityReport
-from symjac.singularity import Determinant
 
 __all__ = [
     "determinant_data",
@@ -129,8 +129,8 @@ def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, J_x: sp.M
                         orientation: str, position: str) -> dict[str, Any]:
     """``symjac jacobian --representation``: coordinates, the rate matrix E, the basic Jacobian and its singularities.
 
-    ``result`` is a :class:`symjac.representations.RepresentationJacobian` (fields ``coordinates``, ``E``, ``frame``,
-    ``singularities``); ``J_x`` is E(x) J_0 multiplied out.
+    ``result`` is a :class:`symjac.analysis.representations.RepresentationJacobian` (fields ``coordinates``, ``E``,
+    ``frame``, ``singularities``); ``J_x`` is E(x) J_0 multiplied out.
     """
     return {**metadata(robot), "frame": result.frame, "point": point, "orientation": orientation,
             "position": position, "coordinates": [str(c) for c in result.coordinates], "E": matrix_strings(result.E),

@@ -1,6 +1,7 @@
 """Every English sentence symjac prints: why a factor is singular, what the arm loses, captions of results.
 
-The analyses return data (:class:`~symjac.singular_geometry.Finding`, :class:`~symjac.singular_report.LostDirection`,
+The analyses return data (:class:`~symjac.analysis.singularity.geometry.Finding`,
+:class:`~symjac.analysis.singularity.singularities.LostDirection`,
 ...); this module is the one place that puts them into words, so wording changes in one file.
 """
 
@@ -9,12 +10,18 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from symjac.jacobian import ROW_NAMES
-from symjac.model import Robot
+from symjac.analysis.representations import RepresentationSingularity
+from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
+from symjac.analysis.singularity.singularities import (
+    DirectionPart,
+    LimitStatus,
+    LostDirection,
+    SingularFactor,
+    SingularityReport,
+)
+from symjac.kinematics.jacobian import ROW_NAMES
+from symjac.model.robot import Robot
 from symjac.printing.document import Inline
-from symjac.representations import RepresentationSingularity
-from symjac.singular_geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
-from symjac.singular_report import DirectionPart, LimitStatus, LostDirection, SingularFactor, SingularityReport
 
 __all__ = [
     "KIND_REASONS",

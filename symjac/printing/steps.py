@@ -9,10 +9,10 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from symjac.acceleration_propagation import AccelerationPropagation
 from symjac.errors import ArgumentError
+from symjac.kinematics.acceleration_propagation import AccelerationPropagation
+from symjac.kinematics.propagation import ForcePropagation, VelocityPropagation
 from symjac.printing.document import Equation, Style, equation_latex, equation_text
-from symjac.propagation import ForcePropagation, VelocityPropagation
 
 __all__ = ["Propagation", "propagation_steps", "step_equations"]
 
@@ -59,7 +59,7 @@ def propagation_steps(
     >>> from symjac import load_robot, velocity_propagation
     >>> propagation_steps(velocity_propagation(load_robot("planar2r")))[3]
     '{}^{1}v_{1} = \\begin{bmatrix}0\\\\L_{1} \\dot{\\theta}_{1}\\\\0\\end{bmatrix}'
-    >>> from symjac.acceleration_propagation import acceleration_propagation
+    >>> from symjac.kinematics.acceleration_propagation import acceleration_propagation
     >>> propagation_steps(acceleration_propagation(load_robot("planar2r")))[7]
     '{}^{1}\\dot v_{1} = \\begin{bmatrix}- L_{1} \\dot{\\theta}_{1}^{2}\\\\L_{1} \\ddot{\\theta}_{1}\\\\0\\end{bmatrix}'
     """

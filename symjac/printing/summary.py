@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import sympy as sp
 
+from symjac.analysis.singularity.singularities import SingularityReport
 from symjac.printing import prose
 from symjac.printing.document import Block, Equation, Style, blocks_as_pairs
-from symjac.singular_report import SingularityReport
 
 __all__ = ["singularity_blocks", "singularity_summary"]
 

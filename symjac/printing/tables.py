@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from symjac.model import Robot
+from symjac.model.robot import Robot
 from symjac.printing.latex import latex
 
 __all__ = ["dh_headers", "dh_rows", "dh_table_latex", "dh_table_text", "text_table"]

@@ -1,6 +1,6 @@
 r"""The derivation a report shows, as HTML fragments: DH table, link transforms, forward kinematics, Jacobians.
 
-Each function returns escaped HTML holding MathML (:mod:`symjac.report.breaking` keeps every display within the
+Each function returns escaped HTML holding MathML (:mod:`symjac.printing.mathml_layout` keeps every display within the
 page width). :func:`method_agreement` derives the Jacobian by all four methods and compares the results exactly.
 """
 
@@ -13,12 +13,12 @@ from xml.dom.minidom import Element
 
 import sympy as sp
 
-from symjac.chain import Frame, chain_of
-from symjac.jacobian import METHODS, Method, jacobian
-from symjac.model import Robot
+from symjac.kinematics.chain import Frame, chain_of
+from symjac.kinematics.jacobian import METHODS, Method, jacobian
+from symjac.model.robot import Robot
 from symjac.printing.document import Block, Equation, Inline
-from symjac.report.breaking import displays
-from symjac.report.mathml import TextbookMathMLPrinter, math_element, mathml_node
+from symjac.printing.mathml import TextbookMathMLPrinter, math_element, mathml_node
+from symjac.printing.mathml_layout import displays
 
 __all__ = [
     "Agreement",

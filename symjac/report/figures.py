@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 
+from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath
 from symjac.errors import SymjacError
-from symjac.report.plane import ManipulabilityMap, SingularPath
 
 __all__ = ["CURVE_COLOURS", "map_svg", "rates_svg"]
 

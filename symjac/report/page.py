@@ -17,9 +17,11 @@ from dataclasses import dataclass
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.chain import Frame, chain_of
-from symjac.jacobian import ROW_NAMES, jacobian
-from symjac.model import Robot
+from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath, manipulability_map, singular_path
+from symjac.analysis.singularity.singularities import SingularityReport, singularities
+from symjac.kinematics.chain import Frame, chain_of
+from symjac.kinematics.jacobian import ROW_NAMES, jacobian
+from symjac.model.robot import Robot
 from symjac.printing.prose import dh_caption
 from symjac.printing.summary import singularity_blocks
 from symjac.report.content import (
@@ -33,9 +35,7 @@ from symjac.report.content import (
     transform_symbol,
 )
 from symjac.report.figures import CURVE_COLOURS, map_svg, rates_svg
-from symjac.report.plane import ManipulabilityMap, SingularPath, manipulability_map, singular_path
 from symjac.resources import render_template
-from symjac.singular_report import SingularityReport, singularities
 
 __all__ = ["Section", "derivation_report"]
 

@@ -10,13 +10,13 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Mapping, Sequence
 
-from symjac.chain import Chain
 from symjac.codegen.backends.numpy import numpy_function
 from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
-from symjac.codegen.layout import wrap_statement
 from symjac.codegen.lower import LoweredFunction, angle_expansion, symbol_names
 from symjac.codegen.printers import CPrinter
+from symjac.codegen.source_layout import wrap_statement
 from symjac.errors import CodegenError
+from symjac.kinematics.chain import Chain
 from symjac.resources import render_template
 
 __all__ = ["BACKEND", "c_function", "c_sources"]

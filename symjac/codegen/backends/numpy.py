@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from symjac.chain import Chain
 from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
-from symjac.codegen.layout import angle_lines, indices, input_lines, temporary_lines, wrap_statement
 from symjac.codegen.lower import LoweredFunction, symbol_names
 from symjac.codegen.printers import NumPyPrinter
+from symjac.codegen.source_layout import angle_lines, indices, input_lines, temporary_lines, wrap_statement
+from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "numpy_function"]
 

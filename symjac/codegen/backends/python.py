@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from symjac.chain import Chain
 from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
-from symjac.codegen.layout import (
+from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.printers import PythonPrinter
+from symjac.codegen.source_layout import (
     LINE_WIDTH,
     angle_lines,
     entry_names,
@@ -15,8 +16,7 @@ from symjac.codegen.layout import (
     unpack,
     wrap_statement,
 )
-from symjac.codegen.lower import LoweredFunction, symbol_names
-from symjac.codegen.printers import PythonPrinter
+from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "python_function"]
 

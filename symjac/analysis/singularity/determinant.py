@@ -1,0 +1,236 @@
+r"""Singular configurations: the factored determinant of the Jacobian, each factor solved and explained.
+
+A square Jacobian :math:`J(q)` (the task rows an arm controls, see :func:`task_rows`) loses rank exactly where
+:math:`\det J = 0`. The determinant is computed on the polynomial image of the simplified Jacobian (sines and
+cosines of the basis angles as independent generators, :mod:`symjac.symbolic.simplify`): a fraction-free determinant
+over the polynomial ring, ``factor_list`` into irreducible factors, then each factor reduced modulo
+:math:`s^2 + c^2 - 1` and laid out in the angle basis where it is shortest. Factors that reduce to a constant
+(:math:`s^2 + c^2`) disappear; what remains reads as in a textbook, e.g. :math:`-L_2 L_3 s_3 (L_1 + L_2 c_2 + L_3
+c_{23})`.
+
+The determinant of the selected rows does not depend on the frame it is expressed in (a frame change multiplies it
+by the determinant of an orthogonal block, 1), so it is computed in the frame where the Jacobian is most compact.
+
+Each factor is then solved (:mod:`symjac.analysis.singularity.solve`), and at a sample of each solution the arm is
+examined numerically (:mod:`symjac.analysis.singularity.geometry`) to classify the singularity and to find what it
+loses;
+:func:`symjac.analysis.singularity.singularities.singularities` puts it together and :mod:`symjac.printing.prose` says
+it in words.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import sympy as sp
+from sympy.polys.matrices import DomainMatrix
+
+from symjac.analysis.spaces import task_rows
+from symjac.errors import ArgumentError, FrameError
+from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.jacobian import ROW_NAMES, Point, check_row_indices, jacobian, point_vector
+from symjac.kinematics.numeric import numeric_at
+from symjac.model.robot import Robot
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import simplify_expr
+from symjac.symbolic.trigpoly import image_of, nested_expr, reduce_image
+
+__all__ = ["Determinant", "determinant", "is_admissible_frame"]
+
+
+def is_admissible_frame(robot: Robot | Chain, rows: Sequence[int], frame: Frame) -> bool:
+    r"""Whether re-expressing the Jacobian in ``frame`` keeps the selected rows closed (their determinant unchanged).
+
+    All six rows, or all three linear or angular rows, are closed in every frame; a planar subset
+    (:math:`v_x, v_y, \omega_z`) only in frames rotated about z: every entry :math:`R_{ij}` of :math:`{}^k_0R` linking
+    a chosen row :math:`i` to an unchosen one :math:`j` of the same block must vanish.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> robot = load_robot("articulated3r")
+    >>> is_admissible_frame(robot, (0, 1, 2), 2), is_admissible_frame(robot, (0, 1, 5), 2)
+    (True, False)
+    """
+    chosen = set(rows)
+    blocks = [set(range(3)), set(range(3, 6))]
+    if all(block <= chosen or not block & chosen for block in blocks):
+        return True
+    R = as_chain(robot).simplified_transform(frame, 0)[:3, :3]
+    for block_start in (0, 3):
+        inside = [r - block_start for r in rows if block_start <= r < block_start + 3]
+        outside = [c for c in range(3) if c not in inside]
+        if any(sp.simplify(R[i, j]) != 0 for i in inside for j in outside):
+            return False
+    return True
+
+
+def _frame_sign(chain: Chain, rows: tuple[int, ...], frame: Frame) -> int:
+    r"""The sign :math:`\det(S\,\mathrm{diag}(R, R)\,S^T) = \pm 1` between the rows' determinant in ``frame`` and {0}.
+
+    It is 1 for all six rows or whole 3-row blocks; a planar subset in a frame whose z-axis is flipped (a twist of
+    pi) has -1, and the determinant is reported as in frame {0}. The sign is constant, so any configuration shows it.
+    """
+    q = [0.3 + 0.1 * i for i in range(chain.robot.dof)]
+    R = numeric_at(chain, chain.rotation(frame, 0), q)
+    B = np.kron(np.eye(2), R)[np.ix_(rows, rows)]
+    return 1 if np.linalg.det(B) > 0 else -1
+
+
+# --- determinant -------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Determinant:
+    r"""A factored determinant :math:`\det J = c \prod_i f_i^{m_i}` and where it came from."""
+
+    coefficient: sp.Expr
+    factors: tuple[tuple[sp.Expr, int], ...]
+    rows: tuple[int, ...]
+    frame: Frame
+    point: tuple[sp.Expr, sp.Expr, sp.Expr]
+    columns: tuple[int, ...]
+
+    @property
+    def expression(self) -> sp.Expr:
+        """The determinant as one product (unevaluated, so the factors stay visible)."""
+        parts = [factor**m if m > 1 else factor for factor, m in self.factors]
+        return sp.Mul(self.coefficient, *parts, evaluate=False) if self.coefficient != 1 else sp.Mul(*parts)
+
+    @property
+    def row_names(self) -> tuple[str, ...]:
+        """Names of the rows used (``v_x`` ... ``omega_z``)."""
+        return tuple(ROW_NAMES[r] for r in self.rows)
+
+
+def _square_jacobian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], rows: Sequence[int],
+                     columns: Sequence[int], numeric: bool) -> sp.Matrix:
+    J = jacobian(chain, frame=frame, point=point).extract(list(rows), list(columns))
+    return J.xreplace(chain.robot.defaults) if numeric else J
+
+
+def _layout(expr: sp.Expr, bases: Sequence[AngleBasis]) -> sp.Expr:
+    """The shortest nested form of ``expr`` over ``bases``."""
+    forms = [simplify_expr(expr, basis) for basis in bases]
+    return min(forms, key=lambda form: (sp.count_ops(form), len(str(form))))
+
+
+def _best_frame(chain: Chain, rows: tuple[int, ...], point: tuple[sp.Expr, ...]) -> int:
+    """The admissible frame in which the selected rows of the Jacobian have the fewest operations."""
+    sizes = []
+    for frame in range(chain.robot.dof + 1):
+        if is_admissible_frame(chain, rows, frame):
+            J = jacobian(chain, frame=frame, point=point).extract(list(rows), list(range(chain.robot.dof)))
+            sizes.append((int(sp.count_ops(J)), frame))
+    return min(sizes)[1]
+
+
+def determinant(
+    robot: Robot | Chain,
+    rows: Sequence[int] | None = None,
+    frame: Frame | None = None,
+    point: Point | None = None,
+    *,
+    columns: Sequence[int] | None = None,
+    numeric: bool = False,
+) -> Determinant:
+    r"""The factored determinant of the square Jacobian made of ``rows`` (and ``columns``).
+
+    Parameters
+    ----------
+    robot : Robot or Chain
+    rows : sequence of int, optional
+        Task rows (0..5 for :math:`v_x .. \omega_z`); default :func:`task_rows`.
+    frame : int, optional
+        Frame to compute in (the result does not depend on it); default: the admissible frame with the most
+        compact Jacobian.
+    point : optional
+        Reference point (see :func:`symjac.kinematics.jacobian`); default the tool point if the robot has a tool, else
+        the wrist. It matters only when fewer than six rows are used.
+    columns : sequence of int, optional
+        Joints (0-based columns) to keep, for the minors of a redundant arm; default all.
+    numeric : bool
+        Substitute the parameters' exact defaults first (factors then hold numbers instead of lengths).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> determinant(load_robot("planar2r")).expression
+    L1*L2*sin(theta2)
+    """
+    chain = as_chain(robot)
+    robot = chain.robot
+    if point is None:
+        point = "tool" if robot.tool is not None else "wrist"
+    point_xyz = point_vector(robot, point)
+    columns = tuple(range(robot.dof)) if columns is None else tuple(columns)
+    rows = task_rows(robot, point_xyz) if rows is None else tuple(rows)
+    if len(rows) != len(columns) or not rows:
+        raise ArgumentError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
+    rows = check_row_indices(rows)
+    if any(not 0 <= c < robot.dof for c in columns) or len(set(columns)) != len(columns):
+        raise ArgumentError(f"columns must be distinct joint indices 0..{robot.dof - 1}, got {columns}")
+    # Factoring costs seconds on a six-joint arm and the singularity report, the rates and the CLI all ask for it:
+    # the chain keeps it per request.
+    return chain.memo(("determinant", rows, frame, point_xyz, columns, numeric),
+                      lambda: _determinant(chain, rows, frame, point_xyz, columns, numeric))
+
+
+def _determinant(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point_xyz: tuple[sp.Expr, sp.Expr, sp.Expr],
+                 columns: tuple[int, ...], numeric: bool) -> Determinant:
+    if frame is None:
+        frame = _best_frame(chain, rows, point_xyz)
+    frame = chain.frame_name(chain.position(frame))
+    if not is_admissible_frame(chain, rows, frame):
+        raise FrameError(f"rows {rows} mix with other rows when expressed in frame {frame}; use another frame")
+    J = _square_jacobian(chain, frame, point_xyz, rows, columns, numeric)
+    coefficient, factors = _factored_determinant(J, chain.angle_basis(frame), chain.all_angle_bases())
+    return Determinant(coefficient * _frame_sign(chain, rows, frame), factors, rows, frame, point_xyz, columns)
+
+
+_FACTOR_UNREDUCED_TERMS = 150
+
+
+def _factored_determinant(
+    J: sp.Matrix, basis: AngleBasis, bases: Sequence[AngleBasis]
+) -> tuple[sp.Expr, tuple[tuple[sp.Expr, int], ...]]:
+    """Fraction-free determinant over the polynomial ring, factored, each factor reduced and laid out."""
+    image, polys = image_of(list(J), basis)
+    domain = image.ring_and_gens[0].to_domain()
+    matrix = DomainMatrix([polys[i * J.cols:(i + 1) * J.cols] for i in range(J.rows)], J.shape, domain)
+    value = matrix.det()
+    if not value:
+        return sp.S.Zero, ()
+    # Factoring before the reduction keeps products such as s_3 (a c_3 + b s_3) intact (reducing s_3^2 first would
+    # hide the factor s_3); on large determinants (redundant arms' minors) multivariate factoring of the unreduced
+    # polynomial can take minutes, so there the reduced polynomial, much smaller, is factored instead.
+    if len(value.terms()) > _FACTOR_UNREDUCED_TERMS:
+        value = reduce_image(value, image)
+    constant, raw_factors = value.factor_list()
+    coefficient = _number(constant)
+    collected: dict[sp.Expr, int] = {}
+    for raw, multiplicity in raw_factors:
+        reduced = reduce_image(raw, image)
+        if reduced.is_ground:
+            coefficient *= _number(reduced.LC) ** multiplicity
+            continue
+        factor = _layout(nested_expr(reduced, image), bases)
+        if factor.could_extract_minus_sign():
+            factor, coefficient = -factor, coefficient * (-1) ** multiplicity
+        collected[factor] = collected.get(factor, 0) + multiplicity
+    ordered = sorted(collected.items(), key=lambda item: (_factor_rank(item[0]), sp.default_sort_key(item[0])))
+    return coefficient, tuple(ordered)
+
+
+def _number(value: Any) -> sp.Rational:
+    return sp.Rational(int(value.numerator), int(value.denominator))
+
+
+def _factor_rank(factor: sp.Expr) -> int:
+    """Parameters first, then single sines/cosines, then longer factors (textbook order)."""
+    if not any(isinstance(atom, sp.sin | sp.cos) for atom in factor.atoms(sp.Function)):
+        return 0
+    return 1 if isinstance(factor, sp.sin | sp.cos) else 2

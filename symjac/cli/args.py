@@ -1,0 +1,130 @@
+"""Command-line text -> API arguments: the robot and its URDF chain, frames, points, rows, values.
+
+Every function raises a :class:`~symjac.errors.SymjacError` whose message names the option, so the command line
+can print it as one line.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+
+import sympy as sp
+
+from symjac.errors import ArgumentError, ExpressionError, FrameError, RobotFileError
+from symjac.kinematics.chain import Frame
+from symjac.kinematics.jacobian import rows_from_names
+from symjac.model.expressions import parse_expression
+from symjac.model.io import load_robot
+from symjac.model.robot import Robot
+
+__all__ = [
+    "ROBOT_HELP",
+    "add_robot_arguments",
+    "load",
+    "parse_frame",
+    "parse_point",
+    "parse_rows",
+    "parse_values",
+    "refuse_ignored_options",
+]
+
+ROBOT_HELP = "a built-in robot name (see 'symjac robots'), a TOML file or a URDF file"
+
+
+def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
+    """The ``ROBOT`` argument and the options that choose a URDF file's chain."""
+    parser.add_argument("robot", metavar="ROBOT", help=ROBOT_HELP)
+    parser.add_argument("--base-link", default=None, metavar="LINK",
+                        help="URDF files only: first link of the chain (default: the root link)")
+    parser.add_argument("--tip-link", default=None, metavar="LINK",
+                        help="URDF files only: last link of the chain (default: the only leaf link)")
+
+
+def load(args: argparse.Namespace) -> Robot:
+    """The robot named by ``args.robot``, with the chain ``--base-link`` / ``--tip-link`` choose in a URDF file."""
+    links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
+    try:
+        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
+    except RobotFileError as error:
+        given = [option for option, value in links.items() if value is not None]
+        if given and "URDF files only" in error.message:  # say it with the options the user typed
+            verb = "applies" if len(given) == 1 else "apply"
+            raise ArgumentError(f"{' and '.join(given)} {verb} to URDF files only; {args.robot!r} is not one") \
+                from None
+        message = re.sub(r"\b(base|tip)_link\b", r"--\1-link", error.message)  # the option, not the API name
+        raise RobotFileError(message, source=error.source, joint=error.joint, field=error.field) from None
+
+
+def refuse_ignored_options(args: argparse.Namespace) -> None:
+    """Refuse an option that would have no effect with the others given, instead of ignoring it silently."""
+    if getattr(args, "standalone", False) and args.format != "latex":
+        raise ArgumentError(f"--standalone applies to --format latex only, not --format {args.format}")
+    if getattr(args, "digits", None) is not None:
+        if not (args.numeric or getattr(args, "q", None)):
+            raise ArgumentError("--digits needs --numeric (or torques --q): only numbers are rounded")
+        if args.digits < 1:
+            raise ArgumentError(f"--digits must be at least 1, got {args.digits}")
+    representation = getattr(args, "representation", None)
+    if getattr(args, "position", None) is not None and representation is None:
+        raise ArgumentError("--position needs --representation (it chooses the representation's position part)")
+    method = getattr(args, "method", None)
+    for option, given in (("--representation", representation is not None),
+                          ("--derivative", getattr(args, "derivative", False))):
+        if given and method not in (None, "differentiation"):
+            raise ArgumentError(f"--method {method} does not apply with {option}")
+    if getattr(args, "steps", False) and representation is not None:
+        raise ArgumentError("--steps does not apply with --representation")
+
+
+def parse_rows(text: str) -> tuple[int, ...]:
+    """Task rows by name (``v_x .. omega_z``, :data:`symjac.kinematics.jacobian.ROW_NAMES`) -> indices 0..5."""
+    try:
+        return rows_from_names(text)
+    except ArgumentError as error:
+        raise ArgumentError(f"--rows: {error}") from None
+
+
+def parse_frame(text: str) -> Frame:
+    """``--frame``: a frame number, ``world`` or ``tool``."""
+    if text in ("world", "tool"):
+        return text  # type: ignore[return-value]
+    try:
+        return int(text)
+    except ValueError:
+        raise FrameError(f"--frame must be a frame number, 'world' or 'tool', got {text!r}") from None
+
+
+def parse_point(text: str, robot: Robot) -> str | tuple[sp.Expr, ...]:
+    """``--point``: ``wrist``, ``tool``, or three coordinates ``x,y,z`` in frame {n} (parameter names allowed)."""
+    if text in ("wrist", "tool"):
+        return text
+    parts = text.split(",")
+    if len(parts) != 3:
+        raise FrameError(f"--point must be 'wrist', 'tool' or three coordinates x,y,z, got {text!r}")
+    try:
+        return tuple(parse_expression(part.strip(), _parameters(robot)) for part in parts)
+    except ExpressionError as error:
+        raise FrameError(f"--point: {error}") from None
+
+
+def parse_values(text: str, length: int, option: str, robot: Robot, *, parameters: bool = True) -> list[sp.Expr]:
+    """``length`` comma-separated values: numbers, ``pi`` and (with ``parameters``) the robot's parameter names."""
+    parts = text.split(",")
+    if len(parts) != length:
+        raise ArgumentError(f"{option} needs {length} comma-separated values, got {len(parts)} in {text!r}")
+    names = _parameters(robot) if parameters else {}
+    values = []
+    for part in parts:
+        try:
+            values.append(parse_expression(part.strip(), names))
+        except ExpressionError as error:
+            if not parameters and set(re.findall(r"[A-Za-z_]\w*", part)) - {"pi"}:  # say what is allowed
+                raise ArgumentError(f"{option} takes numbers and expressions with pi only (joint angles in "
+                                    f"radians, prismatic offsets in metres), got {part.strip()!r}") from None
+            raise ArgumentError(f"{option}: {error}") from None
+    return values
+
+
+def _parameters(robot: Robot) -> dict[str, sp.Symbol]:
+    return {parameter.name: parameter.symbol for parameter in robot.parameters}

@@ -1,0 +1,280 @@
+r"""Converting robot descriptions: standard DH <-> modified DH, with the base/tool transforms that make them equal.
+
+Both DH conventions multiply the same elementary factors; only the grouping into links differs. With
+:math:`Z_i = R_z(\theta_i) T_z(d_i)` and :math:`X_i = T_x(a_i) R_x(\alpha_i)` (which commute, so
+:math:`R_x(\alpha) T_x(a) = T_x(a) R_x(\alpha)`):
+
+.. math::
+    \text{standard: } B\,(Z_1 X_1)(Z_2 X_2)\cdots(Z_n X_n)\,T
+    \;=\; B\,(X_0 Z_1)(X_1 Z_2)\cdots(X_{n-1} Z_n)\,(X_n T) \text{ with } X_0 = I,
+
+which is a modified table with rows :math:`(\alpha_{i-1}, a_{i-1}, d_i, \theta_i)` and the tool :math:`X_n T`.
+The way back moves :math:`X_0` of a modified table into the base transform and leaves :math:`X_n = I`. Joint
+variables, offsets and parameters are unchanged, so forward kinematics from the world frame to the tool frame and
+every Jacobian expressed in the world frame at the tool point are *identical* expressions. The intermediate
+frames differ: standard frame {i} is modified frame {i+1} before joint i+1 moves.
+
+A tool transform that is exactly :math:`X_n` (``xyz = [a, 0, 0]``, ``rpy = [alpha, 0, 0]``) is folded back into the
+last row, so standard -> modified -> standard returns the very same table.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import sympy as sp
+
+from symjac.errors import ConversionError
+from symjac.kinematics.chain import chain_of
+from symjac.model.expressions import snap_angle
+from symjac.model.robot import Convention, FixedTransform, Joint, Robot, fixed_transform_from_matrix
+from symjac.symbolic.transforms import homogeneous, inverse_transform, rotation
+
+__all__ = ["ConversionError", "DHExtraction", "convert", "dh_from_general", "modified_from_standard",
+           "standard_from_modified"]
+
+
+def modified_from_standard(robot: Robot) -> Robot:
+    """The modified-DH robot with the same world-to-tool kinematics as a standard-DH ``robot`` (module docstring).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> ur5 = load_robot("ur5")
+    >>> modified = modified_from_standard(ur5)
+    >>> [str(j.alpha) for j in modified.joints], modified.tool
+    (['0', 'pi/2', '0', '0', 'pi/2', '-pi/2'], None)
+    >>> standard_from_modified(modified) == ur5
+    True
+    """
+    if robot.convention is not Convention.STANDARD:
+        raise ConversionError(f"{robot.name} is not in the standard convention (it is {robot.convention.value})")
+    joints = []
+    previous_alpha, previous_a = sp.S.Zero, sp.S.Zero
+    for joint in robot.joints:
+        joints.append(replace(joint, alpha=previous_alpha, a=previous_a))
+        previous_alpha, previous_a = joint.alpha, joint.a
+    tool = _prepend_x(previous_a, previous_alpha, robot.tool)
+    return replace(robot, convention=Convention.MODIFIED, joints=tuple(joints), tool=tool)
+
+
+def standard_from_modified(robot: Robot) -> Robot:
+    """The standard-DH robot with the same world-to-tool kinematics as a modified-DH ``robot`` (module docstring)."""
+    if robot.convention is not Convention.MODIFIED:
+        raise ConversionError(f"{robot.name} is not in the modified convention (it is {robot.convention.value})")
+    rows = list(robot.joints)
+    base = _append_x(robot.base, rows[0].a, rows[0].alpha)
+    joints: list[Joint] = []
+    for i, joint in enumerate(rows):
+        following = rows[i + 1] if i + 1 < len(rows) else None
+        alpha, a = (following.alpha, following.a) if following else (sp.S.Zero, sp.S.Zero)
+        joints.append(replace(joint, alpha=alpha, a=a))
+    tool = robot.tool
+    if tool is not None and tool.given_matrix is None and tool.xyz[1:] == (0, 0) and tool.rpy[1:] == (0, 0):
+        # a tool that is exactly X_n = Tx(a) Rx(alpha) belongs in the last row
+        joints[-1] = replace(joints[-1], alpha=tool.rpy[0], a=tool.xyz[0])
+        tool = None
+    return replace(robot, convention=Convention.STANDARD, joints=tuple(joints), base=base, tool=tool)
+
+
+def convert(robot: Robot, to: Convention | str) -> Robot:
+    """``robot`` in the convention ``to`` (``"standard"`` or ``"modified"``); unchanged if it already is."""
+    target = Convention(to)
+    if robot.convention is target:
+        return robot
+    if target is Convention.MODIFIED and robot.convention is Convention.STANDARD:
+        return modified_from_standard(robot)
+    if target is Convention.STANDARD and robot.convention is Convention.MODIFIED:
+        return standard_from_modified(robot)
+    if robot.convention is Convention.GENERAL:
+        modified = dh_from_general(robot).robot
+        return modified if target is Convention.MODIFIED else standard_from_modified(modified)
+    raise ConversionError(f"cannot convert {robot.name} from {robot.convention.value} to {target.value}")
+
+
+@dataclass(frozen=True)
+class DHExtraction:
+    """A DH table found for a general chain: the modified-DH robot, and whether it needed base/tool transforms.
+
+    ``needs_base`` / ``needs_tool`` say that frame {0} / the tool frame of the general chain is not a DH frame, so no
+    DH table describes the chain without an extra fixed transform there; ``notes`` says so in words.
+    """
+
+    robot: Robot
+    needs_base: bool
+    needs_tool: bool
+    notes: tuple[str, ...]
+
+
+def _exact(expr: sp.Expr) -> sp.Expr:
+    return sp.nsimplify(sp.radsimp(sp.expand(expr)), [sp.pi]) if expr.has(sp.Float) else sp.radsimp(sp.expand(expr))
+
+
+def _unit(v: sp.Matrix) -> sp.Matrix:
+    return (v / sp.sqrt(_exact(v.dot(v)))).applyfunc(_exact)
+
+
+def _angle(sine: sp.Expr, cosine: sp.Expr) -> sp.Expr:
+    angle = sp.atan2(_exact(sine), _exact(cosine))
+    if angle.has(sp.atan2, sp.atan):
+        snapped = snap_angle(sp.Rational(float(angle)))
+        if not snapped.is_Rational:
+            return snapped
+    return angle
+
+
+def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExtraction:
+    r"""Extract a modified-DH table from a general chain (the joint axes at :math:`q = 0`), exactly.
+
+    Frame {i} of the table lies on joint axis i at the foot of the common normal to axis i+1, with x along that
+    normal (Craig's rules; for parallel axes the foot keeps :math:`d_i = 0`, for intersecting or coincident ones x is
+    the cross product or the previous x). Frame {0} is the chain's frame {0} when its x-axis is a common normal to
+    axis 1, otherwise frame {1} at :math:`q_1 = 0` and a base transform is needed; likewise a tool transform carries
+    the last DH frame to the chain's frame {n} or tool frame. Joint variables keep their names and senses.
+
+    With ``substitute_defaults`` the parameters take their numeric defaults first (the table is then numeric).
+
+    Raises
+    ------
+    ConversionError
+        If ``robot`` is not general or its frames are not numeric (symbolic parameters).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> extraction = dh_from_general(load_robot("panda.urdf", tip_link="panda_link8"))
+    >>> [str(j.alpha) for j in extraction.robot.joints]
+    ['0', '-pi/2', 'pi/2', 'pi/2', '-pi/2', 'pi/2', 'pi/2']
+    >>> extraction.needs_base, extraction.robot.tool.xyz
+    (False, (0, 0, 107/1000))
+    """
+    if robot.convention is not Convention.GENERAL:
+        raise ConversionError(f"{robot.name} is already a DH table ({robot.convention.value})")
+    chain = chain_of(robot)
+    zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.q}
+    if substitute_defaults:
+        zero.update(robot.defaults)
+    frames = [sp.Matrix(chain.transform(0, i)).xreplace(zero).applyfunc(_exact) for i in range(robot.dof + 1)]
+    if any(not e.is_number for F in frames for e in F):
+        raise ConversionError(f"{robot.name}: DH extraction needs numeric frames; substitute the parameters first")
+    if any(F.has(sp.sin, sp.cos) for F in frames):
+        # exact geometry on sin/cos of generic constants (rpy = 0.3) does not reduce; refuse rather than hang
+        raise ConversionError(f"{robot.name}: exact DH extraction needs origin angles that are multiples of pi/12")
+    n = robot.dof
+    origin = [F[:3, 3] for F in frames]
+    z = [F[:3, 2] for F in frames]
+
+    # frame {0}: the chain's own, if its x-axis is a common normal to axis 1
+    x0, needs_base = frames[0][:3, 0], False
+    if _exact(x0.dot(z[1])) == 0 and _exact((origin[1] - origin[0]).dot(x0.cross(z[1]))) == 0:
+        D = [sp.eye(4)]
+    else:
+        D, needs_base = [frames[1]], True
+    # frames {1}..{n}: origins p_i on axis i, x_i along the common normal to axis i+1
+    for i in range(1, n + 1):
+        previous = D[i - 1]
+        x_prev, p_prev = previous[:3, 0], previous[:3, 3]
+        # foot of the previous common normal on axis i: p_prev + a x_prev, then along z_i
+        w = origin[i] - p_prev
+        a_prev = _exact(w.dot(x_prev))
+        foot = (p_prev + a_prev * x_prev).applyfunc(_exact)
+        if i == n:
+            x_i, p_i = _perpendicular(frames[n][:3, 0], z[i]), foot
+        else:
+            c = z[i].cross(z[i + 1]).applyfunc(_exact)
+            if any(e != 0 for e in c):
+                x_i = _unit(c)
+                between = origin[i + 1] - origin[i]
+                s = _exact(between.cross(z[i + 1]).dot(c) / c.dot(c))
+                p_i = (origin[i] + s * z[i]).applyfunc(_exact)
+                x_i = _oriented(x_i, frames[i][:3, 0], origin[i + 1] - p_i)
+            else:  # parallel axes: keep d_i = 0
+                p_i = foot
+                between = origin[i + 1] - p_i
+                perpendicular = (between - between.dot(z[i]) * z[i]).applyfunc(_exact)
+                x_i = _unit(perpendicular) if any(e != 0 for e in perpendicular) else _perpendicular(x_prev, z[i])
+                x_i = _oriented(x_i, frames[i][:3, 0], perpendicular)
+        y_i = z[i].cross(x_i).applyfunc(_exact)
+        D.append(homogeneous(sp.Matrix.hstack(x_i, y_i, z[i]), p_i))
+    joints = []
+    for i, joint in enumerate(robot.joints, start=1):
+        previous, current = D[i - 1], D[i]
+        x_prev, z_prev = previous[:3, 0], previous[:3, 2]
+        x_i, z_i = current[:3, 0], current[:3, 2]
+        w = current[:3, 3] - previous[:3, 3]
+        alpha = _angle(z_prev.cross(z_i).dot(x_prev), z_prev.dot(z_i))
+        a = _exact(w.dot(x_prev))
+        d = _exact(w.dot(z_i))
+        theta = _angle(x_prev.cross(x_i).dot(z_i), x_prev.dot(x_i))
+        if any(_exact(e) != 0 for e in w - a * x_prev - d * z_i):
+            raise ConversionError(f"{robot.name}, joint {i}: internal error, frames are not DH frames")
+        # the frames were taken at q = 0 with the joints' own offsets, so d and theta are the DH offsets
+        joints.append(Joint(index=i, type=joint.type, alpha=alpha, a=a, d=d, theta=theta, limits=joint.limits))
+    # the chain's frame {n} seen from the last DH frame is constant (both turn with joint n)
+    E = (inverse_transform(D[n]) * frames[n]).applyfunc(_exact)
+    tool_matrix = E * sp.Matrix(robot.tool.matrix).xreplace(zero) if robot.tool is not None else E
+    tool_matrix = tool_matrix.applyfunc(_exact)
+    needs_tool = tool_matrix != sp.eye(4)
+    base_matrix = (sp.Matrix(robot.base.matrix).xreplace(zero) if robot.base else sp.eye(4)) * D[0]
+    base_matrix = base_matrix.applyfunc(_exact)
+    notes = []
+    if needs_base:
+        notes.append("frame {0} of the chain is not a DH frame: the table needs a base transform")
+    if needs_tool:
+        notes.append("the tool frame is not the last DH frame: the table needs a tool transform")
+    result = Robot(name=robot.name, convention=Convention.MODIFIED, joints=tuple(joints),
+                   parameters=() if substitute_defaults else robot.parameters, description=robot.description,
+                   base=None if base_matrix == sp.eye(4) else _as_fixed(base_matrix),
+                   tool=None if not needs_tool else _as_fixed(tool_matrix), source=robot.source)
+    return DHExtraction(result, needs_base, needs_tool, tuple(notes))
+
+
+def _oriented(x: sp.Matrix, chain_x: sp.Matrix, towards: sp.Matrix) -> sp.Matrix:
+    """``x`` or ``-x``: along the chain's own x-axis when it is not perpendicular (fewest offsets), else a >= 0."""
+    for reference in (chain_x, towards):
+        sign = _exact(x.dot(reference))
+        if sign != 0:
+            return x if sign > 0 else -x
+    return x
+
+
+def _perpendicular(x: sp.Matrix, z: sp.Matrix) -> sp.Matrix:
+    """``x`` made perpendicular to the unit ``z`` (or any perpendicular when ``x`` is parallel to it), unit."""
+    v = (x - x.dot(z) * z).applyfunc(_exact)
+    if all(e == 0 for e in v):
+        for e in (sp.Matrix([1, 0, 0]), sp.Matrix([0, 1, 0])):
+            v = (e - e.dot(z) * z).applyfunc(_exact)
+            if any(c != 0 for c in v):
+                break
+    return _unit(v)
+
+
+def _x_matrix(a: sp.Expr, alpha: sp.Expr) -> sp.Matrix:
+    return homogeneous(rotation("x", alpha), sp.Matrix([a, 0, 0]))
+
+
+def _prepend_x(a: sp.Expr, alpha: sp.Expr, tool: FixedTransform | None) -> FixedTransform | None:
+    r""":math:`T_x(a) R_x(\alpha)` followed by ``tool``, as one fixed transform (xyz/rpy whenever possible)."""
+    if tool is None:
+        return None if a == 0 and alpha == 0 else FixedTransform(xyz=(a, sp.S.Zero, sp.S.Zero),
+                                                                 rpy=(alpha, sp.S.Zero, sp.S.Zero))
+    if a == 0 and alpha == 0:
+        return tool
+    if tool.given_matrix is None and tool.rpy[1:] == (0, 0):
+        # Rx(alpha) Rx(roll) = Rx(alpha + roll); the position turns with Rx(alpha)
+        x, y, z = (sp.Matrix([a, 0, 0]) + rotation("x", alpha) * sp.Matrix(tool.xyz)).applyfunc(sp.expand)
+        return FixedTransform(xyz=(x, y, z), rpy=(alpha + tool.rpy[0], sp.S.Zero, sp.S.Zero))
+    return _as_fixed(_x_matrix(a, alpha) * sp.Matrix(tool.matrix))
+
+
+def _append_x(base: FixedTransform | None, a: sp.Expr, alpha: sp.Expr) -> FixedTransform | None:
+    r"""``base`` followed by :math:`T_x(a) R_x(\alpha)`."""
+    if a == 0 and alpha == 0:
+        return base
+    if base is None:
+        return FixedTransform(xyz=(a, sp.S.Zero, sp.S.Zero), rpy=(alpha, sp.S.Zero, sp.S.Zero))
+    return _as_fixed(sp.Matrix(base.matrix) * _x_matrix(a, alpha))
+
+
+def _as_fixed(T: sp.Matrix) -> FixedTransform:
+    return fixed_transform_from_matrix(T)

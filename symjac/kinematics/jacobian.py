@@ -1,0 +1,368 @@
+r"""Basic Jacobians :math:`J = [J_v; J_\omega]` of a serial robot, by the textbook derivation methods.
+
+For joint i with axis :math:`z_i` through the point :math:`p_i` (frame {i} in the modified convention, {i-1} in the
+standard one), :math:`\epsilon_i = 1` for a prismatic and :math:`0` for a revolute joint, and the point P fixed to
+the last link, the columns of the basic Jacobian are
+
+.. math::
+    J_i = \begin{bmatrix} \epsilon_i z_i + \bar\epsilon_i\, z_i \times p_{iP} \\ \bar\epsilon_i z_i \end{bmatrix}
+
+expressed in any frame {k} as :math:`{}^kJ = \mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J`.
+
+Methods (all return the same matrix, simplified to the same unique normal form):
+
+``"differentiation"``
+    :math:`J_v = \partial\,{}^0x_P/\partial q` of the forward kinematics, :math:`J_\omega` from the z-axes
+    :math:`{}^0z_i = {}^0_iR\,[0, 0, 1]^T`, then rotated into {k}.
+``"cross_product"``
+    :math:`{}^k(z_i \times p_{iP})` with every vector read where it is shortest. Usually both are read in {k}:
+    :math:`{}^kz_i \times ({}^kp_P - {}^kp_i)` from :math:`{}^k_iT` and :math:`{}^k_nT` (in frame {0} the familiar
+    :math:`z_{i-1} \times (o_n - o_{i-1})`). When P is nearer the axis than {k} is, counted in turns of the joint
+    axes (a vector spanning m turns has about :math:`1.8^m` terms), :math:`p_{iP}` is read in {i}, where
+    :math:`{}^iz_i = [0, 0, 1]^T` makes the cross product :math:`[-p_y, p_x, 0]^T`, and rotated:
+    :math:`{}^k_iR\,(\hat{Z}\,{}^ip_{iP})`. A frame in the middle of a long chain then gives short results where
+    frame {0} cannot.
+``"velocity_propagation"``
+    Link velocities iterated outward (:func:`symjac.kinematics.propagation.velocity_propagation`); the last step *is*
+    :math:`{}^nJ`, then rotated into {k}.
+``"force_propagation"``
+    A tip wrench iterated inward (:func:`symjac.kinematics.propagation.force_propagation`); the torque map is
+    :math:`{}^nJ^T`, transposed and rotated into {k}.
+
+Which frame each method yields directly, and the 6 x 6 rotation that moves it to frame {k}:
+
+=======================  ===================  =============================================================
+method                   natural result       to frame {k}
+=======================  ===================  =============================================================
+differentiation          :math:`{}^0J`        :math:`\mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J`
+cross_product            :math:`{}^kJ`        computed column by column in {k} (vectors read in {k} or {i})
+velocity_propagation     :math:`{}^nJ`        :math:`\mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`
+force_propagation        :math:`{}^nJ^T`      transpose, then :math:`\mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`
+=======================  ===================  =============================================================
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Literal, get_args
+
+import sympy as sp
+
+from symjac.errors import ArgumentError, FrameError
+from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.propagation import force_propagation, velocity_propagation
+from symjac.model.robot import VELOCITY_NAMES, Robot
+from symjac.progress import report
+from symjac.symbolic.simplify import AngleBasis, simplify_matrix, simplify_product
+from symjac.symbolic.transforms import block_rotation, point_shift
+
+Method = Literal["differentiation", "cross_product", "velocity_propagation", "force_propagation"]
+Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
+
+METHODS: tuple[str, ...] = get_args(Method)
+
+ROW_NAMES: tuple[str, ...] = VELOCITY_NAMES
+"""The six rows of a basic Jacobian, linear velocity first: the one spelling symjac reads and prints."""
+
+__all__ = [
+    "METHODS",
+    "ROW_NAMES",
+    "Method",
+    "Point",
+    "change_frame",
+    "check_row_indices",
+    "jacobian",
+    "jacobian_of",
+    "point_vector",
+    "rows_from_names",
+    "shift_point",
+]
+
+
+def rows_from_names(names: str | Sequence[str]) -> tuple[int, ...]:
+    """Row indices 0..5 of row names from :data:`ROW_NAMES` (a sequence, or one comma-separated string).
+
+    Examples
+    --------
+    >>> rows_from_names("v_x,v_y,omega_z")
+    (0, 1, 5)
+    """
+    parts = [part.strip() for part in (names.split(",") if isinstance(names, str) else names)]
+    unknown = [part for part in parts if part not in ROW_NAMES]
+    if unknown or not parts:
+        raise ArgumentError(f"unknown row {unknown[0] if unknown else ''!r}; use {', '.join(ROW_NAMES)}")
+    return check_row_indices(tuple(ROW_NAMES.index(part) for part in parts))
+
+
+def check_row_indices(rows: Sequence[int]) -> tuple[int, ...]:
+    """Task rows as distinct indices 0..5; the error names the rows (``v_x is given twice in v_x, v_y, v_x``).
+
+    Examples
+    --------
+    >>> check_row_indices([0, 1, 5])
+    (0, 1, 5)
+    """
+    values = tuple(rows)
+    shown = ", ".join(ROW_NAMES[r] if isinstance(r, int) and 0 <= r < 6 else repr(r) for r in values)
+    if not values or any(isinstance(r, bool) or not isinstance(r, int) or not 0 <= r < 6 for r in values):
+        raise ArgumentError(f"rows must be row numbers 0..5 ({', '.join(ROW_NAMES)}), got [{shown}]")
+    repeated = next((r for i, r in enumerate(values) if r in values[:i]), None)
+    if repeated is not None:
+        raise ArgumentError(f"rows must not repeat: {ROW_NAMES[repeated]} is given twice in {shown}")
+    return values
+
+
+def jacobian(
+    robot: Robot | Chain,
+    frame: Frame = 0,
+    point: Point = "wrist",
+    method: Method = "differentiation",
+    *,
+    simplify: bool = True,
+) -> sp.Matrix:
+    r"""The 6 x n basic Jacobian :math:`{}^kJ` of ``robot``, rows :math:`[v; \omega]`.
+
+    Parameters
+    ----------
+    robot : Robot or Chain
+    frame : int or "world" or "tool"
+        Frame {k} the Jacobian is expressed in (default {0}).
+    point : "wrist", "tool" or sequence of 3
+        Where the linear velocity is taken: the origin of frame {n} (default), the origin of the tool frame, or a
+        point given by its coordinates in frame {n}.
+    method : "differentiation", "cross_product", "velocity_propagation" or "force_propagation"
+        Derivation (see the module docstring); all give the same matrix.
+    simplify : bool
+        Lay the result out in compact textbook form (default). ``False`` returns the raw structured products.
+
+    Returns
+    -------
+    J : sympy.Matrix, shape (6, n)
+        Rows :math:`[v_x, v_y, v_z, \omega_x, \omega_y, \omega_z]` expressed in {k}; column i belongs to joint i.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> jacobian(load_robot("planar2r"), frame=1)[:2, :]
+    Matrix([
+    [    -L2*sin(theta2), -L2*sin(theta2)],
+    [L1 + L2*cos(theta2),  L2*cos(theta2)]])
+    """
+    if method not in METHODS:
+        raise ArgumentError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
+    chain = as_chain(robot)
+    frame = chain.frame_name(chain.position(frame))  # validated, and 3 and numpy.int64(3) share one cache entry
+    xyz = point_vector(chain, point)
+    return sp.Matrix(chain.memo(("jacobian", frame, xyz, method, simplify),
+                                lambda: _derive(chain, frame, xyz, method, simplify)))
+
+
+def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """Coordinates in frame {n} of a point given as ``"wrist"``, ``"tool"`` or three coordinates (validated)."""
+    robot = robot.robot if isinstance(robot, Chain) else robot
+    if isinstance(point, str):
+        if point == "wrist":
+            return (sp.S.Zero,) * 3
+        if point == "tool":
+            if robot.tool is None:
+                raise FrameError(f"{robot.name} has no tool transform, so it has no 'tool' point")
+            x, y, z = robot.tool.matrix[:3, 3]
+            return x, y, z
+        raise FrameError(f"unknown point {point!r}: use 'wrist', 'tool' or three coordinates in frame {{n}}")
+    values = tuple(point)
+    if len(values) != 3:
+        raise FrameError(f"a point needs 3 coordinates in frame {{n}}, got {len(values)}")
+    coordinates = []
+    for value in values:
+        expr = sp.sympify(value)
+        if not isinstance(expr, sp.Expr) or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+            raise FrameError(f"point coordinate {value!r} is not a finite number or expression")
+        coordinates.append(sp.nsimplify(expr, rational=True) if expr.is_Float else expr)
+    x, y, z = coordinates
+    return x, y, z
+
+
+def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
+            simplify: bool) -> sp.ImmutableMatrix:
+    if simplify and method != "cross_product":  # from the frame the method works in, link by link on normal forms
+        source = 0 if method == "differentiation" else chain.n
+        raw = jacobian(chain, source, point, method, simplify=False)
+        report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
+        factors = [*_link_rotations(chain, frame, source), raw]
+        return sp.ImmutableMatrix(simplify_product(factors, chain.angle_bases(frame)))
+    if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
+        raw = jacobian(chain, frame, point, method, simplify=False)
+        report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
+        return sp.ImmutableMatrix(simplify_matrix(raw, chain.angle_bases(frame)))
+    derive = {"differentiation": _differentiation, "cross_product": _cross_product,
+              "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
+    return sp.ImmutableMatrix(derive(chain, frame, point))
+
+
+def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+    robot = chain.robot
+    T_0_n = chain.transform(0, chain.n)
+    x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
+    J_0 = sp.zeros(6, chain.n)
+    for i, joint in enumerate(robot.joints):
+        report(f"differentiation, joint {i + 1} of {chain.n}")
+        J_0[:3, i] = x_P.applyfunc(_Derivative(joint.variable))
+        if joint.is_revolute:
+            J_0[3:, i] = chain.rotation(0, chain.axis_frame(joint.index))[:, 2]
+    if chain.position(frame) == 0:
+        return J_0
+    return block_rotation(chain.rotation(frame, 0)) * J_0
+
+
+class _Derivative:
+    r""":math:`\partial e / \partial x` by SymPy's own rules (the very same result), each shared node once.
+
+    ``expr.diff(x)`` walks a chain product as a tree: every level repeats the free-symbol search and the
+    differentiation of the subexpressions it shares with its neighbours, so its cost doubles with each link. The
+    same product rule, :math:`(uv)' = u'v + uv'`, :math:`\sin(u)' = \cos(u)\,u'`, applied once per distinct node,
+    gives the identical expression in time linear in the number of nodes.
+    """
+
+    def __init__(self, variable: sp.Symbol):
+        self.variable = variable
+        self._memo: dict[sp.Expr, sp.Expr] = {}
+        self._depends: dict[sp.Expr, bool] = {}
+
+    def depends(self, expr: sp.Expr) -> bool:
+        """Whether ``expr`` contains the variable (memoized per node, unlike ``free_symbols``)."""
+        if expr.is_Atom:
+            return expr == self.variable
+        if expr not in self._depends:
+            self._depends[expr] = any(self.depends(arg) for arg in expr.args)
+        return self._depends[expr]
+
+    def __call__(self, expr: sp.Expr) -> sp.Expr:
+        if not self.depends(expr):
+            return sp.S.Zero
+        if expr in self._memo:
+            return self._memo[expr]
+        if expr.is_Atom:
+            result: sp.Expr = sp.S.One
+        elif isinstance(expr, sp.Add):
+            result = sp.Add(*[self(arg) for arg in expr.args])
+        elif isinstance(expr, sp.Mul):
+            args, terms = list(expr.args), []
+            for i, arg in enumerate(args):
+                d = self(arg)
+                if d:
+                    terms.append(sp.Mul(*args[:i], d, *args[i + 1:]))
+            result = sp.Add(*terms)
+        elif isinstance(expr, sp.sin | sp.cos) and self(expr.args[0]):
+            outer = sp.cos(expr.args[0]) if isinstance(expr, sp.sin) else -sp.sin(expr.args[0])
+            result = sp.Add(outer * self(expr.args[0]))
+        else:
+            result = expr.diff(self.variable)
+        self._memo[expr] = result
+        return result
+
+
+def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+    k = chain.position(frame)
+    T_k_n = chain.transform(frame, chain.n)
+    p_kP = T_k_n[:3, :3] * sp.Matrix(point) + T_k_n[:3, 3]  # the point P, in {k}
+    J = sp.zeros(6, chain.n)
+    for i, joint in enumerate(chain.robot.joints):
+        report(f"cross product, joint {i + 1} of {chain.n}")
+        a = chain.axis_frame(joint.index)
+        T_k_a = chain.transform(frame, a)
+        z_a = T_k_a[:3, 2]
+        if not joint.is_revolute:
+            J[:3, i] = z_a
+            continue
+        if _turns(chain, k, chain.n) <= _turns(chain, a, chain.n):  # p_P is no longer in {k}: read all in {k}
+            J[:3, i] = z_a.cross(p_kP - T_k_a[:3, 3])
+        else:  # p_aP is shorter in {a}, where z_a = [0, 0, 1]: take the cross product there, then rotate
+            T_a_n = chain.transform(a, chain.n)
+            p_aP = T_a_n[:3, :3] * sp.Matrix(point) + T_a_n[:3, 3]
+            J[:3, i] = T_k_a[:3, :3] * sp.Matrix([-p_aP[1], p_aP[0], 0])
+        J[3:, i] = z_a
+    return J
+
+
+def _turns(chain: Chain, start: int, end: int) -> int:
+    """How many times the joint axis turns (leaves a parallel group) between frame positions ``start`` and ``end``.
+
+    A vector spanning m turns of a chain has about :math:`1.8^m` terms in normal form; parallel joints add none.
+    """
+    low, high = sorted((start, end))
+    return sum(low <= group[-1] < high for group in chain.parallel_groups[:-1])
+
+
+def _velocity_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
+    return _from_tip_frame(chain, frame, velocity_propagation(chain, point, simplify=False).jacobian)
+
+
+def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
+    return _from_tip_frame(chain, frame, force_propagation(chain, point, simplify=False).jacobian)
+
+
+def _link_rotations(chain: Chain, frame: Frame, source: int) -> list[sp.Matrix]:
+    r"""The link-by-link frame changes from {s} to {k}: :math:`D_{k,k\pm1}, \dots, D_{s\mp1,s}`, leftmost first.
+
+    With :math:`D_{a,b} = \mathrm{diag}({}^a_bR, {}^a_bR)`, their product is :math:`\mathrm{diag}({}^k_sR, {}^k_sR)`;
+    multiplied on normal forms one link at a time, every intermediate is the Jacobian in a frame between.
+    """
+    rotations = []
+    position = chain.position(frame)
+    while position != source:
+        step = position + 1 if position < source else position - 1
+        rotations.append(block_rotation(chain.rotation(chain.frame_name(position), chain.frame_name(step))))
+        position = step
+    return rotations
+
+
+def _from_tip_frame(chain: Chain, frame: Frame, J_n: sp.Matrix) -> sp.Matrix:
+    r"""Move :math:`{}^nJ` into frame {k}: :math:`{}^kJ = \mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`, raw.
+
+    One product with the chain's own (shared) :math:`{}^k_nR`: 36 n products of shared subexpressions, where moving
+    link by link cost n times more (a generic 30-joint chain: 20 s). The compact form never starts from this one:
+    it multiplies the link rotations on normal forms (:func:`_derive`).
+    """
+    if chain.position(frame) == chain.n:
+        return J_n
+    return block_rotation(chain.rotation(frame, chain.n)) * J_n
+
+
+def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:
+    r"""Re-express a basic Jacobian: :math:`{}^BJ = \mathrm{diag}({}^B_AR, {}^B_AR)\,{}^AJ`."""
+    return block_rotation(sp.Matrix(R_b_a)) * sp.Matrix(J)
+
+
+def shift_point(J: sp.MatrixBase, p: Sequence[sp.Expr]) -> sp.Matrix:
+    r"""Move the reference point of a basic Jacobian by :math:`p` (in J's frame).
+
+    .. math:: J_E = \begin{bmatrix} I & -\hat p \\ 0 & I \end{bmatrix} J_W
+
+    Examples
+    --------
+    >>> L = sp.Symbol("L")
+    >>> shift_point(sp.Matrix([0, 0, 0, 0, 0, 1]), [L, 0, 0]).T
+    Matrix([[0, L, 0, 0, 0, 1]])
+    """
+    return point_shift(p) * sp.Matrix(J)
+
+
+def jacobian_of(
+    f: Sequence[sp.Expr] | sp.MatrixBase, q: Sequence[sp.Symbol], basis: AngleBasis | None = None
+) -> sp.Matrix:
+    r"""The Jacobian :math:`\partial f / \partial q` of any vector function (seed 000, section 4.2).
+
+    With an angle ``basis`` the entries are simplified (see :mod:`symjac.symbolic.simplify`).
+
+    Examples
+    --------
+    >>> t1, t2 = sp.symbols("theta1 theta2", real=True)
+    >>> l1, l2 = sp.symbols("l1 l2")
+    >>> f = [l1 * sp.cos(t1) + l2 * sp.cos(t1 + t2), l1 * sp.sin(t1) + l2 * sp.sin(t1 + t2)]
+    >>> jacobian_of(f, [t1, t2])
+    Matrix([
+    [-l1*sin(theta1) - l2*sin(theta1 + theta2), -l2*sin(theta1 + theta2)],
+    [ l1*cos(theta1) + l2*cos(theta1 + theta2),  l2*cos(theta1 + theta2)]])
+    """
+    J = sp.Matrix(f).jacobian(sp.Matrix(list(q)))
+    return simplify_matrix(J, basis) if basis is not None else J

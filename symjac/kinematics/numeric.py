@@ -1,0 +1,100 @@
+r"""Numbers from symbolic results: one place that substitutes a configuration and the parameters' defaults.
+
+Every numeric value symjac computes from a symbolic one (a torque at a configuration, a Jacobian for an SVD, a
+frame's axes for the singularity geometry) goes through :func:`values_at`, so every caller validates ``q`` the same
+way and substitutes the same exact defaults.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from symjac.errors import ArgumentError
+from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.model.robot import Robot
+
+__all__ = ["as_vector", "evaluate_at", "numeric_at", "numeric_jacobian", "values_at"]
+
+
+def as_vector(values: Sequence[sp.Expr | float], length: int, name: str) -> sp.Matrix:
+    """A column of ``length`` finite numbers or expressions; a clear error naming ``name`` for anything else.
+
+    Examples
+    --------
+    >>> as_vector([1, 0.5, sp.pi], 3, "q").T
+    Matrix([[1, 0.5, pi]])
+    """
+    if isinstance(values, str | bytes | Mapping) or not hasattr(values, "__len__"):
+        raise ArgumentError(f"{name} must be a sequence of {length} numbers, got {type(values).__name__}")
+    entries = list(values)
+    if len(entries) != length:
+        raise ArgumentError(f"{name} needs {length} entries, got {len(entries)}")
+    column = []
+    for index, value in enumerate(entries):
+        if isinstance(value, numbers.Real) and not isinstance(value, bool):
+            if not math.isfinite(value):
+                raise ArgumentError(f"{name}[{index}] is {value}: entries must be finite")
+            integral = isinstance(value, numbers.Integral)
+            column.append(sp.Integer(int(value)) if integral else sp.Float(float(value)))  # type: ignore[call-overload]
+        elif isinstance(value, sp.Expr) and not value.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+            column.append(value)
+        else:
+            raise ArgumentError(f"{name}[{index}] must be a finite number or SymPy expression, got {value!r}")
+    return sp.Matrix(column)
+
+
+def values_at(robot: Robot | Chain, q: Sequence[float | sp.Expr]) -> dict[sp.Symbol, sp.Expr]:
+    """The substitution of a configuration ``q`` (validated) and of the parameters' exact defaults."""
+    model = as_chain(robot).robot
+    values: dict[sp.Symbol, sp.Expr] = dict(zip(model.q, as_vector(q, model.dof, "q"), strict=True))
+    values.update(model.defaults)
+    return values
+
+
+def evaluate_at(robot: Robot | Chain, expr: sp.MatrixBase, q: Sequence[float | sp.Expr]) -> sp.Matrix:
+    """``expr`` at configuration ``q`` and the parameters' defaults, evaluated to SymPy floats.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> robot = load_robot("planar2r")
+    >>> evaluate_at(robot, sp.Matrix([robot.q[0] + robot.q[1]]), [1, 2])
+    Matrix([[3.0]])
+    """
+    return sp.Matrix(expr).xreplace(values_at(robot, q)).evalf()
+
+
+def numeric_at(robot: Robot | Chain, expr: sp.MatrixBase, q: Sequence[float | sp.Expr]) -> np.ndarray:
+    """:func:`evaluate_at` as a float NumPy array."""
+    return np.array(evaluate_at(robot, expr, q), dtype=float)
+
+
+def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0, point: Point = "wrist") -> np.ndarray:
+    """The 6 x n basic Jacobian at configuration ``q`` as floats (parameters at their defaults).
+
+    The first call per frame and point compiles the raw Jacobian with :func:`sympy.lambdify` (kept in the chain);
+    later calls cost microseconds.
+    """
+    chain = as_chain(robot)
+    model = chain.robot
+    values = np.asarray(q, dtype=float)
+    if values.shape != (model.dof,):
+        raise ArgumentError(f"q must have {model.dof} entries for {model.name}, got shape {values.shape}")
+    if not np.all(np.isfinite(values)):
+        raise ArgumentError(f"q must be finite, got {values.tolist()}")
+    frame = chain.frame_name(chain.position(frame))
+    xyz = point_vector(chain, point)
+
+    def compile_jacobian() -> Callable[..., Any]:
+        J = jacobian(chain, frame=frame, point=xyz, simplify=False).xreplace(model.defaults)
+        return sp.lambdify([model.q], J, modules="numpy", cse=True)
+
+    function = chain.memo(("numeric_jacobian", frame, xyz), compile_jacobian)
+    return np.asarray(function(values), dtype=float)

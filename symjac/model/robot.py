@@ -1,0 +1,272 @@
+r"""The robot model: a validated Denavit-Hartenberg table, or a general serial chain, as immutable data.
+
+Notation (Craig), used throughout symjac: ``T_0_3`` is the pose of frame {3} relative to frame {0}, so
+``T_0_3 = T_0_1 @ T_1_2 @ T_2_3`` (inner indices cancel); likewise ``R_0_3``, ``p_0_3`` and ``z_0_i`` (the z-axis of
+frame {i} expressed in {0}).
+
+Conventions, stated by every robot file (there is no default):
+
+* standard DH: :math:`{}^{i-1}_{i}T = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`; joint *i* moves about or along
+  :math:`z_{i-1}`;
+* modified DH (Craig): :math:`{}^{i-1}_{i}T = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`; joint *i* moves
+  about or along :math:`z_i`.
+
+A third convention, ``general``, writes a chain as URDF does: joint *i* is a fixed origin transform (``xyz`` and
+``rpy``, or a 4 x 4 ``matrix``) followed by a rotation about, or a translation along, a constant unit ``axis``
+(default :math:`+z`, any direction and sign allowed). symjac turns every such joint into the same structured chain
+as the DH conventions by an exact constant *alignment* rotation :math:`A_i` that takes :math:`z` onto the axis:
+
+.. math:: {}^{i-1}_{i}T = A_{i-1}^{-1}\,T_{\text{origin},i}\,A_i\,R_z(\theta_i)\,T_z(d_i), \qquad A_0 = I,
+
+so frame {i} is the joint's child link frame turned by :math:`A_i`; its z-axis is the joint axis (as in the
+modified convention, joint *i* moves about or along :math:`z_i`). :math:`A_i` is :math:`I` for :math:`+z`,
+:math:`R_x(\pi)` for :math:`-z`, :math:`R_y(\pm\pi/2)` for :math:`\pm x`, :math:`R_x(\mp\pi/2)` for :math:`\pm y`,
+and otherwise the rotation with columns :math:`(e_1, u \times e_1, u)`, :math:`e_1` the normalised
+:math:`e_z \times u` (see :func:`symjac.symbolic.transforms.alignment`). The tool transform of a general robot is given
+relative to frame {n} like every other tool.
+
+In both DH conventions, the row of joint *i* holds the fields ``alpha, a, d, theta``; for the modified convention
+``alpha`` and ``a`` are :math:`\alpha_{i-1}, a_{i-1}`. Revolute joint *i* has the variable ``theta{i}`` (its
+``theta`` field is a constant offset added to it); prismatic joint *i* has ``d{i}`` (its ``d`` field is an offset).
+Constant parameters keep the names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact
+numeric defaults that are used only where numbers are asked for.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from enum import StrEnum
+
+import sympy as sp
+
+from symjac.errors import RobotFileError
+from symjac.model.expressions import snap_angle
+from symjac.symbolic.transforms import homogeneous, rotation_rpy
+
+__all__ = ["VELOCITY_NAMES", "WRENCH_NAMES", "Convention", "FixedTransform", "Joint", "JointType", "Parameter",
+           "Robot", "fixed_transform_from_matrix", "reserved_names", "unit_vector"]
+
+WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
+"""The components of a symbolic wrench (:func:`symjac.wrench_symbols`): force first, then moment."""
+
+VELOCITY_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "omega_z")
+"""The six rows of a basic Jacobian, linear velocity first (:data:`symjac.kinematics.jacobian.ROW_NAMES`), and the
+symbols of commanded velocity components (:data:`symjac.analysis.inverse_rates.RATE_SYMBOLS`)."""
+
+
+class Convention(StrEnum):
+    """How a robot description writes its links: a DH convention, or ``general`` (URDF-style origin and axis)."""
+
+    STANDARD = "standard"
+    MODIFIED = "modified"
+    GENERAL = "general"
+
+
+class JointType(StrEnum):
+    """Kind of a joint: rotation about, or translation along, its z-axis."""
+
+    REVOLUTE = "revolute"
+    PRISMATIC = "prismatic"
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A named constant of the robot (a length or an angle) with its exact numeric default."""
+
+    name: str
+    default: sp.Rational
+
+    @property
+    def symbol(self) -> sp.Symbol:
+        """The real SymPy symbol that stands for this parameter in derivations."""
+        return sp.Symbol(self.name, real=True)
+
+
+@dataclass(frozen=True)
+class Joint:
+    """One row of the DH table, or one general joint; see the module docstring for the fields per convention.
+
+    A general joint (convention ``general``) has ``alpha = a = 0``; its ``origin`` (``None`` is the identity) and
+    ``axis`` (as given, not normalised; ``None`` is :math:`+z`) say where and about what it moves. ``theta`` and
+    ``d`` keep their meaning as constant offsets.
+    """
+
+    index: int
+    type: JointType
+    alpha: sp.Expr
+    a: sp.Expr
+    d: sp.Expr
+    theta: sp.Expr
+    limits: tuple[sp.Expr, sp.Expr] | None = None
+    origin: FixedTransform | None = None
+    axis: tuple[sp.Expr, sp.Expr, sp.Expr] | None = None
+    name: str = field(default="", compare=False)
+
+    @property
+    def is_revolute(self) -> bool:
+        """Whether the joint rotates (its variable is an angle)."""
+        return self.type is JointType.REVOLUTE
+
+    @property
+    def variable(self) -> sp.Symbol:
+        """The joint variable: ``theta{i}`` for a revolute joint, ``d{i}`` for a prismatic one."""
+        return sp.Symbol(f"{self._prefix}{self.index}", real=True)
+
+    @property
+    def rate(self) -> sp.Symbol:
+        r"""The joint rate :math:`\dot\theta_i` (``thetadot{i}``) or :math:`\dot d_i` (``ddot{i}``)."""
+        return sp.Symbol(f"{self._prefix}dot{self.index}", real=True)
+
+    @property
+    def acceleration(self) -> sp.Symbol:
+        r"""The joint acceleration :math:`\ddot\theta_i` (``thetaddot{i}``) or :math:`\ddot d_i` (``dddot{i}``)."""
+        return sp.Symbol(f"{self._prefix}ddot{self.index}", real=True)
+
+    @property
+    def _prefix(self) -> str:
+        return "theta" if self.is_revolute else "d"
+
+    @property
+    def angle(self) -> sp.Expr:
+        """The rotation about z of this link: variable plus offset (revolute) or the constant (prismatic)."""
+        return self.variable + self.theta if self.is_revolute else self.theta
+
+    @property
+    def offset(self) -> sp.Expr:
+        """The translation along z of this link: variable plus offset (prismatic) or the constant (revolute)."""
+        return self.d if self.is_revolute else self.variable + self.d
+
+    @property
+    def unit_axis(self) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+        """The joint axis as an exact unit vector (``(0, 0, 1)`` unless a general joint gives another)."""
+        if self.axis is None:
+            return (sp.S.Zero, sp.S.Zero, sp.S.One)
+        return unit_vector(self.axis)
+
+
+def unit_vector(vector: Sequence[sp.Expr]) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """``vector / |vector|`` exactly (``(0, 707107/10**6, 707107/10**6)`` gives ``(0, sqrt(2)/2, sqrt(2)/2)``)."""
+    x, y, z = (sp.nsimplify(v) if isinstance(v, sp.Float) else sp.sympify(v) for v in vector)
+    norm = sp.sqrt(x**2 + y**2 + z**2)
+    return sp.radsimp(x / norm), sp.radsimp(y / norm), sp.radsimp(z / norm)
+
+
+@dataclass(frozen=True)
+class FixedTransform:
+    r"""A constant rigid transform (base or tool), kept in the form it was given so it can be written back.
+
+    Either ``xyz`` and ``rpy`` (roll about x, then pitch about y, then yaw about z, all about fixed axes:
+    :math:`R = R_z(\text{yaw}) R_y(\text{pitch}) R_x(\text{roll})`), or a full 4 x 4 ``given_matrix``.
+    """
+
+    xyz: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+    rpy: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+    given_matrix: sp.ImmutableMatrix | None = None
+
+    @property
+    def matrix(self) -> sp.ImmutableMatrix:
+        """The 4 x 4 homogeneous transform."""
+        if self.given_matrix is not None:
+            return self.given_matrix
+        return sp.ImmutableMatrix(homogeneous(rotation_rpy(*self.rpy), sp.Matrix(self.xyz)))
+
+
+@dataclass(frozen=True)
+class Robot:
+    """A serial robot: DH table, parameters with defaults, optional base and tool transforms.
+
+    Build one with :func:`symjac.model.robot_file.robot_from_mapping` or :func:`symjac.load_robot`; every instance is
+    validated.
+    """
+
+    name: str
+    convention: Convention
+    joints: tuple[Joint, ...]
+    parameters: tuple[Parameter, ...] = ()
+    description: str = ""
+    base: FixedTransform | None = None
+    tool: FixedTransform | None = None
+    source: str = field(default="<mapping>", compare=False)
+
+    def __post_init__(self) -> None:
+        """Refuse a parameter named like a symbol symjac generates: the two would silently mix in every result."""
+        reserved = reserved_names([joint.type for joint in self.joints])
+        for parameter in self.parameters:
+            if parameter.name in reserved:
+                raise RobotFileError(f"{parameter.name!r} is reserved: {reserved[parameter.name]}",
+                                     source=self.source, field=f"parameters.{parameter.name}")
+
+    @property
+    def dof(self) -> int:
+        """Number of joints n."""
+        return len(self.joints)
+
+    @property
+    def q(self) -> tuple[sp.Symbol, ...]:
+        """Joint variables (theta_i or d_i), in chain order."""
+        return tuple(joint.variable for joint in self.joints)
+
+    @property
+    def parameter_symbols(self) -> tuple[sp.Symbol, ...]:
+        """Parameter symbols in file order."""
+        return tuple(parameter.symbol for parameter in self.parameters)
+
+    @property
+    def defaults(self) -> dict[sp.Symbol, sp.Rational]:
+        """Exact numeric default of every parameter, keyed by symbol (for ``expr.subs(robot.defaults)``)."""
+        return {parameter.symbol: parameter.default for parameter in self.parameters}
+
+
+def reserved_names(joint_types: Sequence[JointType]) -> dict[str, str]:
+    """The names a robot with these joints cannot give a parameter, each with the reason, in plain words.
+
+    They are the names of the symbols symjac generates for it: joint variables (``theta{i}`` for every joint, as it
+    prints as joint *i*'s angle, and ``d{i}`` for prismatic joints; ``d{i}`` of a revolute joint stays free for the
+    DH offset), joint rates and accelerations of either kind, wrench components and velocity components.
+
+    Examples
+    --------
+    >>> reserved_names([JointType.REVOLUTE])["f_x"]
+    'symjac names the wrench components f_x .. n_z'
+    >>> sorted(name for name in reserved_names([JointType.PRISMATIC]) if name.endswith("1"))
+    ['d1', 'dddot1', 'ddot1', 'theta1', 'thetaddot1', 'thetadot1']
+    """
+    reserved = dict.fromkeys(WRENCH_NAMES, "symjac names the wrench components f_x .. n_z")
+    reserved |= dict.fromkeys(VELOCITY_NAMES, "symjac names the velocity components v_x .. omega_z")
+    zero = sp.S.Zero
+    for index, kind in enumerate(joint_types, start=1):
+        for probe_kind in JointType:
+            probe = Joint(index=index, type=probe_kind, alpha=zero, a=zero, d=zero, theta=zero)
+            reserved[probe.rate.name] = "symjac names the joint rates thetadot<i> and ddot<i>"
+            reserved[probe.acceleration.name] = "symjac names the joint accelerations thetaddot<i> and dddot<i>"
+            if probe_kind is kind or probe_kind is JointType.REVOLUTE:
+                reserved[probe.variable.name] = ("taken by a joint variable (symjac names the variable of revolute "
+                                                 "joint i theta<i>, of prismatic joint i d<i>)")
+    return reserved
+
+
+def fixed_transform_from_matrix(T: sp.MatrixBase) -> FixedTransform:
+    r"""Write an exact rigid transform as ``xyz``/``rpy`` when its roll, pitch and yaw are exact, else as a matrix.
+
+    Examples
+    --------
+    >>> from symjac.symbolic.transforms import rotation
+    >>> fixed_transform_from_matrix(homogeneous(rotation("x", sp.pi / 2), sp.Matrix([1, 0, 0]))).rpy
+    (pi/2, 0, 0)
+    """
+    R = sp.Matrix(T[:3, :3]).applyfunc(lambda e: sp.radsimp(sp.nsimplify(e) if e.is_Float else e))
+    position = tuple(sp.radsimp(sp.expand(e)) for e in T[:3, 3])
+    if all(e.is_number for e in R):
+        sin_pitch = -R[2, 0]
+        if sin_pitch == 1 or sin_pitch == -1:
+            angles = (sp.atan2(-R[1, 2], R[1, 1]), sp.pi / 2 * sin_pitch, sp.S.Zero)
+        else:
+            angles = (sp.atan2(R[2, 1], R[2, 2]), sp.asin(sin_pitch), sp.atan2(R[1, 0], R[0, 0]))
+        snapped = tuple(snap_angle(sp.Rational(float(a))) if a.has(sp.atan2, sp.asin, sp.atan) else a
+                        for a in angles)
+        if all(not a.has(sp.atan2, sp.asin, sp.atan) for a in snapped):
+            difference = rotation_rpy(*snapped) - R
+            if all(sp.radsimp(sp.expand(e)) == 0 for e in difference):
+                return FixedTransform(xyz=position, rpy=snapped)  # type: ignore[arg-type]
+    return FixedTransform(given_matrix=sp.ImmutableMatrix(homogeneous(R, sp.Matrix(position))))

@@ -1,0 +1,322 @@
+r"""Robot descriptions as mappings (the parsed TOML file) to :class:`~symjac.model.robot.Robot` and back, validated.
+
+Every field is checked before a robot is built, and an error names the file, the joint and the field. Expressions
+in fields (``"-pi/2"``, ``"L1 + L2"``) go through the whitelist parser of :mod:`symjac.model.expressions`, never through
+``eval`` or ``sympify``. The file format is described in the README ("Robot files").
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import sympy as sp
+
+from symjac.errors import ExpressionError, RobotFileError
+from symjac.model.expressions import exact_number, expression_text, name_problem, parse_expression
+from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
+
+__all__ = ["robot_from_mapping", "robot_to_mapping"]
+
+
+_TOP_KEYS = {"name", "description", "convention", "angle_unit", "parameters", "joints", "base", "tool"}
+_JOINT_KEYS = {"type", "alpha", "a", "d", "theta", "limits"}
+_GENERAL_JOINT_KEYS = {"type", "xyz", "rpy", "matrix", "axis", "d", "theta", "limits", "name"}
+_TRANSFORM_KEYS = {"xyz", "rpy", "matrix"}
+
+
+def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Robot:
+    """Validate a robot description given as a mapping (the parsed TOML file) and build the :class:`Robot`.
+
+    Parameters
+    ----------
+    data : mapping
+        Keys ``name``, ``convention`` and ``joints`` (required), ``description``, ``angle_unit`` (``"rad"``, the
+        default, or ``"deg"`` for alpha, revolute theta, rpy and revolute limits), ``parameters``, ``base``,
+        ``tool``. See the README for the full format.
+    source : str
+        Where the data came from, used in error messages.
+
+    Returns
+    -------
+    Robot
+
+    Raises
+    ------
+    RobotFileError
+        Naming the source, the joint and the field of the first problem found.
+
+    Examples
+    --------
+    >>> robot = robot_from_mapping({
+    ...     "name": "planar2r", "convention": "standard", "parameters": {"L1": 1, "L2": 0.5},
+    ...     "joints": [{"type": "revolute", "a": "L1"}, {"type": "revolute", "a": "L2"}]})
+    >>> robot.q
+    (theta1, theta2)
+    """
+
+    def fail(message: str, joint: int | None = None, field: str | None = None) -> RobotFileError:
+        return RobotFileError(message, source=source, joint=joint, field=field)
+
+    if not isinstance(data, Mapping):
+        raise fail(f"expected a table of robot fields, got {type(data).__name__}")
+    unknown = sorted(set(data) - _TOP_KEYS)
+    if unknown:
+        raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(_TOP_KEYS))}")
+
+    if not data:
+        raise fail("the robot description is empty: a robot file needs 'name', 'convention' and [[joints]]")
+    if "name" not in data:
+        raise fail("'name' is required: give the robot a name (an identifier: letters, digits, underscore)",
+                   field="name")
+    name = data["name"]
+    problem = name_problem(name)
+    if problem is not None:
+        raise fail(f"'name' must be an identifier (letters, digits, underscore), got {name!r}: {problem}",
+                   field="name")
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise fail("'description' must be a string", field="description")
+    if "convention" not in data:
+        raise fail("'convention' is required (there is no default): say 'standard', 'modified' or 'general'",
+                   field="convention")
+    convention_text = data["convention"]
+    if not isinstance(convention_text, str) or convention_text not in {c.value for c in Convention}:
+        raise fail(f"'convention' is required and must be 'standard', 'modified' or 'general', got "
+                   f"{convention_text!r}", field="convention")
+    convention = Convention(convention_text)
+    unit = data.get("angle_unit", "rad")
+    if unit not in ("rad", "deg"):
+        raise fail(f"'angle_unit' must be 'rad' or 'deg', got {unit!r}", field="angle_unit")
+    angle_scale = sp.pi / 180 if unit == "deg" else sp.S.One
+
+    if "joints" not in data:
+        raise fail("'joints' is required: a robot file needs a non-empty list of joint tables ([[joints]])",
+                   field="joints")
+    joints_data = data["joints"]
+    if not isinstance(joints_data, Sequence) or isinstance(joints_data, str) or not joints_data:
+        raise fail("'joints' must be a non-empty list of joint tables", field="joints")
+    joint_types: list[JointType] = []
+    for number, joint_data in enumerate(joints_data, start=1):
+        if not isinstance(joint_data, Mapping):
+            raise fail(f"expected a table, got {type(joint_data).__name__}", joint=number)
+        if "type" not in joint_data:
+            raise fail("'type' is required: say 'revolute' or 'prismatic'", joint=number, field="type")
+        kind = joint_data["type"]
+        if not isinstance(kind, str) or kind not in {t.value for t in JointType}:
+            raise fail(f"'type' must be 'revolute' or 'prismatic', got {kind!r}", joint=number, field="type")
+        joint_types.append(JointType(kind))
+    parameters = _parameters(data.get("parameters", {}), reserved_names(joint_types), fail)
+    names = {parameter.name: parameter.symbol for parameter in parameters}
+    defaults = {parameter.symbol: parameter.default for parameter in parameters}
+
+    def value(raw: Any, field: str, joint: int | None = None, scale: sp.Expr = sp.S.One) -> sp.Expr:
+        try:
+            expr = parse_expression(raw, names) if isinstance(raw, str) else exact_number(raw)
+        except ExpressionError as error:
+            raise fail(str(error), joint=joint, field=field) from None
+        return expr * scale
+
+    general = convention is Convention.GENERAL
+    allowed = _GENERAL_JOINT_KEYS if general else _JOINT_KEYS
+    joints = []
+    for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
+        unknown = sorted(set(joint_data) - allowed)
+        if unknown:
+            raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(allowed))}",
+                       joint=number)
+        fields = {}
+        for key in ("alpha", "a", "d", "theta"):
+            is_angle = key == "alpha" or key == "theta"
+            fields[key] = value(joint_data.get(key, 0), key, number, angle_scale if is_angle else sp.S.One)
+        extra: dict[str, Any] = {}
+        if general:
+            extra = _general_fields(joint_data, number, value, defaults, fail, angle_scale)
+        limits = None
+        if "limits" in joint_data:
+            scale = angle_scale if kind is JointType.REVOLUTE else sp.S.One
+            limits = _limits(joint_data["limits"], lambda raw, s=scale, j=number: value(raw, "limits", j, s),
+                             defaults, lambda message, j=number: fail(message, joint=j, field="limits"))
+        joints.append(Joint(index=number, type=kind, limits=limits, **fields, **extra))
+        for key, expr in fields.items():
+            _require_finite(expr, defaults, lambda message, j=number, k=key: fail(message, joint=j, field=k))
+
+    transforms = {}
+    for key in ("base", "tool"):
+        if key in data:
+            transforms[key] = _fixed_transform(data[key], key, value, defaults, fail, angle_scale)
+
+    return Robot(
+        name=name,
+        convention=convention,
+        joints=tuple(joints),
+        parameters=parameters,
+        description=description,
+        base=transforms.get("base"),
+        tool=transforms.get("tool"),
+        source=source,
+    )
+
+
+def _general_fields(joint_data: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
+                    fail: Any, angle_scale: sp.Expr) -> dict[str, Any]:
+    """Origin, axis and name of a general joint (convention ``general``)."""
+    extra: dict[str, Any] = {}
+    origin_keys = {"xyz", "rpy", "matrix"} & set(joint_data)
+    if origin_keys:
+        def joint_fail(message: str, joint: int | None = None, field: str | None = None) -> RobotFileError:
+            return fail(message, joint=number, field=field)
+
+        def joint_value(raw: Any, field: str, joint: int | None = None, scale: sp.Expr = sp.S.One) -> sp.Expr:
+            return value(raw, field, number, scale)
+
+        origin = _fixed_transform({k: joint_data[k] for k in origin_keys}, "origin", joint_value, defaults,
+                                  joint_fail, angle_scale)
+        if origin != FixedTransform():
+            extra["origin"] = origin
+    if "axis" in joint_data:
+        entries = joint_data["axis"]
+        if not isinstance(entries, Sequence) or isinstance(entries, str) or len(entries) != 3:
+            raise fail("'axis' must be a list of 3 numbers", joint=number, field="axis")
+        axis = tuple(value(entry, "axis", number) for entry in entries)
+        numbers = [entry.subs(defaults) for entry in axis]
+        if not all(entry.is_number and _is_finite(entry) for entry in numbers):
+            raise fail(f"'axis' must be 3 finite numbers, got {list(axis)}", joint=number, field="axis")
+        if max(abs(float(entry)) for entry in numbers) < 1e-9:  # no squares: [1e308, 0, 1] must not overflow
+            raise fail("'axis' must not be the zero vector", joint=number, field="axis")
+        if axis != (0, 0, 1):
+            extra["axis"] = axis
+    if "name" in joint_data:
+        if not isinstance(joint_data["name"], str):
+            raise fail("'name' must be a string", joint=number, field="name")
+        extra["name"] = joint_data["name"]
+    return extra
+
+
+def _parameters(raw: Any, reserved: Mapping[str, str], fail: Any) -> tuple[Parameter, ...]:
+    if not isinstance(raw, Mapping):
+        raise fail("'parameters' must be a table of name = number", field="parameters")
+    parameters = []
+    for name, default in raw.items():
+        where = f"parameters.{name}"
+        problem = name_problem(name)
+        if problem is not None:
+            raise fail(f"parameter name {name!r} is not allowed: {problem}", field=where)
+        if name in reserved:
+            raise fail(f"parameter name {name!r} is reserved: {reserved[name]}", field=where)
+        try:
+            parameters.append(Parameter(name, exact_number(default)))
+        except ExpressionError as error:
+            raise fail(f"default must be a finite number: {error}", field=where) from None
+    return tuple(parameters)
+
+
+def _require_finite(expr: sp.Expr, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> None:
+    number = expr.subs(defaults)
+    if not number.is_number or not _is_finite(number):
+        raise fail(f"value {expr} is not a finite number once parameters take their defaults")
+
+
+def _is_finite(number: sp.Expr) -> bool:
+    try:
+        return math.isfinite(float(number))
+    except TypeError:  # complex infinity (1/L1 with L1 = 0) has no float
+        return False
+
+
+def _limits(raw: Any, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> tuple[sp.Expr, sp.Expr]:
+    if not isinstance(raw, Sequence) or isinstance(raw, str) or len(raw) != 2:
+        raise fail("'limits' must be a list [lower, upper]")
+    lower, upper = value(raw[0]), value(raw[1])
+    low_expr, high_expr = lower.subs(defaults), upper.subs(defaults)
+    if not (_is_finite(low_expr) and _is_finite(high_expr)):
+        raise fail(f"'limits' must be finite with lower < upper, got [{low_expr}, {high_expr}]")
+    low, high = float(low_expr), float(high_expr)
+    if low >= high:
+        raise fail(f"'limits' must be finite with lower < upper, got [{low}, {high}]")
+    return lower, upper
+
+
+def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any,
+                     angle_scale: sp.Expr) -> FixedTransform:
+    if not isinstance(raw, Mapping):
+        raise fail(f"'{key}' must be a table with 'xyz' and 'rpy', or 'matrix'", field=key)
+    unknown = sorted(set(raw) - _TRANSFORM_KEYS)
+    if unknown:
+        raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: xyz, rpy, matrix", field=key)
+    if "matrix" in raw:
+        if set(raw) != {"matrix"}:
+            raise fail("give either 'matrix' or 'xyz'/'rpy', not both", field=key)
+        rows = raw["matrix"]
+        if not (isinstance(rows, Sequence) and len(rows) == 4
+                and all(isinstance(row, Sequence) and not isinstance(row, str) and len(row) == 4 for row in rows)):
+            raise fail("'matrix' must be 4 rows of 4 entries", field=f"{key}.matrix")
+        matrix = sp.ImmutableMatrix([[value(entry, f"{key}.matrix") for entry in row] for row in rows])
+        if list(matrix[3, :]) != [0, 0, 0, 1]:
+            raise fail("the last row of 'matrix' must be [0, 0, 0, 1]", field=f"{key}.matrix")
+        for entry in matrix:
+            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.matrix"))
+        rotation = matrix[:3, :3].subs(defaults).evalf()
+        error = (rotation.T * rotation - sp.eye(3)).norm()
+        if not error < 1e-9 or not abs(rotation.det() - 1) < 1e-9:
+            raise fail("the upper-left 3 x 3 block of 'matrix' is not a rotation", field=f"{key}.matrix")
+        return FixedTransform(given_matrix=matrix)
+
+    def vector(name: str, scale: sp.Expr) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+        entries = raw.get(name, [0, 0, 0])
+        if not isinstance(entries, Sequence) or isinstance(entries, str) or len(entries) != 3:
+            raise fail(f"'{name}' must be a list of 3 numbers or expressions", field=f"{key}.{name}")
+        x, y, z = (value(entry, f"{key}.{name}", None, scale) for entry in entries)
+        for entry in (x, y, z):
+            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"))
+        return x, y, z
+
+    return FixedTransform(xyz=vector("xyz", sp.S.One), rpy=vector("rpy", angle_scale))
+
+
+def robot_to_mapping(robot: Robot) -> dict[str, Any]:
+    """Return the plain-data description of ``robot`` (inverse of :func:`robot_from_mapping`; angles in radians).
+
+    Examples
+    --------
+    >>> robot = robot_from_mapping({"name": "r", "convention": "modified",
+    ...                             "joints": [{"type": "revolute", "alpha": "-pi/2"}]})
+    >>> robot_to_mapping(robot)["joints"][0]["alpha"]
+    '-pi/2'
+    """
+    data: dict[str, Any] = {"name": robot.name}
+    if robot.description:
+        data["description"] = robot.description
+    data["convention"] = robot.convention.value
+    if robot.parameters:
+        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in robot.parameters}
+    joints = []
+    general = robot.convention is Convention.GENERAL
+    for joint in robot.joints:
+        row: dict[str, Any] = {"type": joint.type.value}
+        if general:
+            if joint.name:
+                row["name"] = joint.name
+            if joint.origin is not None:
+                row.update(_transform_mapping(joint.origin))
+            if joint.axis is not None:
+                row["axis"] = [expression_text(e) for e in joint.axis]
+        for key in ("d", "theta") if general else ("alpha", "a", "d", "theta"):
+            if not general or getattr(joint, key) != 0:
+                row[key] = expression_text(getattr(joint, key))
+        if joint.limits is not None:
+            row["limits"] = [expression_text(limit) for limit in joint.limits]
+        joints.append(row)
+    data["joints"] = joints
+    for key in ("base", "tool"):
+        transform: FixedTransform | None = getattr(robot, key)
+        if transform is not None:
+            data[key] = _transform_mapping(transform)
+    return data
+
+
+def _transform_mapping(transform: FixedTransform) -> dict[str, Any]:
+    if transform.given_matrix is not None:
+        return {"matrix": [[expression_text(e) for e in transform.given_matrix.row(r)] for r in range(4)]}
+    return {"xyz": [expression_text(e) for e in transform.xyz], "rpy": [expression_text(e) for e in transform.rpy]}

@@ -32,8 +32,17 @@ from symjac.cli.args import (
     refuse_ignored_options,
 )
 from symjac.cli.output import emit, note_if_large, one_line, progress, silence_stdout
-from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
-from symjac.errors import ArgumentError, SymjacError
+from symjac.codegen import (
+    BACKENDS,
+    STRATEGIES,
+    TARGETS,
+    JacobianRequest,
+    ModuleRequest,
+    describe,
+    render_files,
+    write_module,
+)
+from symjac.errors import ArgumentError, CodegenError, SymjacError
 from symjac.kinematics.acceleration import (
     bias_acceleration,
     carried_joints,
@@ -384,9 +393,16 @@ def _codegen(args: argparse.Namespace) -> str:
     points = [parse_point(text, robot) for text in (args.point or ["wrist"])]
     rows = None if args.rows is None else parse_rows(args.rows)
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
-    return progress(f"{args.target} module for {robot.name}",
-                     lambda: generate(robot, args.target, jacobians=requests, strategy=args.strategy,
-                                      command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration))
+    request = ModuleRequest(robot, args.target, jacobians=requests, strategy=args.strategy,
+                            command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration)
+    files = progress(f"{args.target} module for {robot.name}", lambda: render_files(describe(request)))
+    if len(files) == 1:
+        return next(iter(files.values()))
+    if args.output is None or args.output == "-":
+        raise CodegenError(f"target {args.target} writes {len(files)} files ({', '.join(files)}): give -o FILE")
+    write_module(args.output, files)  # all files or none; nothing is left for stdout
+    args.output = None
+    return ""
 
 
 # --- output helpers ------------------------------------------------------------------------------------------

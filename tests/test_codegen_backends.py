@@ -50,7 +50,10 @@ def test_python_reserved_words_are_refused_by_every_target(target, word, message
     assert BACKENDS[target].identifiers.check("L1", "parameter name") == "L1"
 
 
-@pytest.mark.parametrize("word", sorted(C_KEYWORDS - set(keyword.kwlist) - set(keyword.softkwlist) - set(dir(builtins))))
+PYTHON_WORDS = set(keyword.kwlist) | set(keyword.softkwlist) | set(dir(builtins))
+
+
+@pytest.mark.parametrize("word", sorted(C_KEYWORDS - PYTHON_WORDS))
 def test_c_keywords_are_refused_by_the_c_target_only(word):
     with pytest.raises(CodegenError, match=f"parameter name '{word}' is a C keyword"):
         generate(_robot_with_parameter(word), "c")

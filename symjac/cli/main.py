@@ -32,17 +32,9 @@ from symjac.cli.args import (
     refuse_ignored_options,
 )
 from symjac.cli.output import emit, note_if_large, one_line, progress, silence_stdout
-from symjac.codegen import (
-    BACKENDS,
-    STRATEGIES,
-    TARGETS,
-    JacobianRequest,
-    ModuleRequest,
-    describe,
-    render_files,
-    write_module,
-)
-from symjac.errors import ArgumentError, CodegenError, SymjacError
+from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, ModuleRequest, describe, render_files
+from symjac.codegen.module import single_or_written
+from symjac.errors import ArgumentError, SymjacError
 from symjac.kinematics.acceleration import (
     bias_acceleration,
     carried_joints,
@@ -396,13 +388,9 @@ def _codegen(args: argparse.Namespace) -> str:
     request = ModuleRequest(robot, args.target, jacobians=requests, strategy=args.strategy,
                             command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration)
     files = progress(f"{args.target} module for {robot.name}", lambda: render_files(describe(request)))
-    if len(files) == 1:
-        return next(iter(files.values()))
-    if args.output is None or args.output == "-":
-        raise CodegenError(f"target {args.target} writes {len(files)} files ({', '.join(files)}): give -o FILE")
-    write_module(args.output, files)  # all files or none; nothing is left for stdout
-    args.output = None
-    return ""
+    text = single_or_written(files, args.output)  # several files are written here, all or none
+    args.output = args.output if text is not None else None
+    return text or ""
 
 
 # --- output helpers ------------------------------------------------------------------------------------------

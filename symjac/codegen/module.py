@@ -70,6 +70,7 @@ __all__ = [
     "render_files",
     "render_module",
     "scalar_descriptions",
+    "single_or_written",
     "write_module",
 ]
 
@@ -358,6 +359,20 @@ def render_module(description: ModuleDescription) -> str:
 def primary(files: Mapping[str, str]) -> str:
     """The text of the primary (first) file of a rendered module."""
     return next(iter(files.values()))
+
+
+def single_or_written(files: Mapping[str, str], output: str | None) -> str | None:
+    """The text of a one-file module for the caller to write; several files are written to ``output`` here.
+
+    Several files need a file name (``symjac codegen -o FILE``): stdout cannot hold them. Returns ``None`` when the
+    files were written (all of them, or none on an error).
+    """
+    if len(files) == 1:
+        return primary(files)
+    if output is None or output == "-":
+        raise CodegenError(f"this target writes {len(files)} files ({', '.join(files)}): give -o FILE")
+    write_module(output, files)
+    return None
 
 
 def write_module(path: str | os.PathLike[str], text: str | Mapping[str, str]) -> Path:

@@ -6,9 +6,10 @@ import errno
 import os
 import stat
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 
-__all__ = ["write_text"]
+__all__ = ["write_files", "write_text"]
 
 # Paths that name a process's own streams or kernel objects (``/dev/stdout`` resolves through ``/proc/self/fd/1``
 # to whatever the shell redirected it to): always written through, never replaced.
@@ -78,3 +79,63 @@ def _naming(error: OSError, target: Path) -> OSError:
     if error.errno is None:  # pragma: no cover - every OSError the calls above raise carries an errno
         return error
     return type(error)(error.errno, error.strerror, str(target))
+
+
+def write_files(files: Mapping[Path, str]) -> None:
+    """Write several regular files (UTF-8) all or none: every text goes to a temporary file beside its target first.
+
+    Only when every temporary file is written do they replace their targets (:func:`os.replace`, in the given
+    order); if a replacement fails, those already done are put back (old content restored, new files removed). An
+    error names the path as given. A special file (a FIFO, a device) or a folder among the targets is refused.
+    """
+    staged: list[tuple[Path, Path, Path]] = []  # (target as given, real path, temporary)
+    try:
+        for target, text in files.items():
+            if _is_special(target):
+                raise _naming(OSError(errno.EINVAL, "is not a regular file; several files are written only to "
+                                                    "regular files"), target)
+            real = Path(os.path.realpath(target))
+            try:
+                staged.append((target, real, _stage(real, text)))
+            except OSError as error:
+                raise _naming(error, target) from None
+        _commit(staged)
+    finally:
+        for _, _, temporary in staged:
+            temporary.unlink(missing_ok=True)
+
+
+def _stage(real: Path, text: str) -> Path:
+    """``text`` in a temporary file beside ``real``, with the permissions ``real`` has (or the umask's)."""
+    try:
+        mode = real.stat().st_mode & 0o7777
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    handle, temporary = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
+            stream.write(text)
+        os.chmod(temporary, mode)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+    return Path(temporary)
+
+
+def _commit(staged: list[tuple[Path, Path, Path]]) -> None:
+    """Replace each target by its staged file; on a failure, undo the replacements already done."""
+    done: list[tuple[Path, bytes | None]] = []
+    for target, real, temporary in staged:
+        try:
+            old = real.read_bytes() if real.exists() else None
+            os.replace(temporary, real)
+        except OSError as error:
+            for undone, previous in reversed(done):
+                if previous is None:
+                    undone.unlink(missing_ok=True)
+                else:
+                    undone.write_bytes(previous)
+            raise _naming(error, target) from None
+        done.append((real, old))

@@ -42,5 +42,5 @@ def environment() -> jinja2.Environment:
 
 
 def render_template(name: str, **data: Any) -> str:
-    """Render template ``name`` (for example ``"latex_document.tex.j2"``) with ``data``."""
+    """Render template ``name`` (for example ``"documents/latex_document.tex.j2"``) with ``data``."""
     return environment().get_template(name).render(**data)

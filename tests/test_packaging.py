@@ -20,7 +20,7 @@ import symjac.resources
 from symjac.resources import render_template, templates_dir
 
 REPO = Path(__file__).resolve().parent.parent
-TEMPLATE = "latex_document.tex.j2"
+TEMPLATE = "documents/latex_document.tex.j2"
 TIMEOUT = 300  # seconds for one subprocess (venv creation, pip install, one symjac run)
 
 DOCUMENT_DATA = {
@@ -43,7 +43,7 @@ print(json.dumps({
     "templates_dir": str(templates_dir()),
     "package": symjac.__file__,
     "purelib": sysconfig.get_path("purelib"),
-    "document": render_template("latex_document.tex.j2", version="v", robot="r", title="T", blocks=[]),
+    "document": render_template("documents/latex_document.tex.j2", version="v", robot="r", title="T", blocks=[]),
 }))
 """
 

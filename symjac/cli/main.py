@@ -32,7 +32,8 @@ from symjac.cli.args import (
     refuse_ignored_options,
 )
 from symjac.cli.output import emit, note_if_large, one_line, progress, silence_stdout
-from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, generate
+from symjac.codegen import BACKENDS, STRATEGIES, TARGETS, JacobianRequest, ModuleRequest, describe, render_files
+from symjac.codegen.module import single_or_written
 from symjac.errors import ArgumentError, SymjacError
 from symjac.kinematics.acceleration import (
     bias_acceleration,
@@ -384,9 +385,12 @@ def _codegen(args: argparse.Namespace) -> str:
     points = [parse_point(text, robot) for text in (args.point or ["wrist"])]
     rows = None if args.rows is None else parse_rows(args.rows)
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
-    return progress(f"{args.target} module for {robot.name}",
-                     lambda: generate(robot, args.target, jacobians=requests, strategy=args.strategy,
-                                      command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration))
+    request = ModuleRequest(robot, args.target, jacobians=requests, strategy=args.strategy,
+                            command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration)
+    files = progress(f"{args.target} module for {robot.name}", lambda: render_files(describe(request)))
+    text = single_or_written(files, args.output)  # several files are written here, all or none
+    args.output = args.output if text is not None else None
+    return text or ""
 
 
 # --- output helpers ------------------------------------------------------------------------------------------

@@ -2,8 +2,9 @@ r"""Generated numeric modules: forward kinematics, Jacobians, torques and manipu
 
 A generated module is what a controller, a simulator or a script imports when it has no SymPy: small, readable,
 correct (its own ``selftest`` compares the Jacobian with central differences of its forward kinematics) and fast.
-The targets (``"python"``, ``"numpy"``, ``"lambdify"``, ``"c"``) are the modules of :mod:`symjac.codegen.backends`,
-one frozen :class:`Backend` spec each; :data:`TARGETS` lists them.
+The targets (``"python"``, ``"numpy"``, ``"lambdify"``, ``"c"``) are the folders of :mod:`symjac.codegen.backends`
+(spec, printer; templates in ``templates/<target>/``), one frozen :class:`Backend` spec each; :data:`TARGETS` lists
+them.
 
 Pipeline (one function at a time)
 ----------------------------------
@@ -13,17 +14,28 @@ Pipeline (one function at a time)
    counts; cached in the robot's :class:`~symjac.kinematics.chain.Chain`. With ``acceleration=True`` the Hessian and the
    bias acceleration are lowered on top of the lowered Jacobian, as cross products of its entries
    (:mod:`~symjac.codegen.acceleration`).
-3. **Printing** (:mod:`~symjac.codegen.printers`, :mod:`~symjac.codegen.source_layout`): printer subclasses map symbols
-to
-   validated names; statements are laid out within the line width by the target's backend.
-4. **Rendering** (:mod:`~symjac.codegen.module`): a frozen :class:`ModuleDescription` fills the target's template
-   through the single jinja2 environment (:mod:`symjac.resources`); :func:`write_module` replaces a file atomically.
+3. **Description** (:mod:`~symjac.codegen.module`, :mod:`~symjac.codegen.description`): one
+   :class:`ModuleRequest` becomes a frozen, language-neutral :class:`ModuleDescription` (names, shapes, parameter
+   defaults, each function's lowered assignments as SymPy data); every name passes the target's identifier rule.
+4. **Printing and rendering** (``backends/<target>/``): the target's printer maps symbols to validated names, its
+   templates lay the files out (one jinja2 environment, :mod:`symjac.resources`); :func:`render_files` gives
+   ``{file name: text}`` and :func:`write_module` writes every file atomically, all or none.
 """
 
 from symjac.codegen.backends import BACKENDS, TARGETS, backend
-from symjac.codegen.description import Backend, GeneratedFunction, ModuleDescription
+from symjac.codegen.backends._python_family import GeneratedFunction
+from symjac.codegen.description import Backend, FunctionDescription, IdentifierRule, ModuleDescription
 from symjac.codegen.lower import lower
-from symjac.codegen.module import STRATEGIES, Strategy, describe, generate, render_module, write_module
+from symjac.codegen.module import (
+    STRATEGIES,
+    ModuleRequest,
+    Strategy,
+    describe,
+    generate,
+    render_files,
+    render_module,
+    write_module,
+)
 from symjac.codegen.request import JacobianRequest
 from symjac.errors import CodegenError
 
@@ -33,14 +45,18 @@ __all__ = [
     "TARGETS",
     "Backend",
     "CodegenError",
+    "FunctionDescription",
     "GeneratedFunction",
+    "IdentifierRule",
     "JacobianRequest",
     "ModuleDescription",
+    "ModuleRequest",
     "Strategy",
     "backend",
     "describe",
     "generate",
     "lower",
+    "render_files",
     "render_module",
     "write_module",
 ]

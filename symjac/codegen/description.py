@@ -1,30 +1,38 @@
-"""The frozen data of code generation: a target's :class:`Backend` spec, and the module description it fills.
+"""The frozen, language-neutral data of code generation: what a module contains, and a target's :class:`Backend` spec.
 
-Templates only lay these out; every value is already printed and validated when it gets here.
+A :class:`ModuleDescription` holds no syntax of any language: names (validated), shapes, parameter defaults as
+numbers and each function's lowered assignments as SymPy data (:class:`~symjac.codegen.lower.LoweredFunction`: the
+temporaries ``(symbol, expression)`` in evaluation order and the outputs). A backend's printer and templates turn it
+into files of its language.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping, Sequence
+import builtins
+import keyword
+import re
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
-from symjac.codegen.lower import LoweredFunction
-from symjac.codegen.source_layout import LINE_WIDTH, comment_lines, tuple_lines, tuple_literal, wrap_statement
-from symjac.kinematics.chain import Chain
+from symjac.errors import CodegenError
+
+if TYPE_CHECKING:  # lowering imports the request, which imports the identifier rules from here
+    from symjac.codegen.lower import LoweredFunction
+    from symjac.kinematics.chain import Chain
 
 __all__ = [
+    "PYTHON_IDENTIFIERS",
     "Argument",
     "Backend",
-    "Emitter",
-    "Extras",
+    "FunctionDescription",
     "FunctionKind",
     "FunctionSpec",
-    "GeneratedFunction",
+    "IdentifierRule",
     "JacobianInfo",
     "ModuleDescription",
-    "generated_function",
+    "Renderer",
 ]
 
 FunctionKind = Literal["forward_kinematics", "jacobian", "joint_torques", "scalar", "kinematics", "hessian",
@@ -51,88 +59,99 @@ class FunctionSpec:
 
 
 @dataclass(frozen=True)
-class GeneratedFunction:
-    """Everything a template needs to lay out one generated function, already printed for its target.
+class FunctionDescription:
+    """One function of the module: its spec and its lowered assignments (SymPy data, target-independent)."""
 
-    ``body`` holds the statements (indented for the template), ``outputs`` the printed value of every entry in
-    row-major order of ``shape`` (constant entries included), ``op_count`` the arithmetic operations per
-    configuration after CSE (``sympy.count_ops``) and ``trig_count`` the sine and cosine evaluations.
+    spec: FunctionSpec
+    lowered: LoweredFunction
+
+    @property
+    def name(self) -> str:
+        """The function's name."""
+        return self.spec.name
+
+    @property
+    def kind(self) -> FunctionKind:
+        """What the function computes."""
+        return self.spec.kind
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """The output shape (``()`` for a scalar)."""
+        return self.lowered.shape
+
+    @property
+    def op_count(self) -> int:
+        """Arithmetic operations per configuration after CSE (``sympy.count_ops``)."""
+        return self.lowered.op_count
+
+    @property
+    def trig_count(self) -> int:
+        """Sine and cosine evaluations per configuration."""
+        return self.lowered.trig_count
+
+
+_ASCII_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+@dataclass(frozen=True)
+class IdentifierRule:
+    """Which names a target's language accepts as identifiers: a pattern, keywords, and names not to shadow.
+
+    ``keywords`` and ``shadowed`` map each word to the language it belongs to, so that one rule can serve a file
+    that mixes two languages (the c target: a Python module embedding C) and the error still names the right one.
+
+    Examples
+    --------
+    >>> PYTHON_IDENTIFIERS.check("a2", "parameter name")
+    'a2'
+    >>> PYTHON_IDENTIFIERS.check("lambda", "parameter name")
+    Traceback (most recent call last):
+    ...
+    symjac.errors.CodegenError: parameter name 'lambda' is a Python keyword
     """
 
-    name: str
-    kind: FunctionKind
-    summary: str
-    arguments: tuple[Argument, ...]
-    shape: tuple[int, ...]
-    op_count: int
-    trig_count: int
-    origin: str
-    body: tuple[str, ...]
-    outputs: tuple[str, ...]
-    output_lines: tuple[str, ...] = ()
-    constant: tuple[bool, ...] = ()
-    uses: tuple[str, ...] = ()
+    keywords: Mapping[str, str]
+    shadowed: Mapping[str, str]
+    pattern: re.Pattern[str] = _ASCII_IDENTIFIER
 
-    @property
-    def kernel_name(self) -> str:
-        """Name of the block kernel (NumPy) or C function that evaluates it."""
-        return f"_{self.name.lstrip('_')}_kernel"
+    @classmethod
+    def of(cls, language: str, keywords: Iterable[str], shadowed: Iterable[str] = ()) -> IdentifierRule:
+        """The rule of one language: its keywords, and the names (builtins) a generated name must not shadow."""
+        return cls(MappingProxyType(dict.fromkeys(keywords, language)),
+                   MappingProxyType(dict.fromkeys(shadowed, language)))
 
-    @property
-    def shape_literal(self) -> str:
-        """The output shape as Python source: ``(6, 7)``."""
-        return tuple_literal(str(extent) for extent in self.shape) if self.shape else "()"
+    def __or__(self, other: IdentifierRule) -> IdentifierRule:
+        """A rule that refuses whatever either rule refuses (the first one's pattern)."""
+        return IdentifierRule(MappingProxyType({**other.keywords, **self.keywords}),
+                              MappingProxyType({**other.shadowed, **self.shadowed}), self.pattern)
 
-    @property
-    def inputs_literal(self) -> str:
-        """``((q, 6, "q"), (wrench, 6, "wrench"))``: each array argument, its length and its name."""
-        return tuple_literal(f'({a.name}, {len(a.entries)}, "{a.name}")' for a in self.arguments)
+    def check(self, name: object, what: str, reserved: Mapping[str, str] | None = None) -> str:
+        """Return ``name`` if it may be an identifier of the generated code, else raise :class:`CodegenError`.
 
-    def call_lines(self, head: str, first: str) -> list[str]:
-        """``head(first, inputs, shape, out, parameters)`` laid out within the line width (one line if it fits)."""
-        arguments = f"{first}, {self.inputs_literal}, {self.shape_literal}, out, parameters"
-        line = f"{head}({arguments})"
-        if len(line) <= LINE_WIDTH:
-            return [line]
-        indent = " " * (len(head) - len(head.lstrip()))
-        return [f"{head}(", *wrap_statement(f"{indent}    ", arguments, ",", language="c"), f"{indent})"]
-
-    @property
-    def lengths_literal(self) -> str:
-        """The lengths of the array arguments as Python source: ``(6, 6)``."""
-        return tuple_literal(str(len(a.entries)) for a in self.arguments)
-
-    @property
-    def size(self) -> int:
-        """Number of output entries."""
-        size = 1
-        for extent in self.shape:
-            size *= extent
-        return size
+        ``reserved`` maps names the generated module uses itself to the reason (the error says which).
+        """
+        if not isinstance(name, str) or not self.pattern.match(name):
+            raise CodegenError(f"{what} {name!r} is not an ASCII identifier (letters, digits, underscore)")
+        if name in self.keywords:
+            raise CodegenError(f"{what} {name!r} is a {self.keywords[name]} keyword")
+        if name in self.shadowed:
+            raise CodegenError(f"{what} {name!r} would shadow the {self.shadowed[name]} builtin of that name")
+        if reserved is not None and name in reserved:
+            raise CodegenError(f"{what} {name!r} clashes with {reserved[name]} in the generated module")
+        return name
 
 
-def generated_function(lowered: LoweredFunction, spec: FunctionSpec, body: Sequence[str], outputs: Sequence[str],
-                       output_lines: Sequence[str], uses: Iterable[str]) -> GeneratedFunction:
-    """Bundle a backend's printed statements with the facts of ``lowered`` (shape, counts, constant entries)."""
-    constant = tuple(not e.free_symbols for e in lowered.outputs)
-    used = set(uses) | ({"sin", "cos"} if lowered.angles else set())
-    return GeneratedFunction(
-        name=spec.name, kind=spec.kind, summary=spec.summary, arguments=spec.arguments, shape=lowered.shape,
-        op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin, body=tuple(body),
-        outputs=tuple(outputs), output_lines=tuple(output_lines), constant=constant, uses=tuple(sorted(used)),
-    )
+PYTHON_IDENTIFIERS = IdentifierRule.of("Python", (*keyword.kwlist, *keyword.softkwlist), dir(builtins))
+"""Python's rule: ASCII identifiers, no keyword or soft keyword, no builtin (a parameter ``len`` would shadow it)."""
 
-
-Emitter = Callable[[Chain, LoweredFunction, FunctionSpec, frozenset[str]], GeneratedFunction]
-"""Print one lowered function for a target: ``emit(chain, lowered, spec, taken_names)``."""
-
-Extras = Callable[[Chain, Sequence[tuple[LoweredFunction, FunctionSpec]], frozenset[str]], Mapping[str, str]]
-"""Module-level text a target needs besides its functions (the C target's kernel source and extension name)."""
+Renderer = Callable[["ModuleDescription", "Backend"], Mapping[str, str]]
+"""Turns a module description into the target's files: ``{relative file name: text}``, the primary file first."""
 
 
 @dataclass(frozen=True)
 class Backend:
-    """Everything that makes a target: one instance per module in :mod:`symjac.codegen.backends`.
+    """Everything that makes a target: one instance in each ``symjac/codegen/backends/<target>/__init__.py``.
 
     Parameters
     ----------
@@ -142,42 +161,52 @@ class Backend:
         Position in listings (:data:`~symjac.codegen.TARGETS`, the CLI's choices).
     summary : str
         A few words for the CLI's help (``"standard library"``).
-    template : str
-        The jinja2 template in ``templates/`` that lays the module out.
+    emits : str
+        What the target writes (``"a Python module"``).
     title, description, nan_policy : str
-        The generated module docstring's first line, what its functions take and return, and what wrong shapes
+        The generated module's first docstring line, what its functions take and return, and what wrong shapes
         and NaN or infinite inputs do.
-    emit : Emitter
-        Prints one lowered function for the target.
+    identifiers : IdentifierRule
+        The target's own reserved words and identifier rule; every robot and parameter name passes it.
+    files : tuple of str
+        The files it writes, relative names (``{robot}`` is replaced by the robot's name), the primary one first
+        (``write_module`` writes that one at the path given, the others beside it).
+    templates : tuple of str
+        Its jinja2 templates, in ``templates/<name>/`` (shared ones in ``templates/python_common/``).
+    render : Renderer
+        Prints the description: ``render(description, backend) -> {file name: text}``.
     dependencies : tuple of str
-        Third-party modules the generated module imports (none: standard library only).
+        Third-party modules the generated code imports (none: standard library only).
     batched : bool
-        Whether functions take ``q`` of shape ``(..., n)`` and return arrays (else one configuration per call as a
-        sequence, results as nested tuples).
-    suffix : str
-        File suffix of the generated module.
-    imports : tuple of str
-        Names the module imports whatever its expressions use (the python target's ``pi`` and ``sqrt``).
+        Whether functions take ``q`` of shape ``(..., n)`` and return arrays (else one configuration per call).
     exports : tuple of str
-        Module constants the target adds to ``__all__`` (the C target's ``BACKEND``).
-    extras : Extras, optional
-        Builds module-level text from every lowered function (templates read it as ``module.extras.<key>``).
+        Module constants the target adds to the exported names (the c target's ``BACKEND``).
     """
 
     name: str
     order: int
     summary: str
-    template: str
+    emits: str
     title: str
     description: str
     nan_policy: str
-    emit: Emitter
+    identifiers: IdentifierRule
+    files: tuple[str, ...]
+    templates: tuple[str, ...]
+    render: Renderer
     dependencies: tuple[str, ...] = ()
     batched: bool = True
-    suffix: str = ".py"
-    imports: tuple[str, ...] = ()
     exports: tuple[str, ...] = ()
-    extras: Extras | None = None
+
+    @property
+    def suffix(self) -> str:
+        """The primary file's suffix (``".py"``)."""
+        return "." + self.files[0].rsplit(".", 1)[-1] if "." in self.files[0] else ""
+
+    @property
+    def template(self) -> str:
+        """The primary file's template."""
+        return self.templates[0]
 
 
 @dataclass(frozen=True)
@@ -202,50 +231,36 @@ class JacobianInfo:
 
 @dataclass(frozen=True)
 class ModuleDescription:
-    """The whole generated module as data: what :func:`symjac.codegen.render_module` renders.
+    """The whole generated module as language-neutral data: what a backend's ``render`` prints.
 
-    ``command`` is how to regenerate the module (the command line typed, or the equivalent Python call),
-    ``command_lines`` the same broken into header comment lines and ``command_note`` what else the reader needs to
-    know to run it (the folder a relative path is relative to, which robot ``robot`` is), or nothing.
+    ``parameters`` are (name, default) with the default a float; ``functions`` hold their lowered assignments as
+    SymPy data; ``command`` is how to regenerate the module (the command line typed when ``shell_command``, else the
+    equivalent Python call) and ``command_note`` what else the reader needs to know to run it (the folder a relative
+    path is relative to, which robot ``robot`` is), or nothing. ``chain`` is the robot's cached derivation, for
+    backends that need more of it (the c target's joint angles).
     """
 
     target: str
-    template: str
     version: str
     robot: str
     convention: str
     dof: int
     joints: tuple[tuple[str, str], ...]
-    parameters: tuple[tuple[str, str], ...]
-    functions: tuple[GeneratedFunction, ...]
+    parameters: tuple[tuple[str, float], ...]
+    functions: tuple[FunctionDescription, ...]
     jacobians: tuple[JacobianInfo, ...]
     scalars: tuple[str, ...]
     exports: tuple[str, ...]
     command: str
-    command_lines: tuple[str, ...]
-    title: str
-    description_text: str
-    nan_policy: str
-    imports: tuple[str, ...] = ()
-    parameter_lines: tuple[str, ...] = ()
-    extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
-    rates: tuple[str, ...] = ()
+    shell_command: bool = False
     command_note: str = ""
+    rates: tuple[str, ...] = ()
+    chain: Chain | None = field(default=None, compare=False, repr=False)
 
     @property
     def acceleration(self) -> bool:
         """Whether the module has the acceleration-level functions (Hessian, bias acceleration, gradient)."""
         return any(info.hessian for info in self.jacobians)
-
-    @property
-    def command_note_lines(self) -> tuple[str, ...]:
-        """``command_note`` in parentheses, broken into header comment lines (none without a note)."""
-        return comment_lines(f"({self.command_note})") if self.command_note else ()
-
-    @property
-    def rate_names_lines(self) -> tuple[str, ...]:
-        """``_RATE_NAMES = ("thetadot1", "ddot2")``: the joint rate names as Python source lines."""
-        return tuple(tuple_lines("_RATE_NAMES = ", (f'"{name}"' for name in self.rates)))
 
     @property
     def parameter_names(self) -> tuple[str, ...]:
@@ -261,13 +276,3 @@ class ModuleDescription:
     def revolute(self) -> tuple[bool, ...]:
         """Whether each joint is revolute."""
         return tuple(kind == "revolute" for _, kind in self.joints)
-
-    @property
-    def joints_lines(self) -> tuple[str, ...]:
-        """``JOINTS = ("theta1", "theta2")`` as Python source lines."""
-        return tuple(tuple_lines("JOINTS = ", (f'"{name}"' for name in self.joint_names)))
-
-    @property
-    def revolute_lines(self) -> tuple[str, ...]:
-        """``_REVOLUTE = (True, False)`` as Python source lines."""
-        return tuple(tuple_lines("_REVOLUTE = ", (str(flag) for flag in self.revolute)))

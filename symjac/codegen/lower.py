@@ -168,9 +168,24 @@ shares, are as small after CSE: the compact candidate is then skipped rather tha
 """
 
 
+COMPACT_TURNS = 14
+"""The most turns of the joint axis (changes between parallel groups) a chain may have for compact candidates.
+
+A normal form grows about 1.8x with every turn of the chain; a 14-joint 3-D snake (13 turns) is already past
+:data:`COMPACT_TERMS`. Past this many turns the compact candidates are not derived at all: trying them only spent
+seconds converting raw trees until the term limit stopped them (a 20-joint snake: about a third of its code
+generation time). The result is the same ``None`` a failed attempt gives.
+"""
+
+
 def _compact_or_none(chain: Chain, key: Hashable, compute: Callable[[], T]) -> T | None:
-    """``compute()`` within :data:`COMPACT_TERMS`, or ``None`` past it (remembered: it is not tried again)."""
+    """``compute()`` within :data:`COMPACT_TERMS`, or ``None`` past it (remembered: it is not tried again).
+
+    A chain with more than :data:`COMPACT_TURNS` turns gets ``None`` without an attempt.
+    """
     def attempt() -> T | None:
+        if len(chain.parallel_groups) - 1 > COMPACT_TURNS:
+            return None
         try:
             with term_limit(COMPACT_TERMS):
                 return compute()

@@ -6,8 +6,9 @@ import itertools
 import os
 import shlex
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Literal, get_args
+from typing import Any, Literal, get_args
 
 import sympy as sp
 
@@ -16,8 +17,10 @@ from symjac.codegen.acceleration import lowered_bias_acceleration, lowered_hessi
 from symjac.codegen.backends import backend
 from symjac.codegen.description import (
     Argument,
+    FunctionDescription,
     FunctionKind,
     FunctionSpec,
+    IdentifierRule,
     JacobianInfo,
     ModuleDescription,
 )
@@ -30,7 +33,7 @@ from symjac.codegen.lower import (
     lowered_kinematics,
     lowered_torques,
 )
-from symjac.codegen.printers import check_identifier, float_literal
+from symjac.codegen.printers import float_literal
 from symjac.codegen.request import (
     RESERVED,
     WRENCH_NAMES,
@@ -44,55 +47,82 @@ from symjac.codegen.request import (
     requests_from,
     validate_robot,
 )
-from symjac.codegen.source_layout import LINE_WIDTH, comment_lines, wrap_statement
 from symjac.errors import CodegenError, SymjacError
-from symjac.files import write_text
+from symjac.files import write_files, write_text
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.io import catalog, load_robot
 from symjac.model.robot import Robot
-from symjac.resources import render_template
 
 Strategy = Literal["fastest", "raw", "simplified"]
 STRATEGIES: tuple[str, ...] = get_args(Strategy)
 
-__all__ = ["STRATEGIES", "Strategy", "describe", "generate", "render_module", "write_module"]
+__all__ = [
+    "STRATEGIES",
+    "ModuleRequest",
+    "Strategy",
+    "describe",
+    "function_descriptions",
+    "generate",
+    "module_header",
+    "primary",
+    "render_files",
+    "render_module",
+    "scalar_descriptions",
+    "single_or_written",
+    "write_module",
+]
 
 
-def describe(
-    robot: Robot | Chain,
-    target: str = "python",
-    frames: Sequence[Frame] | Frame = (0,),
-    points: Sequence[Point] | Point = ("wrist",),
-    *,
-    rows: Sequence[int] | None = None,
-    jacobians: Sequence[JacobianRequest] | None = None,
-    scalars: Mapping[str, sp.Expr] | None = None,
-    strategy: Strategy = "fastest",
-    command: str | None = None,
-    acceleration: bool = False,
-) -> ModuleDescription:
-    """The frozen description of the module :func:`generate` renders (see there for the parameters)."""
-    spec = backend(target)
-    if strategy not in STRATEGIES:
-        raise CodegenError(f"unknown strategy {strategy!r}; choose one of {', '.join(STRATEGIES)}")
-    if not isinstance(robot, Robot | Chain):
-        raise CodegenError(f"expected a symjac Robot or Chain, got {type(robot).__name__}")
-    chain = as_chain(robot)
-    model = chain.robot
-    validate_robot(model)
-    requests = requests_from(chain, frames, points, rows, jacobians)
+@dataclass(frozen=True)
+class ModuleRequest:
+    """Everything one generated module is asked for: the arguments of :func:`generate` and :func:`describe`.
+
+    See :func:`generate` for the meaning of each field; ``robot`` and ``target`` are checked by :func:`describe`.
+    """
+
+    robot: Robot | Chain
+    target: str = "python"
+    frames: Sequence[Frame] | Frame = (0,)
+    points: Sequence[Point] | Point = ("wrist",)
+    rows: Sequence[int] | None = None
+    jacobians: Sequence[JacobianRequest] | None = None
+    scalars: Mapping[str, sp.Expr] | None = None
+    strategy: Strategy = "fastest"
+    command: str | None = None
+    acceleration: bool = False
+
+
+def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args: Any, **options: Any
+             ) -> ModuleDescription:
+    """The language-neutral description of the module :func:`generate` renders (same arguments, or a request)."""
+    request = robot if isinstance(robot, ModuleRequest) else ModuleRequest(robot, target, *args, **options)
+    spec = backend(request.target)
+    if request.strategy not in STRATEGIES:
+        raise CodegenError(f"unknown strategy {request.strategy!r}; choose one of {', '.join(STRATEGIES)}")
+    if not isinstance(request.robot, Robot | Chain):
+        raise CodegenError(f"expected a symjac Robot or Chain, got {type(request.robot).__name__}")
+    chain = as_chain(request.robot)
+    validate_robot(chain.robot, spec.identifiers)
+    requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
         raise CodegenError("at least one Jacobian (frame and point) must be requested")
+    functions, infos = function_descriptions(chain, requests, request.strategy, request.acceleration)
+    functions += scalar_descriptions(chain, request.scalars or {}, functions, infos, spec.identifiers)
+    return module_header(request, chain, requests, functions, infos)
 
-    taken = frozenset(RESERVED) | {p.name for p in model.parameters}
+
+def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool
+                          ) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
+    """Forward kinematics, then per Jacobian request its Jacobian, torques, kinematics (and acceleration functions)."""
+    model = chain.robot
     q_argument = Argument("q", tuple(s.name for s in model.q), "Joint values")
     rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
-    lowered_functions: list[tuple[LoweredFunction, FunctionSpec]] = []
+    functions: list[FunctionDescription] = []
 
     def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:
-        lowered_functions.append((lowered, FunctionSpec(name, kind, summary, (q_argument, *arguments))))
+        functions.append(FunctionDescription(FunctionSpec(name, kind, summary, (q_argument, *arguments)), lowered))
 
     add(lowered_forward_kinematics(chain, strategy), "forward_kinematics", "forward_kinematics",
         "The pose of the tool frame in frame {0}")
@@ -128,48 +158,58 @@ def describe(
             **({"hessian": names["hessian"], "bias_acceleration": names["bias_acceleration"],
                 "manipulability_gradient": names["manipulability_gradient"]} if acceleration else {}),
         ))
+    return functions, infos
 
-    defined = {s.name for _, s in lowered_functions} | {i.manipulability for i in infos}
+
+def _defined_names(functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> set[str]:
+    """Every function name the module defines: the lowered ones and those computed from a Jacobian."""
+    defined = {f.name for f in functions} | {i.manipulability for i in infos}
     defined |= {i.determinant for i in infos if i.determinant}
-    defined |= {i.manipulability_gradient for i in infos if i.manipulability_gradient}
-    for scalar_name, expr in (scalars or {}).items():
-        check_identifier(scalar_name, "scalar function name", {**RESERVED, **{n: "a function" for n in defined}})
+    return defined | {i.manipulability_gradient for i in infos if i.manipulability_gradient}
+
+
+def scalar_descriptions(chain: Chain, scalars: Mapping[str, sp.Expr], functions: Sequence[FunctionDescription],
+                        infos: Sequence[JacobianInfo], identifiers: IdentifierRule) -> list[FunctionDescription]:
+    """The extra scalar functions of the joint variables and parameters, names checked against everything else."""
+    model = chain.robot
+    defined = _defined_names(functions, infos)
+    q_argument = Argument("q", tuple(s.name for s in model.q), "Joint values")
+    found: list[FunctionDescription] = []
+    for scalar_name, expr in scalars.items():
+        identifiers.check(scalar_name, "scalar function name", {**RESERVED, **{n: "a function" for n in defined}})
         if scalar_name.startswith("_") or scalar_name in {p.name for p in model.parameters}:
             raise CodegenError(f"scalar function name {scalar_name!r} is private or a parameter name")
         lowered = lower_function(angle_expansion(chain), [sp.sympify(expr)], (), (("q", model.q),),
                                  model.parameter_symbols, "given expression")
-        add(lowered, scalar_name, "scalar", f"The scalar function {scalar_name}")
+        found.append(FunctionDescription(FunctionSpec(scalar_name, "scalar", f"The scalar function {scalar_name}",
+                                                      (q_argument,)), lowered))
         defined.add(scalar_name)
+    return found
 
-    functions = tuple(spec.emit(chain, lowered, function, taken) for lowered, function in lowered_functions)
-    extras = spec.extras(chain, lowered_functions, taken) if spec.extras is not None else {}
+
+def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[JacobianRequest],
+                  functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> ModuleDescription:
+    """The module around its functions: robot facts, exported names and the command that regenerates it."""
+    model = chain.robot
+    spec = backend(request.target)
     exports = ({"PARAMETERS", "JOINTS", "ROBOT", "selftest", *spec.exports}
-               | {f.name for f in functions if not f.name.startswith("_")}
-               | {i.manipulability for i in infos} | {i.determinant for i in infos if i.determinant}
-               | {i.manipulability_gradient for i in infos if i.manipulability_gradient})
-    parameter_names = [p.name for p in model.parameters]
-    parameter_lines = wrap_statement("    parameters = ", "(" + ", ".join(parameter_names)
-                                     + ("," if len(parameter_names) == 1 else "") + ")")
+               | {f.name for f in functions if not f.name.startswith("_")} | _defined_names((), infos))
+    command, shell = request.command, request.command is not None
     if command is None:
-        loader, command_note = _robot_loader(robot if isinstance(robot, Robot) else model)  # chains are shared
-        command = python_call(model, target, requests, scalars or {}, strategy, loader, acceleration)
-        command_lines = comment_lines(command)
+        loader, command_note = _robot_loader(request.robot if isinstance(request.robot, Robot) else model)
+        command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
+                              request.acceleration)
     else:
-        command_lines = comment_lines(command, continuation=" \\")  # a shell line continues with a backslash
-        source = robot.source if isinstance(robot, Robot) else model.source
+        source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if _names_relative_file(source, command) else ""
     return ModuleDescription(
-        target=target, template=spec.template, version=__version__, robot=model.name,
-        convention=model.convention.value, dof=model.dof,
-        joints=tuple((j.variable.name, j.type.value) for j in model.joints),
-        parameters=tuple((p.name, float_literal(p.default)) for p in model.parameters),
-        functions=functions, jacobians=tuple(infos),
+        target=request.target, version=__version__, robot=model.name, convention=model.convention.value,
+        dof=model.dof, joints=tuple((j.variable.name, j.type.value) for j in model.joints),
+        parameters=tuple((p.name, float(float_literal(p.default))) for p in model.parameters),
+        functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
-        exports=tuple(_sorted_exports(exports)), command=command, command_lines=command_lines,
-        command_note=command_note,
-        title=spec.title, description_text=spec.description, nan_policy=spec.nan_policy,
-        imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(spec.imports))),
-        parameter_lines=tuple(parameter_lines), extras=extras, rates=rates,
+        exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
+        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (), chain=chain,
     )
 
 
@@ -297,22 +337,62 @@ def generate(
     >>> [[round(v, 6) for v in row] for row in namespace["jacobian"]([0.0, 1.5707963267948966], L1=1.0)[:2]]
     [[-0.4, -0.4], [1.0, 0.0]]
     """
-    return render_module(describe(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
-                                  strategy=strategy, command=command, acceleration=acceleration))
+    request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
+                            strategy=strategy, command=command, acceleration=acceleration)
+    return primary(render_files(describe(request)))
+
+
+def render_files(description: ModuleDescription) -> dict[str, str]:
+    """Every file of the module, ``{relative file name: text}``, the primary one first (the target's ``render``)."""
+    spec = backend(description.target)
+    files = dict(spec.render(description, spec))
+    if not files:
+        raise CodegenError(f"internal error: target {spec.name} rendered no file")
+    return files
 
 
 def render_module(description: ModuleDescription) -> str:
-    """Render a :class:`ModuleDescription` with its target's template; check the result's line lengths."""
-    text = render_template(description.template, module=description)
-    for number, line in enumerate(text.splitlines(), start=1):
-        if len(line) > LINE_WIDTH or line != line.rstrip():
-            raise CodegenError(f"internal error: generated line {number} is too long or has trailing spaces")
-    return text
+    """The primary file's text (the module itself for every target today)."""
+    return primary(render_files(description))
 
 
-def write_module(path: str | os.PathLike[str], text: str) -> Path:
-    """Write a generated module to ``path`` as ``symjac codegen -o`` does (:func:`symjac.files.write_text`).
+def primary(files: Mapping[str, str]) -> str:
+    """The text of the primary (first) file of a rendered module."""
+    return next(iter(files.values()))
 
-    A regular file is replaced atomically (never a partial file) and keeps its permissions; a new one gets the umask's.
+
+def single_or_written(files: Mapping[str, str], output: str | None) -> str | None:
+    """The text of a one-file module for the caller to write; several files are written to ``output`` here.
+
+    Several files need a file name (``symjac codegen -o FILE``): stdout cannot hold them. Returns ``None`` when the
+    files were written (all of them, or none on an error).
     """
-    return write_text(path, text)
+    if len(files) == 1:
+        return primary(files)
+    if output is None or output == "-":
+        raise CodegenError(f"this target writes {len(files)} files ({', '.join(files)}): give -o FILE")
+    write_module(output, files)
+    return None
+
+
+def write_module(path: str | os.PathLike[str], text: str | Mapping[str, str]) -> Path:
+    """Write a generated module to ``path`` as ``symjac codegen -o`` does (:func:`symjac.files.write_files`).
+
+    ``text`` is the module's text, or every file of it (``{relative name: text}``, as :func:`render_files` gives):
+    the primary file goes to ``path``, the others beside it under their own names. All are written or none: each is
+    first written to a temporary file, and only when all are there do they replace their targets. A regular file is
+    replaced atomically and keeps its permissions; a new one gets the umask's.
+    """
+    if isinstance(text, str):
+        return write_text(path, text)
+    names = list(text)
+    if not names:
+        raise CodegenError("no file to write")
+    folder = Path(path).parent
+    targets = {Path(path): text[names[0]]}
+    for name in names[1:]:
+        if Path(name).is_absolute() or ".." in Path(name).parts:
+            raise CodegenError(f"generated file name {name!r} must be relative and stay in the output folder")
+        targets[folder / name] = text[name]
+    write_files(targets)
+    return Path(path)

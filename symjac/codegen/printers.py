@@ -1,4 +1,4 @@
-r"""Code printers of the generated modules: SymPy expressions to Python, NumPy, C and SymPy source text.
+r"""What the code printers of every target share; each target's own printer is ``backends/<target>/printer.py``.
 
 Each printer is a subclass of a SymPy code printer that maps every symbol to a *validated* name through
 ``_print_Symbol`` (never a regex over printed text), prints every number as a finite float literal (or an exact
@@ -10,41 +10,33 @@ then breaks long statements at operator spaces so that generated files stay with
 
 from __future__ import annotations
 
-import builtins
-import keyword
 import math
-import re
 from collections.abc import Mapping
 from typing import Any
 
 import sympy as sp
-from sympy.printing.c import C99CodePrinter
 from sympy.printing.precedence import PRECEDENCE
-from sympy.printing.pycode import PythonCodePrinter
-from sympy.printing.str import StrPrinter
 
 from symjac.errors import CodegenError
 from symjac.symbolic.dag import distinct_nodes
 
 __all__ = [
-    "CPrinter",
-    "NumPyPrinter",
-    "PythonPrinter",
-    "SymPyPrinter",
+    "ALLOWED_FUNCTIONS",
+    "SymbolPrinting",
     "check_expression",
     "check_identifier",
     "float_literal",
 ]
 
-_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
-_ALLOWED_FUNCTIONS = (sp.sin, sp.cos)
+ALLOWED_FUNCTIONS = (sp.sin, sp.cos)
 
 
 def check_identifier(name: Any, what: str, reserved: Mapping[str, str] | None = None) -> str:
-    """Return ``name`` if it may appear in generated code as an identifier, else raise :class:`CodegenError`.
+    """Return ``name`` if it may be an identifier of a generated Python module, else raise :class:`CodegenError`.
 
     It must be an ASCII identifier, not a Python keyword or soft keyword, not a builtin (a parameter called ``len``
     or ``min`` would shadow it) and not in ``reserved`` (names the generated module uses itself, with the reason).
+    Each target checks with its own rule (:attr:`Backend.identifiers <symjac.codegen.description.Backend>`).
 
     Examples
     --------
@@ -55,15 +47,9 @@ def check_identifier(name: Any, what: str, reserved: Mapping[str, str] | None = 
     ...
     symjac.errors.CodegenError: parameter name 'lambda' is a Python keyword
     """
-    if not isinstance(name, str) or not _IDENTIFIER.match(name):
-        raise CodegenError(f"{what} {name!r} is not an ASCII identifier (letters, digits, underscore)")
-    if keyword.iskeyword(name) or keyword.issoftkeyword(name):
-        raise CodegenError(f"{what} {name!r} is a Python keyword")
-    if hasattr(builtins, name):
-        raise CodegenError(f"{what} {name!r} would shadow the Python builtin of that name")
-    if reserved is not None and name in reserved:
-        raise CodegenError(f"{what} {name!r} clashes with {reserved[name]} in the generated module")
-    return name
+    from symjac.codegen.description import PYTHON_IDENTIFIERS  # description imports lower, which imports this
+
+    return PYTHON_IDENTIFIERS.check(name, what, reserved)
 
 
 def float_literal(value: Any) -> str:
@@ -83,8 +69,11 @@ def float_literal(value: Any) -> str:
     return repr(number)
 
 
-class _Common:
-    """Shared behaviour: symbol names from a mapping, numbers as float literals, powers as products, whitelist."""
+class SymbolPrinting:
+    """What every numeric printer shares: names from a mapping, float literals, powers as products, a whitelist.
+
+    A target's printer (``backends/<target>/printer.py``) mixes it into a SymPy printer.
+    """
 
     names: Mapping[sp.Symbol, str]
     used: set[str]  # functions the printed code calls (the module imports exactly these)
@@ -122,7 +111,7 @@ class _Common:
     _print_NaN = _print_Infinity
 
     def _print_Function(self, expr: sp.Function) -> str:
-        if not isinstance(expr, _ALLOWED_FUNCTIONS):
+        if not isinstance(expr, ALLOWED_FUNCTIONS):
             raise CodegenError(f"function {type(expr).__name__} is not supported in generated code")
         argument = self._print(expr.args[0])  # type: ignore[attr-defined]
         self.used.add(type(expr).__name__)
@@ -183,109 +172,6 @@ class _Common:
         if exponent == sp.Rational(-1, 2):
             return f"1.0/{self._sqrt(whole)}"
         return self._power(tight, f"({float_literal(exponent)})")
-
-
-class PythonPrinter(_Common, PythonCodePrinter):
-    """Plain Python with ``from math import cos, sin, sqrt``: bare function names, float literals.
-
-    Examples
-    --------
-    >>> x, y = sp.symbols("x y")
-    >>> PythonPrinter({x: "theta1", y: "a2"}).doprint(y * sp.cos(x) ** 2 + x / 2)
-    '0.5*theta1 + a2*cos(theta1)*cos(theta1)'
-    """
-
-    def __init__(self, names: Mapping[sp.Symbol, str]):
-        super().__init__({"fully_qualified_modules": False, "standard": "python3"})
-        self.names = names
-        self.used = set()
-
-
-class NumPyPrinter(PythonPrinter):
-    """NumPy ufuncs (``np.sin``, ``np.sqrt``) on arrays; arithmetic as in :class:`PythonPrinter`."""
-
-    _function_prefix = "np."
-
-
-class CPrinter(_Common, C99CodePrinter):
-    """C99 with ``<math.h>``: double literals, integer powers as products, ``pow`` otherwise.
-
-    Examples
-    --------
-    >>> x = sp.Symbol("x")
-    >>> CPrinter({x: "q[0]"}).doprint(x ** 2 / 3 + sp.sin(x))
-    '0.3333333333333333*q[0]*q[0] + sin(q[0])'
-    """
-
-    def __init__(self, names: Mapping[sp.Symbol, str]):
-        super().__init__()
-        self.names = names
-        self.used = set()
-
-    def _power(self, base: str, exponent: str) -> str:
-        return f"pow({base}, {exponent})"
-
-
-class SymPyPrinter(StrPrinter):
-    """Python source that *rebuilds* the SymPy expression (``sympy.sin(theta1)``), exact numbers kept exact.
-
-    Examples
-    --------
-    >>> x = sp.Symbol("x")
-    >>> SymPyPrinter({x: "theta1"}).doprint(sp.Rational(1, 3) * sp.sin(x) + sp.sqrt(x) + sp.pi)
-    'sympy.sqrt(theta1) + sympy.Rational(1, 3)*sympy.sin(theta1) + sympy.pi'
-    """
-
-    def __init__(self, names: Mapping[sp.Symbol, str]):
-        super().__init__()
-        self.names = names
-
-    def _print_Symbol(self, expr: sp.Symbol) -> str:
-        return _Common._print_Symbol(self, expr)  # type: ignore[arg-type]
-
-    def _print_Integer(self, expr: sp.Integer) -> str:
-        return str(int(expr))
-
-    def _print_Rational(self, expr: sp.Rational) -> str:
-        return f"sympy.Rational({int(expr.p)}, {int(expr.q)})"
-
-    def _print_Float(self, expr: sp.Float) -> str:
-        return f"sympy.Float({float_literal(expr)!r})"
-
-    def _print_Pi(self, expr: sp.Expr) -> str:
-        return "sympy.pi"
-
-    def _print_NumberSymbol(self, expr: sp.NumberSymbol) -> str:
-        raise CodegenError(f"constant {expr} is not supported in generated code")
-
-    def _print_Function(self, expr: sp.Function) -> str:
-        if not isinstance(expr, _ALLOWED_FUNCTIONS):
-            raise CodegenError(f"function {type(expr).__name__} is not supported in generated code")
-        return f"sympy.{type(expr).__name__}({self._print(expr.args[0])})"
-
-    _print_sin = _print_Function
-    _print_cos = _print_Function
-
-    def _print_Mul(self, expr: sp.Mul) -> str:
-        coefficient, rest = expr.as_coeff_Mul()
-        if coefficient.is_Rational and not coefficient.is_Integer:  # keep 1/3 exact: never "x/3" on an int
-            sign = "-" if coefficient < 0 else ""
-            return f"{sign}{self._print_Rational(abs(coefficient))}*{self.parenthesize(rest, 50)}"
-        return super()._print_Mul(expr)
-
-    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
-        base, exponent = expr.args
-        if exponent == sp.Rational(1, 2):
-            return f"sympy.sqrt({self._print(base)})"
-        if exponent.is_Integer:
-            return f"{self.parenthesize(base, 60)}**{int(exponent)}"
-        if exponent.is_Rational:
-            return f"{self.parenthesize(base, 60)}**{self._print_Rational(exponent)}"
-        raise CodegenError(f"power {expr} with a non-numeric exponent is not supported in generated code")
-
-    def emptyPrinter(self, expr: Any) -> str:
-        """Refuse whatever has no printing method of its own."""
-        raise CodegenError(f"{type(expr).__name__} ({expr}) is not supported in generated code")
 
 
 def check_expression(*exprs: sp.Basic) -> None:

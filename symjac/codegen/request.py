@@ -11,7 +11,8 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from symjac.codegen.printers import check_expression, check_identifier, float_literal
+from symjac.codegen.description import PYTHON_IDENTIFIERS, IdentifierRule
+from symjac.codegen.printers import check_expression, float_literal
 from symjac.errors import ArgumentError, CodegenError
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, check_row_indices, point_vector
@@ -72,12 +73,12 @@ class JacobianRequest:
     rows: tuple[int, ...] | None = None
 
 
-def validate_robot(robot: Robot) -> None:
-    """Refuse a robot whose name, parameter names or defaults cannot appear in generated code."""
-    check_identifier(robot.name, "robot name")
+def validate_robot(robot: Robot, identifiers: IdentifierRule = PYTHON_IDENTIFIERS) -> None:
+    """Refuse a robot whose name, parameter names or defaults cannot appear in the target's generated code."""
+    identifiers.check(robot.name, "robot name")
     variables = {joint.variable.name for joint in robot.joints}
     for parameter in robot.parameters:
-        check_identifier(parameter.name, "parameter name", RESERVED)
+        identifiers.check(parameter.name, "parameter name", RESERVED)
         if parameter.name.startswith("_") or parameter.name in variables:
             raise CodegenError(f"parameter name {parameter.name!r} is private (leading '_') or a joint variable")
         float_literal(parameter.default)

@@ -4,7 +4,7 @@ A CLI command (or a notebook) builds a :class:`Document` (a title, blocks of cap
 :func:`render` lays it out:
 
 * ``latex``: one line per equation (captions as ``%`` comments when the document asks for them), or with
-  ``standalone`` a complete document through the ``latex_document.tex.j2`` template;
+  ``standalone`` a complete document through the ``documents/latex_document.tex.j2`` template;
 * ``pretty``: each block's caption, then its equations in Unicode (``name =`` above a matrix);
 * ``json``: the document's data, indented.
 """
@@ -173,7 +173,7 @@ def render(document: Document, fmt: str, standalone: bool = False) -> str:
         raise ArgumentError(f"unknown format {fmt!r}; choose one of {', '.join(FORMATS)}")
     if standalone:
         blocks = [{"caption": caption_text(block, "latex"), "latex": _fitted(block)} for block in document.blocks]
-        return render_template("latex_document.tex.j2", version=__version__, robot=document.robot,
+        return render_template("documents/latex_document.tex.j2", version=__version__, robot=document.robot,
                                title=escape_text(document.title), blocks=blocks)
     return "".join(_bare_latex(block, document.comments) for block in document.blocks)
 

@@ -39,7 +39,7 @@ from symjac.resources import render_template
 
 __all__ = ["Section", "derivation_report"]
 
-TEMPLATE = "report.html.j2"
+TEMPLATE = "documents/report.html.j2"
 
 
 @dataclass(frozen=True)

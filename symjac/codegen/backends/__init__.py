@@ -1,8 +1,9 @@
-"""The registry of targets: every module of this package defines one :class:`~symjac.codegen.description.Backend`.
+"""The registry of targets: every subpackage of this package is one target and defines one ``BACKEND``.
 
-A module here is a target: adding one means adding its module (with ``BACKEND = Backend(...)``), its template in
-``templates/`` and its golden files; :data:`TARGETS`, the CLI's ``--target`` choices and the tests' parametrization
-all read this registry.
+A folder here is a target: ``backends/<target>/__init__.py`` holds its :class:`~symjac.codegen.description.Backend`
+spec, ``printer.py`` its SymPy printer, and ``templates/<target>/`` its templates (README.md: the recipe).
+:data:`TARGETS`, the CLI's ``--target`` choices and the tests' parametrization all read this registry. Modules with
+a leading underscore are shared helpers, not targets.
 """
 
 from __future__ import annotations
@@ -19,9 +20,11 @@ __all__ = ["BACKENDS", "TARGETS", "backend"]
 
 
 def _discover() -> Mapping[str, Backend]:
-    """Import every module of this package and collect its ``BACKEND``, ordered by :attr:`Backend.order`."""
+    """Import every subpackage of this package and collect its ``BACKEND``, ordered by :attr:`Backend.order`."""
     found: list[Backend] = []
     for info in pkgutil.iter_modules(__path__):
+        if not info.ispkg or info.name.startswith("_"):
+            continue
         spec = getattr(importlib.import_module(f"{__name__}.{info.name}"), "BACKEND", None)
         if not isinstance(spec, Backend):
             raise CodegenError(f"internal error: {__name__}.{info.name} defines no BACKEND")
@@ -43,7 +46,7 @@ def backend(target: str) -> Backend:
     Examples
     --------
     >>> backend("numpy").template
-    'numpy_module.py.j2'
+    'numpy/module.py.j2'
     """
     try:
         return BACKENDS[target]

@@ -10,25 +10,29 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Mapping, Sequence
 
+from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
+from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.backends.numpy import numpy_function
-from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, FunctionSpec, IdentifierRule
 from symjac.codegen.lower import LoweredFunction, angle_expansion, symbol_names
-from symjac.codegen.printers import CPrinter
 from symjac.codegen.source_layout import wrap_statement
 from symjac.errors import CodegenError
 from symjac.kinematics.chain import Chain
 from symjac.resources import render_template
 
-__all__ = ["BACKEND", "c_function", "c_sources"]
+__all__ = ["BACKEND", "C_KEYWORDS", "IDENTIFIERS", "c_function", "c_sources"]
 
-KERNELS_TEMPLATE = "c_kernels.c.j2"
+KERNELS_TEMPLATE = "c/kernels.c.j2"
 
-_C_KEYWORDS = frozenset((
+C_KEYWORDS = frozenset((
     "auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum", "extern",
     "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return", "short", "signed",
     "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void", "volatile", "while",
-    "x", "w", "wk", "p", "o", "k", "q", "out", "S", "C", "m", "A",  # names of the kernel's own locals
 ))
+_KERNEL_LOCALS = frozenset(("x", "w", "wk", "p", "o", "k", "q", "out", "S", "C", "m", "A"))  # never a temporary
+
+IDENTIFIERS: IdentifierRule = PYTHON_IDENTIFIERS | IdentifierRule.of("C", C_KEYWORDS)
+"""A Python module with C kernels: names must be neither Python nor C keywords (nor Python builtins)."""
 
 
 def c_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
@@ -36,7 +40,7 @@ def c_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken
     """The per-configuration C body: sines ``S[j][k]``, cosines ``C[j][k]`` (vectorised before), outputs ``o[k]``."""
     robot = chain.robot
     indent = "        "
-    names = symbol_names(robot, lowered, taken | _C_KEYWORDS)
+    names = symbol_names(robot, lowered, taken | C_KEYWORDS | _KERNEL_LOCALS)
     mapping = dict(names.mapping)
     for argument, symbols in lowered.inputs:
         pointer = "x" if argument == "q" else "wk"
@@ -59,15 +63,13 @@ def c_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken
     return generated_function(lowered, spec, body, outputs, lines, printer.used)
 
 
-def c_sources(chain: Chain, functions: Sequence[tuple[LoweredFunction, FunctionSpec]], taken: frozenset[str]
-              ) -> Mapping[str, str]:
+def c_sources(chain: Chain, functions: Sequence[FunctionDescription], taken: frozenset[str]) -> Mapping[str, str]:
     """The C extension's source and module name (``_symjac_<robot>_<hash of the source>``).
 
     The self-test's kinematics stay in NumPy; every other function gets a C kernel.
     """
     robot = chain.robot
-    kernels = tuple(c_function(chain, lowered, spec, taken) for lowered, spec in functions
-                    if spec.kind != "kinematics")
+    kernels = tuple(c_function(chain, f.lowered, f.spec, taken) for f in functions if f.kind != "kinematics")
     printer = CPrinter({**{v: f"x[{k}]" for k, v in enumerate(robot.q)},
                         **{s: f"p[{k}]" for k, s in enumerate(robot.parameter_symbols)}})
     angle_code = tuple(printer.doprint(angle) for angle in angle_expansion(chain).angles)
@@ -86,14 +88,16 @@ BACKEND = Backend(
     name="c",
     order=3,
     summary="compiled at first import, NumPy fallback",
-    template="c_module.py.j2",
+    emits="one Python module embedding the C source of its extension",
+    identifiers=IDENTIFIERS,
+    files=("{robot}.py",),
+    templates=("c/module.py.j2", "c/kernels.c.j2", "numpy/module.py.j2", "python_common/macros.py.j2"),
     title="Kinematics and Jacobians in C, compiled at first import, with a NumPy fallback",
     description="The NumPy functions are the reference and the fallback; C kernels replace them when a C compiler and\n"
                 "the Python headers are present (``BACKEND`` is \"c\" or \"numpy\", ``BUILD_ERROR`` says why not).\n"
                 "The extension is cached in $SYMJAC_CACHE_DIR or ~/.cache/symjac.",
     nan_policy="Wrong shapes raise ValueError; NaN and infinite angles give NaN outputs (no warning from C).",
-    emit=numpy_function,
+    render=python_module_renderer(numpy_function, extras=c_sources),
     dependencies=("numpy",),
     exports=("BACKEND",),
-    extras=c_sources,
 )

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
+from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
+from symjac.codegen.backends.numpy.printer import NumPyPrinter
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec
 from symjac.codegen.lower import LoweredFunction, symbol_names
-from symjac.codegen.printers import NumPyPrinter
 from symjac.codegen.source_layout import angle_lines, indices, input_lines, temporary_lines, wrap_statement
 from symjac.kinematics.chain import Chain
 
@@ -31,13 +32,16 @@ BACKEND = Backend(
     name="numpy",
     order=1,
     summary="batched",
-    template="numpy_module.py.j2",
+    emits="one Python module (NumPy)",
+    identifiers=PYTHON_IDENTIFIERS,
+    files=("{robot}.py",),
+    templates=("numpy/module.py.j2", "python_common/macros.py.j2"),
     title="Kinematics and Jacobians in NumPy, batched over configurations",
     description="Each function takes q of shape (..., n) and returns an array of shape (..., rows, columns); an\n"
                 "``out`` array of that shape may be given (written and returned). Large batches are split over\n"
                 "threads (``THREADS``, default the number of CPUs).",
     nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs (infinite angles give NaN with a\n"
                "RuntimeWarning).",
-    emit=numpy_function,
+    render=python_module_renderer(numpy_function),
     dependencies=("numpy",),
 )

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
+from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
+from symjac.codegen.backends.python.printer import PythonPrinter
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec
 from symjac.codegen.lower import LoweredFunction, symbol_names
-from symjac.codegen.printers import PythonPrinter
 from symjac.codegen.source_layout import (
     LINE_WIDTH,
     angle_lines,
@@ -70,12 +71,14 @@ BACKEND = Backend(
     name="python",
     order=0,
     summary="standard library",
-    template="python_module.py.j2",
+    emits="one Python module (standard library only)",
+    identifiers=PYTHON_IDENTIFIERS,
+    files=("{robot}.py",),
+    templates=("python/module.py.j2", "python_common/macros.py.j2"),
     title="Kinematics and Jacobians in plain Python (standard library only, one configuration per call)",
     description="Each function takes one configuration as a sequence of floats and returns floats or nested tuples.",
     nan_policy="Wrong lengths raise ValueError; NaN inputs propagate to NaN outputs (an infinite angle raises\n"
                "ValueError from math.sin).",
-    emit=python_function,
+    render=python_module_renderer(python_function, imports=("pi", "sqrt")),  # the self-test uses them always
     batched=False,
-    imports=("pi", "sqrt"),  # the self-test and manipulability use them whatever the expressions need
 )

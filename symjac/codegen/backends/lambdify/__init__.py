@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from symjac.codegen.description import Backend, FunctionSpec, GeneratedFunction, generated_function
+from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
+from symjac.codegen.backends.lambdify.printer import SymPyPrinter
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec
 from symjac.codegen.lower import LoweredFunction, symbol_names
-from symjac.codegen.printers import SymPyPrinter
 from symjac.codegen.source_layout import angle_lines, input_lines, temporary_lines, wrap_statement
 from symjac.kinematics.chain import Chain
 
@@ -32,11 +33,14 @@ BACKEND = Backend(
     name="lambdify",
     order=2,
     summary="sympy at import",
-    template="lambdify_module.py.j2",
+    emits="one Python module (NumPy and SymPy)",
+    identifiers=PYTHON_IDENTIFIERS,
+    files=("{robot}.py",),
+    templates=("lambdify/module.py.j2", "python_common/macros.py.j2"),
     title="Kinematics and Jacobians through sympy.lambdify, built when this module is imported",
     description="The expressions are rebuilt in SymPy and compiled with ``sympy.lambdify(..., cse=True)`` at\n"
                 "import; functions take q of shape (..., n) and return arrays of shape (..., rows, columns).",
     nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs.",
-    emit=sympy_function,
+    render=python_module_renderer(sympy_function),
     dependencies=("numpy", "sympy"),
 )

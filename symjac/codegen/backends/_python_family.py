@@ -1,0 +1,192 @@
+"""What the Python-family targets share (python, numpy, lambdify, c): printed functions and the module view.
+
+Each of those targets writes one Python module from a template in ``templates/<target>/`` that imports the shared
+macros of ``templates/python_common/``. :func:`python_module_renderer` is their :attr:`Backend.render
+<symjac.codegen.description.Backend.render>`: it prints every function with the target's emitter and lays the module
+out. The registry skips this module (a leading underscore: not a target).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.lower import LoweredFunction
+from symjac.codegen.request import RESERVED
+from symjac.codegen.source_layout import LINE_WIDTH, comment_lines, tuple_lines, tuple_literal, wrap_statement
+from symjac.errors import CodegenError
+from symjac.kinematics.chain import Chain
+from symjac.resources import render_template
+
+__all__ = ["Emitter", "Extras", "GeneratedFunction", "PythonModule", "generated_function", "python_module_renderer"]
+
+
+@dataclass(frozen=True)
+class GeneratedFunction:
+    """Everything a template needs to lay out one generated function, already printed for its target.
+
+    ``body`` holds the statements (indented for the template), ``outputs`` the printed value of every entry in
+    row-major order of ``shape`` (constant entries included), ``op_count`` the arithmetic operations per
+    configuration after CSE (``sympy.count_ops``) and ``trig_count`` the sine and cosine evaluations.
+    """
+
+    name: str
+    kind: FunctionKind
+    summary: str
+    arguments: tuple[Any, ...]
+    shape: tuple[int, ...]
+    op_count: int
+    trig_count: int
+    origin: str
+    body: tuple[str, ...]
+    outputs: tuple[str, ...]
+    output_lines: tuple[str, ...] = ()
+    constant: tuple[bool, ...] = ()
+    uses: tuple[str, ...] = ()
+
+    @property
+    def kernel_name(self) -> str:
+        """Name of the block kernel (NumPy) or C function that evaluates it."""
+        return f"_{self.name.lstrip('_')}_kernel"
+
+    @property
+    def shape_literal(self) -> str:
+        """The output shape as Python source: ``(6, 7)``."""
+        return tuple_literal(str(extent) for extent in self.shape) if self.shape else "()"
+
+    @property
+    def inputs_literal(self) -> str:
+        """``((q, 6, "q"), (wrench, 6, "wrench"))``: each array argument, its length and its name."""
+        return tuple_literal(f'({a.name}, {len(a.entries)}, "{a.name}")' for a in self.arguments)
+
+    def call_lines(self, head: str, first: str) -> list[str]:
+        """``head(first, inputs, shape, out, parameters)`` laid out within the line width (one line if it fits)."""
+        arguments = f"{first}, {self.inputs_literal}, {self.shape_literal}, out, parameters"
+        line = f"{head}({arguments})"
+        if len(line) <= LINE_WIDTH:
+            return [line]
+        indent = " " * (len(head) - len(head.lstrip()))
+        return [f"{head}(", *wrap_statement(f"{indent}    ", arguments, ",", language="c"), f"{indent})"]
+
+    @property
+    def lengths_literal(self) -> str:
+        """The lengths of the array arguments as Python source: ``(6, 6)``."""
+        return tuple_literal(str(len(a.entries)) for a in self.arguments)
+
+    @property
+    def size(self) -> int:
+        """Number of output entries."""
+        size = 1
+        for extent in self.shape:
+            size *= extent
+        return size
+
+
+def generated_function(lowered: LoweredFunction, spec: FunctionSpec, body: Sequence[str], outputs: Sequence[str],
+                       output_lines: Sequence[str], uses: Iterable[str]) -> GeneratedFunction:
+    """Bundle a backend's printed statements with the facts of ``lowered`` (shape, counts, constant entries)."""
+    constant = tuple(not e.free_symbols for e in lowered.outputs)
+    used = set(uses) | ({"sin", "cos"} if lowered.angles else set())
+    return GeneratedFunction(
+        name=spec.name, kind=spec.kind, summary=spec.summary, arguments=spec.arguments, shape=lowered.shape,
+        op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin, body=tuple(body),
+        outputs=tuple(outputs), output_lines=tuple(output_lines), constant=constant, uses=tuple(sorted(used)),
+    )
+
+
+Emitter = Callable[[Chain, LoweredFunction, FunctionSpec, frozenset[str]], GeneratedFunction]
+"""Print one lowered function for a target: ``emit(chain, lowered, spec, taken_names)``."""
+
+Extras = Callable[[Chain, Sequence[FunctionDescription], frozenset[str]], Mapping[str, str]]
+"""Module-level text a target needs besides its functions (the C target's kernel source and extension name)."""
+
+
+
+
+@dataclass(frozen=True)
+class PythonModule:
+    """A :class:`ModuleDescription` as its Python-family template sees it: printed functions and source lines.
+
+    Every attribute the description has is available too (``module.robot``, ``module.jacobians``).
+    """
+
+    description: ModuleDescription
+    template: str
+    title: str
+    description_text: str
+    nan_policy: str
+    functions: tuple[GeneratedFunction, ...]
+    imports: tuple[str, ...]
+    extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("__"):
+            raise AttributeError(name)
+        return getattr(self.description, name)
+
+    @property
+    def command_lines(self) -> tuple[str, ...]:
+        """The regenerating command as header comment lines (a shell line continues with a backslash)."""
+        return comment_lines(self.description.command, continuation=" \\" if self.description.shell_command else "")
+
+    @property
+    def command_note_lines(self) -> tuple[str, ...]:
+        """``command_note`` in parentheses, broken into header comment lines (none without a note)."""
+        note = self.description.command_note
+        return comment_lines(f"({note})") if note else ()
+
+    @property
+    def rate_names_lines(self) -> tuple[str, ...]:
+        """``_RATE_NAMES = ("thetadot1", "ddot2")``: the joint rate names as Python source lines."""
+        return tuple(tuple_lines("_RATE_NAMES = ", (f'"{name}"' for name in self.description.rates)))
+
+    @property
+    def joints_lines(self) -> tuple[str, ...]:
+        """``JOINTS = ("theta1", "theta2")`` as Python source lines."""
+        return tuple(tuple_lines("JOINTS = ", (f'"{name}"' for name in self.description.joint_names)))
+
+    @property
+    def revolute_lines(self) -> tuple[str, ...]:
+        """``_REVOLUTE = (True, False)`` as Python source lines."""
+        return tuple(tuple_lines("_REVOLUTE = ", (str(flag) for flag in self.description.revolute)))
+
+    @property
+    def parameter_lines(self) -> tuple[str, ...]:
+        """``parameters = (a2, d4)``: the keyword parameters gathered into one tuple, within the line width."""
+        names = self.description.parameter_names
+        return tuple(wrap_statement("    parameters = ", "(" + ", ".join(names) + ("," if len(names) == 1 else "")
+                                    + ")"))
+
+
+def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = ()
+                           ) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
+    """The ``render`` of a Python-family backend: print each function with ``emit``, fill ``backend.template``.
+
+    ``extras`` builds module-level text from every function (templates read ``module.extras.<key>``); ``imports``
+    are names the module imports whatever its expressions use (the python target's ``pi`` and ``sqrt``).
+    """
+    always = tuple(imports)
+
+    def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
+        chain = description.chain
+        if chain is None:
+            raise CodegenError("internal error: the module description carries no chain")
+        taken = frozenset(RESERVED) | set(description.parameter_names)
+        functions = tuple(emit(chain, f.lowered, f.spec, taken) for f in description.functions)
+        module = PythonModule(
+            description=description, template=backend.template, title=backend.title,
+            description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,
+            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always))),
+            extras=MappingProxyType(dict(extras(chain, description.functions, taken))) if extras else
+            MappingProxyType({}),
+        )
+        text = render_template(backend.template, module=module)
+        for number, line in enumerate(text.splitlines(), start=1):
+            if len(line) > LINE_WIDTH or line != line.rstrip():
+                raise CodegenError(f"internal error: generated line {number} is too long or has trailing spaces")
+        return {backend.files[0].format(robot=description.robot): text}
+
+    return render

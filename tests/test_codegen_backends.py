@@ -1,0 +1,92 @@
+"""The backend seam: one folder per target in the registry, rendering to a mapping, each target's own identifier
+rule, and an all-or-none write of several files."""
+
+from __future__ import annotations
+
+import builtins
+import keyword
+import os
+from pathlib import Path
+
+import pytest
+
+from symjac import load_robot, robot_from_mapping
+from symjac.codegen import BACKENDS, TARGETS, CodegenError, describe, generate, render_files, write_module
+from symjac.codegen.backends.c import C_KEYWORDS
+
+BACKENDS_DIR = Path(__file__).resolve().parent.parent / "symjac" / "codegen" / "backends"
+TEMPLATES_DIR = Path(__file__).resolve().parent.parent / "templates"
+
+
+def test_the_registry_lists_each_backend_folder():
+    folders = {p.name for p in BACKENDS_DIR.iterdir() if p.is_dir() and (p / "__init__.py").is_file()
+               and not p.name.startswith("_")}
+    assert set(TARGETS) == folders
+    for name, spec in BACKENDS.items():
+        assert (BACKENDS_DIR / name / "printer.py").is_file()
+        assert all((TEMPLATES_DIR / template).is_file() for template in spec.templates)
+        assert spec.templates[0].startswith(f"{name}/")
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_rendering_returns_a_mapping_whose_primary_file_is_the_module(target):
+    files = render_files(describe(load_robot("planar2r"), target))
+    assert list(files) == ["planar2r.py"]
+    assert files["planar2r.py"] == generate(load_robot("planar2r"), target)
+
+
+def _robot_with_parameter(name: str):
+    return robot_from_mapping({"name": "arm", "convention": "standard", "parameters": {name: 1.0},
+                               "joints": [{"type": "revolute", "a": name}, {"type": "revolute", "a": 1}]})
+
+
+@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize(("word", "message"), [("lambda", "is a Python keyword"), ("match", "is a Python keyword"),
+                                               ("len", "would shadow the Python builtin")])
+def test_python_reserved_words_are_refused_by_every_target(target, word, message):
+    # robot files refuse these names already; the target's own rule is the second line of defence
+    with pytest.raises(CodegenError, match=f"parameter name '{word}' {message}"):
+        BACKENDS[target].identifiers.check(word, "parameter name")
+    assert BACKENDS[target].identifiers.check("L1", "parameter name") == "L1"
+
+
+PYTHON_WORDS = set(keyword.kwlist) | set(keyword.softkwlist) | set(dir(builtins))
+
+
+@pytest.mark.parametrize("word", sorted(C_KEYWORDS - PYTHON_WORDS))
+def test_c_keywords_are_refused_by_the_c_target_only(word):
+    with pytest.raises(CodegenError, match=f"parameter name '{word}' is a C keyword"):
+        generate(_robot_with_parameter(word), "c")
+    assert "jacobian" in generate(_robot_with_parameter(word), "python")
+
+
+def test_a_multi_file_write_is_all_or_none(tmp_path, monkeypatch):
+    (tmp_path / "old.py").write_text("old\n")
+    failing = {"old.py": "new\n", "sub/second.h": "x\n"}  # the folder "sub" does not exist: the second file fails
+    with pytest.raises(FileNotFoundError):
+        write_module(tmp_path / "old.py", failing)
+    assert (tmp_path / "old.py").read_text() == "old\n"
+    assert sorted(os.listdir(tmp_path)) == ["old.py"]  # no temporary file left either
+
+    replace = os.replace
+    calls = []
+
+    def second_fails(source, target):
+        calls.append(target)
+        if len(calls) == 2:
+            raise PermissionError(13, "denied", str(target))
+        replace(source, target)
+
+    monkeypatch.setattr(os, "replace", second_fails)
+    with pytest.raises(PermissionError):
+        write_module(tmp_path / "old.py", {"old.py": "new\n", "extra.h": "x\n"})
+    assert (tmp_path / "old.py").read_text() == "old\n"  # the first replacement was undone
+    assert sorted(os.listdir(tmp_path)) == ["old.py"]
+    monkeypatch.undo()
+    write_module(tmp_path / "old.py", {"old.py": "new\n", "extra.h": "x\n"})
+    assert (tmp_path / "old.py").read_text() == "new\n" and (tmp_path / "extra.h").read_text() == "x\n"
+
+
+def test_generated_file_names_stay_in_the_output_folder(tmp_path):
+    with pytest.raises(CodegenError, match="must be relative"):
+        write_module(tmp_path / "a.py", {"a.py": "", "../b.py": ""})

@@ -14,7 +14,7 @@ from symjac.model.conventions.base import Cell, Column, JointForm, JointReader
 from symjac.model.conventions.dh import DHPlacement, dh_cells, dh_columns, dh_forms, read_dh, write_dh
 from symjac.model.robot import Convention, Joint, Robot
 
-__all__ = ["MODIFIED"]
+__all__ = ["MODIFIED", "ModifiedDH"]
 
 
 class ModifiedDH:

@@ -2,30 +2,28 @@
 
 A plug-in (:class:`~symjac.model.conventions.base.ConventionPlugin`) turns its joints into the one internal joint form
 the chain works from (:class:`~symjac.model.conventions.base.JointForm`), and tells the robot-file reader and writer,
-the table printers and the converter what they need. A new convention is one module in this folder and one line in
-:data:`PLUGINS`.
+the table printers and the converter what they need. A new convention is one module in this folder (with a
+``PLUGIN``) and its name in :data:`MEMBERS`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from importlib import import_module
 from typing import Any
 
 from symjac.errors import RobotFileError
 from symjac.model.conventions.base import ConventionPlugin, JointForm
-from symjac.model.conventions.general import GENERAL
-from symjac.model.conventions.modified import MODIFIED
-from symjac.model.conventions.standard import STANDARD
 from symjac.model.robot import Convention, Robot
 
-__all__ = ["PLUGINS", "convention_named", "joint_forms", "plugin"]
+__all__ = ["MEMBERS", "PLUGINS", "convention_named", "joint_forms", "plugin"]
+
+MEMBERS: tuple[str, ...] = ("standard", "modified", "general")
+"""The modules of this folder that are conventions, each with a ``PLUGIN``; a new convention adds its name here."""
 
 PLUGINS: dict[Convention, ConventionPlugin] = {
-    STANDARD.convention: STANDARD,
-    MODIFIED.convention: MODIFIED,
-    GENERAL.convention: GENERAL,
-}
-"""Every convention symjac reads, in the order error messages list them."""
+    spec.convention: spec for spec in (import_module(f"{__name__}.{name}").PLUGIN for name in MEMBERS)}
+"""Every convention symjac reads, by its value, in the order error messages list them."""
 
 
 def plugin(convention: Convention | str) -> ConventionPlugin:

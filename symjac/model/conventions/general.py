@@ -25,7 +25,7 @@ from symjac.model.expressions import expression_text
 from symjac.model.robot import Convention, FixedTransform, Joint, Placement, Robot, unit_vector
 from symjac.symbolic.transforms import Motion, alignment, inverse_motions
 
-__all__ = ["GENERAL", "General", "GeneralPlacement", "general_placement", "origin_motions"]
+__all__ = ["GENERAL", "PLUGIN", "General", "GeneralPlacement", "general_placement", "origin_motions"]
 
 _ZERO = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
 _ORIGIN_KEYS = ("xyz", "rpy", "matrix")
@@ -133,4 +133,4 @@ class General:
         return None
 
 
-GENERAL = General()
+GENERAL = PLUGIN = General()

@@ -14,7 +14,7 @@ from symjac.model.conventions.base import Cell, Column, JointForm, JointReader
 from symjac.model.conventions.dh import DHPlacement, dh_cells, dh_columns, dh_forms, read_dh, write_dh
 from symjac.model.robot import Convention, Joint, Robot
 
-__all__ = ["MODIFIED", "ModifiedDH"]
+__all__ = ["MODIFIED", "PLUGIN", "ModifiedDH"]
 
 
 class ModifiedDH:
@@ -50,4 +50,4 @@ class ModifiedDH:
         return robot
 
 
-MODIFIED = ModifiedDH()
+MODIFIED = PLUGIN = ModifiedDH()

@@ -34,7 +34,7 @@ from symjac.model.conventions.dh import DHPlacement, dh_cells, dh_columns, dh_fo
 from symjac.model.robot import Convention, FixedTransform, Joint, Robot, fixed_transform_from_matrix
 from symjac.symbolic.transforms import homogeneous, rotation
 
-__all__ = ["STANDARD", "StandardDH", "modified_from_standard", "standard_from_modified"]
+__all__ = ["PLUGIN", "STANDARD", "StandardDH", "modified_from_standard", "standard_from_modified"]
 
 
 class StandardDH:
@@ -70,7 +70,7 @@ class StandardDH:
         return standard_from_modified(robot)
 
 
-STANDARD = StandardDH()
+STANDARD = PLUGIN = StandardDH()
 
 
 def modified_from_standard(robot: Robot) -> Robot:

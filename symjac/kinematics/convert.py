@@ -44,6 +44,7 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
     if robot.convention is target:
         return robot, ()
     source, destination = plugin(robot.convention), plugin(target)
+    notes: tuple[str, ...]
     modified, notes = source.to_modified(robot), ()
     if modified is None:
         extraction = dh_from_general(robot)

@@ -1,35 +1,24 @@
-r"""The robot model: a validated Denavit-Hartenberg table, or a general serial chain, as immutable data.
+r"""The robot model: a validated serial chain as immutable data, in the words of its convention.
 
 Notation (Craig), used throughout symjac: ``T_0_3`` is the pose of frame {3} relative to frame {0}, so
 ``T_0_3 = T_0_1 @ T_1_2 @ T_2_3`` (inner indices cancel); likewise ``R_0_3``, ``p_0_3`` and ``z_0_i`` (the z-axis of
 frame {i} expressed in {0}).
 
-Conventions, stated by every robot file (there is no default):
+Every robot file states its convention (there is no default); each is a plug-in of :mod:`symjac.model.conventions`:
 
-* standard DH: :math:`{}^{i-1}_{i}T = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`; joint *i* moves about or along
-  :math:`z_{i-1}`;
-* modified DH (Craig): :math:`{}^{i-1}_{i}T = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`; joint *i* moves
-  about or along :math:`z_i`.
+* ``standard`` DH: :math:`{}^{i-1}_{i}T = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`; joint *i* moves about or
+  along :math:`z_{i-1}`;
+* ``modified`` DH (Craig): :math:`{}^{i-1}_{i}T = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`; joint *i*
+  moves about or along :math:`z_i`;
+* ``general`` (as URDF writes a chain): a fixed origin transform, then a motion about or along a constant unit axis;
+  frame {i} is turned so that its z-axis is the joint axis.
 
-A third convention, ``general``, writes a chain as URDF does: joint *i* is a fixed origin transform (``xyz`` and
-``rpy``, or a 4 x 4 ``matrix``) followed by a rotation about, or a translation along, a constant unit ``axis``
-(default :math:`+z`, any direction and sign allowed). symjac turns every such joint into the same structured chain
-as the DH conventions by an exact constant *alignment* rotation :math:`A_i` that takes :math:`z` onto the axis:
-
-.. math:: {}^{i-1}_{i}T = A_{i-1}^{-1}\,T_{\text{origin},i}\,A_i\,R_z(\theta_i)\,T_z(d_i), \qquad A_0 = I,
-
-so frame {i} is the joint's child link frame turned by :math:`A_i`; its z-axis is the joint axis (as in the
-modified convention, joint *i* moves about or along :math:`z_i`). :math:`A_i` is :math:`I` for :math:`+z`,
-:math:`R_x(\pi)` for :math:`-z`, :math:`R_y(\pm\pi/2)` for :math:`\pm x`, :math:`R_x(\mp\pi/2)` for :math:`\pm y`,
-and otherwise the rotation with columns :math:`(e_1, u \times e_1, u)`, :math:`e_1` the normalised
-:math:`e_z \times u` (see :func:`symjac.symbolic.transforms.alignment`). The tool transform of a general robot is given
-relative to frame {n} like every other tool.
-
-In both DH conventions, the row of joint *i* holds the fields ``alpha, a, d, theta``; for the modified convention
-``alpha`` and ``a`` are :math:`\alpha_{i-1}, a_{i-1}`. Revolute joint *i* has the variable ``theta{i}`` (its
-``theta`` field is a constant offset added to it); prismatic joint *i* has ``d{i}`` (its ``d`` field is an offset).
-Constant parameters keep the names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact
-numeric defaults that are used only where numbers are asked for.
+A :class:`Joint` holds what every convention shares, the kind of joint and the offsets of its own motion
+:math:`R_z(\theta_i + \theta)\,T_z(d)` (revolute; :math:`R_z(\theta)\,T_z(d_i + d)` prismatic), and its convention's
+:class:`Placement` record (``DHPlacement(alpha, a)``, ``GeneralPlacement(origin, axis)``) for the constant motions
+around it. Revolute joint *i* has the variable ``theta{i}``; prismatic joint *i* has ``d{i}``. Constant parameters keep
+the names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact numeric defaults that are
+used only where numbers are asked for.
 """
 
 from __future__ import annotations

@@ -99,7 +99,7 @@ def dh_table_latex(robot: Robot) -> str:
     Examples
     --------
     >>> from symjac import load_robot
-    >>> print(dh_table_latex(load_robot("planar2r"))[:47])
+    >>> print(dh_table_latex(load_robot("planar2r"))[:46])
     \begin{array}{c|cccc} i & \alpha_i & a_i & d_i
     """
     headings = table_headings(robot)

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any, Protocol, TypeAlias
 
 import sympy as sp
 
@@ -26,8 +26,8 @@ from symjac.symbolic.transforms import Motion
 
 __all__ = ["Cell", "Column", "ConventionPlugin", "JointForm", "JointReader", "joint_form", "transform_fields"]
 
-Step = Motion | sp.Matrix
-Cell = sp.Expr | tuple[sp.Expr, ...]
+Step: TypeAlias = Motion | sp.Matrix
+Cell: TypeAlias = sp.Expr | tuple[sp.Expr, ...]
 """One entry of a convention's table: an expression, or a vector (printed in brackets)."""
 
 

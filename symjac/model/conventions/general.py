@@ -108,7 +108,8 @@ class General:
 
     def forms(self, robot: Robot) -> tuple[JointForm, ...]:
         r"""Each joint as :math:`A_{i-1}^{-1}\,T_{\text{origin},i}\,A_i` followed by :math:`R_z T_z`."""
-        forms, previous = [], ()
+        forms: list[JointForm] = []
+        previous: tuple[Motion | sp.Matrix, ...] = ()
         for joint in robot.joints:
             placement = general_placement(joint)
             current = alignment(placement.unit_axis)

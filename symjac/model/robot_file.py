@@ -152,12 +152,12 @@ class _JointReader:
 
     def __init__(self, table: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
                  fail: Any, angle_scale: sp.Expr):
-        self.table, self.number_, self.defaults = table, number, defaults
+        self.table, self.joint, self.defaults = table, number, defaults
         self._value, self._fail, self._angle_scale = value, fail, angle_scale
 
     def value(self, raw: Any, field: str, *, angle: bool = False) -> sp.Expr:
         """``raw`` parsed (angles scaled by the file's unit)."""
-        return self._value(raw, field, self.number_, self._angle_scale if angle else sp.S.One)
+        return self._value(raw, field, self.joint, self._angle_scale if angle else sp.S.One)
 
     def number(self, key: str, *, angle: bool = False) -> sp.Expr:
         """The value under ``key`` (0 if absent), checked finite."""
@@ -171,14 +171,14 @@ class _JointReader:
             return FixedTransform()
 
         def joint_value(raw: Any, name: str, joint: int | None = None, scale: sp.Expr = sp.S.One) -> sp.Expr:
-            return self._value(raw, name, self.number_, scale)
+            return self._value(raw, name, self.joint, scale)
 
         return _fixed_transform({key: self.table[key] for key in keys}, field, joint_value, self.defaults,
                                 lambda message, joint=None, field=None: self.fail(message, field), self._angle_scale)
 
     def fail(self, message: str, field: str | None = None) -> RobotFileError:
         """The error for this joint."""
-        return self._fail(message, joint=self.number_, field=field)
+        return self._fail(message, joint=self.joint, field=field)
 
     def is_finite(self, number: sp.Expr) -> bool:
         """Whether ``number`` converts to a finite float."""

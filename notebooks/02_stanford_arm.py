@@ -44,7 +44,7 @@ basis = AngleBasis.of(j.variable for j in robot.joints if j.is_revolute)
 # %%
 rows = ["| $i$ | type | $\\alpha_{i-1}$ | $a_{i-1}$ | $d_i$ | $\\theta_i$ |", "|---|---|---|---|---|---|"]
 for joint in robot.joints:
-    cells = [latex(value) for value in (joint.alpha, joint.a, joint.d, joint.theta)]
+    cells = [latex(value) for value in (joint.placement.alpha, joint.placement.a, joint.d, joint.theta)]
     rows.append(f"| {joint.index} | {joint.type.value} | " + " | ".join(f"${c}$" for c in cells) + " |")
 display(Markdown("\n".join(rows)))
 

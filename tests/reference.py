@@ -64,8 +64,9 @@ def _alignment(axis: np.ndarray) -> np.ndarray:
 
 def _general_link(robot: Robot, joint, previous, value: float) -> np.ndarray:
     """Pose of frame {i} in frame {i-1} for a general joint, from origin, axis and Rodrigues (no alignment tricks)."""
-    origin = np.eye(4) if joint.origin is None else np.array(joint.origin.matrix.subs(robot.defaults), dtype=float)
-    axis = np.array([_float(c, robot) for c in (joint.axis or (0, 0, 1))])
+    given = joint.placement.origin
+    origin = np.eye(4) if given is None else np.array(given.matrix.subs(robot.defaults), dtype=float)
+    axis = np.array([_float(c, robot) for c in (joint.placement.axis or (0, 0, 1))])
     theta, d = _float(joint.theta, robot), _float(joint.d, robot)
     if joint.is_revolute:
         theta += value
@@ -73,7 +74,7 @@ def _general_link(robot: Robot, joint, previous, value: float) -> np.ndarray:
         d += value
     motion = _rot_axis(axis, theta) @ _trans(*(d * axis / np.linalg.norm(axis)))
     before = np.eye(4) if previous is None else _alignment(
-        np.array([_float(c, robot) for c in (previous.axis or (0, 0, 1))]))
+        np.array([_float(c, robot) for c in (previous.placement.axis or (0, 0, 1))]))
     return np.linalg.inv(before) @ origin @ motion @ _alignment(axis)
 
 
@@ -88,7 +89,7 @@ def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
             poses.append(poses[-1] @ _general_link(robot, joint, previous, value))
             previous = joint
             continue
-        alpha, a = _float(joint.alpha, robot), _float(joint.a, robot)
+        alpha, a = _float(joint.placement.alpha, robot), _float(joint.placement.a, robot)
         theta, d = _float(joint.theta, robot), _float(joint.d, robot)
         if joint.is_revolute:
             theta += value

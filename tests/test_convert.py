@@ -67,8 +67,8 @@ def test_random_round_trip_is_exact(robot):
 def test_ur5_modified_table_and_round_trip():
     ur5 = load_robot("ur5")
     modified = convert(ur5, "modified")
-    assert [j.alpha for j in modified.joints] == [0, sp.pi / 2, 0, 0, sp.pi / 2, -sp.pi / 2]
-    assert [str(j.a) for j in modified.joints] == ["0", "0", "a2", "a3", "0", "0"]
+    assert [j.placement.alpha for j in modified.joints] == [0, sp.pi / 2, 0, 0, sp.pi / 2, -sp.pi / 2]
+    assert [str(j.placement.a) for j in modified.joints] == ["0", "0", "a2", "a3", "0", "0"]
     assert modified.tool is None and modified.base is None
     assert convert(modified, "standard") == ur5
     assert convert(ur5, "standard") is ur5
@@ -78,7 +78,7 @@ def test_modified_with_first_twist_moves_into_the_base():
     robot = load_robot("panda")
     standard = standard_from_modified(robot)
     assert standard.base is None  # alpha_0 = a_0 = 0
-    assert standard.joints[-1].alpha == 0 and standard.joints[0].alpha == -sp.pi / 2
+    assert standard.joints[-1].placement.alpha == 0 and standard.joints[0].placement.alpha == -sp.pi / 2
 
 
 def test_conversion_refuses_the_wrong_convention():
@@ -95,7 +95,8 @@ def test_panda_urdf_gives_the_manufacturer_dh_table():
     assert not extraction.needs_base and extraction.needs_tool  # the flange offset dF is a tool transform
     for mine, theirs in zip(found.joints, catalog_panda.joints, strict=True):
         for key in ("alpha", "a", "d", "theta"):
-            assert getattr(mine, key) == getattr(theirs, key).subs(catalog_panda.defaults), (mine.index, key)
+            value = getattr(theirs.placement if key in ("alpha", "a") else theirs, key).subs(catalog_panda.defaults)
+            assert getattr(mine.placement if key in ("alpha", "a") else mine, key) == value, (mine.index, key)
     assert found.tool.matrix == catalog_panda.tool.matrix.subs(catalog_panda.defaults)
 
 

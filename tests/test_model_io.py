@@ -17,6 +17,7 @@ from symjac.errors import RobotFileError, SymjacError, UnknownRobotError
 from symjac.kinematics.acceleration_propagation import joint_accelerations
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.kinematics.propagation import joint_rate_symbols, wrench_symbols
+from symjac.model.conventions.dh import DHPlacement
 from symjac.model.io import catalog, load_robot, robot_from_toml, robot_to_toml
 from symjac.model.robot import (
     WRENCH_NAMES,
@@ -116,8 +117,8 @@ def test_minimal_mapping():
     assert robot.base is None
     assert robot.tool is None
     first, second = robot.joints
-    assert first == Joint(index=1, type=JointType.REVOLUTE, alpha=0, a=L1, d=0, theta=0)
-    assert second.a == L2
+    assert first == Joint(index=1, type=JointType.REVOLUTE, placement=DHPlacement(alpha=0, a=L1), d=0, theta=0)
+    assert second.placement.a == L2
     assert first.limits is None
 
 
@@ -126,17 +127,18 @@ def test_smallest_possible_mapping():
     assert robot.source == "<mapping>"
     assert robot.parameters == ()
     assert robot.q == (sp.Symbol("d1", real=True),)
-    assert robot.joints[0].alpha == robot.joints[0].a == robot.joints[0].d == robot.joints[0].theta == 0
+    joint = robot.joints[0]
+    assert joint.placement.alpha == joint.placement.a == joint.d == joint.theta == 0
 
 
 def test_fields_are_exact_sympy_expressions():
     data = with_joint(1, alpha="-pi/2", a=0.4318, d="L1 + L2", theta=0.1)
     joint = robot_from_mapping(data).joints[0]
-    assert joint.alpha == -sp.pi / 2
-    assert joint.a == sp.Rational(2159, 5000)
+    assert joint.placement.alpha == -sp.pi / 2
+    assert joint.placement.a == sp.Rational(2159, 5000)
     assert joint.d == L1 + L2
     assert joint.theta == sp.Rational(1, 10)
-    for value in (joint.alpha, joint.a, joint.d, joint.theta):
+    for value in (joint.placement.alpha, joint.placement.a, joint.d, joint.theta):
         assert isinstance(value, sp.Basic)
         assert not value.atoms(sp.Float)
 
@@ -144,7 +146,7 @@ def test_fields_are_exact_sympy_expressions():
 def test_parameter_symbols_are_real_and_match_field_symbols():
     robot = robot_from_mapping(minimal())
     assert all(symbol.is_real for symbol in robot.parameter_symbols)
-    assert robot.joints[0].a.free_symbols == {robot.parameters[0].symbol}
+    assert robot.joints[0].placement.a.free_symbols == {robot.parameters[0].symbol}
     assert robot.parameters[0].symbol == L1
 
 
@@ -189,7 +191,7 @@ def test_robot_is_immutable():
     with pytest.raises(dataclasses.FrozenInstanceError):
         robot.name = "other"  # type: ignore[misc]
     with pytest.raises(dataclasses.FrozenInstanceError):
-        robot.joints[0].a = 0  # type: ignore[misc]
+        robot.joints[0].placement.a = 0  # type: ignore[misc]
 
 
 def test_robot_equality_ignores_source():
@@ -255,12 +257,12 @@ def test_angle_unit_deg_converts_angles_but_not_lengths():
     data["joints"].append({"type": "prismatic", "alpha": -90, "theta": 90, "d": 30, "limits": [0, 90]})
     robot = robot_from_mapping(data)
     revolute, _, prismatic = robot.joints
-    assert revolute.alpha == sp.pi / 2
+    assert revolute.placement.alpha == sp.pi / 2
     assert revolute.theta == sp.pi / 4
-    assert revolute.a == 90
+    assert revolute.placement.a == 90
     assert revolute.d == 30
     assert revolute.limits == (-sp.pi / 2, sp.pi)
-    assert prismatic.alpha == -sp.pi / 2
+    assert prismatic.placement.alpha == -sp.pi / 2
     assert prismatic.theta == sp.pi / 2  # a prismatic joint's theta is still an angle
     assert prismatic.d == 30
     assert prismatic.limits == (0, 90)  # prismatic limits are lengths
@@ -271,8 +273,8 @@ def test_angle_unit_deg_keeps_parameters_and_scales_parameter_angles():
     data["joints"][0]["alpha"] = "q0"
     robot = robot_from_mapping(data)
     assert robot.defaults[sp.Symbol("q0", real=True)] == 90
-    assert robot.joints[0].alpha.subs(robot.defaults) == sp.pi / 2
-    assert robot.joints[1].a == L2
+    assert robot.joints[0].placement.alpha.subs(robot.defaults) == sp.pi / 2
+    assert robot.joints[1].placement.a == L2
 
 
 def test_angle_unit_deg_converts_rpy_but_not_xyz():
@@ -285,7 +287,7 @@ def test_angle_unit_rad_is_the_default():
     explicit = robot_from_mapping(minimal(angle_unit="rad"))
     assert explicit == robot_from_mapping(minimal())
     data = with_joint(1, alpha=1)
-    assert robot_from_mapping(data).joints[0].alpha == 1
+    assert robot_from_mapping(data).joints[0].placement.alpha == 1
 
 
 def test_deg_and_rad_descriptions_of_the_same_robot_are_equal():
@@ -640,7 +642,7 @@ def test_every_catalog_robot_loads(name):
     for parameter in robot.parameters:
         assert isinstance(parameter.default, sp.Rational)
     for joint in robot.joints:
-        for value in (joint.alpha, joint.a, joint.d, joint.theta):
+        for value in (joint.placement.alpha, joint.placement.a, joint.d, joint.theta):
             assert value.free_symbols <= set(robot.parameter_symbols)
             assert math.isfinite(float(value.subs(robot.defaults)))
 
@@ -669,15 +671,15 @@ def test_puma560_parameters_and_limits():
     a2, d4 = sp.symbols("a2 d4", real=True)
     assert robot.defaults[a2] == sp.Rational(2159, 5000)
     assert robot.defaults[d4] == sp.Rational(2159, 5000)
-    assert robot.joints[1].alpha == -sp.pi / 2
+    assert robot.joints[1].placement.alpha == -sp.pi / 2
     assert robot.joints[0].limits == (-8 * sp.pi / 9, 8 * sp.pi / 9)
-    assert robot.joints[2].a == a2
+    assert robot.joints[2].placement.a == a2
 
 
 def test_ur5_is_standard_dh():
     robot = load_robot("ur5")
     assert robot.convention is Convention.STANDARD
-    assert robot.joints[0].alpha == sp.pi / 2
+    assert robot.joints[0].placement.alpha == sp.pi / 2
     assert robot.defaults[sp.Symbol("a3", real=True)] == sp.Rational(-1569, 4000)
 
 
@@ -957,7 +959,10 @@ def test_readme_robot_file_example_loads_and_matches_the_catalog_puma():
     (example,) = re.findall(r"```toml\n(.*?)```", readme, flags=re.S)
     robot = robot_from_toml(example, source="README.md")
     puma = load_robot("puma560")
-    assert [(j.alpha, j.a, j.d, j.theta) for j in robot.joints] == [(j.alpha, j.a, j.d, j.theta) for j in puma.joints]
+    def rows(joints):
+        return [(j.placement.alpha, j.placement.a, j.d, j.theta) for j in joints]
+
+    assert rows(robot.joints) == rows(puma.joints)
     assert robot.tool is not None and robot.tool.xyz == (0, 0, sp.Rational(1, 10))
 
 

@@ -78,9 +78,9 @@ def test_default_tip_is_the_only_leaf_and_fixed_joints_fold_into_the_tool():
 def test_ur5_urdf_exact_numbers_and_snapped_angles():
     robot = load_robot("ur5.urdf")
     shoulder = robot.joints[1]
-    assert shoulder.origin.xyz == (0, sp.Rational(13585, 100000), 0)
-    assert shoulder.origin.rpy == (0, sp.pi / 2, 0)
-    assert shoulder.axis == (0, 1, 0)
+    assert shoulder.placement.origin.xyz == (0, sp.Rational(13585, 100000), 0)
+    assert shoulder.placement.origin.rpy == (0, sp.pi / 2, 0)
+    assert shoulder.placement.axis == (0, 1, 0)
     assert robot.joints[2].limits == (-sp.pi, sp.pi)
     J = jacobian(robot)
     assert not J.atoms(sp.Float)
@@ -132,7 +132,7 @@ FINGERS = """
 def test_branches_with_mimic_and_floating_joints_are_ignored():
     robot = robot_from_urdf(_arm(FINGERS), source="arm.urdf", tip_link="tip")
     assert [j.name for j in robot.joints] == ["j1", "j2"]
-    assert robot.joints[1].axis == (0, -1, 0)
+    assert robot.joints[1].placement.axis == (0, -1, 0)
 
 
 def test_several_leaves_are_listed():

@@ -211,16 +211,14 @@ def _errata(args: argparse.Namespace) -> str:
 
 
 def _convert(args: argparse.Namespace) -> str:
-    from symjac.kinematics.convert import convert, dh_from_general  # only this command needs them
+    from symjac.kinematics.convert import converted  # only this command needs it
     from symjac.model.io import robot_to_toml
-    from symjac.model.robot import Convention
 
     robot = load(args)
-    notes: tuple[str, ...] = ()
-    if args.to != "toml" and robot.convention is Convention.GENERAL:
-        notes = dh_from_general(robot).notes  # whether the table needs a base or tool transform, in words
-    text = robot_to_toml(robot if args.to == "toml" else convert(robot, args.to))
-    return "".join(f"# {note}\n" for note in notes) + text
+    if args.to == "toml":
+        return robot_to_toml(robot)
+    result, notes = converted(robot, args.to)  # notes: whether the table needs a base or tool transform, in words
+    return "".join(f"# {note}\n" for note in notes) + robot_to_toml(result)
 
 
 def _report(args: argparse.Namespace) -> str:

@@ -18,10 +18,12 @@ from typing import Literal, TypeVar
 import sympy as sp
 
 from symjac.errors import FrameError
-from symjac.model.robot import Convention, FixedTransform, Joint, Robot
+from symjac.model.conventions import joint_forms
+from symjac.model.conventions.base import JointForm
+from symjac.model.robot import Robot
 from symjac.progress import report
 from symjac.symbolic.simplify import AngleBasis, simplify_product
-from symjac.symbolic.transforms import Composition, Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
+from symjac.symbolic.transforms import Composition, Motion, compose, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
 T = TypeVar("T")
@@ -34,7 +36,6 @@ __all__ = [
     "chain_of",
     "clear_caches",
     "forward_kinematics",
-    "origin_motions",
 ]
 
 
@@ -96,29 +97,26 @@ class Chain:
         return "world" if position == -1 else "tool" if position == self.n + 1 else position
 
     def axis_frame(self, joint: int) -> int:
-        """The frame whose z-axis is the axis of ``joint`` (1-based): {i} (modified DH, general) or {i-1} (standard)."""
-        return joint - 1 if self.robot.convention is Convention.STANDARD else joint
+        """The frame whose z-axis is the axis of ``joint`` (1-based): {i-1} or {i}.
+
+        It is {i-1} when the link has constant motions after the joint's own (standard DH), else {i} (modified DH,
+        general joints): :attr:`~symjac.model.conventions.base.JointForm.axis_at_start`.
+        """
+        return joint - 1 if self._forms[joint - 1].axis_at_start else joint
+
+    @cached_property
+    def _forms(self) -> tuple[JointForm, ...]:
+        """Each joint in the internal form (:mod:`symjac.model.conventions`)."""
+        return joint_forms(self.robot)
 
     @cached_property
     def _steps(self) -> list[tuple[Motion | sp.Matrix, ...]]:
         """Motions from frame position k-1 to k, for k = 0 (base), 1..n (links), n+1 (tool)."""
         robot = self.robot
         steps: list[tuple[Motion | sp.Matrix, ...]] = [(robot.base.matrix,) if robot.base else ()]
-        if robot.convention is Convention.GENERAL:
-            steps += [(*self._fixed_part(joint.index), *_joint_motion(joint)) for joint in robot.joints]
-        else:
-            for joint in robot.joints:
-                convention: Literal["standard", "modified"] = robot.convention.value  # type: ignore[assignment]
-                steps.append(dh_motions(convention, joint.alpha, joint.a, joint.angle, joint.offset))
+        steps += [form.motions for form in self._forms]
         steps.append((robot.tool.matrix,) if robot.tool else ())
         return steps
-
-    def _fixed_part(self, joint: int) -> tuple[Motion | sp.Matrix, ...]:
-        r"""The constant motions of a general joint before it moves: :math:`A_{i-1}^{-1}\,T_{\text{origin}}\,A_i`."""
-        joints = self.robot.joints
-        previous = alignment(joints[joint - 2].unit_axis) if joint > 1 else ()
-        current = joints[joint - 1]
-        return (*inverse_motions(previous), *origin_motions(current.origin), *alignment(current.unit_axis))
 
     # --- transforms ---------------------------------------------------------------------------------------
 
@@ -201,34 +199,30 @@ class Chain:
         return tuple(tuple(group) for group in groups)
 
     def _twist_between(self, i: int) -> sp.Expr:
-        """The twist angle between the axes of joints i and i+1 (alpha_i); for general joints 0, pi or nan."""
-        joints = self.robot.joints
-        if self.robot.convention is Convention.GENERAL:
-            return self._general_relation(i + 1)[0]
-        return joints[i].alpha if self.robot.convention == "modified" else joints[i - 1].alpha
+        """The twist between the axes of joints i and i+1: 0 (parallel), pi (anti-parallel) or nan (neither)."""
+        return self._relation(i + 1)[0]
 
     def _z_offset(self, joint: int) -> sp.Expr:
         """The constant turn about z between the axis frames of joint-1 and joint when their axes are parallel.
 
         DH rows have none (it is in the ``theta`` offset); a general joint's origin and alignments may add one.
         """
-        if self.robot.convention is not Convention.GENERAL:
-            return sp.S.Zero
-        return self._general_relation(joint)[1]
-
-    def _general_relation(self, joint: int) -> tuple[sp.Expr, sp.Expr]:
-        r"""(twist, z offset) between the axis frames of general joints joint-1 and joint.
-
-        With the constant rotation :math:`C = A_{i-1}^{-1} R_\text{origin} A_i`: parallel axes (:math:`C_{33} = 1`)
-        give :math:`C = R_z(\gamma)`, anti-parallel ones :math:`C = R_x(\pi) R_z(\gamma)`; otherwise the twist is
-        ``nan`` and no offset is used.
-        """
-        if joint not in self._relations:
-            self._relations[joint] = self._relation(joint)
-        return self._relations[joint]
+        return self._relation(joint)[1]
 
     def _relation(self, joint: int) -> tuple[sp.Expr, sp.Expr]:
-        C, _ = compose(self._fixed_part(joint))
+        r"""(twist, z offset) between the axis frames of joints joint-1 and joint.
+
+        With :math:`C` the constant rotation between them (the motions after joint-1's own motion and before
+        joint's): parallel axes (:math:`C_{33} = 1`) give :math:`C = R_z(\gamma)`, anti-parallel ones
+        :math:`C = R_x(\pi) R_z(\gamma)`; otherwise (also for a symbolic twist) the twist is ``nan`` and no offset
+        is used.
+        """
+        if joint not in self._relations:
+            self._relations[joint] = self._new_relation(joint)
+        return self._relations[joint]
+
+    def _new_relation(self, joint: int) -> tuple[sp.Expr, sp.Expr]:
+        C, _ = compose((*self._forms[joint - 2].after, *self._forms[joint - 1].before))
         c33 = sp.nsimplify(C[2, 2]) if C[2, 2].is_Float else C[2, 2]
         if c33 == 1 or c33 == -1:
             sign = 1 if c33 == 1 else -1
@@ -351,24 +345,6 @@ def _order_like(angles: tuple[sp.Expr, ...], variables: tuple[sp.Symbol, ...]) -
         return min(used), len(used)
 
     return tuple(sorted(angles, key=key))
-
-
-def origin_motions(origin: FixedTransform | None) -> tuple[Motion | sp.Matrix, ...]:
-    r"""The origin of a general joint as motions.
-
-    .. math:: T(x, y, z)\,R_z(\text{yaw})\,R_y(\text{pitch})\,R_x(\text{roll})
-    """
-    if origin is None:
-        return ()
-    if origin.given_matrix is not None:
-        return (sp.Matrix(origin.given_matrix),)
-    (x, y, z), (roll, pitch, yaw) = origin.xyz, origin.rpy
-    return (Motion("T", "x", x), Motion("T", "y", y), Motion("T", "z", z),
-            Motion("R", "z", yaw), Motion("R", "y", pitch), Motion("R", "x", roll))
-
-
-def _joint_motion(joint: Joint) -> tuple[Motion, ...]:
-    return (Motion("R", "z", joint.angle), Motion("T", "z", joint.offset))
 
 
 CHAINS_KEPT = 32

@@ -1,95 +1,58 @@
-r"""Converting robot descriptions: standard DH <-> modified DH, with the base/tool transforms that make them equal.
+r"""Converting robot descriptions between conventions, with the base/tool transforms that make them equal.
 
-Both DH conventions multiply the same elementary factors; only the grouping into links differs. With
-:math:`Z_i = R_z(\theta_i) T_z(d_i)` and :math:`X_i = T_x(a_i) R_x(\alpha_i)` (which commute, so
-:math:`R_x(\alpha) T_x(a) = T_x(a) R_x(\alpha)`):
-
-.. math::
-    \text{standard: } B\,(Z_1 X_1)(Z_2 X_2)\cdots(Z_n X_n)\,T
-    \;=\; B\,(X_0 Z_1)(X_1 Z_2)\cdots(X_{n-1} Z_n)\,(X_n T) \text{ with } X_0 = I,
-
-which is a modified table with rows :math:`(\alpha_{i-1}, a_{i-1}, d_i, \theta_i)` and the tool :math:`X_n T`.
-The way back moves :math:`X_0` of a modified table into the base transform and leaves :math:`X_n = I`. Joint
-variables, offsets and parameters are unchanged, so forward kinematics from the world frame to the tool frame and
-every Jacobian expressed in the world frame at the tool point are *identical* expressions. The intermediate
-frames differ: standard frame {i} is modified frame {i+1} before joint i+1 moves.
-
-A tool transform that is exactly :math:`X_n` (``xyz = [a, 0, 0]``, ``rpy = [alpha, 0, 0]``) is folded back into the
-last row, so standard -> modified -> standard returns the very same table.
+Every conversion passes through a modified DH table. A convention's plug-in rewrites its table exactly when it can
+(standard DH <-> modified DH: :mod:`symjac.model.conventions.standard`, where the algebra is written out); any other
+chain (general joints, or a convention without an exact rewrite) gets its table from its joint axes at :math:`q = 0`
+(:func:`dh_from_general`). Joint variables, offsets and parameters are unchanged, so forward kinematics from the
+world frame to the tool frame and every Jacobian expressed in the world frame at the tool point are equal.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import sympy as sp
 
 from symjac.errors import ConversionError
 from symjac.kinematics.chain import chain_of
+from symjac.model.conventions import plugin
+from symjac.model.conventions.dh import DHPlacement
+from symjac.model.conventions.standard import modified_from_standard, standard_from_modified
 from symjac.model.expressions import snap_angle
-from symjac.model.robot import Convention, FixedTransform, Joint, Robot, fixed_transform_from_matrix
-from symjac.symbolic.transforms import homogeneous, inverse_transform, rotation
+from symjac.model.robot import Convention, Joint, Robot, fixed_transform_from_matrix
+from symjac.symbolic.transforms import homogeneous, inverse_transform
 
-__all__ = ["ConversionError", "DHExtraction", "convert", "dh_from_general", "modified_from_standard",
+__all__ = ["ConversionError", "DHExtraction", "convert", "converted", "dh_from_general", "modified_from_standard",
            "standard_from_modified"]
 
 
-def modified_from_standard(robot: Robot) -> Robot:
-    """The modified-DH robot with the same world-to-tool kinematics as a standard-DH ``robot`` (module docstring).
+def convert(robot: Robot, to: Convention | str) -> Robot:
+    """``robot`` in the convention ``to`` (``"standard"`` or ``"modified"``); unchanged if it already is.
 
     Examples
     --------
     >>> from symjac import load_robot
-    >>> ur5 = load_robot("ur5")
-    >>> modified = modified_from_standard(ur5)
-    >>> [str(j.alpha) for j in modified.joints], modified.tool
-    (['0', 'pi/2', '0', '0', 'pi/2', '-pi/2'], None)
-    >>> standard_from_modified(modified) == ur5
-    True
+    >>> convert(load_robot("puma560"), "modified").convention
+    Convention('modified')
     """
-    if robot.convention is not Convention.STANDARD:
-        raise ConversionError(f"{robot.name} is not in the standard convention (it is {robot.convention.value})")
-    joints = []
-    previous_alpha, previous_a = sp.S.Zero, sp.S.Zero
-    for joint in robot.joints:
-        joints.append(replace(joint, alpha=previous_alpha, a=previous_a))
-        previous_alpha, previous_a = joint.alpha, joint.a
-    tool = _prepend_x(previous_a, previous_alpha, robot.tool)
-    return replace(robot, convention=Convention.MODIFIED, joints=tuple(joints), tool=tool)
+    return converted(robot, to)[0]
 
 
-def standard_from_modified(robot: Robot) -> Robot:
-    """The standard-DH robot with the same world-to-tool kinematics as a modified-DH ``robot`` (module docstring)."""
-    if robot.convention is not Convention.MODIFIED:
-        raise ConversionError(f"{robot.name} is not in the modified convention (it is {robot.convention.value})")
-    rows = list(robot.joints)
-    base = _append_x(robot.base, rows[0].a, rows[0].alpha)
-    joints: list[Joint] = []
-    for i, joint in enumerate(rows):
-        following = rows[i + 1] if i + 1 < len(rows) else None
-        alpha, a = (following.alpha, following.a) if following else (sp.S.Zero, sp.S.Zero)
-        joints.append(replace(joint, alpha=alpha, a=a))
-    tool = robot.tool
-    if tool is not None and tool.given_matrix is None and tool.xyz[1:] == (0, 0) and tool.rpy[1:] == (0, 0):
-        # a tool that is exactly X_n = Tx(a) Rx(alpha) belongs in the last row
-        joints[-1] = replace(joints[-1], alpha=tool.rpy[0], a=tool.xyz[0])
-        tool = None
-    return replace(robot, convention=Convention.STANDARD, joints=tuple(joints), base=base, tool=tool)
-
-
-def convert(robot: Robot, to: Convention | str) -> Robot:
-    """``robot`` in the convention ``to`` (``"standard"`` or ``"modified"``); unchanged if it already is."""
+def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...]]:
+    """:func:`convert`, and notes in words when the table needed a base or tool transform (measured axes only)."""
     target = Convention(to)
     if robot.convention is target:
-        return robot
-    if target is Convention.MODIFIED and robot.convention is Convention.STANDARD:
-        return modified_from_standard(robot)
-    if target is Convention.STANDARD and robot.convention is Convention.MODIFIED:
-        return standard_from_modified(robot)
-    if robot.convention is Convention.GENERAL:
-        modified = dh_from_general(robot).robot
-        return modified if target is Convention.MODIFIED else standard_from_modified(modified)
-    raise ConversionError(f"cannot convert {robot.name} from {robot.convention.value} to {target.value}")
+        return robot, ()
+    source, destination = plugin(robot.convention), plugin(target)
+    notes: tuple[str, ...]
+    modified, notes = source.to_modified(robot), ()
+    if modified is None:
+        extraction = dh_from_general(robot)
+        modified, notes = extraction.robot, extraction.notes
+    result = destination.from_modified(modified)
+    if result is None:
+        raise ConversionError(f"cannot convert {robot.name} from {robot.convention.value} to {target.value}")
+    return result, notes
 
 
 @dataclass(frozen=True)
@@ -143,21 +106,27 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
     --------
     >>> from symjac import load_robot
     >>> extraction = dh_from_general(load_robot("panda.urdf", tip_link="panda_link8"))
-    >>> [str(j.alpha) for j in extraction.robot.joints]
+    >>> [str(j.placement.alpha) for j in extraction.robot.joints]
     ['0', '-pi/2', 'pi/2', 'pi/2', '-pi/2', 'pi/2', 'pi/2']
     >>> extraction.needs_base, extraction.robot.tool.xyz
     (False, (0, 0, 107/1000))
     """
-    if robot.convention is not Convention.GENERAL:
+    if plugin(robot.convention).to_modified(robot) is not None:
         raise ConversionError(f"{robot.name} is already a DH table ({robot.convention.value})")
     chain = chain_of(robot)
     zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.q}
     if substitute_defaults:
         zero.update(robot.defaults)
-    frames = [sp.Matrix(chain.transform(0, i)).xreplace(zero).applyfunc(_exact) for i in range(robot.dof + 1)]
-    if any(not e.is_number for F in frames for e in F):
+
+    def at_zero(frame: int) -> sp.Matrix:
+        return sp.Matrix(chain.transform(0, frame)).xreplace(zero).applyfunc(_exact)
+
+    # frames[i] is the frame on joint axis i (its z-axis), frames[0] the chain's frame {0}, last the chain's {n}
+    frames = [at_zero(0), *(at_zero(chain.axis_frame(i)) for i in range(1, robot.dof + 1))]
+    last = at_zero(robot.dof)
+    if any(not e.is_number for F in (*frames, last) for e in F):
         raise ConversionError(f"{robot.name}: DH extraction needs numeric frames; substitute the parameters first")
-    if any(F.has(sp.sin, sp.cos) for F in frames):
+    if any(F.has(sp.sin, sp.cos) for F in (*frames, last)):
         # exact geometry on sin/cos of generic constants (rpy = 0.3) does not reduce; refuse rather than hang
         raise ConversionError(f"{robot.name}: exact DH extraction needs origin angles that are multiples of pi/12")
     n = robot.dof
@@ -179,7 +148,7 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
         a_prev = _exact(w.dot(x_prev))
         foot = (p_prev + a_prev * x_prev).applyfunc(_exact)
         if i == n:
-            x_i, p_i = _perpendicular(frames[n][:3, 0], z[i]), foot
+            x_i, p_i = _perpendicular(last[:3, 0], z[i]), foot
         else:
             c = z[i].cross(z[i + 1]).applyfunc(_exact)
             if any(e != 0 for e in c):
@@ -209,9 +178,10 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
         if any(_exact(e) != 0 for e in w - a * x_prev - d * z_i):
             raise ConversionError(f"{robot.name}, joint {i}: internal error, frames are not DH frames")
         # the frames were taken at q = 0 with the joints' own offsets, so d and theta are the DH offsets
-        joints.append(Joint(index=i, type=joint.type, alpha=alpha, a=a, d=d, theta=theta, limits=joint.limits))
+        joints.append(Joint(index=i, type=joint.type, placement=DHPlacement(alpha, a), d=d, theta=theta,
+                            limits=joint.limits))
     # the chain's frame {n} seen from the last DH frame is constant (both turn with joint n)
-    E = (inverse_transform(D[n]) * frames[n]).applyfunc(_exact)
+    E = (inverse_transform(D[n]) * last).applyfunc(_exact)
     tool_matrix = E * sp.Matrix(robot.tool.matrix).xreplace(zero) if robot.tool is not None else E
     tool_matrix = tool_matrix.applyfunc(_exact)
     needs_tool = tool_matrix != sp.eye(4)
@@ -224,8 +194,8 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
         notes.append("the tool frame is not the last DH frame: the table needs a tool transform")
     result = Robot(name=robot.name, convention=Convention.MODIFIED, joints=tuple(joints),
                    parameters=() if substitute_defaults else robot.parameters, description=robot.description,
-                   base=None if base_matrix == sp.eye(4) else _as_fixed(base_matrix),
-                   tool=None if not needs_tool else _as_fixed(tool_matrix), source=robot.source)
+                   base=None if base_matrix == sp.eye(4) else fixed_transform_from_matrix(base_matrix),
+                   tool=None if not needs_tool else fixed_transform_from_matrix(tool_matrix), source=robot.source)
     return DHExtraction(result, needs_base, needs_tool, tuple(notes))
 
 
@@ -247,34 +217,3 @@ def _perpendicular(x: sp.Matrix, z: sp.Matrix) -> sp.Matrix:
             if any(c != 0 for c in v):
                 break
     return _unit(v)
-
-
-def _x_matrix(a: sp.Expr, alpha: sp.Expr) -> sp.Matrix:
-    return homogeneous(rotation("x", alpha), sp.Matrix([a, 0, 0]))
-
-
-def _prepend_x(a: sp.Expr, alpha: sp.Expr, tool: FixedTransform | None) -> FixedTransform | None:
-    r""":math:`T_x(a) R_x(\alpha)` followed by ``tool``, as one fixed transform (xyz/rpy whenever possible)."""
-    if tool is None:
-        return None if a == 0 and alpha == 0 else FixedTransform(xyz=(a, sp.S.Zero, sp.S.Zero),
-                                                                 rpy=(alpha, sp.S.Zero, sp.S.Zero))
-    if a == 0 and alpha == 0:
-        return tool
-    if tool.given_matrix is None and tool.rpy[1:] == (0, 0):
-        # Rx(alpha) Rx(roll) = Rx(alpha + roll); the position turns with Rx(alpha)
-        x, y, z = (sp.Matrix([a, 0, 0]) + rotation("x", alpha) * sp.Matrix(tool.xyz)).applyfunc(sp.expand)
-        return FixedTransform(xyz=(x, y, z), rpy=(alpha + tool.rpy[0], sp.S.Zero, sp.S.Zero))
-    return _as_fixed(_x_matrix(a, alpha) * sp.Matrix(tool.matrix))
-
-
-def _append_x(base: FixedTransform | None, a: sp.Expr, alpha: sp.Expr) -> FixedTransform | None:
-    r"""``base`` followed by :math:`T_x(a) R_x(\alpha)`."""
-    if a == 0 and alpha == 0:
-        return base
-    if base is None:
-        return FixedTransform(xyz=(a, sp.S.Zero, sp.S.Zero), rpy=(alpha, sp.S.Zero, sp.S.Zero))
-    return _as_fixed(sp.Matrix(base.matrix) * _x_matrix(a, alpha))
-
-
-def _as_fixed(T: sp.Matrix) -> FixedTransform:
-    return fixed_transform_from_matrix(T)

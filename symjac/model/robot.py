@@ -1,35 +1,24 @@
-r"""The robot model: a validated Denavit-Hartenberg table, or a general serial chain, as immutable data.
+r"""The robot model: a validated serial chain as immutable data, in the words of its convention.
 
 Notation (Craig), used throughout symjac: ``T_0_3`` is the pose of frame {3} relative to frame {0}, so
 ``T_0_3 = T_0_1 @ T_1_2 @ T_2_3`` (inner indices cancel); likewise ``R_0_3``, ``p_0_3`` and ``z_0_i`` (the z-axis of
 frame {i} expressed in {0}).
 
-Conventions, stated by every robot file (there is no default):
+Every robot file states its convention (there is no default); each is a plug-in of :mod:`symjac.model.conventions`:
 
-* standard DH: :math:`{}^{i-1}_{i}T = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`; joint *i* moves about or along
-  :math:`z_{i-1}`;
-* modified DH (Craig): :math:`{}^{i-1}_{i}T = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`; joint *i* moves
-  about or along :math:`z_i`.
+* ``standard`` DH: :math:`{}^{i-1}_{i}T = R_z(\theta_i)\,T_z(d_i)\,T_x(a_i)\,R_x(\alpha_i)`; joint *i* moves about or
+  along :math:`z_{i-1}`;
+* ``modified`` DH (Craig): :math:`{}^{i-1}_{i}T = R_x(\alpha_{i-1})\,T_x(a_{i-1})\,R_z(\theta_i)\,T_z(d_i)`; joint *i*
+  moves about or along :math:`z_i`;
+* ``general`` (as URDF writes a chain): a fixed origin transform, then a motion about or along a constant unit axis;
+  frame {i} is turned so that its z-axis is the joint axis.
 
-A third convention, ``general``, writes a chain as URDF does: joint *i* is a fixed origin transform (``xyz`` and
-``rpy``, or a 4 x 4 ``matrix``) followed by a rotation about, or a translation along, a constant unit ``axis``
-(default :math:`+z`, any direction and sign allowed). symjac turns every such joint into the same structured chain
-as the DH conventions by an exact constant *alignment* rotation :math:`A_i` that takes :math:`z` onto the axis:
-
-.. math:: {}^{i-1}_{i}T = A_{i-1}^{-1}\,T_{\text{origin},i}\,A_i\,R_z(\theta_i)\,T_z(d_i), \qquad A_0 = I,
-
-so frame {i} is the joint's child link frame turned by :math:`A_i`; its z-axis is the joint axis (as in the
-modified convention, joint *i* moves about or along :math:`z_i`). :math:`A_i` is :math:`I` for :math:`+z`,
-:math:`R_x(\pi)` for :math:`-z`, :math:`R_y(\pm\pi/2)` for :math:`\pm x`, :math:`R_x(\mp\pi/2)` for :math:`\pm y`,
-and otherwise the rotation with columns :math:`(e_1, u \times e_1, u)`, :math:`e_1` the normalised
-:math:`e_z \times u` (see :func:`symjac.symbolic.transforms.alignment`). The tool transform of a general robot is given
-relative to frame {n} like every other tool.
-
-In both DH conventions, the row of joint *i* holds the fields ``alpha, a, d, theta``; for the modified convention
-``alpha`` and ``a`` are :math:`\alpha_{i-1}, a_{i-1}`. Revolute joint *i* has the variable ``theta{i}`` (its
-``theta`` field is a constant offset added to it); prismatic joint *i* has ``d{i}`` (its ``d`` field is an offset).
-Constant parameters keep the names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact
-numeric defaults that are used only where numbers are asked for.
+A :class:`Joint` holds what every convention shares, the kind of joint and the offsets of its own motion
+:math:`R_z(\theta_i + \theta)\,T_z(d)` (revolute; :math:`R_z(\theta)\,T_z(d_i + d)` prismatic), and its convention's
+:class:`Placement` record (``DHPlacement(alpha, a)``, ``GeneralPlacement(origin, axis)``) for the constant motions
+around it. Revolute joint *i* has the variable ``theta{i}``; prismatic joint *i* has ``d{i}``. Constant parameters keep
+the names the file gives them (``a2``, ``d4``, ``L1``) as real SymPy symbols, with exact numeric defaults that are
+used only where numbers are asked for.
 """
 
 from __future__ import annotations
@@ -37,6 +26,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
+from typing import ClassVar
 
 import sympy as sp
 
@@ -45,7 +35,7 @@ from symjac.model.expressions import snap_angle
 from symjac.symbolic.transforms import homogeneous, rotation_rpy
 
 __all__ = ["VELOCITY_NAMES", "WRENCH_NAMES", "Convention", "FixedTransform", "Joint", "JointType", "Parameter",
-           "Robot", "fixed_transform_from_matrix", "reserved_names", "unit_vector"]
+           "Placement", "Robot", "fixed_transform_from_matrix", "reserved_names", "unit_vector"]
 
 WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
 """The components of a symbolic wrench (:func:`symjac.wrench_symbols`): force first, then moment."""
@@ -55,12 +45,56 @@ VELOCITY_NAMES: tuple[str, ...] = ("v_x", "v_y", "v_z", "omega_x", "omega_y", "o
 symbols of commanded velocity components (:data:`symjac.analysis.inverse_rates.RATE_SYMBOLS`)."""
 
 
-class Convention(StrEnum):
-    """How a robot description writes its links: a DH convention, or ``general`` (URDF-style origin and axis)."""
+class Convention(str):
+    """The name of a registered convention: how a robot description writes its links.
 
-    STANDARD = "standard"
-    MODIFIED = "modified"
-    GENERAL = "general"
+    The built-in values are ``Convention.STANDARD``, ``Convention.MODIFIED`` and ``Convention.GENERAL``; a convention
+    plug-in (:mod:`symjac.model.conventions`) registers its own with :meth:`register`. Values are interned, so
+    ``Convention("modified") is Convention.MODIFIED``, and compare equal to their text.
+
+    Examples
+    --------
+    >>> Convention("modified") is Convention.MODIFIED, Convention.MODIFIED == "modified"
+    (True, True)
+    """
+
+    __slots__ = ()
+    _registered: ClassVar[dict[str, Convention]] = {}
+    STANDARD: ClassVar[Convention]
+    MODIFIED: ClassVar[Convention]
+    GENERAL: ClassVar[Convention]
+
+    def __new__(cls, value: str) -> Convention:
+        """The registered convention named ``value`` (``ValueError`` if there is none)."""
+        if value in cls._registered:
+            return cls._registered[value]
+        raise ValueError(f"{value!r} is not a convention; registered: {', '.join(cls._registered)}")
+
+    @classmethod
+    def register(cls, name: str) -> Convention:
+        """Register ``name`` (once) and return its value."""
+        if name not in cls._registered:
+            cls._registered[name] = str.__new__(cls, name)
+        return cls._registered[name]
+
+    @classmethod
+    def names(cls) -> tuple[str, ...]:
+        """Every registered name, in the order of registration."""
+        return tuple(cls._registered)
+
+    @property
+    def value(self) -> str:
+        """The name as plain text (as an enum value would give it)."""
+        return str.__str__(self)
+
+    def __repr__(self) -> str:
+        """``Convention('standard')``."""
+        return f"Convention({self.value!r})"
+
+
+Convention.STANDARD = Convention.register("standard")
+Convention.MODIFIED = Convention.register("modified")
+Convention.GENERAL = Convention.register("general")
 
 
 class JointType(StrEnum):
@@ -84,23 +118,30 @@ class Parameter:
 
 
 @dataclass(frozen=True)
-class Joint:
-    """One row of the DH table, or one general joint; see the module docstring for the fields per convention.
+class Placement:
+    """Where a joint sits relative to the one before it, in the words of its convention (a plug-in's record).
 
-    A general joint (convention ``general``) has ``alpha = a = 0``; its ``origin`` (``None`` is the identity) and
-    ``axis`` (as given, not normalised; ``None`` is :math:`+z`) say where and about what it moves. ``theta`` and
-    ``d`` keep their meaning as constant offsets.
+    Each convention of :mod:`symjac.model.conventions` subclasses it: ``DHPlacement(alpha, a)`` for both DH
+    conventions, ``GeneralPlacement(origin, axis)`` for URDF-style joints. The plug-in turns it into the constant
+    motions of the one internal joint form (:class:`symjac.model.conventions.JointForm`).
+    """
+
+
+@dataclass(frozen=True)
+class Joint:
+    r"""One joint: its kind, its convention's :class:`Placement`, and the offsets of its own motion.
+
+    Every convention moves joint *i* by :math:`R_z(\theta_i + \theta)\,T_z(d)` (revolute) or
+    :math:`R_z(\theta)\,T_z(d_i + d)` (prismatic) about its own axis: ``theta`` and ``d`` are those constant
+    offsets; the constant motions around it come from ``placement``.
     """
 
     index: int
     type: JointType
-    alpha: sp.Expr
-    a: sp.Expr
-    d: sp.Expr
-    theta: sp.Expr
+    placement: Placement
+    d: sp.Expr = sp.S.Zero
+    theta: sp.Expr = sp.S.Zero
     limits: tuple[sp.Expr, sp.Expr] | None = None
-    origin: FixedTransform | None = None
-    axis: tuple[sp.Expr, sp.Expr, sp.Expr] | None = None
     name: str = field(default="", compare=False)
 
     @property
@@ -136,13 +177,6 @@ class Joint:
     def offset(self) -> sp.Expr:
         """The translation along z of this link: variable plus offset (prismatic) or the constant (revolute)."""
         return self.d if self.is_revolute else self.variable + self.d
-
-    @property
-    def unit_axis(self) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
-        """The joint axis as an exact unit vector (``(0, 0, 1)`` unless a general joint gives another)."""
-        if self.axis is None:
-            return (sp.S.Zero, sp.S.Zero, sp.S.One)
-        return unit_vector(self.axis)
 
 
 def unit_vector(vector: Sequence[sp.Expr]) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
@@ -234,10 +268,9 @@ def reserved_names(joint_types: Sequence[JointType]) -> dict[str, str]:
     """
     reserved = dict.fromkeys(WRENCH_NAMES, "symjac names the wrench components f_x .. n_z")
     reserved |= dict.fromkeys(VELOCITY_NAMES, "symjac names the velocity components v_x .. omega_z")
-    zero = sp.S.Zero
     for index, kind in enumerate(joint_types, start=1):
         for probe_kind in JointType:
-            probe = Joint(index=index, type=probe_kind, alpha=zero, a=zero, d=zero, theta=zero)
+            probe = Joint(index=index, type=probe_kind, placement=Placement())
             reserved[probe.rate.name] = "symjac names the joint rates thetadot<i> and ddot<i>"
             reserved[probe.acceleration.name] = "symjac names the joint accelerations thetaddot<i> and dddot<i>"
             if probe_kind is kind or probe_kind is JointType.REVOLUTE:

@@ -14,15 +14,15 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
+from symjac.model.conventions import convention_named, plugin
+from symjac.model.conventions.base import transform_fields
 from symjac.model.expressions import exact_number, expression_text, name_problem, parse_expression
-from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
+from symjac.model.robot import FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
 
 __all__ = ["robot_from_mapping", "robot_to_mapping"]
 
 
 _TOP_KEYS = {"name", "description", "convention", "angle_unit", "parameters", "joints", "base", "tool"}
-_JOINT_KEYS = {"type", "alpha", "a", "d", "theta", "limits"}
-_GENERAL_JOINT_KEYS = {"type", "xyz", "rpy", "matrix", "axis", "d", "theta", "limits", "name"}
 _TRANSFORM_KEYS = {"xyz", "rpy", "matrix"}
 
 
@@ -78,14 +78,8 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     description = data.get("description", "")
     if not isinstance(description, str):
         raise fail("'description' must be a string", field="description")
-    if "convention" not in data:
-        raise fail("'convention' is required (there is no default): say 'standard', 'modified' or 'general'",
-                   field="convention")
-    convention_text = data["convention"]
-    if not isinstance(convention_text, str) or convention_text not in {c.value for c in Convention}:
-        raise fail(f"'convention' is required and must be 'standard', 'modified' or 'general', got "
-                   f"{convention_text!r}", field="convention")
-    convention = Convention(convention_text)
+    convention = convention_named(data, source)
+    spec = plugin(convention)
     unit = data.get("angle_unit", "rad")
     if unit not in ("rad", "deg"):
         raise fail(f"'angle_unit' must be 'rad' or 'deg', got {unit!r}", field="angle_unit")
@@ -118,29 +112,23 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
             raise fail(str(error), joint=joint, field=field) from None
         return expr * scale
 
-    general = convention is Convention.GENERAL
-    allowed = _GENERAL_JOINT_KEYS if general else _JOINT_KEYS
+    allowed = {"type", "d", "theta", "limits", *spec.keys}
     joints = []
     for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
         unknown = sorted(set(joint_data) - allowed)
         if unknown:
             raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(allowed))}",
                        joint=number)
-        fields = {}
-        for key in ("alpha", "a", "d", "theta"):
-            is_angle = key == "alpha" or key == "theta"
-            fields[key] = value(joint_data.get(key, 0), key, number, angle_scale if is_angle else sp.S.One)
-        extra: dict[str, Any] = {}
-        if general:
-            extra = _general_fields(joint_data, number, value, defaults, fail, angle_scale)
+        reader = _JointReader(joint_data, number, value, defaults, fail, angle_scale)
+        placement, joint_name = spec.read(joint_data, reader)
+        d, theta = reader.number("d"), reader.number("theta", angle=True)
         limits = None
         if "limits" in joint_data:
             scale = angle_scale if kind is JointType.REVOLUTE else sp.S.One
             limits = _limits(joint_data["limits"], lambda raw, s=scale, j=number: value(raw, "limits", j, s),
                              defaults, lambda message, j=number: fail(message, joint=j, field="limits"))
-        joints.append(Joint(index=number, type=kind, limits=limits, **fields, **extra))
-        for key, expr in fields.items():
-            _require_finite(expr, defaults, lambda message, j=number, k=key: fail(message, joint=j, field=k))
+        joints.append(Joint(index=number, type=kind, placement=placement, d=d, theta=theta, limits=limits,
+                            name=joint_name))
 
     transforms = {}
     for key in ("base", "tool"):
@@ -159,39 +147,42 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     )
 
 
-def _general_fields(joint_data: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
-                    fail: Any, angle_scale: sp.Expr) -> dict[str, Any]:
-    """Origin, axis and name of a general joint (convention ``general``)."""
-    extra: dict[str, Any] = {}
-    origin_keys = {"xyz", "rpy", "matrix"} & set(joint_data)
-    if origin_keys:
-        def joint_fail(message: str, joint: int | None = None, field: str | None = None) -> RobotFileError:
-            return fail(message, joint=number, field=field)
+class _JointReader:
+    """Reads one joint table for a convention plug-in (:class:`~symjac.model.conventions.base.JointReader`)."""
 
-        def joint_value(raw: Any, field: str, joint: int | None = None, scale: sp.Expr = sp.S.One) -> sp.Expr:
-            return value(raw, field, number, scale)
+    def __init__(self, table: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
+                 fail: Any, angle_scale: sp.Expr):
+        self.table, self.joint, self.defaults = table, number, defaults
+        self._value, self._fail, self._angle_scale = value, fail, angle_scale
 
-        origin = _fixed_transform({k: joint_data[k] for k in origin_keys}, "origin", joint_value, defaults,
-                                  joint_fail, angle_scale)
-        if origin != FixedTransform():
-            extra["origin"] = origin
-    if "axis" in joint_data:
-        entries = joint_data["axis"]
-        if not isinstance(entries, Sequence) or isinstance(entries, str) or len(entries) != 3:
-            raise fail("'axis' must be a list of 3 numbers", joint=number, field="axis")
-        axis = tuple(value(entry, "axis", number) for entry in entries)
-        numbers = [entry.subs(defaults) for entry in axis]
-        if not all(entry.is_number and _is_finite(entry) for entry in numbers):
-            raise fail(f"'axis' must be 3 finite numbers, got {list(axis)}", joint=number, field="axis")
-        if max(abs(float(entry)) for entry in numbers) < 1e-9:  # no squares: [1e308, 0, 1] must not overflow
-            raise fail("'axis' must not be the zero vector", joint=number, field="axis")
-        if axis != (0, 0, 1):
-            extra["axis"] = axis
-    if "name" in joint_data:
-        if not isinstance(joint_data["name"], str):
-            raise fail("'name' must be a string", joint=number, field="name")
-        extra["name"] = joint_data["name"]
-    return extra
+    def value(self, raw: Any, field: str, *, angle: bool = False) -> sp.Expr:
+        """``raw`` parsed (angles scaled by the file's unit)."""
+        return self._value(raw, field, self.joint, self._angle_scale if angle else sp.S.One)
+
+    def number(self, key: str, *, angle: bool = False) -> sp.Expr:
+        """The value under ``key`` (0 if absent), checked finite."""
+        expr = self.value(self.table.get(key, 0), key, angle=angle)
+        _require_finite(expr, self.defaults, lambda message: self.fail(message, key))
+        return expr
+
+    def transform(self, keys: Sequence[str], field: str) -> FixedTransform:
+        """The fixed transform of the ``xyz``/``rpy`` or ``matrix`` entries among ``keys`` (identity if none)."""
+        if not keys:
+            return FixedTransform()
+
+        def joint_value(raw: Any, name: str, joint: int | None = None, scale: sp.Expr = sp.S.One) -> sp.Expr:
+            return self._value(raw, name, self.joint, scale)
+
+        return _fixed_transform({key: self.table[key] for key in keys}, field, joint_value, self.defaults,
+                                lambda message, joint=None, field=None: self.fail(message, field), self._angle_scale)
+
+    def fail(self, message: str, field: str | None = None) -> RobotFileError:
+        """The error for this joint."""
+        return self._fail(message, joint=self.joint, field=field)
+
+    def is_finite(self, number: sp.Expr) -> bool:
+        """Whether ``number`` converts to a finite float."""
+        return _is_finite(number)
 
 
 def _parameters(raw: Any, reserved: Mapping[str, str], fail: Any) -> tuple[Parameter, ...]:
@@ -291,20 +282,10 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
     data["convention"] = robot.convention.value
     if robot.parameters:
         data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in robot.parameters}
+    spec = plugin(robot.convention)
     joints = []
-    general = robot.convention is Convention.GENERAL
     for joint in robot.joints:
-        row: dict[str, Any] = {"type": joint.type.value}
-        if general:
-            if joint.name:
-                row["name"] = joint.name
-            if joint.origin is not None:
-                row.update(_transform_mapping(joint.origin))
-            if joint.axis is not None:
-                row["axis"] = [expression_text(e) for e in joint.axis]
-        for key in ("d", "theta") if general else ("alpha", "a", "d", "theta"):
-            if not general or getattr(joint, key) != 0:
-                row[key] = expression_text(getattr(joint, key))
+        row: dict[str, Any] = {"type": joint.type.value, **spec.write(joint)}
         if joint.limits is not None:
             row["limits"] = [expression_text(limit) for limit in joint.limits]
         joints.append(row)
@@ -312,11 +293,5 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
     for key in ("base", "tool"):
         transform: FixedTransform | None = getattr(robot, key)
         if transform is not None:
-            data[key] = _transform_mapping(transform)
+            data[key] = transform_fields(transform)
     return data
-
-
-def _transform_mapping(transform: FixedTransform) -> dict[str, Any]:
-    if transform.given_matrix is not None:
-        return {"matrix": [[expression_text(e) for e in transform.given_matrix.row(r)] for r in range(4)]}
-    return {"xyz": [expression_text(e) for e in transform.xyz], "rpy": [expression_text(e) for e in transform.rpy]}

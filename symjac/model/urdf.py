@@ -42,6 +42,7 @@ from pathlib import Path
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
+from symjac.model.conventions.general import GeneralPlacement
 from symjac.model.expressions import exact_number, is_valid_name, snap_angle
 from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Robot, fixed_transform_from_matrix
 from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_motions
@@ -107,7 +108,7 @@ def robot_from_urdf(
     ...   <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0 0 0.5"/>
     ...     <axis xyz="0 1 0"/><limit lower="-1.5707963267949" upper="1.5707963267949"/></joint></robot>'''
     >>> robot = robot_from_urdf(urdf)
-    >>> robot.joints[0].limits, robot.joints[0].axis
+    >>> robot.joints[0].limits, robot.joints[0].placement.axis
     ((-pi/2, pi/2), (0, 1, 0))
     """
     root = _parse(content, source)
@@ -319,11 +320,11 @@ def _robot(robot_name: str, path: list[_UrdfJoint], source: str) -> Robot:
         origin = _combine([*pending, urdf_joint.origin], [])
         pending = []
         axis = urdf_joint.axis
-        joints.append(Joint(
-            index=len(joints) + 1, type=_MOVING[urdf_joint.type], alpha=sp.S.Zero, a=sp.S.Zero, d=sp.S.Zero,
-            theta=sp.S.Zero, limits=urdf_joint.limits, origin=None if origin == FixedTransform() else origin,
-            axis=None if tuple(axis) == (0, 0, 1) else axis, name=urdf_joint.name))
-    last_alignment = alignment(joints[-1].unit_axis)
+        placement = GeneralPlacement(None if origin == FixedTransform() else origin,
+                                     None if tuple(axis) == (0, 0, 1) else axis)
+        joints.append(Joint(index=len(joints) + 1, type=_MOVING[urdf_joint.type], placement=placement,
+                            limits=urdf_joint.limits, name=urdf_joint.name))
+    last_alignment = alignment(placement.unit_axis)
     tool = _combine(pending, list(inverse_motions(last_alignment)))
     # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
     return Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),

@@ -20,6 +20,7 @@ from symjac.analysis.singularity.singularities import (
     SingularityReport,
 )
 from symjac.kinematics.jacobian import ROW_NAMES
+from symjac.model.conventions import plugin
 from symjac.model.robot import Robot
 from symjac.printing.document import Inline
 
@@ -282,9 +283,7 @@ def redundant_caption(report: SingularityReport) -> tuple[str | Inline, ...]:
 
 def dh_caption(robot: Robot) -> str:
     """The robot and the kind of its table: ``puma560: Unimation PUMA 560 ..., standard DH table``."""
-    kind = "general chain (URDF-style origin and axis)" if robot.convention == "general" else (
-        f"{robot.convention.value} Denavit-Hartenberg table")
-    return f"{robot.name}: {robot.description}, {kind}"
+    return f"{robot.name}: {robot.description}, {plugin(robot.convention).table_name}"
 
 
 def representation_parts(singularity: RepresentationSingularity) -> tuple[str | sp.Basic, ...]:

@@ -1,39 +1,77 @@
-r"""Denavit-Hartenberg tables as text, LaTeX and rows of strings (for JSON).
+r"""A robot's table (DH rows, or a general chain's origins and axes) as text, LaTeX and rows of strings (for JSON).
 
-A DH robot has one row :math:`(\alpha, a, d, \theta)` per joint (:math:`\alpha_{i-1}, a_{i-1}` in the modified
-convention); a general chain one row of origin ``xyz``, ``rpy``, joint ``axis``, offset and angle, as in URDF.
+The columns and the entries come from the robot's convention plug-in (:mod:`symjac.model.conventions`); this module
+only formats them: a column is a symbol with a subscript (:math:`\alpha_{i-1}`) or a word (``xyz``), an entry an
+expression or a vector (printed in brackets). The report's HTML table uses the same data
+(:func:`table_headings`, :func:`table_cells`).
 """
 
 from __future__ import annotations
 
+import unicodedata
+
 import sympy as sp
 
+from symjac.model.conventions import plugin
+from symjac.model.conventions.base import Cell, Column
 from symjac.model.robot import Robot
 from symjac.printing.latex import latex
 
-__all__ = ["dh_headers", "dh_rows", "dh_table_latex", "dh_table_text", "text_table"]
+__all__ = ["column_html", "column_latex", "column_text", "dh_headers", "dh_rows", "dh_table_latex", "dh_table_text",
+           "table_cells", "table_headings", "text_table"]
+
+
+def table_headings(robot: Robot) -> tuple[Column, ...]:
+    """The columns of ``robot``'s table after the joint number and type."""
+    return plugin(robot.convention).columns
+
+
+def table_cells(robot: Robot) -> list[tuple[Cell, ...]]:
+    """The entries of ``robot``'s table, one row per joint, under :func:`table_headings`."""
+    spec = plugin(robot.convention)
+    return [spec.cells(joint) for joint in robot.joints]
+
+
+def _greek(symbol: str) -> str | None:
+    """The Greek letter named ``symbol`` (``"alpha"`` gives α), or ``None``."""
+    try:
+        return unicodedata.lookup(f"GREEK SMALL LETTER {symbol.upper()}")
+    except KeyError:
+        return None
+
+
+def column_text(column: Column) -> str:
+    """``alpha_{i-1}``, ``d_i`` or the word."""
+    if not column.subscript:
+        return column.symbol
+    return f"{column.symbol}_{column.subscript}" if len(column.subscript) == 1 else (
+        f"{column.symbol}_{{{column.subscript}}}")
+
+
+def column_latex(column: Column) -> str:
+    r"""``\alpha_{i-1}``, ``d_i`` or ``\text{word}``."""
+    if not column.subscript:
+        return rf"\text{{{column.symbol}}}"
+    symbol = f"\\{column.symbol}" if _greek(column.symbol) else column.symbol
+    return column_text(Column(symbol, column.subscript))
+
+
+def column_html(column: Column) -> str:
+    """``&#945;<sub>i-1</sub>``, ``d<sub>i</sub>`` or the word."""
+    letter = _greek(column.symbol)
+    symbol = f"&#{ord(letter)};" if letter else column.symbol
+    return f"{symbol}<sub>{column.subscript}</sub>" if column.subscript else symbol
 
 
 def dh_headers(robot: Robot) -> list[str]:
     """Plain-text column names after ``joint`` and ``type``."""
-    if robot.convention == "general":  # origin and axis per joint, as in URDF
-        return ["xyz", "rpy", "axis", "d_i", "theta_i"]
-    return ["alpha_{i-1}", "a_{i-1}", "d_i", "theta_i"] if robot.convention == "modified" else [
-        "alpha_i", "a_i", "d_i", "theta_i"]
+    return [column_text(column) for column in table_headings(robot)]
 
 
 def dh_rows(robot: Robot) -> list[list[str]]:
     """One row of strings per joint: index, type, then the columns of :func:`dh_headers` (SymPy strings)."""
-    if robot.convention == "general":
-        zero = (sp.S.Zero,) * 3
-        return [[str(joint.index), joint.type.value,
-                 *(sp.sstr(list(v)) for v in (joint.origin.xyz if joint.origin else zero,
-                                              joint.origin.rpy if joint.origin else zero,
-                                              joint.axis or (0, 0, 1))),
-                 sp.sstr(joint.offset), sp.sstr(joint.angle)] for joint in robot.joints]
-    return [[str(joint.index), joint.type.value, *(sp.sstr(e) for e in (joint.alpha, joint.a, joint.offset,
-                                                                         joint.angle))]
-            for joint in robot.joints]
+    return [[str(joint.index), joint.type.value, *(sp.sstr(list(c) if isinstance(c, tuple) else c) for c in cells)]
+            for joint, cells in zip(robot.joints, table_cells(robot), strict=True)]
 
 
 def text_table(headers: list[str], rows: list[list[str]]) -> str:
@@ -49,25 +87,23 @@ def dh_table_text(robot: Robot) -> str:
     return text_table(["joint", "type", *dh_headers(robot)], dh_rows(robot))
 
 
+def _cell_latex(cell: Cell) -> str:
+    if isinstance(cell, tuple):
+        return r"\left[" + ",\\ ".join(latex(v) for v in cell) + r"\right]"
+    return latex(cell)
+
+
 def dh_table_latex(robot: Robot) -> str:
-    r"""The DH table as a LaTeX ``array`` (entries in textbook shorthand; a general chain's vectors in brackets)."""
-    if robot.convention == "general":
-        zero = (sp.S.Zero,) * 3
+    r"""The table as a LaTeX ``array``: the joint number, then the columns (entries in textbook shorthand).
 
-        def vector(values: tuple[sp.Expr, ...]) -> str:
-            return r"\left[" + ",\\ ".join(latex(v) for v in values) + r"\right]"
-
-        cells = r" \\ ".join(" & ".join([str(joint.index), rf"\text{{{joint.type.value}}}",
-                                          *(vector(tuple(v)) for v in (joint.origin.xyz if joint.origin else zero,
-                                                                       joint.origin.rpy if joint.origin else zero,
-                                                                       joint.axis or (0, 0, 1))),
-                                          latex(joint.offset), latex(joint.angle)])
-                              for joint in robot.joints)
-        columns = r"\text{type} & \text{xyz} & \text{rpy} & \text{axis} & d_i & \theta_i"
-        return r"\begin{array}{c|cccccc} i & " + columns + r" \\ \hline " + cells + r" \end{array}"
-    headers = [r"\alpha_{i-1}", "a_{i-1}", "d_i", r"\theta_i"] if robot.convention == "modified" else [
-        r"\alpha_i", "a_i", "d_i", r"\theta_i"]
-    body = r" \\ ".join(" & ".join([str(joint.index)] + [latex(e) for e in (joint.alpha, joint.a, joint.offset,
-                                                                              joint.angle)])
-                        for joint in robot.joints)
-    return r"\begin{array}{c|cccc} i & " + " & ".join(headers) + r" \\ \hline " + body + r" \end{array}"
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> print(dh_table_latex(load_robot("planar2r"))[:46])
+    \begin{array}{c|cccc} i & \alpha_i & a_i & d_i
+    """
+    headings = table_headings(robot)
+    body = r" \\ ".join(" & ".join([str(joint.index), *(_cell_latex(cell) for cell in cells)])
+                        for joint, cells in zip(robot.joints, table_cells(robot), strict=True))
+    return (r"\begin{array}{c|" + "c" * len(headings) + "} i & " + " & ".join(map(column_latex, headings))
+            + r" \\ \hline " + body + r" \end{array}")

@@ -19,6 +19,7 @@ from symjac.model.robot import Robot
 from symjac.printing.document import Block, Equation, Inline
 from symjac.printing.mathml import TextbookMathMLPrinter, math_element, mathml_node
 from symjac.printing.mathml_layout import displays
+from symjac.printing.tables import column_html, table_cells, table_headings
 
 __all__ = [
     "Agreement",
@@ -123,22 +124,16 @@ def block_html(block: Block) -> str:
 
 
 def dh_table_html(robot: Robot) -> str:
-    """The DH table (or a general chain's origins and axes) as an HTML table with MathML entries."""
-    if robot.convention == "general":
-        headers = ["xyz", "rpy", "axis", "d<sub>i</sub>", "&#952;<sub>i</sub>"]
-        zero = (sp.S.Zero,) * 3
-        rows = [[sp.Tuple(*(j.origin.xyz if j.origin else zero)), sp.Tuple(*(j.origin.rpy if j.origin else zero)),
-                 sp.Tuple(*(j.axis or (0, 0, 1))), j.offset, j.angle] for j in robot.joints]
-    else:
-        modified = robot.convention == "modified"
-        headers = ["&#945;<sub>i-1</sub>", "a<sub>i-1</sub>"] if modified else ["&#945;<sub>i</sub>", "a<sub>i</sub>"]
-        headers += ["d<sub>i</sub>", "&#952;<sub>i</sub>"]
-        rows = [[j.alpha, j.a, j.offset, j.angle] for j in robot.joints]
-    head = "".join(f"<th>{h}</th>" for h in ["i", "type", *headers])
+    """The robot's table (DH rows, or a general chain's origins and axes) as HTML with MathML entries.
+
+    The same columns and entries as the LaTeX table (:func:`symjac.printing.tables.table_cells`).
+    """
+    head = "".join(f"<th>{h}</th>" for h in ["i", "type", *map(column_html, table_headings(robot))])
     body = "".join(
         f"<tr><td>{joint.index}</td><td>{html.escape(joint.type.value)}</td>"
-        + "".join(f"<td>{inline_math(entry)}</td>" for entry in row) + "</tr>"
-        for joint, row in zip(robot.joints, rows, strict=True))
+        + "".join(f"<td>{inline_math(sp.Tuple(*cell) if isinstance(cell, tuple) else cell)}</td>" for cell in cells)
+        + "</tr>"
+        for joint, cells in zip(robot.joints, table_cells(robot), strict=True))
     return f'<table class="dh"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>\n'
 
 

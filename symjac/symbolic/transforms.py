@@ -1,8 +1,8 @@
-r"""Rigid-body transforms: elementary rotations, DH link transforms, skew matrices and 6 x 6 maps.
+r"""Rigid-body transforms: elementary rotations and motions, skew matrices and 6 x 6 maps.
 
-Everything here is pure SymPy and knows nothing about robot files. Link transforms are also available as a list of
-*elementary motions* (rotation or translation about/along x or z) so that :func:`compose` can multiply a chain while
-merging consecutive rotations about the same axis: :math:`R_z(\theta_2) T_x(a) \cdots` stays as written, but
+Everything here is pure SymPy and knows nothing about robot files or conventions. Link transforms are written as
+lists of *elementary motions* (rotation or translation about/along an axis) so that :func:`compose` can multiply a
+chain while merging consecutive rotations about the same axis: :math:`R_z(\theta_2) T_x(a) \cdots` stays as written, but
 :math:`R_z(\theta_2) T_z(d) R_z(\theta_3) = T_z(d) R_z(\theta_2 + \theta_3)`, which is how parallel joints give the
 compact :math:`c_{23}` instead of :math:`c_2 c_3 - s_2 s_3`.
 """
@@ -24,8 +24,6 @@ __all__ = [
     "alignment",
     "block_rotation",
     "compose",
-    "dh_motions",
-    "dh_transform",
     "homogeneous",
     "inverse_motions",
     "inverse_transform",
@@ -167,22 +165,6 @@ class Motion:
     value: sp.Expr
 
 
-def dh_motions(
-    convention: Literal["standard", "modified"], alpha: sp.Expr, a: sp.Expr, theta: sp.Expr, d: sp.Expr
-) -> tuple[Motion, ...]:
-    r"""The DH link transform as elementary motions.
-
-    .. math::
-        \text{standard: } R_z(\theta)\,T_z(d)\,T_x(a)\,R_x(\alpha) \qquad
-        \text{modified: } R_x(\alpha)\,T_x(a)\,R_z(\theta)\,T_z(d)
-    """
-    about_z = (Motion("R", "z", theta), Motion("T", "z", d))
-    along_x = (Motion("T", "x", a), Motion("R", "x", alpha))
-    if convention == "standard":
-        return about_z + along_x
-    return along_x[::-1] + about_z
-
-
 def inverse_motions(motions: Sequence[Motion | sp.MatrixBase]) -> tuple[Motion | sp.Matrix, ...]:
     """The motions of the inverse transform: reversed order, negated values, constant transforms inverted."""
     return tuple(inverse_transform(sp.Matrix(m)) if isinstance(m, sp.MatrixBase) else Motion(m.kind, m.axis, -m.value)
@@ -219,25 +201,6 @@ def alignment(axis: Sequence[sp.Expr]) -> tuple[Motion | sp.Matrix, ...]:
     e1 = (e1 / sp.sqrt(e1.dot(e1))).applyfunc(sp.radsimp)
     e2 = u.cross(e1).applyfunc(lambda e: sp.radsimp(sp.expand(e)))
     return (homogeneous(sp.Matrix.hstack(e1, e2, u), sp.zeros(3, 1)),)
-
-
-def dh_transform(
-    convention: Literal["standard", "modified"], alpha: sp.Expr, a: sp.Expr, theta: sp.Expr, d: sp.Expr
-) -> sp.Matrix:
-    """The 4 x 4 DH link transform (see :func:`dh_motions` for the factor order).
-
-    Examples
-    --------
-    >>> theta = sp.Symbol("theta1")
-    >>> dh_transform("modified", 0, sp.Symbol("L0"), theta, 0)
-    Matrix([
-    [cos(theta1), -sin(theta1), 0, L0],
-    [sin(theta1),  cos(theta1), 0,  0],
-    [          0,            0, 1,  0],
-    [          0,            0, 0,  1]])
-    """
-    rotation_matrix, position = compose(dh_motions(convention, alpha, a, theta, d))
-    return homogeneous(rotation_matrix, position)
 
 
 def compose(motions: Iterable[Motion | sp.Matrix]) -> tuple[sp.Matrix, sp.Matrix]:

@@ -127,7 +127,7 @@ def geometry_at(robot: Robot | Chain, q: Sequence[float], point: tuple[sp.Expr, 
     for joint in model.joints:
         T = numeric_at(chain, chain.transform(0, chain.axis_frame(joint.index)), q)
         axes.append((T[:3, 3], T[:3, 2]))
-    T_n = numeric_at(chain, chain.transform(0, chain.n), q)
+    T_n = numeric_at(chain, chain.transform(0, chain.n_joints), q)
     P = T_n[:3, :3] @ np.array([float(sp.sympify(c).xreplace(model.defaults)) for c in point]) + T_n[:3, 3]
     points: list[tuple[Landmark, np.ndarray]] = [(Landmark("reference point"), P)]
     for joint in model.joints[2:]:
@@ -222,7 +222,7 @@ def frame_axes(robot: Robot | Chain, q: Sequence[float], frame: Frame) -> dict[F
     chain = as_chain(robot)
     model = chain.robot
     position = chain.position(frame)
-    order = [position] + [k for k in range(-1, chain.n + 2) if k != position]
+    order = [position] + [k for k in range(-1, chain.n_joints + 2) if k != position]
     named: dict[FrameAxis, np.ndarray] = {}
     for k in order:
         name = chain.frame_name(k)

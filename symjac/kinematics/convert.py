@@ -151,16 +151,16 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
     if robot.convention is not Convention.GENERAL:
         raise ConversionError(f"{robot.name} is already a DH table ({robot.convention.value})")
     chain = chain_of(robot)
-    zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.q}
+    zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.joint_variables}
     if substitute_defaults:
         zero.update(robot.defaults)
-    frames = [sp.Matrix(chain.transform(0, i)).xreplace(zero).applyfunc(_exact) for i in range(robot.dof + 1)]
+    frames = [sp.Matrix(chain.transform(0, i)).xreplace(zero).applyfunc(_exact) for i in range(robot.n_joints + 1)]
     if any(not e.is_number for F in frames for e in F):
         raise ConversionError(f"{robot.name}: DH extraction needs numeric frames; substitute the parameters first")
     if any(F.has(sp.sin, sp.cos) for F in frames):
         # exact geometry on sin/cos of generic constants (rpy = 0.3) does not reduce; refuse rather than hang
         raise ConversionError(f"{robot.name}: exact DH extraction needs origin angles that are multiples of pi/12")
-    n = robot.dof
+    n = robot.n_joints
     origin = [F[:3, 3] for F in frames]
     z = [F[:3, 2] for F in frames]
 

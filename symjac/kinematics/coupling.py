@@ -31,11 +31,11 @@ if TYPE_CHECKING:  # the chain module applies the coupling to forward kinematics
 M = TypeVar("M", sp.MatrixBase, sp.NDimArray)
 
 __all__ = [
+    "coordinate_substitution",
     "coupling_matrix",
     "hessian_in_coordinates",
     "in_coordinates",
     "jacobian_in_coordinates",
-    "joint_values",
     "torques_in_coordinates",
 ]
 
@@ -46,7 +46,7 @@ def coupling_matrix(robot: Robot | Chain) -> sp.Matrix:
     return sp.eye(model.n_joints) if model.coupling is None else sp.Matrix(model.coupling.matrix)
 
 
-def joint_values(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
+def coordinate_substitution(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
     r"""The substitution that writes joint-space results in the coordinates (empty without a coupling).
 
     :math:`\vartheta_i \to \vartheta_i(q)`, :math:`\dot\vartheta_i \to (C\dot q)_i`,
@@ -55,7 +55,7 @@ def joint_values(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
     Examples
     --------
     >>> from symjac import load_robot
-    >>> joint_values(load_robot("planar2r"))
+    >>> coordinate_substitution(load_robot("planar2r"))
     {}
     """
     model = _model(robot)
@@ -73,7 +73,7 @@ def joint_values(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
 
 def in_coordinates(robot: Robot | Chain, result: M) -> M:
     """A result written in the joint variables (and their rates and accelerations), written in the coordinates."""
-    values = joint_values(robot)
+    values = coordinate_substitution(robot)
     if not values:
         return result
     if isinstance(result, sp.NDimArray):

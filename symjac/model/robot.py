@@ -237,6 +237,11 @@ class Robot:
         return tuple(joint.variable for joint in self.joints)
 
     @property
+    def joint_values(self) -> tuple[sp.Expr, ...]:
+        """Each joint variable as an expression of the coordinates (the joint variables themselves without coupling)."""
+        return self.joint_variables if self.coupling is None else self.coupling.values
+
+    @property
     def coordinates(self) -> tuple[sp.Symbol, ...]:
         """The independent coordinates: the joint variables unless a coupling names others."""
         return self.joint_variables if self.coupling is None else self.coupling.coordinates

@@ -153,7 +153,7 @@ def _coplanar(first: np.ndarray, second: np.ndarray, third: np.ndarray, directio
 
 
 def _wrist(robot: Robot) -> set[int]:
-    return set(range(robot.dof - 3, robot.dof)) if robot.dof >= 5 else set()
+    return set(range(robot.n_joints - 3, robot.n_joints)) if robot.n_joints >= 5 else set()
 
 
 def findings(robot: Robot | Chain, geometry: Geometry) -> tuple[Finding, ...]:
@@ -176,7 +176,7 @@ def findings(robot: Robot | Chain, geometry: Geometry) -> tuple[Finding, ...]:
             facts[finding.key] = finding
     if revolute and revolute[0] == 0:
         o1, z1 = axes[0]
-        normal = np.cross(z1, axes[1][1]) if model.dof > 1 else np.zeros(3)
+        normal = np.cross(z1, axes[1][1]) if model.n_joints > 1 else np.zeros(3)
         for landmark, p in geometry.points:
             if _distance_to_line(p, o1, z1) < 1e-7:
                 finding = Finding(Relation.ON_FIRST_AXIS, (0,), SingularityKind.SHOULDER, landmark)

@@ -35,7 +35,7 @@ numeric defaults that are used only where numbers are asked for.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
 import sympy as sp
@@ -235,6 +235,11 @@ class Robot:
     def joint_variables(self) -> tuple[sp.Symbol, ...]:
         """Joint variables (theta_i or d_i), in chain order: what the chain's transforms are written in."""
         return tuple(joint.variable for joint in self.joints)
+
+    @property
+    def uncoupled(self) -> Robot:
+        """The same robot with every joint its own coordinate (itself if it has no coupling)."""
+        return self if self.coupling is None else replace(self, coupling=None)
 
     @property
     def joint_values(self) -> tuple[sp.Expr, ...]:

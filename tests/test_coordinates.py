@@ -232,7 +232,7 @@ def test_symbolic_coefficient_appears_in_the_jacobian():
 def test_identity_coupling_changes_nothing(name):
     robot = load_robot(name)
     identity = dataclasses.replace(robot, coupling=Coupling(robot.joint_variables, robot.joint_variables))
-    assert identity.q == robot.q and chain_of(identity) is not chain_of(robot)
+    assert identity.coupling is None and identity == robot and chain_of(identity) is chain_of(robot)
     for method in METHODS:
         assert jacobian(identity, frame=1, method=method) == jacobian(robot, frame=1, method=method)
     assert hessian(identity) == hessian(robot)
@@ -240,6 +240,22 @@ def test_identity_coupling_changes_nothing(name):
     assert bias_acceleration(identity, frame=2) == bias_acceleration(robot, frame=2)
     assert forward_kinematics(identity, 0, "tool") == forward_kinematics(robot, 0, "tool")
     assert force_propagation(identity).torques == force_propagation(robot).torques
+
+
+@pytest.mark.parametrize("name", ["planar3r", "scara", "stanford"])
+def test_renamed_coordinates_give_todays_results_renamed(name):
+    """theta_i = q_i goes through every step of the coupling (substitution, C = I, layout) and changes only names."""
+    robot = load_robot(name)
+    q = tuple(sp.Symbol(f"q{i + 1}", real=True) for i in range(robot.n_joints))
+    renamed = dataclasses.replace(robot, coupling=Coupling(q, q))
+    names = dict(zip(robot.joint_variables, q, strict=True))
+    rates = dict(zip(joint_rate_symbols(robot), joint_rate_symbols(renamed), strict=True))
+    assert joint_rate_symbols(renamed)[0] == sp.Symbol("qdot1", real=True)
+    for method in METHODS:
+        assert jacobian(renamed, frame=1, method=method) == jacobian(robot, frame=1, method=method).xreplace(names)
+    assert hessian(renamed) == hessian(robot).xreplace(names)
+    assert sp.expand(jacobian_derivative(renamed) - jacobian_derivative(robot).xreplace({**names, **rates})) == (
+        sp.zeros(6, robot.n_joints))
 
 
 @pytest.mark.parametrize(("values", "message"), [

@@ -139,7 +139,8 @@ def _hessian_pair(columns: list[tuple[sp.Matrix, sp.Matrix]], j: int, m: int,
 
 def _hessian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], simplify: bool) -> sp.ImmutableDenseNDimArray:
     if chain.joint_chain is not chain:  # coupled: H_q[:, j, m] = sum_a sum_b H[:, a, b] C[a, j] C[b, m]
-        return hessian_in_coordinates(chain, hessian(chain.joint_chain, frame, list(point), simplify=simplify))
+        H = hessian(chain.joint_chain, frame, list(point), simplify=simplify)
+        return hessian_in_coordinates(chain, H, frame if simplify else None)
     n = chain.n_joints
     if simplify:
         raw = hessian(chain, frame, list(point), simplify=False)
@@ -206,7 +207,7 @@ def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...],
                          simplify: bool) -> sp.ImmutableMatrix:
     if chain.joint_chain is not chain:  # coupled: Jdot_q = Jdot(theta(q), C qdot) C = sum_m H_q[:, :, m] qdot_m
         joints = jacobian_derivative(chain.joint_chain, frame, list(point), method, simplify=simplify)
-        return jacobian_in_coordinates(chain, joints)
+        return jacobian_in_coordinates(chain, joints, frame if simplify else None)
     if simplify:
         raw = jacobian_derivative(chain, frame, list(point), method, simplify=False)
         return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))
@@ -248,7 +249,7 @@ def bias_acceleration(
     def derive() -> sp.ImmutableMatrix:
         if chain.joint_chain is not chain:  # coupled: Jdot_q qdot = Jdot thetadot with thetadot = C qdot
             joints = bias_acceleration(chain.joint_chain, frame, list(xyz), method, simplify=simplify)
-            return in_coordinates(chain, sp.ImmutableMatrix(joints))
+            return in_coordinates(chain, sp.ImmutableMatrix(joints), frame if simplify else None)
         Jdot = jacobian_derivative(chain, frame, list(xyz), method, simplify=False)
         raw = Jdot * sp.Matrix(joint_rate_symbols(chain))
         if not simplify:

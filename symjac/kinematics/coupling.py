@@ -19,18 +19,22 @@ Transforms and anything else written in the joint variables, their rates and acc
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, TypeVar
 
 import sympy as sp
 
-from symjac.model.robot import Robot
+from symjac.model.robot import JointType, Robot
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import simplify_matrix
 
 if TYPE_CHECKING:  # the chain module applies the coupling to forward kinematics, so it imports this one
-    from symjac.kinematics.chain import Chain
+    from symjac.kinematics.chain import Chain, Frame
 
 M = TypeVar("M", sp.MatrixBase, sp.NDimArray)
 
 __all__ = [
+    "coordinate_bases",
     "coordinate_substitution",
     "coupling_matrix",
     "hessian_in_coordinates",
@@ -71,21 +75,61 @@ def coordinate_substitution(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
     return values
 
 
-def in_coordinates(robot: Robot | Chain, result: M) -> M:
-    """A result written in the joint variables (and their rates and accelerations), written in the coordinates."""
+def in_coordinates(robot: Robot | Chain, result: M, layout: Frame | None = None) -> M:
+    """A result written in the joint variables (and their rates and accelerations), written in the coordinates.
+
+    With ``layout`` (a frame; ``robot`` must then be a chain) it is laid out again in compact form, in the angles
+    that frame's results read best in (:func:`coordinate_bases`).
+    """
     values = coordinate_substitution(robot)
     if not values:
         return result
     if isinstance(result, sp.NDimArray):
-        return type(result)([value.xreplace(values) for value in result], result.shape)  # type: ignore[return-value]
-    return type(result)(result.xreplace(values))  # type: ignore[return-value]
+        size = math.prod(result.shape)
+        flat = result.reshape(size)
+        entries = sp.Matrix(1, size, [flat[i].xreplace(values) for i in range(size)])
+        if layout is not None:
+            entries = simplify_matrix(entries, coordinate_bases(robot, layout))  # type: ignore[arg-type]
+        return type(result)(list(entries), result.shape)  # type: ignore[return-value]
+    substituted = result.xreplace(values)
+    if layout is not None:
+        substituted = simplify_matrix(substituted, coordinate_bases(robot, layout))  # type: ignore[arg-type]
+    return type(result)(substituted)  # type: ignore[return-value]
 
 
-def jacobian_in_coordinates(robot: Robot | Chain, J: sp.MatrixBase) -> sp.ImmutableMatrix:
-    r""":math:`J_q = J(\vartheta(q))\,C` for a matrix J whose columns belong to the joints."""
+def jacobian_in_coordinates(robot: Robot | Chain, J: sp.MatrixBase, layout: Frame | None = None
+                            ) -> sp.ImmutableMatrix:
+    r""":math:`J_q = J(\vartheta(q))\,C` for a matrix J whose columns belong to the joints (``layout``: as above)."""
     if _model(robot).coupling is None:
         return sp.ImmutableMatrix(J)
-    return sp.ImmutableMatrix(_product(in_coordinates(robot, sp.Matrix(J)), coupling_matrix(robot)))
+    J_q = _product(in_coordinates(robot, sp.Matrix(J)), coupling_matrix(robot))
+    return sp.ImmutableMatrix(J_q if layout is None else simplify_matrix(J_q, coordinate_bases(robot, layout)))
+
+
+def coordinate_bases(chain: Chain, frame: Frame) -> list[AngleBasis]:
+    r"""The angle bases of ``frame`` (:meth:`Chain.angle_bases`) written in the revolute coordinates.
+
+    Each basis angle of the joint chain takes :math:`\vartheta(q)`; angles that become constant or repeat are
+    dropped, single coordinates fill the gaps, and a set that is no longer a unimodular basis is left out. A
+    parallelogram's :math:`\theta_2 + \theta_3 + \theta_4` vanishes; :math:`\theta_2 + \theta_3` stays.
+    """
+    model = chain.robot
+    values = dict(zip(model.joint_variables, model.joint_values, strict=True))
+    variables = tuple(c for c, kind in zip(model.q, model.coordinate_types, strict=True) if kind is JointType.REVOLUTE)
+    bases: list[AngleBasis] = []
+    for basis in chain.joint_chain.angle_bases(frame):
+        angles: list[sp.Expr] = []
+        for angle in (sp.expand(a.xreplace(values)) for a in basis.angles):
+            if angle.free_symbols & set(variables) and angle not in angles:
+                angles.append(angle)
+        angles += [v for v in variables if v not in angles]
+        try:
+            candidate = AngleBasis(variables, tuple(angles[:len(variables)]))
+        except ValueError:  # substituted angles that are not a unimodular basis of the coordinates
+            continue
+        if candidate not in bases:
+            bases.append(candidate)
+    return bases or [AngleBasis(variables, variables)]
 
 
 def torques_in_coordinates(robot: Robot | Chain, M_tau: sp.MatrixBase) -> sp.ImmutableMatrix:
@@ -95,7 +139,8 @@ def torques_in_coordinates(robot: Robot | Chain, M_tau: sp.MatrixBase) -> sp.Imm
     return sp.ImmutableMatrix(_product(coupling_matrix(robot).T, in_coordinates(robot, sp.Matrix(M_tau))))
 
 
-def hessian_in_coordinates(robot: Robot | Chain, H: sp.NDimArray) -> sp.ImmutableDenseNDimArray:
+def hessian_in_coordinates(robot: Robot | Chain, H: sp.NDimArray, layout: Frame | None = None
+                           ) -> sp.ImmutableDenseNDimArray:
     r""":math:`H_q[i, j, m] = \sum_a \sum_b H[i, a, b]\,C_{aj}\,C_{bm}` for a Hessian in the joint variables."""
     if _model(robot).coupling is None:
         return sp.ImmutableDenseNDimArray(H)
@@ -105,8 +150,10 @@ def hessian_in_coordinates(robot: Robot | Chain, H: sp.NDimArray) -> sp.Immutabl
     slices = [_product(_product(C.T, sp.Matrix(joints, joints, lambda a, b, i=i: H[i, a, b])), C)
               for i in range(rows)]  # slice i is C^T H[i] C
     n = C.cols
-    return sp.ImmutableDenseNDimArray([slices[i][j, m] for i in range(rows) for j in range(n) for m in range(n)],
-                                      (rows, n, n))
+    flat = sp.Matrix(1, rows * n * n, [slices[i][j, m] for i in range(rows) for j in range(n) for m in range(n)])
+    if layout is not None:
+        flat = simplify_matrix(flat, coordinate_bases(robot, layout))  # type: ignore[arg-type]
+    return sp.ImmutableDenseNDimArray(list(flat), (rows, n, n))
 
 
 def _product(left: sp.MatrixBase, right: sp.MatrixBase) -> sp.Matrix:

@@ -190,7 +190,8 @@ def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, 
 def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
             simplify: bool) -> sp.ImmutableMatrix:
     if chain.joint_chain is not chain:  # a coupled robot: derived for its joints, then J_q = J(theta(q)) C
-        return jacobian_in_coordinates(chain, jacobian(chain.joint_chain, frame, point, method, simplify=simplify))
+        J = jacobian(chain.joint_chain, frame, point, method, simplify=simplify)
+        return jacobian_in_coordinates(chain, J, frame if simplify else None)
     if simplify and method != "cross_product":  # from the frame the method works in, link by link on normal forms
         source = 0 if method == "differentiation" else chain.n_joints
         raw = jacobian(chain, source, point, method, simplify=False)

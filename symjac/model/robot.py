@@ -200,6 +200,8 @@ class Robot:
     def __post_init__(self) -> None:
         """Refuse a parameter named like a symbol symjac generates, and a coupling that is not affine and complete."""
         reserved = reserved_names([joint.type for joint in self.joints])
+        if self.coupling is not None and self.coupling.values == self.joint_variables == self.coupling.coordinates:
+            object.__setattr__(self, "coupling", None)  # the identity: one robot, one chain, today's results
         if self.coupling is not None:
             problem = coupling_problem(self.coupling, self.joint_variables, self.parameter_symbols)
             if problem is not None:

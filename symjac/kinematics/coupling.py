@@ -103,7 +103,9 @@ def jacobian_in_coordinates(robot: Robot | Chain, J: sp.MatrixBase, layout: Fram
     if _model(robot).coupling is None:
         return sp.ImmutableMatrix(J)
     J_q = _product(in_coordinates(robot, sp.Matrix(J)), coupling_matrix(robot))
-    return sp.ImmutableMatrix(J_q if layout is None else simplify_matrix(J_q, coordinate_bases(robot, layout)))
+    if layout is not None:
+        J_q = simplify_matrix(J_q, coordinate_bases(robot, layout))  # type: ignore[arg-type]  # a chain, documented
+    return sp.ImmutableMatrix(J_q)
 
 
 def coordinate_bases(chain: Chain, frame: Frame) -> list[AngleBasis]:

@@ -57,9 +57,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         d = cold(jacobian_derivative, robot)
         b = cold(bias_acceleration, robot)
         if robot.name.startswith("snake"):
-            growth.append((robot.dof, h[0]))
-        print(f"{robot.name:<14}{robot.dof:>3}  {h[0]:>11.3f}{h[1]:>7}  {d[0]:>9.3f}{d[1]:>7}  {b[0]:>8.3f}{b[1]:>7}",
-              flush=True)
+            growth.append((robot.n_joints, h[0]))
+        print(f"{robot.name:<14}{robot.n_joints:>3}  {h[0]:>11.3f}{h[1]:>7}  {d[0]:>9.3f}{d[1]:>7}  "
+              f"{b[0]:>8.3f}{b[1]:>7}", flush=True)
     if len(growth) >= 2:
         (n0, t0), (n1, t1) = growth[0], growth[-1]
         print(f"snake Hessian time grows like n^{math.log(t1 / t0) / math.log(n1 / n0):.1f} from n={n0} to n={n1}")

@@ -36,7 +36,7 @@ class DerivationTiming:
     """Cold-start derivation time and size of one robot's simplified Jacobian."""
 
     robot: str
-    dof: int
+    n_joints: int
     seconds_frame_0: float
     ops_frame_0: int
     best_frame: int
@@ -61,7 +61,7 @@ def time_derivation(robot: Robot, singular: bool = True) -> DerivationTiming:
     seconds_0 = time.perf_counter() - start
     ops_0 = int(sp.count_ops(J_0))
     best = (0, seconds_0, ops_0)
-    for frame in range(1, robot.dof + 1):
+    for frame in range(1, robot.n_joints + 1):
         start = time.perf_counter()
         J_k = jacobian(robot, frame=frame)
         seconds = time.perf_counter() - start
@@ -72,7 +72,7 @@ def time_derivation(robot: Robot, singular: bool = True) -> DerivationTiming:
     velocity_propagation(robot)
     force_propagation(robot)
     seconds_steps = time.perf_counter() - start
-    return DerivationTiming(robot.name, robot.dof, seconds_0, ops_0, *best, seconds_steps,
+    return DerivationTiming(robot.name, robot.n_joints, seconds_0, ops_0, *best, seconds_steps,
                             time_singularities(robot) if singular else None)
 
 
@@ -99,9 +99,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     print(f"{'robot':<14}{'n':>3}  {'frame 0: s':>11}{'ops':>7}  {'best frame':>10}{'s':>8}{'ops':>7}"
           f"  {'steps: s':>9}  {'singular: s':>11}")
     for robot in robots:
-        t = time_derivation(robot, singular=robot.dof <= 7)
+        t = time_derivation(robot, singular=robot.n_joints <= 7)
         singular = "-" if t.seconds_singularities is None else f"{t.seconds_singularities:.3f}"
-        print(f"{t.robot:<14}{t.dof:>3}  {t.seconds_frame_0:>11.3f}{t.ops_frame_0:>7}  "
+        print(f"{t.robot:<14}{t.n_joints:>3}  {t.seconds_frame_0:>11.3f}{t.ops_frame_0:>7}  "
               f"{t.best_frame:>10}{t.seconds_best:>8.3f}{t.ops_best:>7}  {t.seconds_steps:>9.3f}  {singular:>11}",
               flush=True)
     return 0

@@ -77,10 +77,10 @@ def _import(path: Path, name: str) -> types.ModuleType:
 def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Measurement]:
     """Time the baseline and every generated target for ``robot`` (Jacobian in {0} at the wrist)."""
     rng = np.random.default_rng(0)
-    q = rng.uniform(-np.pi, np.pi, robot.dof)
-    batch = rng.uniform(-np.pi, np.pi, (count, robot.dof))
+    q = rng.uniform(-np.pi, np.pi, robot.n_coordinates)
+    batch = rng.uniform(-np.pi, np.pi, (count, robot.n_coordinates))
     values = [float(p.default) for p in robot.parameters]
-    n = robot.dof
+    n = robot.n_coordinates
     rows: list[Measurement] = []
 
     J = jacobian(robot, simplify=False)
@@ -134,11 +134,12 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
 def measure_acceleration(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Measurement]:
     """Time ``jacobian`` against ``bias_acceleration`` (Jdot qdot) in modules generated with acceleration=True."""
     rng = np.random.default_rng(0)
-    q, qdot = rng.uniform(-np.pi, np.pi, robot.dof), rng.uniform(-1.0, 1.0, robot.dof)
-    batch, rates = rng.uniform(-np.pi, np.pi, (count, robot.dof)), rng.uniform(-1.0, 1.0, (count, robot.dof))
+    n = robot.n_coordinates
+    q, qdot = rng.uniform(-np.pi, np.pi, n), rng.uniform(-1.0, 1.0, n)
+    batch, rates = rng.uniform(-np.pi, np.pi, (count, n)), rng.uniform(-1.0, 1.0, (count, n))
     names: dict[str, Any] = {"q": q, "qdot": qdot, "q_list": [float(v) for v in q],
                              "qdot_list": [float(v) for v in qdot], "batch": batch, "rates": rates,
-                             "J_out": np.empty((6, robot.dof)), "bias_out": np.empty(6)}
+                             "J_out": np.empty((6, robot.n_coordinates)), "bias_out": np.empty(6)}
     rows: list[Measurement] = []
     with tempfile.TemporaryDirectory() as folder:
         for target in ("python", "numpy", "c"):

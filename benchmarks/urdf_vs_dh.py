@@ -23,7 +23,7 @@ def cold(robot) -> float:
         clear_caches()
         start = time.perf_counter()
         jacobian(robot, frame=0, point="wrist")
-        forward_kinematics(robot, 0, robot.dof)
+        forward_kinematics(robot, 0, robot.n_joints)
         best = min(best, time.perf_counter() - start)
     return best
 

@@ -55,7 +55,7 @@ display(Markdown("\n".join(rows)))
 # the pose of the wrist frame {6} in the base frame {0}.
 
 # %%
-for i in range(1, robot.dof + 1):
+for i in range(1, robot.n_joints + 1):
     display(Math(f"{{}}^{{{i - 1}}}_{{{i}}}T = " + latex(chain.simplified_transform(i - 1, i))))
 
 # %%

@@ -106,7 +106,7 @@ def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
 
 def frame_index(robot: Robot, frame: int | str) -> int:
     """Index into :func:`frames` of a symjac frame name."""
-    return 0 if frame == "world" else robot.dof + 2 if frame == "tool" else int(frame) + 1
+    return 0 if frame == "world" else robot.n_joints + 2 if frame == "tool" else int(frame) + 1
 
 
 def finite_difference_jacobian(
@@ -114,7 +114,7 @@ def finite_difference_jacobian(
 ) -> np.ndarray:
     """6 x n Jacobian [v; omega] at the point (coordinates in frame {n}) expressed in ``frame``."""
     point_h = np.append(np.zeros(3) if point is None else np.asarray(point, dtype=float), 1.0)
-    n = robot.dof
+    n = robot.n_joints
 
     def pose(qq: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         T_world_n = frames(robot, qq)[n + 1]

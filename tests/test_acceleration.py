@@ -56,7 +56,7 @@ def _close(actual: np.ndarray, expected: np.ndarray, rtol: float = RTOL) -> bool
 
 def _state(robot, seed: int = 7) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     rng = np.random.default_rng(seed)
-    n = robot.dof
+    n = robot.n_coordinates
     return random_configuration(robot, rng), rng.uniform(-1.5, 1.5, n), rng.uniform(-2.0, 2.0, n)
 
 
@@ -87,7 +87,7 @@ def _cases():
     both, hessian_only = ("hessian", "differentiation"), ("hessian",)
     for name in ROBOTS:
         robot = _robot(name)
-        n = robot.dof
+        n = robot.n_coordinates
         yield name, 0, "wrist", both if n < 7 else hessian_only
         if not name.endswith(".urdf"):  # the URDF arms are catalog arms in the general convention
             yield name, n // 2, "wrist", both if n < 7 else hessian_only
@@ -111,7 +111,7 @@ def _numeric_derivatives(name: str, frame, point: str):
     """H (6 x n x n), then per method of :data:`CASES` Jdot and the bias: one compiled function per case."""
     methods = CASES[name, frame, point]
     robot = _robot(name)
-    n = robot.dof
+    n = robot.n_coordinates
     H = hessian(robot, frame, point, simplify=False)
     matrices = [sp.Matrix(H.reshape(6, n * n).tolist())]
     for method in methods:
@@ -126,7 +126,7 @@ def _numeric_derivatives(name: str, frame, point: str):
 @pytest.mark.parametrize(("name", "frame", "point"), list(CASES), ids=_ids(CASES))
 def test_hessian_and_jacobian_derivative_match_central_differences(name, frame, point):
     robot = _robot(name)
-    n, h = robot.dof, 1e-6
+    n, h = robot.n_coordinates, 1e-6
     q, qd, qdd = _state(robot)
     H, *derivatives = _numeric_derivatives(name, frame, point)(q, qd, qdd)
     H = H.reshape(6, n, n)
@@ -148,7 +148,7 @@ FIXED = [case for case in CASES if case[1] in (0, "world")]
 
 @pytest.mark.parametrize(("name", "frame", "point"), FIXED, ids=_ids(FIXED))
 def test_fixed_frame_linear_hessian_rows_are_symmetric_exactly(name, frame, point):
-    n = _robot(name).dof
+    n = _robot(name).n_coordinates
     H = hessian(_robot(name), frame, point, simplify=False)
     assert all(H[i, j, m] == H[i, m, j] for i in range(3) for j in range(n) for m in range(n))
 
@@ -201,7 +201,7 @@ def test_a_point_fixed_in_the_last_frame_moves_like_the_hessian_says():
     result = acceleration_propagation(robot, point, simplify=False)
     assert result.tip.frame == "point"
     chain = chain_of(robot)
-    R = chain.rotation(0, robot.dof)
+    R = chain.rotation(0, robot.n_joints)
     tip = sp.Matrix.vstack(R * result.acceleration[:3, :], R * result.acceleration[3:, :])
     J = jacobian(robot, 0, list(point), simplify=False)
     expected = J * sp.Matrix(joint_accelerations(robot)) + bias_acceleration(robot, 0, list(point), simplify=False)
@@ -217,7 +217,7 @@ def test_a_point_fixed_in_the_last_frame_moves_like_the_hessian_says():
 def test_moving_frame_derivative_is_the_rotated_fixed_one_minus_the_frame_spin(name, frame, point):
     robot = _robot(name)
     q, qd, qdd = _state(robot)
-    n = robot.dof
+    n = robot.n_coordinates
     J_0 = numeric_jacobian(robot, q, 0, point)
     Jdot_0 = _numeric_derivatives(name, 0, point)(q, qd, qdd)[1]
     index = frame_index(robot, frame)
@@ -233,7 +233,7 @@ def test_moving_frame_derivative_is_the_rotated_fixed_one_minus_the_frame_spin(n
 @pytest.mark.parametrize("name", ["puma560", "ur5", "stanford"])
 def test_wrist_frame_derivative_gives_pinocchio_local_spatial_acceleration(name):
     robot = _robot(name)
-    n = robot.dof
+    n = robot.n_coordinates
     q, qd, qdd = _state(robot, seed=3)
     Jdot_n = _numeric_derivatives(name, n, "wrist")(q, qd, qdd)[1]  # d/dt of the Jacobian in {n}
     spatial = Jdot_n @ qd + numeric_jacobian(robot, q, n) @ qdd
@@ -261,7 +261,7 @@ def test_three_routes_to_the_bias_agree_symbolically(name):
     chain = chain_of(robot)
     point, tip = ("tool", None) if name in ("planar3r", "articulated3r", "ur5.urdf") else ("wrist", (0, 0, 0))
     result = acceleration_propagation(robot, tip, simplify=False)
-    R = chain.rotation(0, result.tip.frame if result.tip.frame == "tool" else robot.dof)
+    R = chain.rotation(0, result.tip.frame if result.tip.frame == "tool" else robot.n_joints)
     propagated = sp.Matrix.vstack(R * result.bias[:3, :], R * result.bias[3:, :])
     by_hessian = bias_acceleration(robot, 0, point, "hessian", simplify=False)
     by_differentiation = bias_acceleration(robot, 0, point, "differentiation", simplify=False)
@@ -273,7 +273,7 @@ def test_full_tip_acceleration_is_J_qddot_plus_bias_symbolically():
     robot = _robot("stanford")  # revolute and prismatic joints
     chain = chain_of(robot)
     result = acceleration_propagation(robot, simplify=False)
-    R = chain.rotation(0, robot.dof)
+    R = chain.rotation(0, robot.n_joints)
     propagated = sp.Matrix.vstack(R * result.acceleration[:3, :], R * result.acceleration[3:, :])
     expected = jacobian(robot, 0, simplify=False) * sp.Matrix(joint_accelerations(robot)) + bias_acceleration(
         robot, 0, simplify=False)
@@ -309,7 +309,7 @@ def test_acceleration_steps_print_as_equations():
 def test_a_perturbed_hessian_entry_is_caught():
     robot = _robot("ur5")
     q, qd, qdd = _state(robot)
-    n, h = robot.dof, 1e-6
+    n, h = robot.n_coordinates, 1e-6
     H = _numeric_derivatives("ur5", 0, "wrist")(q, qd, qdd)[0].reshape(6, n, n)
     step = np.eye(n)[2] * h
     fd = (numeric_jacobian(robot, q + step) - numeric_jacobian(robot, q - step)) / (2 * h)
@@ -348,7 +348,7 @@ def test_errors_name_the_problem():
 @settings(max_examples=5, deadline=None)
 @given(robot=robots(max_joints=7))
 def test_random_chains_hessian_and_three_bias_routes(robot):
-    n, h = robot.dof, 1e-6
+    n, h = robot.n_coordinates, 1e-6
     q, qd, qdd = _state(robot, seed=n)
     frame = n // 2
     H = hessian(robot, frame, simplify=False)
@@ -370,7 +370,7 @@ def test_random_chains_hessian_and_three_bias_routes(robot):
 @settings(max_examples=3, deadline=None)
 @given(robot=general_robots(max_joints=4))
 def test_random_general_chains_propagate_the_bias(robot):
-    n = robot.dof
+    n = robot.n_coordinates
     q, qd, qdd = _state(robot, seed=n)
     result = acceleration_propagation(robot, None, simplify=False)
     R = chain_of(robot).rotation(0, "tool")

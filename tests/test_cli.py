@@ -418,7 +418,7 @@ def test_help(capsys):
 @pytest.mark.parametrize("robot", ["stanford", "puma560"])
 def test_velocity_propagation_steps_print_every_frame_then_the_jacobian(capsys, robot):
     lines = ok(capsys, "jacobian", robot, "--method", "velocity_propagation", "--steps").splitlines()
-    n = load_robot(robot).dof
+    n = load_robot(robot).n_coordinates
     assert len(lines) == 2 * (n + 1) + 1
     for k in range(n + 1):
         assert lines[2 * k].startswith(rf"{{}}^{{{k}}}\omega_{{{k}}} = {BMATRIX}")

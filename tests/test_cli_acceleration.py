@@ -42,7 +42,7 @@ def test_derivative_json_matches_differences_of_the_jacobian(capsys, name, frame
     robot = load_robot(name)
     data = json_of(capsys, "jacobian", name, "--derivative", "--frame", frame)
     rng = np.random.default_rng(7)
-    q, qdot = rng.uniform(-1, 1, robot.dof), rng.uniform(-1, 1, robot.dof)
+    q, qdot = rng.uniform(-1, 1, robot.n_coordinates), rng.uniform(-1, 1, robot.n_coordinates)
     rates = dict(zip(data["rates"], qdot, strict=True))
     jdot = numeric(robot, data["entries"], q, rates)
     bias = numeric(robot, data["bias_acceleration"], q, rates).ravel()
@@ -50,7 +50,7 @@ def test_derivative_json_matches_differences_of_the_jacobian(capsys, name, frame
     expected = (J(q + STEP * qdot) - J(q - STEP * qdot)) / (2 * STEP)
     assert np.allclose(jdot, expected, atol=1e-7)
     assert np.allclose(bias, expected @ qdot, atol=1e-7)
-    assert data["shape"] == [6, robot.dof]
+    assert data["shape"] == [6, robot.n_coordinates]
 
 
 def test_hessian_json_layout_matches_differences(capsys):
@@ -102,7 +102,7 @@ def test_derivative_steps_end_with_the_bias_in_the_tip_frame(capsys):
     robot = load_robot("stanford")
     data = json_of(capsys, "jacobian", "stanford", "--derivative", "--steps")
     names = [step["name"] for step in data["steps"]]
-    assert len(names) == 4 * (robot.dof + 1) and names[-1].startswith("v̇_6")
+    assert len(names) == 4 * (robot.n_coordinates + 1) and names[-1].startswith("v̇_6")
     rng = np.random.default_rng(3)
     q, qdot = rng.uniform(-1, 1, 6), rng.uniform(-1, 1, 6)
     values = {**dict(zip(data["rates"], qdot, strict=True)), **{f"thetaddot{i}": 0.0 for i in range(1, 7)},

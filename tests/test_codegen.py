@@ -82,7 +82,7 @@ def _import(path: Path, name: str) -> types.ModuleType:
 def _requests(robot):
     """Two Jacobians per module: {0} at the wrist, and a middle frame at the tool (or an offset point)."""
     point = "tool" if robot.tool is not None else (sp.Rational(1, 10), sp.Rational(-1, 5), sp.Rational(3, 10))
-    return [JacobianRequest(0, "wrist"), JacobianRequest(robot.dof // 2, point)]
+    return [JacobianRequest(0, "wrist"), JacobianRequest(robot.n_joints // 2, point)]
 
 
 def _module(workspace, name: str, target: str) -> types.ModuleType:
@@ -131,7 +131,7 @@ def _references(name: str) -> list[dict[str, object]]:
 def test_module_agrees_with_references(workspace, name, target):
     robot = load_robot(name)
     module = _module(workspace, name, target)
-    middle, label = robot.dof // 2, "tool" if robot.tool is not None else "p1"
+    middle, label = robot.n_joints // 2, "tool" if robot.tool is not None else "p1"
     names = [tuple(f"{kind}{suffix}" for kind in ("jacobian", "joint_torques", "manipulability",
                                                    "jacobian_determinant"))
              for suffix in ("", f"_{middle}_{label}")]
@@ -144,17 +144,17 @@ def test_module_agrees_with_references(workspace, name, target):
             np.testing.assert_allclose(J, symbolic, atol=1e-12)
             np.testing.assert_allclose(J, differences, atol=1e-6)
             np.testing.assert_allclose(_call(module, target, tau_name, q, list(wrench)), J.T @ wrench, atol=1e-12)
-            gram = J @ J.T if robot.dof >= 6 else J.T @ J
+            gram = J @ J.T if robot.n_coordinates >= 6 else J.T @ J
             expected = np.sqrt(max(np.linalg.det(gram), 0.0))
             assert abs(float(getattr(module, w_name)(list(q))) - expected) <= 1e-9 * (1 + expected)
-            if robot.dof == 6:
+            if robot.n_coordinates == 6:
                 assert float(getattr(module, det_name)(list(q))) == pytest.approx(np.linalg.det(J), abs=1e-12)
             else:
                 assert not hasattr(module, det_name)
     configurations = np.array([case["q"] for case in _references(name)])
     if target in BATCHED:
-        batched = module.jacobian(configurations.reshape(2, 2, robot.dof))
-        assert batched.shape == (2, 2, 6, robot.dof)
+        batched = module.jacobian(configurations.reshape(2, 2, robot.n_coordinates))
+        assert batched.shape == (2, 2, 6, robot.n_coordinates)
         singles = np.array([module.jacobian(q) for q in configurations]).reshape(batched.shape)
         np.testing.assert_allclose(batched, singles, atol=1e-15, rtol=1e-14)
 
@@ -232,7 +232,7 @@ def test_random_chains_pass_their_selftest_and_targets_agree(robot):
         exec(compile(source, f"random_{target}.py", "exec"), namespace)
         assert namespace["selftest"](samples=5) < 1e-6  # type: ignore[operator]
         modules[target] = namespace
-    q = np.random.default_rng(2).uniform(-1, 1, (3, robot.dof))
+    q = np.random.default_rng(2).uniform(-1, 1, (3, robot.n_coordinates))
     batched = modules["numpy"]["jacobian"](q)  # type: ignore[operator]
     for k in range(3):
         np.testing.assert_allclose(modules["python"]["jacobian"](list(q[k])), batched[k], atol=1e-12)  # type: ignore[operator]
@@ -459,7 +459,7 @@ def test_codegen_works_on_a_chain_loaded_from_urdf(tmp_path):
     exec(compile(generate(robot, "python"), "ur5_urdf.py", "exec"), namespace)
     rng = np.random.default_rng(4)
     for _ in range(3):
-        q = rng.uniform(-np.pi, np.pi, robot.dof)
+        q = rng.uniform(-np.pi, np.pi, robot.n_coordinates)
         assert np.allclose(np.array(namespace["jacobian"](list(q))), numeric_jacobian(robot, q), atol=1e-12)
     namespace["selftest"]()
 

@@ -83,16 +83,16 @@ def _references(name: str) -> list[dict[str, object]]:
     rng = np.random.default_rng(5)
     cases = []
     for _ in range(2):
-        q = rng.uniform(-np.pi, np.pi, robot.dof)
-        qdot = rng.uniform(-1.0, 1.0, robot.dof)
+        q = rng.uniform(-np.pi, np.pi, robot.n_coordinates)
+        qdot = rng.uniform(-1.0, 1.0, robot.n_coordinates)
         per_request = []
         for request in _requests(name):
             rows = list(request.rows or range(6))
             H = hessian(robot, request.frame, request.point, simplify=False)
-            flat = numeric_at(robot, sp.Matrix(H.reshape(6, robot.dof ** 2).tolist()), q)
+            flat = numeric_at(robot, sp.Matrix(H.reshape(6, robot.n_coordinates ** 2).tolist()), q)
             bias = bias_acceleration(robot, request.frame, request.point, simplify=False)
             speeds = {rate: sp.Float(float(value)) for rate, value in zip(rates, qdot, strict=True)}
-            per_request.append((flat.reshape(6, robot.dof, robot.dof)[rows],
+            per_request.append((flat.reshape(6, robot.n_coordinates, robot.n_coordinates)[rows],
                                 numeric_at(robot, bias.xreplace(speeds), q).ravel()[rows]))
         cases.append({"q": q, "qdot": qdot, "expected": per_request})
     return cases

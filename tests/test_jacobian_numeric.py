@@ -23,7 +23,7 @@ ROBOTS = sorted(catalog())
 
 
 def _frames(robot):
-    return ["world", *range(robot.dof + 1), "tool"]
+    return ["world", *range(robot.n_joints + 1), "tool"]
 
 
 def _points(robot):
@@ -40,7 +40,7 @@ def test_forward_kinematics_matches_numpy_reference(name):
     for _ in range(3):
         q = random_configuration(robot, rng)
         reference = frames(robot, q)
-        for i in range(robot.dof + 1):
+        for i in range(robot.n_joints + 1):
             np.testing.assert_allclose(evaluate(forward_kinematics(robot, 0, i), robot, q),
                                        np.linalg.inv(reference[1]) @ reference[i + 1], atol=1e-12)
         np.testing.assert_allclose(evaluate(forward_kinematics(robot, "world", "tool"), robot, q),
@@ -56,7 +56,7 @@ def test_jacobian_matches_finite_differences_in_every_frame_and_point(name):
         for label, point in _points(robot).items():
             argument = "tool" if label == "tool" else "wrist" if point is None else point
             J = jacobian(robot, frame=frame, point=argument)
-            assert J.shape == (6, robot.dof)
+            assert J.shape == (6, robot.n_coordinates)
             for q in configurations:
                 expected = finite_difference_jacobian(robot, q, frame, None if point is None else np.array(point,
                                                                                                           float))
@@ -68,7 +68,7 @@ def test_jacobian_matches_finite_differences_in_every_frame_and_point(name):
 @pytest.mark.parametrize("frame", [0, "mid", "last", "tool"])
 def test_methods_agree_symbolically(name, frame):
     robot = load_robot(name)
-    frame = {"mid": robot.dof // 2, "last": robot.dof}.get(frame, frame)
+    frame = {"mid": robot.n_joints // 2, "last": robot.n_joints}.get(frame, frame)
     point = "tool" if robot.tool is not None else "wrist"
     by_differentiation = jacobian(robot, frame=frame, point=point, method="differentiation")
     # the normal form is unique, so equal functions give identical expressions
@@ -82,9 +82,9 @@ def test_cross_product_in_frame_zero_from_position_differences():
 
     robot = load_robot("puma560")
     chain = chain_of(robot)
-    T_0_n = chain.transform(0, robot.dof)
+    T_0_n = chain.transform(0, robot.n_joints)
     columns = []
-    for i in range(1, robot.dof + 1):
+    for i in range(1, robot.n_joints + 1):
         T_0_i = chain.transform(0, i)
         z, p_in = T_0_i[:3, 2], T_0_n[:3, 3] - T_0_i[:3, 3]
         columns.append(sp.Matrix.vstack(z.cross(p_in), z))

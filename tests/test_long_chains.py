@@ -91,7 +91,7 @@ def test_simplify_product_is_simplify_matrix_of_the_product():
 
 
 @pytest.mark.parametrize("derive", [
-    lambda chain: chain.simplified_transform(0, chain.n),  # the product on normal forms
+    lambda chain: chain.simplified_transform(0, chain.n_joints),  # the product on normal forms
     lambda chain: jacobian(chain, method="differentiation"),  # a raw tree converted
     lambda chain: jacobian(chain, method="velocity_propagation"),  # raw tip-frame Jacobian times rotations
 ], ids=["fk", "differentiation", "velocity"])

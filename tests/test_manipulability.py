@@ -52,9 +52,9 @@ def regular_configuration(robot, rng, rows, frame=0, point=None, margin=1e-2):
 
 
 def differences(robot, q, rows, frame=0, point=None):
-    gradient = np.empty(robot.dof)
-    for k in range(robot.dof):
-        step = np.zeros(robot.dof)
+    gradient = np.empty(robot.n_coordinates)
+    for k in range(robot.n_coordinates):
+        step = np.zeros(robot.n_coordinates)
         step[k] = H
         gradient[k] = (manipulability(robot, q + step, rows, frame, point)
                        - manipulability(robot, q - step, rows, frame, point)) / (2 * H)
@@ -121,7 +121,7 @@ def test_closed_form_times_w_is_the_numeric_gradient(robots, name, rows):
     robot = robots[name]
     result = log_det_gradient(robot, rows)
     total = sp.Matrix(result.total)
-    assert total == sum((sp.Matrix(term.gradient) for term in result.terms), sp.zeros(robot.dof, 1))
+    assert total == sum((sp.Matrix(term.gradient) for term in result.terms), sp.zeros(robot.n_coordinates, 1))
     rng = np.random.default_rng(7)
     for _ in range(3):
         q = regular_configuration(robot, rng, result.determinant.rows)

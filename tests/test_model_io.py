@@ -37,7 +37,7 @@ theta1, theta2, theta3, d3 = sp.symbols("theta1 theta2 theta3 d3", real=True)
 
 CATALOG = sorted(catalog())
 
-# name -> (dof, convention, indices of prismatic joints, has base, has tool)
+# name -> (n_joints, convention, indices of prismatic joints, has base, has tool)
 EXPECTED = {
     "planar2r": (2, "standard", (), False, False),
     "planar3r": (3, "modified", (), False, True),
@@ -109,7 +109,7 @@ def test_minimal_mapping():
     assert robot.convention is Convention.STANDARD
     assert robot.description == ""
     assert robot.source == SOURCE
-    assert robot.dof == 2
+    assert robot.n_joints == 2
     assert robot.q == (theta1, theta2)
     assert robot.parameters == (Parameter("L1", sp.Integer(1)), Parameter("L2", sp.Rational(1, 2)))
     assert robot.parameter_symbols == (L1, L2)
@@ -183,7 +183,7 @@ def test_parameter_named_like_a_revolute_joints_d_is_allowed():
 def test_joints_may_be_a_tuple():
     data = minimal()
     data["joints"] = tuple(data["joints"])
-    assert robot_from_mapping(data).dof == 2
+    assert robot_from_mapping(data).n_joints == 2
 
 
 def test_robot_is_immutable():
@@ -638,7 +638,7 @@ def test_every_catalog_robot_loads(name):
     assert robot.name == name
     assert robot.source == f"{name}.toml"
     assert robot.description == catalog()[name]
-    assert robot.dof == len(robot.q) >= 1
+    assert robot.n_joints == len(robot.q) >= 1
     for parameter in robot.parameters:
         assert isinstance(parameter.default, sp.Rational)
     for joint in robot.joints:
@@ -649,9 +649,9 @@ def test_every_catalog_robot_loads(name):
 
 @pytest.mark.parametrize("name", sorted(EXPECTED))
 def test_catalog_robot_shapes(name):
-    dof, convention, prismatic, has_base, has_tool = EXPECTED[name]
+    n_joints, convention, prismatic, has_base, has_tool = EXPECTED[name]
     robot = load_robot(name)
-    assert robot.dof == dof
+    assert robot.n_joints == n_joints
     assert robot.convention == convention
     assert tuple(j.index for j in robot.joints if not j.is_revolute) == prismatic
     assert (robot.base is not None) == has_base
@@ -685,7 +685,7 @@ def test_ur5_is_standard_dh():
 
 def test_panda_has_a_tool():
     robot = load_robot("panda")
-    assert robot.dof == 7
+    assert robot.n_joints == 7
     assert robot.tool is not None
     assert robot.tool.xyz == (0, 0, sp.Symbol("dF", real=True))
     assert robot.tool.rpy == (0, 0, 0)
@@ -725,7 +725,7 @@ def test_load_robot_from_a_path(tmp_path):
         robot = load_robot(argument)
         assert robot.name == "myarm"
         assert robot.source == str(path)
-        assert robot.dof == 2
+        assert robot.n_joints == 2
         assert robot.joints[1].limits == (-3, 3)
         assert robot.defaults == {L1: sp.Rational(1, 2), L2: sp.Rational(2, 5)}
 

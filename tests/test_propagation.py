@@ -72,16 +72,16 @@ def test_force_propagation_reproduces_the_transposed_jacobian():
     for name in ("planar3r", "stanford", "puma560"):
         robot = load_robot(name)
         propagation = force_propagation(robot)
-        assert sp.Matrix(propagation.torques) == jacobian(robot, frame=robot.dof).T
+        assert sp.Matrix(propagation.torques) == jacobian(robot, frame=robot.n_joints).T
         tau = propagation.joint_torques()
-        assert _identical(tau, jacobian(robot, frame=robot.dof).T * sp.Matrix(wrench_symbols()), robot)
+        assert _identical(tau, jacobian(robot, frame=robot.n_joints).T * sp.Matrix(wrench_symbols()), robot)
 
 
 def test_method_frames_of_the_seed_002_table():
     """Explicit differentiation yields 0J, velocity propagation nJ, force propagation nJ^T; diag(R, R) links them."""
     robot = load_robot("stanford")
     chain = chain_of(robot)
-    n = robot.dof
+    n = robot.n_coordinates
     J_n = velocity_propagation(robot).jacobian
     assert _identical(sp.diag(chain.rotation(0, n), chain.rotation(0, n)) * J_n,
                       jacobian(robot, frame=0, method="differentiation", simplify=False), robot)
@@ -98,12 +98,12 @@ def test_every_velocity_step_matches_finite_differences_of_its_frame(name):
     q = random_configuration(robot, np.random.default_rng(7))
     first, *steps = velocity_propagation(robot).steps
     assert first.frame == 0
-    assert sp.Matrix.vstack(sp.Matrix(first.omega), sp.Matrix(first.v)) == sp.zeros(6, robot.dof)
+    assert sp.Matrix.vstack(sp.Matrix(first.omega), sp.Matrix(first.v)) == sp.zeros(6, robot.n_coordinates)
     for step in steps:
         k = step.frame
         # joints beyond frame k do not move it (standard DH: joint k+1 turns about z_k, through k's origin)
         J_k = sp.Matrix.vstack(sp.Matrix(step.v), sp.Matrix(step.omega))
-        assert J_k[:, k:] == sp.zeros(6, robot.dof - k)
+        assert J_k[:, k:] == sp.zeros(6, robot.n_coordinates - k)
         truncated = _truncated(robot, k)
         expected = finite_difference_jacobian(truncated, q[:k], frame=k)
         np.testing.assert_allclose(evaluate(J_k[:, :k], robot, q), expected, atol=1e-7, err_msg=f"{name} frame {k}")
@@ -149,9 +149,9 @@ def test_virtual_work_against_finite_differences(name):
     rng = np.random.default_rng(11)
     q = random_configuration(robot, rng)
     F = rng.normal(size=6)
-    tau = np.array(joint_torques(robot, wrench=list(F), frame=robot.dof, q=list(q)), dtype=float).ravel()
-    dq = rng.normal(size=robot.dof)
-    dx = finite_difference_jacobian(robot, q, frame=robot.dof) @ dq
+    tau = np.array(joint_torques(robot, wrench=list(F), frame=robot.n_joints, q=list(q)), dtype=float).ravel()
+    dq = rng.normal(size=robot.n_coordinates)
+    dx = finite_difference_jacobian(robot, q, frame=robot.n_joints) @ dq
     assert tau @ dq == pytest.approx(F @ dx, rel=1e-6, abs=1e-9)
 
 
@@ -172,20 +172,20 @@ def test_force_torque_sensor_reading_moved_to_the_tool_tip_needs_the_same_torque
     robot = robot_from_mapping({**robot_to_mapping(robot), "tool": {"xyz": [0, 0.02, 0.15], "rpy": [0, 0.3, -0.5]}})
     chain = chain_of(robot)
     T_n_S = homogeneous(rotation_rpy(sp.Rational(1, 10), 0, sp.Rational(2, 5)), sp.Matrix([0, 0, sp.Rational(1, 20)]))
-    T_T_S = chain.transform("tool", robot.dof) * T_n_S
+    T_T_S = chain.transform("tool", robot.n_joints) * T_n_S
     F_S = sp.Matrix([3, -1, 2, sp.Rational(1, 10), 0, sp.Rational(-3, 10)])
     q = list(random_configuration(robot, np.random.default_rng(9)))
     F_tool = list(wrench_transform(T_T_S) * F_S)
     F_wrist = list(wrench_transform(T_n_S) * F_S)
     at_tool = joint_torques(robot, wrench=F_tool, frame="tool", point="tool", q=q)
-    at_wrist = joint_torques(robot, wrench=F_wrist, frame=robot.dof, q=q)
+    at_wrist = joint_torques(robot, wrench=F_wrist, frame=robot.n_joints, q=q)
     np.testing.assert_allclose(np.array(at_tool, dtype=float), np.array(at_wrist, dtype=float), atol=1e-10)
 
 
 def test_twist_maps_between_wrist_and_tool_tip_both_ways():
     robot = load_robot("planar3r")
     chain = chain_of(robot)
-    n = robot.dof
+    n = robot.n_coordinates
     J_wrist_n = jacobian(robot, frame=n)
     J_tool_T = jacobian(robot, frame="tool", point="tool")
     assert _identical(twist_transform(chain.transform(n, "tool")) * J_tool_T, J_wrist_n, robot)
@@ -228,7 +228,7 @@ def test_twist_map_matches_finite_differences_of_a_rigid_body():
     """Velocities of two frames on one moving body, from the reference FK, are related by twist_transform."""
     robot = load_robot("ur5")
     q = random_configuration(robot, np.random.default_rng(4))
-    n = robot.dof
+    n = robot.n_coordinates
     J_n = finite_difference_jacobian(robot, q, frame=n)
     offset = np.array([0.05, -0.1, 0.2])
     J_P = finite_difference_jacobian(robot, q, frame=n, point=offset)

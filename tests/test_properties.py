@@ -16,7 +16,7 @@ SETTINGS = settings(deadline=None, max_examples=25, suppress_health_check=[Healt
 @SETTINGS
 @given(robot=robots(), data=st.data())
 def test_jacobian_matches_finite_differences(robot, data):
-    n = robot.dof
+    n = robot.n_coordinates
     frame = data.draw(st.sampled_from(["world", *range(n + 1), "tool"]), label="frame")
     point = data.draw(st.sampled_from(["wrist", "tool", (0.2, -0.1, 0.3)]), label="point")
     if point == "tool" and robot.tool is None:
@@ -36,7 +36,7 @@ def test_jacobian_matches_finite_differences(robot, data):
 @SETTINGS
 @given(robot=robots(), data=st.data())
 def test_methods_agree_exactly(robot, data):
-    frame = data.draw(st.sampled_from(["world", *range(robot.dof + 1), "tool"]), label="frame")
+    frame = data.draw(st.sampled_from(["world", *range(robot.n_joints + 1), "tool"]), label="frame")
     assert jacobian(robot, frame=frame, method="differentiation") == jacobian(robot, frame=frame,
                                                                              method="cross_product")
 
@@ -46,7 +46,7 @@ def test_methods_agree_exactly(robot, data):
 def test_transforms_compose_and_invert(robot):
     """T_0_n = T_0_k T_k_n and T_n_0 T_0_n = I, numerically, for the raw structured products."""
     chain = chain_of(robot)
-    n = robot.dof
+    n = robot.n_coordinates
     k = n // 2
     rng = np.random.default_rng(0)
     q = random_configuration(robot, rng)
@@ -60,7 +60,7 @@ def test_transforms_compose_and_invert(robot):
 @settings(deadline=None, max_examples=15, suppress_health_check=[HealthCheck.too_slow])
 @given(robot=robots(), data=st.data())
 def test_propagation_methods_agree_with_differentiation_at_random_configurations(robot, data):
-    frame = data.draw(st.sampled_from([0, robot.dof, "tool"]), label="frame")
+    frame = data.draw(st.sampled_from([0, robot.n_joints, "tool"]), label="frame")
     point = "tool" if robot.tool is not None else "wrist"
     q = random_configuration(robot, np.random.default_rng(data.draw(st.integers(0, 2**16), label="seed")))
     expected = evaluate(jacobian(robot, frame=frame, point=point, simplify=False), robot, q)

@@ -279,7 +279,8 @@ def test_a_convention_value_is_accepted_wherever_a_name_is():
     assert by_value == representation_jacobian(robot, "zyx_extrinsic", "spherical")
     assert by_value.orientation == "zyx_extrinsic"
     q = _configuration(robot, np.random.default_rng(31), convention, "spherical", 0, "wrist")
-    value = _check_against_finite_differences(robot, q, np.ones(robot.dof), convention, "spherical", 0, "wrist")
+    rates = np.ones(robot.n_coordinates)
+    value = _check_against_finite_differences(robot, q, rates, convention, "spherical", 0, "wrist")
     assert value.x.shape == (6,)
 
 
@@ -551,7 +552,7 @@ def test_extraction_input_errors():
 def _reference_x(robot, q, orientation, position, frame, point):
     """[x_p; x_r] from tests/reference.py forward kinematics (no symjac transforms)."""
     poses = frames(robot, q)
-    n = robot.dof
+    n = robot.n_coordinates
     source = np.eye(4) if frame == "world" else poses[1]
     if point == "tool":
         T = np.linalg.solve(source, poses[n + 2])
@@ -618,7 +619,7 @@ def test_catalog_robots_every_representation_against_finite_differences(name):
         q = _configuration(robot, rng, orientation, position, frame, point)
         if q is None:  # every pose of this arm is near a singularity of this representation (SCARA and z-z orders)
             continue
-        q_dot = rng.normal(size=robot.dof)
+        q_dot = rng.normal(size=robot.n_coordinates)
         _check_against_finite_differences(robot, q, q_dot, orientation, position, frame, point)
         checked += 1
     # SCARA turns about z only: every z-z convention (intrinsic or extrinsic) is in gimbal lock at every pose
@@ -646,7 +647,7 @@ def test_tool_point_uses_the_tool_frame_orientation():
     T_n_tool = np.array(robot.tool.matrix, dtype=float)
     for point, R_offset in [("tool", T_n_tool[:3, :3]), (tuple(T_n_tool[:3, 3]), np.eye(3))]:
         value = _check_against_finite_differences(robot, q, q_dot, "direction_cosines", "cartesian", 0, point)
-        R_0_n = np.linalg.solve(frames(robot, q)[1], frames(robot, q)[robot.dof + 1])[:3, :3]
+        R_0_n = np.linalg.solve(frames(robot, q)[1], frames(robot, q)[robot.n_joints + 1])[:3, :3]
         np.testing.assert_allclose(value.x[3:].reshape(3, 3), R_0_n @ R_offset, atol=1e-12)
         np.testing.assert_allclose(value.x[:3], (frames(robot, q)[-1])[:3, 3], atol=1e-12)
 
@@ -662,7 +663,7 @@ def test_symbolic_J_x_matches_the_numeric_evaluation():
         values = {**dict(zip(result.coordinates, value.x, strict=True)), **dict(zip(robot.q, q, strict=True)),
                   **robot.defaults}
         np.testing.assert_allclose(numeric(result.J_x.xreplace(values)), value.J_x, atol=1e-10)
-        assert result.J_x.shape == (3 + len(coordinates(orientation)), robot.dof)
+        assert result.J_x.shape == (3 + len(coordinates(orientation)), robot.n_coordinates)
         assert result.coordinates == (*coordinates(position), *coordinates(orientation))
         E = sp.diag(position_rate_matrix(position), rate_matrix(orientation))
         assert result.E == E
@@ -680,7 +681,8 @@ def test_random_chains_against_finite_differences(robot, data):
     rng = np.random.default_rng(data.draw(st.integers(0, 2**16), label="seed"))
     q = _configuration(robot, rng, orientation, position, frame, point, tries=5)
     assume(q is not None)
-    _check_against_finite_differences(robot, q, rng.normal(size=robot.dof), orientation, position, frame, point)
+    rates = rng.normal(size=robot.n_coordinates)
+    _check_against_finite_differences(robot, q, rates, orientation, position, frame, point)
 
 
 # --- time derivative of J_x: the bias term of an analytic-Jacobian controller --------------------------------------
@@ -705,7 +707,7 @@ def _derivative_state(robot, rng, orientation, position):
         except RepresentationError:
             continue
         if _far_from_representation_singularities(value, 0.1) and _away_from_branch_cuts(orientation, value.x):
-            return q, rng.normal(size=robot.dof)
+            return q, rng.normal(size=robot.n_coordinates)
     raise AssertionError(f"no configuration away from the singularities of {orientation}/{position}")
 
 

@@ -48,7 +48,7 @@ def test_planar_2r_determinant_is_l1_l2_s2_and_singular_at_stretched_and_folded(
     assert factor.kind == "elbow"
     # the lost direction is radial: along the line from the base to the wrist, at the sampled configuration
     q = np.array(factor.sample)
-    reach = frames(robot, q)[robot.dof + 1][:3, 3]
+    reach = frames(robot, q)[robot.n_joints + 1][:3, 3]
     R_0_k = frames(robot, q)[det.frame + 1][:3, :3]
     lost = R_0_k @ np.append(np.array(factor.lost_direction.vector), 0.0)
     assert abs(abs(lost @ reach) / np.linalg.norm(reach) - 1) < 1e-9
@@ -102,7 +102,7 @@ def test_determinant_does_not_depend_on_the_frame(name):
     chosen = determinant(robot)
     rows = chosen.rows
     frames_checked = 0
-    for frame in range(robot.dof + 1):
+    for frame in range(robot.n_joints + 1):
         if not is_admissible_frame(robot, rows, frame):
             continue
         other = determinant(robot, rows=rows, frame=frame)

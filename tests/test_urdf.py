@@ -48,7 +48,7 @@ def world_jacobian_at_flange(robot, q):
 ])
 def test_urdf_robot_matches_catalog_dh_robot_at_the_flange(dh_name, urdf_name, tip, base):
     dh, urdf = load_robot(dh_name), load_robot(urdf_name, tip_link=tip)
-    assert urdf.convention is Convention.GENERAL and urdf.dof == dh.dof
+    assert urdf.convention is Convention.GENERAL and urdf.n_joints == dh.n_joints
     rotate = np.kron(np.eye(2), base[:3, :3])
     rng = np.random.default_rng(7)
     for _ in range(5):
@@ -158,7 +158,7 @@ def test_continuous_joint_has_no_limits():
 
 def test_base_and_tip_links_choose_a_sub_chain():
     robot = robot_from_urdf(_arm(), base_link="l1", tip_link="l2")
-    assert robot.dof == 1
+    assert robot.n_joints == 1
     assert robot.tool.rpy == (-sp.pi / 2, 0, 0)  # turns frame {1} (z on the axis -y) back to the link frame l2
     with pytest.raises(RobotFileError, match="tip_link 'base' is not below base_link 'l1'"):
         robot_from_urdf(_arm(), base_link="l1", tip_link="base")
@@ -277,7 +277,7 @@ def test_xacro_file_is_refused_with_the_command_that_expands_it(case, name, tmp_
 def test_xacro_namespace_alone_is_plain_urdf():
     # xacro leaves xmlns:xacro on the <robot> of the URDF files it writes: such a file is expanded already
     robot = robot_from_urdf(_arm().replace('<robot name="arm">', '<robot name="arm" xmlns:xacro="x">'))
-    assert robot.dof == 2
+    assert robot.n_joints == 2
 
 
 @pytest.mark.parametrize(("lower", "upper"), [("3", "-3"), ("0.5", "0.5"), ("0.1", "0")])
@@ -342,7 +342,7 @@ SETTINGS = settings(deadline=None, max_examples=15, suppress_health_check=[Healt
 @SETTINGS
 @given(robot=general_robots(max_joints=5), data=st.data())
 def test_general_chain_jacobian_matches_finite_differences(robot, data):
-    n = robot.dof
+    n = robot.n_joints
     frame = data.draw(st.sampled_from(["world", *range(n + 1), "tool"]), label="frame")
     point = "tool" if robot.tool is not None else "wrist"
     coordinates = None

@@ -158,8 +158,8 @@ def rates_along_path(
         point = "tool" if robot.tool is not None else "wrist"
     chain_of(robot).position(frame)
     configurations = np.asarray(path, dtype=float)
-    if configurations.ndim != 2 or configurations.shape[1] != robot.dof:
-        raise ArgumentError(f"path must have shape (m, {robot.dof}), got {configurations.shape}")
+    if configurations.ndim != 2 or configurations.shape[1] != robot.n_coordinates:
+        raise ArgumentError(f"path must have shape (m, {robot.n_coordinates}), got {configurations.shape}")
     chosen = list(task_rows(robot, point) if rows is None else rows)
     velocity = np.asarray(xdot, dtype=float)
     if velocity.shape != (len(chosen),):
@@ -170,7 +170,7 @@ def rates_along_path(
         sigma = np.linalg.svd(J, compute_uv=False)
         smallest.append(float(sigma.min()))
         square = J.shape[0] == J.shape[1] and sigma.min() > sigma.max() * 1e-12
-        exact.append(np.linalg.solve(J, velocity) if square else np.full(robot.dof, np.nan))
+        exact.append(np.linalg.solve(J, velocity) if square else np.full(robot.n_coordinates, np.nan))
         rates = damped_least_squares(J, velocity, threshold, maximum)
         damped.append(rates)
         error.append(float(np.linalg.norm(J @ rates - velocity)))

@@ -73,10 +73,11 @@ def _resolve_rows(chain: Chain, rows: Rows | None, point: tuple[sp.Expr, ...]) -
             raise ArgumentError(f"rows must be distinct names from {', '.join(ROW_NAMES)} or indices 0..5, "
                                 f"got {list(rows)}")
         chosen = tuple(indices)
-    if len(chosen) > chain.n:
+    if len(chosen) > chain.robot.n_coordinates:
         names = ", ".join(ROW_NAMES[r] for r in chosen)
-        raise ArgumentError(f"{chain.robot.name} has {chain.n} joints, so {len(chosen)} rows ({names}) have "
-                            f"det(J J^T) = 0 everywhere; choose at most {chain.n} rows")
+        n = chain.robot.n_coordinates
+        raise ArgumentError(f"{chain.robot.name} has {n} coordinates, so {len(chosen)} rows ({names}) have "
+                            f"det(J J^T) = 0 everywhere; choose at most {n} rows")
     return chosen
 
 
@@ -104,7 +105,7 @@ class ManipulabilityGradient(NamedTuple):
 
 def _numeric_hessian(chain: Chain, q: np.ndarray, frame: Frame, point: tuple[sp.Expr, ...]) -> np.ndarray:
     """The (6, n, n) kinematic Hessian at ``q`` (parameters at their defaults), compiled once per frame and point."""
-    n = chain.n
+    n = chain.robot.n_coordinates
 
     def compile_hessian() -> Callable[..., Any]:
         H = hessian(chain, frame, list(point), simplify=False)
@@ -288,11 +289,12 @@ def log_det_gradient(
     chain = as_chain(robot)
     xyz = _default_point(chain, point)
     chosen = _resolve_rows(chain, rows, xyz)
-    if len(chosen) != chain.n:
+    n = chain.robot.n_coordinates
+    if len(chosen) != n:
         names = ", ".join(ROW_NAMES[r] for r in chosen)
         raise ArgumentError(f"{chain.robot.name}: log|det J| needs a square Jacobian, but rows {names} and "
-                            f"{chain.n} joints make it {len(chosen)} x {chain.n}; choose {chain.n} rows, or use "
-                            f"manipulability_gradient (numeric, any number of rows up to {chain.n})")
+                            f"{n} coordinates make it {len(chosen)} x {n}; choose {n} rows, or use "
+                            f"manipulability_gradient (numeric, any number of rows up to {n})")
 
     def derive() -> LogDetGradient:
         det = determinant(chain, chosen, frame, list(xyz))

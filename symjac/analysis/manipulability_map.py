@@ -31,7 +31,7 @@ from symjac.analysis.singularity.singularities import SingularFactor, Singularit
 from symjac.analysis.singularity.solve import Solution
 from symjac.kinematics.chain import Frame
 from symjac.kinematics.numeric import numeric_jacobian
-from symjac.model.robot import Robot
+from symjac.model.robot import JointType, Robot
 
 __all__ = ["Curve", "ManipulabilityMap", "SingularPath", "manipulability_map", "singular_path"]
 
@@ -77,11 +77,11 @@ class SingularPath:
     curve: Curve | None
 
 
-def _bounds(robot: Robot, joint: int) -> tuple[float, float]:
-    spec = robot.joints[joint]
-    if spec.is_revolute:
+def _bounds(robot: Robot, coordinate: int) -> tuple[float, float]:
+    if robot.coordinate_types[coordinate] is JointType.REVOLUTE:
         return -math.pi, math.pi
-    if spec.limits is not None:
+    spec = next((j for j in robot.joints if j.variable == robot.q[coordinate]), None)  # its own joint, if any
+    if spec is not None and spec.limits is not None:
         return float(spec.limits[0]), float(spec.limits[1])
     return -1.0, 1.0
 
@@ -131,8 +131,8 @@ def _plotted(report: SingularityReport) -> list[SingularFactor]:
 
 
 def _plane(robot: Robot, report: SingularityReport) -> tuple[int, int]:
-    revolute = [i for i, joint in enumerate(robot.joints) if joint.is_revolute]
-    candidates = revolute if len(revolute) >= 2 else list(range(robot.dof))
+    revolute = [i for i, kind in enumerate(robot.coordinate_types) if kind is JointType.REVOLUTE]
+    candidates = revolute if len(revolute) >= 2 else list(range(robot.n_coordinates))
     pairs = list(itertools.combinations(candidates, 2))
     return max(pairs, key=lambda pair: (_score(robot, report, *pair), -pair[1], -pair[0]))
 
@@ -145,8 +145,8 @@ def _fixed(robot: Robot, report: SingularityReport, plane: tuple[int, int], seed
             if not f.expression.free_symbols & plane_symbols]
     best: tuple[float, list[float]] | None = None
     for _ in range(24):
-        values = [generator.uniform(-2.0, 2.0) if joint.is_revolute else generator.uniform(*_bounds(robot, i))
-                  for i, joint in enumerate(robot.joints)]
+        values = [generator.uniform(-2.0, 2.0) if kind is JointType.REVOLUTE
+                  else generator.uniform(*_bounds(robot, i)) for i, kind in enumerate(robot.coordinate_types)]
         substitution = dict(zip(robot.q, values, strict=True))
         margin = min((abs(float(f.xreplace(substitution))) for f in away), default=1.0)
         if best is None or margin > best[0] + 1e-12:
@@ -198,7 +198,7 @@ def _curve(robot: Robot, factor: SingularFactor, plane: tuple[int, int], fixed: 
         values = np.where(np.isfinite(values), values, np.nan)
         jumps = np.flatnonzero(np.abs(np.diff(values)) > math.pi) + 1  # a branch cut of atan2: not part of the curve
         values, parameter = np.insert(values, jumps, np.nan), np.insert(parameter, jumps, np.nan)
-        shifts = (-2, -1, 0, 1, 2) if robot.joints[plane[axis]].is_revolute else (0,)
+        shifts = (-2, -1, 0, 1, 2) if robot.coordinate_types[plane[axis]] is JointType.REVOLUTE else (0,)
         for shift in shifts:
             shifted = values + 2 * math.pi * shift
             pair = (shifted, parameter) if axis == 0 else (parameter, shifted)
@@ -218,7 +218,7 @@ def _curve(robot: Robot, factor: SingularFactor, plane: tuple[int, int], fixed: 
 def manipulability_map(robot: Robot, report: SingularityReport, size: int = 121, fine: int = 601,
                        seed: int = 0) -> ManipulabilityMap | None:
     """Manipulability over a grid of two joints with the exact singular curves; ``None`` for a one-joint arm."""
-    if robot.dof < 2:
+    if robot.n_coordinates < 2:
         return None
     plane = _plane(robot, report)
     configuration = _fixed(robot, report, plane, seed)
@@ -245,7 +245,7 @@ def manipulability_map(robot: Robot, report: SingularityReport, size: int = 121,
 
     curves = [curve for factor in _plotted(report)
               if (curve := _curve(robot, factor, plane, fixed, grids, rank_margin)) is not None]
-    measure = "|det J|" if len(rows) == robot.dof else "sqrt(det(J J^T))"
+    measure = "|det J|" if len(rows) == robot.n_coordinates else "sqrt(det(J J^T))"
     return ManipulabilityMap(plane, tuple(configuration), x, y, w, measure, tuple(curves), det.rows, det.frame,
                              det.point)
 

@@ -154,11 +154,11 @@ def task_rows(robot: Robot | Chain, point: Point = "wrist") -> tuple[int, ...]:
 
 def _task_rows(chain: Chain, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:
     robot = chain.robot
-    if robot.dof >= 6:
+    if robot.n_coordinates >= 6:
         return tuple(range(6))
     J = jacobian(chain, frame=0, point=point)
     generator = random.Random(20261122)
-    samples = [[generator.uniform(-math.pi, math.pi) for _ in range(robot.dof)] for _ in range(2)]
+    samples = [[generator.uniform(-math.pi, math.pi) for _ in range(robot.n_coordinates)] for _ in range(2)]
     numeric = [numeric_jacobian(chain, q, 0, point) for q in samples]
     rows: list[int] = []
     for row in range(6):
@@ -167,6 +167,7 @@ def _task_rows(chain: Chain, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:
         candidate = [*rows, row]
         if all(np.linalg.matrix_rank(N[candidate, :], tol=1e-9) == len(candidate) for N in numeric):
             rows = candidate
-        if len(rows) == robot.dof:
+        if len(rows) == robot.n_coordinates:
             return tuple(rows)
-    raise ArgumentError(f"{robot.name}: its {robot.dof} joints control only {len(rows)} independent task rows")
+    raise ArgumentError(f"{robot.name}: its {robot.n_coordinates} coordinates control only {len(rows)} "
+                        "independent task rows")

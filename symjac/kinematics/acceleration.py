@@ -45,6 +45,7 @@ import sympy as sp
 
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.coupling import hessian_in_coordinates, in_coordinates, jacobian_in_coordinates
 from symjac.kinematics.jacobian import Point, jacobian, point_vector
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
@@ -67,7 +68,7 @@ __all__ = [
 def carried_joints(robot: Robot | Chain, frame: Frame) -> tuple[int, ...]:
     """The joints (1-based) whose motion turns ``frame``: none for {0} and "world", 1..k for {k}, all for "tool"."""
     chain = as_chain(robot)
-    return tuple(range(1, min(max(chain.position(frame), 0), chain.n) + 1))
+    return tuple(range(1, min(max(chain.position(frame), 0), chain.n_joints) + 1))
 
 
 def hessian(
@@ -87,9 +88,10 @@ def hessian(
 
     Returns
     -------
-    H : sympy.ImmutableDenseNDimArray, shape (6, n, n)
+    H : sympy.ImmutableDenseNDimArray, shape (6, n, n), n = n_coordinates
         ``H[i, j, m]`` is the derivative of row i (:data:`~symjac.kinematics.jacobian.ROW_NAMES`), column j of the
-        Jacobian with respect to joint variable m (all 0-based). ``H[:, :, m]`` is the 6 x n slice
+        Jacobian with respect to coordinate m (all 0-based; coordinates are the joint variables unless the robot
+        couples joints, :mod:`symjac.kinematics.coupling`). ``H[:, :, m]`` is the 6 x n slice
         :math:`\partial J / \partial q_m` (:func:`hessian_slice`). In a fixed frame the linear rows are symmetric,
         ``H[i, j, m] == H[i, m, j]`` for i < 3.
 
@@ -112,9 +114,9 @@ def hessian(
 
 def hessian_slice(H: sp.NDimArray, m: int) -> sp.Matrix:
     r"""The 6 x n matrix :math:`\partial J / \partial q_m` (0-based m) of a Hessian from :func:`hessian`."""
-    rows, cols, joints = H.shape
-    if not 0 <= m < joints:
-        raise ArgumentError(f"joint index {m} is outside 0..{joints - 1}")
+    rows, cols, coordinates = H.shape
+    if not 0 <= m < coordinates:
+        raise ArgumentError(f"coordinate index {m} is outside 0..{coordinates - 1}")
     return sp.Matrix(rows, cols, lambda i, j: H[i, j, m])
 
 
@@ -136,7 +138,10 @@ def _hessian_pair(columns: list[tuple[sp.Matrix, sp.Matrix]], j: int, m: int,
 
 
 def _hessian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], simplify: bool) -> sp.ImmutableDenseNDimArray:
-    n = chain.n
+    if chain.joint_chain is not chain:  # coupled: H_q[:, j, m] = sum_a sum_b H[:, a, b] C[a, j] C[b, m]
+        H = hessian(chain.joint_chain, frame, list(point), simplify=simplify)
+        return hessian_in_coordinates(chain, H, frame if simplify else None)
+    n = chain.n_joints
     if simplify:
         raw = hessian(chain, frame, list(point), simplify=False)
         flat = simplify_matrix(sp.Matrix(raw.reshape(6, n * n).tolist()), chain.angle_bases(frame))
@@ -179,9 +184,9 @@ def jacobian_derivative(
 
     Returns
     -------
-    Jdot : sympy.Matrix, shape (6, n)
-        In the joint variables and the rate symbols of :func:`symjac.joint_rate_symbols` (``thetadot1``, ``ddot3``,
-        ...).
+    Jdot : sympy.Matrix, shape (6, n_coordinates)
+        In the coordinates and the rate symbols of :func:`symjac.joint_rate_symbols` (``thetadot1``, ``ddot3``,
+        ...; the coordinates' rates when the robot couples joints).
 
     Examples
     --------
@@ -200,17 +205,20 @@ def jacobian_derivative(
 
 def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], method: DerivativeMethod,
                          simplify: bool) -> sp.ImmutableMatrix:
+    if chain.joint_chain is not chain:  # coupled: Jdot_q = Jdot(theta(q), C qdot) C = sum_m H_q[:, :, m] qdot_m
+        joints = jacobian_derivative(chain.joint_chain, frame, list(point), method, simplify=simplify)
+        return jacobian_in_coordinates(chain, joints, frame if simplify else None)
     if simplify:
         raw = jacobian_derivative(chain, frame, list(point), method, simplify=False)
         return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))
     rates = joint_rate_symbols(chain)
     if method == "differentiation":
         J = jacobian(chain, frame, list(point), simplify=False)
-        q = chain.robot.q
+        q = chain.robot.joint_variables
         return sp.ImmutableMatrix(J.rows, J.cols, lambda i, j: sum(J[i, j].diff(q_m) * rate
                                                                     for q_m, rate in zip(q, rates, strict=True)))
     H = hessian(chain, frame, list(point), simplify=False)
-    n = chain.n
+    n = chain.n_joints
     return sp.ImmutableMatrix(6, n, lambda i, j: sum(H[i, j, m] * rates[m] for m in range(n)))
 
 
@@ -239,6 +247,9 @@ def bias_acceleration(
     xyz = point_vector(chain, point)
 
     def derive() -> sp.ImmutableMatrix:
+        if chain.joint_chain is not chain:  # coupled: Jdot_q qdot = Jdot thetadot with thetadot = C qdot
+            joints = bias_acceleration(chain.joint_chain, frame, list(xyz), method, simplify=simplify)
+            return in_coordinates(chain, sp.ImmutableMatrix(joints), frame if simplify else None)
         Jdot = jacobian_derivative(chain, frame, list(xyz), method, simplify=False)
         raw = Jdot * sp.Matrix(joint_rate_symbols(chain))
         if not simplify:

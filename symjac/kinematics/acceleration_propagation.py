@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.coupling import in_coordinates
 from symjac.kinematics.jacobian import point_vector
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
@@ -50,7 +51,10 @@ _ZERO = sp.ImmutableMatrix.zeros(3, 1)
 
 
 def joint_accelerations(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
-    r"""The joint acceleration symbols :math:`\ddot\theta_i` (``thetaddot{i}``) or :math:`\ddot d_i` (``dddot{i}``).
+    r"""The acceleration symbols :math:`\ddot q` of the coordinates, in order.
+
+    Without a coupling these are the joint accelerations :math:`\ddot\theta_i` (``thetaddot{i}``) or
+    :math:`\ddot d_i` (``dddot{i}``); a coupled robot's are those of its coordinates.
 
     Examples
     --------
@@ -58,8 +62,7 @@ def joint_accelerations(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
     >>> joint_accelerations(load_robot("scara"))
     (thetaddot1, thetaddot2, dddot3, thetaddot4)
     """
-    model = as_chain(robot).robot
-    return tuple(joint.acceleration for joint in model.joints)
+    return as_chain(robot).robot.coordinate_accelerations
 
 
 @dataclass(frozen=True)
@@ -136,12 +139,17 @@ def acceleration_propagation(
 
 
 def _derive(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> AccelerationPropagation:
+    if chain.joint_chain is not chain:  # coupled: theta = theta(q), thetadot = C qdot, thetaddot = C qddot
+        joints = acceleration_propagation(chain.joint_chain, point, simplify=simplify)
+        return AccelerationPropagation(joint_rate_symbols(chain), joint_accelerations(chain), tuple(
+            AccelerationStep(s.frame, *(in_coordinates(chain, m) for m in (s.omega, s.omegadot, s.v, s.vdot)))
+            for s in joints.steps))
     if not simplify:
         return _propagate(chain, point)
     raw = acceleration_propagation(chain, point, simplify=False)
 
     def layout(step: AccelerationStep) -> AccelerationStep:
-        frame: Frame = chain.n if step.frame == "point" else step.frame  # type: ignore[assignment]  # "point": {n}
+        frame: Frame = chain.n_joints if step.frame == "point" else step.frame  # type: ignore[assignment]  # "point": {n}
         stacked = sp.Matrix.vstack(step.omega, step.omegadot, step.v, step.vdot)
         flat = _collect_rates(simplify_matrix(stacked, chain.angle_bases(frame)), raw.rates)
         parts = [sp.ImmutableMatrix(flat[i:i + 3, :]) for i in (0, 3, 6, 9)]
@@ -172,7 +180,7 @@ def _rigid(omega: sp.Matrix, omegadot: sp.Matrix, v: sp.Matrix, vdot: sp.Matrix,
 
 def _propagate(chain: Chain, point: tuple[sp.Expr, ...] | None) -> AccelerationPropagation:
     model = chain.robot
-    rates, accelerations = joint_rate_symbols(model), joint_accelerations(model)
+    rates, accelerations = model.coordinate_rates, model.coordinate_accelerations  # uncoupled: the joints' own
     omega, omegadot, v, vdot = (sp.zeros(3, 1) for _ in range(4))
     steps = [AccelerationStep(0, _ZERO, _ZERO, _ZERO, _ZERO)]
     for k, joint in enumerate(model.joints, start=1):
@@ -199,8 +207,8 @@ def _propagate(chain: Chain, point: tuple[sp.Expr, ...] | None) -> AccelerationP
         vdot = R * vdot_moved + relative + 2 * omega_prev.cross(u)
         steps.append(_step(k, omega, omegadot, v, vdot))
     if point is None:
-        R_t_n = sp.Matrix(chain.rotation("tool", chain.n))
-        v_t, vdot_t = _rigid(omega, omegadot, v, vdot, sp.Matrix(chain.transform(chain.n, "tool")[:3, 3]))
+        R_t_n = sp.Matrix(chain.rotation("tool", chain.n_joints))
+        v_t, vdot_t = _rigid(omega, omegadot, v, vdot, sp.Matrix(chain.transform(chain.n_joints, "tool")[:3, 3]))
         steps.append(_step("tool", R_t_n * omega, R_t_n * omegadot, R_t_n * v_t, R_t_n * vdot_t))
     elif any(c != 0 for c in point):
         v_p, vdot_p = _rigid(omega, omegadot, v, vdot, sp.Matrix(point))

@@ -18,6 +18,7 @@ from typing import Literal, TypeVar
 import sympy as sp
 
 from symjac.errors import FrameError
+from symjac.kinematics.coupling import in_coordinates
 from symjac.model.conventions import joint_forms
 from symjac.model.conventions.base import JointForm
 from symjac.model.robot import Robot
@@ -78,23 +79,30 @@ class Chain:
     # --- frames ------------------------------------------------------------------------------------------
 
     @property
-    def n(self) -> int:
-        """Number of joints."""
-        return self.robot.dof
+    def n_joints(self) -> int:
+        """Number of joints: the chain's frames are 0..n_joints (``n`` is the former name, kept for now)."""
+        return self.robot.n_joints
+    n = n_joints
+
+    @cached_property
+    def joint_chain(self) -> Chain:
+        """The chain results are derived on: itself, or for a coupled robot the chain of its joints alone."""
+        return self if self.robot.coupling is None else chain_of(self.robot.uncoupled)
 
     def position(self, frame: Frame) -> int:
         """Index of a frame along the chain: world -1, DH frames 0..n, tool n + 1."""
         if frame == "world":
             return -1
         if frame == "tool":
-            return self.n + 1
-        if isinstance(frame, int) and not isinstance(frame, bool) and 0 <= frame <= self.n:
+            return self.n_joints + 1
+        if isinstance(frame, int) and not isinstance(frame, bool) and 0 <= frame <= self.n_joints:
             return frame
-        raise FrameError(f"frame {frame!r} does not exist for {self.robot.name}: use 0..{self.n}, 'world' or 'tool'")
+        raise FrameError(
+            f"frame {frame!r} does not exist for {self.robot.name}: use 0..{self.n_joints}, 'world' or 'tool'")
 
     def frame_name(self, position: int) -> Frame:
         """Inverse of :meth:`position`."""
-        return "world" if position == -1 else "tool" if position == self.n + 1 else position
+        return "world" if position == -1 else "tool" if position == self.n_joints + 1 else position
 
     def axis_frame(self, joint: int) -> int:
         """The frame whose z-axis is the axis of ``joint`` (1-based): {i-1} or {i}.
@@ -172,17 +180,17 @@ class Chain:
     @cached_property
     def link_transforms(self) -> tuple[sp.ImmutableMatrix, ...]:
         r"""The n link transforms :math:`{}^{i-1}_{i}T`, i = 1..n."""
-        return tuple(self.transform(i - 1, i) for i in range(1, self.n + 1))
+        return tuple(self.transform(i - 1, i) for i in range(1, self.n_joints + 1))
 
     @cached_property
     def T_0_i(self) -> tuple[sp.ImmutableMatrix, ...]:
         r""":math:`{}^0_iT` for i = 0..n, simplified (index i gives frame {i})."""
-        return tuple(self.simplified_transform(0, i) for i in range(self.n + 1))
+        return tuple(self.simplified_transform(0, i) for i in range(self.n_joints + 1))
 
     @cached_property
     def T_i_n(self) -> tuple[sp.ImmutableMatrix, ...]:
         r""":math:`{}^i_nT` for i = 0..n, simplified."""
-        return tuple(self.simplified_transform(i, self.n) for i in range(self.n + 1))
+        return tuple(self.simplified_transform(i, self.n_joints) for i in range(self.n_joints + 1))
 
     # --- simplification basis -------------------------------------------------------------------------------
 
@@ -190,7 +198,7 @@ class Chain:
     def parallel_groups(self) -> tuple[tuple[int, ...], ...]:
         """Maximal runs of consecutive joints (1-based) whose axes are parallel or anti-parallel."""
         groups: list[list[int]] = [[1]]
-        for i in range(1, self.n):
+        for i in range(1, self.n_joints):
             twist = self._twist_between(i)
             if twist == 0 or abs(twist) == sp.pi:
                 groups[-1].append(i + 1)
@@ -272,7 +280,7 @@ class Chain:
         def compute() -> tuple[AngleBasis, ...]:
             revolute = [joint for joint in self.robot.joints if joint.is_revolute]
             bases = [AngleBasis(tuple(j.variable for j in revolute), tuple(j.angle for j in revolute))]
-            for frame in range(self.n + 1):
+            for frame in range(self.n_joints + 1):
                 bases += [basis for basis in self.angle_bases(frame) if basis not in bases]
             return tuple(bases)
 
@@ -287,7 +295,7 @@ class Chain:
         turn about z from the previous axis when that axis is parallel (general joints), so
         ``cos(theta3 + pi/6)`` stays one cosine.
         """
-        joint = self.robot.joints[position - 1] if 1 <= position <= self.n else None
+        joint = self.robot.joints[position - 1] if 1 <= position <= self.n_joints else None
         if joint is None or not joint.is_revolute:
             return (AngleBasis((), ()),)
         group = next(g for g in self.parallel_groups if position in g)
@@ -377,7 +385,7 @@ def clear_caches() -> None:
 
 
 def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | None = None) -> sp.Matrix:
-    r"""The pose :math:`{}^{\text{source}}_{\text{target}}T` in compact form (default :math:`{}^0_nT`).
+    r"""The pose :math:`{}^{\text{source}}_{\text{target}}T` compact, in the coordinates (default :math:`{}^0_nT`).
 
     Examples
     --------
@@ -386,4 +394,4 @@ def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | 
     L1*cos(theta1) + L2*cos(theta1 + theta2) + L3*cos(theta1 + theta2 + theta3)
     """
     chain = as_chain(robot)
-    return sp.Matrix(chain.simplified_transform(source, chain.n if target is None else target))
+    return in_coordinates(chain, sp.Matrix(chain.simplified_transform(source, chain.n if target is None else target)))

@@ -114,7 +114,7 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
     if plugin(robot.convention).to_modified(robot) is not None:
         raise ConversionError(f"{robot.name} is already a DH table ({robot.convention.value})")
     chain = chain_of(robot)
-    zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.q}
+    zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.joint_variables}
     if substitute_defaults:
         zero.update(robot.defaults)
 
@@ -122,14 +122,14 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
         return sp.Matrix(chain.transform(0, frame)).xreplace(zero).applyfunc(_exact)
 
     # frames[i] is the frame on joint axis i (its z-axis), frames[0] the chain's frame {0}, last the chain's {n}
-    frames = [at_zero(0), *(at_zero(chain.axis_frame(i)) for i in range(1, robot.dof + 1))]
-    last = at_zero(robot.dof)
+    frames = [at_zero(0), *(at_zero(chain.axis_frame(i)) for i in range(1, robot.n_joints + 1))]
+    last = at_zero(robot.n_joints)
     if any(not e.is_number for F in (*frames, last) for e in F):
         raise ConversionError(f"{robot.name}: DH extraction needs numeric frames; substitute the parameters first")
     if any(F.has(sp.sin, sp.cos) for F in (*frames, last)):
         # exact geometry on sin/cos of generic constants (rpy = 0.3) does not reduce; refuse rather than hang
         raise ConversionError(f"{robot.name}: exact DH extraction needs origin angles that are multiples of pi/12")
-    n = robot.dof
+    n = robot.n_joints
     origin = [F[:3, 3] for F in frames]
     z = [F[:3, 2] for F in frames]
 

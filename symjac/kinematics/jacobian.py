@@ -50,6 +50,7 @@ import sympy as sp
 
 from symjac.errors import ArgumentError, FrameError
 from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.coupling import jacobian_in_coordinates
 from symjac.kinematics.propagation import force_propagation, velocity_propagation
 from symjac.model.robot import VELOCITY_NAMES, Robot
 from symjac.progress import report
@@ -120,7 +121,10 @@ def jacobian(
     *,
     simplify: bool = True,
 ) -> sp.Matrix:
-    r"""The 6 x n basic Jacobian :math:`{}^kJ` of ``robot``, rows :math:`[v; \omega]`.
+    r"""The 6 x n basic Jacobian :math:`{}^kJ` of ``robot``, rows :math:`[v; \omega]`, one column per coordinate.
+
+    For a robot with coupled joints (:mod:`symjac.kinematics.coupling`) this is :math:`J_q = J(\vartheta(q))\,C`,
+    the map from coordinate rates :math:`\dot q` to :math:`[v; \omega]`; otherwise coordinates are joints.
 
     Parameters
     ----------
@@ -137,8 +141,9 @@ def jacobian(
 
     Returns
     -------
-    J : sympy.Matrix, shape (6, n)
-        Rows :math:`[v_x, v_y, v_z, \omega_x, \omega_y, \omega_z]` expressed in {k}; column i belongs to joint i.
+    J : sympy.Matrix, shape (6, n_coordinates)
+        Rows :math:`[v_x, v_y, v_z, \omega_x, \omega_y, \omega_z]` expressed in {k}; column i belongs to coordinate i
+        (joint i without a coupling).
 
     Examples
     --------
@@ -184,8 +189,11 @@ def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, 
 
 def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
             simplify: bool) -> sp.ImmutableMatrix:
+    if chain.joint_chain is not chain:  # a coupled robot: derived for its joints, then J_q = J(theta(q)) C
+        J = jacobian(chain.joint_chain, frame, point, method, simplify=simplify)
+        return jacobian_in_coordinates(chain, J, frame if simplify else None)
     if simplify and method != "cross_product":  # from the frame the method works in, link by link on normal forms
-        source = 0 if method == "differentiation" else chain.n
+        source = 0 if method == "differentiation" else chain.n_joints
         raw = jacobian(chain, source, point, method, simplify=False)
         report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
         factors = [*_link_rotations(chain, frame, source), raw]
@@ -201,11 +209,11 @@ def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr],
 
 def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
     robot = chain.robot
-    T_0_n = chain.transform(0, chain.n)
+    T_0_n = chain.transform(0, chain.n_joints)
     x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
-    J_0 = sp.zeros(6, chain.n)
+    J_0 = sp.zeros(6, chain.n_joints)
     for i, joint in enumerate(robot.joints):
-        report(f"differentiation, joint {i + 1} of {chain.n}")
+        report(f"differentiation, joint {i + 1} of {chain.n_joints}")
         J_0[:3, i] = x_P.applyfunc(_Derivative(joint.variable))
         if joint.is_revolute:
             J_0[3:, i] = chain.rotation(0, chain.axis_frame(joint.index))[:, 2]
@@ -263,21 +271,22 @@ class _Derivative:
 
 def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
     k = chain.position(frame)
-    T_k_n = chain.transform(frame, chain.n)
+    T_k_n = chain.transform(frame, chain.n_joints)
     p_kP = T_k_n[:3, :3] * sp.Matrix(point) + T_k_n[:3, 3]  # the point P, in {k}
-    J = sp.zeros(6, chain.n)
+    n = chain.n_joints
+    J = sp.zeros(6, n)
     for i, joint in enumerate(chain.robot.joints):
-        report(f"cross product, joint {i + 1} of {chain.n}")
+        report(f"cross product, joint {i + 1} of {n}")
         a = chain.axis_frame(joint.index)
         T_k_a = chain.transform(frame, a)
         z_a = T_k_a[:3, 2]
         if not joint.is_revolute:
             J[:3, i] = z_a
             continue
-        if _turns(chain, k, chain.n) <= _turns(chain, a, chain.n):  # p_P is no longer in {k}: read all in {k}
+        if _turns(chain, k, n) <= _turns(chain, a, n):  # p_P is no longer in {k}: read all in {k}
             J[:3, i] = z_a.cross(p_kP - T_k_a[:3, 3])
         else:  # p_aP is shorter in {a}, where z_a = [0, 0, 1]: take the cross product there, then rotate
-            T_a_n = chain.transform(a, chain.n)
+            T_a_n = chain.transform(a, chain.n_joints)
             p_aP = T_a_n[:3, :3] * sp.Matrix(point) + T_a_n[:3, 3]
             J[:3, i] = T_k_a[:3, :3] * sp.Matrix([-p_aP[1], p_aP[0], 0])
         J[3:, i] = z_a
@@ -323,9 +332,9 @@ def _from_tip_frame(chain: Chain, frame: Frame, J_n: sp.Matrix) -> sp.Matrix:
     link by link cost n times more (a generic 30-joint chain: 20 s). The compact form never starts from this one:
     it multiplies the link rotations on normal forms (:func:`_derive`).
     """
-    if chain.position(frame) == chain.n:
+    if chain.position(frame) == chain.n_joints:
         return J_n
-    return block_rotation(chain.rotation(frame, chain.n)) * J_n
+    return block_rotation(chain.rotation(frame, chain.n_joints)) * J_n
 
 
 def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:

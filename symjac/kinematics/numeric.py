@@ -51,10 +51,18 @@ def as_vector(values: Sequence[sp.Expr | float], length: int, name: str) -> sp.M
 
 
 def values_at(robot: Robot | Chain, q: Sequence[float | sp.Expr]) -> dict[sp.Symbol, sp.Expr]:
-    """The substitution of a configuration ``q`` (validated) and of the parameters' exact defaults."""
+    """The substitution of a configuration ``q`` (validated) and of the parameters' exact defaults.
+
+    ``q`` gives the coordinates; a coupled robot's joint variables take their values from them, so expressions in
+    either (a transform of the chain, a Jacobian) evaluate.
+    """
     model = as_chain(robot).robot
-    values: dict[sp.Symbol, sp.Expr] = dict(zip(model.q, as_vector(q, model.dof, "q"), strict=True))
+    values: dict[sp.Symbol, sp.Expr] = dict(zip(model.q, as_vector(q, model.n_coordinates, "q"), strict=True))
     values.update(model.defaults)
+    if model.coupling is not None:
+        given = dict(values)
+        values.update({joint: value.xreplace(given) for joint, value
+                       in zip(model.joint_variables, model.coupling.values, strict=True) if joint not in given})
     return values
 
 
@@ -77,7 +85,7 @@ def numeric_at(robot: Robot | Chain, expr: sp.MatrixBase, q: Sequence[float | sp
 
 
 def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0, point: Point = "wrist") -> np.ndarray:
-    """The 6 x n basic Jacobian at configuration ``q`` as floats (parameters at their defaults).
+    """The 6 x n_coordinates basic Jacobian at configuration ``q`` as floats (parameters at their defaults).
 
     The first call per frame and point compiles the raw Jacobian with :func:`sympy.lambdify` (kept in the chain);
     later calls cost microseconds.
@@ -85,8 +93,8 @@ def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0,
     chain = as_chain(robot)
     model = chain.robot
     values = np.asarray(q, dtype=float)
-    if values.shape != (model.dof,):
-        raise ArgumentError(f"q must have {model.dof} entries for {model.name}, got shape {values.shape}")
+    if values.shape != (model.n_coordinates,):
+        raise ArgumentError(f"q must have {model.n_coordinates} entries for {model.name}, got shape {values.shape}")
     if not np.all(np.isfinite(values)):
         raise ArgumentError(f"q must be finite, got {values.tolist()}")
     frame = chain.frame_name(chain.position(frame))

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.coupling import in_coordinates, jacobian_in_coordinates, torques_in_coordinates
 from symjac.model.robot import WRENCH_NAMES, Robot
 from symjac.progress import report
 from symjac.symbolic.simplify import simplify_matrix
@@ -54,7 +55,11 @@ _Z = sp.Matrix([0, 0, 1])
 
 
 def joint_rate_symbols(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
-    r"""The joint rate symbols :math:`\dot\theta_i` (``thetadot{i}``) or :math:`\dot d_i` (``ddot{i}``).
+    r"""The rate symbols :math:`\dot q` of the coordinates, in order: what Jacobian columns multiply.
+
+    Without a coupling these are the joint rates :math:`\dot\theta_i` (``thetadot{i}``) or :math:`\dot d_i`
+    (``ddot{i}``); a coupled robot's are the rates of its coordinates (:attr:`Robot.coordinate_rates
+    <symjac.model.robot.Robot.coordinate_rates>`).
 
     Examples
     --------
@@ -62,8 +67,7 @@ def joint_rate_symbols(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
     >>> joint_rate_symbols(load_robot("stanford"))
     (thetadot1, thetadot2, ddot3, thetadot4, thetadot5, thetadot6)
     """
-    robot = as_chain(robot).robot
-    return tuple(joint.rate for joint in robot.joints)
+    return as_chain(robot).robot.coordinate_rates
 
 
 def wrench_symbols() -> tuple[sp.Symbol, ...]:
@@ -207,9 +211,14 @@ def velocity_propagation(
 
 
 def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> VelocityPropagation:
+    if chain.joint_chain is not chain:  # coupled: each step's coefficients of the joint rates times C
+        joints = velocity_propagation(chain.joint_chain, point, simplify=simplify)
+        return VelocityPropagation(joint_rate_symbols(chain), tuple(
+            VelocityStep(s.frame, jacobian_in_coordinates(chain, s.omega), jacobian_in_coordinates(chain, s.v))
+            for s in joints.steps))
     robot = chain.robot
     layout = _layout(chain, simplify)
-    n = chain.n
+    n = chain.n_joints
     omega, v = sp.zeros(3, n), sp.zeros(3, n)
     steps = [VelocityStep(0, sp.ImmutableMatrix(omega), sp.ImmutableMatrix(v))]
     for k, joint in enumerate(robot.joints, start=1):
@@ -235,7 +244,7 @@ def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simpl
         steps.append(VelocityStep("tool", layout(R_t_n * omega, "tool"), layout(v_t, "tool")))
     elif tip == "point":
         steps.append(VelocityStep("point", layout(omega, n), layout(v + skew(-sp.Matrix(point)) * omega, n)))
-    return VelocityPropagation(joint_rate_symbols(robot), tuple(steps))
+    return VelocityPropagation(tuple(joint.rate for joint in robot.joints), tuple(steps))
 
 
 def force_propagation(
@@ -271,9 +280,14 @@ def force_propagation(
 
 
 def _force_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> ForcePropagation:
+    if chain.joint_chain is not chain:  # coupled: the steps in the coordinates, the torques tau_q = C^T tau
+        joints = force_propagation(chain.joint_chain, point, simplify=simplify)
+        return ForcePropagation(joints.wrench, tuple(
+            ForceStep(s.frame, in_coordinates(chain, s.force), in_coordinates(chain, s.moment)) for s in joints.steps),
+            torques_in_coordinates(chain, joints.torques))
     robot = chain.robot
     layout = _layout(chain, simplify)
-    n = chain.n
+    n = chain.n_joints
     force = sp.Matrix.hstack(sp.eye(3), sp.zeros(3, 3))
     moment = sp.Matrix.hstack(sp.zeros(3, 3), sp.eye(3))
     steps: list[ForceStep] = []

@@ -40,13 +40,15 @@ def joint_torques(
         symbols ``f_x .. n_z``.
     frame, point
         As for :func:`symjac.kinematics.jacobian`.
-    q : sequence of n, optional
+    q : sequence of n_coordinates, optional
         A configuration. With it, joint variables and parameters take numbers (the parameters' defaults) and the
         result is numeric.
 
     Returns
     -------
-    tau : sympy.Matrix, shape (n, 1)
+    tau : sympy.Matrix, shape (n_coordinates, 1)
+        One generalised force per coordinate: :math:`C^T J^T F` for a robot that couples joints
+        (:mod:`symjac.kinematics.coupling`).
 
     Examples
     --------

@@ -59,9 +59,9 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
 
     Examples
     --------
-    >>> load_robot("puma560").dof
+    >>> load_robot("puma560").n_joints
     6
-    >>> load_robot("panda.urdf", tip_link="panda_link8").dof
+    >>> load_robot("panda.urdf", tip_link="panda_link8").n_joints
     7
     """
     path = Path(name_or_path)

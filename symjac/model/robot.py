@@ -24,13 +24,14 @@ used only where numbers are asked for.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from typing import ClassVar
 
 import sympy as sp
 
 from symjac.errors import RobotFileError
+from symjac.model.coordinates import Coupling, acceleration_symbol, coupling_problem, rate_symbol
 from symjac.model.expressions import snap_angle
 from symjac.symbolic.transforms import homogeneous, rotation_rpy
 
@@ -208,10 +209,16 @@ class FixedTransform:
 
 @dataclass(frozen=True)
 class Robot:
-    """A serial robot: DH table, parameters with defaults, optional base and tool transforms.
+    """A serial robot: DH table, parameters with defaults, optional base and tool transforms and joint coupling.
 
     Build one with :func:`symjac.model.robot_file.robot_from_mapping` or :func:`symjac.load_robot`; every instance is
     validated.
+
+    Joints and coordinates: the chain has :attr:`n_joints` joints with the :attr:`joint_variables` ``theta{i}`` /
+    ``d{i}``; a user gives values for the :attr:`n_coordinates` independent :attr:`coordinates` (``q``). Without a
+    ``coupling`` (the default) every joint variable is its own coordinate and the two coincide; with one
+    (:class:`~symjac.model.coordinates.Coupling`), each joint variable is an affine expression of the coordinates,
+    and every result symjac returns (transforms, Jacobians, Hessians, rates, torques) is in the coordinates.
     """
 
     name: str
@@ -222,24 +229,94 @@ class Robot:
     base: FixedTransform | None = None
     tool: FixedTransform | None = None
     source: str = field(default="<mapping>", compare=False)
+    coupling: Coupling | None = None
 
     def __post_init__(self) -> None:
-        """Refuse a parameter named like a symbol symjac generates: the two would silently mix in every result."""
+        """Refuse a parameter named like a symbol symjac generates, and a coupling that is not affine and complete."""
         reserved = reserved_names([joint.type for joint in self.joints])
+        if self.coupling is not None and self.coupling.values == self.joint_variables == self.coupling.coordinates:
+            object.__setattr__(self, "coupling", None)  # the identity: one robot, one chain, today's results
+        if self.coupling is not None:
+            problem = coupling_problem(self.coupling, self.joint_variables, self.parameter_symbols)
+            if problem is not None:
+                raise RobotFileError(problem, source=self.source, field="coupling")
+            for c in self.coupling.coordinates:
+                for symbol in (c, rate_symbol(c), acceleration_symbol(c)):
+                    reserved.setdefault(symbol.name, f"taken by the coordinate {c} or its derivatives")
         for parameter in self.parameters:
             if parameter.name in reserved:
                 raise RobotFileError(f"{parameter.name!r} is reserved: {reserved[parameter.name]}",
                                      source=self.source, field=f"parameters.{parameter.name}")
 
     @property
-    def dof(self) -> int:
-        """Number of joints n."""
+    def n_joints(self) -> int:
+        """Number of joints: links, frames {1}..{n} and propagation steps are counted in joints."""
         return len(self.joints)
 
     @property
-    def q(self) -> tuple[sp.Symbol, ...]:
-        """Joint variables (theta_i or d_i), in chain order."""
+    def n_coordinates(self) -> int:
+        """Number of independent coordinates: Jacobian columns, rates and configurations are counted in these."""
+        return len(self.coordinates)
+
+    @property
+    def dof(self) -> int:
+        """Degrees of freedom: the number of independent coordinates (:attr:`n_coordinates`).
+
+        Kept because a mechanism's degrees of freedom *are* its independent coordinates; new code names
+        :attr:`n_joints` or :attr:`n_coordinates`, whichever it counts.
+        """
+        return self.n_coordinates
+
+    @property
+    def joint_variables(self) -> tuple[sp.Symbol, ...]:
+        """Joint variables (theta_i or d_i), in chain order: what the chain's transforms are written in."""
         return tuple(joint.variable for joint in self.joints)
+
+    @property
+    def uncoupled(self) -> Robot:
+        """The same robot with every joint its own coordinate (itself if it has no coupling)."""
+        return self if self.coupling is None else replace(self, coupling=None)
+
+    @property
+    def joint_values(self) -> tuple[sp.Expr, ...]:
+        """Each joint variable as an expression of the coordinates (the joint variables themselves without coupling)."""
+        return self.joint_variables if self.coupling is None else self.coupling.values
+
+    @property
+    def coordinates(self) -> tuple[sp.Symbol, ...]:
+        """The independent coordinates: the joint variables unless a coupling names others."""
+        return self.joint_variables if self.coupling is None else self.coupling.coordinates
+
+    @property
+    def q(self) -> tuple[sp.Symbol, ...]:
+        """The independent coordinates (:attr:`coordinates`), what a configuration gives values for, in order.
+
+        Without a coupling these are the joint variables (theta_i or d_i) in chain order.
+        """
+        return self.coordinates
+
+    @property
+    def coordinate_rates(self) -> tuple[sp.Symbol, ...]:
+        r"""The rates :math:`\dot q` of the coordinates (the joint rates without a coupling)."""
+        if self.coupling is None:
+            return tuple(joint.rate for joint in self.joints)
+        return tuple(rate_symbol(c) for c in self.coupling.coordinates)
+
+    @property
+    def coordinate_accelerations(self) -> tuple[sp.Symbol, ...]:
+        r"""The accelerations :math:`\ddot q` of the coordinates (the joint accelerations without a coupling)."""
+        if self.coupling is None:
+            return tuple(joint.acceleration for joint in self.joints)
+        return tuple(acceleration_symbol(c) for c in self.coupling.coordinates)
+
+    @property
+    def coordinate_types(self) -> tuple[JointType, ...]:
+        """Per coordinate, whether it is an angle (it moves a revolute joint) or a length (prismatic joints only)."""
+        if self.coupling is None:
+            return tuple(joint.type for joint in self.joints)
+        C = self.coupling.matrix
+        turns = [any(C[i, j] != 0 for i, joint in enumerate(self.joints) if joint.is_revolute) for j in range(C.cols)]
+        return tuple(JointType.REVOLUTE if turn else JointType.PRISMATIC for turn in turns)
 
     @property
     def parameter_symbols(self) -> tuple[sp.Symbol, ...]:

@@ -256,7 +256,7 @@ def representation_jacobian_derivative_at(
     array([-0.1524, -0.1071,  0.    ,  0.    ,  0.    ,  0.    ])
     """
     chain = as_chain(robot)
-    n = chain.n
+    n = chain.robot.n_coordinates
     rates = np.asarray(q_dot, dtype=float)
     if rates.shape != (n,) or not np.all(np.isfinite(rates)):
         raise ArgumentError(f"q_dot must be {n} finite numbers for {chain.robot.name}, got {list(q_dot)}")

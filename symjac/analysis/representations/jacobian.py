@@ -190,7 +190,7 @@ def representation_jacobian_at(
     """
     chain = as_chain(robot)
     result = representation_jacobian(chain, orientation, position, point, frame)
-    target: Frame = "tool" if isinstance(point, str) and point == "tool" else chain.n
+    target: Frame = "tool" if isinstance(point, str) and point == "tool" else chain.n_joints
     T = numeric_at(chain, chain.transform(frame, target), q)
     p = T[:3, 3] if target == "tool" else T[:3, :3] @ numeric_at(chain, sp.Matrix(result.point), q).ravel() + T[:3, 3]
     x = np.concatenate([extract_position(result.position, p), extract(result.orientation, T[:3, :3])])

@@ -74,7 +74,7 @@ def _frame_sign(chain: Chain, rows: tuple[int, ...], frame: Frame) -> int:
     It is 1 for all six rows or whole 3-row blocks; a planar subset in a frame whose z-axis is flipped (a twist of
     pi) has -1, and the determinant is reported as in frame {0}. The sign is constant, so any configuration shows it.
     """
-    q = [0.3 + 0.1 * i for i in range(chain.robot.dof)]
+    q = [0.3 + 0.1 * i for i in range(chain.robot.n_coordinates)]
     R = numeric_at(chain, chain.rotation(frame, 0), q)
     B = np.kron(np.eye(2), R)[np.ix_(rows, rows)]
     return 1 if np.linalg.det(B) > 0 else -1
@@ -121,9 +121,9 @@ def _layout(expr: sp.Expr, bases: Sequence[AngleBasis]) -> sp.Expr:
 def _best_frame(chain: Chain, rows: tuple[int, ...], point: tuple[sp.Expr, ...]) -> int:
     """The admissible frame in which the selected rows of the Jacobian have the fewest operations."""
     sizes = []
-    for frame in range(chain.robot.dof + 1):
+    for frame in range(chain.n_joints + 1):
         if is_admissible_frame(chain, rows, frame):
-            J = jacobian(chain, frame=frame, point=point).extract(list(rows), list(range(chain.robot.dof)))
+            J = jacobian(chain, frame=frame, point=point).extract(list(rows), list(range(chain.robot.n_coordinates)))
             sizes.append((int(sp.count_ops(J)), frame))
     return min(sizes)[1]
 
@@ -166,13 +166,13 @@ def determinant(
     if point is None:
         point = "tool" if robot.tool is not None else "wrist"
     point_xyz = point_vector(robot, point)
-    columns = tuple(range(robot.dof)) if columns is None else tuple(columns)
+    columns = tuple(range(robot.n_coordinates)) if columns is None else tuple(columns)
     rows = task_rows(robot, point_xyz) if rows is None else tuple(rows)
     if len(rows) != len(columns) or not rows:
         raise ArgumentError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
     rows = check_row_indices(rows)
-    if any(not 0 <= c < robot.dof for c in columns) or len(set(columns)) != len(columns):
-        raise ArgumentError(f"columns must be distinct joint indices 0..{robot.dof - 1}, got {columns}")
+    if any(not 0 <= c < robot.n_coordinates for c in columns) or len(set(columns)) != len(columns):
+        raise ArgumentError(f"columns must be distinct coordinate indices 0..{robot.n_coordinates - 1}, got {columns}")
     # Factoring costs seconds on a six-joint arm and the singularity report, the rates and the CLI all ask for it:
     # the chain keeps it per request.
     return chain.memo(("determinant", rows, frame, point_xyz, columns, numeric),

@@ -127,7 +127,7 @@ def geometry_at(robot: Robot | Chain, q: Sequence[float], point: tuple[sp.Expr, 
     for joint in model.joints:
         T = numeric_at(chain, chain.transform(0, chain.axis_frame(joint.index)), q)
         axes.append((T[:3, 3], T[:3, 2]))
-    T_n = numeric_at(chain, chain.transform(0, chain.n), q)
+    T_n = numeric_at(chain, chain.transform(0, chain.n_joints), q)
     P = T_n[:3, :3] @ np.array([float(sp.sympify(c).xreplace(model.defaults)) for c in point]) + T_n[:3, 3]
     points: list[tuple[Landmark, np.ndarray]] = [(Landmark("reference point"), P)]
     for joint in model.joints[2:]:
@@ -153,7 +153,7 @@ def _coplanar(first: np.ndarray, second: np.ndarray, third: np.ndarray, directio
 
 
 def _wrist(robot: Robot) -> set[int]:
-    return set(range(robot.dof - 3, robot.dof)) if robot.dof >= 5 else set()
+    return set(range(robot.n_joints - 3, robot.n_joints)) if robot.n_joints >= 5 else set()
 
 
 def findings(robot: Robot | Chain, geometry: Geometry) -> tuple[Finding, ...]:
@@ -176,7 +176,7 @@ def findings(robot: Robot | Chain, geometry: Geometry) -> tuple[Finding, ...]:
             facts[finding.key] = finding
     if revolute and revolute[0] == 0:
         o1, z1 = axes[0]
-        normal = np.cross(z1, axes[1][1]) if model.dof > 1 else np.zeros(3)
+        normal = np.cross(z1, axes[1][1]) if model.n_joints > 1 else np.zeros(3)
         for landmark, p in geometry.points:
             if _distance_to_line(p, o1, z1) < 1e-7:
                 finding = Finding(Relation.ON_FIRST_AXIS, (0,), SingularityKind.SHOULDER, landmark)
@@ -222,7 +222,7 @@ def frame_axes(robot: Robot | Chain, q: Sequence[float], frame: Frame) -> dict[F
     chain = as_chain(robot)
     model = chain.robot
     position = chain.position(frame)
-    order = [position] + [k for k in range(-1, chain.n + 2) if k != position]
+    order = [position] + [k for k in range(-1, chain.n_joints + 2) if k != position]
     named: dict[FrameAxis, np.ndarray] = {}
     for k in order:
         name = chain.frame_name(k)

@@ -50,6 +50,8 @@ def limit_status(robot: Robot | Chain, solution: Solution) -> LimitStatus:
     'outside'
     """
     model = as_chain(robot).robot
+    if model.coupling is not None:  # a coupled joint's limits bound a combination of coordinates: not judged here
+        return LimitStatus.UNLIMITED if all(j.limits is None for j in model.joints) else LimitStatus.UNKNOWN
     variables = list(model.q)
     joints = {joint.variable: joint for joint in model.joints}
     involved = [v for v in variables if solution.lhs.has(v) or solution.rhs.has(v)]

@@ -185,9 +185,9 @@ def singularities(
 def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tuple[sp.Expr, sp.Expr, sp.Expr],
             numeric: bool, seed: int) -> SingularityReport:
     model = chain.robot
-    if model.dof > len(rows):
-        minors = tuple(determinant(chain, rows, frame, point, columns=[c for c in range(model.dof) if c != k],
-                                   numeric=numeric) for k in range(model.dof))
+    if model.n_coordinates > len(rows):
+        minors = tuple(determinant(chain, rows, frame, point, columns=[c for c in range(model.n_coordinates) if c != k],
+                                   numeric=numeric) for k in range(model.n_coordinates))
         return SingularityReport(model.name, minors[0], (), redundant=True, minors=minors)
     det = determinant(chain, rows, frame, point, numeric=numeric)
     generator = random.Random(seed)
@@ -210,7 +210,7 @@ def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int,
         sample = solution_sample(chain, solution, generator)
         if sample is not None:
             break
-    factor_joints = {i for i, joint in enumerate(model.joints) if factor.has(joint.variable)}
+    factor_joints = {i for i, value in enumerate(model.joint_values) if value.free_symbols & factor.free_symbols}
     limits = tuple(limit_status(chain, solution) for solution in solutions)
     if sample is None:
         return SingularFactor(factor, multiplicity, solutions, existence, holds, classify((), factor_joints, chain),

@@ -20,7 +20,7 @@ from typing import Any
 import sympy as sp
 
 from symjac.kinematics.chain import Chain, as_chain
-from symjac.model.robot import Robot
+from symjac.model.robot import JointType, Robot
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, reduce_image
 
@@ -171,7 +171,8 @@ def solve_factor(
     present = factor.free_symbols & variables
     if not present:
         return (), None
-    prismatic = [j.variable for j in robot.joints if not j.is_revolute and j.variable in present]
+    prismatic = [c for c, kind in zip(robot.q, robot.coordinate_types, strict=True)
+                 if kind is JointType.PRISMATIC and c in present]
     for d in prismatic:
         polynomial = sp.Poly(factor, d)
         if polynomial.degree() == 1 and not any(isinstance(a, sp.sin | sp.cos) and a.has(d)

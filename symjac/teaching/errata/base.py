@@ -32,7 +32,7 @@ def robot_of(f: Formula) -> Robot:
 
 def _transform(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:
     chain = chain_of(robot_of(f))
-    return sp.Matrix(chain.simplified_transform(source, chain.n if target is None else target))
+    return sp.Matrix(chain.simplified_transform(source, chain.n_joints if target is None else target))
 
 
 def _rotation(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:

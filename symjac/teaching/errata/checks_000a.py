@@ -82,14 +82,14 @@ def _arm(robot: Robot) -> _Arm:
     q, rates = robot.q, joint_rate_symbols(robot)
     values = {**dict(zip(q, _EXAMPLE_Q, strict=False)), **dict(zip(rates, _EXAMPLE_RATES, strict=False)),
               **{p.symbol: p.default for p in robot.parameters}}
-    symbolic = [sp.Matrix(chain.simplified_transform(0, k)) for k in range(chain.n + 1)]
+    symbolic = [sp.Matrix(chain.simplified_transform(0, k)) for k in range(chain.n_joints + 1)]
     n = lambda m: sp.Matrix(m).subs(values).evalf()  # noqa: E731
     T = tuple(n(t) for t in symbolic)
     Tdot = tuple(n(sum((t.diff(c) * r for c, r in zip(q, rates, strict=True)), sp.zeros(4, 4))) for t in symbolic)
     steps = velocity_propagation(robot).velocities()
-    local = tuple((n(w), n(v)) for _, w, v in steps[:chain.n + 1])
-    omega = tuple(T[k][:3, :3] * local[k][0] for k in range(chain.n + 1))
-    v = tuple(T[k][:3, :3] * local[k][1] for k in range(chain.n + 1))
+    local = tuple((n(w), n(v)) for _, w, v in steps[:chain.n_joints + 1])
+    omega = tuple(T[k][:3, :3] * local[k][0] for k in range(chain.n_joints + 1))
+    v = tuple(T[k][:3, :3] * local[k][1] for k in range(chain.n_joints + 1))
     end = symbolic[-1]
     x = sp.Matrix.vstack(end[:3, 3], end[:3, :3].reshape(9, 1))  # position, then rows r1, r2, r3 of 0_nR
     return _Arm(robot, T, Tdot, omega, v, local, n(jacobian(robot, frame=0, point="wrist")), n(x.jacobian(q)),

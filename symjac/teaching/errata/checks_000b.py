@@ -50,7 +50,7 @@ def _z_cross_p(f: Formula, joint: Any = None, tool: Any = None, frame: Any = Non
         return z_hat * sp.Matrix(f.symbols[:3])
     chain = chain_of(robot_of(f))
     axis = chain.axis_frame(joint)
-    result = z_hat * sp.Matrix(chain.simplified_transform(axis, chain.n if tool is None else tool))[:3, 3]
+    result = z_hat * sp.Matrix(chain.simplified_transform(axis, chain.n_joints if tool is None else tool))[:3, 3]
     return result if frame is None else sp.Matrix(chain.rotation(frame, axis)) * result
 
 
@@ -63,7 +63,7 @@ def _point_shift(f: Formula, frame: Any = 0, part: str = "p") -> sp.Matrix:
     robot = robot_of(f)
     chain = chain_of(robot)
     p = sp.Matrix(chain.simplified_transform(frame, "tool"))[:3, 3] - sp.Matrix(
-        chain.simplified_transform(frame, chain.n))[:3, 3]
+        chain.simplified_transform(frame, chain.n_joints))[:3, 3]
     p = sp.Matrix([sp.trigsimp(e) for e in p])
     if part == "p":
         return p
@@ -83,7 +83,7 @@ def _point_velocity(f: Formula, target: Any = None, part: str = "v") -> sp.Matri
     if part == "omega":
         return jacobian(robot, frame=0)[3:, :] * rates
     chain = chain_of(robot)
-    p = sp.Matrix(chain.simplified_transform(0, chain.n if target is None else target))[:3, 3]
+    p = sp.Matrix(chain.simplified_transform(0, chain.n_joints if target is None else target))[:3, 3]
     return p.jacobian(sp.Matrix(robot.q)) * rates
 
 
@@ -139,7 +139,7 @@ def _determinant_frame_change(f: Formula, variant: str) -> float:
 def _shift_parts(robot: Robot) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
     """Wrist Jacobian, end-point Jacobian (frame {0}) and :math:`{}^0p_{WE}`, at the example configuration."""
     chain = chain_of(robot)
-    p = sp.Matrix(chain.transform(0, "tool"))[:3, 3] - sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    p = sp.Matrix(chain.transform(0, "tool"))[:3, 3] - sp.Matrix(chain.transform(0, chain.n_joints))[:3, 3]
     return (_at(robot, jacobian(robot, frame=0)), _at(robot, jacobian(robot, frame=0, point="tool")), _at(robot, p))
 
 
@@ -181,9 +181,9 @@ def _force_recursion(f: Formula, variant: str) -> float:
     wrench = _at(robot, sp.Matrix(wrench_symbols()))
     force, moment = wrench[:3, :], wrench[3:, :]
     z = sp.Matrix([0, 0, 1])
-    torques = [sp.S.Zero] * robot.dof
-    for i in range(robot.dof, 0, -1):
-        if i < robot.dof:
+    torques = [sp.S.Zero] * robot.n_joints
+    for i in range(robot.n_joints, 0, -1):
+        if i < robot.n_joints:
             T = _at(robot, chain.transform(i, i + 1))
             force = T[:3, :3] * force
             moment = T[:3, :3] * moment + T[:3, 3].cross(force)
@@ -197,7 +197,7 @@ def _velocity_recursion(robot: Robot, rotate_v: bool) -> tuple[sp.Matrix, sp.Mat
     rates = _at(robot, sp.Matrix(joint_rate_symbols(robot)))
     z = sp.Matrix([0, 0, 1])
     omega, v = sp.zeros(3, 1), sp.zeros(3, 1)
-    for i in range(robot.dof):
+    for i in range(robot.n_joints):
         T = _at(robot, chain.transform(i + 1, i))  # {i+1}_i T
         R, p = T[:3, :3], _at(robot, chain.transform(i, i + 1))[:3, 3]
         revolute = robot.joints[i].is_revolute
@@ -210,7 +210,7 @@ def _angular_velocity_recursion(f: Formula, variant: str) -> float:
     r"""Eq. (4.131): :math:`{}^{i+1}\omega_{i+1} = {}^{i+1}_iR\,{}^i\omega_i + \dot\theta_{i+1}\,{}^{i+1}z_{i+1}`."""
     robot = robot_of(f)
     omega, _ = _velocity_recursion(robot, True)
-    J = _at(robot, jacobian(robot, frame=robot.dof)) * _at(robot, sp.Matrix(joint_rate_symbols(robot)))
+    J = _at(robot, jacobian(robot, frame=robot.n_joints)) * _at(robot, sp.Matrix(joint_rate_symbols(robot)))
     return _residual(omega, J[3:, :])
 
 
@@ -222,7 +222,7 @@ def _linear_velocity_recursion(f: Formula, variant: str) -> float:
     """
     robot = robot_of(f)
     _, v = _velocity_recursion(robot, variant == "corrected")
-    J = _at(robot, jacobian(robot, frame=robot.dof)) * _at(robot, sp.Matrix(joint_rate_symbols(robot)))
+    J = _at(robot, jacobian(robot, frame=robot.n_joints)) * _at(robot, sp.Matrix(joint_rate_symbols(robot)))
     return _residual(v, J[:3, :])
 
 
@@ -231,7 +231,7 @@ def _torques_jacobian_transpose(f: Formula, variant: str) -> float:
     robot = robot_of(f)
     wrench = _at(robot, sp.Matrix(wrench_symbols()))
     tau = _at(robot, force_propagation(robot).joint_torques())
-    return _residual(tau, _at(robot, jacobian(robot, frame=robot.dof)).T * wrench)
+    return _residual(tau, _at(robot, jacobian(robot, frame=robot.n_joints)).T * wrench)
 
 
 def _virtual_work(f: Formula, variant: str) -> float:
@@ -239,8 +239,8 @@ def _virtual_work(f: Formula, variant: str) -> float:
     robot = robot_of(f)
     wrench = _at(robot, sp.Matrix(wrench_symbols()))
     tau = _at(robot, force_propagation(robot).joint_torques())
-    dq = sp.Matrix([sp.Rational(k + 2, 7) for k in range(robot.dof)])
-    work = (tau.T * dq)[0] - (wrench.T * _at(robot, jacobian(robot, frame=robot.dof)) * dq)[0]
+    dq = sp.Matrix([sp.Rational(k + 2, 7) for k in range(robot.n_coordinates)])
+    work = (tau.T * dq)[0] - (wrench.T * _at(robot, jacobian(robot, frame=robot.n_joints)) * dq)[0]
     return _residual(sp.Matrix([work]), sp.Matrix([0]))
 
 
@@ -255,7 +255,7 @@ def _explicit_form(f: Formula, variant: str) -> float:
     Z, Z_hat = sp.Matrix([0, 0, 1]), skew(sp.Matrix([0, 0, 1]))
     columns = []
     for i, joint in enumerate(robot.joints, start=1):
-        T = chain.transform(i, chain.n)
+        T = chain.transform(i, chain.n_joints)
         R = sp.Matrix(chain.rotation(0, i))
         linear = R * (Z_hat * sp.Matrix(T)[:3, 3] if joint.is_revolute else Z)
         columns.append(sp.Matrix.vstack(linear, R * Z if joint.is_revolute else sp.zeros(3, 1)))
@@ -266,7 +266,7 @@ def _differentiation_form(f: Formula, variant: str) -> float:
     r"""Eqs. (4.80)-(4.81), (4.85): :math:`{}^0J = (\partial\,{}^0x_P / \partial q_i;\ \bar\epsilon_i\,{}^0_iR\,z)`."""
     robot = robot_of(f)
     chain = chain_of(robot)
-    x_p = sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    x_p = sp.Matrix(chain.transform(0, chain.n_joints))[:3, 3]
     angular = [sp.Matrix(chain.rotation(0, i))[:, 2] if j.is_revolute else sp.zeros(3, 1)
                for i, j in enumerate(robot.joints, start=1)]
     J = sp.Matrix.vstack(x_p.jacobian(sp.Matrix(robot.q)), sp.Matrix.hstack(*angular))
@@ -281,8 +281,8 @@ def _stanford_explicit(f: Formula, variant: str) -> float:
     """
     robot = robot_of(f)
     chain = chain_of(robot)
-    z = [sp.Matrix(chain.rotation(0, i))[:, 2] for i in range(robot.dof + 1)]
-    o = [sp.Matrix(chain.transform(0, i))[:3, 3] for i in range(robot.dof + 1)]
+    z = [sp.Matrix(chain.rotation(0, i))[:, 2] for i in range(robot.n_joints + 1)]
+    o = [sp.Matrix(chain.transform(0, i))[:3, 3] for i in range(robot.n_joints + 1)]
     zero = sp.zeros(3, 1)
     top = [z[1].cross(o[3] - o[1]), z[2].cross(o[3] - o[2]), z[3], zero, zero, zero]
     bottom = [z[1], z[2], zero, z[4], z[5], z[6]]
@@ -299,11 +299,11 @@ def _p_in_from_base(f: Formula, variant: str) -> float:
     robot = robot_of(f)
     chain = chain_of(robot)
     Z_hat = skew(sp.Matrix([0, 0, 1]))
-    x_p = sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    x_p = sp.Matrix(chain.transform(0, chain.n_joints))[:3, 3]
     left, right = [], []
-    for i in range(1, robot.dof + 1):
+    for i in range(1, robot.n_joints + 1):
         R = sp.Matrix(chain.rotation(0, i))
-        left.append(R * Z_hat * sp.Matrix(chain.transform(i, chain.n))[:3, 3])
+        left.append(R * Z_hat * sp.Matrix(chain.transform(i, chain.n_joints))[:3, 3])
         right.append(R * Z_hat * R.T * (x_p - sp.Matrix(chain.transform(0, i))[:3, 3]))
     return _residual(_at(robot, sp.Matrix.hstack(*left)), _at(robot, sp.Matrix.hstack(*right)))
 
@@ -336,9 +336,9 @@ def _stanford_differentiation(f: Formula, variant: str) -> float:
     """
     robot = robot_of(f)
     chain = chain_of(robot)
-    x_p = sp.Matrix(chain.transform(0, chain.n))[:3, 3]
+    x_p = sp.Matrix(chain.transform(0, chain.n_joints))[:3, 3]
     top = x_p.jacobian(sp.Matrix(robot.q[:3])).row_join(sp.zeros(3, 3))
-    z = [sp.Matrix(chain.rotation(0, i))[:, 2] for i in range(robot.dof + 1)]
+    z = [sp.Matrix(chain.rotation(0, i))[:, 2] for i in range(robot.n_joints + 1)]
     bottom = sp.Matrix.hstack(z[1], z[2], sp.zeros(3, 1), z[4], z[5], z[6])
     return _residual(_at(robot, sp.Matrix.vstack(top, bottom)), _at(robot, jacobian(robot, frame=0)))
 
@@ -372,7 +372,7 @@ def _linear_jacobian_columns(f: Formula, variant: str) -> float:
     columns = []
     for i, joint in enumerate(robot.joints, start=1):
         R = sp.Matrix(chain.rotation(0, i))
-        p = sp.Matrix(chain.transform(i, chain.n))[:3, 3]
+        p = sp.Matrix(chain.transform(i, chain.n_joints))[:3, 3]
         columns.append(R * (Z_hat * p if joint.is_revolute else sp.Matrix([0, 0, 1])))
     right = sp.Matrix.hstack(*columns)
     if variant == "printed":

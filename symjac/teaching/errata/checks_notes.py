@@ -44,7 +44,7 @@ def _moving(f: Formula) -> dict[str, np.ndarray]:
     a, b = f.args["frames"]
     moving = f.args["moving"]
     t = sp.Symbol("t", real=True)
-    rates = [(RATES_EXAMPLE[k] if k + 1 in moving else 0.0) for k in range(robot.dof)]
+    rates = [(RATES_EXAMPLE[k] if k + 1 in moving else 0.0) for k in range(robot.n_coordinates)]
     Q_B = sp.Matrix([sp.Rational(1, 5), sp.Rational(-2, 5), sp.Rational(3, 10)])
     V_B = sp.Matrix([0, 0, 0]) if f.args.get("fixed_point") else sp.Matrix([sp.Rational(1, 2), 0, sp.Rational(-1, 4)])
     T = sp.Matrix(chain_of(robot).transform(a, b))
@@ -122,11 +122,11 @@ def _rotation_limit(f: Formula, variant: str) -> float:
     else:
         robot = f.robot
         times = {q: (k + 1) * t for k, q in enumerate(robot.q)}
-        exact = values_at(robot, [0] * robot.dof)
+        exact = values_at(robot, [0] * robot.n_coordinates)
         exact = {symbol: value for symbol, value in exact.items() if symbol not in times}
-        path = sp.Matrix(chain_of(robot).transform(0, robot.dof)[:3, 3]).xreplace(times).xreplace(exact)
+        path = sp.Matrix(chain_of(robot).transform(0, robot.n_joints)[:3, 3]).xreplace(times).xreplace(exact)
         J = jacobian(robot, frame=0)[:3, :].xreplace(times).xreplace(exact).subs(t, t0)
-        rate = J * sp.Matrix([k + 1 for k in range(robot.dof)])
+        rate = J * sp.Matrix([k + 1 for k in range(robot.n_coordinates)])
     quotient = (path.subs(t, t0 + h) - path.subs(t, t0)) / h
     point = sp.oo if variant == "printed" else 0
     limit = quotient.applyfunc(lambda e: sp.limit(e, h, point))
@@ -180,7 +180,7 @@ def _velocity_jacobian(f: Formula, variant: str) -> float:
     """
     m = _moving(f)
     robot = robot_of(f)
-    rates = np.array([(RATES_EXAMPLE[k] if k + 1 in f.args["moving"] else 0.0) for k in range(robot.dof)])
+    rates = np.array([(RATES_EXAMPLE[k] if k + 1 in f.args["moving"] else 0.0) for k in range(robot.n_coordinates)])
     nu = jacobian_at(robot, frame=0) @ rates
     S = m["Rdot"] @ m["R"].T
     return residual(nu, np.r_[m["V_O"], S[2, 1], S[0, 2], S[1, 0]])
@@ -204,14 +204,14 @@ def _statics_steps(f: Formula, variant: str) -> float:
     tau = numbers(evaluate_at(robot, propagation.joint_torques().xreplace(wrench), q_example(robot)))[:, 0]
     form = f.args["form"]
     worst = 0.0
-    for i in range(1, robot.dof + 1):
+    for i in range(1, robot.n_joints + 1):
         joint = robot.joints[i - 1]
         f_i, n_i = steps[i]
         if form == "tau_revolute" and joint.is_revolute:
             worst = max(worst, residual(n_i[2], tau[i - 1]))
         if form == "tau_prismatic" and not joint.is_revolute:
             worst = max(worst, residual(f_i[2], tau[i - 1]))
-        if i == robot.dof or form.startswith("tau"):
+        if i == robot.n_joints or form.startswith("tau"):
             continue
         f_j, n_j = steps[i + 1]
         T = frame_transform(robot, i, i + 1)

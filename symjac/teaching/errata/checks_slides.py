@@ -106,11 +106,11 @@ def _tool_path(f: Formula, variant: str) -> float:
     the example tool.
     """
     robot = robot_of(f)
-    links = [frame_transform(robot, k - 1, k) for k in range(1, robot.dof + 1)]
+    links = [frame_transform(robot, k - 1, k) for k in range(1, robot.n_joints + 1)]
     arm = np.linalg.multi_dot(links)
     tool = numbers(TOOL_EXAMPLE)
     T_tool_wrist = np.linalg.inv(tool)
-    path = frame_transform(robot, 0, robot.dof) @ tool  # the pose of {T} from symjac's chain
+    path = frame_transform(robot, 0, robot.n_joints) @ tool  # the pose of {T} from symjac's chain
     step = f.args["step"]
     if step == "product":
         return residual(path, arm @ tool)
@@ -145,7 +145,7 @@ def _frame_change(f: Formula, variant: str) -> float:
     vector form :math:`{}^0v_N = {}^0_NR\,{}^Nv_N`, :math:`{}^0\omega_N = {}^0_NR\,{}^N\omega_N`.
     """
     robot = robot_of(f)
-    n = robot.dof
+    n = robot.n_joints
     method = f.args.get("method", "jacobian")
     if method == "velocity":
         J_N = velocity_propagation(robot).jacobian
@@ -274,9 +274,9 @@ def _null_dimension(f: Formula, variant: str) -> float:
     """
     robot = robot_of(f)
     spaces = jacobian_spaces(jacobian_at(robot, frame=0))
-    null = robot.dof - spaces.rank
+    null = robot.n_coordinates - spaces.rank
     middle = 7 - 1 if variant == "printed" else 7 - 6
-    return max(abs(middle - null), abs(robot.dof - 6 - null)) / robot.dof
+    return max(abs(middle - null), abs(robot.n_coordinates - 6 - null)) / robot.n_coordinates
 
 
 def _rank_nullity(f: Formula, variant: str) -> float:
@@ -287,9 +287,9 @@ def _rank_nullity(f: Formula, variant: str) -> float:
     worst = 0.0
     for robot, q in ((load_robot("planar2r"), [0.4, 0.0]), (load_robot("panda"), list(Q_EXAMPLE))):
         J = numbers(evaluate_at(robot, jacobian(robot, frame=0), q))
-        J = J[[0, 1], :] if robot.dof == 2 else J
+        J = J[[0, 1], :] if robot.n_coordinates == 2 else J
         spaces = jacobian_spaces(J)
-        worst = max(worst, abs(spaces.rank + spaces.null_space.shape[1] - robot.dof))
+        worst = max(worst, abs(spaces.rank + spaces.null_space.shape[1] - robot.n_coordinates))
     return worst
 
 

@@ -70,12 +70,12 @@ def hat(p: np.ndarray) -> np.ndarray:
 
 def q_example(robot: Robot) -> list[float]:
     """The example configuration of ``robot`` (the first n values of :data:`Q_EXAMPLE`)."""
-    return list(Q_EXAMPLE[: robot.dof])
+    return list(Q_EXAMPLE[: robot.n_coordinates])
 
 
 def rates_example(robot: Robot) -> np.ndarray:
     """Example joint rates of ``robot``."""
-    return np.array(RATES_EXAMPLE[: robot.dof])
+    return np.array(RATES_EXAMPLE[: robot.n_coordinates])
 
 
 def frame_transform(robot: Robot, source: Any, target: Any) -> np.ndarray:

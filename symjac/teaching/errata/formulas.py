@@ -80,7 +80,7 @@ def shorthand_names(robot: Robot | None, symbols: tuple[sp.Symbol, ...] = ()) ->
     if robot is not None:
         names.update({str(s): s for s in (*robot.q, *robot.parameter_symbols, *joint_rate_symbols(robot))})
         angles = {str(j.index): j.variable for j in robot.joints if j.is_revolute}
-        for digits in _index_sums(robot.dof):
+        for digits in _index_sums(robot.n_joints):
             if all(d in angles for d in digits):
                 total = sum(angles[d] for d in digits)
                 names[f"s{digits}"], names[f"c{digits}"] = sp.sin(total), sp.cos(total)

@@ -1,0 +1,168 @@
+r"""The one place a coupling is applied: results derived in the joint variables, written in the coordinates.
+
+Every derivation runs on the joints alone (:attr:`Chain.joint_chain <symjac.kinematics.chain.Chain.joint_chain>`,
+each joint its own coordinate). For a robot with a :class:`~symjac.model.coordinates.Coupling`
+:math:`\vartheta(q) = C\,q + \vartheta_0` (C constant, see :mod:`symjac.model.coordinates`), the result is then
+moved to the coordinates here:
+
+.. math::
+    J_q = J(\vartheta(q))\,C, \qquad
+    H_q[:, j, m] = \sum_a \sum_b H[:, a, b]\,C_{aj}\,C_{bm}, \qquad
+    \dot J_q = \dot J\big|_{\dot\vartheta = C\dot q}\,C = \sum_m H_q[:, :, m]\,\dot q_m,
+
+the bias :math:`\dot J_q\dot q = \dot J\dot\vartheta` with :math:`\dot\vartheta = C\dot q`, and torques
+:math:`\tau_q = C^T\tau` (the generalised forces that do the same work, :math:`\tau_q^T\dot q = \tau^T\dot\vartheta`).
+Transforms and anything else written in the joint variables, their rates and accelerations take
+:math:`\vartheta = \vartheta(q)`, :math:`\dot\vartheta = C\dot q`, :math:`\ddot\vartheta = C\ddot q`
+(:func:`in_coordinates`). Without a coupling every function here returns its argument unchanged.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, TypeVar
+
+import sympy as sp
+
+from symjac.model.robot import JointType, Robot
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import simplify_matrix
+
+if TYPE_CHECKING:  # the chain module applies the coupling to forward kinematics, so it imports this one
+    from symjac.kinematics.chain import Chain, Frame
+
+M = TypeVar("M", sp.MatrixBase, sp.NDimArray)
+
+__all__ = [
+    "coordinate_bases",
+    "coordinate_substitution",
+    "coupling_matrix",
+    "hessian_in_coordinates",
+    "in_coordinates",
+    "jacobian_in_coordinates",
+    "torques_in_coordinates",
+]
+
+
+def coupling_matrix(robot: Robot | Chain) -> sp.Matrix:
+    r""":math:`C = \partial\vartheta/\partial q`, shape (n_joints, n_coordinates); the identity without a coupling."""
+    model = _model(robot)
+    return sp.eye(model.n_joints) if model.coupling is None else sp.Matrix(model.coupling.matrix)
+
+
+def coordinate_substitution(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
+    r"""The substitution that writes joint-space results in the coordinates (empty without a coupling).
+
+    :math:`\vartheta_i \to \vartheta_i(q)`, :math:`\dot\vartheta_i \to (C\dot q)_i`,
+    :math:`\ddot\vartheta_i \to (C\ddot q)_i`, all at once (a coordinate that is a joint's own variable keeps it).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> coordinate_substitution(load_robot("planar2r"))
+    {}
+    """
+    model = _model(robot)
+    if model.coupling is None:
+        return {}
+    C = model.coupling.matrix
+    qdot, qddot = sp.Matrix(model.coordinate_rates), sp.Matrix(model.coordinate_accelerations)
+    values: dict[sp.Symbol, sp.Expr] = {}
+    for i, (joint, value) in enumerate(zip(model.joints, model.coupling.values, strict=True)):
+        values[joint.variable] = value
+        values[joint.rate] = (C[i, :] * qdot)[0]
+        values[joint.acceleration] = (C[i, :] * qddot)[0]
+    return values
+
+
+def in_coordinates(robot: Robot | Chain, result: M, layout: Frame | None = None) -> M:
+    """A result written in the joint variables (and their rates and accelerations), written in the coordinates.
+
+    With ``layout`` (a frame; ``robot`` must then be a chain) it is laid out again in compact form, in the angles
+    that frame's results read best in (:func:`coordinate_bases`).
+    """
+    values = coordinate_substitution(robot)
+    if not values:
+        return result
+    if isinstance(result, sp.NDimArray):
+        size = math.prod(result.shape)
+        flat = result.reshape(size)
+        entries = sp.Matrix(1, size, [flat[i].xreplace(values) for i in range(size)])
+        if layout is not None:
+            entries = simplify_matrix(entries, coordinate_bases(robot, layout))  # type: ignore[arg-type]
+        return type(result)(list(entries), result.shape)  # type: ignore[return-value]
+    substituted = result.xreplace(values)
+    if layout is not None:
+        substituted = simplify_matrix(substituted, coordinate_bases(robot, layout))  # type: ignore[arg-type]
+    return type(result)(substituted)  # type: ignore[return-value]
+
+
+def jacobian_in_coordinates(robot: Robot | Chain, J: sp.MatrixBase, layout: Frame | None = None
+                            ) -> sp.ImmutableMatrix:
+    r""":math:`J_q = J(\vartheta(q))\,C` for a matrix J whose columns belong to the joints (``layout``: as above)."""
+    if _model(robot).coupling is None:
+        return sp.ImmutableMatrix(J)
+    J_q = _product(in_coordinates(robot, sp.Matrix(J)), coupling_matrix(robot))
+    if layout is not None:
+        J_q = simplify_matrix(J_q, coordinate_bases(robot, layout))  # type: ignore[arg-type]  # a chain, documented
+    return sp.ImmutableMatrix(J_q)
+
+
+def coordinate_bases(chain: Chain, frame: Frame) -> list[AngleBasis]:
+    r"""The angle bases of ``frame`` (:meth:`Chain.angle_bases`) written in the revolute coordinates.
+
+    Each basis angle of the joint chain takes :math:`\vartheta(q)`; angles that become constant or repeat are
+    dropped, single coordinates fill the gaps, and a set that is no longer a unimodular basis is left out. A
+    parallelogram's :math:`\theta_2 + \theta_3 + \theta_4` vanishes; :math:`\theta_2 + \theta_3` stays.
+    """
+    model = chain.robot
+    values = dict(zip(model.joint_variables, model.joint_values, strict=True))
+    variables = tuple(c for c, kind in zip(model.q, model.coordinate_types, strict=True) if kind is JointType.REVOLUTE)
+    bases: list[AngleBasis] = []
+    for basis in chain.joint_chain.angle_bases(frame):
+        angles: list[sp.Expr] = []
+        for angle in (sp.expand(a.xreplace(values)) for a in basis.angles):
+            if angle.free_symbols & set(variables) and angle not in angles:
+                angles.append(angle)
+        angles += [v for v in variables if v not in angles]
+        try:
+            candidate = AngleBasis(variables, tuple(angles[:len(variables)]))
+        except ValueError:  # substituted angles that are not a unimodular basis of the coordinates
+            continue
+        if candidate not in bases:
+            bases.append(candidate)
+    return bases or [AngleBasis(variables, variables)]
+
+
+def torques_in_coordinates(robot: Robot | Chain, M_tau: sp.MatrixBase) -> sp.ImmutableMatrix:
+    r""":math:`C^T M` for a matrix whose rows belong to the joints (a torque map :math:`\tau = M F`)."""
+    if _model(robot).coupling is None:
+        return sp.ImmutableMatrix(M_tau)
+    return sp.ImmutableMatrix(_product(coupling_matrix(robot).T, in_coordinates(robot, sp.Matrix(M_tau))))
+
+
+def hessian_in_coordinates(robot: Robot | Chain, H: sp.NDimArray, layout: Frame | None = None
+                           ) -> sp.ImmutableDenseNDimArray:
+    r""":math:`H_q[i, j, m] = \sum_a \sum_b H[i, a, b]\,C_{aj}\,C_{bm}` for a Hessian in the joint variables."""
+    if _model(robot).coupling is None:
+        return sp.ImmutableDenseNDimArray(H)
+    C = coupling_matrix(robot)
+    H = in_coordinates(robot, H)
+    rows, joints, _ = H.shape
+    slices = [_product(_product(C.T, sp.Matrix(joints, joints, lambda a, b, i=i: H[i, a, b])), C)
+              for i in range(rows)]  # slice i is C^T H[i] C
+    n = C.cols
+    flat = sp.Matrix(1, rows * n * n, [slices[i][j, m] for i in range(rows) for j in range(n) for m in range(n)])
+    if layout is not None:
+        flat = simplify_matrix(flat, coordinate_bases(robot, layout))  # type: ignore[arg-type]
+    return sp.ImmutableDenseNDimArray(list(flat), (rows, n, n))
+
+
+def _product(left: sp.MatrixBase, right: sp.MatrixBase) -> sp.Matrix:
+    """``left * right`` with zero terms left out, so an uncoupled column keeps its joint-space entries as they are."""
+    return sp.Matrix(left.rows, right.cols, lambda r, c: sp.Add(*[left[r, k] * right[k, c] for k in range(left.cols)
+                                                                 if left[r, k] != 0 and right[k, c] != 0]))
+
+
+def _model(robot: Robot | Chain) -> Robot:
+    return robot if isinstance(robot, Robot) else robot.robot

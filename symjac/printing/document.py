@@ -6,20 +6,24 @@ A CLI command (or a notebook) builds a :class:`Document` (a title, blocks of cap
 * ``latex``: one line per equation (captions as ``%`` comments when the document asks for them), or with
   ``standalone`` a complete document through the ``latex_document.tex.j2`` template;
 * ``pretty``: each block's caption, then its equations in Unicode (``name =`` above a matrix);
-* ``json``: the document's data, indented.
+* ``json``: the document's data, indented. The data is built only then (:attr:`Document.data` may be a function),
+  so a LaTeX or pretty result never pays for its JSON form.
+
+A LaTeX result longer than :data:`LATEX_LIMIT` is more than anyone reads on a terminal: :func:`check_latex_size`
+refuses it unless it goes to a file.
 """
 
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.errors import ArgumentError
+from symjac.errors import ArgumentError, SymjacError
 from symjac.model.robot import Robot
 from symjac.printing.latex import escape_text, latex
 from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
@@ -29,14 +33,18 @@ from symjac.resources import render_template
 
 __all__ = [
     "FORMATS",
+    "LATEX_LIMIT",
     "Block",
     "DHTable",
     "Document",
     "Equation",
     "Inline",
+    "LatexTooLargeError",
+    "Prescripted",
     "Style",
     "blocks_as_pairs",
     "caption_text",
+    "check_latex_size",
     "equation_latex",
     "equation_text",
     "math_text",
@@ -45,6 +53,20 @@ __all__ = [
 
 FORMATS = ("latex", "pretty", "json")
 Style = Literal["latex", "pretty"]
+LATEX_LIMIT = 200_000
+"""Bytes of LaTeX written to a terminal at most; a longer result is written only to a file (``-o FILE``)."""
+
+
+@dataclass(frozen=True)
+class Prescripted:
+    r"""A name with prescripts, :math:`{}^{sup}_{sub}X`: a transform :math:`{}^{0}_{6}T`, a Jacobian :math:`{}^{3}J`.
+
+    Outputs that typeset names themselves (MathML) use it; LaTeX and text use :class:`Equation`'s own spellings.
+    """
+
+    letter: str
+    sup: int | str
+    sub: int | str | None = None
 
 
 @dataclass(frozen=True)
@@ -58,6 +80,7 @@ class Equation:
     tex: str
     text: str
     rhs: Any
+    name: Prescripted | None = None
 
 
 @dataclass(frozen=True)
@@ -98,15 +121,32 @@ class Block:
 class Document:
     """A result ready to render: ``title`` and ``robot`` head a standalone document, ``data`` is the JSON output.
 
-    ``comments`` keeps the captions in bare LaTeX output as ``%`` lines (for results whose captions explain, such
-    as singularities); otherwise bare LaTeX is the equations alone, one per line.
+    ``data`` is the JSON-ready mapping, or a function that builds it (called only for ``json``: building it prints
+    every entry once more). ``comments`` keeps the captions in bare LaTeX output as ``%`` lines (for results whose
+    captions explain, such as singularities); otherwise bare LaTeX is the equations alone, one per line.
     """
 
     title: str
     robot: str
     blocks: tuple[Block, ...]
-    data: Mapping[str, Any] = field(default_factory=dict)
+    data: Mapping[str, Any] | Callable[[], Mapping[str, Any]] = field(default_factory=dict)
     comments: bool = False
+
+    def json_data(self) -> Mapping[str, Any]:
+        """The JSON-ready data, built now if it was given as a function."""
+        return self.data() if callable(self.data) else self.data
+
+
+class LatexTooLargeError(SymjacError):
+    """A LaTeX result longer than :data:`LATEX_LIMIT` asked for on a terminal (it is written only to a file)."""
+
+
+def check_latex_size(text: str, hint: str, limit: int = LATEX_LIMIT) -> None:
+    """Refuse ``text`` longer than ``limit`` bytes, in one line ending with ``hint`` (what to ask for instead)."""
+    size = len(text.encode("utf-8"))
+    if size > limit:
+        raise LatexTooLargeError(f"the LaTeX is {size / 1000:,.0f} KB, more than {limit / 1000:,.0f} KB: nobody reads "
+                                 f"that on a terminal; write it to a file with -o FILE, or {hint}")
 
 
 def _check(style: str) -> None:
@@ -162,7 +202,7 @@ def math_text(block: Block, style: Style) -> str:
 def render(document: Document, fmt: str, standalone: bool = False) -> str:
     """``document`` as text in ``fmt`` (one of :data:`FORMATS`); ``standalone`` makes LaTeX a whole document."""
     if fmt == "json":
-        return json.dumps(document.data, indent=2) + "\n"
+        return json.dumps(document.json_data(), indent=2) + "\n"
     if fmt == "pretty":
         shown = []
         for block in document.blocks:

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 
 from symjac._version import __version__
 from symjac.cli.args import (
+    LazyChoices,
     add_robot_arguments,
     load,
     parse_frame,
@@ -174,16 +175,18 @@ def _result_options(sub: argparse.ArgumentParser, name: str) -> None:
         sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
         sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
     if name == "jacobian":
-        from symjac.analysis.representations import POSITIONS, REPRESENTATIONS
         from symjac.kinematics.jacobian import METHODS
 
+        representations = "symjac.analysis.representations"  # loaded only when one is asked for (it loads NumPy)
         sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
         sub.add_argument("--steps", action="store_true",
                          help="with a propagation method (or --derivative): print every propagation step first")
-        sub.add_argument("--representation", choices=REPRESENTATIONS, default=None,
-                         help="print the representation Jacobian J_x = E(x) J_0 for these orientation coordinates")
-        sub.add_argument("--position", choices=POSITIONS, default=None,
-                         help="with --representation: position coordinates (default cartesian)")
+        sub.add_argument("--representation", choices=LazyChoices(representations, "REPRESENTATIONS"), default=None,
+                         metavar="NAME", help="print the representation Jacobian J_x = E(x) J_0 for these "
+                                              "orientation coordinates: %(choices)s")
+        sub.add_argument("--position", choices=LazyChoices(representations, "POSITIONS"), default=None,
+                         metavar="NAME", help="with --representation: position coordinates, %(choices)s (default "
+                                              "cartesian)")
         sub.add_argument("--derivative", action="store_true",
                          help="print the time derivative dJ/dt and the bias acceleration Jdot qdot instead")
     if name == "singularities":

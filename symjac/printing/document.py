@@ -26,10 +26,9 @@ from symjac._version import __version__
 from symjac.errors import ArgumentError, SymjacError
 from symjac.model.robot import Robot
 from symjac.printing.latex import escape_text, latex
-from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
-from symjac.printing.pretty import pretty, pretty_side_by_side
 from symjac.printing.tables import dh_table_latex, dh_table_text
-from symjac.resources import render_template
+
+# Each format imports its own printer when used: a LaTeX result loads no pretty printer, page layout or jinja2.
 
 __all__ = [
     "FORMATS",
@@ -165,6 +164,8 @@ def caption_text(block: Block, style: Style) -> str:
             return f"${part.tex}$" if style == "latex" else part.text
         if style == "latex":
             return f"${latex(part)}$"
+        from symjac.printing.pretty import pretty
+
         text = pretty(part)
         return text if "\n" not in text else sp.sstr(part)  # a caption stays one line: sqrt(2)/2, not a 2-D fraction
 
@@ -180,6 +181,8 @@ def equation_latex(equation: Equation) -> str:
 
 def equation_text(equation: Equation) -> str:
     """One equation in Unicode: ``name =`` above a matrix, ``name = value`` on one line for a scalar."""
+    from symjac.printing.pretty import pretty, pretty_side_by_side
+
     if isinstance(equation.rhs, tuple):
         return f"{equation.text} =\n{pretty_side_by_side(*equation.rhs)}"
     if not equation.text:
@@ -212,6 +215,8 @@ def render(document: Document, fmt: str, standalone: bool = False) -> str:
     if fmt != "latex":
         raise ArgumentError(f"unknown format {fmt!r}; choose one of {', '.join(FORMATS)}")
     if standalone:
+        from symjac.resources import render_template
+
         blocks = [{"caption": caption_text(block, "latex"), "latex": _fitted(block)} for block in document.blocks]
         return render_template("latex_document.tex.j2", version=__version__, robot=document.robot,
                                title=escape_text(document.title), blocks=blocks)
@@ -219,7 +224,9 @@ def render(document: Document, fmt: str, standalone: bool = False) -> str:
 
 
 def _fitted(block: Block) -> str:
-    """The block's math laid out to fit the page (:mod:`.layout`), ``""`` when it has none."""
+    """The block's math laid out to fit the page (:mod:`.latex_layout`), ``""`` when it has none."""
+    from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
+
     equations = [m for m in block.math if isinstance(m, Equation)]
     if len(block.math) == 1 and equations and not isinstance(equations[0].rhs, tuple):
         return fit_equation(equations[0].tex, equations[0].rhs).body()

@@ -2,19 +2,21 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.analysis.singularity.determinant import Determinant
-from symjac.analysis.singularity.singularities import SingularityReport
-from symjac.kinematics.chain import Frame
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Equation, equation_latex
 from symjac.printing.tables import dh_rows
+
+if TYPE_CHECKING:  # the analyses' types only: printing a Jacobian's JSON does not load them
+    from symjac.analysis.singularity.determinant import Determinant
+    from symjac.analysis.singularity.singularities import SingularityReport
+    from symjac.kinematics.chain import Frame
 
 __all__ = [
     "determinant_data",

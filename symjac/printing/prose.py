@@ -2,26 +2,29 @@
 
 The analyses return data (:class:`~symjac.analysis.singularity.geometry.Finding`,
 :class:`~symjac.analysis.singularity.singularities.LostDirection`,
-...); this module is the one place that puts them into words, so wording changes in one file.
+...); this module is the one place that puts them into words, so wording changes in one file. It names the analyses'
+types only for checkers and compares their string enums by value, so printing a Jacobian does not load the analyses.
 """
 
 from __future__ import annotations
 
-import numpy as np
+from typing import TYPE_CHECKING
+
 import sympy as sp
 
-from symjac.analysis.representations import RepresentationSingularity
-from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
-from symjac.analysis.singularity.singularities import (
-    DirectionPart,
-    LimitStatus,
-    LostDirection,
-    SingularFactor,
-    SingularityReport,
-)
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.robot import Robot
 from symjac.printing.document import Inline
+
+if TYPE_CHECKING:
+    from symjac.analysis.representations import RepresentationSingularity
+    from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark
+    from symjac.analysis.singularity.singularities import (
+        DirectionPart,
+        LostDirection,
+        SingularFactor,
+        SingularityReport,
+    )
 
 __all__ = [
     "BIAS_ACCELERATION",
@@ -58,13 +61,14 @@ __all__ = [
 ]
 
 KIND_REASONS = {
-    SingularityKind.WRIST: "two wrist rotations do the same thing, so one orientation direction is lost",
-    SingularityKind.SHOULDER: "rotating joint 1 no longer moves it sideways, so a direction is lost inside the "
+    "wrist": "two wrist rotations do the same thing, so one orientation direction is lost",
+    "shoulder": "rotating joint 1 no longer moves it sideways, so a direction is lost inside the "
                               "workspace",
-    SingularityKind.ELBOW: "the arm is stretched out or folded back, on the boundary of its reach, and cannot move "
+    "elbow": "the arm is stretched out or folded back, on the boundary of its reach, and cannot move "
                            "along that line",
 }
-"""What each textbook kind of singularity means for the arm."""
+"""What each textbook kind of singularity (a :class:`~symjac.analysis.singularity.geometry.SingularityKind`, a string
+enum) means for the arm."""
 
 _AXIS_NAMES = ("x", "y", "z")
 
@@ -80,6 +84,8 @@ def landmark_name(landmark: Landmark) -> str:
 
 def finding_sentence(finding: Finding) -> str:
     """A geometric fact in words: ``the axes of joints 4 and 6 are collinear``."""
+    from symjac.analysis.singularity.geometry import Relation
+
     joints = [j + 1 for j in finding.joints]
     name = "" if finding.landmark is None else landmark_name(finding.landmark)
     if finding.relation is Relation.PARALLEL_AXES:
@@ -104,7 +110,7 @@ def _cause_words(cause: Cause) -> str:
 
 def reason(factor: SingularFactor) -> str:
     """Why ``factor`` is singular, in one sentence (without the final full stop)."""
-    if factor.kind is SingularityKind.PARAMETER:
+    if factor.kind == "parameter":
         return (f"{factor.expression} depends on parameters only: a design with {factor.expression} = 0 would be "
                 "singular everywhere; the default parameters are not")
     return _cause_words(factor.cause)
@@ -112,7 +118,7 @@ def reason(factor: SingularFactor) -> str:
 
 def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
     """:func:`reason` as caption parts, its formulas as SymPy objects (printed as math)."""
-    if factor.kind is SingularityKind.PARAMETER:
+    if factor.kind == "parameter":
         return (factor.expression, " depends on parameters only: a design with ",
                 sp.Eq(factor.expression, 0, evaluate=False), " would be singular everywhere; the default parameters "
                 "are not")
@@ -149,6 +155,8 @@ def readable_value(value: float) -> sp.Expr:
 
 def _part_name(part: DirectionPart, frame: object) -> str:
     """A named axis, or the unit vector's components (exact when simple, else rounded) in ``frame``."""
+    import numpy as np
+
     if part.axis is not None:
         return axis_name(part.axis)
     return f"({', '.join(readable_number(float(c)) for c in np.asarray(part.unit))}) in frame {{{frame}}}"
@@ -227,11 +235,11 @@ def existence_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
             "parameters).")
 
 
-_LIMIT_WORDS = {
-    LimitStatus.INSIDE: "is inside them",
-    LimitStatus.OUTSIDE: "is outside them",
-    LimitStatus.PARTLY: "is partly inside them (depending on the other joints)",
-    LimitStatus.UNKNOWN: "could not be checked",
+_LIMIT_WORDS = {  # by LimitStatus, a string enum
+    "inside": "is inside them",
+    "outside": "is outside them",
+    "partly": "is partly inside them (depending on the other joints)",
+    "unknown": "could not be checked",
 }
 
 
@@ -242,7 +250,7 @@ def limit_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
     "not reachable within the joint limits".
     """
     marked = [(solution.equation, status) for solution, status in zip(factor.solutions, factor.limits, strict=True)
-              if status is not LimitStatus.UNLIMITED]
+              if status != "unlimited"]
     if not marked:
         return ()
     parts: list[str | sp.Basic] = [" Not reachable within the joint limits:" if factor.reachable is False

@@ -13,18 +13,19 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Sequence
-from typing import Any
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
 from symjac.kinematics.chain import Frame, chain_of
 from symjac.model.robot import Robot
-from symjac.printing import json as data
 from symjac.printing import prose
 from symjac.printing.document import Block, DHTable, Document, Equation, Prescripted
 from symjac.printing.latex import rounded
-from symjac.printing.steps import Propagation, step_equations
-from symjac.printing.summary import singularity_blocks
+
+if TYPE_CHECKING:
+    from symjac.printing.steps import Propagation
 
 __all__ = [
     "Transform",
@@ -44,6 +45,13 @@ __all__ = [
 
 Transform = tuple[Frame, Frame, sp.MatrixBase]
 """``(source, target, T)``: the pose of frame ``target`` relative to frame ``source``."""
+
+
+def _json() -> ModuleType:
+    """:mod:`symjac.printing.json`, imported when a document's data is built (only for ``--format json``)."""
+    from symjac.printing import json
+
+    return json
 
 
 def frame_tex(frame: Frame | str) -> str:
@@ -80,7 +88,7 @@ def transforms_document(robot: Robot, transforms: Sequence[Transform], digits: i
     blocks += [Block(prose.fixed_transform_caption(source, target), (e,))
                for (source, target, _), e in zip(transforms, equations, strict=True)]
     return Document(prose.title(robot, "show"), robot.name, tuple(blocks),
-                    lambda: data.show_data(robot, {e.text: e.rhs for e in equations}))
+                    lambda: _json().show_data(robot, {e.text: e.rhs for e in equations}))
 
 
 def forward_kinematics_document(robot: Robot, source: Frame, target: Frame, T: sp.MatrixBase,
@@ -88,12 +96,14 @@ def forward_kinematics_document(robot: Robot, source: Frame, target: Frame, T: s
     """``symjac fk``: the pose of ``target`` relative to ``source``."""
     equation = transform_equation(source, target, shown(robot, T, digits))
     return Document(prose.title(robot, "fk"), robot.name, (Block((), (equation,)),),
-                    lambda: data.forward_kinematics_data(robot, equation, source, target))
+                    lambda: _json().forward_kinematics_data(robot, equation, source, target))
 
 
 def _steps(robot: Robot, propagation: Propagation | None, digits: int | None) -> list[Equation]:
     if propagation is None:
         return []
+    from symjac.printing.steps import step_equations
+
     return [dataclasses.replace(step, rhs=shown(robot, step.rhs, digits)) for step in step_equations(propagation)]
 
 
@@ -109,7 +119,7 @@ def jacobian_document(robot: Robot, J: sp.MatrixBase, frame: Frame, point: str, 
                         _jacobian_name(frame))
     blocks = [Block((), (step,)) for step in steps] + [Block((prose.jacobian_caption(point, method),), (equation,))]
     return Document(prose.title(robot, "jacobian", frame), robot.name, tuple(blocks),
-                    lambda: data.jacobian_data(robot, equation, frame, point, method,
+                    lambda: _json().jacobian_data(robot, equation, frame, point, method,
                                                steps if propagation is not None else None))
 
 
@@ -132,7 +142,7 @@ def representation_document(robot: Robot, result: Any, point: str, orientation: 
                               J_x),))]
     blocks += [Block(prose.representation_parts(s)) for s in result.singularities]
     return Document(prose.title(robot, "representation", orientation), robot.name, tuple(blocks),
-                    lambda: data.representation_data(robot, result, J_0, J_x, point, orientation, position),
+                    lambda: _json().representation_data(robot, result, J_0, J_x, point, orientation, position),
                     comments=True)
 
 
@@ -152,7 +162,7 @@ def derivative_document(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, 
               Block(prose.derivative_caption(point, moving), (Jdot_equation,)),
               Block(prose.BIAS_ACCELERATION, (bias_equation,)))
     return Document(prose.title(robot, "derivative", frame), robot.name, blocks,
-                    lambda: data.jacobian_derivative_data(robot, Jdot_equation, bias_equation, frame, point,
+                    lambda: _json().jacobian_derivative_data(robot, Jdot_equation, bias_equation, frame, point,
                                                           [str(r) for r in rates],
                                                           steps if propagation is not None else None))
 
@@ -164,7 +174,7 @@ def hessian_document(robot: Robot, slices: Sequence[sp.MatrixBase], frame: Frame
                           shown(robot, H_k, digits)) for q, H_k in zip(robot.q, slices, strict=True)]
     blocks = tuple(Block((prose.hessian_caption(k),), (equation,)) for k, equation in enumerate(equations))
     return Document(prose.title(robot, "hessian", frame), robot.name, blocks,
-                    lambda: data.hessian_data(robot, equations, frame, point))
+                    lambda: _json().hessian_data(robot, equations, frame, point))
 
 
 def torques_document(robot: Robot, tau: sp.MatrixBase, frame: Frame, point: str, wrench: str | None,
@@ -180,7 +190,7 @@ def torques_document(robot: Robot, tau: sp.MatrixBase, frame: Frame, point: str,
     equation = Equation(r"\tau", "tau", tau)
     return Document(prose.title(robot, "torques"), robot.name, (Block((prose.torques_caption(frame, point),),
                                                                       (equation,)),),
-                    lambda: data.torques_data(robot, equation, frame, point, wrench, q,
+                    lambda: _json().torques_data(robot, equation, frame, point, wrench, q,
                                               [str(s) for s in wrench_names]))
 
 
@@ -189,6 +199,8 @@ def singularities_document(robot: Robot, report: Any) -> Document:
 
     ``report`` is a :class:`~symjac.analysis.singularity.singularities.SingularityReport`.
     """
+    from symjac.printing.summary import singularity_blocks
+
     return Document(prose.title(robot, "singularities"), robot.name, tuple(singularity_blocks(report)),
-                    lambda: {**data.metadata(robot), **data.singularity_data(report)}, comments=True)
+                    lambda: {**_json().metadata(robot), **_json().singularity_data(report)}, comments=True)
 

@@ -140,8 +140,9 @@ class LatexTooLargeError(SymjacError):
     """A LaTeX result longer than :data:`LATEX_LIMIT` asked for on a terminal (it is written only to a file)."""
 
 
-def check_latex_size(text: str, hint: str, limit: int = LATEX_LIMIT) -> None:
-    """Refuse ``text`` longer than ``limit`` bytes, in one line ending with ``hint`` (what to ask for instead)."""
+def check_latex_size(text: str, hint: str, limit: int | None = None) -> None:
+    """Refuse ``text`` longer than ``limit`` bytes (default :data:`LATEX_LIMIT`), in one line ending with ``hint``."""
+    limit = LATEX_LIMIT if limit is None else limit
     size = len(text.encode("utf-8"))
     if size > limit:
         raise LatexTooLargeError(f"the LaTeX is {size / 1000:,.0f} KB, more than {limit / 1000:,.0f} KB: nobody reads "

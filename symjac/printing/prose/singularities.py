@@ -43,6 +43,7 @@ __all__ = [
     "reason_parts",
     "redundant_caption",
     "representation_parts",
+    "representation_words",
     "rows_caption",
     "rows_parts",
     "self_motion_parts",
@@ -295,11 +296,34 @@ def dh_caption(robot: Robot) -> str:
     return f"{robot.name}: {robot.description}, {kind}"
 
 
+def representation_words(singularity: RepresentationSingularity) -> str:
+    """What goes wrong at a representation singularity, in one sentence (without the final full stop)."""
+    from symjac.analysis.representations.conventions import REGISTRY
+
+    spec = REGISTRY[singularity.representation]
+    if singularity.cause == "gimbal lock":
+        first, middle, last = spec.coordinates
+        axes = spec.axes  # type: ignore[union-attr]
+        if spec.is_proper:  # type: ignore[union-attr]
+            return (f"the first and third rotation axes ({axes[0]}) line up (gimbal lock); only {first} + {last} "
+                    f"({middle} = 0) or {first} - {last} ({middle} = pi) is defined, so their rates are unbounded")
+        return (f"the first and third rotation axes ({axes[0]} and {axes[2]}) line up (gimbal lock); only the sum "
+                f"or difference of {first} and {last} is defined, so their rates are unbounded")
+    return _REPRESENTATION_CAUSES[singularity.cause]
+
+
+_REPRESENTATION_CAUSES = {
+    "no rotation axis": "the identity orientation has no rotation axis, so the axis rates are unbounded",
+    "origin": "at the origin both angles are undefined",
+    "polar axis": "on the polar (z) axis the azimuth is undefined",
+    "z axis": "on the z-axis the azimuth is undefined",
+}
+
+
 def representation_parts(singularity: RepresentationSingularity) -> tuple[str | sp.Basic, ...]:
     """A singularity of a representation's rate matrix, told apart from a kinematic one, as caption parts."""
     values: list[str | sp.Basic] = []
     for number, value in enumerate(singularity.solutions):
         values += [" or "] * bool(number) + [sp.Eq(singularity.variable, value, evaluate=False)]
     return ("Representation singularity (not kinematic): ", sp.Eq(singularity.factor, 0, evaluate=False), ", that is ",
-            *values, f": {singularity.explanation}.")
-
+            *values, f": {representation_words(singularity)}.")

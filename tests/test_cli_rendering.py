@@ -129,17 +129,18 @@ def test_python_m_symjac_version_does_not_import_sympy():
 def test_the_package_root_is_lazy_and_complete():
     out = _python("import os, sys, symjac\n"
                   "print('sympy' in sys.modules, os.environ['SYMPY_CACHE_SIZE'])\n"
+                  "import symjac.printing.latex, symjac.printing.pretty  # submodules named like the printers\n"
                   "from symjac import jacobian, load_robot, latex\n"
-                  "import sympy.core.cache\n"
                   "print(latex(jacobian(load_robot('planar2r')))[:15])\n"
-                  "print(set(symjac.__all__) <= set(dir(symjac)), all(hasattr(symjac, n) for n in symjac.__all__))")
-    assert out.splitlines() == ["False 10000", r"\begin{bmatrix}", "True True"]
+                  "print(set(symjac.__all__) <= set(dir(symjac)), all(hasattr(symjac, n) for n in symjac.__all__))\n"
+                  "print(callable(symjac.latex), callable(symjac.pretty), callable(symjac.printing.latex))")
+    assert out.splitlines() == ["False 10000", r"\begin{bmatrix}", "True True", "True True True"]
 
 
 def test_a_jacobian_loads_no_analysis_code_generator_or_template_engine():
     out = _python("import sys\nfrom symjac.cli.main import main\nmain(['jacobian', 'planar2r'])\n"
                   "print(sorted(m for m in sys.modules if m.startswith(('symjac.analysis', 'symjac.codegen', "
-                  "'symjac.report', 'jinja2', 'numpy', 'symjac.printing.json', 'symjac.printing.pretty'))))")
+                  "'symjac.report', 'jinja2', 'numpy', 'symjac.printing.json', 'symjac.printing.latex_layout'))))")
     assert out.splitlines()[-1] == "[]"
 
 

@@ -11,15 +11,19 @@ from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
 from typing import Any as _Any
 
+# The two printers by name, imported now: importing a submodule later binds its name here, and ``latex`` and
+# ``pretty`` must stay the functions, not the modules of the same names (both are cheap once SymPy is loaded).
+from symjac.printing.latex import TextbookLatexPrinter, latex
+from symjac.printing.pretty import TextbookPrettyPrinter, pretty
+
 _HOME = {
     "FORMATS": "document", "Block": "document", "DHTable": "document", "Document": "document", "Equation": "document",
-    "render": "document", "singularity_data": "json", "TextbookLatexPrinter": "latex", "latex": "latex",
-    "TextbookPrettyPrinter": "pretty", "pretty": "pretty", "shorthand_indices": "shorthand",
+    "render": "document", "singularity_data": "json", "shorthand_indices": "shorthand",
     "textbook_factors": "shorthand", "propagation_steps": "steps", "step_equations": "steps",
     "singularity_blocks": "summary", "singularity_summary": "summary",
 }
 """Each re-exported name and its module, imported on first use (PEP 562): a command loads only the printers it
-uses (``symjac jacobian`` no JSON, pretty or page-layout code)."""
+uses (``symjac jacobian`` no JSON or page-layout code)."""
 
 __all__ = [
     "FORMATS",
@@ -59,8 +63,6 @@ def __dir__() -> list[str]:
 if _TYPE_CHECKING:
     from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
     from symjac.printing.json import singularity_data
-    from symjac.printing.latex import TextbookLatexPrinter, latex
-    from symjac.printing.pretty import TextbookPrettyPrinter, pretty
     from symjac.printing.shorthand import shorthand_indices, textbook_factors
     from symjac.printing.steps import propagation_steps, step_equations
     from symjac.printing.summary import singularity_blocks, singularity_summary

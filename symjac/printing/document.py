@@ -24,6 +24,7 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.errors import ArgumentError, SymjacError
+from symjac.kinematics.chain import Frame
 from symjac.model.robot import Robot
 from symjac.printing.latex import escape_text, latex
 from symjac.printing.tables import dh_table_latex, dh_table_text
@@ -64,8 +65,8 @@ class Prescripted:
     """
 
     letter: str
-    sup: int | str
-    sub: int | str | None = None
+    sup: Frame
+    sub: Frame | None = None
 
 
 @dataclass(frozen=True)

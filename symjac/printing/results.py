@@ -159,7 +159,7 @@ def derivative_document(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, 
     bias_equation = Equation(rf"{{}}^{{{frame_tex(frame)}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}",
                              shown(robot, bias, digits))
     blocks = (*(Block((), (step,)) for step in steps),
-              Block(prose.derivative_caption(point, moving), (Jdot_equation,)),
+              Block((prose.derivative_caption(point, moving),), (Jdot_equation,)),
               Block(prose.BIAS_ACCELERATION, (bias_equation,)))
     return Document(prose.title(robot, "derivative", frame), robot.name, blocks,
                     lambda: _json().jacobian_derivative_data(robot, Jdot_equation, bias_equation, frame, point,

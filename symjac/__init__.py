@@ -9,94 +9,61 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
 :func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`); print them
 (:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`).
+
+Every name is imported on first use (PEP 562), so ``import symjac`` costs nothing until a name is asked for and
+``symjac --version`` does not load SymPy; ``from symjac import jacobian``, ``symjac.jacobian`` and ``dir(symjac)``
+work as if everything had been imported up front.
 """
 
 import os as _os
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
 
 # SymPy keeps 1000 results in its cache unless told otherwise, and reads the size once, when it is first imported.
 # Deriving a long chain needs more: with 1000 a planar 30R Jacobian thrashed the cache (90 s instead of 7 s). A size
-# the user has set wins; so does an earlier import of SymPy.
+# the user has set wins; so does an earlier import of SymPy. Set here, before any submodule can import SymPy.
 _os.environ.setdefault("SYMPY_CACHE_SIZE", "10000")
 
 from symjac._version import __version__
-from symjac.analysis.inverse_rates import damped_least_squares, inverse_rates, rates_along_path
-from symjac.analysis.manipulability import (
-    BarrierTerm,
-    LogDetGradient,
-    ManipulabilityGradient,
-    log_det_gradient,
-    manipulability_gradient,
-)
-from symjac.analysis.representations import (
-    REPRESENTATIONS,
-    EulerConvention,
-    RepresentationJacobian,
-    RepresentationJacobianDerivative,
-    coordinate_rates,
-    extract,
-    rate_matrix,
-    representation_jacobian,
-    representation_jacobian_at,
-    representation_jacobian_derivative,
-    representation_jacobian_derivative_at,
-    rotation_from,
-)
-from symjac.analysis.singularity.determinant import Determinant, determinant
-from symjac.analysis.singularity.singularities import LimitStatus, SingularFactor, SingularityReport, singularities
-from symjac.analysis.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
-from symjac.codegen import JacobianRequest, generate, write_module
-from symjac.errors import (
-    ArgumentError,
-    CodegenError,
-    ConversionError,
-    ExpressionError,
-    FrameError,
-    RepresentationError,
-    ResultTooLargeError,
-    RobotFileError,
-    SymjacError,
-    UnknownRobotError,
-)
-from symjac.kinematics.acceleration import (
-    DERIVATIVE_METHODS,
-    bias_acceleration,
-    hessian,
-    hessian_slice,
-    jacobian_derivative,
-)
-from symjac.kinematics.acceleration_propagation import (
-    AccelerationPropagation,
-    AccelerationStep,
-    acceleration_propagation,
-    joint_accelerations,
-)
-from symjac.kinematics.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
-from symjac.kinematics.jacobian import (
-    METHODS,
-    ROW_NAMES,
-    change_frame,
-    jacobian,
-    jacobian_of,
-    rows_from_names,
-    shift_point,
-)
-from symjac.kinematics.numeric import evaluate_at, numeric_jacobian
-from symjac.kinematics.propagation import (
-    ForcePropagation,
-    VelocityPropagation,
-    force_propagation,
-    joint_rate_symbols,
-    velocity_propagation,
-    wrench_symbols,
-)
-from symjac.kinematics.statics import joint_torques, wrench_between
-from symjac.model.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
-from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Parameter, Robot
-from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
-from symjac.model.urdf import robot_from_urdf
-from symjac.printing import latex, pretty
-from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
-from symjac.symbolic.transforms import twist_transform, wrench_transform
+
+_MODULES: dict[str, tuple[str, ...]] = {
+    "symjac.analysis.inverse_rates": ("damped_least_squares", "inverse_rates", "rates_along_path"),
+    "symjac.analysis.manipulability": ("BarrierTerm", "LogDetGradient", "ManipulabilityGradient", "log_det_gradient",
+        "manipulability_gradient"),
+    "symjac.analysis.representations": ("REPRESENTATIONS", "EulerConvention", "RepresentationJacobian",
+        "RepresentationJacobianDerivative", "coordinate_rates", "extract", "rate_matrix", "representation_jacobian",
+        "representation_jacobian_at", "representation_jacobian_derivative", "representation_jacobian_derivative_at",
+        "rotation_from"),
+    "symjac.analysis.singularity.determinant": ("Determinant", "determinant"),
+    "symjac.analysis.singularity.singularities": ("LimitStatus", "SingularFactor", "SingularityReport",
+        "singularities"),
+    "symjac.analysis.spaces": ("JacobianSpaces", "SymbolicSpaces", "jacobian_spaces", "symbolic_spaces", "task_rows"),
+    "symjac.codegen": ("JacobianRequest", "generate", "write_module"),
+    "symjac.errors": ("ArgumentError", "CodegenError", "ConversionError", "ExpressionError", "FrameError",
+        "RepresentationError", "ResultTooLargeError", "RobotFileError", "SymjacError", "UnknownRobotError"),
+    "symjac.kinematics.acceleration": ("DERIVATIVE_METHODS", "bias_acceleration", "hessian", "hessian_slice",
+        "jacobian_derivative"),
+    "symjac.kinematics.acceleration_propagation": ("AccelerationPropagation", "AccelerationStep",
+        "acceleration_propagation", "joint_accelerations"),
+    "symjac.kinematics.chain": ("Chain", "Frame", "as_chain", "chain_of", "clear_caches", "forward_kinematics"),
+    "symjac.kinematics.jacobian": ("METHODS", "ROW_NAMES", "change_frame", "jacobian", "jacobian_of",
+        "rows_from_names", "shift_point"),
+    "symjac.kinematics.numeric": ("evaluate_at", "numeric_jacobian"),
+    "symjac.kinematics.propagation": ("ForcePropagation", "VelocityPropagation", "force_propagation",
+        "joint_rate_symbols", "velocity_propagation", "wrench_symbols"),
+    "symjac.kinematics.statics": ("joint_torques", "wrench_between"),
+    "symjac.model.io": ("catalog", "load_robot", "robot_from_toml", "robot_to_toml", "urdf_catalog"),
+    "symjac.model.robot": ("Convention", "FixedTransform", "Joint", "JointType", "Parameter", "Robot"),
+    "symjac.model.robot_file": ("robot_from_mapping", "robot_to_mapping"),
+    "symjac.model.urdf": ("robot_from_urdf",),
+    "symjac.printing": ("latex", "pretty"),
+    "symjac.symbolic.simplify": ("AngleBasis", "is_identity", "simplify_expr", "simplify_matrix"),
+    "symjac.symbolic.transforms": ("twist_transform", "wrench_transform"),
+}
+"""Each module of the public API and the names :mod:`symjac` re-exports from it."""
+
+_HOME = {name: module for module, names in _MODULES.items() for name in names}
 
 __all__ = [
     "DERIVATIVE_METHODS",
@@ -199,3 +166,98 @@ __all__ = [
     "wrench_transform",
     "write_module",
 ]
+
+
+def __getattr__(name: str) -> _Any:
+    """Import a public name on first use and keep it, so later lookups are plain attribute reads."""
+    module = _HOME.get(name)
+    if module is None:
+        raise AttributeError(f"module 'symjac' has no attribute {name!r}")
+    value = getattr(_import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})
+
+
+if _TYPE_CHECKING:  # static checkers see the names as if imported eagerly
+    from symjac.analysis.inverse_rates import damped_least_squares, inverse_rates, rates_along_path
+    from symjac.analysis.manipulability import (
+        BarrierTerm,
+        LogDetGradient,
+        ManipulabilityGradient,
+        log_det_gradient,
+        manipulability_gradient,
+    )
+    from symjac.analysis.representations import (
+        REPRESENTATIONS,
+        EulerConvention,
+        RepresentationJacobian,
+        RepresentationJacobianDerivative,
+        coordinate_rates,
+        extract,
+        rate_matrix,
+        representation_jacobian,
+        representation_jacobian_at,
+        representation_jacobian_derivative,
+        representation_jacobian_derivative_at,
+        rotation_from,
+    )
+    from symjac.analysis.singularity.determinant import Determinant, determinant
+    from symjac.analysis.singularity.singularities import LimitStatus, SingularFactor, SingularityReport, singularities
+    from symjac.analysis.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
+    from symjac.codegen import JacobianRequest, generate, write_module
+    from symjac.errors import (
+        ArgumentError,
+        CodegenError,
+        ConversionError,
+        ExpressionError,
+        FrameError,
+        RepresentationError,
+        ResultTooLargeError,
+        RobotFileError,
+        SymjacError,
+        UnknownRobotError,
+    )
+    from symjac.kinematics.acceleration import (
+        DERIVATIVE_METHODS,
+        bias_acceleration,
+        hessian,
+        hessian_slice,
+        jacobian_derivative,
+    )
+    from symjac.kinematics.acceleration_propagation import (
+        AccelerationPropagation,
+        AccelerationStep,
+        acceleration_propagation,
+        joint_accelerations,
+    )
+    from symjac.kinematics.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
+    from symjac.kinematics.jacobian import (
+        METHODS,
+        ROW_NAMES,
+        change_frame,
+        jacobian,
+        jacobian_of,
+        rows_from_names,
+        shift_point,
+    )
+    from symjac.kinematics.numeric import evaluate_at, numeric_jacobian
+    from symjac.kinematics.propagation import (
+        ForcePropagation,
+        VelocityPropagation,
+        force_propagation,
+        joint_rate_symbols,
+        velocity_propagation,
+        wrench_symbols,
+    )
+    from symjac.kinematics.statics import joint_torques, wrench_between
+    from symjac.model.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
+    from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Parameter, Robot
+    from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
+    from symjac.model.urdf import robot_from_urdf
+    from symjac.printing import latex, pretty
+    from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
+    from symjac.symbolic.transforms import twist_transform, wrench_transform

@@ -8,6 +8,7 @@ locally now and then; it found the regressions tested in test_urdf, test_codegen
 
 from __future__ import annotations
 
+import json
 import os
 
 import pytest
@@ -40,3 +41,56 @@ def gripper(tmp_path) -> str:
     path = tmp_path / "arm.urdf"
     path.write_text(GRIPPER_URDF, encoding="utf-8")
     return str(path)
+
+
+# --- the command line, run in process -------------------------------------------------------------------------------
+
+
+class Cli:
+    """``symjac`` run in process (:func:`symjac.cli.main.main`), its stdout and stderr read through ``capsys``."""
+
+    def __init__(self, capsys: pytest.CaptureFixture[str]):
+        self.capsys = capsys
+
+    def run(self, *argv: str) -> tuple[int, str, str]:
+        """Run ``symjac *argv``; return (exit status, stdout, stderr)."""
+        from symjac.cli.main import main
+
+        status = main(list(argv))
+        out, err = self.capsys.readouterr()
+        return status, out, err
+
+    def ok(self, *argv: str) -> str:
+        """Run a command that must succeed silently on stderr; return its stdout."""
+        status, out, err = self.run(*argv)
+        assert status == 0, err
+        assert err == ""
+        assert out.endswith("\n")
+        return out
+
+    def latex_line(self, *argv: str) -> str:
+        """The single LaTeX line a non-standalone ``jacobian``/``fk`` prints."""
+        out = self.ok(*argv)
+        lines = out.splitlines()
+        assert len(lines) == 1, out
+        return lines[0]
+
+    def json(self, *argv: str) -> dict:
+        """The JSON a command prints with ``--format json``, parsed."""
+        status, out, err = self.run(*argv, "--format", "json")
+        assert status == 0, err
+        return json.loads(out)
+
+    def one_line_error(self, *argv: str) -> str:
+        """Run a command that must fail with one line on stderr and status 2; return that line."""
+        status, out, err = self.run(*argv)
+        assert (status, out) == (2, ""), err
+        assert len(err.splitlines()) == 1 and err.startswith("symjac: error: "), err
+        assert "Traceback" not in err
+        return err.strip()
+
+
+@pytest.fixture
+def cli(capsys: pytest.CaptureFixture[str]) -> Cli:
+    """:class:`Cli`: ``cli.run``, ``cli.ok``, ``cli.latex_line``, ``cli.json``, ``cli.one_line_error``."""
+    return Cli(capsys)

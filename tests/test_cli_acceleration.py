@@ -2,30 +2,15 @@
 
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
 import sympy as sp
 
-from symjac.cli.main import main
 from symjac.kinematics.chain import chain_of
 from symjac.kinematics.numeric import numeric_at, numeric_jacobian
 from symjac.model.io import load_robot
 
 STEP = 1e-6
-
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    status = main(list(argv))
-    out, err = capsys.readouterr()
-    return status, out, err
-
-
-def json_of(capsys: pytest.CaptureFixture[str], *argv: str) -> dict:
-    status, out, err = run(capsys, *argv, "--format", "json")
-    assert status == 0, err
-    return json.loads(out)
 
 
 def numeric(robot, strings, q, rates=None):
@@ -38,9 +23,9 @@ def numeric(robot, strings, q, rates=None):
 
 
 @pytest.mark.parametrize(("name", "frame"), [("planar3r", "0"), ("stanford", "0"), ("stanford", "3")])
-def test_derivative_json_matches_differences_of_the_jacobian(capsys, name, frame):
+def test_derivative_json_matches_differences_of_the_jacobian(cli, name, frame):
     robot = load_robot(name)
-    data = json_of(capsys, "jacobian", name, "--derivative", "--frame", frame)
+    data = cli.json("jacobian", name, "--derivative", "--frame", frame)
     rng = np.random.default_rng(7)
     q, qdot = rng.uniform(-1, 1, robot.n_coordinates), rng.uniform(-1, 1, robot.n_coordinates)
     rates = dict(zip(data["rates"], qdot, strict=True))
@@ -53,9 +38,9 @@ def test_derivative_json_matches_differences_of_the_jacobian(capsys, name, frame
     assert data["shape"] == [6, robot.n_coordinates]
 
 
-def test_hessian_json_layout_matches_differences(capsys):
+def test_hessian_json_layout_matches_differences(cli):
     robot = load_robot("stanford")
-    data = json_of(capsys, "hessian", "stanford")
+    data = cli.json("hessian", "stanford")
     assert data["shape"] == [6, 6, 6]
     q = np.linspace(-0.9, 0.8, 6)
     H = np.stack([np.stack([numeric(robot, row, q) for row in rows]) for rows in
@@ -68,19 +53,19 @@ def test_hessian_json_layout_matches_differences(capsys):
         assert np.allclose(numeric(robot, data["slices"][str(robot.q[k])], q), expected, atol=1e-7)
 
 
-def test_derivative_latex_and_pretty(capsys):
-    status, out, err = run(capsys, "jacobian", "planar2r", "--derivative")
+def test_derivative_latex_and_pretty(cli):
+    status, out, err = cli.run("jacobian", "planar2r", "--derivative")
     assert status == 0, err
     jdot, bias = out.splitlines()
     assert jdot.startswith(r"{}^{0}\dot{J} = \begin{bmatrix}")
     assert r"\left(\dot{\theta}_{1} + \dot{\theta}_{2}\right)^{2}" in bias  # the textbook square of the sum
-    status, out, _ = run(capsys, "jacobian", "planar2r", "--derivative", "--frame", "2", "--format", "pretty")
+    status, out, _ = cli.run("jacobian", "planar2r", "--derivative", "--frame", "2", "--format", "pretty")
     assert status == 0
     assert "moving frame" in out
 
 
-def test_hessian_latex_has_one_slice_per_joint(capsys):
-    status, out, err = run(capsys, "hessian", "stanford", "--numeric")
+def test_hessian_latex_has_one_slice_per_joint(cli):
+    status, out, err = cli.run("hessian", "stanford", "--numeric")
     assert status == 0, err
     lines = out.splitlines()
     assert [line.split(" = ")[0] for line in lines] == [
@@ -92,15 +77,15 @@ def test_hessian_latex_has_one_slice_per_joint(capsys):
 @pytest.mark.parametrize("argv", [("jacobian", "planar2r", "--derivative", "--steps", "--point", "tool"),
                                   ("hessian", "planar2r", "--frame", "7"),
                                   ("hessian", "planar2r", "--point", "1,2")])
-def test_bad_acceleration_requests_are_one_line_errors(capsys, argv):
-    status, out, err = run(capsys, *argv)
+def test_bad_acceleration_requests_are_one_line_errors(cli, argv):
+    status, out, err = cli.run(*argv)
     assert (status, out, len(err.splitlines())) == (2, "", 1), err
     assert err.startswith("symjac: error: ")
 
 
-def test_derivative_steps_end_with_the_bias_in_the_tip_frame(capsys):
+def test_derivative_steps_end_with_the_bias_in_the_tip_frame(cli):
     robot = load_robot("stanford")
-    data = json_of(capsys, "jacobian", "stanford", "--derivative", "--steps")
+    data = cli.json("jacobian", "stanford", "--derivative", "--steps")
     names = [step["name"] for step in data["steps"]]
     assert len(names) == 4 * (robot.n_coordinates + 1) and names[-1].startswith("v̇_6")
     rng = np.random.default_rng(3)

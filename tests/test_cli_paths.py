@@ -9,7 +9,7 @@ import threading
 
 import pytest
 
-import symjac.cli.main
+import symjac.kinematics.jacobian
 from symjac import write_module
 from symjac.cli.main import main
 from symjac.model.io import catalog, urdf_catalog
@@ -17,25 +17,10 @@ from symjac.model.io import catalog, urdf_catalog
 FK_PLANAR2R = ["fk", "planar2r", "--format", "pretty"]
 
 
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    status = main(list(argv))
-    out, err = capsys.readouterr()
-    return status, out, err
-
-
-def one_line_error(capsys: pytest.CaptureFixture[str], *argv: str) -> str:
-    """Run a command that must fail with one line on stderr and status 2; return that line."""
-    status, out, err = run(capsys, *argv)
-    assert (status, out) == (2, ""), err
-    assert len(err.splitlines()) == 1 and err.startswith("symjac: error: "), err
-    assert "Traceback" not in err
-    return err.strip()
-
-
 @pytest.fixture
-def expected(capsys: pytest.CaptureFixture[str]) -> str:
+def expected(cli, capsys: pytest.CaptureFixture[str]) -> str:
     """What ``symjac fk planar2r --format pretty`` prints on stdout."""
-    status, out, _ = run(capsys, *FK_PLANAR2R)
+    status, out, _ = cli.run(*FK_PLANAR2R)
     assert status == 0 and out.startswith("T_0_2 =")
     return out
 
@@ -50,29 +35,29 @@ def umask_027():
 # --- 1. -o output paths ---------------------------------------------------------------------------------------------
 
 
-def test_dash_means_stdout(capsys, tmp_path, monkeypatch, expected):
+def test_dash_means_stdout(cli, tmp_path, monkeypatch, expected):
     monkeypatch.chdir(tmp_path)
-    assert run(capsys, *FK_PLANAR2R, "-o", "-") == (0, expected, "")
+    assert cli.run(*FK_PLANAR2R, "-o", "-") == (0, expected, "")
     assert list(tmp_path.iterdir()) == []  # no file named "-"
-    assert run(capsys, *FK_PLANAR2R, "-o", "./-") == (0, "", "")  # unless asked for
+    assert cli.run(*FK_PLANAR2R, "-o", "./-") == (0, "", "")  # unless asked for
     assert (tmp_path / "-").read_text(encoding="utf-8") == expected
 
 
-def test_new_files_follow_the_umask_for_o_and_write_module_alike(capsys, tmp_path, umask_027, expected):
-    assert run(capsys, *FK_PLANAR2R, "-o", str(tmp_path / "fk.txt")) == (0, "", "")
-    assert run(capsys, "codegen", "planar2r", "-o", str(tmp_path / "cli_module.py")) == (0, "", "")
+def test_new_files_follow_the_umask_for_o_and_write_module_alike(cli, tmp_path, umask_027, expected):
+    assert cli.run(*FK_PLANAR2R, "-o", str(tmp_path / "fk.txt")) == (0, "", "")
+    assert cli.run("codegen", "planar2r", "-o", str(tmp_path / "cli_module.py")) == (0, "", "")
     write_module(tmp_path / "api_module.py", "x = 1\n")
     for name in ("fk.txt", "cli_module.py", "api_module.py"):
         assert stat.S_IMODE((tmp_path / name).stat().st_mode) == 0o640, name
     assert (tmp_path / "fk.txt").read_text(encoding="utf-8") == expected
 
 
-def test_a_replaced_file_is_a_new_file_with_the_old_mode(capsys, tmp_path, expected):
+def test_a_replaced_file_is_a_new_file_with_the_old_mode(cli, tmp_path, expected):
     target = tmp_path / "fk.txt"
     target.write_text("old\n", encoding="utf-8")
     target.chmod(0o604)
     before = target.stat().st_ino
-    assert run(capsys, *FK_PLANAR2R, "-o", str(target)) == (0, "", "")
+    assert cli.run(*FK_PLANAR2R, "-o", str(target)) == (0, "", "")
     assert target.read_text(encoding="utf-8") == expected
     assert stat.S_IMODE(target.stat().st_mode) == 0o604
     assert target.stat().st_ino != before  # renamed into place, so a reader never sees half a file
@@ -80,26 +65,26 @@ def test_a_replaced_file_is_a_new_file_with_the_old_mode(capsys, tmp_path, expec
 
 
 @pytest.mark.parametrize("existing", [True, False], ids=["to a file", "dangling"])
-def test_a_symlink_is_written_through_and_stays_a_link(capsys, tmp_path, expected, existing):
+def test_a_symlink_is_written_through_and_stays_a_link(cli, tmp_path, expected, existing):
     real = tmp_path / "real" / "fk.txt"
     real.parent.mkdir()
     if existing:
         real.write_text("old\n", encoding="utf-8")
     link = tmp_path / "link.txt"
     link.symlink_to(real)
-    assert run(capsys, *FK_PLANAR2R, "-o", str(link)) == (0, "", "")
+    assert cli.run(*FK_PLANAR2R, "-o", str(link)) == (0, "", "")
     assert link.is_symlink() and link.readlink() == real
     assert real.read_text(encoding="utf-8") == expected
     assert sorted(p.name for p in tmp_path.rglob("*")) == ["fk.txt", "link.txt", "real"]
 
 
-def test_a_fifo_is_written_through_not_replaced(capsys, tmp_path, expected):
+def test_a_fifo_is_written_through_not_replaced(cli, tmp_path, expected):
     fifo = tmp_path / "pipe"
     os.mkfifo(fifo)
     received: list[str] = []
     reader = threading.Thread(target=lambda: received.append(fifo.read_text(encoding="utf-8")), daemon=True)
     reader.start()
-    assert run(capsys, *FK_PLANAR2R, "-o", str(fifo)) == (0, "", "")
+    assert cli.run(*FK_PLANAR2R, "-o", str(fifo)) == (0, "", "")
     reader.join(timeout=10)
     assert received == [expected]
     assert stat.S_ISFIFO(fifo.stat().st_mode)
@@ -119,19 +104,19 @@ def test_a_process_stream_is_written_through(tmp_path, expected):
     assert redirected.read_text(encoding="utf-8") == expected
 
 
-def test_a_directory_is_refused_in_one_line(capsys, tmp_path):
-    line = one_line_error(capsys, *FK_PLANAR2R, "-o", str(tmp_path))
+def test_a_directory_is_refused_in_one_line(cli, tmp_path):
+    line = cli.one_line_error(*FK_PLANAR2R, "-o", str(tmp_path))
     assert line == f"symjac: error: {tmp_path}: is a directory, not a file"
     assert list(tmp_path.iterdir()) == []
 
 
-def test_errors_name_the_users_path_not_the_temporary_file(capsys, tmp_path, monkeypatch):
+def test_errors_name_the_users_path_not_the_temporary_file(cli, tmp_path, monkeypatch):
     def full_disk(source, destination):
         raise OSError(28, "No space left on device", source, destination)
 
     monkeypatch.setattr(os, "replace", full_disk)
     target = tmp_path / "fk.txt"
-    line = one_line_error(capsys, *FK_PLANAR2R, "-o", str(target))
+    line = cli.one_line_error(*FK_PLANAR2R, "-o", str(target))
     assert line == f"symjac: error: {target}: No space left on device"
     assert list(tmp_path.iterdir()) == []
     with pytest.raises(OSError, match="No space") as caught:
@@ -139,9 +124,9 @@ def test_errors_name_the_users_path_not_the_temporary_file(capsys, tmp_path, mon
     assert caught.value.filename == str(target) and caught.value.filename2 is None
 
 
-def test_missing_folder_names_the_path(capsys, tmp_path):
+def test_missing_folder_names_the_path(cli, tmp_path):
     target = tmp_path / "missing" / "fk.txt"
-    assert one_line_error(capsys, *FK_PLANAR2R, "-o", str(target)) == \
+    assert cli.one_line_error(*FK_PLANAR2R, "-o", str(target)) == \
         f"symjac: error: {target}: No such file or directory"
 
 
@@ -154,19 +139,19 @@ COMMANDS = {
 
 
 @pytest.mark.parametrize("command", COMMANDS)
-def test_every_robot_command_takes_the_urdf_chain(capsys, gripper, command):
-    line = one_line_error(capsys, command, gripper, *COMMANDS[command])
+def test_every_robot_command_takes_the_urdf_chain(cli, gripper, command):
+    line = cli.one_line_error(command, gripper, *COMMANDS[command])
     assert "choose --tip-link" in line and "finger_a, finger_b" in line
-    status, out, err = run(capsys, command, gripper, *COMMANDS[command], "--tip-link", "finger_a")
+    status, out, err = cli.run(command, gripper, *COMMANDS[command], "--tip-link", "finger_a")
     assert (status, err) == (0, "") and out
-    status, out, err = run(capsys, command, gripper, *COMMANDS[command], "--base-link", "l1", "--tip-link",
+    status, out, err = cli.run(command, gripper, *COMMANDS[command], "--base-link", "l1", "--tip-link",
                            "flange")
     assert (status, err) == (0, "") and out
 
 
-def test_the_links_decide_the_chain(capsys, gripper):
+def test_the_links_decide_the_chain(cli, gripper):
     def data(*argv: str) -> dict:
-        status, out, err = run(capsys, *argv, "--format", "json")
+        status, out, err = cli.run(*argv, "--format", "json")
         assert (status, err) == (0, "")
         return json.loads(out)
 
@@ -181,8 +166,8 @@ def test_the_links_decide_the_chain(capsys, gripper):
 
 @pytest.mark.parametrize("option", ["--tip-link", "--base-link"])
 @pytest.mark.parametrize("command", COMMANDS)
-def test_links_are_refused_for_a_toml_robot(capsys, command, option):
-    line = one_line_error(capsys, command, "planar2r", *COMMANDS[command], option, "tip")
+def test_links_are_refused_for_a_toml_robot(cli, command, option):
+    line = cli.one_line_error(command, "planar2r", *COMMANDS[command], option, "tip")
     assert line == f"symjac: error: {option} applies to URDF files only; 'planar2r' is not one"
 
 
@@ -197,21 +182,21 @@ def test_help_names_all_three_kinds_of_robot(capsys):
 # --- 3. every failure is one line -----------------------------------------------------------------------------------
 
 
-def test_a_huge_integer_in_a_robot_file_is_one_line_naming_file_and_field(capsys, tmp_path):
+def test_a_huge_integer_in_a_robot_file_is_one_line_naming_file_and_field(cli, tmp_path):
     path = tmp_path / "huge.toml"
     path.write_text('name = "huge"\nconvention = "standard"\n\n[parameters]\nL1 = ' + "1" * 5000 + "\n\n"
                     '[[joints]]\ntype = "revolute"\nalpha = 0\na = "L1"\nd = 0\ntheta = 0\n', encoding="utf-8")
-    line = one_line_error(capsys, "fk", str(path))
+    line = cli.one_line_error("fk", str(path))
     assert line.startswith(f"symjac: error: {path}, field 'L1': integer with 5000 digits on line 5")
 
 
-def test_ctrl_c_during_a_derivation_is_one_line_and_status_130(capsys, monkeypatch):
+def test_ctrl_c_during_a_derivation_is_one_line_and_status_130(cli, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(symjac.cli.main, "jacobian", interrupted)
+    monkeypatch.setattr(symjac.kinematics.jacobian, "jacobian", interrupted)
     try:
-        result = run(capsys, "jacobian", "planar2r")
+        result = cli.run("jacobian", "planar2r")
     except KeyboardInterrupt:  # pragma: no cover - only when the CLI lets it through
         pytest.fail("Ctrl-C escaped symjac.cli.main.main")
     assert result == (130, "", "symjac: interrupted\n")
@@ -223,12 +208,12 @@ def test_ctrl_c_during_a_derivation_is_one_line_and_status_130(capsys, monkeypat
     (RecursionError("maximum recursion depth exceeded"), "the input is nested too deeply to process"),
     (ZeroDivisionError("division by zero"), "ZeroDivisionError: division by zero"),
 ])
-def test_unexpected_errors_are_one_line(capsys, monkeypatch, error, message):
+def test_unexpected_errors_are_one_line(cli, monkeypatch, error, message):
     def failing(*args, **kwargs):
         raise error
 
-    monkeypatch.setattr(symjac.cli.main, "jacobian", failing)
-    assert one_line_error(capsys, "jacobian", "planar2r") == f"symjac: error: {message}"
+    monkeypatch.setattr(symjac.kinematics.jacobian, "jacobian", failing)
+    assert cli.one_line_error("jacobian", "planar2r") == f"symjac: error: {message}"
     monkeypatch.setenv("SYMJAC_TRACEBACK", "1")  # a developer can still see where it came from
     with pytest.raises(type(error)):
         main(["jacobian", "planar2r"])
@@ -248,22 +233,22 @@ def test_a_closed_stdout_ends_quietly(capsys, monkeypatch):
 # --- 4. messages a person understands -------------------------------------------------------------------------------
 
 
-def test_q_says_plainly_what_it_takes(capsys):
-    line = one_line_error(capsys, "torques", "planar2r", "--q", "L1,0")
+def test_q_says_plainly_what_it_takes(cli):
+    line = cli.one_line_error("torques", "planar2r", "--q", "L1,0")
     assert "none declared" not in line
     assert line == ("symjac: error: --q takes numbers and expressions with pi only (joint angles in radians, "
                     "prismatic offsets in metres), got 'L1'")
-    assert run(capsys, "torques", "planar2r", "--q", "pi/2, -pi/4")[0] == 0
+    assert cli.run("torques", "planar2r", "--q", "pi/2, -pi/4")[0] == 0
 
 
-def test_wrench_takes_parameter_names(capsys):
-    status, out, _ = run(capsys, "torques", "planar2r", "--wrench", "L1,0,0,0,0,0", "--format", "pretty")
+def test_wrench_takes_parameter_names(cli):
+    status, out, _ = cli.run("torques", "planar2r", "--wrench", "L1,0,0,0,0,0", "--format", "pretty")
     assert status == 0 and "L₁" in out
 
 
 @pytest.mark.parametrize("command", ["codegen", "singularities"])
-def test_a_repeated_row_is_named(capsys, command):
-    line = one_line_error(capsys, command, "planar2r", "--rows", "v_x,v_y,v_x")
+def test_a_repeated_row_is_named(cli, command):
+    line = cli.one_line_error(command, "planar2r", "--rows", "v_x,v_y,v_x")
     assert line == "symjac: error: --rows: rows must not repeat: v_x is given twice in v_x, v_y, v_x"
 
 
@@ -280,12 +265,12 @@ def test_a_repeated_row_is_named(capsys, command):
     (["jacobian", "planar2r", "--representation", "zyz", "--steps"], "--steps does not apply with --representation"),
     (["jacobian", "planar2r", "--steps"], "--steps needs --method velocity_propagation or --method force_propagation"),
 ])
-def test_options_that_would_be_ignored_are_refused(capsys, argv, message):
-    assert one_line_error(capsys, *argv).startswith(f"symjac: error: {message}")
+def test_options_that_would_be_ignored_are_refused(cli, argv, message):
+    assert cli.one_line_error(*argv).startswith(f"symjac: error: {message}")
 
 
-def test_position_with_a_representation_still_works(capsys):
-    status, out, err = run(capsys, "jacobian", "articulated3r", "--representation", "zyz", "--position",
+def test_position_with_a_representation_still_works(cli):
+    status, out, err = cli.run("jacobian", "articulated3r", "--representation", "zyz", "--position",
                            "cylindrical", "--format", "json")
     assert (status, err) == (0, "") and "cylindrical" in out
 

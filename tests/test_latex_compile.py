@@ -25,7 +25,7 @@ import sympy as sp
 
 from symjac.cli.main import main
 from symjac.model.io import catalog
-from symjac.printing import Block, Document, Equation, render
+from symjac.printing import Block, Document, Equation, latex_layout, render
 from symjac.printing import document as document_module
 from symjac.printing.latex_layout import Display
 
@@ -171,5 +171,5 @@ def test_a_matrix_wider_than_the_page_fails_unless_laid_out(tmp_path, monkeypatc
     document = Document("wide", "demo", (Block((), (Equation("M", "M", wide),)),))
     assert _render_and_compile(tmp_path, document) == []  # laid out: entries named and broken over lines
     unbroken = lambda lhs, rhs: Display(f"{lhs} = {document_module.latex(rhs)}")  # noqa: E731
-    monkeypatch.setattr(document_module, "fit_equation", unbroken)
+    monkeypatch.setattr(latex_layout, "fit_equation", unbroken)  # the layout module, which render imports when used
     assert any("Overfull" in problem for problem in _render_and_compile(tmp_path, document))

@@ -1,25 +1,29 @@
 """Command-line text -> API arguments: the robot and its URDF chain, frames, points, rows, values.
 
 Every function raises a :class:`~symjac.errors.SymjacError` whose message names the option, so the command line
-can print it as one line.
+can print it as one line. Building the parser imports nothing heavy (``symjac --version`` does not load SymPy): the
+parsers import what they use when they are called.
 """
 
 from __future__ import annotations
 
 import argparse
 import re
-
-import sympy as sp
+from collections.abc import Iterator, Sequence
+from importlib import import_module
+from typing import TYPE_CHECKING, overload
 
 from symjac.errors import ArgumentError, ExpressionError, FrameError, RobotFileError
-from symjac.kinematics.chain import Frame
-from symjac.kinematics.jacobian import rows_from_names
-from symjac.model.expressions import parse_expression
-from symjac.model.io import load_robot
-from symjac.model.robot import Robot
+
+if TYPE_CHECKING:
+    import sympy as sp
+
+    from symjac.kinematics.chain import Frame
+    from symjac.model.robot import Robot
 
 __all__ = [
     "ROBOT_HELP",
+    "LazyChoices",
     "add_robot_arguments",
     "load",
     "parse_frame",
@@ -30,6 +34,36 @@ __all__ = [
 ]
 
 ROBOT_HELP = "a built-in robot name (see 'symjac robots'), a TOML file or a URDF file"
+
+
+class LazyChoices(Sequence[str]):
+    """An option's choices, read from ``module.name`` only when argparse checks a value or prints them.
+
+    Give the option a ``metavar`` (argparse lists plain choices while it builds the parser) and name the choices
+    in its help with ``%(choices)s`` (expanded only for ``--help``).
+    """
+
+    def __init__(self, module: str, name: str):
+        self.module, self.name = module, name
+
+    def _values(self) -> Sequence[str]:
+        return getattr(import_module(self.module), self.name)  # type: ignore[no-any-return]
+
+    @overload
+    def __getitem__(self, index: int) -> str: ...
+    @overload
+    def __getitem__(self, index: slice) -> Sequence[str]: ...
+    def __getitem__(self, index: int | slice) -> str | Sequence[str]:
+        return self._values()[index]
+
+    def __len__(self) -> int:
+        return len(self._values())
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._values())
+
+    def __contains__(self, value: object) -> bool:
+        return value in self._values()
 
 
 def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
@@ -43,6 +77,8 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
 
 def load(args: argparse.Namespace) -> Robot:
     """The robot named by ``args.robot``, with the chain ``--base-link`` / ``--tip-link`` choose in a URDF file."""
+    from symjac.model.io import load_robot
+
     links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
     try:
         return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
@@ -79,6 +115,8 @@ def refuse_ignored_options(args: argparse.Namespace) -> None:
 
 def parse_rows(text: str) -> tuple[int, ...]:
     """Task rows by name (``v_x .. omega_z``, :data:`symjac.kinematics.jacobian.ROW_NAMES`) -> indices 0..5."""
+    from symjac.kinematics.jacobian import rows_from_names
+
     try:
         return rows_from_names(text)
     except ArgumentError as error:
@@ -97,6 +135,8 @@ def parse_frame(text: str) -> Frame:
 
 def parse_point(text: str, robot: Robot) -> str | tuple[sp.Expr, ...]:
     """``--point``: ``wrist``, ``tool``, or three coordinates ``x,y,z`` in frame {n} (parameter names allowed)."""
+    from symjac.model.expressions import parse_expression
+
     if text in ("wrist", "tool"):
         return text
     parts = text.split(",")
@@ -110,6 +150,8 @@ def parse_point(text: str, robot: Robot) -> str | tuple[sp.Expr, ...]:
 
 def parse_values(text: str, length: int, option: str, robot: Robot, *, parameters: bool = True) -> list[sp.Expr]:
     """``length`` comma-separated values: numbers, ``pi`` and (with ``parameters``) the robot's parameter names."""
+    from symjac.model.expressions import parse_expression
+
     parts = text.split(",")
     if len(parts) != length:
         raise ArgumentError(f"{option} needs {length} comma-separated values, got {len(parts)} in {text!r}")

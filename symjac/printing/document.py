@@ -6,37 +6,45 @@ A CLI command (or a notebook) builds a :class:`Document` (a title, blocks of cap
 * ``latex``: one line per equation (captions as ``%`` comments when the document asks for them), or with
   ``standalone`` a complete document through the ``documents/latex_document.tex.j2`` template;
 * ``pretty``: each block's caption, then its equations in Unicode (``name =`` above a matrix);
-* ``json``: the document's data, indented.
+* ``json``: the document's data, indented. The data is built only then (:attr:`Document.data` may be a function),
+  so a LaTeX or pretty result never pays for its JSON form.
+
+A LaTeX result longer than :data:`LATEX_LIMIT` is more than anyone reads on a terminal: :func:`check_latex_size`
+refuses it unless it goes to a file.
 """
 
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.errors import ArgumentError
+from symjac.errors import ArgumentError, SymjacError
+from symjac.kinematics.chain import Frame
 from symjac.model.robot import Robot
 from symjac.printing.latex import escape_text, latex
-from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
-from symjac.printing.pretty import pretty, pretty_side_by_side
 from symjac.printing.tables import dh_table_latex, dh_table_text
-from symjac.resources import render_template
+
+# Each format imports its own printer when used: a LaTeX result loads no pretty printer, page layout or jinja2.
 
 __all__ = [
     "FORMATS",
+    "LATEX_LIMIT",
     "Block",
     "DHTable",
     "Document",
     "Equation",
     "Inline",
+    "LatexTooLargeError",
+    "Prescripted",
     "Style",
     "blocks_as_pairs",
     "caption_text",
+    "check_latex_size",
     "equation_latex",
     "equation_text",
     "math_text",
@@ -45,6 +53,20 @@ __all__ = [
 
 FORMATS = ("latex", "pretty", "json")
 Style = Literal["latex", "pretty"]
+LATEX_LIMIT = 200_000
+"""Bytes of LaTeX written to a terminal at most; a longer result is written only to a file (``-o FILE``)."""
+
+
+@dataclass(frozen=True)
+class Prescripted:
+    r"""A name with prescripts, :math:`{}^{sup}_{sub}X`: a transform :math:`{}^{0}_{6}T`, a Jacobian :math:`{}^{3}J`.
+
+    Outputs that typeset names themselves (MathML) use it; LaTeX and text use :class:`Equation`'s own spellings.
+    """
+
+    letter: str
+    sup: Frame
+    sub: Frame | None = None
 
 
 @dataclass(frozen=True)
@@ -58,6 +80,7 @@ class Equation:
     tex: str
     text: str
     rhs: Any
+    name: Prescripted | None = None
 
 
 @dataclass(frozen=True)
@@ -98,15 +121,33 @@ class Block:
 class Document:
     """A result ready to render: ``title`` and ``robot`` head a standalone document, ``data`` is the JSON output.
 
-    ``comments`` keeps the captions in bare LaTeX output as ``%`` lines (for results whose captions explain, such
-    as singularities); otherwise bare LaTeX is the equations alone, one per line.
+    ``data`` is the JSON-ready mapping, or a function that builds it (called only for ``json``: building it prints
+    every entry once more). ``comments`` keeps the captions in bare LaTeX output as ``%`` lines (for results whose
+    captions explain, such as singularities); otherwise bare LaTeX is the equations alone, one per line.
     """
 
     title: str
     robot: str
     blocks: tuple[Block, ...]
-    data: Mapping[str, Any] = field(default_factory=dict)
+    data: Mapping[str, Any] | Callable[[], Mapping[str, Any]] = field(default_factory=dict)
     comments: bool = False
+
+    def json_data(self) -> Mapping[str, Any]:
+        """The JSON-ready data, built now if it was given as a function."""
+        return self.data() if callable(self.data) else self.data
+
+
+class LatexTooLargeError(SymjacError):
+    """A LaTeX result longer than :data:`LATEX_LIMIT` asked for on a terminal (it is written only to a file)."""
+
+
+def check_latex_size(text: str, hint: str, limit: int | None = None) -> None:
+    """Refuse ``text`` longer than ``limit`` bytes (default :data:`LATEX_LIMIT`), in one line ending with ``hint``."""
+    limit = LATEX_LIMIT if limit is None else limit
+    size = len(text.encode("utf-8"))
+    if size > limit:
+        raise LatexTooLargeError(f"the LaTeX is {size / 1000:,.0f} KB, more than {limit / 1000:,.0f} KB: nobody reads "
+                                 f"that on a terminal; write it to a file with -o FILE, or {hint}")
 
 
 def _check(style: str) -> None:
@@ -125,6 +166,8 @@ def caption_text(block: Block, style: Style) -> str:
             return f"${part.tex}$" if style == "latex" else part.text
         if style == "latex":
             return f"${latex(part)}$"
+        from symjac.printing.pretty import pretty
+
         text = pretty(part)
         return text if "\n" not in text else sp.sstr(part)  # a caption stays one line: sqrt(2)/2, not a 2-D fraction
 
@@ -140,6 +183,8 @@ def equation_latex(equation: Equation) -> str:
 
 def equation_text(equation: Equation) -> str:
     """One equation in Unicode: ``name =`` above a matrix, ``name = value`` on one line for a scalar."""
+    from symjac.printing.pretty import pretty, pretty_side_by_side
+
     if isinstance(equation.rhs, tuple):
         return f"{equation.text} =\n{pretty_side_by_side(*equation.rhs)}"
     if not equation.text:
@@ -162,7 +207,7 @@ def math_text(block: Block, style: Style) -> str:
 def render(document: Document, fmt: str, standalone: bool = False) -> str:
     """``document`` as text in ``fmt`` (one of :data:`FORMATS`); ``standalone`` makes LaTeX a whole document."""
     if fmt == "json":
-        return json.dumps(document.data, indent=2) + "\n"
+        return json.dumps(document.json_data(), indent=2) + "\n"
     if fmt == "pretty":
         shown = []
         for block in document.blocks:
@@ -172,6 +217,8 @@ def render(document: Document, fmt: str, standalone: bool = False) -> str:
     if fmt != "latex":
         raise ArgumentError(f"unknown format {fmt!r}; choose one of {', '.join(FORMATS)}")
     if standalone:
+        from symjac.resources import render_template
+
         blocks = [{"caption": caption_text(block, "latex"), "latex": _fitted(block)} for block in document.blocks]
         return render_template("documents/latex_document.tex.j2", version=__version__, robot=document.robot,
                                title=escape_text(document.title), blocks=blocks)
@@ -179,7 +226,9 @@ def render(document: Document, fmt: str, standalone: bool = False) -> str:
 
 
 def _fitted(block: Block) -> str:
-    """The block's math laid out to fit the page (:mod:`.layout`), ``""`` when it has none."""
+    """The block's math laid out to fit the page (:mod:`.latex_layout`), ``""`` when it has none."""
+    from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
+
     equations = [m for m in block.math if isinstance(m, Equation)]
     if len(block.math) == 1 and equations and not isinstance(equations[0].rhs, tuple):
         return fit_equation(equations[0].tex, equations[0].rhs).body()

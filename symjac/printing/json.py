@@ -2,19 +2,21 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.analysis.singularity.determinant import Determinant
-from symjac.analysis.singularity.singularities import SingularityReport
-from symjac.kinematics.chain import Frame
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Equation, equation_latex
 from symjac.printing.tables import dh_rows
+
+if TYPE_CHECKING:  # the analyses' types only: printing a Jacobian's JSON does not load them
+    from symjac.analysis.singularity.determinant import Determinant
+    from symjac.analysis.singularity.singularities import SingularityReport
+    from symjac.kinematics.chain import Frame
 
 __all__ = [
     "determinant_data",
@@ -135,8 +137,14 @@ def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, J_x: sp.M
     return {**metadata(robot), "frame": result.frame, "point": point, "orientation": orientation,
             "position": position, "coordinates": [str(c) for c in result.coordinates], "E": matrix_strings(result.E),
             "J_0": matrix_strings(J_0), "J_x": matrix_strings(J_x),
-            "representation_singularities": [str(s) for s in result.singularities],
+            "representation_singularities": [_representation_singularity(s) for s in result.singularities],
             "latex": equation_latex(Equation(r"J_x = E(x)\,J_0", "J_x", J_x))}
+
+
+def _representation_singularity(singularity: Any) -> str:
+    """``factor = 0 (variable = values): what goes wrong there`` (:func:`.prose.representation_words`)."""
+    values = " or ".join(str(value) for value in singularity.solutions)
+    return f"{singularity.factor} = 0 ({singularity.variable} = {values}): {prose.representation_words(singularity)}"
 
 
 def torques_data(robot: Robot, equation: Equation, frame: Frame, point: str, wrench: str | None,

@@ -9,9 +9,11 @@ whose entries are all too long is listed component by component. Widths are esti
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import sympy as sp
 
@@ -33,6 +35,7 @@ _COMMANDS = {"left": 0.0, "right": 0.0, "bigl": 0.0, "bigr": 0.0, ",": 1.7, ";":
              "cdot": 8.0, "geq": 14.0, "leq": 14.0, "neq": 14.0, "to": 14.0, "times": 12.5, "pi": 6.0,
              "omega": 6.5, "mathrm": 0.0, "operatorname": 0.0, "text": 0.0, "dot": 0.0, "ddot": 0.0, "hat": 0.0,
              "partial": 6.0, "det": 16.0, "sin": 15.0, "cos": 17.0, "tan": 17.0, "operatorname*": 0.0}
+_PREFIX = 2000  # characters of a long expression measured first (a line holds about a hundred)
 _TOKEN = re.compile(r"\\[A-Za-z]+\*?|\\.|[{}^_]|[^\\{}^_]")
 
 
@@ -51,21 +54,22 @@ def _group(tokens: list[str], start: int) -> tuple[list[str], int]:
     return tokens[start + 1:], len(tokens)
 
 
-def _width(tokens: list[str], scale: float) -> float:
+def _width(tokens: list[str], scale: float, cap: float = math.inf) -> float:
+    """The width of ``tokens``; past ``cap`` it stops early and returns a width above ``cap``, not the whole one."""
     total, index = 0.0, 0
     while index < len(tokens):
         token = tokens[index]
         index += 1
         if token in ("^", "_"):
             argument, index = _group(tokens, index)
-            total += _width(argument, scale * 0.72)
+            total += _width(argument, scale * 0.72, cap)
         elif token == "\\frac":
             numerator, index = _group(tokens, index)
             denominator, index = _group(tokens, index)
-            total += max(_width(numerator, scale * 0.8), _width(denominator, scale * 0.8)) + 3.0 * scale
+            total += max(_width(numerator, scale * 0.8, cap), _width(denominator, scale * 0.8, cap)) + 3.0 * scale
         elif token == "\\sqrt":
             argument, index = _group(tokens, index)
-            total += _width(argument, scale) + 9.0 * scale
+            total += _width(argument, scale, cap) + 9.0 * scale
         elif token in ("\\text", "\\mathrm", "\\operatorname"):
             argument, index = _group(tokens, index)
             total += 5.0 * scale * sum(1 for t in argument if t not in "{}")
@@ -75,7 +79,22 @@ def _width(tokens: list[str], scale: float) -> float:
             total += _COMMANDS.get(token[1:], 6.5) * scale
         else:
             total += _GLYPH.get(token, 6.2) * scale
+        if total > cap:
+            break
     return total
+
+
+def _wider_than(tex: str, limit: float) -> bool:
+    """Whether ``tex_width(tex) > limit``, without measuring all of a long expression.
+
+    A prefix cut at a space is never wider than the whole (every token adds a width of at least zero), so a prefix
+    already too wide settles it; the measuring stops as soon as it passes ``limit``.
+    """
+    if len(tex) > _PREFIX:
+        cut = tex.rfind(" ", 0, _PREFIX)
+        if cut > 0 and _width(_TOKEN.findall(tex[:cut]), 1.0, limit) > limit:
+            return True
+    return _width(_TOKEN.findall(tex), 1.0, limit) > limit
 
 
 def tex_width(tex: str, scale: float = 1.0) -> float:
@@ -108,12 +127,26 @@ class Display:
 
 
 class _BreakingPrinter(TextbookLatexPrinter):
-    """The textbook printer, plus pieces of a long expression with the places it may break between them."""
+    """The textbook printer, plus pieces of a long expression with the places it may break between them.
+
+    One printer lays out a whole matrix: its entries share subexpressions, each printed (and measured) once.
+    """
+
+    def __init__(self, settings: dict[str, Any] | None = None):
+        super().__init__(settings)
+        self._widths: dict[str, float] = {}
+
+    def width(self, tex: str) -> float:
+        """:func:`tex_width`, remembered: a long sum is measured at every level it is broken at."""
+        found = self._widths.get(tex)
+        if found is None:
+            found = self._widths[tex] = tex_width(tex)
+        return found
 
     def pieces(self, expr: sp.Expr, limit: float) -> list[str]:
         """LaTeX chunks; a line may break before any chunk that starts with a sign (``"+ ..."``, ``"- ..."``)."""
         tex = self.doprint(expr)
-        if tex_width(tex) <= limit:
+        if not _wider_than(tex, limit):
             return [tex]
         if isinstance(expr, sp.Add):
             chunks: list[str] = []
@@ -159,22 +192,21 @@ def _glue(chunks: list[str]) -> list[str]:
     return glued
 
 
-def _lines(expr: sp.Expr, first: float) -> list[str]:
+def _lines(expr: sp.Expr, first: float, printer: _BreakingPrinter) -> list[str]:
     """``expr`` as lines: the first at most ``first`` points wide, the others :data:`_LINE`."""
-    printer = _BreakingPrinter()
     lines: list[str] = []
     current, room = "", first
     for chunk in printer.pieces(expr, _LINE * 0.9):
-        if current and tex_width(current) + tex_width(chunk) > room:
+        if current and tex_width(current) + printer.width(chunk) > room:
             lines.append(current)
             current, room = "", _LINE
         current = f"{current} {chunk}".strip()
     return [*lines, current]
 
 
-def _aligned(name: str, expr: sp.Expr) -> str:
+def _aligned(name: str, expr: sp.Expr, printer: _BreakingPrinter) -> str:
     r"""``name &= value``, continued on ``&\quad`` lines when too long."""
-    lines = _lines(expr, TEXT_WIDTH - tex_width(name) - 20.0)
+    lines = _lines(expr, TEXT_WIDTH - tex_width(name) - 20.0, printer)
     return " \\\\\n".join([f"{name} &= {lines[0]}", *(rf"&\quad {line}" for line in lines[1:])])
 
 
@@ -223,16 +255,16 @@ def fit_equation(lhs: str, rhs: sp.Basic) -> Display:
     >>> fit_equation("y", x).main
     'y = x'
     """
-    printer = TextbookLatexPrinter()
+    printer = _BreakingPrinter()
     head = f"{lhs} = " if lhs else ""
     room = TEXT_WIDTH - tex_width(head)
     if not isinstance(rhs, sp.MatrixBase):
         tex = printer.doprint(rhs)
         if tex_width(tex) <= room:
             return Display(head + tex)
-        return Display("", (_aligned(lhs, rhs),))
+        return Display("", (_aligned(lhs, rhs, printer),))
     entries = [[printer.doprint(rhs[i, j]) for j in range(rhs.cols)] for i in range(rhs.rows)]
-    widths = [[tex_width(e) for e in row] for row in entries]
+    widths = [[printer.width(e) for e in row] for row in entries]
     if _matrix_width(widths) <= room:
         return Display(head + printer.doprint(rhs))
     namer = entry_namer(lhs, rhs)
@@ -242,7 +274,7 @@ def fit_equation(lhs: str, rhs: sp.Basic) -> Display:
                  for i in range(rhs.rows)]
         if _matrix_width(shown) <= room:
             break
-    where = tuple(_aligned(namer(i, j), rhs[i, j]) for i in range(rhs.rows) for j in range(rhs.cols)
+    where = tuple(_aligned(namer(i, j), rhs[i, j], printer) for i in range(rhs.rows) for j in range(rhs.cols)
                   if (i, j) in named)
     if rhs.cols == 1 and len(named) == rhs.rows:  # a vector: its components are the equations
         return Display("", where)

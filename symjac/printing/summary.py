@@ -2,11 +2,15 @@ r"""A singularity report laid out for reading: the determinant, then each factor
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import sympy as sp
 
-from symjac.analysis.singularity.singularities import SingularityReport
 from symjac.printing import prose
 from symjac.printing.document import Block, Equation, Style, blocks_as_pairs
+
+if TYPE_CHECKING:
+    from symjac.analysis.singularity.singularities import SingularityReport
 
 __all__ = ["singularity_blocks", "singularity_summary"]
 

@@ -16,7 +16,7 @@ import sympy as sp
 from symjac.kinematics.chain import Frame, chain_of
 from symjac.kinematics.jacobian import METHODS, Method, jacobian
 from symjac.model.robot import Robot
-from symjac.printing.document import Block, Equation, Inline
+from symjac.printing.document import Block, DHTable, Equation, Inline, Prescripted
 from symjac.printing.mathml import TextbookMathMLPrinter, math_element, mathml_node
 from symjac.printing.mathml_layout import displays
 from symjac.printing.tables import column_html, table_cells, table_headings
@@ -24,6 +24,7 @@ from symjac.printing.tables import column_html, table_cells, table_headings
 __all__ = [
     "Agreement",
     "block_html",
+    "caption_html",
     "dh_table_html",
     "equation_html",
     "frame_symbol",
@@ -107,17 +108,27 @@ def _caption_part_html(part: str | sp.Basic | Inline) -> str:
     return inline_math(part)
 
 
-def _caption_html(parts: Sequence[str | sp.Basic | Inline]) -> str:
+def caption_html(parts: Sequence[str | sp.Basic | Inline]) -> str:
+    """Caption parts (:mod:`symjac.printing.prose`) as HTML: words escaped, math as inline MathML."""
     return "".join(_caption_part_html(part) for part in parts)
 
 
+def _name(name: Prescripted) -> Element:
+    return _prescripted(name.letter, name.sub, name.sup)
+
+
 def block_html(block: Block) -> str:
-    """A :class:`~symjac.printing.document.Block` (caption with inline math, then its equations) as HTML."""
-    caption = f"<p>{_caption_html(block.caption)}</p>\n" if block.caption else ""
+    """A :class:`~symjac.printing.document.Block` (caption with inline math, then its equations) as HTML.
+
+    An equation's left side is its prescripted name (:math:`{}^{0}_{1}T`) when it has one, else its text.
+    """
+    caption = f"<p>{caption_html(block.caption)}</p>\n" if block.caption else ""
     math = []
     for item in block.math:
-        if isinstance(item, Equation):
-            lhs = frame_symbol(item.text) if item.text else None
+        if isinstance(item, DHTable):
+            math.append(dh_table_html(item.robot))
+        elif isinstance(item, Equation):
+            lhs = _name(item.name) if item.name else frame_symbol(item.text) if item.text else None
             rhs = item.rhs if not isinstance(item.rhs, tuple) else item.rhs[-1]
             math.append(equation_html(rhs, lhs))
     return caption + "".join(math)

@@ -274,16 +274,18 @@ class RepresentationSingularity:
         The coordinate the condition restricts.
     solutions : tuple of sympy.Expr
         The values of ``variable`` in its range where ``factor`` vanishes.
-    explanation : str
-        What goes wrong there, in one sentence.
+    cause : str
+        What goes wrong there, as a label: ``"gimbal lock"`` (Euler angles), ``"no rotation axis"`` (axis-angle at
+        the identity), ``"origin"``, ``"polar axis"`` (spherical) or ``"z axis"`` (cylindrical);
+        :func:`symjac.printing.prose.representation_parts` says it in a sentence.
     """
 
     representation: str
     factor: sp.Expr
     variable: sp.Symbol
     solutions: tuple[sp.Expr, ...]
-    explanation: str
+    cause: str
 
     def __str__(self) -> str:
         values = " or ".join(str(value) for value in self.solutions)
-        return f"{self.factor} = 0 ({self.variable} = {values}): {self.explanation}"
+        return f"{self.factor} = 0 ({self.variable} = {values}): {self.cause}"

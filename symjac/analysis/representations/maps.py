@@ -210,41 +210,30 @@ def _singularities(spec: Representation) -> tuple[RepresentationSingularity, ...
 
 @_singularities.register
 def _(spec: EulerConvention) -> tuple[RepresentationSingularity, ...]:
-    first, middle, last = spec.coordinates
+    middle = spec.coordinates[1]
     _, det = _inverse(sp.Matrix(_cached(_angular_velocity, spec)), spec.coordinates)
     (factor, _), = sp.factor_list(det)[1]
-    if spec.is_proper:
-        solutions: tuple[sp.Expr, ...] = (sp.S.Zero, sp.pi)
-        text = (f"the first and third rotation axes ({spec.axes[0]}) line up (gimbal lock); only {first} + {last} "
-                f"({middle} = 0) or {first} - {last} ({middle} = pi) is defined, so their rates are unbounded")
-    else:
-        solutions = (-sp.pi / 2, sp.pi / 2)
-        text = (f"the first and third rotation axes ({spec.axes[0]} and {spec.axes[2]}) line up (gimbal lock); only "
-                f"the sum or difference of {first} and {last} is defined, so their rates are unbounded")
-    return (RepresentationSingularity(spec.name, factor, middle, solutions, text),)
+    solutions: tuple[sp.Expr, ...] = (sp.S.Zero, sp.pi) if spec.is_proper else (-sp.pi / 2, sp.pi / 2)
+    return (RepresentationSingularity(spec.name, factor, middle, solutions, "gimbal lock"),)
 
 
 @_singularities.register
 def _(spec: AxisAngle) -> tuple[RepresentationSingularity, ...]:
     angle = spec.coordinates[3]
-    text = "the identity orientation has no rotation axis, so the axis rates are unbounded"
-    return (RepresentationSingularity(spec.name, sp.sin(angle / 2), angle, (sp.S.Zero,), text),)
+    return (RepresentationSingularity(spec.name, sp.sin(angle / 2), angle, (sp.S.Zero,), "no rotation axis"),)
 
 
 @_singularities.register
 def _(spec: Spherical) -> tuple[RepresentationSingularity, ...]:
     r, polar, _ = spec.coordinates
-    return (
-        RepresentationSingularity(spec.name, r, r, (sp.S.Zero,), "at the origin both angles are undefined"),
-        RepresentationSingularity(spec.name, sp.sin(polar), polar, (sp.S.Zero, sp.pi),
-                                  "on the polar (z) axis the azimuth is undefined"),
-    )
+    return (RepresentationSingularity(spec.name, r, r, (sp.S.Zero,), "origin"),
+            RepresentationSingularity(spec.name, sp.sin(polar), polar, (sp.S.Zero, sp.pi), "polar axis"))
 
 
 @_singularities.register
 def _(spec: Cylindrical) -> tuple[RepresentationSingularity, ...]:
     rho = spec.coordinates[0]
-    return (RepresentationSingularity(spec.name, rho, rho, (sp.S.Zero,), "on the z-axis the azimuth is undefined"),)
+    return (RepresentationSingularity(spec.name, rho, rho, (sp.S.Zero,), "z axis"),)
 
 
 # --- public functions ----------------------------------------------------------------------------------------------

@@ -1,28 +1,31 @@
-"""Every English sentence symjac prints: why a factor is singular, what the arm loses, captions of results.
+"""Why a factor is singular and what the arm loses there, in words; the DH caption; representation singularities.
 
 The analyses return data (:class:`~symjac.analysis.singularity.geometry.Finding`,
 :class:`~symjac.analysis.singularity.singularities.LostDirection`,
-...); this module is the one place that puts them into words, so wording changes in one file.
+...); these functions put them into words. The module names the analyses'
+types only for checkers and compares their string enums by value, so printing a Jacobian does not load the analyses.
 """
 
 from __future__ import annotations
 
-import numpy as np
+from typing import TYPE_CHECKING
+
 import sympy as sp
 
-from symjac.analysis.representations import RepresentationSingularity
-from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark, Relation, SingularityKind
-from symjac.analysis.singularity.singularities import (
-    DirectionPart,
-    LimitStatus,
-    LostDirection,
-    SingularFactor,
-    SingularityReport,
-)
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.conventions import plugin
 from symjac.model.robot import Robot
 from symjac.printing.document import Inline
+
+if TYPE_CHECKING:
+    from symjac.analysis.representations import RepresentationSingularity
+    from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark
+    from symjac.analysis.singularity.singularities import (
+        DirectionPart,
+        LostDirection,
+        SingularFactor,
+        SingularityReport,
+    )
 
 __all__ = [
     "KIND_REASONS",
@@ -41,6 +44,7 @@ __all__ = [
     "reason_parts",
     "redundant_caption",
     "representation_parts",
+    "representation_words",
     "rows_caption",
     "rows_parts",
     "self_motion_parts",
@@ -48,13 +52,14 @@ __all__ = [
 ]
 
 KIND_REASONS = {
-    SingularityKind.WRIST: "two wrist rotations do the same thing, so one orientation direction is lost",
-    SingularityKind.SHOULDER: "rotating joint 1 no longer moves it sideways, so a direction is lost inside the "
+    "wrist": "two wrist rotations do the same thing, so one orientation direction is lost",
+    "shoulder": "rotating joint 1 no longer moves it sideways, so a direction is lost inside the "
                               "workspace",
-    SingularityKind.ELBOW: "the arm is stretched out or folded back, on the boundary of its reach, and cannot move "
+    "elbow": "the arm is stretched out or folded back, on the boundary of its reach, and cannot move "
                            "along that line",
 }
-"""What each textbook kind of singularity means for the arm."""
+"""What each textbook kind of singularity (a :class:`~symjac.analysis.singularity.geometry.SingularityKind`, a string
+enum) means for the arm."""
 
 _AXIS_NAMES = ("x", "y", "z")
 
@@ -70,6 +75,8 @@ def landmark_name(landmark: Landmark) -> str:
 
 def finding_sentence(finding: Finding) -> str:
     """A geometric fact in words: ``the axes of joints 4 and 6 are collinear``."""
+    from symjac.analysis.singularity.geometry import Relation
+
     joints = [j + 1 for j in finding.joints]
     name = "" if finding.landmark is None else landmark_name(finding.landmark)
     if finding.relation is Relation.PARALLEL_AXES:
@@ -94,7 +101,7 @@ def _cause_words(cause: Cause) -> str:
 
 def reason(factor: SingularFactor) -> str:
     """Why ``factor`` is singular, in one sentence (without the final full stop)."""
-    if factor.kind is SingularityKind.PARAMETER:
+    if factor.kind == "parameter":
         return (f"{factor.expression} depends on parameters only: a design with {factor.expression} = 0 would be "
                 "singular everywhere; the default parameters are not")
     return _cause_words(factor.cause)
@@ -102,7 +109,7 @@ def reason(factor: SingularFactor) -> str:
 
 def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
     """:func:`reason` as caption parts, its formulas as SymPy objects (printed as math)."""
-    if factor.kind is SingularityKind.PARAMETER:
+    if factor.kind == "parameter":
         return (factor.expression, " depends on parameters only: a design with ",
                 sp.Eq(factor.expression, 0, evaluate=False), " would be singular everywhere; the default parameters "
                 "are not")
@@ -139,6 +146,8 @@ def readable_value(value: float) -> sp.Expr:
 
 def _part_name(part: DirectionPart, frame: object) -> str:
     """A named axis, or the unit vector's components (exact when simple, else rounded) in ``frame``."""
+    import numpy as np
+
     if part.axis is not None:
         return axis_name(part.axis)
     return f"({', '.join(readable_number(float(c)) for c in np.asarray(part.unit))}) in frame {{{frame}}}"
@@ -217,11 +226,11 @@ def existence_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
             "parameters).")
 
 
-_LIMIT_WORDS = {
-    LimitStatus.INSIDE: "is inside them",
-    LimitStatus.OUTSIDE: "is outside them",
-    LimitStatus.PARTLY: "is partly inside them (depending on the other joints)",
-    LimitStatus.UNKNOWN: "could not be checked",
+_LIMIT_WORDS = {  # by LimitStatus, a string enum
+    "inside": "is inside them",
+    "outside": "is outside them",
+    "partly": "is partly inside them (depending on the other joints)",
+    "unknown": "could not be checked",
 }
 
 
@@ -232,7 +241,7 @@ def limit_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
     "not reachable within the joint limits".
     """
     marked = [(solution.equation, status) for solution, status in zip(factor.solutions, factor.limits, strict=True)
-              if status is not LimitStatus.UNLIMITED]
+              if status != "unlimited"]
     if not marked:
         return ()
     parts: list[str | sp.Basic] = [" Not reachable within the joint limits:" if factor.reachable is False
@@ -286,10 +295,34 @@ def dh_caption(robot: Robot) -> str:
     return f"{robot.name}: {robot.description}, {plugin(robot.convention).table_name}"
 
 
+def representation_words(singularity: RepresentationSingularity) -> str:
+    """What goes wrong at a representation singularity, in one sentence (without the final full stop)."""
+    from symjac.analysis.representations.conventions import REGISTRY
+
+    spec = REGISTRY[singularity.representation]
+    if singularity.cause == "gimbal lock":
+        first, middle, last = spec.coordinates
+        axes = spec.axes  # type: ignore[union-attr]
+        if spec.is_proper:  # type: ignore[union-attr]
+            return (f"the first and third rotation axes ({axes[0]}) line up (gimbal lock); only {first} + {last} "
+                    f"({middle} = 0) or {first} - {last} ({middle} = pi) is defined, so their rates are unbounded")
+        return (f"the first and third rotation axes ({axes[0]} and {axes[2]}) line up (gimbal lock); only the sum "
+                f"or difference of {first} and {last} is defined, so their rates are unbounded")
+    return _REPRESENTATION_CAUSES[singularity.cause]
+
+
+_REPRESENTATION_CAUSES = {
+    "no rotation axis": "the identity orientation has no rotation axis, so the axis rates are unbounded",
+    "origin": "at the origin both angles are undefined",
+    "polar axis": "on the polar (z) axis the azimuth is undefined",
+    "z axis": "on the z-axis the azimuth is undefined",
+}
+
+
 def representation_parts(singularity: RepresentationSingularity) -> tuple[str | sp.Basic, ...]:
     """A singularity of a representation's rate matrix, told apart from a kinematic one, as caption parts."""
     values: list[str | sp.Basic] = []
     for number, value in enumerate(singularity.solutions):
         values += [" or "] * bool(number) + [sp.Eq(singularity.variable, value, evaluate=False)]
     return ("Representation singularity (not kinematic): ", sp.Eq(singularity.factor, 0, evaluate=False), ", that is ",
-            *values, f": {singularity.explanation}.")
+            *values, f": {representation_words(singularity)}.")

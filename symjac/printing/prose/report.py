@@ -1,0 +1,93 @@
+r"""The sentences of the HTML report (:func:`symjac.report.derivation_report`), as plain text or caption parts.
+
+Plain strings are words (the page escapes them); caption parts mix words with SymPy objects, which the page prints
+as inline MathML.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import sympy as sp
+
+from symjac.model.robot import Robot
+
+__all__ = [
+    "METHODS_HEADING",
+    "NO_SINGULAR_CURVE",
+    "PATH_IN_MAP",
+    "curve_parts",
+    "forward_kinematics_intro",
+    "jacobian_frame_heading",
+    "jacobian_intro",
+    "map_caption",
+    "methods_verdict",
+    "point_words",
+    "rates_parts",
+]
+
+METHODS_HEADING = "Four methods, one Jacobian"
+NO_SINGULAR_CURVE = ("No singular curve crosses this plane (the singular factors do not involve these joints, or the "
+                     "arm is redundant and singular only where every minor vanishes).")
+PATH_IN_MAP = "The dashed white segment is the path of the next figure."
+
+
+def point_words(robot: Robot, point: Sequence[sp.Expr]) -> str:
+    """The point a report's Jacobian moves: the tool point, the wrist point, or a reference point."""
+    if robot.tool is not None:
+        return "the tool point"
+    return f"the wrist point (the origin of frame {{{robot.dof}}})" if not any(point) else "the reference point"
+
+
+def forward_kinematics_intro(source: object, target: object) -> str:
+    """What the forward kinematics is, above its matrix."""
+    return f"The pose of frame {{{target}}} relative to frame {{{source}}}, the product of the link transforms."
+
+
+def jacobian_intro(point: str) -> str:
+    """The Jacobian section's first line (``point`` from :func:`point_words`)."""
+    return f"Basic Jacobian [v; \u03c9] (linear velocity first) at {point}."
+
+
+def jacobian_frame_heading(frame: object) -> str:
+    """``Expressed in frame {0}, the base frame``, or the frame where the Jacobian is most compact."""
+    words = "the base frame" if frame == 0 else "the frame where it is most compact"
+    return f"Expressed in frame {{{frame}}}, {words}"
+
+
+def methods_verdict(agree: bool) -> str:
+    """Whether the four derivation methods gave the same Jacobian."""
+    if agree:
+        return ("All four methods agree: each gives exactly the same matrix as differentiation, compared entry by "
+                "entry as exact SymPy expressions.")
+    return "The methods DISAGREE: see the table; this is a bug in symjac, please report it."
+
+
+def map_caption(measure: str, rows: str, joints: tuple[str, str], fixed: str) -> str:
+    """The manipulability map's caption (``measure`` is ``|det J|`` or ``sqrt(det(J J^T))``)."""
+    shown = "w = |det J|" if measure == "|det J|" else "w = \u221adet(J J\u1d40)"
+    return (f"Manipulability {shown} of the rows {rows} over {joints[0]} and {joints[1]}, the other joints fixed "
+            f"({fixed or 'none'}), parameters at their defaults. Singular sets:")
+
+
+def curve_parts(factor: sp.Expr, kind: str, solutions: Sequence[sp.Basic]) -> tuple[Any, ...]:
+    """One singular curve of the map: the factor, and how it is drawn (from its solutions, or as a contour)."""
+    if not solutions:
+        return ("factor ", factor, f" ({kind}): no solved form in this plane: its exact values on a 601 \u00d7 601 "
+                "grid, zero contour (dashed)")
+    parts: list[Any] = ["factor ", factor, f" ({kind}): drawn exactly from its solutions "]
+    for number, solution in enumerate(solutions):
+        parts += [", "] * bool(number) + [solution]
+    return tuple(parts)
+
+
+def rates_parts(command: str, crossing: sp.Expr | None, square: bool) -> tuple[Any, ...]:
+    """The joint-rates figure's caption: the commanded velocity, the factor crossed at t = 0, what the rates do."""
+    behaviour = ("The exact rates (solid) grow like 1/|t|; the damped least-squares rates (dashed) stay bounded at "
+                 "the price of a tracking error." if square else
+                 "The arm is redundant, so J has no inverse: the rates shown are the damped least-squares ones.")
+    head = (f"Joint rates q\u0307 = J\u207b\u00b9 x\u0307 for a constant commanded velocity x\u0307 = ({command}) "
+            "(the direction lost at the singular configuration), along the straight path of the map")
+    middle = () if crossing is None else (" crossing the singular set of the factor ", crossing)
+    return (head, *middle, f" at t = 0. {behaviour}")

@@ -1,0 +1,76 @@
+"""Titles and captions of the results the command line prints (:mod:`symjac.printing.results` builds them)."""
+
+from __future__ import annotations
+
+from symjac.model.robot import Robot
+from symjac.printing.document import Inline
+
+__all__ = [
+    "BIAS_ACCELERATION",
+    "LATEX_TOO_LONG",
+    "RATE_MATRIX",
+    "REPRESENTATION_COORDINATES",
+    "derivative_caption",
+    "fixed_transform_caption",
+    "hessian_caption",
+    "jacobian_caption",
+    "representation_caption",
+    "title",
+    "torques_caption",
+]
+
+_TITLES = {
+    "show": "DH table and link transforms",
+    "fk": "forward kinematics",
+    "jacobian": "Jacobian in frame {}",
+    "representation": "{} representation Jacobian",
+    "derivative": "time derivative of the Jacobian in frame {}",
+    "hessian": "kinematic Hessian in frame {}",
+    "torques": "joint torques",
+    "singularities": "singular configurations",
+}
+
+REPRESENTATION_COORDINATES = ("Representation coordinates",)
+RATE_MATRIX = ("Rate matrix, ", Inline(r"\dot{x} = E(x)\,[v;\ \omega]", "xdot = E(x) [v; omega]"))
+BIAS_ACCELERATION = ("Bias acceleration, the acceleration at zero joint acceleration",)
+LATEX_TOO_LONG = ("ask for less: a frame in the middle of the chain (--frame K), where the halves stay short; a few "
+                  "task rows (--rows, with singularities and codegen); or numeric code (symjac codegen)")
+"""What to ask for instead of a LaTeX result too long to read."""
+
+
+def title(robot: Robot, result: str, detail: object = "") -> str:
+    """A result's title: ``puma560: Jacobian in frame 0`` (``result`` names a command, ``detail`` fills it in)."""
+    return f"{robot.name}: {_TITLES[result].format(detail)}"
+
+
+def fixed_transform_caption(source: object, target: object) -> tuple[str, ...]:
+    """``Fixed tool transform`` before the transform to the tool (or from the world); nothing for a link."""
+    if target == "tool":
+        return ("Fixed tool transform",)
+    return ("Fixed base transform",) if source == "world" else ()
+
+
+def jacobian_caption(point: str, method: str) -> str:
+    """``Basic Jacobian at the wrist point, differentiation``."""
+    return f"Basic Jacobian at the {point} point, {method.replace('_', ' ')}"
+
+
+def representation_caption(point: str) -> tuple[str]:
+    r"""The caption of :math:`J_x = E(x)\,J`."""
+    return (f"Representation Jacobian at the {point} point",)
+
+
+def derivative_caption(point: str, moving: bool) -> str:
+    r"""The caption of :math:`\dot J`; ``moving`` when the frame turns with the joints."""
+    turning = " (in a moving frame: its rotation is differentiated too)" if moving else ""
+    return f"Time derivative of the basic Jacobian at the {point} point{turning}"
+
+
+def hessian_caption(joint: int) -> str:
+    r"""The caption of the slice :math:`\partial J / \partial q_k` (``joint`` counts from 0)."""
+    return f"Derivative of the Jacobian with respect to joint {joint + 1}"
+
+
+def torques_caption(frame: object, point: str) -> str:
+    """``Joint torques for a wrench in frame 0 at the wrist point``."""
+    return f"Joint torques for a wrench in frame {frame} at the {point} point"

@@ -165,7 +165,7 @@ def test_show_and_the_report_print_the_same_transforms(cli, page):
     robot = load_robot("planar3r")
     document = transforms_document(robot, link_transforms(robot))
     assert cli.ok("show", "planar3r", "--format", "pretty") == render(document, "pretty")
-    assert len(document.blocks) == robot.dof + 2  # the table, each link, the tool
+    assert len(document.blocks) == robot.n_joints + 2  # the table, each link, the tool
     _blocks_in(document, page)
 
 

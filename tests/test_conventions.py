@@ -111,7 +111,7 @@ def test_html_and_latex_tables_share_the_plugins_columns():
         for column in table_headings(robot):
             assert column_latex(column) in latex_table and f"<th>{column_html(column)}</th>" in html_table
             assert column_text(column)
-        assert html_table.count("<tr>") == latex_table.count(r"\\") + 1 == robot.dof + 1
+        assert html_table.count("<tr>") == latex_table.count(r"\\") + 1 == robot.n_joints + 1
 
 
 def test_every_convention_gives_the_reference_jacobian():

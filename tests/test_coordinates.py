@@ -108,7 +108,7 @@ def _configurations(robot, count: int = 2) -> list[np.ndarray]:
 @pytest.mark.parametrize("name", sorted(ROBOTS))
 def test_sizes_and_coupling_matrix(name):
     robot = _robot(name)
-    assert robot.n_joints == robot.n_coordinates + 1 and robot.dof == robot.n_coordinates
+    assert robot.n_joints == robot.n_coordinates + 1
     assert robot.q == robot.coordinates and len(robot.joint_variables) == robot.n_joints
     assert coupling_matrix(robot).shape == (robot.n_joints, robot.n_coordinates)
     assert forward_kinematics(robot).free_symbols.isdisjoint(set(robot.joint_variables) - set(robot.q))
@@ -281,3 +281,10 @@ def test_coordinate_names_are_checked():
     with pytest.raises(RobotFileError, match="coordinate L1 is also a parameter"):
         L1 = sp.Symbol("L1", real=True)
         dataclasses.replace(robot, coupling=Coupling((t[0], t[1], L1), (t[0], t[1], L1)))
+
+
+def test_code_generation_refuses_a_coupled_robot_in_one_line():
+    from symjac import CodegenError, generate
+
+    with pytest.raises(CodegenError, match="couples its joints: code generation in independent coordinates"):
+        generate(_robot("palletizer"), "python")

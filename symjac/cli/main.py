@@ -250,9 +250,9 @@ def _fk(args: argparse.Namespace) -> Document:
     from symjac.printing.results import forward_kinematics_document
 
     robot = load(args)
-    note_if_large(robot.name, robot.dof)
+    note_if_large(robot.name, robot.n_joints)
     source: Frame = "world" if robot.base else 0
-    target: Frame = "tool" if robot.tool else robot.dof
+    target: Frame = "tool" if robot.tool else robot.n_joints
     T = progress(f"forward kinematics of {robot.name}", lambda: chain_of(robot).simplified_transform(source, target))
     return forward_kinematics_document(robot, source, target, T, _digits(args))
 
@@ -262,7 +262,7 @@ def _jacobian(args: argparse.Namespace) -> Document:
     from symjac.printing.results import jacobian_document
 
     robot = load(args)
-    note_if_large(robot.name, robot.dof)
+    note_if_large(robot.name, robot.n_joints)
     frame = parse_frame(args.frame)
     point = parse_point(args.point, robot)
     if args.representation is not None:
@@ -344,7 +344,7 @@ def _torques(args: argparse.Namespace) -> Document:
     frame = parse_frame(args.frame)
     point = parse_point(args.point, robot)
     wrench = None if args.wrench is None else parse_values(args.wrench, 6, "--wrench", robot)
-    q = None if args.q is None else parse_values(args.q, robot.dof, "--q", robot, parameters=False)
+    q = None if args.q is None else parse_values(args.q, robot.n_coordinates, "--q", robot, parameters=False)
     tau = progress(f"joint torques of {robot.name}",
                     lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q))
     evaluated = None if q is None else args.digits or DIGITS  # at a configuration: numbers, shown as decimals

@@ -48,10 +48,10 @@ def progress(what: str, compute: Callable[[], Any]) -> Any:
     return result
 
 
-def note_if_large(name: str, dof: int) -> None:
+def note_if_large(name: str, n_joints: int) -> None:
     """Say on stderr, before a derivation starts, that a chain with more than :data:`LARGE_CHAIN` joints is slow."""
-    if dof > LARGE_CHAIN:
-        print(f"symjac: note: {name} has {dof} joints; symbolic results this long can take minutes. Narrow the "
+    if n_joints > LARGE_CHAIN:
+        print(f"symjac: note: {name} has {n_joints} joints; symbolic results this long can take minutes. Narrow the "
               "request to a sub-chain (a robot file with fewer joints, or --base-link/--tip-link of a URDF file); "
               "Ctrl-C stops cleanly.", file=sys.stderr, flush=True)
 

@@ -99,7 +99,7 @@ def lowered_hessian(
     are symmetric in j and m in a fixed frame).
     """
     def compute() -> LoweredFunction:
-        n = chain.n
+        n = chain.robot.n_coordinates
         program = _Program(chain, lowered_jacobian(chain, frame, point, tuple(range(6)), strategy))
         columns = program.columns()
         carried = len(carried_joints(chain, frame))
@@ -138,7 +138,7 @@ def lowered_bias_acceleration(
     about 36 operations per joint on top of the Jacobian, which it reuses entry by entry.
     """
     def compute() -> LoweredFunction:
-        vias: list[Frame] = [frame, *(via for via in (0, 1) if via <= chain.n and chain.position(frame) != via)]
+        vias: list[Frame] = [frame, *(via for via in (0, 1) if via <= chain.n_joints and chain.position(frame) != via)]
         candidates = [_bias_in(chain, frame, via, point, rows, strategy) for via in vias]
         return min(candidates, key=lambda candidate: candidate.cost)
 
@@ -153,7 +153,7 @@ def _bias_in(chain: Chain, frame: Frame, via: Frame, point: tuple[sp.Expr, ...],
     a frame near the base often has cheaper columns (the PUMA's frame {1} Jacobian does not depend on theta1).
     """
     robot = chain.robot
-    n = chain.n
+    n = chain.robot.n_coordinates
     rates = joint_rate_symbols(chain)
     program = _Program(chain, lowered_jacobian(chain, via, point, tuple(range(6)), strategy))
     columns = program.columns()

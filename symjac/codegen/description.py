@@ -244,7 +244,8 @@ class ModuleDescription:
     version: str
     robot: str
     convention: str
-    dof: int
+    n_joints: int
+    n_coordinates: int
     joints: tuple[tuple[str, str], ...]
     parameters: tuple[tuple[str, float], ...]
     functions: tuple[FunctionDescription, ...]

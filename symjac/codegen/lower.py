@@ -211,7 +211,7 @@ def _jacobian_candidates(
         yield "compact (simplified) Jacobian", compact
     yield "raw chain products, cross-product form", jacobian(chain, frame, point, "cross_product", simplify=False)
     for via in (0, 1):
-        if via > chain.n or chain.position(frame) == via:
+        if via > chain.n_joints or chain.position(frame) == via:
             continue
         rotation = block_rotation(chain.rotation(frame, via))
         compact = _compact_or_none(chain, ("jacobian", via, point), partial(jacobian, chain, via, point))
@@ -230,8 +230,8 @@ def lowered_jacobian(
         angles = angle_expansion(chain)
         best: LoweredFunction | None = None
         for origin, J in _jacobian_candidates(chain, frame, point, strategy):
-            selected = [J[r, c] for r in rows for c in range(robot.dof)]
-            candidate = lower_function(angles, selected, (len(rows), robot.dof), (("q", robot.q),),
+            selected = [J[r, c] for r in rows for c in range(robot.n_coordinates)]
+            candidate = lower_function(angles, selected, (len(rows), robot.n_coordinates), (("q", robot.q),),
                                        robot.parameter_symbols, origin)
             if best is None or candidate.cost < best.cost:
                 best = candidate
@@ -264,7 +264,7 @@ def lowered_forward_kinematics(chain: Chain, strategy: str) -> LoweredFunction:
 def lowered_kinematics(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> LoweredFunction:
     """Point position in {0}, ^0_nR and ^0_kR (21 values): what the self-test differentiates numerically."""
     def compute() -> LoweredFunction:
-        T_0_n = chain.transform(0, chain.n)
+        T_0_n = chain.transform(0, chain.n_joints)
         x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
         values = [*x_P, *T_0_n[:3, :3], *chain.rotation(0, frame)]
         return lower_function(angle_expansion(chain), values, (21,), (("q", chain.robot.q),),
@@ -276,7 +276,7 @@ def lowered_kinematics(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -
 def lowered_torques(chain: Chain, J: LoweredFunction, rows: tuple[int, ...]) -> LoweredFunction:
     """Joint torques tau = J^T F from the (angle-expanded) Jacobian ``J``; ``F`` holds the wrench rows ``rows``."""
     wrench = tuple(sp.Symbol(f"_F{r}", real=True) for r in rows)
-    n = chain.n
+    n = chain.robot.n_coordinates
     tau = [sum((J.expanded[k * n + i] * wrench[k] for k in range(len(rows))), sp.S.Zero) for i in range(n)]
     return lower_function(angle_expansion(chain), tau, (n,), (("q", chain.robot.q), ("wrench", wrench)),
                           chain.robot.parameter_symbols, f"J^T F from the Jacobian ({J.origin})", expanded=True)

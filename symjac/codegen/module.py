@@ -104,6 +104,9 @@ def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args
     if not isinstance(request.robot, Robot | Chain):
         raise CodegenError(f"expected a symjac Robot or Chain, got {type(request.robot).__name__}")
     chain = as_chain(request.robot)
+    if chain.robot.coupling is not None:
+        raise CodegenError(f"{chain.robot.name} couples its joints: code generation in independent coordinates is not "
+                           "supported yet (generate for the uncoupled robot, robot.uncoupled)")
     validate_robot(chain.robot, spec.identifiers)
     requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
@@ -150,7 +153,7 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
                 Argument("qdot", rates, "Joint rates"))
         infos.append(JacobianInfo(
             jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
-            determinant=names["jacobian_determinant"] if len(selected) == model.dof else None,
+            determinant=names["jacobian_determinant"] if len(selected) == model.n_coordinates else None,
             kinematics=names["_kinematics"], frame=where, point=point_name,
             point_values=tuple(float_literal(v.subs(model.defaults)) for v in point),  # type: ignore[arg-type]
             rows=selected, row_names=tuple(ROW_NAMES[r] for r in selected),
@@ -204,7 +207,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         command_note = "in the folder it was run in" if _names_relative_file(source, command) else ""
     return ModuleDescription(
         target=request.target, version=__version__, robot=model.name, convention=model.convention.value,
-        dof=model.dof, joints=tuple((j.variable.name, j.type.value) for j in model.joints),
+        n_joints=model.n_joints, n_coordinates=model.n_coordinates,
+        joints=tuple((j.variable.name, j.type.value) for j in model.joints),
         parameters=tuple((p.name, float(float_literal(p.default))) for p in model.parameters),
         functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),

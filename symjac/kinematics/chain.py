@@ -80,9 +80,8 @@ class Chain:
 
     @property
     def n_joints(self) -> int:
-        """Number of joints: the chain's frames are 0..n_joints (``n`` is the former name, kept for now)."""
+        """Number of joints: the chain's frames are 0..n_joints."""
         return self.robot.n_joints
-    n = n_joints
 
     @cached_property
     def joint_chain(self) -> Chain:
@@ -394,4 +393,4 @@ def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | 
     L1*cos(theta1) + L2*cos(theta1 + theta2) + L3*cos(theta1 + theta2 + theta3)
     """
     chain = as_chain(robot)
-    return in_coordinates(chain, sp.Matrix(chain.simplified_transform(source, chain.n if target is None else target)))
+    return in_coordinates(chain, sp.Matrix(chain.simplified_transform(source, chain.n_joints if target is None else target)))

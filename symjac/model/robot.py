@@ -259,15 +259,6 @@ class Robot:
         return len(self.coordinates)
 
     @property
-    def dof(self) -> int:
-        """Degrees of freedom: the number of independent coordinates (:attr:`n_coordinates`).
-
-        Kept because a mechanism's degrees of freedom *are* its independent coordinates; new code names
-        :attr:`n_joints` or :attr:`n_coordinates`, whichever it counts.
-        """
-        return self.n_coordinates
-
-    @property
     def joint_variables(self) -> tuple[sp.Symbol, ...]:
         """Joint variables (theta_i or d_i), in chain order: what the chain's transforms are written in."""
         return tuple(joint.variable for joint in self.joints)

@@ -117,7 +117,7 @@ def jacobian_derivative_data(robot: Robot, Jdot: Equation, bias: Equation, frame
 
 def hessian_data(robot: Robot, equations: list[Equation], frame: Frame, point: str) -> dict[str, Any]:
     """``symjac hessian``: ``entries[i][j][k]`` = dJ[i, j]/dq_k (layout (6, n, n)), each slice dJ/dq_k and its LaTeX."""
-    n = robot.dof
+    n = robot.n_coordinates
     slices = [equation.rhs for equation in equations]
     entries = [[[sp.sstr(slices[k][i, j]) for k in range(n)] for j in range(n)] for i in range(6)]
     return {**metadata(robot), "frame": frame, "point": point, "shape": [6, n, n],

@@ -73,11 +73,12 @@ def transform_equation(source: Frame, target: Frame, T: sp.MatrixBase) -> Equati
 def link_transforms(robot: Robot) -> list[Transform]:
     """Each link's transform, simplified, then the fixed base and tool transforms the robot has."""
     chain = chain_of(robot)  # no note for a long chain: each link is simplified alone, 200 links in about a second
-    transforms: list[Transform] = [(i - 1, i, chain.simplified_transform(i - 1, i)) for i in range(1, robot.dof + 1)]
+    transforms: list[Transform] = [(i - 1, i, chain.simplified_transform(i - 1, i))
+                                   for i in range(1, robot.n_joints + 1)]
     if robot.base is not None:
         transforms.append(("world", 0, robot.base.matrix))
     if robot.tool is not None:
-        transforms.append((robot.dof, "tool", robot.tool.matrix))
+        transforms.append((robot.n_joints, "tool", robot.tool.matrix))
     return transforms
 
 

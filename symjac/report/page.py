@@ -68,7 +68,7 @@ def _dh_and_transforms(robot: Robot) -> tuple[Section, Section]:
 def _forward(robot: Robot) -> Section:
     """The forward kinematics: the document of ``symjac fk``."""
     source: Frame = "world" if robot.base else 0
-    target: Frame = "tool" if robot.tool else robot.dof
+    target: Frame = "tool" if robot.tool else robot.n_joints
     document = forward_kinematics_document(robot, source, target, chain_of(robot).simplified_transform(source, target))
     return Section("fk", "Forward kinematics",
                    f"<p>{html.escape(prose.forward_kinematics_intro(source, target))}</p>" + _html(document))
@@ -119,10 +119,10 @@ def _map_section(robot: Robot, plane: ManipulabilityMap, path: SingularPath | No
 
 
 def _rates_section(robot: Robot, path: SingularPath) -> Section:
-    names = [_joint_name(robot, k) for k in range(robot.dof)]
+    names = [_joint_name(robot, k) for k in range(robot.n_coordinates)]
     command = ", ".join(f"{ROW_NAMES[r]} {value:+.3f}" for r, value in zip(path.rows, path.xdot, strict=True))
     crossing = None if path.curve is None else path.curve.factor.expression
-    text = f"<p>{caption_html(prose.rates_parts(command, crossing, len(path.rows) == robot.dof))}</p>"
+    text = f"<p>{caption_html(prose.rates_parts(command, crossing, len(path.rows) == robot.n_coordinates))}</p>"
     return Section("rates", "Joint rates through a singularity", f'<div class="figure">{rates_svg(path, names)}</div>'
                    + text)
 

@@ -37,7 +37,7 @@ def point_words(robot: Robot, point: Sequence[sp.Expr]) -> str:
     """The point a report's Jacobian moves: the tool point, the wrist point, or a reference point."""
     if robot.tool is not None:
         return "the tool point"
-    return f"the wrist point (the origin of frame {{{robot.dof}}})" if not any(point) else "the reference point"
+    return f"the wrist point (the origin of frame {{{robot.n_joints}}})" if not any(point) else "the reference point"
 
 
 def forward_kinematics_intro(source: object, target: object) -> str:

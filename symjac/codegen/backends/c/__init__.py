@@ -73,7 +73,7 @@ def c_sources(chain: Chain, functions: Sequence[FunctionDescription], taken: fro
     printer = CPrinter({**{v: f"x[{k}]" for k, v in enumerate(robot.q)},
                         **{s: f"p[{k}]" for k, s in enumerate(robot.parameter_symbols)}})
     angle_code = tuple(printer.doprint(angle) for angle in angle_expansion(chain).angles)
-    data = {"robot": robot.name, "dof": robot.dof, "angles": angle_code, "functions": kernels,
+    data = {"robot": robot.name, "dof": robot.n_coordinates, "angles": angle_code, "functions": kernels,
             "parameter_count": len(robot.parameters)}
     # The name carries a hash of the source so that a changed module never loads a stale cached extension.
     body = render_template(KERNELS_TEMPLATE, module="MODULE_NAME", **data)

@@ -393,4 +393,5 @@ def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | 
     L1*cos(theta1) + L2*cos(theta1 + theta2) + L3*cos(theta1 + theta2 + theta3)
     """
     chain = as_chain(robot)
-    return in_coordinates(chain, sp.Matrix(chain.simplified_transform(source, chain.n_joints if target is None else target)))
+    T = chain.simplified_transform(source, chain.n_joints if target is None else target)
+    return in_coordinates(chain, sp.Matrix(T))

@@ -95,7 +95,8 @@ from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Par
 from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
 from symjac.model.urdf import robot_from_urdf
 from symjac.printing import latex, pretty
-from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity, simplify_expr, simplify_matrix
 from symjac.symbolic.transforms import twist_transform, wrench_transform
 
 __all__ = [

@@ -24,7 +24,8 @@ from symjac import (
     wrench_transform,
 )
 from symjac.errors import ArgumentError
-from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity
 from symjac.symbolic.transforms import homogeneous, inverse_transform, rotation_rpy
 
 L1, L2, L3 = sp.symbols("L1 L2 L3", real=True)

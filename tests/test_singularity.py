@@ -19,7 +19,8 @@ from symjac.analysis.spaces import jacobian_spaces, numeric_jacobian, symbolic_s
 from symjac.cli.main import main
 from symjac.errors import ArgumentError, FrameError
 from symjac.printing import prose
-from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity
 
 SQUARE = ["planar2r", "planar3r", "articulated3r", "scara", "stanford", "puma560", "ur5"]
 

@@ -33,7 +33,6 @@ from symjac.codegen.lower import (
 from symjac.codegen.printers import check_identifier, float_literal
 from symjac.codegen.request import (
     RESERVED,
-    WRENCH_NAMES,
     JacobianRequest,
     check_rows,
     frame_text,
@@ -51,7 +50,7 @@ from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.io import catalog, load_robot
-from symjac.model.robot import Robot
+from symjac.model.robot import WRENCH_NAMES, Robot
 from symjac.resources import render_template
 
 Strategy = Literal["fastest", "raw", "simplified"]

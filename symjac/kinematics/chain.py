@@ -20,7 +20,8 @@ import sympy as sp
 from symjac.errors import FrameError
 from symjac.model.robot import Convention, FixedTransform, Joint, Robot
 from symjac.progress import report
-from symjac.symbolic.simplify import AngleBasis, simplify_product
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import simplify_product
 from symjac.symbolic.transforms import Composition, Motion, alignment, compose, dh_motions, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
@@ -170,21 +171,6 @@ class Chain:
     def rotation(self, source: Frame, target: Frame) -> sp.ImmutableMatrix:
         r""":math:`{}^{\text{source}}_{\text{target}}R`, raw."""
         return self.transform(source, target)[:3, :3]
-
-    @cached_property
-    def link_transforms(self) -> tuple[sp.ImmutableMatrix, ...]:
-        r"""The n link transforms :math:`{}^{i-1}_{i}T`, i = 1..n."""
-        return tuple(self.transform(i - 1, i) for i in range(1, self.n + 1))
-
-    @cached_property
-    def T_0_i(self) -> tuple[sp.ImmutableMatrix, ...]:
-        r""":math:`{}^0_iT` for i = 0..n, simplified (index i gives frame {i})."""
-        return tuple(self.simplified_transform(0, i) for i in range(self.n + 1))
-
-    @cached_property
-    def T_i_n(self) -> tuple[sp.ImmutableMatrix, ...]:
-        r""":math:`{}^i_nT` for i = 0..n, simplified."""
-        return tuple(self.simplified_transform(i, self.n) for i in range(self.n + 1))
 
     # --- simplification basis -------------------------------------------------------------------------------
 

@@ -53,7 +53,8 @@ from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.propagation import force_propagation, velocity_propagation
 from symjac.model.robot import VELOCITY_NAMES, Robot
 from symjac.progress import report
-from symjac.symbolic.simplify import AngleBasis, simplify_matrix, simplify_product
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import simplify_matrix, simplify_product
 from symjac.symbolic.transforms import block_rotation, point_shift
 
 Method = Literal["differentiation", "cross_product", "velocity_propagation", "force_propagation"]

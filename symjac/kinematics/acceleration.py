@@ -46,6 +46,7 @@ import sympy as sp
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.kinematics.memo import frame_of, memoized, one_of
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
@@ -70,8 +71,9 @@ def carried_joints(robot: Robot | Chain, frame: Frame) -> tuple[int, ...]:
     return tuple(range(1, min(max(chain.position(frame), 0), chain.n) + 1))
 
 
+@memoized(frame=frame_of, point=point_vector)
 def hessian(
-    robot: Robot | Chain, frame: Frame = 0, point: Point = "wrist", *, simplify: bool = True
+    chain: Chain, frame: Frame = 0, point: Point = "wrist", *, simplify: bool = True
 ) -> sp.ImmutableDenseNDimArray:
     r"""The kinematic Hessian :math:`H_{ijm} = \partial J_{ij} / \partial q_m` of the basic Jacobian :math:`{}^kJ`.
 
@@ -104,10 +106,7 @@ def hessian(
     [-L2*cos(theta1 + theta2), -L2*cos(theta1 + theta2)],
     [-L2*sin(theta1 + theta2), -L2*sin(theta1 + theta2)]])
     """
-    chain = as_chain(robot)
-    frame = chain.frame_name(chain.position(frame))
-    xyz = point_vector(chain, point)
-    return chain.memo(("hessian", frame, xyz, simplify), lambda: _hessian(chain, frame, xyz, simplify))
+    return _hessian(chain, frame, point, simplify)  # type: ignore[arg-type]  # normalised by @memoized
 
 
 def hessian_slice(H: sp.NDimArray, m: int) -> sp.Matrix:
@@ -152,8 +151,9 @@ def _hessian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], simplify: b
     return sp.ImmutableDenseNDimArray(H)
 
 
+@memoized(frame=frame_of, point=point_vector, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix)
 def jacobian_derivative(
-    robot: Robot | Chain,
+    chain: Chain,
     frame: Frame = 0,
     point: Point = "wrist",
     method: DerivativeMethod = "hessian",
@@ -189,13 +189,7 @@ def jacobian_derivative(
     >>> jacobian_derivative(load_robot("planar2r"))[0, 1]
     -L2*(thetadot1 + thetadot2)*cos(theta1 + theta2)
     """
-    if method not in DERIVATIVE_METHODS:
-        raise ArgumentError(f"unknown method {method!r}; choose one of {', '.join(DERIVATIVE_METHODS)}")
-    chain = as_chain(robot)
-    frame = chain.frame_name(chain.position(frame))
-    xyz = point_vector(chain, point)
-    return sp.Matrix(chain.memo(("jacobian_derivative", frame, xyz, method, simplify),
-                                lambda: _jacobian_derivative(chain, frame, xyz, method, simplify)))
+    return _jacobian_derivative(chain, frame, point, method, simplify)  # type: ignore[arg-type]  # normalised
 
 
 def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], method: DerivativeMethod,
@@ -214,8 +208,9 @@ def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...],
     return sp.ImmutableMatrix(6, n, lambda i, j: sum(H[i, j, m] * rates[m] for m in range(n)))
 
 
+@memoized(frame=frame_of, point=point_vector, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix)
 def bias_acceleration(
-    robot: Robot | Chain,
+    chain: Chain,
     frame: Frame = 0,
     point: Point = "wrist",
     method: DerivativeMethod = "hessian",
@@ -234,18 +229,10 @@ def bias_acceleration(
     >>> bias_acceleration(load_robot("planar2r"))[0]
     -L1*thetadot1**2*cos(theta1) - L2*(thetadot1 + thetadot2)**2*cos(theta1 + theta2)
     """
-    chain = as_chain(robot)
-    frame = chain.frame_name(chain.position(frame))
-    xyz = point_vector(chain, point)
-
-    def derive() -> sp.ImmutableMatrix:
-        Jdot = jacobian_derivative(chain, frame, list(xyz), method, simplify=False)
-        raw = Jdot * sp.Matrix(joint_rate_symbols(chain))
-        if not simplify:
-            return sp.ImmutableMatrix(raw)
-        return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))
-
-    return sp.Matrix(chain.memo(("bias_acceleration", frame, xyz, method, simplify), derive))
+    raw = jacobian_derivative(chain, frame, point, method, simplify=False) * sp.Matrix(joint_rate_symbols(chain))
+    if not simplify:
+        return sp.ImmutableMatrix(raw)
+    return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))
 
 
 def _collect_rates(matrix: sp.MatrixBase, chain: Chain) -> sp.Matrix:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable
 from functools import cached_property, lru_cache
-from typing import Literal, TypeVar
+from typing import Any, Literal, NamedTuple, TypeVar
 
 import sympy as sp
 
@@ -31,12 +31,24 @@ __all__ = [
     "CHAINS_KEPT",
     "Chain",
     "Frame",
+    "MemoKey",
     "as_chain",
     "chain_of",
     "clear_caches",
     "forward_kinematics",
     "origin_motions",
 ]
+
+
+class MemoKey(NamedTuple):
+    """Where :meth:`Chain.memo` keeps a value: the function that derives it and its normalised arguments.
+
+    Two quantities never collide, because no two functions are the same; see
+    :func:`symjac.kinematics.memo.memoized`, which builds these keys.
+    """
+
+    function: Callable[..., Any]
+    arguments: tuple[Hashable, ...]
 
 
 class Chain:
@@ -68,8 +80,9 @@ class Chain:
     def memo(self, key: Hashable, compute: Callable[[], T]) -> T:
         """The value stored under ``key``, computed by ``compute()`` the first time it is asked for.
 
-        Keys start with the name of the quantity (``("jacobian", frame, point, method, simplify)``) so that stages
-        never collide. The values are immutable (SymPy immutable matrices, frozen dataclasses).
+        Keys are :class:`MemoKey` values (the deriving function and its normalised arguments), built by
+        :func:`symjac.kinematics.memo.memoized`. The values are immutable (SymPy immutable matrices, frozen
+        dataclasses).
         """
         if key not in self._memo:
             self._memo[key] = compute()
@@ -268,7 +281,7 @@ class Chain:
                 bases += [basis for basis in self.angle_bases(frame) if basis not in bases]
             return tuple(bases)
 
-        return self.memo(("all_angle_bases",), compute)
+        return self.memo(MemoKey(Chain.all_angle_bases, ()), compute)
 
     def _one_link_bases(self, position: int) -> tuple[AngleBasis, ...]:
         """The basis of the one link ending at frame position ``position``: its own joint angle, if revolute.
@@ -288,7 +301,7 @@ class Chain:
 
     def _basis(self, references: tuple[int, ...]) -> AngleBasis:
         """The angle basis measuring each parallel group from its reference frame (kept: frames share most)."""
-        return self.memo(("angle_basis", references), lambda: self._new_basis(references))
+        return self.memo(MemoKey(Chain._new_basis, references), lambda: self._new_basis(references))
 
     def _new_basis(self, references: tuple[int, ...]) -> AngleBasis:
         joints = self.robot.joints

@@ -253,7 +253,7 @@ class Chain:
     def angle_bases(self, frame: Frame) -> tuple[AngleBasis, ...]:
         """:meth:`angle_basis` first, then the bases that measure one parallel group from another of its frames.
 
-        A textbook entry may mix references (the seed 002 arm in its tool frame has :math:`s_3` next to
+        A textbook entry may mix references (the arm of the lecture slides in its tool frame has :math:`s_3` next to
         :math:`L_1 + L_2 c_2 + L_3 c_{23}`); :func:`symjac.symbolic.simplify.simplify_matrix` keeps, per entry, the
         shortest. The other references of a group are its two ends and the frames next to ``frame`` (see
         :func:`_alternative_references`).

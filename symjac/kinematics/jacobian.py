@@ -347,7 +347,7 @@ def shift_point(J: sp.MatrixBase, p: Sequence[sp.Expr]) -> sp.Matrix:
 def jacobian_of(
     f: Sequence[sp.Expr] | sp.MatrixBase, q: Sequence[sp.Symbol], basis: AngleBasis | None = None
 ) -> sp.Matrix:
-    r"""The Jacobian :math:`\partial f / \partial q` of any vector function (seed 000, section 4.2).
+    r"""The Jacobian :math:`\partial f / \partial q` of any vector function (course chapter, section 4.2).
 
     With an angle ``basis`` the entries are simplified (see :mod:`symjac.symbolic.simplify`).
 

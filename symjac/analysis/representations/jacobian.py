@@ -1,4 +1,4 @@
-r"""Representation Jacobians of a robot: :math:`J_x = \mathrm{diag}(E_p, E_r)\,J_0` (seed 000, 4.36-4.38).
+r"""Representation Jacobians of a robot: :math:`J_x = \mathrm{diag}(E_p, E_r)\,J_0` (course chapter, 4.36-4.38).
 
 The symbolic result is derived once per chain (:meth:`symjac.kinematics.chain.Chain.memo`); the numeric one extracts
 :math:`x` from the forward kinematics and refuses poses on a representation singularity.
@@ -120,7 +120,7 @@ def representation_jacobian(
     point: Point = "wrist",
     frame: Frame = 0,
 ) -> RepresentationJacobian:
-    r"""The representation Jacobian :math:`J_x = E(x)\,J_0` of ``robot`` (seed 000, equations 4.36-4.38).
+    r"""The representation Jacobian :math:`J_x = E(x)\,J_0` of ``robot`` (course chapter, eqs. 4.36-4.38).
 
     .. math::
         J_x = \begin{bmatrix} E_p(x_p) & 0 \\ 0 & E_r(x_r) \end{bmatrix}

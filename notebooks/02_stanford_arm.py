@@ -28,7 +28,7 @@ import sympy as sp
 from IPython.display import Markdown, Math, display
 
 from symjac import chain_of, change_frame, forward_kinematics, is_identity, jacobian, latex, load_robot
-from symjac.symbolic.simplify import AngleBasis
+from symjac.symbolic.angles import AngleBasis
 from symjac.teaching.exercises import check
 
 robot = load_robot("stanford")

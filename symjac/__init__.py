@@ -58,7 +58,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "symjac.model.robot_file": ("robot_from_mapping", "robot_to_mapping"),
     "symjac.model.urdf": ("robot_from_urdf",),
     "symjac.printing": ("latex", "pretty"),
-    "symjac.symbolic.simplify": ("AngleBasis", "is_identity", "simplify_expr", "simplify_matrix"),
+    "symjac.symbolic.angles": ("AngleBasis",),
+    "symjac.symbolic.simplify": ("is_identity", "simplify_expr", "simplify_matrix"),
     "symjac.symbolic.transforms": ("twist_transform", "wrench_transform"),
 }
 """Each module of the public API and the names :mod:`symjac` re-exports from it."""

@@ -32,7 +32,8 @@ from symjac.kinematics.acceleration import bias_acceleration, hessian, hessian_s
 from symjac.kinematics.acceleration_propagation import acceleration_propagation, joint_accelerations
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.printing.steps import propagation_steps
-from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity
 from symjac.symbolic.trigpoly import image_of
 
 ROBOTS = sorted(catalog()) + sorted(urdf_catalog())

@@ -441,7 +441,7 @@ def test_torques_numeric_with_a_wrench_and_a_configuration(cli):
     data = json.loads(cli.ok("torques", "planar2r", "--wrench", "1,0,0,0,0,0", "--q", "pi/2,0", "--format",
                          "json"))
     assert [float(t) for t in data["torques"]] == pytest.approx([-0.9, -0.4])
-    # the stretched-out arm holds a force along itself with no torque (seed 002)
+    # the stretched-out arm holds a force along itself with no torque (the lecture slides)
     data = json.loads(cli.ok("torques", "planar2r", "--wrench", "0,2,0,0,0,0", "--q", "pi/2,0", "--format",
                          "json"))
     assert [float(t) for t in data["torques"]] == pytest.approx([0, 0], abs=1e-12)

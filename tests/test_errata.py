@@ -54,3 +54,14 @@ def test_an_altered_print_is_caught():
     formula = FORMULAS[0]
     assert compare(formula).differing  # the known misprint
     assert compare(formula.__class__(**{**formula.__dict__, "printed": formula.corrected})).differing == ()
+
+
+def test_the_readable_columns_of_0_6T_in_4_96_are_listed_as_an_erratum(capsys):
+    """(4.96) prints X for the first two columns of 0_6T; the third (z6) is readable and drops c5 in rows 1 and 2."""
+    formula = next(f for f in FORMULAS if f.where.endswith("eq. (4.96)"))
+    assert formula.args == {"source": 0, "target": 6, "columns": [3, 4]}
+    result = compare(formula)
+    assert result.verdict == "erratum" and result.differing == ((1, 1), (2, 1))  # z6, rows 1 and 2; row 3 holds
+    assert result.corrected_holds
+    assert main(["errata"]) == 0
+    assert "eq. (4.96)" in capsys.readouterr().out.split("## Errata")[1].split("## Convention notes")[0]

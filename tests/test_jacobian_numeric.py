@@ -77,7 +77,7 @@ def test_methods_agree_symbolically(name, frame):
 
 
 def test_cross_product_in_frame_zero_from_position_differences():
-    """Seed 000 (4.150) variant: 0z_i x (x_P - p_0i) with everything in {0}, then compared exactly."""
+    """The course chapter (4.150) variant: 0z_i x (x_P - p_0i) with everything in {0}, then compared exactly."""
     from symjac.symbolic.simplify import simplify_matrix
 
     robot = load_robot("puma560")

@@ -24,7 +24,8 @@ from symjac import (
     wrench_transform,
 )
 from symjac.errors import ArgumentError
-from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity
 from symjac.symbolic.transforms import homogeneous, inverse_transform, rotation_rpy
 
 L1, L2, L3 = sp.symbols("L1 L2 L3", real=True)
@@ -58,7 +59,7 @@ def test_planar_3r_velocity_propagation_reproduces_seed_000_4_136_to_4_141():
 
 
 def test_stretched_out_2r_arm_holds_a_radial_force_with_zero_torque():
-    """Seed 002: at theta2 = 0 a force F along the arm, F (c1, s1) in {0}, needs no joint torque."""
+    """The lecture slides: at theta2 = 0 a force F along the arm, F (c1, s1) in {0}, needs no joint torque."""
     robot = load_robot("planar2r")
     F = sp.Symbol("F", real=True)
     tau = joint_torques(robot, wrench=[F * c1, F * s1, 0, 0, 0, 0])

@@ -12,7 +12,8 @@ from reference import finite_difference_jacobian, random_configuration
 from symjac import damped_least_squares, inverse_rates, load_robot, rates_along_path
 from symjac.analysis.inverse_rates import RATE_SYMBOLS, damping
 from symjac.errors import ArgumentError
-from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity
 
 t2, t3 = sp.symbols("theta2 theta3", real=True)
 L1, L2, L3 = sp.symbols("L1 L2 L3", real=True)

@@ -2,7 +2,7 @@
 
 Independent checks: finite differences of coordinates extracted from plain-NumPy forward kinematics
 (tests/reference.py), finite differences of rotation matrices for angular velocities, exact SymPy identities against
-the seeds' printed matrices, and round trips through extraction (also at gimbal lock).
+the printed matrices of the course notes, and round trips through extraction (also at gimbal lock).
 """
 
 from __future__ import annotations
@@ -127,7 +127,7 @@ def test_zyz_rotation_is_seed_002_matrix():
 
 
 def test_printed_rate_matrix_of_seed_000_is_zxz_and_zyz_differs():
-    """Seed 000 (4.31) is E_r of Z-X-Z angles with omega in {0}; the Z-Y-Z wrist angles give another matrix."""
+    """Course chapter (4.31): E_r of Z-X-Z angles with omega in {0}; the Z-Y-Z wrist angles give another matrix."""
     a, b, _ = coordinates("zxz")
     ca, sa, cb, sb = sp.cos(a), sp.sin(a), sp.cos(b), sp.sin(b)
     printed = sp.Matrix([[-sa * cb / sb, ca * cb / sb, 1], [ca, sa, 0], [sa / sb, -ca / sb, 0]])
@@ -487,7 +487,7 @@ def _lock_angles(name):
 @pytest.mark.parametrize("name", ANGLE_SETS)
 @pytest.mark.parametrize("offset", [0.0, 1e-13, 1e-9, 1e-6])
 def test_gimbal_lock_first_angle_zero_and_round_trip(name, offset):
-    """At (and near) beta = 0, pi or +-pi/2 the pose is reproduced; exactly there the first angle is 0 (seed 002)."""
+    """Near beta = 0, pi or +-pi/2 the pose is reproduced; exactly there the first angle is 0 (lecture slides)."""
     rng = np.random.default_rng(13)
     first = representation(name).leftmost  # the leftmost factor: yaw for roll-pitch-yaw, the last angle if extrinsic
     for lock in _lock_angles(name):

@@ -1,4 +1,4 @@
-"""The closed forms printed in the course notes (shared/seeds), asserted as exact symbolic identities.
+"""The closed forms printed in the course notes, asserted as exact symbolic identities.
 
 Each expected matrix is typed from the notes in their own notation; `assert_identical` checks every entry with the
 exact normal form of symjac.symbolic.simplify (not by comparing printed strings). Where the notes have a typo, the test
@@ -34,7 +34,7 @@ def assert_identical(actual: sp.MatrixBase, expected: sp.MatrixBase) -> None:
 
 
 def test_planar_2r_in_frames_0_and_1():
-    """Seed 000 (4.102) and (4.104), with x = l1 c1 + l2 c12, y = l1 s1 + l2 s12 (4.100, 4.101)."""
+    """The course chapter (4.102) and (4.104), with x = l1 c1 + l2 c12, y = l1 s1 + l2 s12 (4.100, 4.101)."""
     robot = load_robot("planar2r")
     x, y = L1 * c1 + L2 * c12, L1 * s1 + L2 * s12
     assert_identical(jacobian(robot, frame=0)[:2, :], sp.Matrix([[-y, -L2 * s12], [x, L2 * c12]]))
@@ -44,7 +44,7 @@ def test_planar_2r_in_frames_0_and_1():
 
 
 def test_planar_3r_at_wrist_and_end_effector():
-    """Seed 000 (4.117) at the wrist and (4.122) at the end-effector point E, L3 beyond the wrist."""
+    """The course chapter (4.117) at the wrist and (4.122) at the end-effector point E, L3 beyond the wrist."""
     robot = load_robot("planar3r")
     zero = [0, 0, 0]
     J_W = sp.Matrix([
@@ -64,7 +64,7 @@ def test_planar_3r_at_wrist_and_end_effector():
 
 
 def test_stanford_link_transforms_with_the_corrected_sign_in_1_2T():
-    """Seed 000 (4.86)-(4.91). The notes print row 3 of 1_2T as [-s2, c2, 0, 0]; Rx(-pi/2) Rz(theta2) gives -c2."""
+    """Course chapter (4.86)-(4.91). It prints row 3 of 1_2T as [-s2, c2, 0, 0]; Rx(-pi/2) Rz(theta2) gives -c2."""
     chain = chain_of(load_robot("stanford"))
     notes = {
         1: [[c1, -s1, 0, 0], [s1, c1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]],
@@ -85,7 +85,7 @@ def test_stanford_link_transforms_with_the_corrected_sign_in_1_2T():
 
 
 def test_stanford_forward_kinematics():
-    """Seed 000 (4.92), (4.93), (4.152); and (4.15) for the position."""
+    """The course chapter (4.92), (4.93), (4.152); and (4.15) for the position."""
     robot = load_robot("stanford")
     assert_identical(forward_kinematics(robot, 0, 2), sp.Matrix([
         [c1 * c2, -c1 * s2, -s1, -s1 * d2], [s1 * c2, -s1 * s2, c1, c1 * d2], [-s2, -c2, 0, 0], [0, 0, 0, 1]]))
@@ -98,7 +98,7 @@ def test_stanford_forward_kinematics():
 
 
 def test_stanford_position_jacobian():
-    """Seed 000 (4.16): columns -y, x from (4.15), then c1c2d3 ... for theta2 and the prismatic d3."""
+    """The course chapter (4.16): columns -y, x from (4.15), then c1c2d3 ... for theta2 and the prismatic d3."""
     robot = load_robot("stanford")
     x, y = c1 * s2 * d3 - s1 * d2, s1 * s2 * d3 + c1 * d2
     J_p = sp.Matrix([
@@ -110,7 +110,7 @@ def test_stanford_position_jacobian():
 
 
 def test_stanford_full_jacobian_and_the_entries_the_notes_get_wrong():
-    """Seed 000 section 4.11.1 prints the 6 x 6 Jacobian in {0}; three of its entries are typos.
+    """The course chapter section 4.11.1 prints the 6 x 6 Jacobian in {0}; three of its entries are typos.
 
     (4, 5): printed -s1 c2 s4 + c1 c4 (a copy of the entry below it); z5 = 0_4R [0, 1, 0]^T gives -c1 c2 s4 - s1 c4.
     (4, 6) and (5, 6): printed ... + c1 s2 s5 and ... + s1 s2 s5; z6 = -(column 2 of 0_5R) gives c1 s2 c5, s1 s2 c5.
@@ -133,7 +133,7 @@ def test_stanford_full_jacobian_and_the_entries_the_notes_get_wrong():
 
 
 def test_stanford_cross_product_terms_in_frame_i():
-    """Seed 000 (4.156), (4.157), (4.159), (4.161): z_i x p_i3 computed in {i}, then rotated into {0}."""
+    """The course chapter (4.156), (4.157), (4.159), (4.161): z_i x p_i3 computed in {i}, then rotated into {0}."""
     robot = load_robot("stanford")
     chain = chain_of(robot)
     p_13 = chain.transform(1, 3)[:3, 3]
@@ -146,17 +146,17 @@ def test_stanford_cross_product_terms_in_frame_i():
 
 
 def test_articulated_3r_in_frame_4():
-    """Seed 002: 4J = [[0, L2 s3, 0], [0, L2 c3 + L3, L3], [-L1 - L2 c2 - L3 c23, 0, 0]] at the tool point."""
+    """The lecture slides: 4J = [[0, L2 s3, 0], [0, L2 c3 + L3, L3], [-L1 - L2 c2 - L3 c23, 0, 0]] at the tool point."""
     robot = load_robot("articulated3r")
     J_4 = jacobian(robot, frame="tool", point="tool")
     expected = sp.Matrix([[0, L2 * s3, 0], [0, L2 * c3 + L3, L3], [-L1 - L2 * c2 - L3 * c23, 0, 0]])
     assert_identical(J_4[:3, :], expected)
     # the compact layout keeps the notes' mix of references: s3 beside c2 and c23
     assert J_4[:3, :] == expected
-    # its determinant, -(L1 + L2 c2 + L3 c23) L2 s3 L3, is the seed's shoulder/elbow singularity
+    # its determinant, -(L1 + L2 c2 + L3 c23) L2 s3 L3, is the lecture slides' shoulder/elbow singularity
     assert is_identity(J_4[:3, :].det(), -(L1 + L2 * c2 + L3 * c23) * L2 * s3 * L3, BASIS)
 
 
 def test_2r_determinant_is_l1_l2_s2():
-    """Seed 002: det J = L1 L2 s2, independent of theta1."""
+    """The lecture slides: det J = L1 L2 s2, independent of theta1."""
     assert is_identity(jacobian(load_robot("planar2r"))[:2, :].det(), L1 * L2 * s2, BASIS)

@@ -7,7 +7,8 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, trig_normal_form
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity, simplify_expr, trig_normal_form
 
 t1, t2, t3 = sp.symbols("theta1 theta2 theta3", real=True)
 L1, L2, beta = sp.symbols("L1 L2 beta", real=True)

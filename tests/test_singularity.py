@@ -19,7 +19,8 @@ from symjac.analysis.spaces import jacobian_spaces, numeric_jacobian, symbolic_s
 from symjac.cli.main import main
 from symjac.errors import ArgumentError, FrameError
 from symjac.printing import prose
-from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity
 
 SQUARE = ["planar2r", "planar3r", "articulated3r", "scara", "stanford", "puma560", "ur5"]
 
@@ -67,7 +68,7 @@ def test_articulated_3r_determinant_matches_seed_002_with_its_existence_conditio
     assert elbow.kind == "elbow" and shoulder.kind == "shoulder"
     assert sp.simplify(shoulder.existence.lhs - shoulder.existence.rhs - (L2 + L3 - L1)) == 0
     assert shoulder.exists_for_defaults is True
-    # seed 002: case 1 loses x of frame {4}, case 2 loses z of frame {4} (the tool frame, parallel to {3})
+    # the lecture slides: case 1 loses x of frame {4}, case 2 loses z of frame {4} (the tool frame, parallel to {3})
     assert "x of frame {3}" in prose.lost_words(elbow) and "z of frame {3}" in prose.lost_words(shoulder)
     assert "origin" not in prose.reason(shoulder) and "axis of joint 1" in prose.reason(shoulder)
 

@@ -2,7 +2,7 @@ r"""Joint rates for a commanded Cartesian velocity: :math:`\dot q = J^{-1}\dot x
 
 Closed form (:func:`inverse_rates`): for a square Jacobian, :math:`J^{-1} = \operatorname{adj}(J) / \det J`, so every
 joint rate is a compact numerator over the factored determinant; where a factor of :math:`\det J` vanishes, the
-rates that divide by it grow without bound (seed 002's 3R arm:
+rates that divide by it grow without bound (the lecture slides' 3R arm:
 :math:`\dot\theta_1 = \dot z / (-L_1 - L_2 c_2 - L_3 c_{23})`).
 
 Numerically (:func:`damped_least_squares`), the damped least-squares inverse

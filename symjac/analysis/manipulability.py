@@ -43,6 +43,7 @@ from symjac.errors import ArgumentError
 from symjac.kinematics.acceleration import hessian
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point, point_vector, rows_from_names
+from symjac.kinematics.memo import frame_of, memoized
 from symjac.kinematics.numeric import numeric_jacobian
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
@@ -106,14 +107,16 @@ class ManipulabilityGradient(NamedTuple):
 def _numeric_hessian(chain: Chain, q: np.ndarray, frame: Frame, point: tuple[sp.Expr, ...]) -> np.ndarray:
     """The (6, n, n) kinematic Hessian at ``q`` (parameters at their defaults), compiled once per frame and point."""
     n = chain.robot.n_coordinates
+    return np.asarray(_compiled_hessian(chain, frame, point)(q), dtype=float).reshape(6, n, n)
 
-    def compile_hessian() -> Callable[..., Any]:
-        H = hessian(chain, frame, list(point), simplify=False)
-        flat = sp.Matrix(6, n * n, list(H.reshape(6 * n * n))).xreplace(chain.robot.defaults)
-        return sp.lambdify([list(chain.robot.q)], flat, modules="numpy", cse=True)
 
-    function = chain.memo(("numeric_hessian", frame, point), compile_hessian)
-    return np.asarray(function(q), dtype=float).reshape(6, n, n)
+@memoized(frame=frame_of, point=point_vector)
+def _compiled_hessian(chain: Chain, frame: Frame, point: Point) -> Callable[..., Any]:
+    """The raw Hessian, flattened to 6 x n^2, lambdified over q with the parameters at their defaults."""
+    n = chain.robot.n_coordinates
+    H = hessian(chain, frame, point, simplify=False)
+    flat = sp.Matrix(6, n * n, list(H.reshape(6 * n * n))).xreplace(chain.robot.defaults)
+    return sp.lambdify([list(chain.robot.q)], flat, modules="numpy", cse=True)
 
 
 def manipulability_gradient(
@@ -249,8 +252,9 @@ def _barrier(factor: sp.Expr, multiplicity: int, variables: Sequence[sp.Symbol],
     return sp.ImmutableMatrix([sp.factor_terms(numerator) / factor for numerator in numerators])
 
 
+@memoized(point=_default_point, rows=_resolve_rows)
 def log_det_gradient(
-    robot: Robot | Chain,
+    chain: Chain,
     rows: Rows | None = None,
     frame: Frame | None = None,
     point: Point | None = None,
@@ -286,32 +290,26 @@ def log_det_gradient(
     >>> result.term("sin(theta2)").gradient.T
     Matrix([[0, cot(theta2)]])
     """
-    chain = as_chain(robot)
-    xyz = _default_point(chain, point)
-    chosen = _resolve_rows(chain, rows, xyz)
+    chosen: tuple[int, ...] = rows  # type: ignore[assignment]  # normalised by @memoized, like point
     n = chain.robot.n_coordinates
     if len(chosen) != n:
         names = ", ".join(ROW_NAMES[r] for r in chosen)
         raise ArgumentError(f"{chain.robot.name}: log|det J| needs a square Jacobian, but rows {names} and "
                             f"{n} coordinates make it {len(chosen)} x {n}; choose {n} rows, or use "
                             f"manipulability_gradient (numeric, any number of rows up to {n})")
+    det = determinant(chain, chosen, frame, point)
+    if det.coefficient == 0:
+        raise ArgumentError(f"the Jacobian of {chain.robot.name} on rows {', '.join(det.row_names)} is "
+                            f"singular everywhere, so log|det J| has no gradient")
+    variables = tuple(chain.robot.q)
+    bases = chain.all_angle_bases()
 
-    def derive() -> LogDetGradient:
-        det = determinant(chain, chosen, frame, list(xyz))
-        if det.coefficient == 0:
-            raise ArgumentError(f"the Jacobian of {chain.robot.name} on rows {', '.join(det.row_names)} is "
-                                f"singular everywhere, so log|det J| has no gradient")
-        variables = tuple(chain.robot.q)
-        bases = chain.all_angle_bases()
+    def layout(matrix: sp.Matrix) -> sp.Matrix:
+        return simplify_matrix(matrix, bases)
 
-        def layout(matrix: sp.Matrix) -> sp.Matrix:
-            return simplify_matrix(matrix, bases)
-
-        terms = tuple(BarrierTerm(factor, multiplicity, _barrier(factor, multiplicity, variables, layout))
-                      for factor, multiplicity in det.factors if factor.free_symbols & set(variables))
-        total = sp.zeros(len(variables), 1)
-        for term in terms:
-            total += term.gradient
-        return LogDetGradient(det, variables, terms, sp.ImmutableMatrix(total))
-
-    return chain.memo(("log_det_gradient", chosen, frame, xyz), derive)
+    terms = tuple(BarrierTerm(factor, multiplicity, _barrier(factor, multiplicity, variables, layout))
+                  for factor, multiplicity in det.factors if factor.free_symbols & set(variables))
+    total = sp.zeros(len(variables), 1)
+    for term in terms:
+        total += term.gradient
+    return LogDetGradient(det, variables, terms, sp.ImmutableMatrix(total))

@@ -20,6 +20,7 @@ import sympy as sp
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_jacobian
 from symjac.model.robot import Robot
 
@@ -139,7 +140,8 @@ def symbolic_spaces(
 # --- task rows and frames ----------------------------------------------------------------------------------------
 
 
-def task_rows(robot: Robot | Chain, point: Point = "wrist") -> tuple[int, ...]:
+@memoized(point=point_vector)
+def task_rows(chain: Chain, point: Point = "wrist") -> tuple[int, ...]:
     r"""The rows of the basic Jacobian an arm controls: all six for n >= 6, else n independent rows.
 
     Rows identically zero in frame {0} are dropped (a planar arm never moves along z); of the rest, rows are taken in
@@ -147,9 +149,7 @@ def task_rows(robot: Robot | Chain, point: Point = "wrist") -> tuple[int, ...]:
     This gives x, y for a planar 2R arm, x, y, :math:`\omega_z` for a planar 3R arm and the position rows for a
     3-joint positioning arm.
     """
-    chain = as_chain(robot)
-    xyz = point_vector(chain, point)
-    return chain.memo(("task_rows", xyz), lambda: _task_rows(chain, xyz))
+    return _task_rows(chain, point)  # type: ignore[arg-type]  # normalised by @memoized
 
 
 def _task_rows(chain: Chain, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:

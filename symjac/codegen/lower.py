@@ -28,11 +28,11 @@ import sympy as sp
 
 from symjac.codegen.cse import eliminate_common
 from symjac.codegen.printers import check_expression
-from symjac.codegen.request import WRENCH_NAMES, frame_text
+from symjac.codegen.request import frame_text
 from symjac.errors import CodegenError, ResultTooLargeError
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import jacobian
-from symjac.model.robot import Robot
+from symjac.model.robot import WRENCH_NAMES, Robot
 from symjac.symbolic.angles import AngleExpansion
 from symjac.symbolic.dag import free_symbols
 from symjac.symbolic.size import term_limit

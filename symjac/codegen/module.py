@@ -36,7 +36,6 @@ from symjac.codegen.lower import (
 from symjac.codegen.printers import float_literal
 from symjac.codegen.request import (
     RESERVED,
-    WRENCH_NAMES,
     JacobianRequest,
     check_rows,
     frame_text,
@@ -53,7 +52,7 @@ from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.io import catalog, load_robot
-from symjac.model.robot import Robot
+from symjac.model.robot import WRENCH_NAMES, Robot
 
 Strategy = Literal["fastest", "raw", "simplified"]
 STRATEGIES: tuple[str, ...] = get_args(Strategy)

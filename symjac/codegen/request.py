@@ -20,7 +20,6 @@ from symjac.model.robot import Robot
 
 __all__ = [
     "RESERVED",
-    "WRENCH_NAMES",
     "JacobianRequest",
     "check_rows",
     "frame_text",
@@ -31,8 +30,6 @@ __all__ = [
     "requests_from",
     "validate_robot",
 ]
-
-WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
 
 # Names every generated module defines or imports for itself, with the reason a parameter may not take them.
 RESERVED: Mapping[str, str] = {

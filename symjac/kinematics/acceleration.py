@@ -47,6 +47,7 @@ from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.coupling import hessian_in_coordinates, in_coordinates, jacobian_in_coordinates
 from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.kinematics.memo import frame_of, memoized, one_of
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
@@ -71,8 +72,9 @@ def carried_joints(robot: Robot | Chain, frame: Frame) -> tuple[int, ...]:
     return tuple(range(1, min(max(chain.position(frame), 0), chain.n_joints) + 1))
 
 
+@memoized(frame=frame_of, point=point_vector)
 def hessian(
-    robot: Robot | Chain, frame: Frame = 0, point: Point = "wrist", *, simplify: bool = True
+    chain: Chain, frame: Frame = 0, point: Point = "wrist", *, simplify: bool = True
 ) -> sp.ImmutableDenseNDimArray:
     r"""The kinematic Hessian :math:`H_{ijm} = \partial J_{ij} / \partial q_m` of the basic Jacobian :math:`{}^kJ`.
 
@@ -106,10 +108,7 @@ def hessian(
     [-L2*cos(theta1 + theta2), -L2*cos(theta1 + theta2)],
     [-L2*sin(theta1 + theta2), -L2*sin(theta1 + theta2)]])
     """
-    chain = as_chain(robot)
-    frame = chain.frame_name(chain.position(frame))
-    xyz = point_vector(chain, point)
-    return chain.memo(("hessian", frame, xyz, simplify), lambda: _hessian(chain, frame, xyz, simplify))
+    return _hessian(chain, frame, point, simplify)  # type: ignore[arg-type]  # normalised by @memoized
 
 
 def hessian_slice(H: sp.NDimArray, m: int) -> sp.Matrix:
@@ -157,8 +156,9 @@ def _hessian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], simplify: b
     return sp.ImmutableDenseNDimArray(H)
 
 
+@memoized(frame=frame_of, point=point_vector, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix)
 def jacobian_derivative(
-    robot: Robot | Chain,
+    chain: Chain,
     frame: Frame = 0,
     point: Point = "wrist",
     method: DerivativeMethod = "hessian",
@@ -194,13 +194,7 @@ def jacobian_derivative(
     >>> jacobian_derivative(load_robot("planar2r"))[0, 1]
     -L2*(thetadot1 + thetadot2)*cos(theta1 + theta2)
     """
-    if method not in DERIVATIVE_METHODS:
-        raise ArgumentError(f"unknown method {method!r}; choose one of {', '.join(DERIVATIVE_METHODS)}")
-    chain = as_chain(robot)
-    frame = chain.frame_name(chain.position(frame))
-    xyz = point_vector(chain, point)
-    return sp.Matrix(chain.memo(("jacobian_derivative", frame, xyz, method, simplify),
-                                lambda: _jacobian_derivative(chain, frame, xyz, method, simplify)))
+    return _jacobian_derivative(chain, frame, point, method, simplify)  # type: ignore[arg-type]  # normalised
 
 
 def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], method: DerivativeMethod,
@@ -222,8 +216,9 @@ def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...],
     return sp.ImmutableMatrix(6, n, lambda i, j: sum(H[i, j, m] * rates[m] for m in range(n)))
 
 
+@memoized(frame=frame_of, point=point_vector, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix)
 def bias_acceleration(
-    robot: Robot | Chain,
+    chain: Chain,
     frame: Frame = 0,
     point: Point = "wrist",
     method: DerivativeMethod = "hessian",
@@ -242,21 +237,13 @@ def bias_acceleration(
     >>> bias_acceleration(load_robot("planar2r"))[0]
     -L1*thetadot1**2*cos(theta1) - L2*(thetadot1 + thetadot2)**2*cos(theta1 + theta2)
     """
-    chain = as_chain(robot)
-    frame = chain.frame_name(chain.position(frame))
-    xyz = point_vector(chain, point)
-
-    def derive() -> sp.ImmutableMatrix:
-        if chain.joint_chain is not chain:  # coupled: Jdot_q qdot = Jdot thetadot with thetadot = C qdot
-            joints = bias_acceleration(chain.joint_chain, frame, list(xyz), method, simplify=simplify)
-            return in_coordinates(chain, sp.ImmutableMatrix(joints), frame if simplify else None)
-        Jdot = jacobian_derivative(chain, frame, list(xyz), method, simplify=False)
-        raw = Jdot * sp.Matrix(joint_rate_symbols(chain))
-        if not simplify:
-            return sp.ImmutableMatrix(raw)
-        return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))
-
-    return sp.Matrix(chain.memo(("bias_acceleration", frame, xyz, method, simplify), derive))
+    if chain.joint_chain is not chain:  # coupled: Jdot_q qdot = Jdot thetadot with thetadot = C qdot
+        joints = bias_acceleration(chain.joint_chain, frame, list(point), method, simplify=simplify)
+        return in_coordinates(chain, sp.ImmutableMatrix(joints), frame if simplify else None)
+    raw = jacobian_derivative(chain, frame, point, method, simplify=False) * sp.Matrix(joint_rate_symbols(chain))
+    if not simplify:
+        return sp.ImmutableMatrix(raw)
+    return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))
 
 
 def _collect_rates(matrix: sp.MatrixBase, chain: Chain) -> sp.Matrix:

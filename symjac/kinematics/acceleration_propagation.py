@@ -35,7 +35,8 @@ import sympy as sp
 
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.coupling import in_coordinates
-from symjac.kinematics.jacobian import point_vector
+from symjac.kinematics.jacobian import Point, point_vector
+from symjac.kinematics.memo import memoized
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
@@ -103,8 +104,13 @@ class AccelerationPropagation:
         return self.acceleration.xreplace(dict.fromkeys(self.accelerations, sp.S.Zero))
 
 
+def _coordinates(chain: Chain, point: Point | None) -> tuple[sp.Expr, ...] | None:
+    return None if point is None else point_vector(chain, point)  # validated; floats become exact rationals
+
+
+@memoized(point=_coordinates)
 def acceleration_propagation(
-    robot: Robot | Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
 ) -> AccelerationPropagation:
     r"""Propagate angular and linear velocities and accelerations from the base to the tip (module docstring).
 
@@ -133,9 +139,7 @@ def acceleration_propagation(
     >>> result.tip.omegadot.T
     Matrix([[0, 0, thetaddot1 + thetaddot2]])
     """
-    chain = as_chain(robot)
-    tip = None if point is None else point_vector(chain, point)  # validated; floats become exact rationals
-    return chain.memo(("acceleration_propagation", tip, simplify), lambda: _derive(chain, tip, simplify))
+    return _derive(chain, point, simplify)
 
 
 def _derive(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> AccelerationPropagation:

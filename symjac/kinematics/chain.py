@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable
 from functools import cached_property, lru_cache
-from typing import Literal, TypeVar
+from typing import Any, Literal, NamedTuple, TypeVar
 
 import sympy as sp
 
@@ -23,7 +23,8 @@ from symjac.model.conventions import joint_forms
 from symjac.model.conventions.base import JointForm
 from symjac.model.robot import Robot
 from symjac.progress import report
-from symjac.symbolic.simplify import AngleBasis, simplify_product
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import simplify_product
 from symjac.symbolic.transforms import Composition, Motion, compose, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
@@ -33,11 +34,23 @@ __all__ = [
     "CHAINS_KEPT",
     "Chain",
     "Frame",
+    "MemoKey",
     "as_chain",
     "chain_of",
     "clear_caches",
     "forward_kinematics",
 ]
+
+
+class MemoKey(NamedTuple):
+    """Where :meth:`Chain.memo` keeps a value: the function that derives it and its normalised arguments.
+
+    Two quantities never collide, because no two functions are the same; see
+    :func:`symjac.kinematics.memo.memoized`, which builds these keys.
+    """
+
+    function: Callable[..., Any]
+    arguments: tuple[Hashable, ...]
 
 
 class Chain:
@@ -69,8 +82,9 @@ class Chain:
     def memo(self, key: Hashable, compute: Callable[[], T]) -> T:
         """The value stored under ``key``, computed by ``compute()`` the first time it is asked for.
 
-        Keys start with the name of the quantity (``("jacobian", frame, point, method, simplify)``) so that stages
-        never collide. The values are immutable (SymPy immutable matrices, frozen dataclasses).
+        Keys are :class:`MemoKey` values (the deriving function and its normalised arguments), built by
+        :func:`symjac.kinematics.memo.memoized`. The values are immutable (SymPy immutable matrices, frozen
+        dataclasses).
         """
         if key not in self._memo:
             self._memo[key] = compute()
@@ -176,21 +190,6 @@ class Chain:
         r""":math:`{}^{\text{source}}_{\text{target}}R`, raw."""
         return self.transform(source, target)[:3, :3]
 
-    @cached_property
-    def link_transforms(self) -> tuple[sp.ImmutableMatrix, ...]:
-        r"""The n link transforms :math:`{}^{i-1}_{i}T`, i = 1..n."""
-        return tuple(self.transform(i - 1, i) for i in range(1, self.n_joints + 1))
-
-    @cached_property
-    def T_0_i(self) -> tuple[sp.ImmutableMatrix, ...]:
-        r""":math:`{}^0_iT` for i = 0..n, simplified (index i gives frame {i})."""
-        return tuple(self.simplified_transform(0, i) for i in range(self.n_joints + 1))
-
-    @cached_property
-    def T_i_n(self) -> tuple[sp.ImmutableMatrix, ...]:
-        r""":math:`{}^i_nT` for i = 0..n, simplified."""
-        return tuple(self.simplified_transform(i, self.n_joints) for i in range(self.n_joints + 1))
-
     # --- simplification basis -------------------------------------------------------------------------------
 
     @cached_property
@@ -255,7 +254,7 @@ class Chain:
     def angle_bases(self, frame: Frame) -> tuple[AngleBasis, ...]:
         """:meth:`angle_basis` first, then the bases that measure one parallel group from another of its frames.
 
-        A textbook entry may mix references (the seed 002 arm in its tool frame has :math:`s_3` next to
+        A textbook entry may mix references (the arm of the lecture slides in its tool frame has :math:`s_3` next to
         :math:`L_1 + L_2 c_2 + L_3 c_{23}`); :func:`symjac.symbolic.simplify.simplify_matrix` keeps, per entry, the
         shortest. The other references of a group are its two ends and the frames next to ``frame`` (see
         :func:`_alternative_references`).
@@ -283,7 +282,7 @@ class Chain:
                 bases += [basis for basis in self.angle_bases(frame) if basis not in bases]
             return tuple(bases)
 
-        return self.memo(("all_angle_bases",), compute)
+        return self.memo(MemoKey(Chain.all_angle_bases, ()), compute)
 
     def _one_link_bases(self, position: int) -> tuple[AngleBasis, ...]:
         """The basis of the one link ending at frame position ``position``: its own joint angle, if revolute.
@@ -303,7 +302,7 @@ class Chain:
 
     def _basis(self, references: tuple[int, ...]) -> AngleBasis:
         """The angle basis measuring each parallel group from its reference frame (kept: frames share most)."""
-        return self.memo(("angle_basis", references), lambda: self._new_basis(references))
+        return self.memo(MemoKey(Chain._new_basis, references), lambda: self._new_basis(references))
 
     def _new_basis(self, references: tuple[int, ...]) -> AngleBasis:
         joints = self.robot.joints

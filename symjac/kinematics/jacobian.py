@@ -49,12 +49,14 @@ from typing import Literal, get_args
 import sympy as sp
 
 from symjac.errors import ArgumentError, FrameError
-from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.coupling import jacobian_in_coordinates
+from symjac.kinematics.memo import frame_of, memoized, one_of
 from symjac.kinematics.propagation import force_propagation, velocity_propagation
 from symjac.model.robot import VELOCITY_NAMES, Robot
 from symjac.progress import report
-from symjac.symbolic.simplify import AngleBasis, simplify_matrix, simplify_product
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import simplify_matrix, simplify_product
 from symjac.symbolic.transforms import block_rotation, point_shift
 
 Method = Literal["differentiation", "cross_product", "velocity_propagation", "force_propagation"]
@@ -113,8 +115,34 @@ def check_row_indices(rows: Sequence[int]) -> tuple[int, ...]:
     return values
 
 
+def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """Coordinates in frame {n} of a point given as ``"wrist"``, ``"tool"`` or three coordinates (validated)."""
+    robot = robot.robot if isinstance(robot, Chain) else robot
+    if isinstance(point, str):
+        if point == "wrist":
+            return (sp.S.Zero,) * 3
+        if point == "tool":
+            if robot.tool is None:
+                raise FrameError(f"{robot.name} has no tool transform, so it has no 'tool' point")
+            x, y, z = robot.tool.matrix[:3, 3]
+            return x, y, z
+        raise FrameError(f"unknown point {point!r}: use 'wrist', 'tool' or three coordinates in frame {{n}}")
+    values = tuple(point)
+    if len(values) != 3:
+        raise FrameError(f"a point needs 3 coordinates in frame {{n}}, got {len(values)}")
+    coordinates = []
+    for value in values:
+        expr = sp.sympify(value)
+        if not isinstance(expr, sp.Expr) or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
+            raise FrameError(f"point coordinate {value!r} is not a finite number or expression")
+        coordinates.append(sp.nsimplify(expr, rational=True) if expr.is_Float else expr)
+    x, y, z = coordinates
+    return x, y, z
+
+
+@memoized(frame=frame_of, point=point_vector, method=one_of(METHODS), fresh=sp.Matrix)
 def jacobian(
-    robot: Robot | Chain,
+    chain: Chain,
     frame: Frame = 0,
     point: Point = "wrist",
     method: Method = "differentiation",
@@ -153,38 +181,7 @@ def jacobian(
     [    -L2*sin(theta2), -L2*sin(theta2)],
     [L1 + L2*cos(theta2),  L2*cos(theta2)]])
     """
-    if method not in METHODS:
-        raise ArgumentError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-    chain = as_chain(robot)
-    frame = chain.frame_name(chain.position(frame))  # validated, and 3 and numpy.int64(3) share one cache entry
-    xyz = point_vector(chain, point)
-    return sp.Matrix(chain.memo(("jacobian", frame, xyz, method, simplify),
-                                lambda: _derive(chain, frame, xyz, method, simplify)))
-
-
-def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
-    """Coordinates in frame {n} of a point given as ``"wrist"``, ``"tool"`` or three coordinates (validated)."""
-    robot = robot.robot if isinstance(robot, Chain) else robot
-    if isinstance(point, str):
-        if point == "wrist":
-            return (sp.S.Zero,) * 3
-        if point == "tool":
-            if robot.tool is None:
-                raise FrameError(f"{robot.name} has no tool transform, so it has no 'tool' point")
-            x, y, z = robot.tool.matrix[:3, 3]
-            return x, y, z
-        raise FrameError(f"unknown point {point!r}: use 'wrist', 'tool' or three coordinates in frame {{n}}")
-    values = tuple(point)
-    if len(values) != 3:
-        raise FrameError(f"a point needs 3 coordinates in frame {{n}}, got {len(values)}")
-    coordinates = []
-    for value in values:
-        expr = sp.sympify(value)
-        if not isinstance(expr, sp.Expr) or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
-            raise FrameError(f"point coordinate {value!r} is not a finite number or expression")
-        coordinates.append(sp.nsimplify(expr, rational=True) if expr.is_Float else expr)
-    x, y, z = coordinates
-    return x, y, z
+    return _derive(chain, frame, point, method, simplify)  # type: ignore[arg-type]  # normalised by @memoized
 
 
 def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
@@ -359,7 +356,7 @@ def shift_point(J: sp.MatrixBase, p: Sequence[sp.Expr]) -> sp.Matrix:
 def jacobian_of(
     f: Sequence[sp.Expr] | sp.MatrixBase, q: Sequence[sp.Symbol], basis: AngleBasis | None = None
 ) -> sp.Matrix:
-    r"""The Jacobian :math:`\partial f / \partial q` of any vector function (seed 000, section 4.2).
+    r"""The Jacobian :math:`\partial f / \partial q` of any vector function (course chapter, section 4.2).
 
     With an angle ``basis`` the entries are simplified (see :mod:`symjac.symbolic.simplify`).
 

@@ -18,6 +18,7 @@ import sympy as sp
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.kinematics.memo import frame_of, memoized
 from symjac.model.robot import Robot
 
 __all__ = ["as_vector", "evaluate_at", "numeric_at", "numeric_jacobian", "values_at"]
@@ -97,12 +98,11 @@ def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0,
         raise ArgumentError(f"q must have {model.n_coordinates} entries for {model.name}, got shape {values.shape}")
     if not np.all(np.isfinite(values)):
         raise ArgumentError(f"q must be finite, got {values.tolist()}")
-    frame = chain.frame_name(chain.position(frame))
-    xyz = point_vector(chain, point)
+    return np.asarray(_compiled_jacobian(chain, frame, point)(values), dtype=float)
 
-    def compile_jacobian() -> Callable[..., Any]:
-        J = jacobian(chain, frame=frame, point=xyz, simplify=False).xreplace(model.defaults)
-        return sp.lambdify([model.q], J, modules="numpy", cse=True)
 
-    function = chain.memo(("numeric_jacobian", frame, xyz), compile_jacobian)
-    return np.asarray(function(values), dtype=float)
+@memoized(frame=frame_of, point=point_vector)
+def _compiled_jacobian(chain: Chain, frame: Frame, point: Point) -> Callable[..., Any]:
+    """The raw Jacobian lambdified over q, parameters at their defaults."""
+    J = jacobian(chain, frame=frame, point=point, simplify=False).xreplace(chain.robot.defaults)
+    return sp.lambdify([chain.robot.q], J, modules="numpy", cse=True)

@@ -27,13 +27,14 @@ linear in the wrench; their coefficient matrix is :math:`{}^nJ^T` (the duality o
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import sympy as sp
 
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.coupling import in_coordinates, jacobian_in_coordinates, torques_in_coordinates
+from symjac.kinematics.memo import memoized
 from symjac.model.robot import WRENCH_NAMES, Robot
 from symjac.progress import report
 from symjac.symbolic.simplify import simplify_matrix
@@ -176,8 +177,13 @@ def _layout(chain: Chain, simplify: bool) -> Callable[[sp.MatrixBase, Frame], sp
     return lambda matrix, frame: sp.ImmutableMatrix(simplify_matrix(matrix, chain.angle_bases(frame)))
 
 
+def _coordinates(chain: Chain, point: Sequence[sp.Expr] | None) -> tuple[sp.Expr, ...] | None:
+    return None if point is None else tuple(point)
+
+
+@memoized(point=_coordinates)
 def velocity_propagation(
-    robot: Robot | Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
 ) -> VelocityPropagation:
     r"""Propagate link velocities from the base to the tip (see the module docstring).
 
@@ -205,9 +211,7 @@ def velocity_propagation(
     [L2*thetadot2 + thetadot1*(L1*cos(theta2) + L2)],
     [                                             0]])
     """
-    chain = as_chain(robot)
-    tip = None if point is None else tuple(point)
-    return chain.memo(("velocity_propagation", tip, simplify), lambda: _velocity_propagation(chain, tip, simplify))
+    return _velocity_propagation(chain, point, simplify)
 
 
 def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> VelocityPropagation:
@@ -247,8 +251,9 @@ def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simpl
     return VelocityPropagation(tuple(joint.rate for joint in robot.joints), tuple(steps))
 
 
+@memoized(point=_coordinates)
 def force_propagation(
-    robot: Robot | Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
 ) -> ForcePropagation:
     r"""Propagate a tip wrench from the tip to the base and project it on the joint axes (module docstring).
 
@@ -274,9 +279,7 @@ def force_propagation(
     [L1*sin(theta2), L1*cos(theta2) + L2],
     [             0,                  L2]])
     """
-    chain = as_chain(robot)
-    tip = None if point is None else tuple(point)
-    return chain.memo(("force_propagation", tip, simplify), lambda: _force_propagation(chain, tip, simplify))
+    return _force_propagation(chain, point, simplify)
 
 
 def _force_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> ForcePropagation:

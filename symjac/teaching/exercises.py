@@ -13,7 +13,8 @@ import numpy as np
 import sympy as sp
 
 from symjac.model.robot import Robot
-from symjac.symbolic.simplify import AngleBasis, is_identity
+from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.simplify import is_identity
 
 __all__ = ["check"]
 

@@ -2,7 +2,7 @@ r"""Representation Jacobians :math:`J_x = E(x)\,J_0`: end-effector rates in the 
 
 The basic Jacobian :math:`J_0` maps joint rates to the twist :math:`[v; \omega]`. No set of orientation coordinates
 has :math:`\omega` as its time derivative, but every one has a rate map that depends only on the coordinates
-themselves (seed 000, section 4.3):
+themselves (course chapter "The Jacobian", section 4.3):
 
 .. math::
     \dot x_p = E_p(x_p)\,v, \qquad \dot x_r = E_r(x_r)\,\omega, \qquad
@@ -17,7 +17,7 @@ Conventions (one set, used by every function here):
 
   - *intrinsic* ``"zyz"``, ``"xyz"``, ... (the twelve :data:`EULER_ORDERS`): rotations about the axes of the *moving*
     frame, so the named axes multiply left to right: ``"zyz"`` is :math:`R = R_z(\alpha) R_y(\beta) R_z(\gamma)`
-    (the wrist of seed 002), ``"xyz"`` is :math:`R_x(\alpha) R_y(\beta) R_z(\gamma)`;
+    (the wrist of the lecture slides), ``"xyz"`` is :math:`R_x(\alpha) R_y(\beta) R_z(\gamma)`;
   - *extrinsic* ``"zyz_extrinsic"``, ``"xzy_extrinsic"``, ...: rotations about the *fixed* axes in the order named,
     :math:`\alpha` first, so they multiply right to left: ``"zyx_extrinsic"`` is
     :math:`R_x(\gamma) R_y(\beta) R_z(\alpha)`, which is intrinsic ``"xyz"`` at :math:`(\gamma, \beta, \alpha)`;
@@ -41,8 +41,8 @@ Representation singularities (where :math:`E` does not exist because the coordin
 pose, e.g. gimbal lock at :math:`s_\beta = 0` for Z-Y-Z) belong to the representation, not to the arm; they are
 reported by :func:`representation_singularities`, apart from the kinematic singularities of :math:`J_0`.
 
-The seed's printed :math:`E_r` (4.31) is, in this convention, the Z-X-Z matrix (``rate_matrix("zxz")``); the Z-Y-Z
-angles of seed 002 give the matrix below.
+The chapter's printed :math:`E_r` (4.31) is, in this convention, the Z-X-Z matrix (``rate_matrix("zxz")``); the Z-Y-Z
+angles of the lecture slides give the matrix below.
 
 Modules: :mod:`.conventions` (the representation values, their names and coordinates, the registry),
 :mod:`.rates` (symbolic :math:`R`, :math:`p`, :math:`B`, :math:`E` and singularities), :mod:`.extraction` (NumPy),

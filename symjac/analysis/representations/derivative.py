@@ -44,6 +44,7 @@ from symjac.errors import ArgumentError, RepresentationError
 from symjac.kinematics.acceleration import jacobian_derivative
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import Point, point_vector
+from symjac.kinematics.memo import frame_of, memoized
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
 
@@ -167,8 +168,10 @@ class NumericRepresentationJacobianDerivative:
     factors: tuple[float, ...]
 
 
+@memoized(orientation=lambda chain, name: representation(name, "orientation"),
+          position=lambda chain, name: representation(name, "position"), point=point_vector, frame=frame_of)
 def representation_jacobian_derivative(
-    robot: Robot | Chain,
+    chain: Chain,
     orientation: Orientation = "zyz",
     position: Position = "cartesian",
     point: Point = "wrist",
@@ -194,38 +197,40 @@ def representation_jacobian_derivative(
     >>> result.E_dot[0, :2]  # rho rate = cos(phi_c) v_x + sin(phi_c) v_y turns with the azimuth
     Matrix([[-phidot_c*sin(phi_c), phidot_c*cos(phi_c)]])
     """
-    base = representation_jacobian(robot, orientation, position, point, frame)
-    x_r = representation(orientation, "orientation")
+    base = representation_jacobian(chain, orientation, position, point, frame)
+    x_r = representation(orientation, "orientation")  # already the value (normalised by @memoized): typed here
     x_p = representation(position, "position")
-    chain = as_chain(robot)
-
-    def derive() -> RepresentationJacobianDerivative:
-        rates = (*coordinate_rates(x_p), *coordinate_rates(x_r))
-        q_dot = joint_rate_symbols(chain)
-        model = chain.robot
-        clash = sorted({str(s) for s in rates} & {str(s) for s in (*model.q, *model.parameter_symbols, *q_dot)})
-        if clash:
-            raise RepresentationError(f"{model.name}: the names {', '.join(clash)} are both robot symbols and "
-                                      f"coordinate rates of the {x_p.name}/{x_r.name} representation")
-        E, E_dot = _rate_map(x_p, x_r)
-        x_dot = base.J_x * sp.Matrix(q_dot)
-        Jdot_0 = jacobian_derivative(chain, base.frame, list(base.point))
-        E_dot_along = E_dot.xreplace(dict(zip(rates, x_dot, strict=True)))
-        Jdot_x = E_dot_along * base.J_0 + E * Jdot_0
-        return RepresentationJacobianDerivative(
-            base.orientation, base.position, base.frame, base.point, base.coordinates, rates, q_dot, E, E_dot,
-            base.J_x, sp.ImmutableMatrix(x_dot), sp.ImmutableMatrix(Jdot_0), sp.ImmutableMatrix(Jdot_x))
-
-    return chain.memo(("representation_jacobian_derivative", x_r, x_p, base.point, base.frame), derive)
+    rates = (*coordinate_rates(x_p), *coordinate_rates(x_r))
+    q_dot = joint_rate_symbols(chain)
+    model = chain.robot
+    clash = sorted({str(s) for s in rates} & {str(s) for s in (*model.q, *model.parameter_symbols, *q_dot)})
+    if clash:
+        raise RepresentationError(f"{model.name}: the names {', '.join(clash)} are both robot symbols and "
+                                  f"coordinate rates of the {x_p.name}/{x_r.name} representation")
+    E, E_dot = _rate_map(x_p, x_r)
+    x_dot = base.J_x * sp.Matrix(q_dot)
+    Jdot_0 = jacobian_derivative(chain, base.frame, list(base.point))
+    E_dot_along = E_dot.xreplace(dict(zip(rates, x_dot, strict=True)))
+    Jdot_x = E_dot_along * base.J_0 + E * Jdot_0
+    return RepresentationJacobianDerivative(
+        base.orientation, base.position, base.frame, base.point, base.coordinates, rates, q_dot, E, E_dot,
+        base.J_x, sp.ImmutableMatrix(x_dot), sp.ImmutableMatrix(Jdot_0), sp.ImmutableMatrix(Jdot_x))
 
 
-def _compiled(chain: Chain, name: str, key: tuple[Any, ...], args: list[Any],
-              build: Callable[[], sp.MatrixBase]) -> Callable[..., Any]:
-    """``build()`` lambdified over ``args`` with the parameters' defaults substituted, kept in the chain."""
-    def compile_() -> Callable[..., Any]:
-        return sp.lambdify(args, build().xreplace(chain.robot.defaults), modules="numpy", cse=True)
+@memoized(frame=frame_of, point=point_vector)
+def _compiled_jacobian_derivative(chain: Chain, frame: Frame, point: Point) -> Callable[..., Any]:
+    r""":math:`\dot J_0` lambdified over :math:`(q, \dot q)`, the parameters at their defaults."""
+    Jdot = jacobian_derivative(chain, frame, point, simplify=False).xreplace(chain.robot.defaults)
+    return sp.lambdify([list(chain.robot.q), list(joint_rate_symbols(chain))], Jdot, modules="numpy", cse=True)
 
-    return chain.memo((name, *key), compile_)
+
+@memoized()
+def _compiled_rate_map_derivative(chain: Chain, x_p: PositionSpec, x_r: OrientationSpec) -> Callable[..., Any]:
+    r""":math:`\dot E` lambdified over the coordinates and their rates (kept per chain, like every compiled map)."""
+    coords = [*x_p.coordinates, *x_r.coordinates]
+    coord_rates = [*coordinate_rates(x_p), *coordinate_rates(x_r)]
+    E_dot = _rate_map(x_p, x_r)[1].xreplace(chain.robot.defaults)
+    return sp.lambdify([coords, coord_rates], E_dot, modules="numpy", cse=True)
 
 
 def representation_jacobian_derivative_at(
@@ -261,17 +266,9 @@ def representation_jacobian_derivative_at(
     if rates.shape != (n,) or not np.all(np.isfinite(rates)):
         raise ArgumentError(f"q_dot must be {n} finite numbers for {chain.robot.name}, got {list(q_dot)}")
     value = representation_jacobian_at(chain, q, orientation, position, point, frame, tol=tol)
-    x_r = representation(orientation, "orientation")
-    x_p = representation(position, "position")
-    xyz = point_vector(chain, point)
-    fixed = chain.frame_name(chain.position(frame))
-    q_symbols = list(chain.robot.q)
-    jdot = _compiled(chain, "numeric_jacobian_derivative", (fixed, xyz), [q_symbols, list(joint_rate_symbols(chain))],
-                     lambda: jacobian_derivative(chain, fixed, list(xyz), simplify=False))
-    coords = [*x_p.coordinates, *x_r.coordinates]
-    coord_rates = [*coordinate_rates(x_p), *coordinate_rates(x_r)]
-    edot = _compiled(chain, "numeric_rate_map_derivative", (x_p, x_r), [coords, coord_rates],
-                     lambda: _rate_map(x_p, x_r)[1])
+    jdot = _compiled_jacobian_derivative(chain, frame, point)
+    edot = _compiled_rate_map_derivative(chain, representation(position, "position"),
+                                         representation(orientation, "orientation"))
     Jdot_0 = np.asarray(jdot(np.asarray(q, dtype=float), rates), dtype=float)
     x_dot = value.J_x @ rates
     E_dot = np.asarray(edot(value.x, x_dot), dtype=float)

@@ -1,8 +1,8 @@
 r"""Numeric extraction: the coordinates of a rotation matrix or a point (inverses of ``rotation_from``, ``point_from``).
 
 One extraction per representation type (``functools.singledispatch``); every Euler convention reduces to the Z-Y-Z
-or Z-Y-X formulas of seed 002 by relabelling the axes, and an extrinsic convention to the intrinsic one with the
-axes reversed.
+or Z-Y-X formulas of the lecture slides by relabelling the axes, and an extrinsic convention to the intrinsic one with
+the axes reversed.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from symjac.errors import RepresentationError
 __all__ = ["GIMBAL_LOCK_TOLERANCE", "extract", "extract_position"]
 
 # A gimbal-lock test on |sin(beta)| (proper) or |cos(beta)| (Tait-Bryan). The extraction below stays accurate to
-# rounding for any larger value, so the threshold only decides when the seed's alpha = 0 convention takes over.
+# rounding for any larger value, so the threshold only decides when the lecture slides' alpha = 0 convention takes over.
 GIMBAL_LOCK_TOLERANCE = 1e-12
 
 _INDEX = {"x": 0, "y": 1, "z": 2}
@@ -41,7 +41,7 @@ def extract(name: Orientation, R: np.ndarray | Sequence[Sequence[float]], *,
             tol: float = GIMBAL_LOCK_TOLERANCE) -> np.ndarray:
     r"""Orientation coordinates of a numeric rotation matrix, such that ``rotation_from(name, x) == R``.
 
-    Euler angles follow seed 002 for Z-Y-Z and the same pattern for every order (by relabelling the axes):
+    Euler angles follow the lecture slides for Z-Y-Z and the same pattern for every order (by relabelling the axes):
     :math:`\beta = \mathrm{atan2}(\sqrt{r_{31}^2 + r_{32}^2}, r_{33})`, :math:`\alpha = \mathrm{atan2}(r_{23}, r_{13})`,
     and :math:`\gamma` from the better-conditioned of :math:`\alpha \pm \gamma` (read off the upper-left block) so
     that the pose is reproduced to rounding even close to gimbal lock. At gimbal lock (:math:`s_\beta` below

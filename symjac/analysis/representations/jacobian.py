@@ -1,4 +1,4 @@
-r"""Representation Jacobians of a robot: :math:`J_x = \mathrm{diag}(E_p, E_r)\,J_0` (seed 000, 4.36-4.38).
+r"""Representation Jacobians of a robot: :math:`J_x = \mathrm{diag}(E_p, E_r)\,J_0` (course chapter, 4.36-4.38).
 
 The symbolic result is derived once per chain (:meth:`symjac.kinematics.chain.Chain.memo`); the numeric one extracts
 :math:`x` from the forward kinematics and refuses poses on a representation singularity.
@@ -12,12 +12,20 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from symjac.analysis.representations.conventions import Orientation, Position, RepresentationSingularity, representation
+from symjac.analysis.representations.conventions import (
+    Orientation,
+    OrientationSpec,
+    Position,
+    PositionSpec,
+    RepresentationSingularity,
+    representation,
+)
 from symjac.analysis.representations.extraction import extract, extract_position
 from symjac.analysis.representations.maps import position_rate_matrix, rate_matrix, representation_singularities
 from symjac.errors import RepresentationError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.kinematics.memo import frame_of, memoized
 from symjac.kinematics.numeric import numeric_at
 from symjac.model.robot import Robot
 
@@ -89,14 +97,30 @@ class NumericRepresentationJacobian:
     factors: tuple[float, ...]
 
 
+def _orientation(chain: Chain, orientation: Orientation) -> OrientationSpec:
+    return representation(orientation, "orientation")
+
+
+def _position(chain: Chain, position: Position) -> PositionSpec:
+    return representation(position, "position")
+
+
+def _fixed_frame(chain: Chain, frame: Frame) -> Frame:
+    if chain.position(frame) > 0:
+        raise RepresentationError(f"representation Jacobians are measured in a fixed frame (0 or 'world'), "
+                                  f"not in frame {frame!r}")
+    return frame_of(chain, frame)
+
+
+@memoized(orientation=_orientation, position=_position, frame=_fixed_frame, point=point_vector)
 def representation_jacobian(
-    robot: Robot | Chain,
+    chain: Chain,
     orientation: Orientation = "zyz",
     position: Position = "cartesian",
     point: Point = "wrist",
     frame: Frame = 0,
 ) -> RepresentationJacobian:
-    r"""The representation Jacobian :math:`J_x = E(x)\,J_0` of ``robot`` (seed 000, equations 4.36-4.38).
+    r"""The representation Jacobian :math:`J_x = E(x)\,J_0` of ``robot`` (course chapter, eqs. 4.36-4.38).
 
     .. math::
         J_x = \begin{bmatrix} E_p(x_p) & 0 \\ 0 & E_r(x_r) \end{bmatrix}
@@ -131,29 +155,20 @@ def representation_jacobian(
     >>> result.J_x[2, :]  # and its height rate
     Matrix([[0, 0]])
     """
-    x_r = representation(orientation, "orientation")
+    x_r = representation(orientation, "orientation")  # already the value (normalised by @memoized): typed here
     x_p = representation(position, "position")
-    chain = as_chain(robot)
-    if chain.position(frame) > 0:
-        raise RepresentationError(f"representation Jacobians are measured in a fixed frame (0 or 'world'), "
-                                  f"not in frame {frame!r}")
-    xyz = point_vector(chain, point)
-
-    def derive() -> RepresentationJacobian:
-        model = chain.robot
-        coords = (*x_p.coordinates, *x_r.coordinates)
-        # compared by name: a parameter "rho" with other assumptions is another Symbol but prints the same
-        clash = sorted({str(s) for s in coords} & {str(s) for s in (*model.q, *model.parameter_symbols)})
-        if clash:
-            raise RepresentationError(f"{model.name}: the names {', '.join(clash)} are both robot symbols and "
-                                      f"coordinates of the {x_p.name}/{x_r.name} representation")
-        E = sp.diag(position_rate_matrix(x_p), rate_matrix(x_r))
-        J_0 = jacobian(chain, frame=frame, point=list(xyz))
-        singularities = representation_singularities(x_p) + representation_singularities(x_r)
-        return RepresentationJacobian(x_r.name, x_p.name, frame, xyz, coords, sp.ImmutableMatrix(E),
-                                      sp.ImmutableMatrix(J_0), sp.ImmutableMatrix(E * J_0), singularities)
-
-    return chain.memo(("representation_jacobian", x_r, x_p, xyz, frame), derive)
+    model = chain.robot
+    coords = (*x_p.coordinates, *x_r.coordinates)
+    # compared by name: a parameter "rho" with other assumptions is another Symbol but prints the same
+    clash = sorted({str(s) for s in coords} & {str(s) for s in (*model.q, *model.parameter_symbols)})
+    if clash:
+        raise RepresentationError(f"{model.name}: the names {', '.join(clash)} are both robot symbols and "
+                                  f"coordinates of the {x_p.name}/{x_r.name} representation")
+    E = sp.diag(position_rate_matrix(x_p), rate_matrix(x_r))
+    J_0 = jacobian(chain, frame=frame, point=point)
+    singularities = representation_singularities(x_p) + representation_singularities(x_r)
+    return RepresentationJacobian(x_r.name, x_p.name, frame, point, coords, sp.ImmutableMatrix(E),  # type: ignore[arg-type]
+                                  sp.ImmutableMatrix(J_0), sp.ImmutableMatrix(E * J_0), singularities)
 
 
 def representation_jacobian_at(

@@ -32,6 +32,7 @@ from symjac.analysis.spaces import task_rows
 from symjac.errors import ArgumentError, FrameError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point, check_row_indices, jacobian, point_vector
+from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_at
 from symjac.model.robot import Robot
 from symjac.symbolic.angles import AngleBasis
@@ -128,8 +129,22 @@ def _best_frame(chain: Chain, rows: tuple[int, ...], point: tuple[sp.Expr, ...])
     return min(sizes)[1]
 
 
+def _point(chain: Chain, point: Point | None) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """The point validated; by default the tool point when the robot has a tool, else the wrist."""
+    return point_vector(chain, ("tool" if chain.robot.tool is not None else "wrist") if point is None else point)
+
+
+def _rows(chain: Chain, rows: Sequence[int] | None, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:
+    return task_rows(chain, point) if rows is None else tuple(rows)
+
+
+def _columns(chain: Chain, columns: Sequence[int] | None) -> tuple[int, ...]:
+    return tuple(range(chain.robot.n_coordinates)) if columns is None else tuple(columns)
+
+
+@memoized(point=_point, rows=_rows, columns=_columns)
 def determinant(
-    robot: Robot | Chain,
+    chain: Chain,
     rows: Sequence[int] | None = None,
     frame: Frame | None = None,
     point: Point | None = None,
@@ -161,22 +176,15 @@ def determinant(
     >>> determinant(load_robot("planar2r")).expression
     L1*L2*sin(theta2)
     """
-    chain = as_chain(robot)
-    robot = chain.robot
-    if point is None:
-        point = "tool" if robot.tool is not None else "wrist"
-    point_xyz = point_vector(robot, point)
-    columns = tuple(range(robot.n_coordinates)) if columns is None else tuple(columns)
-    rows = task_rows(robot, point_xyz) if rows is None else tuple(rows)
-    if len(rows) != len(columns) or not rows:
-        raise ArgumentError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
-    rows = check_row_indices(rows)
-    if any(not 0 <= c < robot.n_coordinates for c in columns) or len(set(columns)) != len(columns):
-        raise ArgumentError(f"columns must be distinct coordinate indices 0..{robot.n_coordinates - 1}, got {columns}")
     # Factoring costs seconds on a six-joint arm and the singularity report, the rates and the CLI all ask for it:
-    # the chain keeps it per request.
-    return chain.memo(("determinant", rows, frame, point_xyz, columns, numeric),
-                      lambda: _determinant(chain, rows, frame, point_xyz, columns, numeric))
+    # the chain keeps it per request (@memoized, arguments normalised first).
+    if len(rows) != len(columns) or not rows:  # type: ignore[arg-type]
+        raise ArgumentError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
+    chosen = check_row_indices(rows)  # type: ignore[arg-type]
+    n = chain.robot.n_coordinates
+    if any(not 0 <= c < n for c in columns) or len(set(columns)) != len(columns):  # type: ignore[union-attr, arg-type]
+        raise ArgumentError(f"columns must be distinct coordinate indices 0..{n - 1}, got {columns}")
+    return _determinant(chain, chosen, frame, point, columns, numeric)  # type: ignore[arg-type]
 
 
 def _determinant(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point_xyz: tuple[sp.Expr, sp.Expr, sp.Expr],

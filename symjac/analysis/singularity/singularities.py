@@ -34,10 +34,10 @@ from symjac.analysis.singularity.geometry import (
 from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status
 from symjac.analysis.singularity.solve import Solution, solution_sample, solve_factor
 from symjac.analysis.spaces import jacobian_spaces, task_rows
-from symjac.kinematics.chain import Chain, Frame, as_chain
+from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, point_vector
+from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_at, numeric_jacobian
-from symjac.model.robot import Robot
 
 __all__ = [
     "DirectionPart",
@@ -148,8 +148,17 @@ class SingularityReport:
         return self.determinant.frame
 
 
+def _point(chain: Chain, point: Point | None) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    return point_vector(chain, ("tool" if chain.robot.tool is not None else "wrist") if point is None else point)
+
+
+def _rows(chain: Chain, rows: Sequence[int] | None, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:
+    return task_rows(chain, point) if rows is None else tuple(rows)
+
+
+@memoized(point=_point, rows=_rows)
 def singularities(
-    robot: Robot | Chain,
+    chain: Chain,
     rows: Sequence[int] | None = None,
     frame: Frame | None = None,
     point: Point | None = None,
@@ -172,14 +181,7 @@ def singularities(
     >>> [(f.expression, str(f.kind)) for f in report.factors]
     [(L1, 'parameter'), (L2, 'parameter'), (sin(theta2), 'elbow')]
     """
-    chain = as_chain(robot)
-    model = chain.robot
-    if point is None:
-        point = "tool" if model.tool is not None else "wrist"
-    point_xyz = point_vector(chain, point)
-    chosen = task_rows(chain, point_xyz) if rows is None else tuple(rows)
-    key = ("singularities", chosen, frame, point_xyz, numeric, seed)
-    return chain.memo(key, lambda: _report(chain, chosen, frame, point_xyz, numeric, seed))
+    return _report(chain, rows, frame, point, numeric, seed)  # type: ignore[arg-type]  # normalised by @memoized
 
 
 def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tuple[sp.Expr, sp.Expr, sp.Expr],

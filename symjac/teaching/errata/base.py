@@ -30,9 +30,11 @@ def robot_of(f: Formula) -> Robot:
     return f.robot
 
 
-def _transform(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:
+def _transform(f: Formula, source: Any = 0, target: Any = None, columns: Any = None) -> sp.Matrix:
+    """The compact transform; only some ``columns`` (1-based) when the print leaves the others unreadable."""
     chain = chain_of(robot_of(f))
-    return sp.Matrix(chain.simplified_transform(source, chain.n_joints if target is None else target))
+    T = sp.Matrix(chain.simplified_transform(source, chain.n_joints if target is None else target))
+    return T if columns is None else T.extract(list(range(T.rows)), [column - 1 for column in columns])
 
 
 def _rotation(f: Formula, source: Any = 0, target: Any = None) -> sp.Matrix:

@@ -47,7 +47,7 @@ DOCUMENTS: Mapping[str, str] = {
     "003": "web notes 'Jacobians: velocities and static forces'",
 }
 VERDICTS = ("ok", "erratum", "convention")
-_SOURCE = "symjac/errata/formulas.toml"
+_SOURCE = "symjac/teaching/errata/formulas.toml"
 _SHORTHAND = re.compile(r"([sc])_?([0-9]+|[A-Za-z][A-Za-z0-9]*)")
 
 

@@ -1,0 +1,110 @@
+r"""One way to keep a derived quantity in its chain: the :func:`memoized` decorator.
+
+Every quantity symjac derives from a robot (a Jacobian in some frame at some point, a determinant on some rows, a
+compiled numeric function) is computed once per :class:`~symjac.kinematics.chain.Chain` and per set of arguments.
+A memoized function takes the chain as its first parameter; its callers may pass a Robot or a Chain
+(:func:`~symjac.kinematics.chain.as_chain` finds the chain). Before the value is looked up, the arguments named in
+the decorator are normalised against the chain, so that requests for the same quantity share one entry (frame ``3``
+and ``numpy.int64(3)``; point ``"wrist"`` and ``(0, 0, 0)``) and invalid ones fail before anything is derived. The
+key is a :class:`~symjac.kinematics.chain.MemoKey`: the function itself and its normalised arguments in signature
+order, never a string.
+
+Examples
+--------
+>>> from symjac import load_robot
+>>> from symjac.kinematics.chain import Chain
+>>> calls = []
+>>> @memoized(frame=frame_of)
+... def origin(chain: Chain, frame=0):
+...     calls.append(frame)
+...     return chain.transform(0, frame)[:3, 3]
+>>> chain = Chain(load_robot("planar2r"))
+>>> origin(chain, 1) is origin(chain, frame=chain.n_joints - 1)  # derived once, whichever way the frame is given
+True
+>>> calls
+[1]
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+from collections.abc import Callable, Collection
+from typing import Any, Concatenate, ParamSpec, TypeVar
+
+from symjac.errors import ArgumentError
+from symjac.kinematics.chain import Chain, Frame, MemoKey, as_chain
+from symjac.model.robot import Robot
+
+P = ParamSpec("P")
+R = TypeVar("R")
+
+__all__ = ["frame_of", "memoized", "one_of"]
+
+
+def frame_of(chain: Chain, frame: Frame) -> Frame:
+    """``frame`` validated and in its canonical form (``numpy.int64(3)`` becomes ``3``)."""
+    return chain.frame_name(chain.position(frame))
+
+
+def one_of(choices: Collection[str], what: str = "method") -> Callable[[Chain, str], str]:
+    """A normaliser that accepts only ``choices`` and otherwise names them in an :class:`ArgumentError`."""
+    def check(chain: Chain, value: str) -> str:
+        if value not in choices:
+            raise ArgumentError(f"unknown {what} {value!r}; choose one of {', '.join(choices)}")
+        return value
+
+    return check
+
+
+def memoized(
+    *, fresh: Callable[[Any], Any] | None = None, **normalisers: Callable[..., Any]
+) -> Callable[[Callable[Concatenate[Chain, P], R]], Callable[Concatenate[Robot | Chain, P], R]]:
+    """Keep ``function(chain, ...)`` in ``chain`` under a :class:`~symjac.kinematics.chain.MemoKey`, derived once.
+
+    Parameters
+    ----------
+    fresh : callable, optional
+        Applied to the kept value on every call, e.g. ``sympy.Matrix`` to hand each caller its own mutable copy of a
+        kept immutable matrix.
+    **normalisers
+        One per argument that needs it, named like the argument: called as ``normalise(chain, value, *others)``
+        where ``others`` are the arguments named by the normaliser's further parameters (already normalised when
+        their normaliser comes earlier in this call). The result replaces the argument, in the key and in the call.
+        Every argument must end up hashable.
+    """
+    def decorate(function: Callable[Concatenate[Chain, P], R]) -> Callable[Concatenate[Robot | Chain, P], R]:
+        signature = inspect.signature(function)
+        names = list(signature.parameters)[1:]
+        needs = {name: _other_arguments(normalise, names, function.__name__, name)
+                 for name, normalise in normalisers.items()}
+
+        @functools.wraps(function)
+        def wrapper(robot: Robot | Chain, /, *args: P.args, **kwargs: P.kwargs) -> R:
+            chain = as_chain(robot)
+            bound = signature.bind(chain, *args, **kwargs)
+            bound.apply_defaults()
+            arguments = bound.arguments
+            for name, normalise in normalisers.items():
+                arguments[name] = normalise(chain, arguments[name], *(arguments[other] for other in needs[name]))
+            key = MemoKey(function, tuple(arguments[name] for name in names))
+            value = chain.memo(key, lambda: function(*bound.args, **bound.kwargs))
+            return value if fresh is None else fresh(value)
+
+        public = inspect.Parameter("robot", inspect.Parameter.POSITIONAL_ONLY, annotation="Robot | Chain")
+        wrapper.__signature__ = signature.replace(  # type: ignore[attr-defined]
+            parameters=[public, *list(signature.parameters.values())[1:]])
+        return wrapper
+
+    return decorate
+
+
+def _other_arguments(normalise: Callable[..., Any], names: list[str], function: str, name: str) -> tuple[str, ...]:
+    """The arguments ``normalise`` reads besides (chain, value): its parameters after the second, by name."""
+    if name not in names:
+        raise TypeError(f"memoized {function}() has no argument {name!r} to normalise")
+    others = tuple(list(inspect.signature(normalise).parameters)[2:])
+    unknown = [other for other in others if other not in names]
+    if unknown:
+        raise TypeError(f"the normaliser of {name!r} reads {', '.join(unknown)}, which {function}() does not take")
+    return others

@@ -89,4 +89,4 @@ def test_a_multi_file_write_is_all_or_none(tmp_path, monkeypatch):
 
 def test_generated_file_names_stay_in_the_output_folder(tmp_path):
     with pytest.raises(CodegenError, match="must be relative"):
-        write_module(tmp_path / "a.py", {"a.py": "", "../b.py": ""})
+        write_module(tmp_path / "a.py", {"a.py": "", str(Path(os.pardir, "b.py")): ""})  # a name climbing out

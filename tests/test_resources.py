@@ -23,8 +23,8 @@ def test_other_templates_print_values_as_they_are():
 
 
 def test_the_report_is_the_html_template_and_escapes_user_strings():
-    page = render_template(f"documents/report{HTML_SUFFIX}", version="1", robot=NASTY, source="a&b.toml", description=NASTY,
-                           sections=[])
+    page = render_template(f"documents/report{HTML_SUFFIX}", version="1", robot=NASTY, source="a&b.toml",
+                           description=NASTY, sections=[])
     assert NASTY not in page and f"<title>{html.escape(NASTY)}: derivation report</title>" in page
     assert "from a&amp;b.toml." in page
     assert environment(True) is not environment(False) and isinstance(environment(True), jinja2.Environment)

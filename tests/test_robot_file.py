@@ -58,7 +58,8 @@ def test_smallest_possible_mapping():
     assert robot.source == "<mapping>"
     assert robot.parameters == ()
     assert robot.q == (sp.Symbol("d1", real=True),)
-    assert robot.joints[0].placement.alpha == robot.joints[0].placement.a == robot.joints[0].d == robot.joints[0].theta == 0
+    joint = robot.joints[0]
+    assert joint.placement.alpha == joint.placement.a == joint.d == joint.theta == 0
 
 
 def test_fields_are_exact_sympy_expressions():

@@ -162,5 +162,8 @@ def test_readme_robot_file_example_loads_and_matches_the_catalog_puma():
     (example,) = re.findall(r"```toml\n(.*?)```", readme, flags=re.S)
     robot = robot_from_toml(example, source="README.md")
     puma = load_robot("puma560")
-    assert [(j.placement.alpha, j.placement.a, j.d, j.theta) for j in robot.joints] == [(j.placement.alpha, j.placement.a, j.d, j.theta) for j in puma.joints]
+    def rows(joints):
+        return [(j.placement.alpha, j.placement.a, j.d, j.theta) for j in joints]
+
+    assert rows(robot.joints) == rows(puma.joints)
     assert robot.tool is not None and robot.tool.xyz == (0, 0, sp.Rational(1, 10))

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from hypothesis import given, settings
+from marks import marked
 from reference import frame_index, frames, random_configuration
 from strategies import general_robots, robots
 
@@ -124,7 +125,7 @@ def _numeric_derivatives(name: str, frame, point: str):
 # --- against central differences ------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize(("name", "frame", "point"), list(CASES), ids=_ids(CASES))
+@pytest.mark.parametrize(("name", "frame", "point"), marked(CASES), ids=_ids(CASES))
 def test_hessian_and_jacobian_derivative_match_central_differences(name, frame, point):
     robot = _robot(name)
     n, h = robot.n_coordinates, 1e-6
@@ -214,7 +215,7 @@ def test_a_point_fixed_in_the_last_frame_moves_like_the_hessian_says():
 # --- frames: fixed and moving ---------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize(("name", "frame", "point"), MOVING, ids=_ids(MOVING))
+@pytest.mark.parametrize(("name", "frame", "point"), marked(MOVING), ids=_ids(MOVING))
 def test_moving_frame_derivative_is_the_rotated_fixed_one_minus_the_frame_spin(name, frame, point):
     robot = _robot(name)
     q, qd, qdd = _state(robot)
@@ -255,7 +256,7 @@ def _all_zero(differences: list[sp.Expr], basis: AngleBasis) -> bool:
     return not any(polys)
 
 
-@pytest.mark.parametrize("name", ROBOTS)
+@pytest.mark.parametrize("name", marked(ROBOTS))
 def test_three_routes_to_the_bias_agree_symbolically(name):
     """Hessian columns, differentiation of J, and the propagation at zero joint acceleration rotated into {0}."""
     robot = _robot(name)

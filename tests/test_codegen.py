@@ -27,6 +27,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
+from marks import marked
 from reference import evaluate, finite_difference_jacobian, frames, random_configuration
 from strategies import robots
 
@@ -126,8 +127,8 @@ def _references(name: str) -> list[dict[str, object]]:
     return cases
 
 
-@pytest.mark.parametrize("target", TARGETS)
-@pytest.mark.parametrize("name", ROBOTS)
+@pytest.mark.parametrize("target", marked(TARGETS))
+@pytest.mark.parametrize("name", marked(ROBOTS))
 def test_module_agrees_with_references(workspace, name, target):
     robot = load_robot(name)
     module = _module(workspace, name, target)
@@ -266,6 +267,7 @@ print(hashlib.sha256(text.encode()).hexdigest())
 """
 
 
+@pytest.mark.slow
 def test_generation_is_byte_identical_across_runs_and_hash_seeds():
     robot = load_robot("ur5")
     requests = [JacobianRequest(0, "wrist"), JacobianRequest(3)]
@@ -309,7 +311,7 @@ print(module.selftest(), getattr(module, "BACKEND", "-"), loaded)
 """
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", marked(TARGETS))
 def test_selftest_runs_outside_the_repository_with_only_its_dependency(workspace, tmp_path, target):
     robot = load_robot("puma560")
     write_module(tmp_path / "puma_module.py", generate(robot, target, points=("wrist",)))
@@ -343,6 +345,7 @@ def test_c_target_falls_back_to_numpy_without_a_compiler(workspace, tmp_path, mo
     assert _import(path, "fallback_module_disabled").BUILD_ERROR == "disabled by SYMJAC_DISABLE_C"
 
 
+@pytest.mark.external
 @pytest.mark.skipif(not HAVE_C, reason="no C compiler or Python headers")
 def test_c_kernels_match_the_numpy_fallback(workspace):
     module = _module(workspace, "panda", "c")

@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
+from marks import marked
 
 from symjac import Chain, Parameter, clear_caches, joint_rate_symbols, load_robot
 from symjac.codegen import BACKENDS, TARGETS, CodegenError, JacobianRequest, generate, write_module
@@ -110,7 +111,7 @@ def _central(function, q: np.ndarray, direction: np.ndarray, step: float = 1e-6)
 CASES = [(name, target) for name in ("puma560", "stanford") for target in TARGETS] + [("panda", "numpy")]
 
 
-@pytest.mark.parametrize(("name", "target"), CASES)
+@pytest.mark.parametrize(("name", "target"), marked(CASES))
 def test_acceleration_functions_agree_with_symjac_and_differences(workspace, name, target):
     module = _module(workspace, name, target)
     for case in _references(name):
@@ -174,6 +175,7 @@ def test_puma_bias_costs_at_most_twice_the_jacobian():
     assert bias.trig_count <= J.trig_count
 
 
+@pytest.mark.slow
 def test_generation_is_byte_identical_and_the_option_changes_nothing_else():
     robot = load_robot("stanford")
     requests = _requests("stanford")
@@ -196,6 +198,7 @@ def test_golden_files(target):
     assert text == path.read_text(encoding="utf-8"), f"{path.name} differs; regenerate with SYMJAC_UPDATE_GOLDEN=1"
 
 
+@pytest.mark.slow
 def test_generated_modules_are_ruff_clean(workspace):
     if shutil.which("ruff") is None:
         pytest.skip("ruff is not installed")

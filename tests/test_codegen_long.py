@@ -144,6 +144,7 @@ def long_modules(tmp_path_factory):
 
 
 @pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.slow
 def test_a_long_snake_module_passes_its_selftest_and_matches_finite_differences(long_modules, target):
     chain, paths = long_modules
     spec = importlib.util.spec_from_file_location(f"snake14_{target}", paths[target])
@@ -156,6 +157,7 @@ def test_a_long_snake_module_passes_its_selftest_and_matches_finite_differences(
     np.testing.assert_allclose(J, evaluate(jacobian(chain, simplify=False), chain.robot, q), atol=1e-12)
 
 
+@pytest.mark.slow
 def test_long_snake_modules_are_ruff_clean_and_skip_the_huge_compact_form(long_modules):
     chain, paths = long_modules
     assert chain.memo(("codegen", "compact or none", ("jacobian", 0, (0, 0, 0))), lambda: "missing") is None

@@ -30,8 +30,9 @@ from symjac.printing import document as document_module
 from symjac.printing.latex_layout import Display
 
 PDFLATEX = shutil.which("pdflatex")
-pytestmark = pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed (Debian: apt-get install "
-                                "texlive-latex-base texlive-latex-recommended); .ci/run installs it")
+pytestmark = [pytest.mark.external,
+              pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed (Debian: apt-get install "
+                                 "texlive-latex-base texlive-latex-recommended); .ci/run installs it")]
 
 TOLERANCE = 3.0  # points; TeX's own \hfuzz is 0.1 pt, a few points are invisible on the page
 _BOX = re.compile(r"Overfull \\[hv]box \((\d+(?:\.\d+)?)pt too (?:wide|high)\)")

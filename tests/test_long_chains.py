@@ -44,6 +44,7 @@ def test_planar_12r_entries_are_sums_of_cumulative_sines(method):
 
 
 @pytest.mark.parametrize("robot", [planar(12), snake(12)], ids=["planar12", "snake12"])
+@pytest.mark.slow
 def test_long_chains_match_finite_differences_by_every_method(robot):
     chain = Chain(robot)
     q = random_configuration(robot, np.random.default_rng(12))

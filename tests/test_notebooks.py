@@ -35,6 +35,7 @@ def test_there_is_a_notebook_per_topic():
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+@pytest.mark.external
 def test_notebook_runs_and_saves_its_figures(path, tmp_path, monkeypatch):
     monkeypatch.setenv("MPLBACKEND", "Agg")
     monkeypatch.setenv("SYMJAC_NOTEBOOK_OUTPUT", str(tmp_path / "figures"))

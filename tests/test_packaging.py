@@ -151,6 +151,7 @@ def outside(tmp_path: Path) -> Path:
 
 @pytest.mark.slow
 @skip_packaging
+@pytest.mark.external
 def test_regular_install_ships_the_templates(tmp_path, outside):
     python, bindir = _fresh_venv(tmp_path)
     _run([python, "-m", "pip", "install", "--quiet", REPO], cwd=outside)
@@ -197,6 +198,7 @@ def _editable_environment() -> tuple[Path, Path] | None:
 
 @pytest.mark.slow
 @skip_packaging
+@pytest.mark.external
 def test_editable_install_finds_the_templates(tmp_path, outside):
     """Checked in this run's own environment when it is an editable install (as in ``.ci/run``), else in a new one."""
     found = _editable_environment()

@@ -208,6 +208,7 @@ def _random_transform(rng: np.random.Generator) -> sp.Matrix:
 
 
 @pytest.mark.parametrize("seed", range(5))
+@pytest.mark.slow
 def test_wrench_and_twist_maps_round_trip_and_are_dual(seed):
     T = _random_transform(np.random.default_rng(seed))
     T_inv = inverse_transform(T)

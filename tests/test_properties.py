@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from reference import evaluate, finite_difference_jacobian, random_configuration
@@ -13,6 +14,7 @@ from symjac import chain_of, jacobian
 SETTINGS = settings(deadline=None, max_examples=25, suppress_health_check=[HealthCheck.too_slow])
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(robot=robots(), data=st.data())
 def test_jacobian_matches_finite_differences(robot, data):
@@ -33,6 +35,7 @@ def test_jacobian_matches_finite_differences(robot, data):
                                atol=1e-6)
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(robot=robots(), data=st.data())
 def test_methods_agree_exactly(robot, data):
@@ -41,6 +44,7 @@ def test_methods_agree_exactly(robot, data):
                                                                              method="cross_product")
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(robot=robots())
 def test_transforms_compose_and_invert(robot):
@@ -57,6 +61,7 @@ def test_transforms_compose_and_invert(robot):
                                @ evaluate(chain.transform("world", "tool"), robot, q), np.eye(4), atol=1e-12)
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=15, suppress_health_check=[HealthCheck.too_slow])
 @given(robot=robots(), data=st.data())
 def test_propagation_methods_agree_with_differentiation_at_random_configurations(robot, data):

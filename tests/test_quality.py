@@ -13,6 +13,7 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 @pytest.mark.parametrize("command", [["ruff", "check", "."], [sys.executable, "-m", "mypy"]], ids=["ruff", "mypy"])
+@pytest.mark.slow
 def test_tool_passes(command):
     if shutil.which(command[0]) is None and command[0] != sys.executable:
         pytest.skip(f"{command[0]} is not installed")

@@ -61,6 +61,7 @@ def test_the_readme_has_examples_to_run():
 
 
 @pytest.mark.parametrize("command", _commands())
+@pytest.mark.slow
 def test_readme_command_runs(command: str, readme_folder: Path, capsys: pytest.CaptureFixture[str]):
     status = main(shlex.split(command)[1:])
     captured = capsys.readouterr()

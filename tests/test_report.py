@@ -199,6 +199,7 @@ def _browser(binary: str, *arguments: str) -> subprocess.CompletedProcess[str]:
 
 
 @pytest.mark.parametrize("name", ["puma560", "ur5.urdf"])
+@pytest.mark.external
 def test_the_page_renders_in_chromium(pages, tmp_path, name):
     binary = _chromium()
     if binary is None:

@@ -14,6 +14,7 @@ import pytest
 import sympy as sp
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from marks import marked
 from reference import frames, random_configuration
 from strategies import robots
 
@@ -607,7 +608,7 @@ def _configuration(robot, rng, orientation, position, frame, point, tries=20):
 SPATIAL = ["puma560", "stanford", "ur5", "panda", "articulated3r", "scara"]
 
 
-@pytest.mark.parametrize("name", SPATIAL)
+@pytest.mark.parametrize("name", marked(SPATIAL))
 def test_catalog_robots_every_representation_against_finite_differences(name):
     robot = load_robot(name)
     rng = np.random.default_rng(sum(map(ord, name)))
@@ -671,6 +672,7 @@ def test_symbolic_J_x_matches_the_numeric_evaluation():
 
 @SETTINGS
 @given(robot=robots(), data=st.data())
+@pytest.mark.slow
 def test_random_chains_against_finite_differences(robot, data):
     orientation = data.draw(st.sampled_from(REPRESENTATIONS), label="orientation")
     position = data.draw(st.sampled_from(POSITIONS), label="position")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -58,6 +59,7 @@ MONOMIALS = st.lists(FACTORS, min_size=1, max_size=4).map(lambda fs: sp.Mul(*fs)
 POLYNOMIALS = st.lists(MONOMIALS, min_size=1, max_size=5).map(lambda ms: sp.Add(*ms))
 
 
+@pytest.mark.slow
 @settings(deadline=None, max_examples=30)
 @given(expr=POLYNOMIALS)
 def test_normal_form_is_unique_and_exact(expr):

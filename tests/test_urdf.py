@@ -341,6 +341,7 @@ SETTINGS = settings(deadline=None, max_examples=15, suppress_health_check=[Healt
 
 @SETTINGS
 @given(robot=general_robots(max_joints=5), data=st.data())
+@pytest.mark.slow
 def test_general_chain_jacobian_matches_finite_differences(robot, data):
     n = robot.n_joints
     frame = data.draw(st.sampled_from(["world", *range(n + 1), "tool"]), label="frame")

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from symjac import jacobian, load_robot
-from symjac.printing.latex import ordered_terms
+from symjac.printing.latex import SortKeys, ordered_terms
 
 x, y, z = sp.symbols("x y z", real=True)
 A, B = sp.symbols("A B", commutative=False)
@@ -40,3 +40,12 @@ def test_random_sums(parts):
 def test_every_sum_of_a_jacobian(name):
     for add in _sums(jacobian(load_robot(name), frame=0)):
         assert ordered_terms(add) == add.as_ordered_terms()
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "ur5"])
+def test_remembered_sort_keys_equal_sympys(name):
+    keys = SortKeys()
+    J = jacobian(load_robot(name), frame=0)
+    nodes = {node for entry in J for node in sp.preorder_traversal(entry)}
+    assert all(keys(node) == sp.default_sort_key(node) for node in nodes)
+    assert all(keys(node) == sp.default_sort_key(node) for node in (sp.exp(x) * y, sp.Dummy("u") ** 2, A * B * x))

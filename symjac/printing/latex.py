@@ -7,6 +7,7 @@ the math keeps ordinary ``sin``/``cos`` of joint variables.
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Callable
 from typing import Any
 
 import sympy as sp
@@ -15,7 +16,7 @@ from sympy.printing.latex import LatexPrinter
 
 from symjac.printing.shorthand import GREEK, file_decimal, shorthand_indices, textbook_factors
 
-__all__ = ["DIGITS", "TextbookLatexPrinter", "escape_text", "latex", "ordered_terms", "rounded"]
+__all__ = ["DIGITS", "SortKeys", "TextbookLatexPrinter", "escape_text", "latex", "ordered_terms", "rounded"]
 
 DIGITS = 4
 """Significant digits of the numbers in ``--numeric`` results unless ``--digits`` says otherwise."""
@@ -35,6 +36,19 @@ class _DecimalLatexPrinter(LatexPrinter):
     def __init__(self, settings: dict[str, Any] | None = None):
         super().__init__(settings)
         self._memo: dict[sp.Basic, str] = {}
+        self._has_mod = True
+        self._sort_keys = SortKeys()
+
+    def doprint(self, expr: Any) -> str:
+        # SymPy asks of every term of every sum whether it contains a Mod (which would need brackets), a walk of the
+        # whole term each time: a third of the time to print a long Jacobian. One walk of the whole answers for all.
+        self._has_mod = not isinstance(expr, sp.Basic | sp.MatrixBase) or expr.has(sp.Mod)
+        return super().doprint(expr)
+
+    def _needs_add_brackets(self, expr: sp.Expr) -> bool:
+        if self._has_mod:
+            return bool(super()._needs_add_brackets(expr))
+        return bool(expr.is_Relational or expr.is_Add)
 
     def _print(self, expr: Any, **kwargs: Any) -> str:
         # Only whole expressions printed without options are remembered: ``exp=`` (a power of a function) and the
@@ -51,7 +65,7 @@ class _DecimalLatexPrinter(LatexPrinter):
 
     def _as_ordered_terms(self, expr: sp.Expr, order: str | None = None) -> list[sp.Expr]:
         if (order or self.order) in (None, "lex") and expr.is_Add:
-            return ordered_terms(expr)
+            return ordered_terms(expr, self._sort_keys)
         return super()._as_ordered_terms(expr, order)
 
     def _print_Mul(self, expr: sp.Mul) -> str:
@@ -100,7 +114,7 @@ class TextbookLatexPrinter(_DecimalLatexPrinter):
     def _print_Mul(self, expr: sp.Mul) -> str:
         if file_decimal(abs(expr.as_coeff_Mul()[0])) is not None:
             return super()._print_Mul(expr)
-        ordered = textbook_factors(expr)
+        ordered = textbook_factors(expr, self._sort_keys)
         if ordered is None:
             return super()._print_Mul(expr)
         coefficient, factors = ordered
@@ -118,7 +132,47 @@ def _complex(number: sp.Expr) -> complex:
     return complex(number)
 
 
-def ordered_terms(expr: sp.Add) -> list[sp.Expr]:
+class SortKeys:
+    """SymPy's ``default_sort_key`` of expressions, remembered, with sums ordered by :func:`ordered_terms`.
+
+    The key of a sum holds the keys of its terms in printing order, so SymPy computes that order again for every
+    nested sum it meets, the slow way. This computes the same key (``Expr.sort_key`` for products, powers, sums and
+    functions; the class's own key for atoms and anything that defines its own) once per distinct subexpression.
+    """
+
+    def __init__(self) -> None:
+        self._keys: dict[sp.Basic, Any] = {}
+
+    def __call__(self, expr: sp.Basic) -> Any:
+        """The sort key of ``expr``, equal to ``sympy.default_sort_key(expr)``."""
+        key = self._keys.get(expr)
+        if key is None:
+            key = self._keys[expr] = self._key(expr)
+        return key
+
+    def _key(self, expr: sp.Basic) -> Any:
+        if type(expr).sort_key is not sp.Expr.sort_key:
+            return expr.sort_key()
+        coefficient, rest = expr.as_coeff_Mul()
+        exponent = sp.S.One
+        if rest.is_Pow:
+            rest, exponent = rest.as_base_exp()
+            if rest is sp.S.Exp1:
+                return expr.sort_key()  # SymPy keys E**x as the function exp(x): its own rule
+        if rest.is_Dummy or rest.is_Atom:
+            return expr.sort_key()
+        if rest.is_Add:
+            args = ordered_terms(rest, self)
+        elif rest.is_Mul:
+            commutative, noncommutative = rest.args_cnc()
+            args = sorted(commutative, key=self) + noncommutative
+        else:
+            args = list(rest.args)
+        keys = tuple(self(arg) for arg in args)
+        return rest.class_key(), (len(keys), keys), exponent.sort_key(), coefficient
+
+
+def ordered_terms(expr: sp.Add, sort_key: Callable[[sp.Basic], Any] = sp.default_sort_key) -> list[sp.Expr]:
     """The terms of a sum in the order SymPy prints them (``expr.as_ordered_terms()``, lexicographic), faster.
 
     Each term is split into a numeric coefficient and powers of its other factors (the generators); terms are
@@ -142,7 +196,7 @@ def ordered_terms(expr: sp.Add) -> list[sp.Expr]:
                 and factors[0].is_negative):
             return numbers
     split = [_split_term(term) for term in args]
-    generators = sorted({base for _, powers, _ in split for base in powers}, key=sp.default_sort_key)
+    generators = sorted({base for _, powers, _ in split for base in powers}, key=sort_key)
     position = {base: i for i, base in enumerate(generators)}
 
     def key(item: tuple[sp.Expr, dict[sp.Expr, sp.Expr], tuple[sp.Expr, ...], complex]) -> tuple[Any, ...]:

@@ -8,6 +8,7 @@ full. The math keeps ordinary ``sin``/``cos``; only the printers abbreviate.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from decimal import Decimal
 from typing import Any
 
@@ -45,28 +46,30 @@ def shorthand_indices(argument: sp.Expr) -> str | None:
     return separator.join(str(i) for i in indices)
 
 
-def _factor_key(factor: sp.Expr) -> tuple[Any, ...]:
+def _factor_key(factor: sp.Expr, sort_key: Callable[[sp.Basic], Any]) -> tuple[Any, ...]:
     """Textbook order of a product's factors: parameters, cosines, sines (each by joint index), then sums."""
     base = factor.base if isinstance(factor, sp.Pow) else factor
     if isinstance(base, sp.cos | sp.sin):
         indices = shorthand_indices(base.args[0])
         if indices is not None:
             digits = indices.split(",") if "," in indices else list(indices)
-            return (1 if isinstance(base, sp.cos) else 2, [int(i) for i in digits], sp.default_sort_key(factor))
+            return (1 if isinstance(base, sp.cos) else 2, [int(i) for i in digits], sort_key(factor))
     if isinstance(base, sp.Add):
-        return (4, [], sp.default_sort_key(factor))
+        return (4, [], sort_key(factor))
     if isinstance(base, sp.Symbol) and _RATE.match(base.name):  # rates last, as in L_1 s_2 \dot\theta_1
-        return (3, [], sp.default_sort_key(factor))
+        return (3, [], sort_key(factor))
     if isinstance(base, sp.Function):
-        return (3, [], sp.default_sort_key(factor))
-    return (0, [], sp.default_sort_key(factor))
+        return (3, [], sort_key(factor))
+    return (0, [], sort_key(factor))
 
 
-def textbook_factors(product: sp.Expr) -> tuple[int, list[sp.Expr]] | None:
+def textbook_factors(product: sp.Expr, sort_key: Callable[[sp.Basic], Any] = sp.default_sort_key
+                     ) -> tuple[int, list[sp.Expr]] | None:
     """An integer coefficient and the other factors in textbook order (``c_1 s_{23}``, ``a_2 c_2 (...)``).
 
     ``None`` for products this ordering does not cover (fractions, negative powers, non-commutative factors),
-    which print as SymPy prints them.
+    which print as SymPy prints them. ``sort_key`` breaks ties as SymPy's ``default_sort_key`` does (a printer
+    passes its remembered :class:`symjac.printing.latex.SortKeys`).
 
     Examples
     --------
@@ -80,7 +83,7 @@ def textbook_factors(product: sp.Expr) -> tuple[int, list[sp.Expr]] | None:
     factors = sp.Mul.make_args(rest)
     if not coefficient.is_Integer or any(f.is_Pow and f.exp.is_negative for f in factors):
         return None
-    return int(coefficient), sorted(factors, key=_factor_key)
+    return int(coefficient), sorted(factors, key=lambda factor: _factor_key(factor, sort_key))
 
 
 def file_decimal(number: sp.Expr) -> str | None:

@@ -1,7 +1,5 @@
 """``python -m symjac``: the same as the ``symjac`` command."""
 
-import sys
+from symjac.cli.main import run
 
-from symjac.cli.main import main
-
-sys.exit(main())
+run()

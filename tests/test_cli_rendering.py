@@ -189,3 +189,15 @@ def test_singularities_and_the_report_print_the_same_report(cli, page):
     document = singularities_document(robot, singularities(robot))
     assert cli.ok("singularities", "planar3r") == render(document, "latex")
     _blocks_in(document, page)
+
+
+def test_the_program_flushes_everything_before_it_ends_without_teardown(tmp_path):
+    def symjac(*argv):
+        return subprocess.run([sys.executable, "-m", "symjac", *argv], capture_output=True, text=True, timeout=300)
+
+    shown = symjac("jacobian", "planar2r")
+    assert shown.returncode == 0 and shown.stdout.rstrip().endswith(r"\end{bmatrix}")
+    written = symjac("jacobian", "planar2r", "-o", str(tmp_path / "J.tex"))
+    assert written.returncode == 0 and (tmp_path / "J.tex").read_text() == shown.stdout
+    failed = symjac("jacobian", "no_such_robot")
+    assert failed.returncode == 2 and failed.stderr.count("\n") == 1 and failed.stderr.startswith("symjac: error:")

@@ -13,6 +13,7 @@ and each handler imports what it uses: ``symjac --version`` loads no SymPy, ``sy
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import shlex
 import sys
@@ -38,10 +39,25 @@ if TYPE_CHECKING:
     from symjac.model.robot import Robot
     from symjac.printing.document import Document
 
-__all__ = ["main"]
+__all__ = ["main", "run"]
 
 RECURSION_LIMIT = 10_000
 """Python frames the command line allows (see :func:`main`)."""
+
+
+def run() -> NoReturn:
+    """The ``symjac`` program (console script and ``python -m symjac``): :func:`main`, then exit at once.
+
+    A derivation leaves SymPy's caches holding hundreds of thousands of expressions; letting the interpreter free
+    them one by one at exit took a third of a second after a 7-joint Jacobian, longer than printing it. The
+    output is complete by then (streams flushed, files written and closed), so the process ends without that
+    teardown. Call :func:`main` to run the command line inside a Python process.
+    """
+    status = main()
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a closed or broken pipe has nothing left to flush
+            stream.flush()
+    os._exit(status)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -201,3 +201,22 @@ def test_the_program_flushes_everything_before_it_ends_without_teardown(tmp_path
     assert written.returncode == 0 and (tmp_path / "J.tex").read_text() == shown.stdout
     failed = symjac("jacobian", "no_such_robot")
     assert failed.returncode == 2 and failed.stderr.count("\n") == 1 and failed.stderr.startswith("symjac: error:")
+
+
+def test_a_matrix_too_long_for_the_terminal_stops_printing_early(monkeypatch):
+    import importlib
+
+    latex_module = importlib.import_module("symjac.printing.latex")
+    J = symjac.jacobian(symjac.load_robot("puma560"))
+    printed = []
+    original = latex_module.TextbookLatexPrinter._print_Add
+    monkeypatch.setattr(latex_module.TextbookLatexPrinter, "_print_Add",
+                        lambda self, expr, order=None: printed.append(expr) or original(self, expr, order))
+    full = latex_module.latex(J)
+    everything = len(printed)
+    printed.clear()
+    with pytest.raises(latex_module.LatexTooLargeError), latex_module.latex_size_limit(len(full) // 10):
+        latex_module.latex(J)
+    assert 0 < len(printed) < everything / 2
+    with latex_module.latex_size_limit(len(full)):
+        assert latex_module.latex(J) == full

@@ -97,13 +97,12 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _rendered(document: Document, args: argparse.Namespace) -> str:
     """The document in the format asked for; LaTeX too long to read goes only to a file (``-o FILE``)."""
-    from symjac.printing.document import check_latex_size, render
+    from symjac.printing.document import render, render_for_terminal
     from symjac.printing.prose import LATEX_TOO_LONG
 
-    text = render(document, args.format, args.standalone)
-    if args.format == "latex" and args.output in (None, "-"):
-        check_latex_size(text, LATEX_TOO_LONG)
-    return text
+    if args.output in (None, "-"):
+        return render_for_terminal(document, args.format, args.standalone, LATEX_TOO_LONG)
+    return render(document, args.format, args.standalone)
 
 
 class _Parser(argparse.ArgumentParser):

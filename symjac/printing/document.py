@@ -23,10 +23,10 @@ from typing import Any, Literal
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.errors import ArgumentError, SymjacError
+from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Frame
 from symjac.model.robot import Robot
-from symjac.printing.latex import escape_text, latex
+from symjac.printing.latex import LatexTooLargeError, escape_text, latex, latex_size_limit
 from symjac.printing.tables import dh_table_latex, dh_table_text
 
 # Each format imports its own printer when used: a LaTeX result loads no pretty printer, page layout or jinja2.
@@ -49,6 +49,7 @@ __all__ = [
     "equation_text",
     "math_text",
     "render",
+    "render_for_terminal",
 ]
 
 FORMATS = ("latex", "pretty", "json")
@@ -137,17 +138,34 @@ class Document:
         return self.data() if callable(self.data) else self.data
 
 
-class LatexTooLargeError(SymjacError):
-    """A LaTeX result longer than :data:`LATEX_LIMIT` asked for on a terminal (it is written only to a file)."""
-
-
 def check_latex_size(text: str, hint: str, limit: int | None = None) -> None:
     """Refuse ``text`` longer than ``limit`` bytes (default :data:`LATEX_LIMIT`), in one line ending with ``hint``."""
     limit = LATEX_LIMIT if limit is None else limit
     size = len(text.encode("utf-8"))
     if size > limit:
-        raise LatexTooLargeError(f"the LaTeX is {size / 1000:,.0f} KB, more than {limit / 1000:,.0f} KB: nobody reads "
-                                 f"that on a terminal; write it to a file with -o FILE, or {hint}")
+        raise LatexTooLargeError(_too_large(f"{size / 1000:,.0f} KB, more than", limit, hint))
+
+
+def render_for_terminal(document: Document, fmt: str, standalone: bool, hint: str) -> str:
+    """:func:`render`, refusing LaTeX longer than :data:`LATEX_LIMIT` (:func:`check_latex_size`).
+
+    A matrix stops printing as soon as its entries pass the limit (:func:`~.latex.latex_size_limit`), so a result
+    too long to show is refused for a fraction of the cost of printing it.
+    """
+    if fmt != "latex":
+        return render(document, fmt, standalone)
+    try:
+        with latex_size_limit(LATEX_LIMIT):
+            text = render(document, fmt, standalone)
+    except LatexTooLargeError:
+        raise LatexTooLargeError(_too_large("more than", LATEX_LIMIT, hint)) from None
+    check_latex_size(text, hint)
+    return text
+
+
+def _too_large(size: str, limit: int, hint: str) -> str:
+    return (f"the LaTeX is {size} {limit / 1000:,.0f} KB: nobody reads that on a terminal; write it to a file with "
+            f"-o FILE, or {hint}")
 
 
 def _check(style: str) -> None:

@@ -7,22 +7,46 @@ the math keeps ordinary ``sin``/``cos`` of joint variables.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextvars import ContextVar
 from typing import Any
 
 import sympy as sp
 from sympy.core.exprtools import decompose_power
 from sympy.printing.latex import LatexPrinter
 
+from symjac.errors import SymjacError
 from symjac.printing.shorthand import GREEK, file_decimal, shorthand_indices, textbook_factors
 
-__all__ = ["DIGITS", "SortKeys", "TextbookLatexPrinter", "escape_text", "latex", "ordered_terms", "rounded"]
+__all__ = ["DIGITS", "LatexTooLargeError", "SortKeys", "TextbookLatexPrinter", "escape_text", "latex",
+           "latex_size_limit", "ordered_terms", "rounded"]
 
 DIGITS = 4
 """Significant digits of the numbers in ``--numeric`` results unless ``--digits`` says otherwise."""
 
 _TEXT_ESCAPES = {"\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "_": r"\_", "#": r"\#", "%": r"\%", "&": r"\&",
                  "$": r"\$", "^": r"\^{}", "~": r"\~{}", "<": r"\textless{}", ">": r"\textgreater{}"}
+
+
+_SIZE_LIMIT: ContextVar[int | None] = ContextVar("symjac_latex_size_limit", default=None)
+
+
+class LatexTooLargeError(SymjacError):
+    """A LaTeX result longer than the limit in force (:func:`latex_size_limit`); it is written only to a file."""
+
+
+@contextlib.contextmanager
+def latex_size_limit(limit: int) -> Iterator[None]:
+    """Within the block, a matrix whose entries print to more than ``limit`` characters raises at once.
+
+    The entries are printed one by one and the printing stops as soon as they pass the limit, so refusing an
+    800 KB Jacobian costs a quarter of printing it.
+    """
+    token = _SIZE_LIMIT.set(limit)
+    try:
+        yield
+    finally:
+        _SIZE_LIMIT.reset(token)
 
 
 class _DecimalLatexPrinter(LatexPrinter):
@@ -44,6 +68,16 @@ class _DecimalLatexPrinter(LatexPrinter):
         # whole term each time: a third of the time to print a long Jacobian. One walk of the whole answers for all.
         self._has_mod = not isinstance(expr, sp.Basic | sp.MatrixBase) or expr.has(sp.Mod)
         return super().doprint(expr)
+
+    def _print_matrix_contents(self, expr: sp.MatrixBase) -> str:
+        limit = _SIZE_LIMIT.get()
+        if limit is not None:
+            printed = 0
+            for entry in expr:  # remembered by _print, so the full layout below prints nothing twice
+                printed += len(self._print(entry))
+                if printed > limit:
+                    raise LatexTooLargeError(f"the LaTeX of a matrix passes {limit:,} characters")
+        return str(super()._print_matrix_contents(expr))
 
     def _needs_add_brackets(self, expr: sp.Expr) -> bool:
         if self._has_mod:

@@ -14,15 +14,16 @@ from collections.abc import Iterable, Sequence
 import sympy as sp
 
 from symjac.codegen.lower import Inputs, LoweredFunction, angle_expansion, lowered_jacobian
-from symjac.codegen.request import frame_text
+from symjac.codegen.request import frame_text, rows_of, strategy_of
 from symjac.kinematics.acceleration import carried_joints
 from symjac.kinematics.chain import Chain, Frame
+from symjac.kinematics.jacobian import point_vector
+from symjac.kinematics.memo import frame_of, memoized
 from symjac.kinematics.propagation import joint_rate_symbols
 
 __all__ = ["lowered_bias_acceleration", "lowered_hessian"]
 
 Vector = tuple[sp.Expr, sp.Expr, sp.Expr]
-
 
 def _cross(a: Vector, b: Vector) -> Vector:
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
@@ -84,6 +85,7 @@ class _Program:
         return LoweredFunction(inputs, angles, tuple(kept), tuple(flat), tuple(flat), shape, op_count, origin)
 
 
+@memoized(frame=frame_of, point=point_vector, rows=rows_of, strategy=strategy_of)
 def lowered_hessian(
     chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], rows: tuple[int, ...], strategy: str
 ) -> LoweredFunction:
@@ -98,29 +100,27 @@ def lowered_hessian(
     component of a cross product of two Jacobian columns, and CSE shares the products the linear rows repeat (they
     are symmetric in j and m in a fixed frame).
     """
-    def compute() -> LoweredFunction:
-        n = chain.robot.n_coordinates
-        program = _Program(chain, lowered_jacobian(chain, frame, point, tuple(range(6)), strategy))
-        columns = program.columns()
-        carried = len(carried_joints(chain, frame))
-        H: dict[tuple[int, int], tuple[sp.Expr, ...]] = {}
-        zero: Vector = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
-        for j in range(n):
-            v_j, w_j = columns[j]
-            for m in range(n):
-                v_m, w_m = columns[m]
-                linear, angular = (_cross(w_m, v_j), _cross(w_m, w_j)) if m < j else (_cross(w_j, v_m), zero)
-                if m < carried:  # joint m turns frame {k}: d(^k_0R)/dq_m adds -[w_m x v_j; w_m x w_j]
-                    linear = _add(linear, _cross(v_j, w_m))
-                    angular = _add(angular, _cross(w_j, w_m))
-                H[j, m] = (*linear, *angular)
-        outputs = [H[j, m][r] for r in rows for j in range(n) for m in range(n)]
-        return program.lowered(outputs, (len(rows), n, n), (("q", chain.robot.q),),
-                               "cross products of the Jacobian's columns", common=True)
-
-    return chain.memo(("codegen", "hessian", frame, point, rows, strategy), compute)
+    n = chain.robot.n_coordinates
+    program = _Program(chain, lowered_jacobian(chain, frame, point, tuple(range(6)), strategy))
+    columns = program.columns()
+    carried = len(carried_joints(chain, frame))
+    H: dict[tuple[int, int], tuple[sp.Expr, ...]] = {}
+    zero: Vector = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+    for j in range(n):
+        v_j, w_j = columns[j]
+        for m in range(n):
+            v_m, w_m = columns[m]
+            linear, angular = (_cross(w_m, v_j), _cross(w_m, w_j)) if m < j else (_cross(w_j, v_m), zero)
+            if m < carried:  # joint m turns frame {k}: d(^k_0R)/dq_m adds -[w_m x v_j; w_m x w_j]
+                linear = _add(linear, _cross(v_j, w_m))
+                angular = _add(angular, _cross(w_j, w_m))
+            H[j, m] = (*linear, *angular)
+    outputs = [H[j, m][r] for r in rows for j in range(n) for m in range(n)]
+    return program.lowered(outputs, (len(rows), n, n), (("q", chain.robot.q),),
+                           "cross products of the Jacobian's columns", common=True)
 
 
+@memoized(frame=frame_of, point=point_vector, rows=rows_of, strategy=strategy_of)
 def lowered_bias_acceleration(
     chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], rows: tuple[int, ...], strategy: str
 ) -> LoweredFunction:
@@ -137,12 +137,9 @@ def lowered_bias_acceleration(
 
     about 36 operations per joint on top of the Jacobian, which it reuses entry by entry.
     """
-    def compute() -> LoweredFunction:
-        vias: list[Frame] = [frame, *(via for via in (0, 1) if via <= chain.n_joints and chain.position(frame) != via)]
-        candidates = [_bias_in(chain, frame, via, point, rows, strategy) for via in vias]
-        return min(candidates, key=lambda candidate: candidate.cost)
-
-    return chain.memo(("codegen", "bias_acceleration", frame, point, rows, strategy), compute)
+    vias: list[Frame] = [frame, *(via for via in (0, 1) if via <= chain.n_joints and chain.position(frame) != via)]
+    candidates = [_bias_in(chain, frame, via, point, rows, strategy) for via in vias]
+    return min(candidates, key=lambda candidate: candidate.cost)
 
 
 def _bias_in(chain: Chain, frame: Frame, via: Frame, point: tuple[sp.Expr, ...], rows: tuple[int, ...],

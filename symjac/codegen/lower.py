@@ -12,26 +12,27 @@ r"""Lowering: from a robot's symbolic quantities to target-independent straight-
 4. **Compact candidates within a budget.** The "fastest" strategy derives a compact candidate only up to
    :data:`COMPACT_TERMS` terms; on a long 3-D chain it is skipped and the raw products compete alone.
 
-Everything derived here is kept in the robot's :class:`~symjac.kinematics.chain.Chain`
-(:meth:`~symjac.kinematics.chain.Chain.memo`, keys starting with ``"codegen"``), so generating several targets for one
-robot derives and lowers each function once.
+Everything derived here is kept in the robot's :class:`~symjac.kinematics.chain.Chain` by
+:func:`~symjac.kinematics.memo.memoized` (keyed by the lowering function and its normalised arguments), so generating
+several targets for one robot derives and lowers each function once.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Hashable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
-from functools import cached_property, partial
+from functools import cached_property
 from typing import TypeVar
 
 import sympy as sp
 
 from symjac.codegen.cse import eliminate_common
 from symjac.codegen.printers import check_expression
-from symjac.codegen.request import frame_text
+from symjac.codegen.request import frame_text, rows_of, strategy_of
 from symjac.errors import CodegenError, ResultTooLargeError
 from symjac.kinematics.chain import Chain, Frame
-from symjac.kinematics.jacobian import jacobian
+from symjac.kinematics.jacobian import jacobian, point_vector
+from symjac.kinematics.memo import frame_of, memoized
 from symjac.model.robot import WRENCH_NAMES, Robot
 from symjac.symbolic.angles import AngleExpansion
 from symjac.symbolic.dag import free_symbols
@@ -149,14 +150,12 @@ def lower_function(
     return LoweredFunction(inputs, angle_list, temporaries, outputs, tuple(flat), shape, op_count, origin)
 
 
+@memoized()
 def angle_expansion(chain: Chain) -> AngleExpansion:
     """The expansion of sines and cosines into those of the single revolute joint angles of ``chain``."""
-    def compute() -> AngleExpansion:
-        revolute = [joint for joint in chain.robot.joints if joint.is_revolute]
-        return AngleExpansion(tuple(j.variable for j in revolute), tuple(j.angle for j in revolute),
-                              tuple(j.index for j in revolute))
-
-    return chain.memo(("codegen", "angles"), compute)
+    revolute = [joint for joint in chain.robot.joints if joint.is_revolute]
+    return AngleExpansion(tuple(j.variable for j in revolute), tuple(j.angle for j in revolute),
+                          tuple(j.index for j in revolute))
 
 
 COMPACT_TERMS = 20_000
@@ -178,21 +177,31 @@ generation time). The result is the same ``None`` a failed attempt gives.
 """
 
 
-def _compact_or_none(chain: Chain, key: Hashable, compute: Callable[[], T]) -> T | None:
-    """``compute()`` within :data:`COMPACT_TERMS`, or ``None`` past it (remembered: it is not tried again).
+def _within_budget(chain: Chain, compute: Callable[[], T]) -> T | None:
+    """``compute()`` within :data:`COMPACT_TERMS`, or ``None`` past it.
 
-    A chain with more than :data:`COMPACT_TURNS` turns gets ``None`` without an attempt.
+    A chain with more than :data:`COMPACT_TURNS` turns gets ``None`` without an attempt. The callers are memoized,
+    so a failed attempt is remembered and not tried again.
     """
-    def attempt() -> T | None:
-        if len(chain.parallel_groups) - 1 > COMPACT_TURNS:
-            return None
-        try:
-            with term_limit(COMPACT_TERMS):
-                return compute()
-        except ResultTooLargeError:
-            return None
+    if len(chain.parallel_groups) - 1 > COMPACT_TURNS:
+        return None
+    try:
+        with term_limit(COMPACT_TERMS):
+            return compute()
+    except ResultTooLargeError:
+        return None
 
-    return chain.memo(("codegen", "compact or none", key), attempt)
+
+@memoized(frame=frame_of, point=point_vector)
+def _compact_jacobian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix | None:
+    """The compact (simplified) Jacobian in ``frame`` at ``point``, or ``None`` past :data:`COMPACT_TERMS`."""
+    return _within_budget(chain, lambda: jacobian(chain, frame, point))
+
+
+@memoized()
+def _compact_tool_transform(chain: Chain) -> sp.ImmutableMatrix | None:
+    """The compact (simplified) transform ^0_tT, or ``None`` past :data:`COMPACT_TERMS`."""
+    return _within_budget(chain, lambda: chain.simplified_transform(0, "tool"))
 
 
 def _jacobian_candidates(
@@ -206,7 +215,7 @@ def _jacobian_candidates(
     if strategy == "simplified":
         yield "compact (simplified) Jacobian", jacobian(chain, frame, point, simplify=True)
         return
-    compact = _compact_or_none(chain, ("jacobian", frame, point), lambda: jacobian(chain, frame, point))
+    compact = _compact_jacobian(chain, frame, point)
     if compact is not None:
         yield "compact (simplified) Jacobian", compact
     yield "raw chain products, cross-product form", jacobian(chain, frame, point, "cross_product", simplify=False)
@@ -214,63 +223,57 @@ def _jacobian_candidates(
         if via > chain.n_joints or chain.position(frame) == via:
             continue
         rotation = block_rotation(chain.rotation(frame, via))
-        compact = _compact_or_none(chain, ("jacobian", via, point), partial(jacobian, chain, via, point))
+        compact = _compact_jacobian(chain, via, point)
         if compact is not None:
             yield f"compact Jacobian in frame {{{via}}}, rotated into {where}", rotation * compact
         yield (f"raw cross-product form in frame {{{via}}}, rotated into {where}",
                rotation * jacobian(chain, via, point, "cross_product", simplify=False))
 
 
+@memoized(frame=frame_of, point=point_vector, rows=rows_of, strategy=strategy_of)
 def lowered_jacobian(
     chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], rows: tuple[int, ...], strategy: str
 ) -> LoweredFunction:
     """The Jacobian rows ``rows`` in ``frame`` at ``point``: the candidate of ``strategy`` that costs least."""
-    def compute() -> LoweredFunction:
-        robot = chain.robot
-        angles = angle_expansion(chain)
-        best: LoweredFunction | None = None
-        for origin, J in _jacobian_candidates(chain, frame, point, strategy):
-            selected = [J[r, c] for r in rows for c in range(robot.n_coordinates)]
-            candidate = lower_function(angles, selected, (len(rows), robot.n_coordinates), (("q", robot.q),),
-                                       robot.parameter_symbols, origin)
-            if best is None or candidate.cost < best.cost:
-                best = candidate
-        assert best is not None  # every strategy yields at least one candidate
-        return best
-
-    return chain.memo(("codegen", "jacobian", frame, point, rows, strategy), compute)
+    robot = chain.robot
+    angles = angle_expansion(chain)
+    best: LoweredFunction | None = None
+    for origin, J in _jacobian_candidates(chain, frame, point, strategy):
+        selected = [J[r, c] for r in rows for c in range(robot.n_coordinates)]
+        candidate = lower_function(angles, selected, (len(rows), robot.n_coordinates), (("q", robot.q),),
+                                   robot.parameter_symbols, origin)
+        if best is None or candidate.cost < best.cost:
+            best = candidate
+    assert best is not None  # every strategy yields at least one candidate
+    return best
 
 
+@memoized(strategy=strategy_of)
 def lowered_forward_kinematics(chain: Chain, strategy: str) -> LoweredFunction:
     """The pose of the tool frame in frame {0}: the raw or the compact product, whichever costs less."""
-    def compute() -> LoweredFunction:
-        robot = chain.robot
-        candidates = []
-        if strategy in ("fastest", "raw"):
-            candidates.append(("raw chain product", chain.transform(0, "tool")))
-        if strategy == "simplified":
-            candidates.append(("compact (simplified) transform", chain.simplified_transform(0, "tool")))
-        elif strategy == "fastest":
-            compact = _compact_or_none(chain, ("transform", 0, "tool"), lambda: chain.simplified_transform(0, "tool"))
-            if compact is not None:
-                candidates.append(("compact (simplified) transform", compact))
-        lowered = [lower_function(angle_expansion(chain), list(T), (4, 4), (("q", robot.q),),
-                                  robot.parameter_symbols, origin) for origin, T in candidates]
-        return min(lowered, key=lambda candidate: candidate.cost)
-
-    return chain.memo(("codegen", "forward_kinematics", strategy), compute)
+    robot = chain.robot
+    candidates = []
+    if strategy in ("fastest", "raw"):
+        candidates.append(("raw chain product", chain.transform(0, "tool")))
+    if strategy == "simplified":
+        candidates.append(("compact (simplified) transform", chain.simplified_transform(0, "tool")))
+    elif strategy == "fastest":
+        compact = _compact_tool_transform(chain)
+        if compact is not None:
+            candidates.append(("compact (simplified) transform", compact))
+    lowered = [lower_function(angle_expansion(chain), list(T), (4, 4), (("q", robot.q),),
+                              robot.parameter_symbols, origin) for origin, T in candidates]
+    return min(lowered, key=lambda candidate: candidate.cost)
 
 
+@memoized(frame=frame_of, point=point_vector)
 def lowered_kinematics(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> LoweredFunction:
     """Point position in {0}, ^0_nR and ^0_kR (21 values): what the self-test differentiates numerically."""
-    def compute() -> LoweredFunction:
-        T_0_n = chain.transform(0, chain.n_joints)
-        x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
-        values = [*x_P, *T_0_n[:3, :3], *chain.rotation(0, frame)]
-        return lower_function(angle_expansion(chain), values, (21,), (("q", chain.robot.q),),
-                              chain.robot.parameter_symbols, "raw chain products")
-
-    return chain.memo(("codegen", "kinematics", frame, point), compute)
+    T_0_n = chain.transform(0, chain.n_joints)
+    x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
+    values = [*x_P, *T_0_n[:3, :3], *chain.rotation(0, frame)]
+    return lower_function(angle_expansion(chain), values, (21,), (("q", chain.robot.q),),
+                          chain.robot.parameter_symbols, "raw chain products")
 
 
 def lowered_torques(chain: Chain, J: LoweredFunction, rows: tuple[int, ...]) -> LoweredFunction:

@@ -8,7 +8,7 @@ import shlex
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, get_args
+from typing import Any
 
 import sympy as sp
 
@@ -36,7 +36,9 @@ from symjac.codegen.lower import (
 from symjac.codegen.printers import float_literal
 from symjac.codegen.request import (
     RESERVED,
+    STRATEGIES,
     JacobianRequest,
+    Strategy,
     check_rows,
     frame_text,
     function_labels,
@@ -53,9 +55,6 @@ from symjac.kinematics.jacobian import ROW_NAMES, Point
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.io import catalog, load_robot
 from symjac.model.robot import WRENCH_NAMES, Robot
-
-Strategy = Literal["fastest", "raw", "simplified"]
-STRATEGIES: tuple[str, ...] = get_args(Strategy)
 
 __all__ = [
     "STRATEGIES",

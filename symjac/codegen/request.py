@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Literal, get_args
 
 import sympy as sp
 
@@ -16,11 +17,14 @@ from symjac.codegen.printers import check_expression, float_literal
 from symjac.errors import ArgumentError, CodegenError
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, check_row_indices, point_vector
+from symjac.kinematics.memo import one_of
 from symjac.model.robot import Robot
 
 __all__ = [
     "RESERVED",
+    "STRATEGIES",
     "JacobianRequest",
+    "Strategy",
     "check_rows",
     "frame_text",
     "function_labels",
@@ -28,8 +32,16 @@ __all__ = [
     "point_words",
     "python_call",
     "requests_from",
+    "rows_of",
+    "strategy_of",
     "validate_robot",
 ]
+
+Strategy = Literal["fastest", "raw", "simplified"]
+STRATEGIES: tuple[str, ...] = get_args(Strategy)
+
+strategy_of = one_of(STRATEGIES, "strategy")
+"""The :func:`~symjac.kinematics.memo.memoized` normaliser of a lowering strategy: one of :data:`STRATEGIES`."""
 
 # Names every generated module defines or imports for itself, with the reason a parameter may not take them.
 RESERVED: Mapping[str, str] = {
@@ -114,6 +126,11 @@ def check_rows(rows: Sequence[int] | None) -> tuple[int, ...]:
         return check_row_indices(rows)
     except ArgumentError as error:
         raise CodegenError(str(error)) from None
+
+
+def rows_of(chain: Chain, rows: Sequence[int] | None) -> tuple[int, ...]:
+    """:func:`check_rows` as a :func:`~symjac.kinematics.memo.memoized` normaliser (the chain is not needed)."""
+    return check_rows(rows)
 
 
 def point_text(robot: Robot, point: Point) -> tuple[str, tuple[sp.Expr, sp.Expr, sp.Expr]]:

@@ -2,12 +2,12 @@ r"""One way to keep a derived quantity in its chain: the :func:`memoized` decora
 
 Every quantity symjac derives from a robot (a Jacobian in some frame at some point, a determinant on some rows, a
 compiled numeric function) is computed once per :class:`~symjac.kinematics.chain.Chain` and per set of arguments.
-A memoized function takes the chain as its first parameter; its callers may pass a Robot or a Chain
-(:func:`~symjac.kinematics.chain.as_chain` finds the chain). Before the value is looked up, the arguments named in
-the decorator are normalised against the chain, so that requests for the same quantity share one entry (frame ``3``
-and ``numpy.int64(3)``; point ``"wrist"`` and ``(0, 0, 0)``) and invalid ones fail before anything is derived. The
-key is a :class:`~symjac.kinematics.chain.MemoKey`: the function itself and its normalised arguments in signature
-order, never a string.
+A memoized function takes the chain as its first parameter; its callers may pass a Robot or a Chain, positionally or
+as ``robot=`` (:func:`~symjac.kinematics.chain.as_chain` finds the chain). Before the value is looked up, the
+arguments named in the decorator are normalised against the chain, so that requests for the same quantity share one
+entry (frame ``3`` and ``numpy.int64(3)``; point ``"wrist"`` and ``(0, 0, 0)``) and invalid ones fail before anything
+is derived. The key is a :class:`~symjac.kinematics.chain.MemoKey`: the function itself and its normalised arguments
+in signature order, never a string.
 
 Examples
 --------
@@ -74,26 +74,31 @@ def memoized(
         Every argument must end up hashable.
     """
     def decorate(function: Callable[Concatenate[Chain, P], R]) -> Callable[Concatenate[Robot | Chain, P], R]:
-        signature = inspect.signature(function)
-        names = list(signature.parameters)[1:]
+        first, *rest = inspect.signature(function).parameters.values()
+        names = [parameter.name for parameter in rest]
+        if "robot" in names:
+            raise TypeError(f"memoized {function.__name__}() may not name a later argument 'robot': its first one, "
+                            "the chain, is called 'robot' by callers")
+        # What callers see: the chain argument named ``robot`` (positional or by keyword), the others unchanged.
+        public = inspect.signature(function).replace(
+            parameters=[first.replace(name="robot", annotation="Robot | Chain"), *rest])
         needs = {name: _other_arguments(normalise, names, function.__name__, name)
                  for name, normalise in normalisers.items()}
 
         @functools.wraps(function)
-        def wrapper(robot: Robot | Chain, /, *args: P.args, **kwargs: P.kwargs) -> R:
-            chain = as_chain(robot)
-            bound = signature.bind(chain, *args, **kwargs)
+        def wrapper(*args: Any, **kwargs: Any) -> R:
+            bound = public.bind(*args, **kwargs)
             bound.apply_defaults()
             arguments = bound.arguments
+            chain = arguments["robot"] = as_chain(arguments["robot"])
             for name, normalise in normalisers.items():
                 arguments[name] = normalise(chain, arguments[name], *(arguments[other] for other in needs[name]))
             key = MemoKey(function, tuple(arguments[name] for name in names))
+            # ``robot`` comes first and is not keyword-only: bound.args[0] passes the chain positionally.
             value = chain.memo(key, lambda: function(*bound.args, **bound.kwargs))
             return value if fresh is None else fresh(value)
 
-        public = inspect.Parameter("robot", inspect.Parameter.POSITIONAL_ONLY, annotation="Robot | Chain")
-        wrapper.__signature__ = signature.replace(  # type: ignore[attr-defined]
-            parameters=[public, *list(signature.parameters.values())[1:]])
+        wrapper.__signature__ = public  # type: ignore[attr-defined]
         return wrapper
 
     return decorate

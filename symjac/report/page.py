@@ -143,4 +143,4 @@ def derivation_report(robot: Robot, source: str | None = None) -> str:
         path = singular_path(robot, plane)
         sections += [_map_section(robot, plane, path), _rates_section(robot, path)]
     return render_template(TEMPLATE, version=__version__, robot=robot.name, source=source or robot.name,
-                           description=robot.description, sections=sections, escape=html.escape)
+                           description=robot.description, sections=sections)

@@ -57,20 +57,11 @@ def _is_special(target: Path) -> bool:
 
 def _replace(real: Path, text: str) -> None:
     """Atomically replace (or create) the regular file ``real``, keeping an existing file's permissions."""
+    temporary = _stage(real, text)
     try:
-        mode = real.stat().st_mode & 0o7777
-    except FileNotFoundError:
-        umask = os.umask(0)
-        os.umask(umask)
-        mode = 0o666 & ~umask
-    handle, temporary = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(text)
-        os.chmod(temporary, mode)
         os.replace(temporary, real)
     except BaseException:
-        Path(temporary).unlink(missing_ok=True)
+        temporary.unlink(missing_ok=True)
         raise
 
 

@@ -22,14 +22,20 @@ from typing import TYPE_CHECKING, Any, NoReturn
 
 from symjac._version import __version__
 from symjac.cli.args import (
-    LazyChoices,
-    add_robot_arguments,
     load,
     parse_frame,
     parse_point,
     parse_rows,
     parse_values,
     refuse_ignored_options,
+)
+from symjac.cli.options import (
+    codegen_options,
+    convert_options,
+    errata_options,
+    no_options,
+    result_options,
+    robot_options,
 )
 from symjac.cli.output import emit, note_if_large, one_line, progress, silence_stdout
 from symjac.errors import ArgumentError, SymjacError
@@ -133,87 +139,6 @@ def _parser(command: str | None = None) -> argparse.ArgumentParser:
 
 
 # --- options of each command ----------------------------------------------------------------------------------
-
-
-def _no_options(sub: argparse.ArgumentParser, name: str) -> None:
-    pass
-
-
-def _errata_options(sub: argparse.ArgumentParser, name: str) -> None:
-    from symjac.teaching.errata import SHEET_FORMATS
-
-    sub.add_argument("--format", dest="sheet_format", choices=SHEET_FORMATS, default="markdown",
-                     help="markdown or a standalone LaTeX document (default markdown)")
-
-
-def _codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
-    from symjac.codegen import BACKENDS, STRATEGIES, TARGETS
-
-    add_robot_arguments(sub)
-    sub.add_argument("--target", choices=TARGETS, default="python",
-                     help="; ".join(f"{b.name} ({b.summary})" for b in BACKENDS.values()) + "; default python")
-    sub.add_argument("--frame", action="append", default=None, metavar="K",
-                     help="frame to express the Jacobian in: 0..n, world or tool (repeatable; default 0)")
-    sub.add_argument("--point", action="append", default=None, metavar="P",
-                     help="wrist, tool, or x,y,z in frame {n} (repeatable; default wrist)")
-    sub.add_argument("--rows", default=None,
-                     help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z (default all)")
-    sub.add_argument("--strategy", choices=STRATEGIES, default="fastest",
-                     help="expressions to start from (default: fewest operations after CSE)")
-    sub.add_argument("--acceleration", action="store_true",
-                     help="also generate hessian, bias_acceleration (Jdot qdot) and manipulability_gradient")
-
-
-def _robot_options(sub: argparse.ArgumentParser, name: str) -> None:
-    add_robot_arguments(sub)
-
-
-def _convert_options(sub: argparse.ArgumentParser, name: str) -> None:
-    add_robot_arguments(sub)
-    sub.add_argument("--to", choices=("modified", "standard", "toml"), required=True,
-                     help="the DH convention to convert to, or toml to keep the robot as it is")
-
-
-def _result_options(sub: argparse.ArgumentParser, name: str) -> None:
-    """The options of the commands that print a result as a document (LaTeX, pretty or JSON)."""
-    from symjac.printing.document import FORMATS
-    from symjac.printing.latex import DIGITS
-
-    add_robot_arguments(sub)
-    sub.add_argument("--format", choices=FORMATS, default="latex", help="output format (default: latex)")
-    sub.add_argument("--numeric", action="store_true", help="substitute the parameters' numeric defaults")
-    sub.add_argument("--standalone", action="store_true", help="with --format latex: a complete LaTeX document")
-    if name != "singularities":
-        sub.add_argument("--digits", type=int, default=None, metavar="N",
-                         help=f"with --numeric (or torques --q): significant digits printed (default {DIGITS})")
-    if name in ("jacobian", "torques", "hessian"):
-        sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
-        sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
-    if name == "jacobian":
-        from symjac.kinematics.jacobian import METHODS
-
-        representations = "symjac.analysis.representations"  # loaded only when one is asked for (it loads NumPy)
-        sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
-        sub.add_argument("--steps", action="store_true",
-                         help="with a propagation method (or --derivative): print every propagation step first")
-        sub.add_argument("--representation", choices=LazyChoices(representations, "REPRESENTATIONS"), default=None,
-                         metavar="NAME", help="print the representation Jacobian J_x = E(x) J_0 for these "
-                                              "orientation coordinates: %(choices)s")
-        sub.add_argument("--position", choices=LazyChoices(representations, "POSITIONS"), default=None,
-                         metavar="NAME", help="with --representation: position coordinates, %(choices)s (default "
-                                              "cartesian)")
-        sub.add_argument("--derivative", action="store_true",
-                         help="print the time derivative dJ/dt and the bias acceleration Jdot qdot instead")
-    if name == "singularities":
-        sub.add_argument("--frame", default=None, help="frame to analyse in (default: the most compact one)")
-        sub.add_argument("--point", default=None, help="wrist, tool, or x,y,z in frame {n} (default: tool if "
-                                                        "the robot has one, else wrist)")
-        sub.add_argument("--rows", default=None,
-                         help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z "
-                              "(default: chosen automatically)")
-    if name == "torques":
-        sub.add_argument("--wrench", help="fx,fy,fz,nx,ny,nz applied at the point, in the frame (default symbolic)")
-        sub.add_argument("--q", help="a configuration q1,...,qn (numbers or expressions with pi)")
 
 
 # --- commands ----------------------------------------------------------------------------------------------
@@ -410,18 +335,18 @@ Handler = Callable[[argparse.Namespace], "str | Document"]
 Options = Callable[[argparse.ArgumentParser, str], None]
 
 COMMANDS: dict[str, tuple[Handler, str, Options]] = {
-    "robots": (_robots, "list the built-in robots", _no_options),
-    "errata": (_errata, "the errata sheet of the course notes: every printed formula checked", _errata_options),
-    "codegen": (_codegen, "generate a numeric module: forward kinematics, Jacobians, torques", _codegen_options),
-    "report": (_report, "write the whole derivation as one self-contained HTML page", _robot_options),
-    "convert": (_convert, "print the robot as a TOML robot file, converted to a DH convention", _convert_options),
-    "show": (_show, "show the DH table and the link transforms", _result_options),
-    "fk": (_fk, "print the forward kinematics", _result_options),
-    "jacobian": (_jacobian, "print the basic Jacobian [v; omega]", _result_options),
-    "hessian": (_hessian, "print the kinematic Hessian: dJ/dq_k for every joint k", _result_options),
-    "torques": (_torques, "print the joint torques tau = J^T F that hold a wrench", _result_options),
+    "robots": (_robots, "list the built-in robots", no_options),
+    "errata": (_errata, "the errata sheet of the course notes: every printed formula checked", errata_options),
+    "codegen": (_codegen, "generate a numeric module: forward kinematics, Jacobians, torques", codegen_options),
+    "report": (_report, "write the whole derivation as one self-contained HTML page", robot_options),
+    "convert": (_convert, "print the robot as a TOML robot file, converted to a DH convention", convert_options),
+    "show": (_show, "show the DH table and the link transforms", result_options),
+    "fk": (_fk, "print the forward kinematics", result_options),
+    "jacobian": (_jacobian, "print the basic Jacobian [v; omega]", result_options),
+    "hessian": (_hessian, "print the kinematic Hessian: dJ/dq_k for every joint k", result_options),
+    "torques": (_torques, "print the joint torques tau = J^T F that hold a wrench", result_options),
     "singularities": (_singularities, "factor det J, solve every factor and explain what the arm loses there",
-                      _result_options),
+                      result_options),
 }
 """Each command: its handler, its one-line help, and the function that adds its options."""
 

@@ -54,7 +54,7 @@ Combine = Callable[[Sequence[sp.Expr]], list[sp.Expr]]
 
 
 def coupling_lines(chain: Chain) -> tuple[str, ...]:
-    """Each joint variable that is not a coordinate, as an equation in the coordinates: ``theta4 = -theta2 - theta3``."""
+    """Each joint variable that is not a coordinate as an equation in the coordinates: ``theta4 = -theta2 - theta3``."""
     model = chain.robot
     if model.coupling is None:
         return ()

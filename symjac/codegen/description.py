@@ -238,8 +238,8 @@ class ModuleDescription:
     equivalent Python call) and ``command_note`` what else the reader needs to know to run it (the folder a relative
     path is relative to, which robot ``robot`` is), or nothing. ``joints`` are the entries of ``q`` (name, type):
     the joint variables, or for a coupled robot its independent coordinates, and then ``coupling`` holds each other
-    joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``chain`` is the robot's cached derivation, for
-    backends that need more of it (the c target's joint angles).
+    joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``chain`` is the robot's cached derivation,
+    for backends that need more of it (the c target's joint angles).
     """
 
     target: str

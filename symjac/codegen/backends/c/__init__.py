@@ -13,8 +13,8 @@ from collections.abc import Mapping, Sequence
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.backends.numpy import numpy_function
-from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, FunctionSpec, IdentifierRule
 from symjac.codegen.coupled import coordinate_angles
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, FunctionSpec, IdentifierRule
 from symjac.codegen.lower import LoweredFunction, symbol_names
 from symjac.codegen.source_layout import wrap_statement
 from symjac.errors import CodegenError

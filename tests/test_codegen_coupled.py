@@ -9,6 +9,7 @@ its own self-test, by ruff and, for the c target, by the C compiler with every w
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import importlib.util
 import shutil
@@ -22,10 +23,11 @@ import pytest
 import sympy as sp
 from test_coordinates import ROBOTS
 
-from symjac import forward_kinematics, jacobian, joint_rate_symbols
+from symjac import forward_kinematics, jacobian, joint_rate_symbols, load_robot
 from symjac.codegen import TARGETS, JacobianRequest, generate, write_module
 from symjac.kinematics.acceleration import bias_acceleration, hessian
 from symjac.kinematics.statics import joint_torques
+from symjac.model.coordinates import Coupling
 
 REPO = Path(__file__).resolve().parent.parent
 POINT = (sp.Rational(1, 10), sp.Rational(-1, 5), sp.Rational(3, 10))
@@ -218,3 +220,23 @@ def test_c_kernels_compile_with_every_warning_an_error(workspace, tmp_path, name
                                  str(source)], capture_output=True, text=True, timeout=120, check=False)
         assert result.returncode == 0, result.stderr
 
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_renamed_coordinates_give_the_same_numbers_as_the_joint_variables(target):
+    """theta_i = q_i (the identity coupling, other names) goes through the coupled route and changes only names."""
+    robot = load_robot("scara")
+    q = tuple(sp.Symbol(f"q{i + 1}", real=True) for i in range(robot.n_joints))
+    renamed = dataclasses.replace(robot, coupling=Coupling(q, q))
+    modules = []
+    for model in (robot, renamed):
+        namespace = types.ModuleType(f"renamed_{target}")
+        exec(compile(generate(model, target, acceleration=True), f"{model.name}.py", "exec"), namespace.__dict__)
+        modules.append(namespace)
+    plain, coupled = modules
+    assert coupled.JOINTS == ("q1", "q2", "q3", "q4") and coupled.selftest() < 1e-6
+    x, rates = [0.3, -0.4, 0.05, 0.7], [0.2, -0.1, 0.3, 0.5]
+    for function, arguments in (("forward_kinematics", (x,)), ("jacobian", (x,)), ("joint_torques", (x, WRENCH)),
+                                ("hessian", (x,)), ("bias_acceleration", (x, rates))):
+        np.testing.assert_allclose(np.asarray(getattr(coupled, function)(*arguments), dtype=float),
+                                   np.asarray(getattr(plain, function)(*arguments), dtype=float), atol=1e-13)

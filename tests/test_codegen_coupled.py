@@ -183,6 +183,7 @@ def test_header_and_docstring_say_how_the_joints_couple(target):
     docstring = " ".join(text.split('"""', 2)[1].split())
     assert "coupled, driven by 4 independent coordinates q = (theta1, theta2, theta3, theta5)" in docstring
     assert "J_q = J(theta(q)) C" in docstring and "C^T J^T F" in docstring
+    assert "One generalised force per coordinate, C^T J^T F." in text and "belongs to coordinate i." in text
     assert "(-theta2 - theta3)" in text  # the flange angle goes to sin/cos written in the coordinates
     assert "theta4" not in text.split('"""', 2)[2]  # and is never a variable of the code
 

@@ -281,10 +281,3 @@ def test_coordinate_names_are_checked():
     with pytest.raises(RobotFileError, match="coordinate L1 is also a parameter"):
         L1 = sp.Symbol("L1", real=True)
         dataclasses.replace(robot, coupling=Coupling((t[0], t[1], L1), (t[0], t[1], L1)))
-
-
-def test_code_generation_refuses_a_coupled_robot_in_one_line():
-    from symjac import CodegenError, generate
-
-    with pytest.raises(CodegenError, match="couples its joints: code generation in independent coordinates"):
-        generate(_robot("palletizer"), "python")

@@ -236,8 +236,10 @@ class ModuleDescription:
     ``parameters`` are (name, default) with the default a float; ``functions`` hold their lowered assignments as
     SymPy data; ``command`` is how to regenerate the module (the command line typed when ``shell_command``, else the
     equivalent Python call) and ``command_note`` what else the reader needs to know to run it (the folder a relative
-    path is relative to, which robot ``robot`` is), or nothing. ``chain`` is the robot's cached derivation, for
-    backends that need more of it (the c target's joint angles).
+    path is relative to, which robot ``robot`` is), or nothing. ``joints`` are the entries of ``q`` (name, type):
+    the joint variables, or for a coupled robot its independent coordinates, and then ``coupling`` holds each other
+    joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``chain`` is the robot's cached derivation,
+    for backends that need more of it (the c target's joint angles).
     """
 
     target: str
@@ -256,12 +258,18 @@ class ModuleDescription:
     shell_command: bool = False
     command_note: str = ""
     rates: tuple[str, ...] = ()
+    coupling: tuple[str, ...] = ()
     chain: Chain | None = field(default=None, compare=False, repr=False)
 
     @property
     def acceleration(self) -> bool:
         """Whether the module has the acceleration-level functions (Hessian, bias acceleration, gradient)."""
         return any(info.hessian for info in self.jacobians)
+
+    @property
+    def q_words(self) -> str:
+        """What the entries of ``q`` are, for docstrings: joint values, or a coupled robot's coordinates."""
+        return "Coordinates" if self.coupling else "Joint values"
 
     @property
     def parameter_names(self) -> tuple[str, ...]:

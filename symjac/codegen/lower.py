@@ -310,11 +310,9 @@ class SymbolNames:
 def symbol_names(robot: Robot, lowered: LoweredFunction, taken: Iterable[str]) -> SymbolNames:
     """Names for ``lowered``: ``s3``/``c3`` for joint 3's sine and cosine, ``f_x``.. for the wrench, ``x0``.."""
     names = SymbolNames(robot, taken)
-    joint_index = {j.variable: j.index for j in robot.joints}
-    for sine, cosine, angle in lowered.angles:
-        index = next(joint_index[v] for v in angle.free_symbols if v in joint_index)
-        names.fresh(sine, f"s{index}")
-        names.fresh(cosine, f"c{index}")
+    for sine, cosine, _ in lowered.angles:  # _s3, _c3: joint 3's (its angle may be written in the coordinates)
+        names.fresh(sine, sine.name.removeprefix("_"))
+        names.fresh(cosine, cosine.name.removeprefix("_"))
     for argument, symbols in lowered.inputs:
         if argument == "wrench":
             for symbol in symbols:  # _F0 .. _F5: the row each multiplies
@@ -322,6 +320,9 @@ def symbol_names(robot: Robot, lowered: LoweredFunction, taken: Iterable[str]) -
         elif argument == "qdot":
             for symbol in symbols:  # thetadot1, ddot3, ...
                 names.fresh(symbol, symbol.name)
-    for k, (symbol, _) in enumerate(lowered.temporaries):
+    named = [symbol for symbol, _ in lowered.temporaries if not symbol.name.startswith("_")]
+    for symbol in named:  # a coupled robot's joint variables and rates (d3 = d30 + k*theta4), under their names
+        names.fresh(symbol, symbol.name)
+    for k, symbol in enumerate(s for s, _ in lowered.temporaries if s not in named):
         names.fresh(symbol, f"x{k}")
     return names

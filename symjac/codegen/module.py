@@ -13,8 +13,16 @@ from typing import Any
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.codegen.acceleration import lowered_bias_acceleration, lowered_hessian
 from symjac.codegen.backends import backend
+from symjac.codegen.coupled import (
+    coordinate_bias_acceleration,
+    coordinate_forward_kinematics,
+    coordinate_hessian,
+    coordinate_jacobian,
+    coordinate_kinematics,
+    coordinate_torques,
+    coupling_lines,
+)
 from symjac.codegen.description import (
     Argument,
     FunctionDescription,
@@ -24,15 +32,7 @@ from symjac.codegen.description import (
     JacobianInfo,
     ModuleDescription,
 )
-from symjac.codegen.lower import (
-    LoweredFunction,
-    angle_expansion,
-    lower_function,
-    lowered_forward_kinematics,
-    lowered_jacobian,
-    lowered_kinematics,
-    lowered_torques,
-)
+from symjac.codegen.lower import LoweredFunction, angle_expansion, lower_function
 from symjac.codegen.printers import float_literal
 from symjac.codegen.request import (
     RESERVED,
@@ -102,9 +102,6 @@ def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args
     if not isinstance(request.robot, Robot | Chain):
         raise CodegenError(f"expected a symjac Robot or Chain, got {type(request.robot).__name__}")
     chain = as_chain(request.robot)
-    if chain.robot.coupling is not None:
-        raise CodegenError(f"{chain.robot.name} couples its joints: code generation in independent coordinates is not "
-                           "supported yet (generate for the uncoupled robot, robot.uncoupled)")
     validate_robot(chain.robot, spec.identifiers)
     requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
@@ -118,14 +115,15 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
                           ) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
     """Forward kinematics, then per Jacobian request its Jacobian, torques, kinematics (and acceleration functions)."""
     model = chain.robot
-    q_argument = Argument("q", tuple(s.name for s in model.q), "Joint values")
+    q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
+    coupled = ", in the coordinates (J_q = J C)" if model.coupling is not None else ""
     rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
     functions: list[FunctionDescription] = []
 
     def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:
         functions.append(FunctionDescription(FunctionSpec(name, kind, summary, (q_argument, *arguments)), lowered))
 
-    add(lowered_forward_kinematics(chain, strategy), "forward_kinematics", "forward_kinematics",
+    add(coordinate_forward_kinematics(chain, strategy), "forward_kinematics", "forward_kinematics",
         "The pose of the tool frame in frame {0}")
     infos: list[JacobianInfo] = []
     for request, label in zip(requests, function_labels(model, requests), strict=True):
@@ -134,21 +132,22 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
         names = {kind: f"{kind}{label}" for kind in ("jacobian", "joint_torques", "manipulability",
                                                       "jacobian_determinant", "_kinematics", "hessian",
                                                       "bias_acceleration", "manipulability_gradient")}
-        J = lowered_jacobian(chain, request.frame, point, selected, strategy)
+        J = coordinate_jacobian(chain, request.frame, point, selected, strategy)
         where, at = frame_text(request.frame), point_words(point_name)
-        add(J, names["jacobian"], "jacobian", f"The basic Jacobian [v; omega] at the {at}, in frame {where}")
-        add(lowered_torques(chain, J, selected), names["joint_torques"], "joint_torques",
-            f"Joint torques tau = J^T F holding a wrench F at the {at}, F in frame {where}",
+        add(J, names["jacobian"], "jacobian", f"The basic Jacobian [v; omega] at the {at}, in frame {where}{coupled}")
+        add(coordinate_torques(chain, request.frame, point, selected, strategy), names["joint_torques"],
+            "joint_torques", f"Joint torques tau = {'C^T ' if coupled else ''}J^T F holding a wrench F at the {at}, "
+            f"F in frame {where}",
             Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected), "Wrench (force, moment) at the point"))
-        add(lowered_kinematics(chain, request.frame, point), names["_kinematics"], "kinematics",
+        add(coordinate_kinematics(chain, request.frame, point), names["_kinematics"], "kinematics",
             "Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)")
         if acceleration:
-            add(lowered_hessian(chain, request.frame, point, selected, strategy), names["hessian"], "hessian",
+            add(coordinate_hessian(chain, request.frame, point, selected, strategy), names["hessian"], "hessian",
                 f"The kinematic Hessian H[i, j, m] = dJ[i, j]/dq_m of ``{names['jacobian']}``")
-            add(lowered_bias_acceleration(chain, request.frame, point, selected, strategy),
+            add(coordinate_bias_acceleration(chain, request.frame, point, selected, strategy),
                 names["bias_acceleration"], "bias_acceleration",
                 f"The bias acceleration Jdot qdot of ``{names['jacobian']}`` (the acceleration at zero qddot)",
-                Argument("qdot", rates, "Joint rates"))
+                Argument("qdot", rates, "Coordinate rates" if coupled else "Joint rates"))
         infos.append(JacobianInfo(
             jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
             determinant=names["jacobian_determinant"] if len(selected) == model.n_coordinates else None,
@@ -174,7 +173,7 @@ def scalar_descriptions(chain: Chain, scalars: Mapping[str, sp.Expr], functions:
     """The extra scalar functions of the joint variables and parameters, names checked against everything else."""
     model = chain.robot
     defined = _defined_names(functions, infos)
-    q_argument = Argument("q", tuple(s.name for s in model.q), "Joint values")
+    q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
     found: list[FunctionDescription] = []
     for scalar_name, expr in scalars.items():
         identifiers.check(scalar_name, "scalar function name", {**RESERVED, **{n: "a function" for n in defined}})
@@ -206,13 +205,19 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     return ModuleDescription(
         target=request.target, version=__version__, robot=model.name, convention=model.convention.value,
         n_joints=model.n_joints, n_coordinates=model.n_coordinates,
-        joints=tuple((j.variable.name, j.type.value) for j in model.joints),
+        joints=tuple((c.name, kind.value) for c, kind in zip(model.q, model.coordinate_types, strict=True)),
+        coupling=coupling_lines(chain),
         parameters=tuple((p.name, float(float_literal(p.default))) for p in model.parameters),
         functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
         rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (), chain=chain,
     )
+
+
+def _q_words(robot: Robot) -> str:
+    """What the entries of ``q`` are: the joint values, or a coupled robot's independent coordinates."""
+    return "Joint values" if robot.coupling is None else "Independent coordinates"
 
 
 def _robot_loader(robot: Robot) -> tuple[str, str]:

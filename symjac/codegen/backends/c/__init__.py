@@ -13,8 +13,9 @@ from collections.abc import Mapping, Sequence
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.backends.numpy import numpy_function
+from symjac.codegen.coupled import coordinate_angles
 from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, FunctionSpec, IdentifierRule
-from symjac.codegen.lower import LoweredFunction, angle_expansion, symbol_names
+from symjac.codegen.lower import LoweredFunction, symbol_names
 from symjac.codegen.source_layout import wrap_statement
 from symjac.errors import CodegenError
 from symjac.kinematics.chain import Chain
@@ -48,7 +49,7 @@ def c_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken
             mapping[symbol] = f"{pointer}[{k}]"
     for parameter_index, symbol in enumerate(robot.parameter_symbols):
         mapping[symbol] = f"p[{parameter_index}]"
-    angle_index = {a: k for k, a in enumerate(angle_expansion(chain).angles)}
+    angle_index = {a: k for k, a in enumerate(coordinate_angles(chain))}
     for sine, cosine, angle in lowered.angles:
         mapping[sine] = f"S[{angle_index[angle]}][k]"
         mapping[cosine] = f"C[{angle_index[angle]}][k]"
@@ -72,7 +73,7 @@ def c_sources(chain: Chain, functions: Sequence[FunctionDescription], taken: fro
     kernels = tuple(c_function(chain, f.lowered, f.spec, taken) for f in functions if f.kind != "kinematics")
     printer = CPrinter({**{v: f"x[{k}]" for k, v in enumerate(robot.q)},
                         **{s: f"p[{k}]" for k, s in enumerate(robot.parameter_symbols)}})
-    angle_code = tuple(printer.doprint(angle) for angle in angle_expansion(chain).angles)
+    angle_code = tuple(printer.doprint(angle) for angle in coordinate_angles(chain))
     data = {"robot": robot.name, "dof": robot.n_coordinates, "angles": angle_code, "functions": kernels,
             "parameter_count": len(robot.parameters)}
     # The name carries a hash of the source so that a changed module never loads a stale cached extension.

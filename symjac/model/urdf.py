@@ -377,7 +377,7 @@ def _coupled(robot: Robot, path: list[_UrdfJoint], joints: dict[str, _UrdfJoint]
     variable = {joint.name: symbol for joint, symbol in zip(moving, robot.joint_variables, strict=True)}
     values = []
     for joint in moving:
-        leader, multiplier, offset = _leader(joint, joints, set(variable), source)
+        leader, multiplier, offset = _leader(joint, joints, {j.name for j in path}, source)
         values.append(multiplier * variable[leader] + offset)
     coordinates = tuple(variable[joint.name] for joint in moving if joint.mimic is None)
     return replace(robot, coupling=Coupling(coordinates, tuple(values)))

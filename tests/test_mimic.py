@@ -28,8 +28,9 @@ GRIPPER = resources.files("symjac.robots").joinpath("urdf", "gripper.urdf").read
 
 
 def _joint(name, kind, parent, child, xyz="0 0 0", rpy="0 0 0", axis="0 0 1", mimic=""):
+    limit = '<limit lower="-4" upper="4" effort="1" velocity="1"/>' if kind in ("revolute", "prismatic") else ""
     return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
-            f'<origin xyz="{xyz}" rpy="{rpy}"/><axis xyz="{axis}"/>{mimic}</joint>')
+            f'<origin xyz="{xyz}" rpy="{rpy}"/><axis xyz="{axis}"/>{limit}{mimic}</joint>')
 
 
 def _urdf(*joints: str, links: int = 7) -> str:

@@ -11,6 +11,7 @@ import numpy as np
 import sympy as sp
 
 from symjac import Robot
+from symjac.model.robot import JointType
 
 
 def _float(expr: sp.Expr, robot: Robot) -> float:
@@ -79,7 +80,14 @@ def _general_link(robot: Robot, joint, previous, value: float) -> np.ndarray:
 
 
 def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
-    """World poses of frame positions world, 0, 1, ..., n, tool (n + 3 matrices)."""
+    """World poses of frame positions world, 0, 1, ..., n, tool (n + 3 matrices) at the robot's coordinates ``q``.
+
+    Without a coupling the coordinates are the joint values; with one, each joint value is its affine expression of
+    the coordinates (parameters at their defaults).
+    """
+    if robot.coupling is not None:
+        values = {**robot.defaults, **dict(zip(robot.q, map(float, q), strict=True))}
+        q = np.array([float(value.xreplace(values)) for value in robot.joint_values])
     base = np.array(robot.base.matrix.subs(robot.defaults), dtype=float) if robot.base else np.eye(4)
     tool = np.array(robot.tool.matrix.subs(robot.defaults), dtype=float) if robot.tool else np.eye(4)
     poses = [np.eye(4), base]
@@ -144,5 +152,6 @@ def evaluate(matrix: sp.MatrixBase, robot: Robot, q: np.ndarray, extra: dict | N
 
 
 def random_configuration(robot: Robot, rng: np.random.Generator) -> np.ndarray:
-    """Joint values: angles in (-pi, pi), prismatic extensions in (0.1, 1)."""
-    return np.array([rng.uniform(-np.pi, np.pi) if j.is_revolute else rng.uniform(0.1, 1.0) for j in robot.joints])
+    """Coordinates (the joint values without a coupling): angles in (-pi, pi), prismatic extensions in (0.1, 1)."""
+    return np.array([rng.uniform(-np.pi, np.pi) if kind is JointType.REVOLUTE else rng.uniform(0.1, 1.0)
+                     for kind in robot.coordinate_types])

@@ -120,12 +120,12 @@ def frame_index(robot: Robot, frame: int | str) -> int:
 def finite_difference_jacobian(
     robot: Robot, q: np.ndarray, frame: int | str = 0, point: np.ndarray | None = None, h: float = 1e-6
 ) -> np.ndarray:
-    """6 x n Jacobian [v; omega] at the point (coordinates in frame {n}) expressed in ``frame``."""
+    """6 x n_coordinates Jacobian [v; omega] at the point (coordinates in frame {n}) expressed in ``frame``."""
     point_h = np.append(np.zeros(3) if point is None else np.asarray(point, dtype=float), 1.0)
-    n = robot.n_joints
+    n = robot.n_coordinates
 
     def pose(qq: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        T_world_n = frames(robot, qq)[n + 1]
+        T_world_n = frames(robot, qq)[robot.n_joints + 1]
         return (T_world_n @ point_h)[:3], T_world_n[:3, :3]
 
     _, R_mid = pose(q)

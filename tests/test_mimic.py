@@ -278,3 +278,26 @@ def test_convert_writes_the_mimic_coupling_back(tmp_path):
     output = tmp_path / "gripper.toml"
     assert main(["convert", "gripper.urdf", "--to", "toml", "-o", str(output)]) == 0
     assert load_robot(output).joint_values == robot.joint_values
+
+
+def test_the_catalog_gripper_names_its_default_tip_and_other_tips_still_load_or_are_refused():
+    assert load_robot("gripper.urdf") == load_robot("gripper.urdf", tip_link="left_fingertip")
+    wrist = load_robot("gripper.urdf", tip_link="palm")
+    assert wrist.n_joints == wrist.n_coordinates == 2 and wrist.coupling is None
+    # the right finger follows finger_joint, which lies on the left finger's branch: not on this chain
+    with pytest.raises(RobotFileError, match=r"^gripper\.urdf, field 'joint right_knuckle_joint mimic': "
+                                             r".*'finger_joint', which is not on the chain"):
+        load_robot("gripper.urdf", tip_link="right_fingertip")
+    with pytest.raises(RobotFileError, match="choose tip_link"):  # the comment is the catalog's, not URDF's
+        robot_from_urdf(GRIPPER, source="gripper.urdf")
+
+
+def test_a_leader_further_down_the_chain_and_a_zero_multiplier():
+    robot = robot_from_urdf(_urdf(
+        _joint("a", "revolute", "l0", "l1", mimic='<mimic joint="b" multiplier="-0.5" offset="0.25"/>'),
+        _joint("b", "prismatic", "l1", "l2", axis="1 0 0"),
+        _joint("c", "revolute", "l2", "l3", mimic='<mimic joint="b" multiplier="0" offset="1.5707963267949"/>'),
+        links=4), tip_link="l3")
+    d2 = robot.joint_variables[1]
+    assert robot.q == (d2,)
+    assert robot.joint_values == (-d2 / 2 + sp.Rational(1, 4), d2, sp.pi / 2)  # a revolute offset snaps like angles

@@ -54,7 +54,9 @@ def test_every_registered_convention_names_itself():
 def test_each_convention_round_trips_through_the_robot_file_mapping(convention):
     robots = samples(convention)
     assert robots, f"no sample robot in the {convention} convention"
-    for robot in robots:
+    # a coupling (gripper.urdf's mimic finger) is written by robot files once branch couple-files lands: its round
+    # trip is tests/test_mimic.py::test_convert_writes_the_mimic_coupling_back (xfail until then)
+    for robot in [robot for robot in robots if robot.coupling is None]:
         data = robot_to_mapping(robot)
         again = robot_from_mapping(data, source="again")
         assert again == robot

@@ -48,7 +48,8 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
     A file whose text starts with ``<`` is read as URDF whatever its extension (``arm.xml``). A ``.urdf`` argument
     is a path, or, when no such file exists and it has no directory part, a built-in URDF file
     (see :func:`urdf_catalog`). ``base_link`` and ``tip_link`` choose the URDF chain (defaults: the root link and the
-    only leaf); see :mod:`symjac.model.urdf`.
+    only leaf, or for a built-in file with several leaves the one its ``<!-- tip_link: ... -->`` comment names); see
+    :mod:`symjac.model.urdf`.
 
     Raises
     ------
@@ -109,7 +110,11 @@ def _load_urdf(name_or_path: str | Path, path: Path, base_link: str | None, tip_
     if isinstance(name_or_path, str) and "/" not in name_or_path and "\\" not in name_or_path:
         entry = resources.files("symjac.robots").joinpath("urdf", name_or_path)
         if entry.is_file():
-            return robot_from_urdf(entry.read_bytes(), source=name_or_path, base_link=base_link, tip_link=tip_link)
+            data = entry.read_bytes()
+            if tip_link is None:  # a built-in file with several leaves names its default tip in a comment
+                tip = re.search(rb"<!--\s*tip_link:\s*([A-Za-z0-9_.-]+)\s*-->", data)
+                tip_link = tip.group(1).decode("ascii") if tip else None
+            return robot_from_urdf(data, source=name_or_path, base_link=base_link, tip_link=tip_link)
     known = ", ".join(urdf_catalog())
     raise UnknownRobotError(f"{str(name_or_path)!r} is neither a URDF file nor a built-in one ({known})")
 

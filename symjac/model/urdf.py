@@ -10,10 +10,19 @@ The chain
     From ``base_link`` (default: the root link) to ``tip_link`` (default: the only leaf; with several leaves the
     error lists them). Revolute, continuous and prismatic joints become joints of the robot, in order; fixed joints are
     folded into the origin of the next moving joint, and those after the last moving joint into the tool transform.
-    Floating and planar joints, and mimic joints, are refused when they lie on the chain and ignored on other
-    branches (a gripper beside the arm does not stop the arm from loading). Frame {0} is ``base_link``; frame {i} is
+    Floating and planar joints are refused when they lie on the chain and ignored on other branches (a gripper beside
+    the arm does not stop the arm from loading). Frame {0} is ``base_link``; frame {i} is
     the child link of moving joint *i* turned so that its z-axis is the joint axis (see :mod:`symjac.model.robot`); the
     ``"tool"`` frame is ``tip_link``.
+
+Mimic joints
+    ``<mimic joint="J" multiplier="m" offset="o"/>`` on a moving joint of the chain couples it to joint ``J`` (a
+    moving joint of the chain): its position is :math:`m\,x_J + o` (defaults 1 and 0). symjac's variable of a general
+    joint is its URDF position (the alignment turns :math:`z` onto the axis as written, never onto its opposite), so
+    :math:`\vartheta_i = m\,\vartheta_J + o` exactly; the coordinates are the variables of the moving joints that
+    mimic nothing, in chain order. A mimic of a mimic is followed to the joint that mimics nothing
+    (:math:`\vartheta_i = m_1 (m_2 \vartheta_K + o_2) + o_1`); a cycle is refused. Mimic joints on other branches, and
+    ``<mimic>`` on fixed joints, are ignored.
 
 Numbers
     Every number becomes an exact rational (``0.333 -> 333/1000``), so derivations stay exact and fast. An angle
@@ -36,13 +45,14 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
 from symjac.model.conventions.general import GeneralPlacement
+from symjac.model.coordinates import Coupling
 from symjac.model.expressions import exact_number, is_valid_name, snap_angle
 from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Robot, fixed_transform_from_matrix
 from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_motions
@@ -72,7 +82,16 @@ class _UrdfJoint:
     origin: FixedTransform
     axis: tuple[sp.Expr, sp.Expr, sp.Expr]
     limits: tuple[sp.Expr, sp.Expr] | None
-    mimic: bool
+    mimic: _Mimic | None
+
+
+@dataclass(frozen=True)
+class _Mimic:
+    """``<mimic joint multiplier offset>``: this joint's position is ``multiplier * position(joint) + offset``."""
+
+    joint: str
+    multiplier: sp.Expr
+    offset: sp.Expr
 
 
 def robot_from_urdf(
@@ -99,8 +118,9 @@ def robot_from_urdf(
     ------
     RobotFileError
         For hostile or malformed input (document type declarations, bad XML, missing or duplicate links, loops,
-        unknown joint types, non-finite numbers) and for chains symjac cannot model (mimic, floating or planar
-        joints on the chain, no moving joint). The message names the file and the element.
+        unknown joint types, non-finite numbers) and for chains symjac cannot model (floating or planar joints on
+        the chain, a mimic joint on the chain whose leader is not a moving joint of the chain, a cycle of mimic
+        joints, no moving joint). The message names the file and the element.
 
     Examples
     --------
@@ -117,7 +137,7 @@ def robot_from_urdf(
     robot_name = name if name is not None else _identifier(root.get("name") or "urdf_robot")
     if not is_valid_name(robot_name):
         raise _fail(source, f"robot name {robot_name!r} is not an identifier (letters, digits, underscore)")
-    return _robot(robot_name, chain, source)
+    return _robot(robot_name, chain, source, joints)
 
 
 def _fail(source: str, message: str, element: str | None = None) -> RobotFileError:
@@ -242,8 +262,24 @@ def _read(root: ET.Element, source: str) -> tuple[set[str], dict[str, _UrdfJoint
                 limits = (bounds[0], bounds[1])
         joints[joint_name] = _UrdfJoint(joint_name, kind, ends[0], ends[1],
                                         FixedTransform(xyz=tuple(xyz), rpy=tuple(rpy)),  # type: ignore[arg-type]
-                                        tuple(axis), limits, joint.find("mimic") is not None)  # type: ignore[arg-type]
+                                        tuple(axis), limits, _mimic(joint, kind, source, where))  # type: ignore[arg-type]
     return links, joints
+
+
+def _mimic(joint: ET.Element, kind: str, source: str, where: str) -> _Mimic | None:
+    """The ``<mimic>`` of a moving joint, its numbers checked finite (None without one, and on fixed joints)."""
+    element = joint.find("mimic")
+    if element is None or kind not in _MOVING:
+        return None
+    leader = element.get("joint")
+    if not leader:
+        raise _fail(source, "<mimic> must name the joint it follows (joint=...)", f"{where} mimic")
+    multiplier = _number(element.get("multiplier", "1"), source, f"{where} mimic")
+    offset = _number(element.get("offset", "0"), source, f"{where} mimic")
+    if abs(multiplier) > MAX_URDF_ANGLE or abs(offset) > MAX_URDF_ANGLE:
+        raise _fail(source, f"mimic multiplier and offset must be at most {MAX_URDF_ANGLE:.0e} in size",
+                    f"{where} mimic")
+    return _Mimic(leader, multiplier, snap_angle(offset) if _MOVING[kind] is JointType.REVOLUTE else offset)
 
 
 def _chain(links: set[str], joints: dict[str, _UrdfJoint], source: str, base_link: str | None,
@@ -294,9 +330,6 @@ def _chain(links: set[str], joints: dict[str, _UrdfJoint], source: str, base_lin
     for joint in path:
         if joint.type in ("floating", "planar"):
             raise _fail(source, f"{joint.type} joints are not supported on the chain", f"joint {joint.name}")
-        if joint.mimic:
-            raise _fail(source, "mimic joints are not supported on the chain (their variable is not independent)",
-                        f"joint {joint.name}")
     if not any(joint.type in _MOVING for joint in path):
         raise _fail(source, f"no revolute, continuous or prismatic joint between {base_link!r} and {tip_link!r}")
     return path
@@ -310,7 +343,47 @@ def _reaches(link: str, ancestor: str, parent_joint: dict[str, _UrdfJoint]) -> b
     return True
 
 
-def _robot(robot_name: str, path: list[_UrdfJoint], source: str) -> Robot:
+def _leader(joint: _UrdfJoint, joints: dict[str, _UrdfJoint], chain: set[str],
+            source: str) -> tuple[str, sp.Expr, sp.Expr]:
+    """The joint of the chain that mimics nothing which ``joint`` follows, and ``(m, o)``: x = m * x_leader + o."""
+    multiplier, offset = sp.S.One, sp.S.Zero
+    followed = [joint.name]
+    current = joint
+    while current.mimic is not None:
+        mimic = current.mimic
+        where = f"joint {current.name} mimic"
+        if mimic.joint not in joints:
+            raise _fail(source, f"joint {current.name!r} mimics {mimic.joint!r}, which is not a joint of this robot",
+                        where)
+        if mimic.joint not in chain:
+            raise _fail(source, f"joint {current.name!r} mimics joint {mimic.joint!r}, which is not on the chain "
+                                f"(choose base_link and tip_link so that the chain holds both)", where)
+        if mimic.joint in followed:
+            raise _fail(source, f"mimic joints form a cycle: {' -> '.join([*followed, mimic.joint])}", where)
+        leader = joints[mimic.joint]
+        if leader.type not in _MOVING:
+            raise _fail(source, f"joint {current.name!r} mimics joint {mimic.joint!r}, a {leader.type} joint", where)
+        offset, multiplier = offset + multiplier * mimic.offset, multiplier * mimic.multiplier
+        followed.append(leader.name)
+        current = leader
+    return current.name, multiplier, offset
+
+
+def _coupled(robot: Robot, path: list[_UrdfJoint], joints: dict[str, _UrdfJoint], source: str) -> Robot:
+    """``robot`` with the coupling of the mimic joints of its chain (``robot`` itself when there are none)."""
+    moving = [joint for joint in path if joint.type in _MOVING]
+    if all(joint.mimic is None for joint in moving):
+        return robot
+    variable = {joint.name: symbol for joint, symbol in zip(moving, robot.joint_variables, strict=True)}
+    values = []
+    for joint in moving:
+        leader, multiplier, offset = _leader(joint, joints, {j.name for j in path}, source)
+        values.append(multiplier * variable[leader] + offset)
+    coordinates = tuple(variable[joint.name] for joint in moving if joint.mimic is None)
+    return replace(robot, coupling=Coupling(coordinates, tuple(values)))
+
+
+def _robot(robot_name: str, path: list[_UrdfJoint], source: str, all_joints: dict[str, _UrdfJoint]) -> Robot:
     pending: list[FixedTransform] = []
     joints: list[Joint] = []
     for urdf_joint in path:
@@ -327,9 +400,10 @@ def _robot(robot_name: str, path: list[_UrdfJoint], source: str) -> Robot:
     last_alignment = alignment(placement.unit_axis)
     tool = _combine(pending, list(inverse_motions(last_alignment)))
     # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
-    return Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
-                 description=f"from {Path(source).name}", tool=None if tool == FixedTransform() else tool,
-                 source=source)
+    robot = Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
+                  description=f"from {Path(source).name}", tool=None if tool == FixedTransform() else tool,
+                  source=source)
+    return _coupled(robot, path, all_joints, source)
 
 
 def _combine(transforms: list[FixedTransform], prefix: list) -> FixedTransform:

@@ -301,3 +301,15 @@ def test_a_leader_further_down_the_chain_and_a_zero_multiplier():
     d2 = robot.joint_variables[1]
     assert robot.q == (d2,)
     assert robot.joint_values == (-d2 / 2 + sp.Rational(1, 4), d2, sp.pi / 2)  # a revolute offset snaps like angles
+
+
+def test_the_command_line_prints_forward_kinematics_and_the_report_in_the_coordinates(cli, tmp_path):
+    import json
+
+    robot = load_robot("gripper.urdf")
+    hidden = {str(v) for v in robot.joint_variables} - {str(q) for q in robot.q}
+    assert hidden
+    for command in ("fk", "jacobian"):
+        data = json.loads(cli.ok(command, "gripper.urdf", "--format", "json"))
+        assert not any(name in json.dumps(data) for name in hidden), command
+    assert cli.run("report", "gripper.urdf", "-o", str(tmp_path / "g.html"))[0] == 0

@@ -19,7 +19,7 @@ import sympy as sp
 from symjac._version import __version__
 from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath, manipulability_map, singular_path
 from symjac.analysis.singularity.singularities import SingularityReport, singularities
-from symjac.kinematics.chain import Frame, chain_of
+from symjac.kinematics.chain import Frame, chain_of, forward_kinematics
 from symjac.kinematics.jacobian import ROW_NAMES, jacobian
 from symjac.model.robot import Robot
 from symjac.printing import prose
@@ -69,7 +69,7 @@ def _forward(robot: Robot) -> Section:
     """The forward kinematics: the document of ``symjac fk``."""
     source: Frame = "world" if robot.base else 0
     target: Frame = "tool" if robot.tool else robot.n_joints
-    document = forward_kinematics_document(robot, source, target, chain_of(robot).simplified_transform(source, target))
+    document = forward_kinematics_document(robot, source, target, forward_kinematics(robot, source, target))
     return Section("fk", "Forward kinematics",
                    f"<p>{html.escape(prose.forward_kinematics_intro(source, target))}</p>" + _html(document))
 

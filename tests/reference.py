@@ -11,6 +11,7 @@ import numpy as np
 import sympy as sp
 
 from symjac import Robot
+from symjac.model.robot import JointType
 
 
 def _float(expr: sp.Expr, robot: Robot) -> float:
@@ -78,8 +79,17 @@ def _general_link(robot: Robot, joint, previous, value: float) -> np.ndarray:
     return np.linalg.inv(before) @ origin @ motion @ _alignment(axis)
 
 
+def joint_values(robot: Robot, q: np.ndarray) -> np.ndarray:
+    """The joint variables theta(q) at the coordinates ``q`` (``q`` itself without a coupling or if joint values)."""
+    if robot.coupling is None or len(q) == robot.n_joints:
+        return np.asarray(q, dtype=float)
+    values = {**robot.defaults, **dict(zip(robot.coordinates, (float(v) for v in q), strict=True))}
+    return np.array([float(v.xreplace(values)) for v in robot.joint_values])
+
+
 def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
-    """World poses of frame positions world, 0, 1, ..., n, tool (n + 3 matrices)."""
+    """World poses of frame positions world, 0, 1, ..., n, tool (n + 3 matrices) at the coordinates ``q``."""
+    q = joint_values(robot, q)
     base = np.array(robot.base.matrix.subs(robot.defaults), dtype=float) if robot.base else np.eye(4)
     tool = np.array(robot.tool.matrix.subs(robot.defaults), dtype=float) if robot.tool else np.eye(4)
     poses = [np.eye(4), base]
@@ -112,7 +122,7 @@ def frame_index(robot: Robot, frame: int | str) -> int:
 def finite_difference_jacobian(
     robot: Robot, q: np.ndarray, frame: int | str = 0, point: np.ndarray | None = None, h: float = 1e-6
 ) -> np.ndarray:
-    """6 x n Jacobian [v; omega] at the point (coordinates in frame {n}) expressed in ``frame``."""
+    """6 x len(q) Jacobian [v; omega] at the point (coordinates in frame {n}) expressed in ``frame``, in ``q``."""
     point_h = np.append(np.zeros(3) if point is None else np.asarray(point, dtype=float), 1.0)
     n = robot.n_joints
 
@@ -121,9 +131,9 @@ def finite_difference_jacobian(
         return (T_world_n @ point_h)[:3], T_world_n[:3, :3]
 
     _, R_mid = pose(q)
-    J_world = np.zeros((6, n))
-    for i in range(n):
-        step = np.zeros(n)
+    J_world = np.zeros((6, len(q)))
+    for i in range(len(q)):
+        step = np.zeros(len(q))
         step[i] = h
         (x_plus, R_plus), (x_minus, R_minus) = pose(q + step), pose(q - step)
         J_world[:3, i] = (x_plus - x_minus) / (2 * h)
@@ -144,5 +154,6 @@ def evaluate(matrix: sp.MatrixBase, robot: Robot, q: np.ndarray, extra: dict | N
 
 
 def random_configuration(robot: Robot, rng: np.random.Generator) -> np.ndarray:
-    """Joint values: angles in (-pi, pi), prismatic extensions in (0.1, 1)."""
-    return np.array([rng.uniform(-np.pi, np.pi) if j.is_revolute else rng.uniform(0.1, 1.0) for j in robot.joints])
+    """Coordinate values: angles in (-pi, pi), prismatic extensions in (0.1, 1) (the joint values without coupling)."""
+    return np.array([rng.uniform(-np.pi, np.pi) if kind is JointType.REVOLUTE else rng.uniform(0.1, 1.0)
+                     for kind in robot.coordinate_types])

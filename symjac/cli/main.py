@@ -261,14 +261,14 @@ def _show(args: argparse.Namespace) -> Document:
 
 
 def _fk(args: argparse.Namespace) -> Document:
-    from symjac.kinematics.chain import chain_of
+    from symjac.kinematics.chain import forward_kinematics
     from symjac.printing.results import forward_kinematics_document
 
     robot = load(args)
     note_if_large(robot.name, robot.n_joints)
     source: Frame = "world" if robot.base else 0
     target: Frame = "tool" if robot.tool else robot.n_joints
-    T = progress(f"forward kinematics of {robot.name}", lambda: chain_of(robot).simplified_transform(source, target))
+    T = progress(f"forward kinematics of {robot.name}", lambda: forward_kinematics(robot, source, target))  # in the coordinates
     return forward_kinematics_document(robot, source, target, T, _digits(args))
 
 

@@ -268,7 +268,7 @@ def _fk(args: argparse.Namespace) -> Document:
     note_if_large(robot.name, robot.n_joints)
     source: Frame = "world" if robot.base else 0
     target: Frame = "tool" if robot.tool else robot.n_joints
-    T = progress(f"forward kinematics of {robot.name}", lambda: forward_kinematics(robot, source, target))  # in the coordinates
+    T = progress(f"forward kinematics of {robot.name}", lambda: forward_kinematics(robot, source, target))
     return forward_kinematics_document(robot, source, target, T, _digits(args))
 
 

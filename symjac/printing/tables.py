@@ -17,8 +17,8 @@ from symjac.model.conventions.base import Cell, Column
 from symjac.model.robot import Robot
 from symjac.printing.latex import latex
 
-__all__ = ["VARIABLE", "column_html", "column_latex", "column_text", "dh_headers", "dh_rows", "dh_table_latex", "dh_table_text",
-           "table_cells", "table_headings", "text_table"]
+__all__ = ["VARIABLE", "column_html", "column_latex", "column_text", "dh_headers", "dh_rows", "dh_table_latex",
+           "dh_table_text", "table_cells", "table_headings", "text_table"]
 
 
 VARIABLE = Column("variable")

@@ -238,3 +238,13 @@ def test_random_coupled_chains_jacobian_against_finite_differences(robot, data):
     J = jacobian(robot, frame=0, method=method, simplify=False)
     assert J.shape == (6, robot.n_coordinates)
     np.testing.assert_allclose(evaluate(J, robot, q), finite_difference_jacobian(robot, q, 0), atol=1e-6)
+
+
+def test_singularity_words_name_the_coordinates_not_joint_numbers(palletizer):
+    from symjac import singularities
+    from symjac.printing.prose import self_motion_words
+
+    report = singularities(palletizer)
+    (shoulder,) = [f for f in report.factors if f.expression.has(t2) and not f.expression.is_Function]
+    words = self_motion_words(shoulder)
+    assert "on theta1" in words and "on theta5" in words and "joint 4" not in words

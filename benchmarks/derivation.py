@@ -87,6 +87,23 @@ def time_singularities(robot: Robot) -> float | None:
     return time.perf_counter() - start
 
 
+def coupling_overhead(robot: Robot, repeats: int = 3) -> tuple[float, float]:
+    """Best-of-``repeats`` seconds to derive ``robot`` (every frame and the steps) with and without its coupling."""
+
+    def seconds(arm: Robot) -> float:
+        clear_caches()
+        start = time.perf_counter()
+        for frame in range(arm.n_joints + 1):
+            jacobian(arm, frame=frame)
+        velocity_propagation(arm)
+        force_propagation(arm)
+        return time.perf_counter() - start
+
+    coupled = min(seconds(robot) for _ in range(repeats))
+    uncoupled = min(seconds(robot.uncoupled) for _ in range(repeats))
+    return coupled, uncoupled
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Print one line per robot: derivation time and operation count, frame {0} and best frame."""
     parser = argparse.ArgumentParser(prog="python benchmarks/derivation.py", description=__doc__.splitlines()[0])
@@ -104,6 +121,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{t.robot:<14}{t.n_joints:>3}  {t.seconds_frame_0:>11.3f}{t.ops_frame_0:>7}  "
               f"{t.best_frame:>10}{t.seconds_best:>8.3f}{t.ops_best:>7}  {t.seconds_steps:>9.3f}  {singular:>11}",
               flush=True)
+    for robot in (r for r in robots if r.coupling is not None):  # the coupling should add at most 20%
+        coupled, uncoupled = coupling_overhead(robot)
+        print(f"{robot.name}: coupled {coupled:.3f} s, the same chain uncoupled {uncoupled:.3f} s "
+              f"({100 * (coupled / uncoupled - 1):+.0f}%)", flush=True)
     return 0
 
 

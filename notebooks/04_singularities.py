@@ -18,6 +18,7 @@
 # * the elbow singularity of the planar 2R arm (stretched out or folded back, on the edge of the workspace);
 # * the shoulder singularity of a spatial 3R arm, which only exists if the links are long enough;
 # * the wrist, elbow and shoulder singularities of the PUMA 560;
+# * why a palletizer with coupled joints has a square Jacobian, and where it is singular;
 # * what happens at a singularity: a direction the hand cannot move in, a force it holds with no torque, a joint
 #   motion that moves nothing, and joint rates that blow up nearby.
 
@@ -30,7 +31,7 @@ import numpy as np
 import sympy as sp
 from IPython.display import Math, display
 
-from symjac import latex, load_robot, numeric_jacobian, rates_along_path, singularities
+from symjac import jacobian, latex, load_robot, numeric_jacobian, rates_along_path, singularities
 from symjac.analysis.spaces import jacobian_spaces, symbolic_spaces
 from symjac.printing import singularity_summary
 from symjac.teaching.exercises import check
@@ -138,6 +139,33 @@ fig.savefig(OUTPUT / "04_rates_near_singularity.png", dpi=100)
 
 # %%
 show(singularities(load_robot("puma560")))
+
+# %% [markdown]
+# ## A palletizer: five joints, four coordinates, a square Jacobian
+#
+# A palletizer stacks boxes: it only needs the box's position and its heading about the vertical, four numbers.
+# The catalog `palletizer` has five revolute joints, but a parallelogram linkage ties the fourth to the second and
+# third, $	heta_4 = -(	heta_2 + 	heta_3)$, so the flange stays level whatever the shoulder and elbow do. Its robot
+# file says so with `coupled = "-theta2 - theta3"` on joint 4, and symjac works in the four independent coordinates
+# $(	heta_1, 	heta_2, 	heta_3, 	heta_5)$: the Jacobian has four columns, $J_q = J(	heta(q))\,C$ with the
+# constant $C = \partial\theta/\partial q$.
+
+# %%
+palletizer = load_robot("palletizer")
+print("coordinates:", palletizer.q, " joint variables:", palletizer.joint_values)
+J_pal = jacobian(palletizer)
+display(Math(r"J_q = " + latex(J_pal)))
+
+# %% [markdown]
+# The rows $\omega_x$ and $\omega_y$ are zero everywhere: the linkage removes the two tilts, so the flange cannot
+# roll or pitch. The four rows $v_x, v_y, v_z, \omega_z$ that are left against four columns make a square matrix,
+# and its determinant says where the palletizer is singular: the elbow stretched out or folded back
+# ($\sin\theta_3 = 0$), and the flange point above the base axis (the radius $L_1 + L_2 c_2 + L_3 c_{23} + L_4$
+# is zero), where turning the base no longer moves it sideways.
+
+# %%
+assert J_pal[3:5, :] == sp.zeros(2, 4)
+show(singularities(palletizer))
 
 # %% [markdown]
 # ## Exercises

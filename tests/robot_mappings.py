@@ -28,6 +28,7 @@ EXPECTED = {
     "scara": (4, "modified", (3,), False, False),
     "ur5": (6, "standard", (), False, False),
     "panda": (7, "modified", (), False, True),
+    "palletizer": (5, "modified", (), False, False),
 }
 
 

@@ -44,7 +44,8 @@ def test_every_catalog_robot_loads(name):
     assert robot.name == name
     assert robot.source == f"{name}.toml"
     assert robot.description == catalog()[name]
-    assert robot.n_joints == len(robot.q) >= 1
+    assert robot.n_joints >= robot.n_coordinates == len(robot.q) >= 1
+    assert (robot.coupling is None) == (robot.n_joints == robot.n_coordinates)
     for parameter in robot.parameters:
         assert isinstance(parameter.default, sp.Rational)
     for joint in robot.joints:

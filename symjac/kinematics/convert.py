@@ -9,7 +9,7 @@ world frame to the tool frame and every Jacobian expressed in the world frame at
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import sympy as sp
 
@@ -52,6 +52,11 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
     result = destination.from_modified(modified)
     if result is None:
         raise ConversionError(f"cannot convert {robot.name} from {robot.convention.value} to {target.value}")
+    if robot.coupling is not None:  # the same joints in the same order keep their variables: the coupling carries over
+        if result.joint_variables != robot.joint_variables:
+            raise ConversionError(f"cannot convert {robot.name}: its joints are coupled and the {target.value} table "
+                                  f"would change its joint variables")
+        result = replace(result, coupling=robot.coupling)
     return result, notes
 
 

@@ -20,6 +20,7 @@ Transforms and anything else written in the joint variables, their rates and acc
 from __future__ import annotations
 
 import math
+from functools import cache
 from typing import TYPE_CHECKING, TypeVar
 
 import sympy as sp
@@ -63,16 +64,21 @@ def coordinate_substitution(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
     {}
     """
     model = _model(robot)
-    if model.coupling is None:
-        return {}
+    return {} if model.coupling is None else dict(_substitution(model))
+
+
+@cache
+def _substitution(model: Robot) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
+    """:func:`coordinate_substitution` of a coupled robot, once per robot (it is asked for by every result)."""
+    assert model.coupling is not None
     C = model.coupling.matrix
-    qdot, qddot = sp.Matrix(model.coordinate_rates), sp.Matrix(model.coordinate_accelerations)
-    values: dict[sp.Symbol, sp.Expr] = {}
+    qdot, qddot = model.coordinate_rates, model.coordinate_accelerations
+    values: list[tuple[sp.Symbol, sp.Expr]] = []
     for i, (joint, value) in enumerate(zip(model.joints, model.coupling.values, strict=True)):
-        values[joint.variable] = value
-        values[joint.rate] = (C[i, :] * qdot)[0]
-        values[joint.acceleration] = (C[i, :] * qddot)[0]
-    return values
+        values.append((joint.variable, value))
+        values.append((joint.rate, sp.Add(*[C[i, j] * qdot[j] for j in range(C.cols) if C[i, j] != 0])))
+        values.append((joint.acceleration, sp.Add(*[C[i, j] * qddot[j] for j in range(C.cols) if C[i, j] != 0])))
+    return tuple(values)
 
 
 def in_coordinates(robot: Robot | Chain, result: M, layout: Frame | None = None) -> M:
@@ -104,8 +110,26 @@ def jacobian_in_coordinates(robot: Robot | Chain, J: sp.MatrixBase, layout: Fram
         return sp.ImmutableMatrix(J)
     J_q = _product(in_coordinates(robot, sp.Matrix(J)), coupling_matrix(robot))
     if layout is not None:
-        J_q = simplify_matrix(J_q, coordinate_bases(robot, layout))  # type: ignore[arg-type]  # a chain, documented
+        J_q = _laid_out_again(robot, J_q, J, layout)
     return sp.ImmutableMatrix(J_q)
+
+
+def _laid_out_again(robot: Robot | Chain, J_q: sp.Matrix, J: sp.MatrixBase, layout: Frame) -> sp.Matrix:
+    """Simplify again (in ``layout``'s coordinate bases) only the entries of J_q that the coupling changed.
+
+    An entry of a coordinate that is a joint's own variable, equal to that joint's entry of J (it never involved a
+    coupled joint), is already laid out: simplifying it again costs as much as the whole joint-space layout did.
+    """
+    model = _model(robot)
+    column_of = {variable: k for k, variable in enumerate(model.joint_variables)}
+    changed = [(r, c) for c, coordinate in enumerate(model.coordinates) for r in range(J_q.rows)
+               if coordinate not in column_of or J_q[r, c] != J[r, column_of[coordinate]]]
+    if changed:
+        entries = simplify_matrix(sp.Matrix(1, len(changed), [J_q[r, c] for r, c in changed]),
+                                  coordinate_bases(robot, layout))  # type: ignore[arg-type]  # a chain, documented
+        for (r, c), entry in zip(changed, entries, strict=True):
+            J_q[r, c] = entry
+    return J_q
 
 
 def coordinate_bases(chain: Chain, frame: Frame) -> list[AngleBasis]:

@@ -3,6 +3,13 @@ r"""Robot descriptions as mappings (the parsed TOML file) to :class:`~symjac.mod
 Every field is checked before a robot is built, and an error names the file, the joint and the field. Expressions
 in fields (``"-pi/2"``, ``"L1 + L2"``) go through the whitelist parser of :mod:`symjac.model.expressions`, never through
 ``eval`` or ``sympify``. The file format is described in the README ("Robot files").
+
+Coupled joints: a joint table may say ``coupled = "-(theta2 + theta3)"``: that joint's variable is not free but equals
+the expression, which must be affine (a constant plus constant multiples) in the variables of the joints that are
+*not* coupled, with parameters and ``pi`` allowed in the coefficients (``coupled = "0.02 * theta4 / (2*pi) + d30"``).
+Those uncoupled joints' variables, in chain order, are the robot's independent coordinates
+(:mod:`symjac.model.coordinates`). A coupled expression may not name a coupled joint's variable (its own or
+another's), so there are no cycles to resolve; it is written in radians and lengths whatever ``angle_unit`` says.
 """
 
 from __future__ import annotations
@@ -16,6 +23,7 @@ import sympy as sp
 from symjac.errors import ExpressionError, RobotFileError
 from symjac.model.conventions import convention_named, plugin
 from symjac.model.conventions.base import transform_fields
+from symjac.model.coordinates import Coupling
 from symjac.model.expressions import exact_number, expression_text, name_problem, parse_expression
 from symjac.model.robot import FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
 
@@ -112,7 +120,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
             raise fail(str(error), joint=joint, field=field) from None
         return expr * scale
 
-    allowed = {"type", "d", "theta", "limits", *spec.keys}
+    allowed = {"type", "d", "theta", "limits", "coupled", *spec.keys}
     joints = []
     for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
         unknown = sorted(set(joint_data) - allowed)
@@ -130,6 +138,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         joints.append(Joint(index=number, type=kind, placement=placement, d=d, theta=theta, limits=limits,
                             name=joint_name))
 
+    coupling = _coupling(joints_data, joints, names, defaults, fail)
     transforms = {}
     for key in ("base", "tool"):
         if key in data:
@@ -144,7 +153,54 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         base=transforms.get("base"),
         tool=transforms.get("tool"),
         source=source,
+        coupling=coupling,
     )
+
+
+def _coupling(tables: Sequence[Mapping[str, Any]], joints: Sequence[Joint], names: Mapping[str, sp.Symbol],
+              defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> Coupling | None:
+    """The coupling the joints' ``coupled`` fields give, or None if no joint has one (the identity)."""
+    coupled = {joint.variable for joint, table in zip(joints, tables, strict=True) if "coupled" in table}
+    if not coupled:
+        return None
+    coordinates = tuple(joint.variable for joint in joints if joint.variable not in coupled)
+    if not coordinates:
+        raise fail("every joint is coupled: at least one joint must be free (its variable a coordinate)",
+                   joint=len(joints), field="coupled")
+    listed = ", ".join(map(str, coordinates))
+    known = {**names, **{str(joint.variable): joint.variable for joint in joints}}
+    values: list[sp.Expr] = []
+    for joint, table in zip(joints, tables, strict=True):
+        if joint.variable not in coupled:
+            values.append(joint.variable)
+            continue
+
+        def problem(message: str, index: int = joint.index) -> RobotFileError:
+            return fail(message, joint=index, field="coupled")
+
+        raw = table["coupled"]
+        if isinstance(raw, bool) or not isinstance(raw, str | int | float):
+            raise problem(f"'coupled' must be an expression of the coordinates ({listed}), got {raw!r}")
+        try:
+            value = parse_expression(raw, known) if isinstance(raw, str) else exact_number(raw)
+        except ExpressionError as error:
+            raise problem(str(error)) from None
+        used = value.free_symbols & coupled
+        if joint.variable in used:
+            raise problem(f"{joint.variable} refers to itself in {raw!r}: use the coordinates ({listed})")
+        if used:
+            other = sorted(map(str, used))[0]
+            raise problem(f"{other} in {raw!r} is itself coupled: refer only to the variables of uncoupled joints "
+                          f"({listed})")
+        for c in coordinates:
+            coefficient = sp.diff(value, c)
+            if coefficient.free_symbols & set(coordinates):
+                raise problem(f"{raw!r} is not affine in the coordinates ({listed}): give a constant plus "
+                              f"constant multiples of them")
+            _require_finite(coefficient, defaults, problem)
+        _require_finite(value.xreplace(dict.fromkeys(coordinates, sp.S.Zero)), defaults, problem)
+        values.append(value)
+    return Coupling(coordinates, tuple(values))
 
 
 class _JointReader:
@@ -284,8 +340,10 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
         data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in robot.parameters}
     spec = plugin(robot.convention)
     joints = []
-    for joint in robot.joints:
+    for joint, value in zip(robot.joints, _written_values(robot), strict=True):
         row: dict[str, Any] = {"type": joint.type.value, **spec.write(joint)}
+        if value != joint.variable:
+            row["coupled"] = expression_text(value)
         if joint.limits is not None:
             row["limits"] = [expression_text(limit) for limit in joint.limits]
         joints.append(row)
@@ -295,3 +353,12 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
         if transform is not None:
             data[key] = transform_fields(transform)
     return data
+
+
+def _written_values(robot: Robot) -> tuple[sp.Expr, ...]:
+    """Each joint's variable as a robot file can say it: the coordinates must be joint variables."""
+    foreign = [str(c) for c in robot.coordinates if c not in set(robot.joint_variables)]
+    if foreign:
+        raise RobotFileError(f"the coordinate {foreign[0]} is not a joint variable: a robot file couples joints "
+                             f"only to the variables of uncoupled joints", source=robot.source, field="coupled")
+    return robot.joint_values

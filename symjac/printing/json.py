@@ -35,10 +35,18 @@ __all__ = [
 
 
 def metadata(robot: Robot) -> dict[str, Any]:
-    """What every JSON output starts with: symjac's version, the robot, its variables and parameters."""
-    return {"symjac": __version__, "robot": robot.name, "convention": robot.convention.value,
+    """What every JSON output starts with: symjac's version, the robot, its variables and parameters.
+
+    ``joint_variables`` are the independent coordinates results are written in; a coupled robot adds ``coupling``,
+    each coupled joint's variable and the expression of the coordinates it equals (``{"theta4": "-theta2 - theta3"}``).
+    """
+    data = {"symjac": __version__, "robot": robot.name, "convention": robot.convention.value,
             "joint_variables": [str(q) for q in robot.q],
             "parameters": {p.name: float(p.default) for p in robot.parameters}}
+    if robot.coupling is not None:
+        data["coupling"] = {str(variable): sp.sstr(value) for variable, value
+                            in zip(robot.joint_variables, robot.joint_values, strict=True) if value != variable}
+    return data
 
 
 def matrix_strings(matrix: sp.MatrixBase) -> list[list[str]]:

@@ -17,19 +17,38 @@ from symjac.model.conventions.base import Cell, Column
 from symjac.model.robot import Robot
 from symjac.printing.latex import latex
 
-__all__ = ["column_html", "column_latex", "column_text", "dh_headers", "dh_rows", "dh_table_latex", "dh_table_text",
-           "table_cells", "table_headings", "text_table"]
+__all__ = ["VARIABLE", "column_html", "column_latex", "column_text", "dh_headers", "dh_rows", "dh_table_latex",
+           "dh_table_text", "table_cells", "table_headings", "text_table"]
+
+
+VARIABLE = Column("variable")
+"""The last column of a coupled robot's table: each joint variable, and for a coupled joint what it equals."""
 
 
 def table_headings(robot: Robot) -> tuple[Column, ...]:
-    """The columns of ``robot``'s table after the joint number and type."""
-    return plugin(robot.convention).columns
+    """The columns of ``robot``'s table after the joint number and type (and ``variable`` if joints are coupled)."""
+    columns = plugin(robot.convention).columns
+    return columns if robot.coupling is None else (*columns, VARIABLE)
 
 
 def table_cells(robot: Robot) -> list[tuple[Cell, ...]]:
-    """The entries of ``robot``'s table, one row per joint, under :func:`table_headings`."""
+    """The entries of ``robot``'s table, one row per joint, under :func:`table_headings`.
+
+    A coupled robot's rows end with the joint variable (``theta2``) or, for a coupled joint, the equation that
+    drives it (``theta4 = -theta2 - theta3``, a :class:`sympy.Eq`).
+    """
     spec = plugin(robot.convention)
-    return [spec.cells(joint) for joint in robot.joints]
+    rows = [spec.cells(joint) for joint in robot.joints]
+    if robot.coupling is None:
+        return rows
+    return [(*cells, variable if value == variable else sp.Eq(variable, value, evaluate=False))
+            for cells, variable, value in zip(rows, robot.joint_variables, robot.joint_values, strict=True)]
+
+
+def _cell_text(cell: Cell) -> str:
+    if isinstance(cell, sp.Equality):
+        return f"{sp.sstr(cell.lhs)} = {sp.sstr(cell.rhs)}"
+    return sp.sstr(list(cell) if isinstance(cell, tuple) else cell)
 
 
 def _greek(symbol: str) -> str | None:
@@ -70,7 +89,7 @@ def dh_headers(robot: Robot) -> list[str]:
 
 def dh_rows(robot: Robot) -> list[list[str]]:
     """One row of strings per joint: index, type, then the columns of :func:`dh_headers` (SymPy strings)."""
-    return [[str(joint.index), joint.type.value, *(sp.sstr(list(c) if isinstance(c, tuple) else c) for c in cells)]
+    return [[str(joint.index), joint.type.value, *map(_cell_text, cells)]
             for joint, cells in zip(robot.joints, table_cells(robot), strict=True)]
 
 

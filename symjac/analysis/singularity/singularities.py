@@ -85,10 +85,15 @@ class LostDirection:
 
 @dataclass(frozen=True)
 class SelfMotion:
-    r"""Joint rates :math:`\dot q` with :math:`J \dot q = 0`: ``rates[i]`` on joint ``columns[i]`` (0-based)."""
+    r"""Joint rates :math:`\dot q` with :math:`J \dot q = 0`: ``rates[i]`` on joint ``columns[i]`` (0-based).
+
+    A coupled robot's columns are its coordinates, not its joints: ``names`` then gives each column's coordinate
+    (``theta5``) so that words do not call coordinate 4 "joint 4"; empty without a coupling.
+    """
 
     rates: tuple[float, ...]
     columns: tuple[int, ...]
+    names: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -227,7 +232,8 @@ def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int,
         lost = _lost_direction(chain, det, sample, geometry, _canonical(spaces.left_null_space[:, 0]))
     motion = None
     if spaces.null_space.shape[1]:
-        motion = SelfMotion(tuple(float(x) for x in _canonical(spaces.null_space[:, 0])), det.columns)
+        names = () if chain.robot.coupling is None else tuple(str(chain.robot.q[c]) for c in det.columns)
+        motion = SelfMotion(tuple(float(x) for x in _canonical(spaces.null_space[:, 0])), det.columns, names)
     return SingularFactor(factor, multiplicity, solutions, existence, holds, cause, tuple(sample), lost, motion,
                           limits)
 

@@ -180,12 +180,13 @@ def lost_words(factor: SingularFactor) -> str:
     return f"cannot {motion}{radial}, and it holds {wrench} with zero joint torque"
 
 
-def _self_motion_rates(factor: SingularFactor) -> list[tuple[float, int]]:
-    """The nonzero rates of the motion that moves nothing, with their joint numbers (1-based)."""
+def _self_motion_rates(factor: SingularFactor) -> list[tuple[float, str]]:
+    """The nonzero rates of the motion that moves nothing, with what they drive (``joint 2``, or ``theta5``)."""
     motion = factor.self_motion
     if motion is None:
         return []
-    return [(rate, motion.columns[i] + 1) for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
+    return [(rate, motion.names[i] if motion.names else f"joint {motion.columns[i] + 1}")
+            for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
 
 
 def self_motion_words(factor: SingularFactor) -> str:
@@ -193,7 +194,7 @@ def self_motion_words(factor: SingularFactor) -> str:
     shown = [(readable_number(rate), joint) for rate, joint in _self_motion_rates(factor)]
     if not shown:
         return ""
-    rates = ", ".join(f"{'' if value.startswith('-') else '+'}{value} on joint {joint}" for value, joint in shown)
+    rates = ", ".join(f"{'' if value.startswith('-') else '+'}{value} on {joint}" for value, joint in shown)
     return f"joint rates {rates} move nothing"
 
 
@@ -204,7 +205,7 @@ def self_motion_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
         return ()
     parts: list[str | sp.Basic] = ["joint rates "]
     for number, (rate, joint) in enumerate(shown):
-        parts += [", "] * bool(number) + [readable_value(rate), f" on joint {joint}"]
+        parts += [", "] * bool(number) + [readable_value(rate), f" on {joint}"]
     return (*parts, " move nothing")
 
 

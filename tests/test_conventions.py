@@ -54,9 +54,7 @@ def test_every_registered_convention_names_itself():
 def test_each_convention_round_trips_through_the_robot_file_mapping(convention):
     robots = samples(convention)
     assert robots, f"no sample robot in the {convention} convention"
-    # a coupling (gripper.urdf's mimic finger) is written by robot files once branch couple-files lands: its round
-    # trip is tests/test_mimic.py::test_convert_writes_the_mimic_coupling_back (xfail until then)
-    for robot in [robot for robot in robots if robot.coupling is None]:
+    for robot in robots:
         data = robot_to_mapping(robot)
         again = robot_from_mapping(data, source="again")
         assert again == robot
@@ -66,7 +64,7 @@ def test_each_convention_round_trips_through_the_robot_file_mapping(convention):
 
 def test_a_convention_field_outside_its_plugin_is_refused():
     data = {"name": "arm", "convention": "standard", "joints": [{"type": "revolute", "axis": [0, 1, 0]}]}
-    with pytest.raises(RobotFileError, match=r"joint 1: unknown key\(s\) 'axis'; allowed: a, alpha, d, limits"):
+    with pytest.raises(RobotFileError, match=r"joint 1: unknown key\(s\) 'axis'; allowed: a, alpha, coupled, d, limits"):
         robot_from_mapping(data)
 
 

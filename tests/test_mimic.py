@@ -266,8 +266,6 @@ def test_mimic_defaults_and_mimics_off_the_chain_and_on_fixed_joints():
     assert robot.joints[1].placement.axis == (0, 0, -2)  # the axis as written: the sign lives in the frame, not in C
 
 
-@pytest.mark.xfail(reason="robot files learn couplings on branch couple-files (robot_file.py); until it is merged, "
-                          "robot_to_toml drops the coupling", strict=False)
 def test_convert_writes_the_mimic_coupling_back(tmp_path):
     from symjac.cli.main import main
 
@@ -311,5 +309,6 @@ def test_the_command_line_prints_forward_kinematics_and_the_report_in_the_coordi
     assert hidden
     for command in ("fk", "jacobian"):
         data = json.loads(cli.ok(command, "gripper.urdf", "--format", "json"))
-        assert not any(name in json.dumps(data) for name in hidden), command
+        assert not any(name in json.dumps(data["entries"]) for name in hidden), command
+        assert data["coupling"] == {"theta4": "-theta3"}
     assert cli.run("report", "gripper.urdf", "-o", str(tmp_path / "g.html"))[0] == 0

@@ -20,7 +20,6 @@ Transforms and anything else written in the joint variables, their rates and acc
 from __future__ import annotations
 
 import math
-from functools import cache
 from typing import TYPE_CHECKING, TypeVar
 
 import sympy as sp
@@ -63,13 +62,16 @@ def coordinate_substitution(robot: Robot | Chain) -> dict[sp.Symbol, sp.Expr]:
     >>> coordinate_substitution(load_robot("planar2r"))
     {}
     """
-    model = _model(robot)
-    return {} if model.coupling is None else dict(_substitution(model))
+    if _model(robot).coupling is None:
+        return {}
+    from symjac.kinematics.chain import MemoKey, as_chain  # the chain imports this module
+
+    chain = as_chain(robot)  # kept with everything else derived from the robot (asked for by every result)
+    return dict(chain.memo(MemoKey(_substitution, ()), lambda: _substitution(chain.robot)))
 
 
-@cache
 def _substitution(model: Robot) -> tuple[tuple[sp.Symbol, sp.Expr], ...]:
-    """:func:`coordinate_substitution` of a coupled robot, once per robot (it is asked for by every result)."""
+    """:func:`coordinate_substitution` of a coupled robot."""
     assert model.coupling is not None
     C = model.coupling.matrix
     qdot, qddot = model.coordinate_rates, model.coordinate_accelerations

@@ -22,7 +22,9 @@ from strategies import robots
 import symjac
 from symjac import RobotFileError, jacobian, load_robot, robot_from_mapping
 from symjac.analysis.singularity.determinant import determinant
+from symjac.kinematics.acceleration import hessian, hessian_slice, jacobian_derivative
 from symjac.kinematics.convert import convert
+from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.coordinates import Coupling
 from symjac.model.io import robot_from_toml, robot_to_toml
 from symjac.model.robot_file import robot_to_mapping
@@ -238,6 +240,35 @@ def test_random_coupled_chains_jacobian_against_finite_differences(robot, data):
     J = jacobian(robot, frame=0, method=method, simplify=False)
     assert J.shape == (6, robot.n_coordinates)
     np.testing.assert_allclose(evaluate(J, robot, q), finite_difference_jacobian(robot, q, 0), atol=1e-6)
+
+
+@pytest.mark.slow
+@settings(deadline=None, max_examples=10, suppress_health_check=[HealthCheck.too_slow])
+@given(robot=coupled_robots(), data=st.data())
+def test_random_coupled_chains_hessian_and_jdot_against_finite_differences(robot, data):
+    """dJ/dq_m and dJ/dt of a coupled chain, against central differences of its Jacobian (itself checked above)."""
+    n = robot.n_coordinates
+    rng = np.random.default_rng(data.draw(st.integers(0, 2**16), label="seed"))
+    q, qdot, h = random_configuration(robot, rng), rng.uniform(-1, 1, n), 1e-5
+    rates = joint_rate_symbols(robot)
+    parameters = {s: float(v) for s, v in robot.defaults.items()}
+    J, H = jacobian(robot, frame=0, simplify=False), hessian(robot, frame=0, simplify=False)
+    assert H.shape == (6, n, n)
+    Jdot = jacobian_derivative(robot, frame=0, simplify=False)
+    # one lambdified function (printing the expressions is what costs here), evaluated at several points
+    function = sp.lambdify([*robot.q, *rates, *parameters], [J, *(hessian_slice(H, m) for m in range(n)), Jdot],
+                           modules="numpy", cse=True)
+
+    def at(point):
+        values = function(*point, *qdot, *parameters.values())
+        return [np.array(value, dtype=float) for value in values]
+
+    _, *slices, Jdot_at = at(q)
+    for m, slice_m in enumerate(slices):
+        step = np.zeros(n)
+        step[m] = h
+        np.testing.assert_allclose(slice_m, (at(q + step)[0] - at(q - step)[0]) / (2 * h), atol=1e-6)
+    np.testing.assert_allclose(Jdot_at, (at(q + h * qdot)[0] - at(q - h * qdot)[0]) / (2 * h), atol=1e-6)
 
 
 def test_singularity_words_name_the_coordinates_not_joint_numbers(palletizer):

@@ -7,6 +7,7 @@ the math keeps ordinary ``sin``/``cos`` of joint variables.
 from __future__ import annotations
 
 import contextlib
+import functools
 from collections.abc import Callable, Iterator
 from contextvars import ContextVar
 from typing import Any
@@ -159,10 +160,12 @@ class TextbookLatexPrinter(_DecimalLatexPrinter):
 
 
 def _complex(number: sp.Expr) -> complex:
-    """``complex(number)``; a rational is divided directly instead of through SymPy's ``evalf`` (50x faster)."""
+    """``complex(number)``; rationals and floats are converted directly instead of through SymPy's ``evalf``."""
     if isinstance(number, sp.Rational):
         with contextlib.suppress(OverflowError):
             return complex(number.p / number.q)
+    if isinstance(number, sp.Float):
+        return complex(float(number))
     return complex(number)
 
 
@@ -246,6 +249,12 @@ def ordered_terms(expr: sp.Add, sort_key: Callable[[sp.Basic], Any] = sp.default
     return [item[0] for item in sorted(items, key=key)]
 
 
+@functools.lru_cache(maxsize=65536)
+def _is_number(factor: sp.Expr) -> bool:
+    """``factor.is_number``, remembered: SymPy walks the whole factor each time, and long sums repeat their factors."""
+    return bool(factor.is_number)
+
+
 def _split_term(term: sp.Expr) -> tuple[complex, dict[sp.Expr, sp.Expr], tuple[sp.Expr, ...]]:
     """(numeric coefficient, {generator: exponent}, non-commutative factors) of one term of a sum."""
     number, rest = term.as_coeff_Mul()
@@ -253,7 +262,7 @@ def _split_term(term: sp.Expr) -> tuple[complex, dict[sp.Expr, sp.Expr], tuple[s
     powers: dict[sp.Expr, sp.Expr] = {}
     noncommutative: list[sp.Expr] = []
     for factor in () if rest is sp.S.One else sp.Mul.make_args(rest):
-        if factor.is_number:
+        if _is_number(factor):
             try:
                 coefficient *= _complex(factor)
                 continue

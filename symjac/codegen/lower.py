@@ -177,13 +177,33 @@ generation time). The result is the same ``None`` a failed attempt gives.
 """
 
 
+DIFFERENTIATED_UP_TO = 6
+"""The most joints for which the "fastest" strategy also lowers the differentiated raw products.
+
+Differentiation wins on short planar arms (a planar 2R in frame {0}: 18 operations), but its raw form grows faster
+with the chain than the cross-product form, which won on every longer chain measured (frame {0}: Panda 173 against
+255 operations, a 7-joint generic chain 869 against 1376, planar 10R 108 against 387, 20-joint snake 3174 against
+4932); lowering the losing candidate cost the 20-joint snake about 3 s of its code generation.
+"""
+
+
+def _too_many_turns(chain: Chain) -> bool:
+    """Whether ``chain`` turns its joint axis more than :data:`COMPACT_TURNS` times.
+
+    Such a chain gets no compact candidate, and its raw cross-product form rotated from frame {0} or {1} was larger
+    than the one in the frame itself (20-joint snake, frame {0}: 3331 against 3174 operations), while deriving it
+    cost a second set of chain products: the raw cross-product form in the frame itself is its only candidate.
+    """
+    return len(chain.parallel_groups) - 1 > COMPACT_TURNS
+
+
 def _within_budget(chain: Chain, compute: Callable[[], T]) -> T | None:
     """``compute()`` within :data:`COMPACT_TERMS`, or ``None`` past it.
 
     A chain with more than :data:`COMPACT_TURNS` turns gets ``None`` without an attempt. The callers are memoized,
     so a failed attempt is remembered and not tried again.
     """
-    if len(chain.parallel_groups) - 1 > COMPACT_TURNS:
+    if _too_many_turns(chain):
         return None
     try:
         with term_limit(COMPACT_TERMS):
@@ -208,7 +228,7 @@ def _jacobian_candidates(
     chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], strategy: str
 ) -> Iterator[tuple[str, sp.Matrix]]:
     where = frame_text(frame)
-    if strategy in ("fastest", "raw"):
+    if strategy == "raw" or (strategy == "fastest" and chain.n_joints <= DIFFERENTIATED_UP_TO):
         yield "raw chain products, differentiated", jacobian(chain, frame, point, "differentiation", simplify=False)
     if strategy == "raw":
         return
@@ -219,6 +239,8 @@ def _jacobian_candidates(
     if compact is not None:
         yield "compact (simplified) Jacobian", compact
     yield "raw chain products, cross-product form", jacobian(chain, frame, point, "cross_product", simplify=False)
+    if _too_many_turns(chain):  # no compact form to rotate, and the raw form via another frame is no smaller
+        return
     for via in (0, 1):
         if via > chain.n_joints or chain.position(frame) == via:
             continue

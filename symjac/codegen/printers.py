@@ -88,17 +88,21 @@ class SymbolPrinting:
     def _print_Dummy(self, expr: sp.Dummy) -> str:
         return self._print_Symbol(expr)
 
+    def _number(self, value: Any) -> str:
+        """A number as this target writes it (a float literal; the c99 target casts it to its real type)."""
+        return float_literal(value)
+
     def _print_Integer(self, expr: sp.Integer) -> str:
-        return float_literal(expr)
+        return self._number(expr)
 
     def _print_Rational(self, expr: sp.Rational) -> str:
-        return float_literal(expr)
+        return self._number(expr)
 
     def _print_Float(self, expr: sp.Float) -> str:
-        return float_literal(expr)
+        return self._number(expr)
 
     def _print_NumberSymbol(self, expr: sp.NumberSymbol) -> str:
-        return float_literal(expr)
+        return self._number(expr)
 
     _print_Pi = _print_NumberSymbol
     _print_Exp1 = _print_NumberSymbol
@@ -133,9 +137,9 @@ class SymbolPrinting:
             elif factor != 1:
                 numerator.append(factor)
         level = PRECEDENCE["Mul"]
-        parts = [] if coefficient == 1 else [float_literal(coefficient)]
+        parts = [] if coefficient == 1 else [self._number(coefficient)]
         parts += [self.parenthesize(factor, level, strict=True) for factor in numerator]  # type: ignore[attr-defined]
-        text = "*".join(parts) or "1.0"
+        text = "*".join(parts) or self._number(1)
         if denominator:
             below = "*".join(self.parenthesize(f, level, strict=True) for f in denominator)  # type: ignore[attr-defined]
             single = denominator[0]
@@ -163,15 +167,15 @@ class SymbolPrinting:
                 product = "*".join([tight] * abs(k))
                 if k > 0:
                     return product
-                return f"1.0/{product}" if abs(k) == 1 else f"1.0/({product})"
+                return f"{self._number(1)}/{product}" if abs(k) == 1 else f"{self._number(1)}/({product})"
             if k > 0:
                 return self._power(tight, str(k))
-            return f"1.0/{self._power(tight, str(-k))}"
+            return f"{self._number(1)}/{self._power(tight, str(-k))}"
         if exponent == sp.Rational(1, 2):
             return self._sqrt(whole)
         if exponent == sp.Rational(-1, 2):
-            return f"1.0/{self._sqrt(whole)}"
-        return self._power(tight, f"({float_literal(exponent)})")
+            return f"{self._number(1)}/{self._sqrt(whole)}"
+        return self._power(tight, f"({self._number(exponent)})")
 
 
 def check_expression(*exprs: sp.Basic) -> None:

@@ -11,11 +11,16 @@ from typing import Any
 
 import pytest
 
+from symjac.codegen import BACKENDS
+
 HEAVY_ROBOTS = frozenset({"panda", "panda.urdf", "puma560", "ur5", "ur5.urdf"})
 """Robots whose checks take seconds each; planar2r, planar3r, articulated3r, scara, stanford stay in the fast loop."""
 
-COMPILED_TARGETS = frozenset({"c"})
+COMPILED_TARGETS = frozenset({"c", "c99"})
 """Code generation targets that need a C compiler: external."""
+
+PYTHON_TARGETS = tuple(name for name, spec in BACKENDS.items() if spec.language == "Python")
+"""Targets that write a Python module (the checks that import the generated module run over these)."""
 
 
 def marked(cases: Iterable[Any]) -> list[Any]:

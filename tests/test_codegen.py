@@ -27,14 +27,13 @@ import numpy as np
 import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
-from marks import marked
+from marks import PYTHON_TARGETS, marked
 from reference import evaluate, finite_difference_jacobian, frames, random_configuration
 from strategies import robots
 
 from symjac import Chain, FrameError, Parameter, catalog, clear_caches, jacobian, load_robot, robot_from_mapping
 from symjac.codegen import (
     BACKENDS,
-    TARGETS,
     CodegenError,
     JacobianRequest,
     generate,
@@ -127,7 +126,7 @@ def _references(name: str) -> list[dict[str, object]]:
     return cases
 
 
-@pytest.mark.parametrize("target", marked(TARGETS))
+@pytest.mark.parametrize("target", marked(PYTHON_TARGETS))
 @pytest.mark.parametrize("name", marked(ROBOTS))
 def test_module_agrees_with_references(workspace, name, target):
     robot = load_robot(name)
@@ -160,7 +159,7 @@ def test_module_agrees_with_references(workspace, name, target):
         np.testing.assert_allclose(batched, singles, atol=1e-15, rtol=1e-14)
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 def test_parameters_are_overridable_per_call(workspace, target):
     robot = load_robot("puma560")
     module = _module(workspace, "puma560", target)
@@ -175,7 +174,7 @@ def _call_kw(module, target, q, **parameters):
     return np.array(module.jacobian(q if BACKENDS[target].batched else list(q), **parameters), dtype=float)
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 def test_wrong_shapes_raise_and_nan_propagates(workspace, target):
     module = _module(workspace, "planar2r", target)
     if not BACKENDS[target].batched:
@@ -242,7 +241,7 @@ def test_random_chains_pass_their_selftest_and_targets_agree(robot):
 # --- determinism, golden files, lint ---------------------------------------------------------------------------------
 
 
-GOLDEN_CASES = [("planar2r", target) for target in TARGETS] + [("puma560", "python"), ("puma560", "numpy")]
+GOLDEN_CASES = [("planar2r", target) for target in PYTHON_TARGETS] + [("puma560", "python"), ("puma560", "numpy")]
 
 
 @pytest.mark.parametrize(("name", "target"), GOLDEN_CASES)
@@ -288,7 +287,7 @@ def test_generated_modules_are_ruff_clean(workspace):
     if shutil.which("ruff") is None:
         pytest.skip("ruff is not installed")
     for name in ("puma560", "panda", "stanford"):
-        for target in TARGETS:
+        for target in PYTHON_TARGETS:
             _module(workspace, name, target)
     files = sorted(str(path) for path in workspace.glob("*.py"))
     assert len(files) >= 12
@@ -311,7 +310,7 @@ print(module.selftest(), getattr(module, "BACKEND", "-"), loaded)
 """
 
 
-@pytest.mark.parametrize("target", marked(TARGETS))
+@pytest.mark.parametrize("target", marked(PYTHON_TARGETS))
 def test_selftest_runs_outside_the_repository_with_only_its_dependency(workspace, tmp_path, target):
     robot = load_robot("puma560")
     write_module(tmp_path / "puma_module.py", generate(robot, target, points=("wrist",)))

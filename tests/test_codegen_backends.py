@@ -9,6 +9,7 @@ import os
 from pathlib import Path
 
 import pytest
+from marks import PYTHON_TARGETS
 
 from symjac import load_robot, robot_from_mapping
 from symjac.codegen import BACKENDS, TARGETS, CodegenError, describe, generate, render_files, write_module
@@ -28,7 +29,7 @@ def test_the_registry_lists_each_backend_folder():
         assert spec.templates[0].startswith(f"{name}/")
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 def test_rendering_returns_a_mapping_whose_primary_file_is_the_module(target):
     files = render_files(describe(load_robot("planar2r"), target))
     assert list(files) == ["planar2r.py"]
@@ -40,7 +41,7 @@ def _robot_with_parameter(name: str):
                                "joints": [{"type": "revolute", "a": name}, {"type": "revolute", "a": 1}]})
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 @pytest.mark.parametrize(("word", "message"), [("lambda", "is a Python keyword"), ("match", "is a Python keyword"),
                                                ("len", "would shadow the Python builtin")])
 def test_python_reserved_words_are_refused_by_every_target(target, word, message):

@@ -21,10 +21,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
+from marks import PYTHON_TARGETS
 from test_coordinates import ROBOTS
 
 from symjac import forward_kinematics, jacobian, joint_rate_symbols, load_robot
-from symjac.codegen import TARGETS, JacobianRequest, generate, write_module
+from symjac.codegen import JacobianRequest, generate, write_module
 from symjac.kinematics.acceleration import bias_acceleration, hessian
 from symjac.kinematics.statics import joint_torques
 from symjac.model.coordinates import Coupling
@@ -106,7 +107,7 @@ def _call(module: types.ModuleType, function: str, *arguments: np.ndarray) -> np
     return np.asarray(getattr(module, function)(*(list(a) for a in arguments)), dtype=float)
 
 
-CASES = [(name, target) for name in sorted(ROBOTS) for target in TARGETS]
+CASES = [(name, target) for name in sorted(ROBOTS) for target in PYTHON_TARGETS]
 
 
 @pytest.mark.parametrize(("name", "target"), CASES)
@@ -158,7 +159,7 @@ def test_jacobian_is_a_central_difference_of_the_generated_forward_kinematics(wo
         np.testing.assert_allclose(_call(module, "jacobian", q), expected, atol=1e-7)
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 def test_a_symbolic_coupling_coefficient_is_a_parameter(workspace, target):
     """The belt SCARA's k and d30 are keyword parameters: overriding them moves the screw as d3 = k theta4 + d30."""
     robot = _robot("belt_scara")
@@ -172,7 +173,7 @@ def test_a_symbolic_coupling_coefficient_is_a_parameter(workspace, target):
     assert abs(got[2, 2]) == pytest.approx(0.25)  # the wrist coordinate moves the screw, along z, by k per radian
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 def test_header_and_docstring_say_how_the_joints_couple(target):
     robot = _robot("palletizer")
     text = generate(robot, target)
@@ -223,7 +224,7 @@ def test_c_kernels_compile_with_every_warning_an_error(workspace, tmp_path, name
 
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 def test_renamed_coordinates_give_the_same_numbers_as_the_joint_variables(target):
     """theta_i = q_i (the identity coupling, other names) goes through the coupled route and changes only names."""
     robot = load_robot("scara")

@@ -17,11 +17,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
+from marks import PYTHON_TARGETS
 from reference import evaluate, finite_difference_jacobian
 from sympy.core.cache import clear_cache
 
 from symjac import Chain, jacobian, load_robot, robot_from_mapping
-from symjac.codegen import TARGETS, generate, write_module
+from symjac.codegen import generate, write_module
 from symjac.codegen.cse import eliminate_common
 from symjac.codegen.printers import check_expression
 from symjac.codegen.source_layout import LINE_WIDTH, unpack
@@ -138,13 +139,13 @@ def long_modules(tmp_path_factory):
     folder = tmp_path_factory.mktemp("long")
     chain = Chain(snake(14))
     paths = {}
-    for target in TARGETS:
+    for target in PYTHON_TARGETS:
         paths[target] = folder / f"snake14_{target}.py"
         write_module(paths[target], generate(chain, target))
     return chain, paths
 
 
-@pytest.mark.parametrize("target", TARGETS)
+@pytest.mark.parametrize("target", PYTHON_TARGETS)
 @pytest.mark.slow
 def test_a_long_snake_module_passes_its_selftest_and_matches_finite_differences(long_modules, target):
     chain, paths = long_modules

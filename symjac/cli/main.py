@@ -132,7 +132,8 @@ def _parser(command: str | None = None) -> argparse.ArgumentParser:
         sub = commands.add_parser(name, help=help_text, description=help_text)
         sub.set_defaults(handler=handler)
         sub.add_argument("-o", "--output", metavar="FILE",  # kept as typed: "./-" is a file, "-" is stdout
-                         help="write the result to this file instead of stdout (- for stdout)")
+                         help="write the result to this file instead of stdout (- for stdout); a code generation "
+                              "target that writes several files takes a folder")
         if name == command:
             options(sub, name)
     return parser

@@ -181,6 +181,8 @@ class Backend:
         Whether functions take ``q`` of shape ``(..., n)`` and return arrays (else one configuration per call).
     exports : tuple of str
         Module constants the target adds to the exported names (the c target's ``BACKEND``).
+    language : str
+        The language of the files it writes (``"Python"``: a module to import; ``"C"``: files to compile).
     """
 
     name: str
@@ -197,6 +199,7 @@ class Backend:
     dependencies: tuple[str, ...] = ()
     batched: bool = True
     exports: tuple[str, ...] = ()
+    language: str = "Python"
 
     @property
     def suffix(self) -> str:

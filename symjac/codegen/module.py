@@ -371,14 +371,15 @@ def primary(files: Mapping[str, str]) -> str:
 def single_or_written(files: Mapping[str, str], output: str | None) -> str | None:
     """The text of a one-file module for the caller to write; several files are written to ``output`` here.
 
-    Several files need a file name (``symjac codegen -o FILE``): stdout cannot hold them. Returns ``None`` when the
-    files were written (all of them, or none on an error).
+    Several files need a place (``symjac codegen -o DIR``, or ``-o FILE`` for the primary file with the others
+    beside it): stdout cannot hold them. An existing folder receives every file under its own name. Returns ``None``
+    when the files were written (all of them, or none on an error).
     """
     if len(files) == 1:
         return primary(files)
     if output is None or output == "-":
-        raise CodegenError(f"this target writes {len(files)} files ({', '.join(files)}): give -o FILE")
-    write_module(output, files)
+        raise CodegenError(f"this target writes {len(files)} files ({', '.join(files)}): give -o DIR")
+    write_module(Path(output) / next(iter(files)) if Path(output).is_dir() else output, files)
     return None
 
 

@@ -23,7 +23,7 @@ from symjac.codegen.source_layout import comment_lines, wrap_statement
 from symjac.errors import CodegenError
 from symjac.resources import render_template
 
-__all__ = ["BACKEND", "IDENTIFIERS", "CFunction", "c_function", "block_comment", "comment", "declaration", "render"]
+__all__ = ["BACKEND", "IDENTIFIERS", "CFunction", "block_comment", "c_function", "comment", "declaration", "render"]
 
 C99_KEYWORDS = C_KEYWORDS | {"_Bool", "_Complex", "_Imaginary"}
 
@@ -103,11 +103,11 @@ def declaration(head: str, arguments: list[str], width: int = 120) -> tuple[str,
 
 
 def comment(text: str) -> str:
-    """``text`` made safe inside a C block comment: no comment delimiters, trigraphs or line breaks survive.
+    r"""``text`` made safe inside a C block comment: no comment delimiters, trigraphs or line breaks survive.
 
     Examples
     --------
-    >>> comment("a */ b /* c ??/ d\\ne")
+    >>> comment("a */ b /* c ??/ d\ne")
     'a * / b / * c ? ?/ d e'
     """
     for old, new in (("*/", "* /"), ("/*", "/ *"), ("??", "? ?"), ("\\", "/")):
@@ -200,4 +200,5 @@ BACKEND = Backend(
     render=render,
     dependencies=(),
     batched=False,
+    language="C",
 )

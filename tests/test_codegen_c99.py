@@ -25,7 +25,7 @@ from symjac.model.io import catalog
 pytestmark = pytest.mark.external  # a C compiler
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
-ROBOTS = sorted(catalog()) + ["gripper.urdf", "panda.urdf", "ur5.urdf"]
+ROBOTS = [*sorted(catalog()), "gripper.urdf", "panda.urdf", "ur5.urdf"]
 FLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 
 if shutil.which("gcc") is None:  # pragma: no cover - .ci/run installs it

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
+
+import sympy as sp
 
 from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.printers import float_literal
@@ -13,9 +16,9 @@ __all__ = ["RealPrinter"]
 class RealPrinter(CPrinter):
     """C99 over ``<tgmath.h>`` in a real type ``real`` (double by default, float by one switch).
 
-    Literals are cast to ``real`` so that single-precision builds compute in single precision throughout (a bare
-    ``0.5`` is a double and would promote every product it enters); ``<tgmath.h>`` picks ``sinf`` or ``sin`` by the
-    argument's type.
+    Literals are cast to ``real`` (``literal``: C's ``(real)0.5``, or C++'s ``real(0.5)``), so that a
+    single-precision build computes in single precision throughout (a bare ``0.5`` is a double and would promote
+    every product it enters); ``<tgmath.h>`` (C) or overloading (C++) picks ``sinf`` or ``sin`` by the type.
 
     Examples
     --------
@@ -25,5 +28,9 @@ class RealPrinter(CPrinter):
     '(real)0.5*q[0] + cos(q[0])*cos(q[0])'
     """
 
+    def __init__(self, names: Mapping[sp.Symbol, str], literal: str = "(real){}"):
+        super().__init__(names)
+        self.literal = literal
+
     def _number(self, value: Any) -> str:
-        return f"(real){float_literal(value)}"
+        return self.literal.format(float_literal(value))

@@ -14,9 +14,10 @@ from dataclasses import dataclass
 from symjac.codegen.backends.c99.printer import RealPrinter
 from symjac.codegen.description import FunctionDescription, ModuleDescription
 from symjac.codegen.lower import symbol_names
-from symjac.codegen.source_layout import wrap_statement
+from symjac.codegen.source_layout import comment_lines, wrap_statement
 
-__all__ = ["C_DIALECT", "CFunction", "Dialect", "block_comment", "c_function", "comment", "declaration"]
+__all__ = ["C_DIALECT", "CFunction", "Dialect", "block_comment", "c_function", "comment", "declaration",
+           "header_comments", "line_comment"]
 
 
 @dataclass(frozen=True)
@@ -47,6 +48,7 @@ class CFunction:
     """One lowered function printed in C: its name, arguments, statements and counts."""
 
     name: str
+    base: str  # the name without the robot's prefix (C++ puts it in a namespace instead)
     kind: str
     summary: str
     static: bool
@@ -80,6 +82,28 @@ def block_comment(text: str, indent: str = "", width: int = 120) -> tuple[str, .
     lines = textwrap.wrap(text, width - len(indent) - 3, break_long_words=False, break_on_hyphens=False)
     lines[-1] += " */"
     return tuple(f"{indent}{'/* ' if k == 0 else ' * '}{line}" for k, line in enumerate(lines))
+
+
+def header_comments(description: ModuleDescription) -> dict[str, tuple[str, ...]]:
+    """The texts a C-family header comments on, made safe: the regenerating command, its note, the coupling."""
+    note = description.command_note
+    return {
+        "command_lines": comment_lines(comment(description.command), width=119),
+        "note_lines": comment_lines(comment(f"({note})"), width=119) if note else (),
+        "coupling": tuple(comment(line) for line in description.coupling),
+    }
+
+
+def line_comment(text: str, indent: str = "", width: int = 120) -> tuple[str, ...]:
+    """``text`` (already :func:`comment`-safe) as ``//`` comment lines broken at spaces within ``width``.
+
+    Examples
+    --------
+    >>> line_comment("one two three", width=12)
+    ('// one two', '// three')
+    """
+    lines = textwrap.wrap(text, width - len(indent) - 3, break_long_words=False, break_on_hyphens=False)
+    return tuple(f"{indent}// {line}" for line in lines)
 
 
 def declaration(head: str, arguments: list[str], width: int = 120) -> tuple[str, ...]:
@@ -148,7 +172,8 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
         size *= extent
     static = function.name.startswith("_")
     name = f"{description.robot}{'' if static else '_'}{function.name}"
-    return CFunction(name=name, kind=function.kind, summary=comment(function.spec.summary), static=static,
+    return CFunction(name=name, base=function.name.lstrip("_"), kind=function.kind,
+                     summary=comment(function.spec.summary), static=static,
                      inputs=tuple(inputs), output=output, size=size, shape=lowered.shape, body=tuple(body),
                      op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin)
 

@@ -13,11 +13,10 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
-from symjac.codegen.backends._c_family import C_DIALECT, block_comment, c_function, comment, declaration
+from symjac.codegen.backends._c_family import C_DIALECT, block_comment, c_function, declaration, header_comments
 from symjac.codegen.backends.c import C_KEYWORDS
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
-from symjac.codegen.source_layout import comment_lines
 from symjac.errors import CodegenError
 from symjac.resources import render_template
 
@@ -54,9 +53,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "dimension": max([6, description.n_coordinates]),
         "declaration": declaration,
         "block_comment": block_comment,
-        "command_lines": comment_lines(comment(description.command)),
-        "note_lines": comment_lines(comment(f"({description.command_note})")) if description.command_note else (),
-        "coupling": tuple(comment(line) for line in description.coupling),
+        **header_comments(description),
     }
     header, source = (name.format(robot=description.robot) for name in backend.files)
     files = {header: render_template("c99/header.h.j2", **data), source: render_template("c99/source.c.j2", **data)}

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from compiled import agrees_with_python_target
 from marks import marked
 
 from symjac import load_robot, robot_from_mapping
@@ -69,44 +70,12 @@ class Compiled:
         return int(getattr(self.library, f"{self.prefix}_selftest")())
 
 
-def _python_module(robot) -> dict:
-    namespace: dict = {}
-    exec(compile(generate(robot, "python", acceleration=True), f"{robot.name}.py", "exec"), namespace)
-    return namespace
-
-
 @pytest.mark.parametrize("name", marked(ROBOTS))
 def test_every_function_agrees_with_the_python_target(tmp_path, name):
     robot = load_robot(name)
     compiled = Compiled(tmp_path, render_files(describe(robot, "c99", acceleration=True)))
-    reference = _python_module(robot)
     assert compiled.selftest() == 0
-    n = robot.n_coordinates
-    names = [p.name for p in robot.parameters]
-    defaults = np.array([float(p.default) for p in robot.parameters])
-    rng = np.random.default_rng(7)
-    for sample in range(20):
-        q = rng.uniform(-np.pi, np.pi, n)
-        qdot, wrench = rng.uniform(-1, 1, n), rng.uniform(-1, 1, 6)
-        params = None if sample % 2 == 0 else defaults * rng.uniform(0.8, 1.2, defaults.shape) + 0.01
-        keywords = {} if params is None else dict(zip(names, params, strict=True))
-
-        def close(value, expected):
-            np.testing.assert_allclose(value, np.ravel(np.asarray(expected, dtype=float)), rtol=1e-12, atol=1e-12)
-
-        close(compiled.call("forward_kinematics", 16, q, params), reference["forward_kinematics"](q, **keywords))
-        close(compiled.call("jacobian", 6 * n, q, params), reference["jacobian"](q, **keywords))
-        close(compiled.call("joint_torques", n, q, params, wrench),
-              reference["joint_torques"](q, wrench, **keywords))
-        close(compiled.call("hessian", 6 * n * n, q, params), reference["hessian"](q, **keywords))
-        close(compiled.call("bias_acceleration", 6, q, params, qdot),
-              reference["bias_acceleration"](q, qdot, **keywords))
-        close(compiled.call("manipulability_gradient", n, q, params),
-              reference["manipulability_gradient"](q, **keywords))
-        close(compiled.scalar("manipulability", q, params), reference["manipulability"](q, **keywords))
-        if "jacobian_determinant" in reference:
-            close(compiled.scalar("jacobian_determinant", q, params),
-                  reference["jacobian_determinant"](q, **keywords))
+    agrees_with_python_target(compiled, robot)
 
 
 @pytest.mark.parametrize("name", ["planar2r", "stanford", "palletizer", "puma560"])

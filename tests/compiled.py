@@ -1,0 +1,57 @@
+"""Comparing a compiled target (c99, cpp) with the python target: what their tests share."""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import numpy as np
+
+from symjac import generate
+
+
+class CompiledModule(Protocol):
+    """What a compiled module offers its test: an array function by name, a scalar function by name."""
+
+    def call(self, name: str, size: int, *inputs: np.ndarray | None) -> np.ndarray: ...
+
+    def scalar(self, name: str, q: np.ndarray, params: np.ndarray | None) -> float: ...
+
+
+def python_module(robot) -> dict:
+    """The python target's module for ``robot`` (with the acceleration level), executed."""
+    namespace: dict = {}
+    exec(compile(generate(robot, "python", acceleration=True), f"{robot.name}.py", "exec"), namespace)
+    return namespace
+
+
+def agrees_with_python_target(compiled: CompiledModule, robot, samples: int = 20) -> None:
+    """Every function of ``compiled`` equals the python target's to 1e-12, with default and with other parameters."""
+    reference = python_module(robot)
+    n = robot.n_coordinates
+    names = [p.name for p in robot.parameters]
+    defaults = np.array([float(p.default) for p in robot.parameters])
+    rng = np.random.default_rng(7)
+    for sample in range(samples):
+        q = rng.uniform(-np.pi, np.pi, n)
+        qdot, wrench = rng.uniform(-1, 1, n), rng.uniform(-1, 1, 6)
+        params = None if sample % 2 == 0 else defaults * rng.uniform(0.8, 1.2, defaults.shape) + 0.01
+        keywords = {} if params is None else dict(zip(names, params, strict=True))
+
+        def close(value, expected):
+            np.testing.assert_allclose(value, np.ravel(np.asarray(expected, dtype=float)), rtol=1e-12, atol=1e-12)
+
+        close(compiled.call("forward_kinematics", 16, q, params), reference["forward_kinematics"](q, **keywords))
+        close(compiled.call("jacobian", 6 * n, q, params), reference["jacobian"](q, **keywords))
+        close(compiled.call("joint_torques", n, q, params, wrench),
+              reference["joint_torques"](q, wrench, **keywords))
+        close(compiled.call("hessian", 6 * n * n, q, params), reference["hessian"](q, **keywords))
+        close(compiled.call("bias_acceleration", 6, q, params, qdot),
+              reference["bias_acceleration"](q, qdot, **keywords))
+        close(compiled.call("manipulability_gradient", n, q, params),
+              reference["manipulability_gradient"](q, **keywords))
+        close(compiled.scalar("manipulability", q, params), reference["manipulability"](q, **keywords))
+        if "jacobian_determinant" in reference:
+            close(compiled.scalar("jacobian_determinant", q, params),
+                  reference["jacobian_determinant"](q, **keywords))
+
+

@@ -182,7 +182,8 @@ class Backend:
     exports : tuple of str
         Module constants the target adds to the exported names (the c target's ``BACKEND``).
     language : str
-        The language of the files it writes (``"Python"``: a module to import; ``"C"``: files to compile).
+        The language of the files it writes: ``"Python"`` (a module with the API of the python and numpy targets),
+        ``"Python/JAX"`` (pure functions of one configuration), ``"C"`` or ``"C++"`` (files to compile).
     """
 
     name: str

@@ -8,7 +8,10 @@ __all__ = ["JaxPrinter"]
 
 
 class JaxPrinter(PythonPrinter):
-    """``jnp.sin``, ``jnp.cos``, ``jnp.sqrt`` on traced arrays; numbers stay Python floats (weakly typed, so they
-    follow the dtype of ``q``: float32 by default, float64 with ``jax_enable_x64``)."""
+    """``jnp.sin``, ``jnp.cos``, ``jnp.sqrt`` on traced arrays; numbers stay Python floats.
+
+    Python floats are weakly typed: results follow the dtype of ``q`` (float32 by default, float64 with
+    ``jax_enable_x64``), and ``vmap`` does not broadcast constant entries.
+    """
 
     _function_prefix = "jnp."

@@ -91,3 +91,21 @@ def test_a_multi_file_write_is_all_or_none(tmp_path, monkeypatch):
 def test_generated_file_names_stay_in_the_output_folder(tmp_path):
     with pytest.raises(CodegenError, match="must be relative"):
         write_module(tmp_path / "a.py", {"a.py": "", str(Path(os.pardir, "b.py")): ""})  # a name climbing out
+
+
+@pytest.mark.parametrize("target", TARGETS)
+def test_name_sets_the_module_name_and_is_checked_by_the_target(target, tmp_path):
+    files = render_files(describe(load_robot("planar2r"), target, name="arm_two"))
+    assert all(name.startswith("arm_two.") for name in files)
+    # prefixes, namespace and ROBOT take the name; the robot is still loaded as planar2r by the regenerating call
+    assert all("planar2r" not in text.replace('load_robot("planar2r")', "") for text in files.values())
+    assert 'name="arm_two"' in next(iter(files.values()))  # the primary file says how to regenerate
+    with pytest.raises(CodegenError, match="module name 'two-arms' is not an ASCII identifier"):
+        describe(load_robot("planar2r"), target, name="two-arms")
+
+
+@pytest.mark.parametrize(("target", "word", "language"), [("c99", "int", "C"), ("cpp", "namespace", "C\\+\\+"),
+                                                          ("python", "lambda", "Python")])
+def test_a_module_name_reserved_in_the_language_is_refused_in_one_line(target, word, language):
+    with pytest.raises(CodegenError, match=f"module name '{word}' is a {language} keyword"):
+        generate(load_robot("planar2r"), target, name=word)

@@ -42,6 +42,8 @@ def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
                      help="expressions to start from (default: fewest operations after CSE)")
     sub.add_argument("--acceleration", action="store_true",
                      help="also generate hessian, bias_acceleration (Jdot qdot) and manipulability_gradient")
+    sub.add_argument("--name", default=None,
+                     help="the module's name: file names, C prefix, C++ namespace (default: the robot's name)")
 
 
 def robot_options(sub: argparse.ArgumentParser, name: str) -> None:

@@ -90,6 +90,7 @@ class ModuleRequest:
     strategy: Strategy = "fastest"
     command: str | None = None
     acceleration: bool = False
+    name: str | None = None
 
 
 def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args: Any, **options: Any
@@ -102,7 +103,7 @@ def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args
     if not isinstance(request.robot, Robot | Chain):
         raise CodegenError(f"expected a symjac Robot or Chain, got {type(request.robot).__name__}")
     chain = as_chain(request.robot)
-    validate_robot(chain.robot, spec.identifiers)
+    validate_robot(chain.robot, spec.identifiers, request.name)
     requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
         raise CodegenError("at least one Jacobian (frame and point) must be requested")
@@ -198,12 +199,13 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     if command is None:
         loader, command_note = _robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
-                              request.acceleration)
+                              request.acceleration, request.name)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if _names_relative_file(source, command) else ""
     return ModuleDescription(
-        target=request.target, version=__version__, robot=model.name, convention=model.convention.value,
+        target=request.target, version=__version__, robot=request.name or model.name,
+        convention=model.convention.value,
         n_joints=model.n_joints, n_coordinates=model.n_coordinates,
         joints=tuple((c.name, kind.value) for c, kind in zip(model.q, model.coordinate_types, strict=True)),
         coupling=coupling_lines(chain),
@@ -283,6 +285,7 @@ def generate(
     strategy: Strategy = "fastest",
     command: str | None = None,
     acceleration: bool = False,
+    name: str | None = None,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -319,6 +322,10 @@ def generate(
         module's ``selftest`` against central differences of its own Jacobian. Off by default: the Hessian has
         rows x n x n entries, which would more than double the size of every module.
 
+    name : str, optional
+        The module's name: its file names, the C prefix, the C++ namespace, ``ROBOT`` (default: the robot's name,
+        always an identifier). It must be an identifier of the target's language.
+
     Returns
     -------
     str
@@ -345,7 +352,7 @@ def generate(
     [[-0.4, -0.4], [1.0, 0.0]]
     """
     request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
-                            strategy=strategy, command=command, acceleration=acceleration)
+                            strategy=strategy, command=command, acceleration=acceleration, name=name)
     return primary(render_files(describe(request)))
 
 

@@ -82,9 +82,15 @@ class JacobianRequest:
     rows: tuple[int, ...] | None = None
 
 
-def validate_robot(robot: Robot, identifiers: IdentifierRule = PYTHON_IDENTIFIERS) -> None:
-    """Refuse a robot whose name, parameter names or defaults cannot appear in the target's generated code."""
-    identifiers.check(robot.name, "robot name")
+def validate_robot(robot: Robot, identifiers: IdentifierRule = PYTHON_IDENTIFIERS, name: str | None = None) -> None:
+    """Refuse a robot whose name, parameter names or defaults cannot appear in the target's generated code.
+
+    ``name``, when given, is the module's name chosen instead of the robot's (``symjac codegen --name``).
+    """
+    if name is None:
+        identifiers.check(robot.name, "robot name")
+    else:
+        identifiers.check(name, "module name")
     variables = {joint.variable.name for joint in robot.joints}
     for parameter in robot.parameters:
         identifiers.check(parameter.name, "parameter name", RESERVED)
@@ -202,7 +208,7 @@ def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[s
 
 def python_call(
     robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
-    loader: str, acceleration: bool = False,
+    loader: str, acceleration: bool = False, name: str | None = None,
 ) -> str:
     """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
 
@@ -225,6 +231,8 @@ def python_call(
         parts.append(f'strategy="{strategy}"')
     if acceleration:
         parts.append("acceleration=True")
+    if name is not None:
+        parts.append(f'name="{name}"')
     return f"symjac.generate({', '.join(parts)})"
 
 

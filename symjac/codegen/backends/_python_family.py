@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.description import Backend, FunctionKind, FunctionSpec, ModuleDescription
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.request import RESERVED
 from symjac.codegen.source_layout import LINE_WIDTH, comment_lines, tuple_lines, tuple_literal, wrap_statement
@@ -100,7 +100,7 @@ def generated_function(lowered: LoweredFunction, spec: FunctionSpec, body: Seque
 Emitter = Callable[[Chain, LoweredFunction, FunctionSpec, frozenset[str]], GeneratedFunction]
 """Print one lowered function for a target: ``emit(chain, lowered, spec, taken_names)``."""
 
-Extras = Callable[[Chain, Sequence[FunctionDescription], frozenset[str]], Mapping[str, str]]
+Extras = Callable[[ModuleDescription, frozenset[str]], Mapping[str, str]]
 """Module-level text a target needs besides its functions (the C target's kernel source and extension name)."""
 
 
@@ -180,7 +180,7 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,
             imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always))),
-            extras=MappingProxyType(dict(extras(chain, description.functions, taken))) if extras else
+            extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
         )
         text = render_template(backend.template, module=module)

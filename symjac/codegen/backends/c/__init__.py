@@ -8,13 +8,13 @@ Without a compiler, headers or a writable cache the module silently falls back t
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.backends.numpy import numpy_function
 from symjac.codegen.coupled import coordinate_angles
-from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, FunctionSpec, IdentifierRule
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec, IdentifierRule, ModuleDescription
 from symjac.codegen.lower import LoweredFunction, symbol_names
 from symjac.codegen.source_layout import wrap_statement
 from symjac.errors import CodegenError
@@ -64,21 +64,23 @@ def c_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken
     return generated_function(lowered, spec, body, outputs, lines, printer.used)
 
 
-def c_sources(chain: Chain, functions: Sequence[FunctionDescription], taken: frozenset[str]) -> Mapping[str, str]:
-    """The C extension's source and module name (``_symjac_<robot>_<hash of the source>``).
+def c_sources(description: ModuleDescription, taken: frozenset[str]) -> Mapping[str, str]:
+    """The C extension's source and module name (``_symjac_<module>_<hash of the source>``).
 
     The self-test's kinematics stay in NumPy; every other function gets a C kernel.
     """
+    chain, functions, name = description.chain, description.functions, description.robot
+    assert chain is not None  # the renderer checked it
     robot = chain.robot
     kernels = tuple(c_function(chain, f.lowered, f.spec, taken) for f in functions if f.kind != "kinematics")
     printer = CPrinter({**{v: f"x[{k}]" for k, v in enumerate(robot.q)},
                         **{s: f"p[{k}]" for k, s in enumerate(robot.parameter_symbols)}})
     angle_code = tuple(printer.doprint(angle) for angle in coordinate_angles(chain))
-    data = {"robot": robot.name, "dof": robot.n_coordinates, "angles": angle_code, "functions": kernels,
+    data = {"robot": name, "dof": robot.n_coordinates, "angles": angle_code, "functions": kernels,
             "parameter_count": len(robot.parameters)}
     # The name carries a hash of the source so that a changed module never loads a stale cached extension.
     body = render_template(KERNELS_TEMPLATE, module="MODULE_NAME", **data)
-    module = f"_symjac_{robot.name}_{hashlib.sha256(body.encode()).hexdigest()[:16]}"
+    module = f"_symjac_{name}_{hashlib.sha256(body.encode()).hexdigest()[:16]}"
     source = render_template(KERNELS_TEMPLATE, module=module, **data)
     if '"""' in source or "\\" in source:
         raise CodegenError("internal error: the C source cannot be embedded in a Python raw string")

@@ -1,9 +1,9 @@
 """The ``"jax"`` target: a module of pure ``jax.numpy`` functions of one configuration ``(q, **params)``.
 
 Every function takes one configuration (``q`` of shape ``(n,)``) and the parameters as keyword floats, uses no
-Python control flow on values and builds its output with one ``jnp.stack``, so that ``jax.jit``, ``jax.vmap`` (for
-batches) and ``jax.grad`` or ``jax.jacfwd`` compose with it. Numbers are Python floats, weakly typed: results are in
-float32 unless ``jax_enable_x64`` is on, then in float64.
+Python control flow on values and builds its output with nested ``jnp.stack`` calls, so that ``jax.jit``,
+``jax.vmap`` (for batches) and ``jax.grad`` or ``jax.jacfwd`` compose with it. Numbers are Python floats, weakly
+typed: results are in float32 unless ``jax_enable_x64`` is on, then in float64.
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ IDENTIFIERS = PYTHON_IDENTIFIERS | IdentifierRule.of("JAX", (), ("jnp", "jax"))
 
 def jax_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
                  ) -> GeneratedFunction:
-    """The body: unpack each argument, sines and cosines, temporaries, then one ``jnp.stack`` of the entries."""
+    """The body: unpack each argument, sines and cosines, temporaries, then the entries stacked row by row."""
     indent = "    "
     names = symbol_names(chain.robot, lowered, taken | {"jnp", "jax"})
     printer = JaxPrinter(names.mapping)
@@ -40,17 +40,35 @@ def jax_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, tak
 
 
 def _return_lines(outputs: Sequence[str], shape: tuple[int, ...], indent: str) -> tuple[str, ...]:
-    """``return jnp.stack([...]).reshape(shape)``, one entry per line when it does not fit on one."""
+    """``return jnp.stack([jnp.stack([...]), ...])``: one stack per row, then the rows stacked.
+
+    Nested stacks, not one flat stack reshaped: on the CPU, XLA split the flat form of the PUMA 560 Jacobian into
+    23 fusions that evaluated sines 104 times, against 6 fusions and 10 sines nested (``jit(vmap)`` 4x faster).
+    """
     if not shape:
         return tuple(wrap_statement(f"{indent}return jnp.asarray(", outputs[0], ")"))
-    reshape = "" if len(shape) == 1 else f".reshape({', '.join(map(str, shape))})"
-    single = f"{indent}return jnp.stack([{', '.join(outputs)}]){reshape}"
-    if len(single) <= LINE_WIDTH:
-        return (single,)
-    lines = [f"{indent}return jnp.stack(["]
-    for value in outputs:
-        lines += wrap_statement(f"{indent}    ", value, ",")
-    return (*lines, f"{indent}]){reshape}")
+    lines = _stack(list(outputs), shape, indent)
+    lines[0] = f"{indent}return {lines[0].lstrip()}"
+    return tuple(lines)
+
+
+def _stack(outputs: list[str], shape: tuple[int, ...], indent: str) -> list[str]:
+    """The lines of ``jnp.stack([...])`` over the leading axis of ``shape``, nested for the others."""
+    if len(shape) == 1:
+        single = f"{indent}jnp.stack([{', '.join(outputs)}])"
+        if len(single) < LINE_WIDTH:  # room for the comma a nested row ends with
+            return [single]
+        lines = [f"{indent}jnp.stack(["]
+        for value in outputs:
+            lines += wrap_statement(f"{indent}    ", value, ",")
+        return [*lines, f"{indent}])"]
+    size = len(outputs) // shape[0]
+    lines = [f"{indent}jnp.stack(["]
+    for k in range(shape[0]):
+        inner = _stack(outputs[k * size:(k + 1) * size], shape[1:], indent + "    ")
+        inner[-1] += ","
+        lines += inner
+    return [*lines, f"{indent}])"]
 
 
 BACKEND = Backend(

@@ -1,0 +1,83 @@
+"""The jax and casadi targets against the c and numpy targets: ``python benchmarks/jax_casadi.py [ROBOT ...]``.
+
+For each robot (default: puma560 and panda) it generates the Jacobian in frame {0} at the wrist for the ``c``,
+``numpy``, ``jax`` and ``casadi`` targets and prints, in one run:
+
+* nanoseconds per configuration for a batch of N = 100 000: the ``c`` and ``numpy`` targets on one thread, and
+  ``jax.jit(jax.vmap(jacobian))`` in float64 on the CPU (compiled once before timing; the issue's goal is within
+  twice the ``c`` target);
+* microseconds per single call: the ``numpy`` target and a ``casadi.Function`` call from Python (CasADi's call
+  overhead dominates; judge its graph by the C that ``Function.generate()`` writes, not by this figure).
+
+Best of several runs; it asserts nothing. JAX and CasADi come with the test extra.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import tempfile
+import timeit
+import types
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+from symjac import generate, load_robot
+
+__all__ = ["main"]
+
+
+def _import(path: Path, name: str) -> types.ModuleType:
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _best(function, number: int) -> float:
+    """Best seconds per call of ``function`` over seven runs of ``number`` calls."""
+    return min(timeit.repeat(function, number=number, repeat=7)) / number
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Print one table row per robot."""
+    parser = argparse.ArgumentParser(prog="python benchmarks/jax_casadi.py", description=__doc__.splitlines()[0])
+    parser.add_argument("robots", nargs="*", default=["puma560", "panda"])
+    parser.add_argument("-n", type=int, default=100_000, help="configurations per batch (default 100 000)")
+    args = parser.parse_args(argv)
+    import casadi
+    import jax
+
+    jax.config.update("jax_enable_x64", True)
+    print("| robot | c ns/config | numpy ns/config | jax jit(vmap) ns/config | jax / c | numpy us/call | "
+          "casadi us/call |\n|---|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as folder:
+        for name in args.robots:
+            robot = load_robot(name)
+            modules = {}
+            for target in ("c", "numpy", "jax", "casadi"):
+                path = Path(folder) / f"{robot.name}_{target}.py"
+                path.write_text(generate(robot, target))
+                modules[target] = _import(path, f"bench_{robot.name}_{target}")
+            modules["c"].THREADS = modules["numpy"].THREADS = 1
+            Q = np.random.default_rng(0).uniform(-np.pi, np.pi, (args.n, robot.n_coordinates))
+            c = _best(lambda: modules["c"].jacobian(Q), 3) / args.n * 1e9
+            numpy = _best(lambda: modules["numpy"].jacobian(Q), 3) / args.n * 1e9
+            batched = jax.jit(jax.vmap(modules["jax"].jacobian))
+            device = jax.numpy.asarray(Q)
+            batched(device).block_until_ready()  # compile once
+            jax_ns = _best(lambda: batched(device).block_until_ready(), 3) / args.n * 1e9
+            q = Q[0]
+            numpy_us = _best(lambda: modules["numpy"].jacobian(q), 2000) * 1e6
+            p = casadi.DM(modules["casadi"].PARAMETER_DEFAULTS)
+            casadi_us = _best(lambda: modules["casadi"].jacobian(q, p), 2000) * 1e6
+            print(f"| {name} | {c:.0f} | {numpy:.0f} | {jax_ns:.0f} | {jax_ns / c:.2f} | {numpy_us:.1f} | "
+                  f"{casadi_us:.1f} |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

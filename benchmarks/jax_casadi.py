@@ -26,7 +26,7 @@ import numpy as np
 
 from symjac import generate, load_robot
 
-__all__ = ["main"]
+__all__ = ["main", "measure"]
 
 
 def _import(path: Path, name: str) -> types.ModuleType:
@@ -42,13 +42,37 @@ def _best(function, number: int) -> float:
     return min(timeit.repeat(function, number=number, repeat=7)) / number
 
 
+def measure(name: str, folder: Path, count: int) -> tuple[float, float, float, float, float]:
+    """c, numpy and jax ns per batched configuration; numpy and casadi us per single call."""
+    import casadi
+    import jax
+
+    robot = load_robot(name)
+    modules = {}
+    for target in ("c", "numpy", "jax", "casadi"):
+        path = folder / f"{robot.name}_{target}.py"
+        path.write_text(generate(robot, target))
+        modules[target] = _import(path, f"bench_{robot.name}_{target}")
+    modules["c"].THREADS = modules["numpy"].THREADS = 1
+    Q = np.random.default_rng(0).uniform(-np.pi, np.pi, (count, robot.n_coordinates))
+    c = _best(lambda: modules["c"].jacobian(Q), 3) / count * 1e9
+    numpy = _best(lambda: modules["numpy"].jacobian(Q), 3) / count * 1e9
+    batched = jax.jit(jax.vmap(modules["jax"].jacobian))
+    device = jax.numpy.asarray(Q)
+    batched(device).block_until_ready()  # compile once
+    jax_ns = _best(lambda: batched(device).block_until_ready(), 3) / count * 1e9
+    q, p = Q[0], casadi.DM(modules["casadi"].PARAMETER_DEFAULTS)
+    numpy_us = _best(lambda: modules["numpy"].jacobian(q), 2000) * 1e6
+    casadi_us = _best(lambda: modules["casadi"].jacobian(q, p), 2000) * 1e6
+    return c, numpy, jax_ns, numpy_us, casadi_us
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Print one table row per robot."""
     parser = argparse.ArgumentParser(prog="python benchmarks/jax_casadi.py", description=__doc__.splitlines()[0])
     parser.add_argument("robots", nargs="*", default=["puma560", "panda"])
     parser.add_argument("-n", type=int, default=100_000, help="configurations per batch (default 100 000)")
     args = parser.parse_args(argv)
-    import casadi
     import jax
 
     jax.config.update("jax_enable_x64", True)
@@ -56,24 +80,7 @@ def main(argv: Sequence[str] | None = None) -> int:
           "casadi us/call |\n|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as folder:
         for name in args.robots:
-            robot = load_robot(name)
-            modules = {}
-            for target in ("c", "numpy", "jax", "casadi"):
-                path = Path(folder) / f"{robot.name}_{target}.py"
-                path.write_text(generate(robot, target))
-                modules[target] = _import(path, f"bench_{robot.name}_{target}")
-            modules["c"].THREADS = modules["numpy"].THREADS = 1
-            Q = np.random.default_rng(0).uniform(-np.pi, np.pi, (args.n, robot.n_coordinates))
-            c = _best(lambda: modules["c"].jacobian(Q), 3) / args.n * 1e9
-            numpy = _best(lambda: modules["numpy"].jacobian(Q), 3) / args.n * 1e9
-            batched = jax.jit(jax.vmap(modules["jax"].jacobian))
-            device = jax.numpy.asarray(Q)
-            batched(device).block_until_ready()  # compile once
-            jax_ns = _best(lambda: batched(device).block_until_ready(), 3) / args.n * 1e9
-            q = Q[0]
-            numpy_us = _best(lambda: modules["numpy"].jacobian(q), 2000) * 1e6
-            p = casadi.DM(modules["casadi"].PARAMETER_DEFAULTS)
-            casadi_us = _best(lambda: modules["casadi"].jacobian(q, p), 2000) * 1e6
+            c, numpy, jax_ns, numpy_us, casadi_us = measure(name, Path(folder), args.n)
             print(f"| {name} | {c:.0f} | {numpy:.0f} | {jax_ns:.0f} | {jax_ns / c:.2f} | {numpy_us:.1f} | "
                   f"{casadi_us:.1f} |", flush=True)
     return 0

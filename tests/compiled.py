@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import importlib.util
+import types
+from pathlib import Path
 from typing import Protocol
 
 import numpy as np
 
-from symjac import generate
+from symjac import generate, robot_from_mapping
 
 
 class CompiledModule(Protocol):
@@ -15,6 +18,23 @@ class CompiledModule(Protocol):
     def call(self, name: str, size: int, *inputs: np.ndarray | None) -> np.ndarray: ...
 
     def scalar(self, name: str, q: np.ndarray, params: np.ndarray | None) -> float: ...
+
+
+def load_module(folder: Path, robot, target: str, **options) -> types.ModuleType:
+    """Generate ``robot``'s module for a Python-family ``target`` into ``folder`` and import it."""
+    path = folder / f"{robot.name}_{target}.py"
+    path.write_text(generate(robot, target, **options))
+    spec = importlib.util.spec_from_file_location(f"generated_{robot.name}_{target}_{id(path)}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def two_joint_robot(name: str = "arm", parameter: str = "L"):
+    """A two-joint standard-DH robot named ``name`` with one parameter named ``parameter`` (for name checks)."""
+    return robot_from_mapping({"name": name, "convention": "standard", "parameters": {parameter: 1.0},
+                               "joints": [{"type": "revolute", "a": parameter}, {"type": "revolute", "a": 1}]})
 
 
 def python_module(robot) -> dict:

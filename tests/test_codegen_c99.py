@@ -15,10 +15,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target
+from compiled import agrees_with_python_target, two_joint_robot
 from marks import marked
 
-from symjac import load_robot, robot_from_mapping
+from symjac import load_robot
 from symjac.cli.main import main
 from symjac.codegen import CodegenError, describe, generate, render_files
 from symjac.model.io import catalog
@@ -112,19 +112,14 @@ def test_golden_files_and_determinism(suffix):
     assert path.read_text() == text, f"{path.name} differs; review and regenerate with SYMJAC_UPDATE_GOLDEN=1"
 
 
-def _robot(name: str = "arm", parameter: str = "L") -> object:
-    return robot_from_mapping({"name": name, "convention": "standard", "parameters": {parameter: 1.0},
-                               "joints": [{"type": "revolute", "a": parameter}, {"type": "revolute", "a": 1}]})
-
-
 @pytest.mark.parametrize(("word", "message"), [("double", "is a C keyword"), ("restrict", "is a C keyword"),
                                                ("NULL", "would shadow the C builtin"),
                                                ("sqrt", "would shadow the C builtin")])
 def test_c_reserved_names_are_refused_in_one_line(word, message):
     with pytest.raises(CodegenError, match=f"parameter name '{word}' {message}"):
-        generate(_robot(parameter=word), "c99")
+        generate(two_joint_robot(parameter=word), "c99")
     with pytest.raises(CodegenError, match=f"robot name '{word}' {message}"):
-        generate(_robot(name=word), "c99")
+        generate(two_joint_robot(name=word), "c99")
 
 
 def test_comment_text_cannot_end_a_comment(tmp_path):

@@ -8,7 +8,6 @@ inverse-kinematics problem with the functions; the module's self-test passes.
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import shutil
 import subprocess
@@ -18,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target
+from compiled import agrees_with_python_target, load_module
 from marks import marked
 
 from symjac import JacobianRequest, generate, load_robot
@@ -29,16 +28,6 @@ ca = pytest.importorskip("casadi")
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
 ROBOTS = [*sorted(catalog()), "gripper.urdf", "panda.urdf", "ur5.urdf"]
-
-
-def _load(folder: Path, robot, **options) -> types.ModuleType:
-    path = folder / f"{robot.name}_casadi.py"
-    path.write_text(generate(robot, "casadi", **options))
-    spec = importlib.util.spec_from_file_location(f"generated_{robot.name}_casadi_{id(path)}", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 class Functions:
@@ -65,7 +54,7 @@ class Functions:
 @pytest.mark.parametrize("name", marked(ROBOTS))
 def test_every_function_agrees_with_the_python_target(tmp_path, name):
     robot = load_robot(name)
-    module = _load(tmp_path, robot, acceleration=True)
+    module = load_module(tmp_path, robot, "casadi", acceleration=True)
     assert tuple(p.name for p in robot.parameters) == module.PARAMETER_NAMES
     agrees_with_python_target(Functions(module, robot.n_coordinates), robot)
     assert module.selftest() < 1e-6
@@ -75,7 +64,7 @@ def test_every_function_agrees_with_the_python_target(tmp_path, name):
 def test_casadi_jacobian_of_the_forward_kinematics_is_the_jacobian(tmp_path, name):
     robot = load_robot(name)
     point = "tool" if robot.tool is not None else "wrist"  # where forward_kinematics ends
-    module = _load(tmp_path, robot, jacobians=[JacobianRequest(0, point)])
+    module = load_module(tmp_path, robot, "casadi", jacobians=[JacobianRequest(0, point)])
     q, p = ca.SX.sym("q", robot.n_coordinates), ca.DM(module.PARAMETER_DEFAULTS)
     derivative = ca.Function("d", [q], [ca.jacobian(module.forward_kinematics(q, p)[:3, 3], q)])
     at = ca.DM(np.linspace(-1.0, 0.8, robot.n_coordinates))
@@ -85,7 +74,7 @@ def test_casadi_jacobian_of_the_forward_kinematics_is_the_jacobian(tmp_path, nam
 @pytest.mark.external  # a C compiler
 @pytest.mark.skipif(shutil.which("gcc") is None, reason="gcc is not installed")
 def test_function_generate_writes_c_that_compiles(tmp_path):
-    module = _load(tmp_path, load_robot("puma560"), acceleration=True)
+    module = load_module(tmp_path, load_robot("puma560"), "casadi", acceleration=True)
     generator = ca.CodeGenerator("puma560_casadi.c")
     for function in (module.jacobian, module.forward_kinematics, module.hessian, module.bias_acceleration):
         generator.add(function)
@@ -94,7 +83,7 @@ def test_function_generate_writes_c_that_compiles(tmp_path):
 
 
 def test_opti_solves_an_inverse_kinematics_problem(tmp_path):
-    module = _load(tmp_path, load_robot("planar2r"))
+    module = load_module(tmp_path, load_robot("planar2r"), "casadi")
     opti = ca.Opti()
     q = opti.variable(2)
     target = np.array([0.6, 0.3])

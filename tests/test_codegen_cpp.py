@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target
+from compiled import agrees_with_python_target, two_joint_robot
 from marks import marked
 
-from symjac import JacobianRequest, load_robot, robot_from_mapping
+from symjac import JacobianRequest, load_robot
 from symjac.codegen import CodegenError, describe, generate, render_files
 from symjac.model.io import catalog
 
@@ -227,11 +227,6 @@ def test_golden_file_and_determinism():
     assert path.read_text() == files["planar2r.hpp"], "review and regenerate with SYMJAC_UPDATE_GOLDEN=1"
 
 
-def _robot(name: str = "arm", parameter: str = "L"):
-    return robot_from_mapping({"name": name, "convention": "standard", "parameters": {parameter: 1.0},
-                               "joints": [{"type": "revolute", "a": parameter}, {"type": "revolute", "a": 1}]})
-
-
 @pytest.mark.parametrize(("word", "message"), [("namespace", "is a C\\+\\+ keyword"),
                                                ("nullptr", "is a C\\+\\+ keyword"),
                                                ("Scalar", "would shadow the C\\+\\+ builtin"),
@@ -239,6 +234,6 @@ def _robot(name: str = "arm", parameter: str = "L"):
                                                ("M_PI", "would shadow the C\\+\\+ builtin")])
 def test_cpp_reserved_names_are_refused_in_one_line(word, message):
     with pytest.raises(CodegenError, match=f"parameter name '{word}' {message}"):
-        generate(_robot(parameter=word), "cpp")
+        generate(two_joint_robot(parameter=word), "cpp")
     with pytest.raises(CodegenError, match=f"robot name '{word}' {message}"):
-        generate(_robot(name=word), "cpp")
+        generate(two_joint_robot(name=word), "cpp")

@@ -8,7 +8,6 @@ target; ``grad`` of the manipulability is the generated gradient; float32 is wha
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import subprocess
 import sys
@@ -17,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target
+from compiled import agrees_with_python_target, load_module
 from marks import marked
 
 from symjac import JacobianRequest, generate, load_robot
@@ -30,16 +29,6 @@ jnp = jax.numpy
 
 GOLDEN = Path(__file__).resolve().parent / "golden"
 ROBOTS = [*sorted(catalog()), "gripper.urdf", "panda.urdf", "ur5.urdf"]
-
-
-def _load(folder: Path, robot, target: str = "jax", **options) -> types.ModuleType:
-    path = folder / f"{robot.name}_{target}.py"
-    path.write_text(generate(robot, target, **options))
-    spec = importlib.util.spec_from_file_location(f"generated_{robot.name}_{target}_{id(path)}", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 class Functions:
@@ -64,7 +53,7 @@ class Functions:
 @pytest.mark.parametrize("name", marked(ROBOTS))
 def test_every_function_agrees_with_the_python_target(tmp_path, name):
     robot = load_robot(name)
-    module = _load(tmp_path, robot, acceleration=True)
+    module = load_module(tmp_path, robot, "jax", acceleration=True)
     agrees_with_python_target(Functions(module, [p.name for p in robot.parameters]), robot)
     assert module.selftest() < 1e-6
 
@@ -73,7 +62,7 @@ def test_every_function_agrees_with_the_python_target(tmp_path, name):
 def test_jacfwd_of_the_forward_kinematics_is_the_jacobian(tmp_path, name):
     robot = load_robot(name)
     point = "tool" if robot.tool is not None else "wrist"  # where forward_kinematics ends
-    module = _load(tmp_path, robot, jacobians=[JacobianRequest(0, point)])
+    module = load_module(tmp_path, robot, "jax", jacobians=[JacobianRequest(0, point)])
     q = jnp.linspace(-1.1, 0.9, robot.n_coordinates)
     T = module.forward_kinematics(q)
     dT = jax.jacfwd(module.forward_kinematics)(q)  # (4, 4, n)
@@ -86,8 +75,8 @@ def test_jacfwd_of_the_forward_kinematics_is_the_jacobian(tmp_path, name):
 
 def test_jit_vmap_over_a_hundred_thousand_configurations_equals_the_numpy_target(tmp_path):
     robot = load_robot("puma560")
-    module = _load(tmp_path, robot)
-    reference = _load(tmp_path, robot, "numpy")
+    module = load_module(tmp_path, robot, "jax")
+    reference = load_module(tmp_path, robot, "numpy")
     Q = np.random.default_rng(3).uniform(-np.pi, np.pi, (100_000, robot.n_coordinates))
     batched = jax.jit(jax.vmap(module.jacobian))(jnp.asarray(Q))
     assert batched.shape == (100_000, 6, 6)
@@ -96,7 +85,7 @@ def test_jit_vmap_over_a_hundred_thousand_configurations_equals_the_numpy_target
 
 def test_grad_of_the_manipulability_is_the_generated_gradient(tmp_path):
     robot = load_robot("puma560")
-    module = _load(tmp_path, robot, acceleration=True)
+    module = load_module(tmp_path, robot, "jax", acceleration=True)
     q = jnp.linspace(0.3, 1.4, robot.n_coordinates)  # away from a singular configuration (w is 0.1 here)
     assert module.manipulability(q) > 1e-3
     np.testing.assert_allclose(jax.grad(module.manipulability)(q), module.manipulability_gradient(q), rtol=1e-9,

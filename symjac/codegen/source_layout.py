@@ -7,17 +7,19 @@ checks in the generated modules).
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Literal, Protocol
 
 import sympy as sp
 
 from symjac.codegen.lower import LoweredFunction, SymbolNames
+from symjac.errors import CodegenError
 from symjac.model.robot import Robot
 
 __all__ = [
     "LINE_WIDTH",
     "angle_lines",
+    "check_layout",
     "comment_lines",
     "entry_names",
     "indices",
@@ -187,3 +189,15 @@ def temporary_lines(lowered: LoweredFunction, names: SymbolNames, printer: _Prin
     for symbol, expr in lowered.temporaries:
         lines += wrap_statement(f"{indent}{names.mapping[symbol]} = ", printer.doprint(expr))
     return lines
+
+
+def check_layout(files: Mapping[str, str], width: int = LINE_WIDTH) -> Mapping[str, str]:
+    """``files`` as they are, once no line is wider than ``width`` or ends in spaces.
+
+    Anything else is an internal error of a template: generated files must be lint-clean in their language.
+    """
+    for name, text in files.items():
+        for number, line in enumerate(text.splitlines(), start=1):
+            if len(line) > width or line != line.rstrip():
+                raise CodegenError(f"internal error: {name} line {number} is too long or has trailing spaces")
+    return files

@@ -16,7 +16,14 @@ from typing import Any
 from symjac.codegen.description import Backend, FunctionKind, FunctionSpec, ModuleDescription
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.request import RESERVED
-from symjac.codegen.source_layout import LINE_WIDTH, comment_lines, tuple_lines, tuple_literal, wrap_statement
+from symjac.codegen.source_layout import (
+    LINE_WIDTH,
+    check_layout,
+    comment_lines,
+    tuple_lines,
+    tuple_literal,
+    wrap_statement,
+)
 from symjac.errors import CodegenError
 from symjac.kinematics.chain import Chain
 from symjac.resources import render_template
@@ -183,10 +190,7 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
         )
-        text = render_template(backend.template, module=module)
-        for number, line in enumerate(text.splitlines(), start=1):
-            if len(line) > LINE_WIDTH or line != line.rstrip():
-                raise CodegenError(f"internal error: generated line {number} is too long or has trailing spaces")
-        return {backend.files[0].format(robot=description.robot): text}
+        name = backend.files[0].format(robot=description.robot)
+        return check_layout({name: render_template(backend.template, module=module)})
 
     return render

@@ -17,6 +17,7 @@ from symjac.codegen.backends._c_family import C_DIALECT, block_comment, c_functi
 from symjac.codegen.backends.c import C_KEYWORDS
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
+from symjac.codegen.source_layout import check_layout
 from symjac.errors import CodegenError
 from symjac.resources import render_template
 
@@ -56,12 +57,8 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         **header_comments(description),
     }
     header, source = (name.format(robot=description.robot) for name in backend.files)
-    files = {header: render_template("c99/header.h.j2", **data), source: render_template("c99/source.c.j2", **data)}
-    for file_name, text in files.items():
-        for number, line in enumerate(text.splitlines(), start=1):
-            if len(line) > 120 or line != line.rstrip():
-                raise CodegenError(f"internal error: {file_name} line {number} is too long or has trailing spaces")
-    return files
+    return check_layout({header: render_template("c99/header.h.j2", **data),
+                         source: render_template("c99/source.c.j2", **data)})
 
 
 BACKEND = Backend(

@@ -17,6 +17,7 @@ from symjac.codegen.backends._c_family import Dialect, c_function, header_commen
 from symjac.codegen.backends.c99 import C99_KEYWORDS, LIBRARY_NAMES
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
+from symjac.codegen.source_layout import check_layout
 from symjac.errors import CodegenError
 from symjac.resources import render_template
 
@@ -80,11 +81,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         **header_comments(description),
     }
     name = backend.files[0].format(robot=description.robot)
-    text = render_template("cpp/header.hpp.j2", **data)
-    for number, line in enumerate(text.splitlines(), start=1):
-        if len(line) > 120 or line != line.rstrip():
-            raise CodegenError(f"internal error: {name} line {number} is too long or has trailing spaces")
-    return {name: text}
+    return check_layout({name: render_template("cpp/header.hpp.j2", **data)})
 
 
 BACKEND = Backend(

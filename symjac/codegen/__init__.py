@@ -2,7 +2,8 @@ r"""Generated numeric modules: forward kinematics, Jacobians, torques and manipu
 
 A generated module is what a controller, a simulator or a script imports when it has no SymPy: small, readable,
 correct (its own ``selftest`` compares the Jacobian with central differences of its forward kinematics) and fast.
-The targets (``"python"``, ``"numpy"``, ``"lambdify"``, ``"c"``) are the folders of :mod:`symjac.codegen.backends`
+The targets (``"python"``, ``"numpy"``, ``"lambdify"``, ``"c"`` for Python; ``"c99"`` and ``"cpp"`` to compile into
+one's own program; ``"jax"`` and ``"casadi"``) are the folders of :mod:`symjac.codegen.backends`
 (spec, printer; templates in ``templates/<target>/``), one frozen :class:`Backend` spec each; :data:`TARGETS` lists
 them.
 

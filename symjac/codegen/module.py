@@ -293,8 +293,9 @@ def generate(
     ----------
     robot : Robot or Chain
     target : str
-        One of :data:`~symjac.codegen.TARGETS` (``"python"``, ``"numpy"``, ``"lambdify"``, ``"c"``; see
-        :mod:`symjac.codegen.backends`).
+        One of :data:`~symjac.codegen.TARGETS` (``"python"``, ``"numpy"``, ``"lambdify"``, ``"c"``, ``"c99"``,
+        ``"cpp"``, ``"jax"``, ``"casadi"``; see :mod:`symjac.codegen.backends`). For a target that writes several
+        files (``"c99"``), this returns the primary one; :func:`render_files` gives them all.
     frames : frame or sequence of frames
         Frames the Jacobians are expressed in (default {0}); every frame is combined with every point.
     points : point or sequence of points

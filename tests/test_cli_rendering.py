@@ -220,3 +220,9 @@ def test_a_matrix_too_long_for_the_terminal_stops_printing_early(monkeypatch):
     assert 0 < len(printed) < everything / 2
     with latex_module.latex_size_limit(len(full)):
         assert latex_module.latex(J) == full
+
+
+def test_a_pretty_caption_writes_an_equation_as_one_line_not_as_sympy_source(cli):
+    text = cli.ok("jacobian", "planar3r", "--representation", "rpy", "--format", "pretty")
+    caption = next(line for line in text.splitlines() if line.startswith("Representation singularity"))
+    assert "Eq(" not in caption and "θ = -pi/2 or θ = pi/2" in caption

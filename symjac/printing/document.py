@@ -184,12 +184,23 @@ def caption_text(block: Block, style: Style) -> str:
             return f"${part.tex}$" if style == "latex" else part.text
         if style == "latex":
             return f"${latex(part)}$"
-        from symjac.printing.pretty import pretty
-
-        text = pretty(part)
-        return text if "\n" not in text else sp.sstr(part)  # a caption stays one line: sqrt(2)/2, not a 2-D fraction
+        return _one_line(part)
 
     return "".join(show(part) for part in block.caption)
+
+
+def _one_line(expr: sp.Basic) -> str:
+    """Unicode text of ``expr`` on one line.
+
+    A caption shows sqrt(2)/2, not a 2-D fraction, and θ = -pi/2 (each side of an equation printed on its own),
+    not Eq(theta, -pi/2).
+    """
+    from symjac.printing.pretty import pretty
+
+    if isinstance(expr, sp.Equality):
+        return f"{_one_line(expr.lhs)} = {_one_line(expr.rhs)}"
+    text = pretty(expr)
+    return text if "\n" not in text else sp.sstr(expr)
 
 
 def equation_latex(equation: Equation) -> str:

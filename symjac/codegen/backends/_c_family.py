@@ -8,16 +8,29 @@ and an output entry and writes a literal. The registry skips this module (a lead
 from __future__ import annotations
 
 import textwrap
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from symjac.codegen.backends.c99.printer import RealPrinter
+import sympy as sp
+
+from symjac.codegen.backends.c.printer import CPrinter, RealPrinter
 from symjac.codegen.description import FunctionDescription, ModuleDescription
-from symjac.codegen.lower import symbol_names
+from symjac.codegen.lower import LoweredFunction, symbol_names
 from symjac.codegen.source_layout import comment_lines, wrap_statement
 
-__all__ = ["C_DIALECT", "CFunction", "Dialect", "block_comment", "c_function", "comment", "declaration",
-           "header_comments", "line_comment"]
+__all__ = [
+    "C_DIALECT",
+    "CFunction",
+    "Dialect",
+    "Statements",
+    "block_comment",
+    "c_function",
+    "c_statements",
+    "comment",
+    "declaration",
+    "header_comments",
+    "line_comment",
+]
 
 
 @dataclass(frozen=True)
@@ -134,6 +147,42 @@ def comment(text: str) -> str:
     return " ".join(text.split())
 
 
+@dataclass(frozen=True)
+class Statements:
+    """A lowered function as C statements: sines and cosines, CSE temporaries, output assignments."""
+
+    angles: tuple[str, ...]
+    temporaries: tuple[str, ...]
+    outputs: tuple[str, ...]
+
+
+def c_statements(lowered: LoweredFunction, mapping: Mapping[sp.Symbol, str], printer: CPrinter, indent: str,
+                 real: str, target: Callable[[int], str | None], precomputed: bool = False) -> Statements:
+    """The C statements of ``lowered``, symbols named by ``mapping``, values of type ``real``.
+
+    With ``precomputed`` the sines and cosines are computed elsewhere (the c target's vectorised block arrays
+    ``S[j][k]``, which ``mapping`` names) and not here; ``target(k)`` is where output entry ``k`` goes, or ``None``
+    for a scalar function (``return value;``). Every C-family target (c, c99, cpp) prints its statements here.
+    """
+    angles: list[str] = []
+    used = lowered.used_symbols
+    for sine, cosine, angle in () if precomputed else lowered.angles:
+        for symbol, function_name in ((sine, "sin"), (cosine, "cos")):
+            if symbol in used:
+                angles += wrap_statement(f"{indent}const {real} {mapping[symbol]} = ",
+                                         f"{function_name}({printer.doprint(angle)})", ";", language="c")
+    temporaries: list[str] = []
+    for symbol, expr in lowered.temporaries:
+        temporaries += wrap_statement(f"{indent}const {real} {mapping[symbol]} = ", printer.doprint(expr), ";",
+                                      language="c")
+    outputs: list[str] = []
+    for k, expr in enumerate(lowered.outputs):
+        place = target(k)
+        head = f"{indent}return " if place is None else f"{indent}{place} = "
+        outputs += wrap_statement(head, printer.doprint(expr), ";", language="c")
+    return Statements(tuple(angles), tuple(temporaries), tuple(outputs))
+
+
 def c_function(description: ModuleDescription, function: FunctionDescription, dialect: Dialect) -> CFunction:
     """Print one function: sines and cosines of the angles it uses, the temporaries, then each output entry."""
     chain = description.chain
@@ -149,24 +198,10 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
         inputs.append((_INPUT[spec_argument.name], len(spec_argument.entries), comment(spec_argument.description)))
     for k, symbol in enumerate(robot.parameter_symbols):
         mapping[symbol] = dialect.parameter(k, symbol.name)
-    printer = RealPrinter(mapping, dialect.literal)
-    indent = "    "
-    body: list[str] = []
-    used = lowered.used_symbols
-    for sine, cosine, angle in lowered.angles:
-        for symbol, function_name in ((sine, "sin"), (cosine, "cos")):
-            if symbol in used:
-                body += wrap_statement(f"{indent}const real {mapping[symbol]} = ", f"{function_name}("
-                                       f"{printer.doprint(angle)})", ";", language="c")
-    for symbol, expr in lowered.temporaries:
-        body += wrap_statement(f"{indent}const real {mapping[symbol]} = ", printer.doprint(expr), ";", language="c")
     output = _OUTPUT[function.kind]
-    if output:
-        for k, expr in enumerate(lowered.outputs):
-            target = dialect.element(output, lowered.shape, k)
-            body += wrap_statement(f"{indent}{target} = ", printer.doprint(expr), ";", language="c")
-    else:
-        body += wrap_statement(f"{indent}return ", printer.doprint(lowered.outputs[0]), ";", language="c")
+    statements = c_statements(lowered, mapping, RealPrinter(mapping, dialect.literal), "    ", "real",
+                              lambda k: dialect.element(output, lowered.shape, k) if output else None)
+    body = [*statements.angles, *statements.temporaries, *statements.outputs]
     size = 1
     for extent in lowered.shape:
         size *= extent

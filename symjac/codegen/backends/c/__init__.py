@@ -10,13 +10,13 @@ from __future__ import annotations
 import hashlib
 from collections.abc import Mapping
 
+from symjac.codegen.backends._c_family import c_statements
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.backends.numpy import numpy_function
 from symjac.codegen.coupled import coordinate_angles
 from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec, IdentifierRule, ModuleDescription
 from symjac.codegen.lower import LoweredFunction, symbol_names
-from symjac.codegen.source_layout import wrap_statement
 from symjac.errors import CodegenError
 from symjac.kinematics.chain import Chain
 from symjac.resources import render_template
@@ -54,13 +54,9 @@ def c_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken
         mapping[sine] = f"S[{angle_index[angle]}][k]"
         mapping[cosine] = f"C[{angle_index[angle]}][k]"
     printer = CPrinter(mapping)
-    body: list[str] = []
-    for symbol, expr in lowered.temporaries:
-        body += wrap_statement(f"{indent}const double {mapping[symbol]} = ", printer.doprint(expr), ";", language="c")
+    statements = c_statements(lowered, mapping, printer, indent, "double", lambda k: f"o[{k}]", precomputed=True)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
-    lines: list[str] = []
-    for k, value in enumerate(outputs):
-        lines += wrap_statement(f"{indent}o[{k}] = ", value, ";", language="c")
+    body, lines = list(statements.temporaries), list(statements.outputs)
     return generated_function(lowered, spec, body, outputs, lines, printer.used)
 
 

@@ -6,7 +6,7 @@ from collections.abc import Mapping
 
 import sympy as sp
 
-from symjac.codegen.backends.c99.printer import RealPrinter
+from symjac.codegen.backends.c.printer import RealPrinter
 
 __all__ = ["CppPrinter"]
 

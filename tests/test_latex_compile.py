@@ -132,9 +132,11 @@ def compiled(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[str]]:
     assert main(["errata", "--format", "latex", "-o", str(folder / "errata.tex")]) == 0
     order = sorted(ROBOTS, key=lambda robot: SLOW_FIRST.index(robot) if robot in SLOW_FIRST else len(SLOW_FIRST))
     results: dict[str, list[str]] = {}
-    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("fork")) as derive, \
+    # Workers come from a fork server, a fresh interpreter: never forked from this process, which may run threads
+    # by now (the jax code generation tests start JAX's, and a fork of a threaded process can deadlock).
+    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("forkserver")) as derive, \
             ThreadPoolExecutor(2) as tex:
-        tasks = [derive.submit(_generate, robot, str(folder)) for robot in order]  # forked before any thread starts
+        tasks = [derive.submit(_generate, robot, str(folder)) for robot in order]
         compiles = {"errata": tex.submit(compile_tex, folder / "errata.tex")}
         for task in tasks:
             for name, status in task.result():

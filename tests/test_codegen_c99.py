@@ -18,7 +18,7 @@ import pytest
 from compiled import agrees_with_python_target, two_joint_robot
 from marks import marked
 
-from symjac import load_robot
+from symjac import JacobianRequest, load_robot
 from symjac.cli.main import main
 from symjac.codegen import CodegenError, describe, generate, render_files
 from symjac.model.io import catalog
@@ -89,6 +89,14 @@ def test_single_precision_builds_and_passes_its_selftest(tmp_path, name):
     J = single.call("jacobian", 6 * robot.n_coordinates, q, None)
     assert J.dtype == np.float32
     np.testing.assert_allclose(J, double.call("jacobian", 6 * robot.n_coordinates, q, None), atol=1e-5)
+
+
+def test_several_jacobians_rows_and_points_pass_the_selftest(tmp_path):
+    requests = [JacobianRequest(0, "wrist"), JacobianRequest(3, "wrist"), JacobianRequest(0, (0, 0, 0.1), (0, 1, 5))]
+    files = render_files(describe(load_robot("palletizer"), "c99", jacobians=requests, acceleration=True))
+    compiled = Compiled(tmp_path, files)
+    assert compiled.selftest() == 0
+    assert compiled.call("jacobian_0_p1_r015", 3 * 4, np.zeros(4), None).shape == (12,)
 
 
 def test_the_selftest_catches_a_wrong_entry(tmp_path):

@@ -89,10 +89,10 @@ def block_comment(text: str, indent: str = "", width: int = 120) -> tuple[str, .
 
     Examples
     --------
-    >>> block_comment("one two three", width=12)
+    >>> block_comment("one two three", width=15)
     ('/* one two', ' * three */')
     """
-    lines = textwrap.wrap(text, width - len(indent) - 3, break_long_words=False, break_on_hyphens=False)
+    lines = textwrap.wrap(text, width - len(indent) - 6, break_long_words=False, break_on_hyphens=False)  # "/* ", " */"
     lines[-1] += " */"
     return tuple(f"{indent}{'/* ' if k == 0 else ' * '}{line}" for k, line in enumerate(lines))
 

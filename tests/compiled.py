@@ -8,8 +8,9 @@ from pathlib import Path
 from typing import Protocol
 
 import numpy as np
+import sympy as sp
 
-from symjac import generate, robot_from_mapping
+from symjac import JacobianRequest, generate, robot_from_mapping
 
 
 class CompiledModule(Protocol):
@@ -37,11 +38,24 @@ def two_joint_robot(name: str = "arm", parameter: str = "L"):
                                "joints": [{"type": "revolute", "a": parameter}, {"type": "revolute", "a": 1}]})
 
 
-def python_module(robot) -> dict:
-    """The python target's module for ``robot`` (with the acceleration level), executed."""
+def python_module(robot, **options) -> dict:
+    """The python target's module for ``robot`` (with the acceleration level unless told), executed."""
     namespace: dict = {}
-    exec(compile(generate(robot, "python", acceleration=True), f"{robot.name}.py", "exec"), namespace)
+    exec(compile(generate(robot, "python", **{"acceleration": True, **options}), f"{robot.name}.py", "exec"),
+         namespace)
     return namespace
+
+
+SEVERAL = {"jacobians": [JacobianRequest(0, "wrist"), JacobianRequest(2, "wrist"),
+                         JacobianRequest(0, (0.1, 0, 0), (0, 1, 5))],
+           "scalars": {"reach": sp.Symbol("theta2", real=True) * 2}}
+"""Options that exercise several Jacobians (their name suffixes), a subset of rows, a point and a scalar function."""
+
+
+def numbers_only_robot():
+    """A three-joint arm whose every entry is a number: a module without parameters."""
+    return robot_from_mapping({"name": "fixed", "convention": "modified", "joints": [
+        {"type": "revolute"}, {"type": "revolute", "alpha": "pi/2", "a": 0.3}, {"type": "prismatic", "a": 0.2}]})
 
 
 def agrees_with_python_target(compiled: CompiledModule, robot, samples: int = 20) -> None:

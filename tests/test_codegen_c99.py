@@ -15,10 +15,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target, two_joint_robot
+from compiled import SEVERAL, agrees_with_python_target, numbers_only_robot, python_module, two_joint_robot
 from marks import marked
 
-from symjac import JacobianRequest, load_robot
+from symjac import load_robot
 from symjac.cli.main import main
 from symjac.codegen import CodegenError, describe, generate, render_files
 from symjac.model.io import catalog
@@ -91,12 +91,17 @@ def test_single_precision_builds_and_passes_its_selftest(tmp_path, name):
     np.testing.assert_allclose(J, double.call("jacobian", 6 * robot.n_coordinates, q, None), atol=1e-5)
 
 
-def test_several_jacobians_rows_and_points_pass_the_selftest(tmp_path):
-    requests = [JacobianRequest(0, "wrist"), JacobianRequest(3, "wrist"), JacobianRequest(0, (0, 0, 0.1), (0, 1, 5))]
-    files = render_files(describe(load_robot("palletizer"), "c99", jacobians=requests, acceleration=True))
-    compiled = Compiled(tmp_path, files)
+def test_several_jacobians_rows_a_point_a_scalar_and_no_parameters(tmp_path):
+    robot = numbers_only_robot()
+    compiled = Compiled(tmp_path, render_files(describe(robot, "c99", **SEVERAL)))
+    reference = python_module(robot, **SEVERAL)
     assert compiled.selftest() == 0
-    assert compiled.call("jacobian_0_p1_r015", 3 * 4, np.zeros(4), None).shape == (12,)
+    q = np.array([0.3, -0.7, 0.2])
+    for name, size in (("jacobian_2_wrist", 18), ("jacobian_0_p1_r015", 9)):
+        np.testing.assert_allclose(compiled.call(name, size, q, None), np.ravel(reference[name](q)), atol=1e-12)
+    np.testing.assert_allclose(compiled.scalar("reach", q, None), reference["reach"](q), atol=1e-12)
+    np.testing.assert_allclose(compiled.scalar("jacobian_determinant_0_p1_r015", q, None),
+                               reference["jacobian_determinant_0_p1_r015"](q), atol=1e-12)
 
 
 def test_the_selftest_catches_a_wrong_entry(tmp_path):
@@ -130,17 +135,23 @@ def test_c_reserved_names_are_refused_in_one_line(word, message):
         generate(two_joint_robot(name=word), "c99")
 
 
-def test_comment_text_cannot_end_a_comment(tmp_path):
-    files = render_files(describe(load_robot("planar2r"), "c99", command="symjac codegen */ int x; /* ??/"))
-    header = files["planar2r.h"]
-    assert "*/ int x" not in header and "??/" not in header
-    Compiled(tmp_path, files)  # still compiles with -Werror
+@pytest.mark.parametrize("command", ["symjac codegen */ int x; /* ??/", "x *\\/ int y; /*\nz ??= \\"])
+def test_comment_text_cannot_end_a_comment(tmp_path, command):
+    files = render_files(describe(load_robot("planar2r"), "c99", command=command))
+    for text in files.values():
+        assert "int x" not in text.replace("* / int x", "") and "int y" not in text.replace("* // int y", "")
+        assert "??" not in text
+    Compiled(tmp_path, files)  # still compiles with -Werror (-Wcomment included)
 
 
 def test_command_line_needs_a_folder_and_writes_both_files(tmp_path, capsys):
     assert main(["codegen", "planar2r", "--target", "c99"]) != 0
     error = capsys.readouterr().err.strip()
-    assert "2 files" in error and "planar2r.h" in error and "\n" not in error
-    assert main(["codegen", "planar2r", "--target", "c99", "-o", str(tmp_path)]) == 0
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["planar2r.c", "planar2r.h"]
-    Compiled(tmp_path, {name: (tmp_path / name).read_text() for name in ("planar2r.h", "planar2r.c")})
+    assert "2 files" in error and "planar2r.h" in error and "-o DIR" in error and "\n" not in error
+    (tmp_path / "file.h").write_text("")
+    assert main(["codegen", "planar2r", "--target", "c99", "-o", str(tmp_path / "file.h")]) != 0
+    assert "is not a folder" in capsys.readouterr().err
+    folder = tmp_path / "new" / "c"
+    assert main(["codegen", "planar2r", "--target", "c99", "--name", "arm", "-o", str(folder)]) == 0
+    assert sorted(p.name for p in folder.iterdir()) == ["arm.c", "arm.h"]
+    assert Compiled(folder, {name: (folder / name).read_text() for name in ("arm.h", "arm.c")}).selftest() == 0

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target, load_module
+from compiled import SEVERAL, agrees_with_python_target, load_module, numbers_only_robot, python_module
 from marks import marked
 
 from symjac import JacobianRequest, generate, load_robot
@@ -110,3 +110,16 @@ def test_golden_file_determinism_names_and_lint(tmp_path):
     assert result.returncode == 0, result.stdout
     with pytest.raises(CodegenError, match="scalar function name 'jac' is a CasADi keyword"):
         generate(load_robot("planar2r"), "casadi", scalars={"jac": 1})
+
+
+def test_several_jacobians_rows_a_point_a_scalar_and_no_parameters(tmp_path):
+    robot = numbers_only_robot()
+    module = load_module(tmp_path, robot, "casadi", **SEVERAL)
+    reference = python_module(robot, **SEVERAL)
+    q = [0.3, -0.7, 0.2]
+    for name in ("jacobian_2_wrist", "jacobian_0_p1_r015"):
+        np.testing.assert_allclose(np.asarray(getattr(module, name)(q, [])), reference[name](q), atol=1e-12)
+    assert abs(float(module.reach(q, [])) - reference["reach"](q)) < 1e-12
+    determinant = module.jacobian_determinant_0_p1_r015
+    assert abs(float(determinant(q, [])) - reference["jacobian_determinant_0_p1_r015"](q)) < 1e-12
+    assert module.selftest() < 1e-6

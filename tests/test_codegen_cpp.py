@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target, two_joint_robot
+from compiled import SEVERAL, agrees_with_python_target, numbers_only_robot, python_module, two_joint_robot
 from marks import marked
 
 from symjac import JacobianRequest, load_robot
@@ -237,3 +237,45 @@ def test_cpp_reserved_names_are_refused_in_one_line(word, message):
         generate(two_joint_robot(parameter=word), "cpp")
     with pytest.raises(CodegenError, match=f"robot name '{word}' {message}"):
         generate(two_joint_robot(name=word), "cpp")
+
+
+SEVERAL_DRIVER = """
+#include <cstdio>
+
+#include "fixed.hpp"
+
+int main()
+{
+    Eigen::Matrix<double, 3, 1> q;
+    q << 0.3, -0.7, 0.2;
+    const auto a = symjac::fixed::jacobian_2_wrist(q);
+    const auto b = symjac::fixed::jacobian_0_p1_r015(q);
+    for (int i = 0; i < 6; i++) {
+        for (int j = 0; j < 3; j++) {
+            std::printf("%.17g ", a(i, j));
+        }
+    }
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            std::printf("%.17g ", b(i, j));
+        }
+    }
+    std::printf("%.17g %.17g\\n", symjac::fixed::reach(q), symjac::fixed::jacobian_determinant_0_p1_r015(q));
+    return 0;
+}
+"""
+
+
+def test_several_jacobians_rows_a_point_a_scalar_and_no_parameters(tmp_path):
+    robot = numbers_only_robot()
+    for name, text in render_files(describe(robot, "cpp", **SEVERAL)).items():
+        (tmp_path / name).write_text(text)
+    (tmp_path / "several.cpp").write_text(SEVERAL_DRIVER)
+    subprocess.run(["g++", *FLAGS, "several.cpp", "-o", "several"], cwd=tmp_path, check=True, capture_output=True)
+    values = [float(v) for v in subprocess.run([str(tmp_path / "several")], check=True, capture_output=True,
+                                               text=True).stdout.split()]
+    reference = python_module(robot, **SEVERAL)
+    q = [0.3, -0.7, 0.2]
+    expected = [*np.ravel(reference["jacobian_2_wrist"](q)), *np.ravel(reference["jacobian_0_p1_r015"](q)),
+                reference["reach"](q), reference["jacobian_determinant_0_p1_r015"](q)]
+    np.testing.assert_allclose(values, expected, atol=1e-12)

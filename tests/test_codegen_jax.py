@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from compiled import agrees_with_python_target, load_module
+from compiled import SEVERAL, agrees_with_python_target, load_module, numbers_only_robot, python_module
 from marks import marked
 
 from symjac import JacobianRequest, generate, load_robot
@@ -118,3 +118,16 @@ def test_golden_file_determinism_and_lint(tmp_path):
                              "E,F,W,I,UP,B,SIM,PIE,RUF", "--line-length", "120", str(tmp_path / "puma560.py")],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stdout
+
+
+def test_several_jacobians_rows_a_point_a_scalar_and_no_parameters(tmp_path):
+    robot = numbers_only_robot()
+    module = load_module(tmp_path, robot, "jax", **SEVERAL)
+    reference = python_module(robot, **SEVERAL)
+    q = [0.3, -0.7, 0.2]
+    for name in ("jacobian_2_wrist", "jacobian_0_p1_r015"):
+        np.testing.assert_allclose(np.asarray(getattr(module, name)(q)), reference[name](q), atol=1e-12)
+    assert abs(float(module.reach(q)) - reference["reach"](q)) < 1e-12
+    determinant = module.jacobian_determinant_0_p1_r015
+    assert abs(float(determinant(q)) - reference["jacobian_determinant_0_p1_r015"](q)) < 1e-12
+    assert module.selftest() < 1e-6

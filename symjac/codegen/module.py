@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import json
 import os
 import shlex
 from collections.abc import Iterable, Mapping, Sequence
@@ -245,8 +246,8 @@ def _robot_loader(robot: Robot) -> tuple[str, str]:
 
 
 def _string(text: str) -> str:
-    """A Python string literal for ``text`` in double quotes (the form the header's calls use)."""
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    """A Python string literal for ``text`` in double quotes, control characters escaped (JSON's are Python's)."""
+    return json.dumps(text)
 
 
 def _names_relative_file(source: str, command: str) -> bool:
@@ -379,15 +380,20 @@ def primary(files: Mapping[str, str]) -> str:
 def single_or_written(files: Mapping[str, str], output: str | None) -> str | None:
     """The text of a one-file module for the caller to write; several files are written to ``output`` here.
 
-    Several files need a place (``symjac codegen -o DIR``, or ``-o FILE`` for the primary file with the others
-    beside it): stdout cannot hold them. An existing folder receives every file under its own name. Returns ``None``
-    when the files were written (all of them, or none on an error).
+    Several files need a folder (``symjac codegen -o DIR``, made if it does not exist): stdout cannot hold them,
+    and they name each other (``#include "<name>.h"``), so they keep their own names. Returns ``None`` when the
+    files were written (all of them, or none on an error).
     """
     if len(files) == 1:
         return primary(files)
+    needs = f"this target writes {len(files)} files ({', '.join(files)}): give -o DIR, a folder"
     if output is None or output == "-":
-        raise CodegenError(f"this target writes {len(files)} files ({', '.join(files)}): give -o DIR")
-    write_module(Path(output) / next(iter(files)) if Path(output).is_dir() else output, files)
+        raise CodegenError(needs)
+    folder = Path(output)
+    if folder.exists() and not folder.is_dir():
+        raise CodegenError(f"{output} is not a folder; {needs}")
+    folder.mkdir(parents=True, exist_ok=True)
+    write_module(folder / next(iter(files)), files)
     return None
 
 

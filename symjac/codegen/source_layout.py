@@ -85,7 +85,7 @@ def comment_lines(text: str, *, continuation: str = "", width: int = LINE_WIDTH)
     room = width - len("#   ")
     lines: list[str] = []
     current = ""
-    for word in text.split(" "):
+    for word in text.split():  # any whitespace: a line break in the text must not end the comment
         candidate = f"{current} {word}" if current.strip() else f"{current}{word}"
         if len(candidate) + len(continuation) > room and current.strip():
             lines.append(current + continuation)

@@ -7,6 +7,7 @@ and an output entry and writes a literal. The registry skips this module (a lead
 
 from __future__ import annotations
 
+import math
 import textwrap
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -38,12 +39,13 @@ class Dialect:
     """How one C-family language writes what the statements need.
 
     ``reserved``: names a temporary may not take (keywords, library names, the function's own locals);
-    ``literal``: a number's cast to ``real`` (``"(real){}"``); ``parameter(index, name)``: a parameter's value;
+    ``printer``: the target's printer class (its literals cast to ``real``); ``parameter(index, name)``: a
+    parameter's value;
     ``element(output, shape, k)``: entry ``k`` (row-major) of an output of ``shape``.
     """
 
     reserved: frozenset[str]
-    literal: str
+    printer: Callable[[Mapping[sp.Symbol, str]], CPrinter]
     parameter: Callable[[int, str], str]
     element: Callable[[str, tuple[int, ...], int], str]
 
@@ -139,12 +141,13 @@ def comment(text: str) -> str:
 
     Examples
     --------
-    >>> comment("a */ b /* c ??/ d\ne")
-    'a * / b / * c ? ?/ d e'
+    >>> comment("a */ b /* c ??/ d\ne *\\/ f")
+    'a * / b / * c ? ?/ d e * // f'
     """
-    for old, new in (("*/", "* /"), ("/*", "/ *"), ("??", "? ?"), ("\\", "/")):
-        text = text.replace(old, new)
-    return " ".join(text.split())
+    text = " ".join(text.replace("\\", "/").split())  # no line splice, no line break
+    while any(mark in text for mark in ("*/", "/*", "??")):  # a replacement may form a new mark: repeat
+        text = text.replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
+    return text
 
 
 @dataclass(frozen=True)
@@ -199,12 +202,10 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
     for k, symbol in enumerate(robot.parameter_symbols):
         mapping[symbol] = dialect.parameter(k, symbol.name)
     output = _OUTPUT[function.kind]
-    statements = c_statements(lowered, mapping, RealPrinter(mapping, dialect.literal), "    ", "real",
+    statements = c_statements(lowered, mapping, dialect.printer(mapping), "    ", "real",
                               lambda k: dialect.element(output, lowered.shape, k) if output else None)
     body = [*statements.angles, *statements.temporaries, *statements.outputs]
-    size = 1
-    for extent in lowered.shape:
-        size *= extent
+    size = math.prod(lowered.shape)
     static = function.name.startswith("_")
     name = f"{description.robot}{'' if static else '_'}{function.name}"
     return CFunction(name=name, base=function.name.lstrip("_"), kind=function.kind,
@@ -213,5 +214,5 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
                      op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin)
 
 
-C_DIALECT = Dialect(frozenset(), "(real){}", lambda index, _: f"p[{index}]", lambda output, _, k: f"{output}[{k}]")
+C_DIALECT = Dialect(frozenset(), RealPrinter, lambda index, _: f"p[{index}]", lambda output, _, k: f"{output}[{k}]")
 """Plain C: parameters by index into ``p``, outputs as flat row-major arrays."""

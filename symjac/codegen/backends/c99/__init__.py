@@ -34,20 +34,22 @@ LIBRARY_NAMES = frozenset((
     "false",
 ))
 
-IDENTIFIERS = IdentifierRule.of("C", C99_KEYWORDS, LIBRARY_NAMES)
-"""C99's rule: no keyword, and no name of the standard library a generated file includes (``NULL``, ``sin``)."""
+GENERATED_NAMES = frozenset(("sj", "real", "kinematics", "selftest"))
+"""Names the generated files use themselves (the ``sj_`` helpers, ``<robot>_real``, ``<robot>_kinematics``)."""
+
+IDENTIFIERS = IdentifierRule.of("C", C99_KEYWORDS, LIBRARY_NAMES | GENERATED_NAMES)
+"""C99's rule: no keyword, no name of the standard library a generated file includes (``NULL``, ``sin``), and
+none of the names the generated files use themselves."""
 
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header and the source file: ``{"<robot>.h": ..., "<robot>.c": ...}``."""
     if description.chain is None:
         raise CodegenError("internal error: the module description carries no chain")
-    dialect = dataclasses.replace(C_DIALECT, reserved=C99_KEYWORDS | LIBRARY_NAMES)
+    dialect = dataclasses.replace(C_DIALECT, reserved=C99_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES)
     functions = tuple(c_function(description, f, dialect) for f in description.functions)
-    by_name = {f.name.removeprefix(description.robot).lstrip("_"): f for f in functions}
     data = {
         "module": description,
         "functions": functions,
-        "by_name": by_name,
         "prefix": description.robot,
         "macro": description.robot.upper(),
         "defaults": tuple(float_literal(value) for _, value in description.parameters),

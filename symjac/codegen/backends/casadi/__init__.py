@@ -17,12 +17,13 @@ from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "casadi_function", "entry"]
 
-IDENTIFIERS = PYTHON_IDENTIFIERS | IdentifierRule.of("CasADi", ("jac", "hess", "null"), ("ca", "casadi", "p"))
-"""Python's rule; not the module's own import or the parameter vector's name; no name CasADi refuses."""
-
 _OUTPUT = {"forward_kinematics": "T", "jacobian": "J", "joint_torques": "tau", "kinematics": "out", "hessian": "H",
            "bias_acceleration": "out", "scalar": "value"}
 
+IDENTIFIERS = PYTHON_IDENTIFIERS | IdentifierRule.of(
+    "CasADi", ("jac", "hess", "null"), ("ca", "casadi", "p", "q", "wrench", "qdot", *_OUTPUT.values()))
+"""Python's rule; no name CasADi refuses; not the module's import nor a local of the builders (the parameter vector
+``p``, the inputs, the outputs ``T``, ``J``, ``tau``, ``H``, ``value``), which the parameters are unpacked beside."""
 
 def entry(shape: tuple[int, ...], k: int) -> str:
     """Where entry ``k`` (row-major) of an output of ``shape`` goes: ``[i]``, ``[i, j]``, or ``[i, m * n + j]``.

@@ -15,6 +15,7 @@ from collections.abc import Mapping
 
 from symjac.codegen.backends._c_family import Dialect, c_function, header_comments, line_comment
 from symjac.codegen.backends.c99 import C99_KEYWORDS, LIBRARY_NAMES
+from symjac.codegen.backends.cpp.printer import CppPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
 from symjac.codegen.source_layout import check_layout
@@ -62,7 +63,7 @@ def cpp_type(shape: tuple[int, ...]) -> str:
     return matrix if len(shape) == 2 else f"std::array<{matrix}, {shape[2]}>"
 
 
-DIALECT = Dialect(CPP_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES, "real({})", lambda _, name: f"p.{name}", _element)
+DIALECT = Dialect(CPP_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES, CppPrinter, lambda _, name: f"p.{name}", _element)
 """C++: parameters as members of ``Params``, outputs as Eigen matrices (Hessians as arrays of slices)."""
 
 

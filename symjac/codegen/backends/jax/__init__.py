@@ -47,23 +47,21 @@ def _return_lines(outputs: Sequence[str], shape: tuple[int, ...], indent: str) -
     """
     if not shape:
         return tuple(wrap_statement(f"{indent}return jnp.asarray(", outputs[0], ")"))
-    lines = _stack(list(outputs), shape, indent)
-    lines[0] = f"{indent}return {lines[0].lstrip()}"
-    return tuple(lines)
+    return tuple(_stack(list(outputs), shape, indent, "return "))
 
 
-def _stack(outputs: list[str], shape: tuple[int, ...], indent: str) -> list[str]:
-    """The lines of ``jnp.stack([...])`` over the leading axis of ``shape``, nested for the others."""
+def _stack(outputs: list[str], shape: tuple[int, ...], indent: str, head: str = "") -> list[str]:
+    """The lines of ``head jnp.stack([...])`` over the leading axis of ``shape``, nested for the others."""
     if len(shape) == 1:
-        single = f"{indent}jnp.stack([{', '.join(outputs)}])"
+        single = f"{indent}{head}jnp.stack([{', '.join(outputs)}])"
         if len(single) < LINE_WIDTH:  # room for the comma a nested row ends with
             return [single]
-        lines = [f"{indent}jnp.stack(["]
+        lines = [f"{indent}{head}jnp.stack(["]
         for value in outputs:
             lines += wrap_statement(f"{indent}    ", value, ",")
         return [*lines, f"{indent}])"]
     size = len(outputs) // shape[0]
-    lines = [f"{indent}jnp.stack(["]
+    lines = [f"{indent}{head}jnp.stack(["]
     for k in range(shape[0]):
         inner = _stack(outputs[k * size:(k + 1) * size], shape[1:], indent + "    ")
         inner[-1] += ","

@@ -79,6 +79,49 @@ def _general_link(robot: Robot, joint, previous, value: float) -> np.ndarray:
     return np.linalg.inv(before) @ origin @ motion @ _alignment(axis)
 
 
+def _screw_matrix(screw: np.ndarray) -> np.ndarray:
+    """The 4 x 4 matrix [S] of a screw (w, v) in se(3)."""
+    w, v = screw[:3], screw[3:]
+    return np.array([[0, -w[2], w[1], v[0]], [w[2], 0, -w[0], v[1]], [-w[1], w[0], 0, v[2]], [0, 0, 0, 0.0]])
+
+
+def _screw_points(robot: Robot) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Per joint of a PoE robot: its space screw, and where symjac documents its frame at home: point and axis (a
+    revolute axis' given point, else w x v, the point nearest the origin; a prismatic joint keeps the point before)."""
+    rows, point = [], np.zeros(3)
+    for joint in robot.joints:
+        placement = joint.placement
+        screw = np.array([_float(e, robot) for e in (*placement.omega, *placement.v)])
+        if joint.is_revolute:
+            point = (np.array([_float(e, robot) for e in placement.point]) if placement.point is not None
+                     else np.cross(screw[:3], screw[3:]))
+        rows.append((screw, point, screw[:3] if joint.is_revolute else screw[3:]))
+    return rows
+
+
+def _screw_frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
+    """Frames {0}..{n} of a PoE robot: e^[S1]q1 ... e^[Si]qi G_i, the exponentials by SciPy's expm."""
+    from scipy.linalg import expm
+
+    poses, product = [np.eye(4)], np.eye(4)
+    for (screw, point, axis), value in zip(_screw_points(robot), q, strict=True):
+        product = product @ expm(_screw_matrix(screw) * value)
+        poses.append(product @ _trans(*point) @ _alignment(axis))
+    return poses
+
+
+def _screw_home(robot: Robot, q: np.ndarray) -> np.ndarray:
+    """The tool of a PoE robot: e^[S1]q1 ... e^[Sn]qn M, with M = G_n times the tool transform."""
+    from scipy.linalg import expm
+
+    product = np.eye(4)
+    for (screw, _, _), value in zip(_screw_points(robot), q, strict=True):
+        product = product @ expm(_screw_matrix(screw) * value)
+    _, point, axis = _screw_points(robot)[-1]
+    tool = np.array(robot.tool.matrix.subs(robot.defaults), dtype=float)
+    return product @ _trans(*point) @ _alignment(axis) @ tool
+
+
 def joint_values(robot: Robot, q: np.ndarray) -> np.ndarray:
     """The joint variables theta(q) at the coordinates ``q`` (``q`` itself without a coupling or if joint values)."""
     if robot.coupling is None or len(q) == robot.n_joints:
@@ -94,6 +137,8 @@ def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
     tool = np.array(robot.tool.matrix.subs(robot.defaults), dtype=float) if robot.tool else np.eye(4)
     poses = [np.eye(4), base]
     previous = None
+    if robot.convention == "poe":
+        return [np.eye(4), *(base @ pose for pose in _screw_frames(robot, q)), base @ _screw_home(robot, q)]
     for joint, value in zip(robot.joints, q, strict=True):
         if robot.convention == "general":
             poses.append(poses[-1] @ _general_link(robot, joint, previous, value))

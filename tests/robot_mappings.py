@@ -29,6 +29,7 @@ EXPECTED = {
     "ur5": (6, "standard", (), False, False),
     "panda": (7, "modified", (), False, True),
     "palletizer": (5, "modified", (), False, False),
+    "ur5_poe": (6, "poe", (), False, True),
 }
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 
@@ -37,6 +38,18 @@ def test_catalog_lists_the_built_in_robots():
         assert description, f"{name} has no description"
 
 
+def placement_values(placement) -> list[sp.Expr]:
+    """The numbers of a joint's placement: a DH row's alpha and a, or the entries of a screw and its point."""
+    values = []
+    for field in dataclasses.fields(placement):
+        value = getattr(placement, field.name)
+        if field.compare and isinstance(value, sp.Expr):
+            values.append(value)
+        elif field.compare and isinstance(value, tuple):
+            values.extend(value)
+    return values
+
+
 @pytest.mark.parametrize("name", CATALOG)
 def test_every_catalog_robot_loads(name):
     robot = load_robot(name)
@@ -49,7 +62,7 @@ def test_every_catalog_robot_loads(name):
     for parameter in robot.parameters:
         assert isinstance(parameter.default, sp.Rational)
     for joint in robot.joints:
-        for value in (joint.placement.alpha, joint.placement.a, joint.d, joint.theta):
+        for value in (*placement_values(joint.placement), joint.d, joint.theta):
             assert value.free_symbols <= set(robot.parameter_symbols)
             assert math.isfinite(float(value.subs(robot.defaults)))
 

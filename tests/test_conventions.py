@@ -25,8 +25,12 @@ CHAIN_SOURCE = Path(__file__).resolve().parent.parent / "symjac" / "kinematics" 
 def samples(convention: Convention) -> list:
     """Robots in ``convention``: a small one any convention reads, the catalog's and the URDF files' robots in it."""
     rows = [{"type": "revolute"}, {"type": "prismatic", "d": "L1", "theta": "pi/3", "limits": [0, 1]}]
-    small = robot_from_mapping({"name": "small", "convention": convention.value, "parameters": {"L1": 0.5},
-                                "joints": rows})
+    data = {"name": "small", "convention": convention.value, "parameters": {"L1": 0.5}, "joints": rows}
+    if convention == "poe":  # screws and a home pose instead of offsets
+        data["joints"] = [{"type": "revolute", "axis": [0, 0, 1], "point": ["L1", 0, 0]},
+                          {"type": "prismatic", "screw": [0, 0, 0, 0, 0, 1], "limits": [0, 1]}]
+        data["home"] = {"xyz": ["L1", 0, "L1"], "rpy": [0, 0, "pi/3"]}
+    small = robot_from_mapping(data)
     robots = [load_robot(name) for name in catalog()] + [load_robot(name) for name in urdf_catalog()]
     return [small] + [robot for robot in robots if robot.convention is convention]
 

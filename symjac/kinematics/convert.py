@@ -22,12 +22,16 @@ from symjac.model.expressions import snap_angle
 from symjac.model.robot import Convention, Joint, Robot, fixed_transform_from_matrix
 from symjac.symbolic.transforms import homogeneous, inverse_transform
 
-__all__ = ["ConversionError", "DHExtraction", "convert", "converted", "dh_from_general", "modified_from_standard",
+__all__ = ["ConversionError", "DHExtraction", "axes_at_home", "convert", "converted",
+           "dh_from_general", "modified_from_standard"]
            "standard_from_modified"]
 
 
 def convert(robot: Robot, to: Convention | str) -> Robot:
-    """``robot`` in the convention ``to`` (``"standard"`` or ``"modified"``); unchanged if it already is.
+    """``robot`` in the convention ``to``; unchanged if it already is.
+
+    Every robot converts to ``"standard"`` and ``"modified"`` DH (with base and tool transforms where no DH table
+    alone describes it) and to ``"poe"`` (screws from its axes at home); a PoE robot also converts to ``"general"``.
 
     Examples
     --------
@@ -44,12 +48,19 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
     if robot.convention is target:
         return robot, ()
     source, destination = plugin(robot.convention), plugin(target)
-    notes: tuple[str, ...]
-    modified, notes = source.to_modified(robot), ()
-    if modified is None:
-        extraction = dh_from_general(robot)
-        modified, notes = extraction.robot, extraction.notes
-    result = destination.from_modified(modified)
+    notes: tuple[str, ...] = ()
+    result = source.rewrite(robot, target) or destination.from_axes(robot.uncoupled, lambda: axes_at_home(robot))
+    if result is None:  # through a modified-DH table: exact when the source's plug-in has one, else measured
+        modified = source.to_modified(robot)
+        if modified is None:
+            numeric = not any(e.free_symbols for F in axes_at_home(robot) for e in sp.Matrix(F))
+            extraction = dh_from_general(robot, substitute_defaults=not numeric)
+            modified, notes = extraction.robot, extraction.notes
+            if not numeric:  # axes measured exactly need numbers: the table is the defaults'
+                modified = replace(modified, parameters=())
+                notes = (*notes, f"the DH table is numeric: its axes were measured with the parameters "
+                                 f"({', '.join(p.name for p in robot.parameters)}) at their defaults")
+        result = destination.from_modified(modified)
     if result is None:
         raise ConversionError(f"cannot convert {robot.name} from {robot.convention.value} to {target.value}")
     if robot.coupling is not None:  # the same joints in the same order keep their variables: the coupling carries over
@@ -58,6 +69,17 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
                                   f"would change its joint variables")
         result = replace(result, coupling=robot.coupling)
     return result, notes
+
+
+def axes_at_home(robot: Robot) -> tuple[list[sp.Matrix], sp.Matrix]:
+    """The pose in frame {0} at zero joint values of each joint's axis frame (z along the axis, origin on it), and
+    of the tool frame (frame {n} without a tool).
+    """
+    chain = chain_of(robot.uncoupled)
+    zero = dict.fromkeys(robot.joint_variables, sp.S.Zero)
+    frames = [sp.Matrix(chain.transform(0, chain.axis_frame(joint.index))).xreplace(zero) for joint in robot.joints]
+    home = sp.Matrix(chain.transform(0, "tool" if robot.tool is not None else robot.n_joints)).xreplace(zero)
+    return frames, home
 
 
 @dataclass(frozen=True)

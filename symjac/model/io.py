@@ -157,16 +157,14 @@ def robot_to_toml(robot: Robot) -> str:
     convention = "standard"
     """
     data = robot_to_mapping(robot)
-    lines = []
-    for key in ("name", "description", "convention"):
-        if key in data:
-            lines.append(f"{key} = {_toml_value(data[key])}")
+    tables = [key for key, value in data.items() if isinstance(value, dict)]  # parameters, base, a convention's own
+    lines = [f"{key} = {_toml_value(value)}" for key, value in data.items() if key not in tables and key != "joints"]
     if "parameters" in data:
         lines += ["", "[parameters]"] + [f"{name} = {_toml_value(v)}" for name, v in data["parameters"].items()]
     for joint in data["joints"]:
         lines += ["", "[[joints]]"] + [f"{key} = {_toml_value(v)}" for key, v in joint.items()]
-    for key in ("base", "tool"):
-        if key in data:
+    for key in tables:
+        if key != "parameters":
             lines += ["", f"[{key}]"] + [f"{k} = {_toml_value(v)}" for k, v in data[key].items()]
     return "\n".join(lines) + "\n"
 
@@ -176,8 +174,8 @@ def _toml_value(value: Any) -> str:
     if isinstance(value, str):
         # a JSON string is a valid TOML basic string, except that TOML also requires DEL (U+007F) escaped
         return json.dumps(value, ensure_ascii=False).replace("\x7f", "\\u007f")
-    if isinstance(value, bool):  # pragma: no cover - robot files hold no booleans
-        raise TypeError("booleans are not used in robot files")
+    if isinstance(value, bool):  # the product of exponentials' ``body``
+        return "true" if value else "false"
     if isinstance(value, int | float):
         return repr(value)
     if isinstance(value, list):

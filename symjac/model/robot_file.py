@@ -21,7 +21,7 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
-from symjac.model.conventions import convention_named, plugin
+from symjac.model.conventions import PLUGINS, convention_named, plugin
 from symjac.model.conventions.base import transform_fields
 from symjac.model.coordinates import Coupling
 from symjac.model.expressions import exact_number, expression_text, name_problem, parse_expression
@@ -69,9 +69,14 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
 
     if not isinstance(data, Mapping):
         raise fail(f"expected a table of robot fields, got {type(data).__name__}")
-    unknown = sorted(set(data) - _TOP_KEYS)
+    declared = data.get("convention")
+    own = PLUGINS.get(declared) if isinstance(declared, str) else None  # type: ignore[call-overload]
+    top_keys = _TOP_KEYS if own is None else (_TOP_KEYS | set(own.robot_keys)) - ({"tool"} if own.owns_tool else set())
+    unknown = sorted(set(data) - top_keys)
+    if "tool" in unknown and own is not None:
+        raise fail(f"'tool' is not used by the {declared} convention: {own.tool_note}", field="tool")
     if unknown:
-        raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(_TOP_KEYS))}")
+        raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(top_keys))}")
 
     if not data:
         raise fail("the robot description is empty: a robot file needs 'name', 'convention' and [[joints]]")
@@ -120,6 +125,10 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
             raise fail(str(error), joint=joint, field=field) from None
         return expr * scale
 
+    settings = spec.read_settings(
+        data, lambda key: _fixed_transform(data[key], key, value, defaults, fail, angle_scale),
+        lambda message, field: fail(message, field=field))
+
     allowed = {"type", "d", "theta", "limits", "coupled", *spec.keys}
     joints = []
     for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
@@ -127,7 +136,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         if unknown:
             raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(allowed))}",
                        joint=number)
-        reader = _JointReader(joint_data, number, value, defaults, fail, angle_scale)
+        reader = _JointReader(joint_data, number, value, defaults, fail, angle_scale, settings)
         placement, joint_name = spec.read(joint_data, reader)
         d, theta = reader.number("d"), reader.number("theta", angle=True)
         limits = None
@@ -139,10 +148,12 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
                             name=joint_name))
 
     coupling = _coupling(joints_data, joints, names, defaults, fail)
-    transforms = {}
+    transforms: dict[str, FixedTransform | None] = {}
     for key in ("base", "tool"):
         if key in data:
             transforms[key] = _fixed_transform(data[key], key, value, defaults, fail, angle_scale)
+    if spec.owns_tool:
+        transforms["tool"] = spec.tool(joints, settings)
 
     return Robot(
         name=name,
@@ -207,8 +218,8 @@ class _JointReader:
     """Reads one joint table for a convention plug-in (:class:`~symjac.model.conventions.base.JointReader`)."""
 
     def __init__(self, table: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
-                 fail: Any, angle_scale: sp.Expr):
-        self.table, self.joint, self.defaults = table, number, defaults
+                 fail: Any, angle_scale: sp.Expr, settings: Mapping[str, Any]):
+        self.table, self.joint, self.defaults, self.settings = table, number, defaults, settings
         self._value, self._fail, self._angle_scale = value, fail, angle_scale
 
     def value(self, raw: Any, field: str, *, angle: bool = False) -> sp.Expr:
@@ -339,6 +350,7 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
     if robot.parameters:
         data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in robot.parameters}
     spec = plugin(robot.convention)
+    data.update(spec.write_settings(robot))
     joints = []
     for joint, value in zip(robot.joints, _written_values(robot), strict=True):
         row: dict[str, Any] = {"type": joint.type.value, **spec.write(joint)}
@@ -348,7 +360,7 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
             row["limits"] = [expression_text(limit) for limit in joint.limits]
         joints.append(row)
     data["joints"] = joints
-    for key in ("base", "tool"):
+    for key in ("base",) if spec.owns_tool else ("base", "tool"):
         transform: FixedTransform | None = getattr(robot, key)
         if transform is not None:
             data[key] = transform_fields(transform)

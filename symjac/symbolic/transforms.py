@@ -21,6 +21,7 @@ __all__ = [
     "Axis",
     "Composition",
     "Motion",
+    "adjoint",
     "alignment",
     "block_rotation",
     "compose",
@@ -128,6 +129,24 @@ def twist_transform(transform: sp.MatrixBase) -> sp.Matrix:
     """
     R, p = sp.Matrix(transform[:3, :3]), sp.Matrix(transform[:3, 3])
     return sp.Matrix(sp.BlockMatrix([[R, skew(p) * R], [sp.zeros(3), R]]))
+
+
+def adjoint(transform: sp.MatrixBase) -> sp.Matrix:
+    r"""The adjoint map of :math:`T = [R, p; 0, 1]` on twists written angular part first, as Lynch and Park do.
+
+    .. math:: [\mathrm{Ad}_T] = egin{bmatrix} R & 0 \ \hat{p} R & R \end{bmatrix}, \qquad
+              \mathcal{V}_A = [\mathrm{Ad}_{T_{AB}}]\,\mathcal{V}_B
+
+    (:func:`twist_transform` is the same map for twists written linear part first.)
+
+    Examples
+    --------
+    >>> L = sp.Symbol("L")
+    >>> (adjoint(homogeneous(sp.eye(3), sp.Matrix([L, 0, 0]))) * sp.Matrix([0, 0, 1, 0, 0, 0])).T
+    Matrix([[0, 0, 1, 0, -L, 0]])
+    """
+    R, p = sp.Matrix(transform[:3, :3]), sp.Matrix(transform[:3, 3])
+    return sp.Matrix(sp.BlockMatrix([[R, sp.zeros(3)], [skew(p) * R, R]]))
 
 
 def wrench_transform(transform: sp.MatrixBase) -> sp.Matrix:

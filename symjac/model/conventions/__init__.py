@@ -18,7 +18,7 @@ from symjac.model.robot import Convention, Robot
 
 __all__ = ["MEMBERS", "PLUGINS", "convention_named", "joint_forms", "plugin"]
 
-MEMBERS: tuple[str, ...] = ("standard", "modified", "general")
+MEMBERS: tuple[str, ...] = ("standard", "modified", "general", "poe")
 """The modules of this folder that are conventions, each with a ``PLUGIN``; a new convention adds its name here."""
 
 PLUGINS: dict[Convention, ConventionPlugin] = {

@@ -13,7 +13,7 @@ frame {i}: the chain needs nothing else to find its axes and the relation betwee
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol, TypeAlias
 
@@ -24,7 +24,8 @@ from symjac.model.expressions import expression_text
 from symjac.model.robot import Convention, FixedTransform, Joint, Placement, Robot
 from symjac.symbolic.transforms import Motion
 
-__all__ = ["Cell", "Column", "ConventionPlugin", "JointForm", "JointReader", "joint_form", "transform_fields"]
+__all__ = ["Cell", "Column", "ConventionPlugin", "JointForm", "JointReader", "NoRobotFields", "joint_form",
+           "transform_fields"]
 
 Step: TypeAlias = Motion | sp.Matrix
 Cell: TypeAlias = sp.Expr | tuple[sp.Expr, ...]
@@ -84,6 +85,10 @@ class JointReader(Protocol):
     def transform(self, keys: Sequence[str], field: str) -> FixedTransform:
         """A fixed transform from the ``xyz``/``rpy`` or ``matrix`` entries among ``keys`` (identity if none)."""
 
+    @property
+    def settings(self) -> Mapping[str, Any]:
+        """What the convention read from the file's top level (:meth:`ConventionPlugin.read_settings`)."""
+
     def fail(self, message: str, field: str | None = None) -> RobotFileError:
         """The error to raise for this joint (and ``field``)."""
 
@@ -130,3 +135,63 @@ class ConventionPlugin(Protocol):
 
     def from_modified(self, robot: Robot) -> Robot | None:
         """A modified-DH ``robot`` rewritten in this convention, or ``None`` if it cannot be a conversion target."""
+
+    def from_axes(self, robot: Robot, axes: Callable[[], tuple[Sequence[sp.MatrixBase], sp.MatrixBase]]
+                  ) -> Robot | None:
+        """Any ``robot`` rewritten in this convention from its joint axes at home, or ``None`` to go through DH.
+
+        ``axes()`` gives the poses in {0} at :math:`q = 0` of each joint's axis frame and of the tool frame.
+        """
+
+    def rewrite(self, robot: Robot, target: Convention) -> Robot | None:
+        """This convention's ``robot`` rewritten in ``target`` directly, or ``None`` (then :meth:`from_axes`)."""
+
+    robot_keys: tuple[str, ...]
+    """Top-level robot-file keys this convention reads besides the common ones (the product of exponentials: ``home``
+    and ``body``)."""
+    owns_tool: bool
+    """Whether the convention places the tool itself (then a file's ``tool`` is refused and never written)."""
+    tool_note: str
+    """Where such a convention's files place the tool instead (said when a file gives ``tool``)."""
+
+    def read_settings(self, data: Mapping[str, Any], transform: Callable[[str], FixedTransform],
+                      fail: Callable[[str, str], RobotFileError]) -> Mapping[str, Any]:
+        """The top-level fields under :attr:`robot_keys`, read before the joints (``transform(key)`` reads a
+        ``xyz``/``rpy`` or ``matrix`` table; ``fail(message, field)`` is the error to raise).
+        """
+
+    def tool(self, joints: Sequence[Joint], settings: Mapping[str, Any]) -> FixedTransform | None:
+        """The tool transform the convention places (when :attr:`owns_tool`), from the joints read."""
+
+    def write_settings(self, robot: Robot) -> dict[str, Any]:
+        """The top-level robot-file fields under :attr:`robot_keys`, as :meth:`read_settings` reads them."""
+
+
+class NoRobotFields:
+    """The defaults of a convention that reads joint tables only (both DH conventions, general joints)."""
+
+    robot_keys: tuple[str, ...] = ()
+    owns_tool = False
+    tool_note = ""
+
+    def read_settings(self, data: Mapping[str, Any], transform: Callable[[str], FixedTransform],
+                      fail: Callable[[str, str], RobotFileError]) -> Mapping[str, Any]:
+        """Nothing."""
+        return {}
+
+    def tool(self, joints: Sequence[Joint], settings: Mapping[str, Any]) -> FixedTransform | None:
+        """None: the file's ``tool`` is the tool."""
+        return None
+
+    def write_settings(self, robot: Robot) -> dict[str, Any]:
+        """Nothing."""
+        return {}
+
+    def from_axes(self, robot: Robot, axes: Callable[[], tuple[Sequence[sp.MatrixBase], sp.MatrixBase]]
+                  ) -> Robot | None:
+        """None: conversions go through a modified-DH table."""
+        return None
+
+    def rewrite(self, robot: Robot, target: Convention) -> Robot | None:
+        """None: conversions go through a modified-DH table."""
+        return None

@@ -20,7 +20,15 @@ from typing import Any
 
 import sympy as sp
 
-from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, joint_form, transform_fields
+from symjac.model.conventions.base import (
+    Cell,
+    Column,
+    JointForm,
+    JointReader,
+    NoRobotFields,
+    joint_form,
+    transform_fields,
+)
 from symjac.model.expressions import expression_text
 from symjac.model.robot import Convention, FixedTransform, Joint, Placement, Robot, unit_vector
 from symjac.symbolic.transforms import Motion, alignment, inverse_motions
@@ -65,7 +73,7 @@ def origin_motions(origin: FixedTransform | None) -> tuple[Motion | sp.Matrix, .
             Motion("R", "z", yaw), Motion("R", "y", pitch), Motion("R", "x", roll))
 
 
-class General:
+class General(NoRobotFields):
     """The plug-in of general (URDF-style) joints (see :class:`~symjac.model.conventions.base.ConventionPlugin`)."""
 
     convention = Convention.GENERAL

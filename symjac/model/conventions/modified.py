@@ -10,14 +10,14 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from symjac.model.conventions.base import Cell, Column, JointForm, JointReader
+from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields
 from symjac.model.conventions.dh import DHPlacement, dh_cells, dh_columns, dh_forms, read_dh, write_dh
 from symjac.model.robot import Convention, Joint, Robot
 
 __all__ = ["MODIFIED", "PLUGIN", "ModifiedDH"]
 
 
-class ModifiedDH:
+class ModifiedDH(NoRobotFields):
     """The plug-in of the modified DH convention (see :class:`~symjac.model.conventions.base.ConventionPlugin`)."""
 
     convention = Convention.MODIFIED

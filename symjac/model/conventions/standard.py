@@ -29,7 +29,7 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ConversionError
-from symjac.model.conventions.base import Cell, Column, JointForm, JointReader
+from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields
 from symjac.model.conventions.dh import DHPlacement, dh_cells, dh_columns, dh_forms, dh_placement, read_dh, write_dh
 from symjac.model.robot import Convention, FixedTransform, Joint, Robot, fixed_transform_from_matrix
 from symjac.symbolic.transforms import homogeneous, rotation
@@ -37,7 +37,7 @@ from symjac.symbolic.transforms import homogeneous, rotation
 __all__ = ["PLUGIN", "STANDARD", "StandardDH", "modified_from_standard", "standard_from_modified"]
 
 
-class StandardDH:
+class StandardDH(NoRobotFields):
     """The plug-in of the standard DH convention (see :class:`~symjac.model.conventions.base.ConventionPlugin`)."""
 
     convention = Convention.STANDARD

@@ -23,8 +23,7 @@ from symjac.model.robot import Convention, Joint, Robot, fixed_transform_from_ma
 from symjac.symbolic.transforms import homogeneous, inverse_transform
 
 __all__ = ["ConversionError", "DHExtraction", "axes_at_home", "convert", "converted",
-           "dh_from_general", "modified_from_standard"]
-           "standard_from_modified"]
+           "dh_from_general", "modified_from_standard", "standard_from_modified"]
 
 
 def convert(robot: Robot, to: Convention | str) -> Robot:
@@ -72,8 +71,9 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
 
 
 def axes_at_home(robot: Robot) -> tuple[list[sp.Matrix], sp.Matrix]:
-    """The pose in frame {0} at zero joint values of each joint's axis frame (z along the axis, origin on it), and
-    of the tool frame (frame {n} without a tool).
+    """The poses in frame {0} at zero joint values of each joint's axis frame and of the tool frame.
+
+    A joint's axis frame has its z-axis along the axis and its origin on it; without a tool, frame {n} stands in.
     """
     chain = chain_of(robot.uncoupled)
     zero = dict.fromkeys(robot.joint_variables, sp.S.Zero)

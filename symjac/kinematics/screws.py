@@ -67,8 +67,10 @@ def screw_exponential(screw: Sequence[sp.Expr], theta: sp.Expr) -> sp.Matrix:
 
 
 def exponential_product(robot: Robot | Chain) -> sp.Matrix:
-    r""":math:`T(\theta) = e^{[\mathcal{S}_1]\theta_1} \cdots e^{[\mathcal{S}_n]\theta_n} M` of a PoE robot, each
-    factor by :func:`screw_exponential`, multiplied out as it stands (in the coordinates).
+    r"""The product of exponentials :math:`e^{[\mathcal{S}_1]\theta_1} \cdots e^{[\mathcal{S}_n]\theta_n} M`.
+
+    Each factor is :func:`screw_exponential` of a PoE robot's screw; the product is multiplied out as it stands (in
+    the coordinates).
 
     It equals ``forward_kinematics(robot, target="tool")`` (the chain's product of link transforms) identically;
     the tests check it.

@@ -144,7 +144,7 @@ class ConventionPlugin(Protocol):
         """
 
     def rewrite(self, robot: Robot, target: Convention) -> Robot | None:
-        """This convention's ``robot`` rewritten in ``target`` directly, or ``None`` (then :meth:`from_axes`)."""
+        """A ``robot`` of this convention rewritten in ``target`` directly, or ``None`` (then :meth:`from_axes`)."""
 
     robot_keys: tuple[str, ...]
     """Top-level robot-file keys this convention reads besides the common ones (the product of exponentials: ``home``

@@ -156,8 +156,9 @@ class ConventionPlugin(Protocol):
 
     def read_settings(self, data: Mapping[str, Any], transform: Callable[[str], FixedTransform],
                       fail: Callable[[str, str], RobotFileError]) -> Mapping[str, Any]:
-        """The top-level fields under :attr:`robot_keys`, read before the joints (``transform(key)`` reads a
-        ``xyz``/``rpy`` or ``matrix`` table; ``fail(message, field)`` is the error to raise).
+        """The top-level fields under :attr:`robot_keys`, read before the joints.
+
+        ``transform(key)`` reads a ``xyz``/``rpy`` or ``matrix`` table; ``fail(message, field)`` is the error to raise.
         """
 
     def tool(self, joints: Sequence[Joint], settings: Mapping[str, Any]) -> FixedTransform | None:

@@ -43,8 +43,8 @@ from symjac.model.robot import (
 )
 from symjac.symbolic.transforms import adjoint, alignment, compose, homogeneous, inverse_transform
 
-__all__ = ["PLUGIN", "POE", "PRODUCT_OF_EXPONENTIALS", "ProductOfExponentials", "ScrewPlacement", "as_general", "home_pose", "screw_placement",
-           "space_screws"]
+__all__ = ["PLUGIN", "POE", "PRODUCT_OF_EXPONENTIALS", "ProductOfExponentials", "ScrewPlacement", "as_general",
+           "home_pose", "screw_placement", "space_screws"]
 
 Vector: TypeAlias = tuple[sp.Expr, sp.Expr, sp.Expr]
 
@@ -141,8 +141,10 @@ def home_pose(robot: Robot) -> sp.Matrix:
 
 
 def as_general(robot: Robot) -> Robot:
-    r"""A PoE ``robot`` as general joints: origin :math:`\mathrm{Trans}(q_i - q_{i-1})`, axis :math:`\omega_i` (or
-    :math:`v_i`), the same tool transform; the same chain, frame by frame.
+    r"""A PoE ``robot`` as general joints: the same chain, frame by frame.
+
+    Joint *i* gets the origin :math:`\mathrm{Trans}(q_i - q_{i-1})` and the axis :math:`\omega_i` (or :math:`v_i`);
+    the tool transform is the same.
     """
     joints, previous = [], _ZERO
     for joint, (point, direction) in zip(robot.joints, _home_frames(robot.joints), strict=True):

@@ -41,4 +41,10 @@ SOLUTIONS: dict[str, dict[str, str]] = {
         "answer_2": "answer_2 = sp.cos(theta2) / sp.sin(theta2)",
         "answer_3": "answer_3 = 0.9",
     },
+    "08_product_of_exponentials": {
+        "answer_1": ("answer_1 = sp.Matrix([-sp.sin(theta1), sp.cos(theta1), 0, -H1 * sp.cos(theta1), "
+                     "-H1 * sp.sin(theta1), 0])"),
+        "answer_2": "answer_2 = sp.Matrix([0, 0, 1, 0, 0, 0])",
+        "answer_3": "answer_3 = 6",
+    },
 }

@@ -5,7 +5,8 @@ kinematics (:func:`chain_of`, :func:`forward_kinematics`) and Jacobians (:func:`
 iterations themselves with :func:`velocity_propagation` and :func:`force_propagation`), the acceleration level
 (:func:`hessian`, :func:`jacobian_derivative`, :func:`bias_acceleration`, :func:`acceleration_propagation`,
 :func:`manipulability_gradient`, :func:`log_det_gradient`, :func:`representation_jacobian_derivative`), statics
-(:func:`joint_torques`, :func:`wrench_transform`, :func:`twist_transform`), singular configurations
+(:func:`joint_torques`, :func:`wrench_transform`, :func:`twist_transform`), screw theory (:func:`space_jacobian`,
+:func:`body_jacobian`, :func:`screw_exponential`, :func:`exponential_product`, :func:`adjoint`), singular configurations
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
 :func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`); print them
 (:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`).
@@ -50,6 +51,8 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "symjac.kinematics.jacobian": ("METHODS", "ROW_NAMES", "change_frame", "jacobian", "jacobian_of",
         "rows_from_names", "shift_point"),
     "symjac.kinematics.numeric": ("evaluate_at", "numeric_jacobian"),
+    "symjac.kinematics.screws": ("SCREW_ROWS", "body_jacobian", "exponential_product", "screw_exponential",
+        "space_jacobian"),
     "symjac.kinematics.propagation": ("ForcePropagation", "VelocityPropagation", "force_propagation",
         "joint_rate_symbols", "velocity_propagation", "wrench_symbols"),
     "symjac.kinematics.statics": ("joint_torques", "wrench_between"),
@@ -60,7 +63,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
     "symjac.printing": ("latex", "pretty"),
     "symjac.symbolic.angles": ("AngleBasis",),
     "symjac.symbolic.simplify": ("is_identity", "simplify_expr", "simplify_matrix"),
-    "symjac.symbolic.transforms": ("twist_transform", "wrench_transform"),
+    "symjac.symbolic.transforms": ("adjoint", "twist_transform", "wrench_transform"),
 }
 """Each module of the public API and the names :mod:`symjac` re-exports from it."""
 
@@ -71,6 +74,7 @@ __all__ = [
     "METHODS",
     "REPRESENTATIONS",
     "ROW_NAMES",
+    "SCREW_ROWS",
     "AccelerationPropagation",
     "AccelerationStep",
     "AngleBasis",
@@ -109,8 +113,10 @@ __all__ = [
     "VelocityPropagation",
     "__version__",
     "acceleration_propagation",
+    "adjoint",
     "as_chain",
     "bias_acceleration",
+    "body_jacobian",
     "catalog",
     "chain_of",
     "change_frame",
@@ -119,6 +125,7 @@ __all__ = [
     "damped_least_squares",
     "determinant",
     "evaluate_at",
+    "exponential_product",
     "extract",
     "force_propagation",
     "forward_kinematics",
@@ -153,10 +160,12 @@ __all__ = [
     "robot_to_toml",
     "rotation_from",
     "rows_from_names",
+    "screw_exponential",
     "shift_point",
     "simplify_expr",
     "simplify_matrix",
     "singularities",
+    "space_jacobian",
     "symbolic_spaces",
     "task_rows",
     "twist_transform",
@@ -254,6 +263,13 @@ if _TYPE_CHECKING:  # static checkers see the names as if imported eagerly
         velocity_propagation,
         wrench_symbols,
     )
+    from symjac.kinematics.screws import (
+        SCREW_ROWS,
+        body_jacobian,
+        exponential_product,
+        screw_exponential,
+        space_jacobian,
+    )
     from symjac.kinematics.statics import joint_torques, wrench_between
     from symjac.model.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
     from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Parameter, Robot
@@ -261,4 +277,4 @@ if _TYPE_CHECKING:  # static checkers see the names as if imported eagerly
     from symjac.model.urdf import robot_from_urdf
     from symjac.printing import latex, pretty
     from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
-    from symjac.symbolic.transforms import twist_transform, wrench_transform
+    from symjac.symbolic.transforms import adjoint, twist_transform, wrench_transform

@@ -48,7 +48,7 @@ def _commands() -> list[str]:
 
 @pytest.fixture
 def readme_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    (toml,) = [b for b in _blocks("toml") if "[[joints]]" in b and "name = " in b]
+    (toml,) = [b for b in _blocks("toml") if "[[joints]]" in b and 'name = "puma560"' in b]
     (tmp_path / "my_arm.toml").write_text(toml.replace('name = "puma560"', 'name = "my_arm"'), encoding="utf-8")
     (tmp_path / "arm.urdf").write_bytes((ROOT / "symjac" / "robots" / "urdf" / "ur5.urdf").read_bytes())
     monkeypatch.chdir(tmp_path)

@@ -206,6 +206,8 @@ def _jacobian(args: argparse.Namespace) -> Document:
     note_if_large(robot.name, robot.n_joints)
     frame = parse_frame(args.frame)
     point = parse_point(args.point, robot)
+    if args.kind != "geometric":
+        return _screw_jacobian(args, robot)
     if args.representation is not None:
         return _representation(args, robot, frame, point)
     if args.derivative:
@@ -214,6 +216,22 @@ def _jacobian(args: argparse.Namespace) -> Document:
     J = progress(f"Jacobian of {robot.name} in frame {frame}",
                   lambda: jacobian(robot, frame=frame, point=point, method=args.method))
     return jacobian_document(robot, J, frame, args.point, args.method, propagation, _digits(args))
+
+
+def _screw_jacobian(args: argparse.Namespace, robot: Robot) -> Document:
+    """``jacobian --kind space|body``: J_s or J_b (the frame and point are the space and tool frames)."""
+    from symjac.kinematics.screws import body_jacobian, space_jacobian
+    from symjac.printing.results import screw_jacobian_document
+
+    others = [flag for flag, given in (("--frame", args.frame != "0"), ("--point", args.point != "wrist"),
+                                       ("--representation", args.representation is not None),
+                                       ("--derivative", args.derivative), ("--steps", args.steps)) if given]
+    if others:
+        raise ArgumentError(f"--kind {args.kind} takes neither {' nor '.join(others)}: J_s is in the space frame "
+                            f"{{0}}, J_b in the tool frame")
+    derive = space_jacobian if args.kind == "space" else body_jacobian
+    J = progress(f"{args.kind} Jacobian of {robot.name}", lambda: derive(robot))
+    return screw_jacobian_document(robot, J, args.kind, _digits(args))
 
 
 def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> Document:
@@ -341,7 +359,7 @@ COMMANDS: dict[str, tuple[Handler, str, Options]] = {
     "errata": (_errata, "the errata sheet of the course notes: every printed formula checked", errata_options),
     "codegen": (_codegen, "generate a numeric module: forward kinematics, Jacobians, torques", codegen_options),
     "report": (_report, "write the whole derivation as one self-contained HTML page", robot_options),
-    "convert": (_convert, "print the robot as a TOML robot file, converted to a DH convention", convert_options),
+    "convert": (_convert, "print the robot as a TOML robot file, converted to another convention", convert_options),
     "show": (_show, "show the DH table and the link transforms", result_options),
     "fk": (_fk, "print the forward kinematics", result_options),
     "jacobian": (_jacobian, "print the basic Jacobian [v; omega]", result_options),

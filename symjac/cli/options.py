@@ -54,8 +54,9 @@ def robot_options(sub: argparse.ArgumentParser, name: str) -> None:
 def convert_options(sub: argparse.ArgumentParser, name: str) -> None:
     """``symjac convert``: the convention to convert to."""
     add_robot_arguments(sub)
-    sub.add_argument("--to", choices=("modified", "standard", "toml"), required=True,
-                     help="the DH convention to convert to, or toml to keep the robot as it is")
+    sub.add_argument("--to", choices=("modified", "standard", "poe", "general", "toml"), required=True,
+                     help="the convention to convert to (poe: screw axes and home pose; general: from poe only), "
+                          "or toml to keep the robot as it is")
 
 
 def result_options(sub: argparse.ArgumentParser, name: str) -> None:
@@ -78,6 +79,9 @@ def result_options(sub: argparse.ArgumentParser, name: str) -> None:
 
         representations = "symjac.analysis.representations"  # loaded only when one is asked for (it loads NumPy)
         sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
+        sub.add_argument("--kind", choices=("geometric", "space", "body"), default="geometric",
+                         help="geometric: the basic Jacobian [v; omega] (default); space or body: J_s or J_b of "
+                              "screw theory, rows (omega; v) as in Lynch and Park (--frame and --point do not apply)")
         sub.add_argument("--steps", action="store_true",
                          help="with a propagation method (or --derivative): print every propagation step first")
         sub.add_argument("--representation", choices=LazyChoices(representations, "REPRESENTATIONS"), default=None,

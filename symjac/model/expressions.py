@@ -142,6 +142,10 @@ def _parse(text: str, names: Mapping[str, sp.Symbol]) -> sp.Expr:
     return _build(tree.body, names, text)
 
 
+FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sqrt": sp.sqrt}
+"""The functions a field may call, each of one argument: exact unit axes (``sqrt(2)/2``), the axes a DH table with a
+generic twist gives (``cos(3/10)``)."""
+
 _BINARY = {
     ast.Add: lambda a, b: a + b,
     ast.Sub: lambda a, b: a - b,
@@ -185,7 +189,14 @@ def _build(node: ast.AST, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
         if bits * abs(int(power)) > MAX_POWER_BITS:
             raise ExpressionError(f"number too large in {text!r}")
         return _small_powers(base**power, text)
-    raise ExpressionError(f"{_what(node)} not allowed in {text!r}: use numbers, names, + - * / ** and pi")
+    if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in FUNCTIONS
+            and len(node.args) == 1 and not node.keywords):
+        argument = _build(node.args[0], names, text)
+        if node.func.id == "sqrt" and argument.is_number and argument < 0:
+            raise ExpressionError(f"square root of a negative number in {text!r}")
+        return FUNCTIONS[node.func.id](argument)
+    raise ExpressionError(f"{_what(node)} not allowed in {text!r}: use numbers, names, + - * / **, pi and "
+                          f"{', '.join(FUNCTIONS)} of one argument")
 
 
 _OPERATORS = {
@@ -262,8 +273,13 @@ def _tree_text(expr: sp.Expr) -> str:
         factors = [_tree_text(factor) for factor in sp.Mul.make_args(rest)]
         product = "*".join(factors) if len(factors) == 1 else "(" + "*".join(factors) + ")"
         return product if coefficient == 1 else f"({_tree_text(coefficient)}*{product})"
+    if expr.is_Pow and abs(expr.exp) == sp.S.Half:
+        root = f"sqrt({_tree_text(expr.base)})"
+        return root if expr.exp > 0 else f"(1/{root})"
     if expr.is_Pow:
         return f"{_tree_text(expr.base)}**({expr.exp})"
+    if isinstance(expr, sp.sin | sp.cos | sp.tan):
+        return f"{type(expr).__name__}({_tree_text(expr.args[0])})"
     return sp.sstr(expr)  # pi and parameter symbols
 
 

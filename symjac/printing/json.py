@@ -109,6 +109,15 @@ def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, me
             **({"steps": [step_data(step) for step in steps]} if steps is not None else {})}
 
 
+def screw_jacobian_data(robot: Robot, equation: Equation, kind: str) -> dict[str, Any]:
+    """``symjac jacobian --kind space|body``: J_s or J_b, rows angular part first, one column (screw) per joint."""
+    from symjac.kinematics.screws import SCREW_ROWS
+
+    J = equation.rhs
+    return {**metadata(robot), "kind": kind, "shape": list(J.shape), "rows": list(SCREW_ROWS),
+            "columns": [str(q) for q in robot.q], "entries": matrix_strings(J), "latex": equation_latex(equation)}
+
+
 def jacobian_derivative_data(robot: Robot, Jdot: Equation, bias: Equation, frame: Frame, point: str,
                              rates: list[str], steps: list[Equation] | None = None) -> dict[str, Any]:
     """``symjac jacobian --derivative``: dJ/dt and the bias acceleration Jdot qdot, in the joint rates ``rates``.

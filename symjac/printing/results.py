@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import sympy as sp
 
 from symjac.kinematics.chain import Frame, chain_of
+from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose
 from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Block, DHTable, Document, Equation, Prescripted
@@ -86,6 +87,8 @@ def transforms_document(robot: Robot, transforms: Sequence[Transform], digits: i
     """``symjac show`` and the report's first sections: the DH table, then each transform of :func:`link_transforms`."""
     equations = [transform_equation(source, target, shown(robot, T, digits)) for source, target, T in transforms]
     blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
+    if robot.convention == PRODUCT_OF_EXPONENTIALS:
+        blocks.append(Block(prose.HOME_POSE, (Equation("M", "M", shown(robot, home_pose(robot), digits)),)))
     blocks += [Block(prose.fixed_transform_caption(source, target), (e,))
                for (source, target, _), e in zip(transforms, equations, strict=True)]
     return Document(prose.title(robot, "show"), robot.name, tuple(blocks),
@@ -122,6 +125,15 @@ def jacobian_document(robot: Robot, J: sp.MatrixBase, frame: Frame, point: str, 
     return Document(prose.title(robot, "jacobian", frame), robot.name, tuple(blocks),
                     lambda: _json().jacobian_data(robot, equation, frame, point, method,
                                                steps if propagation is not None else None))
+
+
+def screw_jacobian_document(robot: Robot, J: sp.MatrixBase, kind: str, digits: int | None = None) -> Document:
+    """``symjac jacobian --kind space|body``: :math:`J_s` or :math:`J_b`, rows angular part first."""
+    letter = kind[0]
+    equation = Equation(f"J_{letter}", f"J_{letter}", shown(robot, J, digits))
+    return Document(prose.title(robot, "screw_jacobian", kind), robot.name,
+                    (Block(prose.SCREW_JACOBIAN_CAPTIONS[kind], (equation,)),),
+                    lambda: _json().screw_jacobian_data(robot, equation, kind))
 
 
 def representation_document(robot: Robot, result: Any, point: str, orientation: str, position: str,

@@ -30,7 +30,7 @@ import sympy as sp
 from symjac.errors import RobotFileError
 from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields, transform_fields
 from symjac.model.conventions.general import GENERAL, GeneralPlacement
-from symjac.model.expressions import expression_text
+from symjac.model.expressions import exact_number, expression_text
 from symjac.model.robot import (
     Convention,
     FixedTransform,
@@ -52,6 +52,8 @@ PRODUCT_OF_EXPONENTIALS = Convention.register("poe")
 """The convention's value, ``Convention("poe")``."""
 
 _ZERO: Vector = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+_TRANSCENDENTAL_OPS = 6
+"""How many operations a number made of sines and cosines of generic angles may keep exactly (``cos(3/10)`` is 1)."""
 _UNIT_TOLERANCE = 1e-6
 """How far from 1 a numeric axis length may be (files give 6-digit decimals); the axis is then normalised exactly."""
 
@@ -70,6 +72,8 @@ class ScrewPlacement(Placement):
     body: bool = False
     given: tuple[Vector, Vector, Vector | None] | None = field(default=None, compare=False)
     r"""For ``body``: :math:`\omega, v` and the point as the file gave them, in the home tool frame."""
+    home: FixedTransform | None = field(default=None, compare=False)
+    """The home pose M in the form the file gave it (every joint holds it), to write it back that way."""
 
     @property
     def screw(self) -> tuple[sp.Expr, ...]:
@@ -90,6 +94,13 @@ def space_screws(robot: Robot) -> tuple[tuple[sp.Expr, ...], ...]:
 
 
 def _tidy(expr: sp.Expr) -> sp.Expr:
+    """Sums of exact numbers and parameters multiplied out.
+
+    Sines and cosines of constants (generic DH twists) are left as they are: expanding products of them only grows
+    them.
+    """
+    if expr.has(sp.sin, sp.cos):
+        return expr
     return sp.radsimp(sp.expand(expr))
 
 
@@ -174,7 +185,12 @@ def _unit(vector: Vector, what: str, field: str, reader: JointReader) -> Vector:
     length = float(sp.sqrt(square))
     if abs(length - 1) > _UNIT_TOLERANCE:
         raise reader.fail(f"{what} must have unit length, got {list(vector)} of length {length:.6g}", field)
-    return unit_vector(vector)
+    if square == 1:
+        return vector
+    exact = unit_vector(vector)
+    if abs(length - 1) < 1e-14 and any(len(str(expression_text(e))) > 40 for e in exact):
+        return vector  # a unit vector written to double precision (a conversion's): exact normalising only bloats it
+    return exact
 
 
 class ProductOfExponentials(NoRobotFields):
@@ -198,7 +214,8 @@ class ProductOfExponentials(NoRobotFields):
         if not isinstance(body, bool):
             raise fail(f"'body' must be true (screws in the home tool frame) or false (in the space frame), got "
                        f"{body!r}", "body")
-        return {"home": transform("home").matrix, "body": body}
+        home = transform("home")
+        return {"home": home.matrix, "given_home": home, "body": body}
 
     def read(self, table: Mapping[str, Any], reader: JointReader) -> tuple[ScrewPlacement, str]:
         """``screw``, or ``axis`` and ``point`` (revolute) or ``axis`` alone (prismatic), and ``name``."""
@@ -254,10 +271,11 @@ class ProductOfExponentials(NoRobotFields):
         name = table.get("name", "")
         if not isinstance(name, str):
             raise reader.fail("'name' must be a string", "name")
+        home, given_home = reader.settings["home"], reader.settings["given_home"]
         if reader.settings["body"]:
             given = (omega, v, point)
-            return ScrewPlacement(*self._to_space(omega, v, point, reader.settings["home"]), True, given), name
-        return ScrewPlacement(omega, v, point), name
+            return ScrewPlacement(*self._to_space(omega, v, point, home), True, given, given_home), name
+        return ScrewPlacement(omega, v, point, home=given_home), name
 
     @staticmethod
     def _to_space(omega: Vector, v: Vector, point: Vector | None, home: sp.MatrixBase
@@ -284,10 +302,14 @@ class ProductOfExponentials(NoRobotFields):
         return row
 
     def write_settings(self, robot: Robot) -> dict[str, Any]:
-        """``body`` when true, and ``home``: M as ``xyz``/``rpy`` when its angles are exact, else as a matrix."""
+        """``body`` when true, and ``home``: M as the file gave it.
+
+        A converted robot's M is written as ``xyz``/``rpy`` when its angles are exact, else as a matrix.
+        """
         body = any(screw_placement(joint).body for joint in robot.joints)
         fields: dict[str, Any] = {"body": True} if body else {}
-        fields["home"] = transform_fields(fixed_transform_from_matrix(home_pose(robot)))
+        given = screw_placement(robot.joints[-1]).home
+        fields["home"] = transform_fields(given or fixed_transform_from_matrix(home_pose(robot)))
         return fields
 
     def forms(self, robot: Robot) -> tuple[JointForm, ...]:
@@ -315,18 +337,20 @@ class ProductOfExponentials(NoRobotFields):
         (frame {n} without a tool). Revolute joints are written by axis and point (that frame's origin), prismatic ones
         by their screw; joint variables, limits, names, parameters and the base are kept.
         """
-        frames, home = axes()
+        frames, pose = axes()
+        home = sp.Matrix(pose).applyfunc(_exact)
+        simple = all(e.is_Rational or (e.has(sp.pi) and not e.has(sp.sin, sp.cos)) for e in home[:3, :3])
+        given = fixed_transform_from_matrix(home) if simple else FixedTransform(given_matrix=sp.ImmutableMatrix(home))
         joints = []
         for joint, frame in zip(robot.joints, frames, strict=True):
             frame = sp.Matrix(frame).applyfunc(_exact)
             axis, origin = _vector(frame[:3, 2]), _vector(frame[:3, 3])
             if joint.is_revolute:
-                placement = ScrewPlacement(axis, _vector(sp.Matrix(origin).cross(sp.Matrix(axis))), origin)
+                placement = ScrewPlacement(axis, _vector(sp.Matrix(origin).cross(sp.Matrix(axis))), origin, home=given)
             else:
-                placement = ScrewPlacement(_ZERO, axis)
+                placement = ScrewPlacement(_ZERO, axis, home=given)
             joints.append(Joint(index=joint.index, type=joint.type, placement=placement, limits=joint.limits,
                                 name=joint.name))
-        home = sp.Matrix(home).applyfunc(_exact)
         return replace(robot, convention=self.convention, joints=tuple(joints), tool=_tool(joints, home))
 
     def rewrite(self, robot: Robot, target: Convention) -> Robot | None:
@@ -335,9 +359,23 @@ class ProductOfExponentials(NoRobotFields):
 
 
 def _exact(expr: sp.Expr) -> sp.Expr:
-    """An entry of a transform at home, as simple as exact algebra makes it."""
+    """An entry of a transform at home, as simple as exact algebra makes it, and short enough for a robot file.
+
+    An entry that stays a long combination of sines and cosines of generic angles (DH twists and offsets like 0.3
+    rad) is written with its coefficients to double precision: kept exact, they make every later product grow.
+    """
     expr = sp.nsimplify(expr, [sp.pi]) if expr.has(sp.Float) else expr
-    return sp.trigsimp(_tidy(expr)) if expr.has(sp.sin, sp.cos) else _tidy(expr)
+    if not expr.has(sp.sin, sp.cos):
+        return _tidy(expr)
+    expr = sp.trigsimp(expr) if sp.count_ops(expr) <= 40 else expr
+    if sp.count_ops(expr) <= _TRANSCENDENTAL_OPS:
+        return expr
+    # exact algebra on it would only slow everything after: each coefficient of the parameters to double precision
+    symbols = sorted(expr.free_symbols, key=str)
+    if not symbols:
+        return exact_number(float(expr))
+    terms = sp.collect(sp.expand(expr), symbols, evaluate=False)
+    return sum((exact_number(float(coefficient)) * monomial for monomial, coefficient in terms.items()), sp.S.Zero)
 
 
 POE = PLUGIN = ProductOfExponentials()

@@ -20,9 +20,11 @@ from symjac.printing.prose.report import (
 )
 from symjac.printing.prose.results import (
     BIAS_ACCELERATION,
+    HOME_POSE,
     LATEX_TOO_LONG,
     RATE_MATRIX,
     REPRESENTATION_COORDINATES,
+    SCREW_JACOBIAN_CAPTIONS,
     derivative_caption,
     fixed_transform_caption,
     hessian_caption,
@@ -57,6 +59,7 @@ from symjac.printing.prose.singularities import (
 
 __all__ = [
     "BIAS_ACCELERATION",
+    "HOME_POSE",
     "KIND_REASONS",
     "LATEX_TOO_LONG",
     "METHODS_HEADING",
@@ -64,6 +67,7 @@ __all__ = [
     "PATH_IN_MAP",
     "RATE_MATRIX",
     "REPRESENTATION_COORDINATES",
+    "SCREW_JACOBIAN_CAPTIONS",
     "axis_name",
     "curve_parts",
     "derivative_caption",

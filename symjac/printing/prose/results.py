@@ -7,9 +7,11 @@ from symjac.printing.document import Inline
 
 __all__ = [
     "BIAS_ACCELERATION",
+    "HOME_POSE",
     "LATEX_TOO_LONG",
     "RATE_MATRIX",
     "REPRESENTATION_COORDINATES",
+    "SCREW_JACOBIAN_CAPTIONS",
     "derivative_caption",
     "fixed_transform_caption",
     "hessian_caption",
@@ -23,6 +25,7 @@ _TITLES = {
     "show": "DH table and link transforms",
     "fk": "forward kinematics",
     "jacobian": "Jacobian in frame {}",
+    "screw_jacobian": "{} Jacobian",
     "representation": "{} representation Jacobian",
     "derivative": "time derivative of the Jacobian in frame {}",
     "hessian": "kinematic Hessian in frame {}",
@@ -53,6 +56,19 @@ def fixed_transform_caption(source: object, target: object) -> tuple[str, ...]:
 def jacobian_caption(point: str, method: str) -> str:
     """``Basic Jacobian at the wrist point, differentiation``."""
     return f"Basic Jacobian at the {point} point, {method.replace('_', ' ')}"
+
+
+SCREW_JACOBIAN_CAPTIONS = {
+    "space": ("Space Jacobian: column i is joint i's screw axis (w; v) in the space frame {0} at this configuration, "
+              "V_s = J_s qdot",),
+    "body": ("Body Jacobian: column i is joint i's screw axis (w; v) in the tool frame, V_b = J_b qdot = "
+             "[Ad(T^-1)] J_s qdot",),
+}
+"""The caption of ``jacobian --kind space`` and ``--kind body`` (rows: angular part first, as in Lynch and Park)."""
+HOME_POSE = ("Home pose of the tool frame; the forward kinematics is ",
+             Inline(r"T(\theta) = e^{[\mathcal{S}_1]\theta_1} \cdots e^{[\mathcal{S}_n]\theta_n} M",
+                    "T(theta) = exp([S1] theta1) ... exp([Sn] thetan) M"))
+"""The caption of a PoE robot's home pose M (``symjac show``)."""
 
 
 def representation_caption(point: str) -> tuple[str]:

@@ -69,7 +69,7 @@ REFUSALS = [
     ("unknown name", _arm((4, "theta2 + phi")), 4, "unknown name 'phi'"),
     ("unknown joint", _arm((4, "theta7")), 4, "unknown name 'theta7'"),
     ("product", _arm((4, "theta2 * theta3")), 4, "is not affine in the coordinates (theta1, theta2, theta3)"),
-    ("sine", _arm((4, "sin(theta2)")), 4, "not allowed"),
+    ("sine", _arm((4, "sin(theta2)")), 4, "is not affine"),
     ("square", _arm((4, "theta2**2")), 4, "is not affine"),
     ("division", _arm((4, "1 / theta2")), 4, "is not affine"),
     ("infinite coefficient", _arm((4, "theta2 / (L - 0.5)")), 4, "not a finite number"),

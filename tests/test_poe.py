@@ -8,6 +8,7 @@ e^{[B_n]q_n}`), and central differences of that T for the twists: :math:`[\\math
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from typing import Any
@@ -415,10 +416,20 @@ def test_command_line_space_and_body_jacobians_and_the_screw_table(tmp_path):
     shown = run("show", "ur5_poe", "--format", "pretty")
     assert "omega_i" in shown and "M =" in shown and "exp([S1] theta1)" in shown
     assert r"\omega_i & v_i & q_i" in run("show", "ur5_poe")
+    data = json.loads(run("show", "ur5_poe", "--format", "json"))
+    assert data["transforms"]["M"][0] == ["-1", "0", "0", "L1 + L2"]
+    assert data["dh_table"][1] == ["2", "revolute", "[0, 1, 0]", "[-H1, 0, 0]", "[0, 0, H1]"]
     converted_text = run("convert", "puma560", "--to", "poe")
     path = tmp_path / "puma_poe.toml"
     path.write_text(converted_text)
     assert load_robot(path).convention == "poe"
+
+
+def test_the_report_shows_the_screw_table():
+    from symjac.report.content import dh_table_html
+
+    html = dh_table_html(load_robot("ur5_poe"))
+    assert "&#969;<sub>i</sub>" in html and "q<sub>i</sub>" in html
 
 
 def test_generated_code_of_a_poe_robot_matches_the_reference(tmp_path):

@@ -202,7 +202,7 @@ def test_field_cannot_use_a_joint_variable():
     load_error(with_joint(2, d="theta1"), joint=2, field="d", message="unknown name 'theta1'")
 
 
-@pytest.mark.parametrize("text", ["-pi/", "sin(L1)", "L1**9", "1/0", "L1.real", "x" * 300])
+@pytest.mark.parametrize("text", ["-pi/", "exp(L1)", "L1**9", "1/0", "L1.real", "x" * 300])
 def test_field_outside_the_grammar(text):
     load_error(with_joint(1, alpha=text), joint=1, field="alpha")
 
@@ -331,7 +331,7 @@ def test_empty_robot_file_says_so(text, tmp_path):
 @pytest.mark.parametrize(
     ("alpha", "words"),
     [
-        ("sin(L1)", "function calls are not allowed in 'sin(L1)'"),
+        ("exp(L1)", "function calls are not allowed in 'exp(L1)'"),
         ("L1 if L2 else 0", "conditional expressions (x if c else y) are not allowed"),
         ("f'{L1}'", "string formatting (f-strings) is not allowed"),
         ("L1 % 2", "the operator % is not allowed"),

@@ -159,7 +159,8 @@ def test_readme_robot_file_example_loads_and_matches_the_catalog_puma():
     from pathlib import Path
 
     readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
-    (example,) = [block for block in re.findall(r"```toml\n(.*?)```", readme, flags=re.S) if "name = " in block]
+    (example,) = [block for block in re.findall(r"```toml\n(.*?)```", readme, flags=re.S)
+                  if 'name = "puma560"' in block]
     robot = robot_from_toml(example, source="README.md")
     puma = load_robot("puma560")
     def rows(joints):

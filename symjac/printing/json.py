@@ -27,6 +27,7 @@ __all__ = [
     "matrix_strings",
     "metadata",
     "representation_data",
+    "screw_jacobian_data",
     "show_data",
     "singularity_data",
     "step_data",

@@ -37,6 +37,7 @@ __all__ = [
     "jacobian_document",
     "link_transforms",
     "representation_document",
+    "screw_jacobian_document",
     "shown",
     "singularities_document",
     "torques_document",
@@ -87,12 +88,14 @@ def transforms_document(robot: Robot, transforms: Sequence[Transform], digits: i
     """``symjac show`` and the report's first sections: the DH table, then each transform of :func:`link_transforms`."""
     equations = [transform_equation(source, target, shown(robot, T, digits)) for source, target, T in transforms]
     blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
-    if robot.convention == PRODUCT_OF_EXPONENTIALS:
-        blocks.append(Block(prose.HOME_POSE, (Equation("M", "M", shown(robot, home_pose(robot), digits)),)))
+    home = []
+    if robot.convention == PRODUCT_OF_EXPONENTIALS:  # the home pose M, with the product of exponentials it ends
+        home = [Equation("M", "M", shown(robot, home_pose(robot), digits))]
+        blocks.append(Block(prose.HOME_POSE, tuple(home)))
     blocks += [Block(prose.fixed_transform_caption(source, target), (e,))
                for (source, target, _), e in zip(transforms, equations, strict=True)]
     return Document(prose.title(robot, "show"), robot.name, tuple(blocks),
-                    lambda: _json().show_data(robot, {e.text: e.rhs for e in equations}))
+                    lambda: _json().show_data(robot, {e.text: e.rhs for e in (*home, *equations)}))
 
 
 def forward_kinematics_document(robot: Robot, source: Frame, target: Frame, T: sp.MatrixBase,

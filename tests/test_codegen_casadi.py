@@ -2,7 +2,8 @@
 
 Every catalog robot and URDF arm agrees with the python target to 1e-12 (20 random configurations, default and
 other parameters, ``p`` in the order of ``PARAMETER_NAMES``); ``casadi.jacobian`` of the generated forward
-kinematics equals the generated Jacobian; ``Function.generate()`` writes C that compiles; ``casadi.Opti`` solves an
+kinematics equals the generated Jacobian (linear rows from the position, angular rows from R-dot R^T);
+``Function.generate()`` writes C that compiles; ``casadi.Opti`` solves an
 inverse-kinematics problem with the functions; the module's self-test passes.
 """
 
@@ -66,9 +67,19 @@ def test_casadi_jacobian_of_the_forward_kinematics_is_the_jacobian(tmp_path, nam
     point = "tool" if robot.tool is not None else "wrist"  # where forward_kinematics ends
     module = load_module(tmp_path, robot, "casadi", jacobians=[JacobianRequest(0, point)])
     q, p = ca.SX.sym("q", robot.n_coordinates), ca.DM(module.PARAMETER_DEFAULTS)
-    derivative = ca.Function("d", [q], [ca.jacobian(module.forward_kinematics(q, p)[:3, 3], q)])
+    T = module.forward_kinematics(q, p)
+    R = T[:3, :3]
+    # linear rows: d p / d q; angular rows: column k of omega is vee(dR/dq_k R^T)
+    rows = [ca.jacobian(T[:3, 3], q)]
+    dR = [ca.jacobian(R[:, c], q) for c in range(3)]  # dR[c][r, k] = d R[r, c] / d q_k
+
+    def W(r: int, s: int) -> ca.SX:  # (dR/dq R^T)[r, s] for every q_k, as a row
+        return sum(dR[c][r, :] * R[s, c] for c in range(3))
+
+    rows.append(ca.vertcat(W(2, 1), W(0, 2), W(1, 0)))
+    derivative = ca.Function("d", [q], [ca.vertcat(*rows)])
     at = ca.DM(np.linspace(-1.0, 0.8, robot.n_coordinates))
-    np.testing.assert_allclose(np.asarray(derivative(at)), np.asarray(module.jacobian(at, p))[:3], atol=1e-12)
+    np.testing.assert_allclose(np.asarray(derivative(at)), np.asarray(module.jacobian(at, p)), atol=1e-12)
 
 
 @pytest.mark.external  # a C compiler

@@ -52,7 +52,8 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
     if result is None:  # through a modified-DH table: exact when the source's plug-in has one, else measured
         modified = source.to_modified(robot)
         if modified is None:
-            numeric = not any(e.free_symbols for F in axes_at_home(robot) for e in sp.Matrix(F))
+            frames, home = axes_at_home(robot)
+            numeric = not any(F.free_symbols for F in (*frames, home))
             extraction = dh_from_general(robot, substitute_defaults=not numeric)
             modified, notes = extraction.robot, extraction.notes
             if not numeric:  # axes measured exactly need numbers: the table is the defaults'

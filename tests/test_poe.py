@@ -440,3 +440,36 @@ def test_generated_code_of_a_poe_robot_matches_the_reference(tmp_path):
         q = random_configuration(robot, RNG)
         expected = finite_difference_jacobian(robot, q)
         assert np.allclose(namespace["jacobian"](q), expected, atol=1e-6)
+
+
+def test_a_dh_table_mixing_parameter_angles_and_generic_ones_converts_and_back():
+    robot = robot_from_mapping({"name": "mixed", "convention": "modified", "parameters": {"al": 0.2, "b": 0.1},
+                                "joints": [{"type": "revolute", "alpha": "al", "theta": "b", "a": 0.3},
+                                           {"type": "revolute", "alpha": 0.4, "a": 0.2, "limits": [-1, 1]}]})
+    poe = convert(robot, "poe")
+    q = random_configuration(robot, RNG)
+    assert np.allclose(world_to_tool(poe, q), world_to_tool(robot, q), atol=1e-12)
+    assert np.allclose(world_to_tool(robot_from_toml(robot_to_toml(poe)), q), world_to_tool(robot, q), atol=1e-12)
+
+
+def test_a_poe_robot_with_parameter_limits_converts_to_a_readable_numeric_table():
+    data = ur5_mapping(parameters={**BOOK, "lim": 3})
+    data["joints"][0]["limits"] = ["-lim", "lim"]
+    table, notes = converted(robot_from_mapping(data), "modified")
+    assert table.joints[0].limits == (-3, 3) and any("defaults" in note for note in notes)
+    assert robot_from_toml(robot_to_toml(table)) == table
+
+
+def test_a_long_symbolic_axis_is_checked_without_hanging():
+    axis = ["sin(a)*cos(b)", "sin(a)*sin(b)", "cos(a)"]  # a unit vector for every a, b
+    robot = robot_from_mapping(ur5_mapping(parameters={**BOOK, "a": 0.3, "b": 0.2},
+                                           joints=[{"type": "revolute", "axis": axis, "point": [0, 0, 0]}]))
+    assert robot.n_joints == 1
+    with pytest.raises(RobotFileError, match="not identically 1"):
+        robot_from_mapping(ur5_mapping(parameters={**BOOK, "a": 0.3, "b": 0.2}, joints=[
+            {"type": "revolute", "axis": ["sin(a)*cos(b)**3", "sin(a)*sin(b)", "cos(a)"], "point": [0, 0, 0]}]))
+
+
+def test_screw_exponential_refuses_a_non_unit_axis():
+    with pytest.raises(ValueError, match="unit w"):
+        screw_exponential([0, 0, 2, 0, 0, 0], sp.Symbol("t"))

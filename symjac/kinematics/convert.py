@@ -56,8 +56,10 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
             numeric = not any(F.free_symbols for F in (*frames, home))
             extraction = dh_from_general(robot, substitute_defaults=not numeric)
             modified, notes = extraction.robot, extraction.notes
-            if not numeric:  # axes measured exactly need numbers: the table is the defaults'
-                modified = replace(modified, parameters=())
+            if not numeric:  # axes measured exactly need numbers: the table is the defaults', its limits too
+                joints = tuple(replace(joint, limits=None if joint.limits is None else tuple(
+                    limit.subs(robot.defaults) for limit in joint.limits)) for joint in modified.joints)
+                modified = replace(modified, parameters=(), joints=joints)
                 notes = (*notes, f"the DH table is numeric: its axes were measured with the parameters "
                                  f"({', '.join(p.name for p in robot.parameters)}) at their defaults")
         result = destination.from_modified(modified)

@@ -60,6 +60,9 @@ def screw_exponential(screw: Sequence[sp.Expr], theta: sp.Expr) -> sp.Matrix:
     omega, v = sp.Matrix(values[:3]), sp.Matrix(values[3:])
     if all(e == 0 for e in omega):
         return homogeneous(sp.eye(3), v * theta)
+    square = omega.dot(omega)
+    if square.is_number and abs(float(square) - 1) > 1e-9:
+        raise ValueError(f"Rodrigues' formula needs a unit w, got |w|^2 = {float(square):.6g}")
     W = skew(omega)
     rotation = sp.eye(3) + sp.sin(theta) * W + (1 - sp.cos(theta)) * W * W
     translation = (sp.eye(3) * theta + (1 - sp.cos(theta)) * W + (theta - sp.sin(theta)) * W * W) * v

@@ -70,6 +70,8 @@ def name_problem(name: object) -> str | None:
         return f"{name!r} is a Python keyword"
     if name == "pi":
         return "'pi' is the constant pi"
+    if name in FUNCTIONS:
+        return f"{name!r} is a function expressions may call"
     return None
 
 
@@ -142,7 +144,7 @@ def _parse(text: str, names: Mapping[str, sp.Symbol]) -> sp.Expr:
     return _build(tree.body, names, text)
 
 
-FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sqrt": sp.sqrt}
+FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "sqrt": sp.sqrt}
 """The functions a field may call, each of one argument: exact unit axes (``sqrt(2)/2``), the axes a DH table with a
 generic twist gives (``cos(3/10)``)."""
 
@@ -192,7 +194,7 @@ def _build(node: ast.AST, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
     if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in FUNCTIONS
             and len(node.args) == 1 and not node.keywords):
         argument = _build(node.args[0], names, text)
-        if node.func.id == "sqrt" and argument.is_number and argument < 0:
+        if node.func.id == "sqrt" and (argument.is_extended_negative or argument.has(sp.zoo, sp.nan, sp.oo)):
             raise ExpressionError(f"square root of a negative number in {text!r}")
         return FUNCTIONS[node.func.id](argument)
     raise ExpressionError(f"{_what(node)} not allowed in {text!r}: use numbers, names, + - * / **, pi and "
@@ -278,7 +280,7 @@ def _tree_text(expr: sp.Expr) -> str:
         return root if expr.exp > 0 else f"(1/{root})"
     if expr.is_Pow:
         return f"{_tree_text(expr.base)}**({expr.exp})"
-    if isinstance(expr, sp.sin | sp.cos | sp.tan):
+    if isinstance(expr, sp.sin | sp.cos):
         return f"{type(expr).__name__}({_tree_text(expr.args[0])})"
     return sp.sstr(expr)  # pi and parameter symbols
 

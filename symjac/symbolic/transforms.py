@@ -134,7 +134,7 @@ def twist_transform(transform: sp.MatrixBase) -> sp.Matrix:
 def adjoint(transform: sp.MatrixBase) -> sp.Matrix:
     r"""The adjoint map of :math:`T = [R, p; 0, 1]` on twists written angular part first, as Lynch and Park do.
 
-    .. math:: [\mathrm{Ad}_T] = egin{bmatrix} R & 0 \ \hat{p} R & R \end{bmatrix}, \qquad
+    .. math:: [\mathrm{Ad}_T] = \begin{bmatrix} R & 0 \\ \hat{p} R & R \end{bmatrix}, \qquad
               \mathcal{V}_A = [\mathrm{Ad}_{T_{AB}}]\,\mathcal{V}_B
 
     (:func:`twist_transform` is the same map for twists written linear part first.)

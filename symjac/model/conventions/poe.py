@@ -25,6 +25,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, TypeAlias
 
+import numpy as np
 import sympy as sp
 
 from symjac.errors import RobotFileError
@@ -54,6 +55,8 @@ PRODUCT_OF_EXPONENTIALS = Convention.register("poe")
 _ZERO: Vector = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
 _TRANSCENDENTAL_OPS = 6
 """How many operations a number made of sines and cosines of generic angles may keep exactly (``cos(3/10)`` is 1)."""
+_SIMPLIFY_OPS = 40
+"""The longest expression of parameters (in operations) that validation simplifies exactly."""
 _UNIT_TOLERANCE = 1e-6
 """How far from 1 a numeric axis length may be (files give 6-digit decimals); the axis is then normalised exactly."""
 
@@ -168,17 +171,29 @@ def as_general(robot: Robot) -> Robot:
 
 
 def _is_zero(expr: sp.Expr) -> bool:
-    """Whether ``expr`` is zero: identically when it holds parameters, to 1e-6 when it is a number (6-digit files)."""
-    if expr.free_symbols:
+    """Whether ``expr`` is zero: identically when it holds parameters, to 1e-6 when it is a number (6-digit files).
+
+    An expression of parameters is simplified when it is short; a longer one (which simplification could take
+    minutes over) is taken to be zero when it vanishes to 1e-12 at five random values of its parameters.
+    """
+    if not expr.free_symbols:
+        return abs(float(expr)) <= _UNIT_TOLERANCE
+    if sp.count_ops(expr) <= _SIMPLIFY_OPS:
         return bool(sp.simplify(expr) == 0)
-    return abs(float(expr)) <= _UNIT_TOLERANCE
+    symbols = sorted(expr.free_symbols, key=str)
+    function = sp.lambdify(symbols, expr, modules="math")
+    samples = np.random.default_rng(0).uniform(-2.0, 2.0, (5, len(symbols)))
+    try:
+        return all(abs(complex(function(*sample))) < 1e-12 for sample in samples)
+    except (ArithmeticError, ValueError):
+        return False
 
 
 def _unit(vector: Vector, what: str, field: str, reader: JointReader) -> Vector:
     r"""``vector`` checked to have unit length (exactly when it holds parameters) and returned exact."""
     square = sum(e**2 for e in vector)
     if any(e.free_symbols for e in vector):
-        if sp.simplify(square - 1) != 0:
+        if not _is_zero(square - 1):
             raise reader.fail(f"{what} must have unit length, and |{list(vector)}|^2 = {sp.simplify(square)} is not "
                               f"identically 1", field)
         return vector
@@ -248,6 +263,8 @@ class ProductOfExponentials(NoRobotFields):
                 if not _is_zero(pitch):
                     raise reader.fail(f"a revolute screw has v perpendicular to w (zero pitch), got w.v = {pitch}",
                                       "screw")
+                if pitch != 0:  # a 6-digit file's rounding: the part of v along w is dropped, as the chain drops it
+                    v = _vector([b - pitch * a for a, b in zip(omega, v, strict=True)])
             else:
                 if omega != _ZERO:
                     raise reader.fail(f"a prismatic joint's screw has w = 0 (it translates along v), got w = "
@@ -375,7 +392,7 @@ def _exact(expr: sp.Expr) -> sp.Expr:
     if not symbols:
         return exact_number(float(expr))
     terms = sp.collect(sp.expand(expr), symbols, evaluate=False)
-    return sum((exact_number(float(coefficient)) * monomial for monomial, coefficient in terms.items()), sp.S.Zero)
+    return sum(((exact_number(float(c)) if c.is_number else c) * monomial for monomial, c in terms.items()), sp.S.Zero)
 
 
 POE = PLUGIN = ProductOfExponentials()

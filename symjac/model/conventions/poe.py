@@ -21,11 +21,11 @@ frame {n} like every tool, is :math:`G_n^{-1} M`. Frame {0} is the space frame {
 
 from __future__ import annotations
 
+import random
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, TypeAlias
 
-import numpy as np
 import sympy as sp
 
 from symjac.errors import RobotFileError
@@ -182,7 +182,8 @@ def _is_zero(expr: sp.Expr) -> bool:
         return bool(sp.simplify(expr) == 0)
     symbols = sorted(expr.free_symbols, key=str)
     function = sp.lambdify(symbols, expr, modules="math")
-    samples = np.random.default_rng(0).uniform(-2.0, 2.0, (5, len(symbols)))
+    draw = random.Random(0)
+    samples = [[draw.uniform(-2.0, 2.0) for _ in symbols] for _ in range(5)]
     try:
         return all(abs(complex(function(*sample))) < 1e-12 for sample in samples)
     except (ArithmeticError, ValueError):

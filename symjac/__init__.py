@@ -41,6 +41,9 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "singularities"),
     "symjac.analysis.spaces": ("JacobianSpaces", "SymbolicSpaces", "jacobian_spaces", "symbolic_spaces", "task_rows"),
     "symjac.codegen": ("JacobianRequest", "generate", "write_module"),
+    "symjac.drawing.animation": ("animate", "joint_path"),
+    "symjac.drawing.figure": ("ArmDrawing", "draw"),
+    "symjac.drawing.geometry": ("ArmPose", "Ellipsoid", "arm_pose", "ellipsoid"),
     "symjac.errors": ("ArgumentError", "CodegenError", "ConversionError", "ExpressionError", "FrameError",
         "RepresentationError", "ResultTooLargeError", "RobotFileError", "SymjacError", "UnknownRobotError"),
     "symjac.kinematics.acceleration": ("DERIVATIVE_METHODS", "bias_acceleration", "hessian", "hessian_slice",
@@ -79,12 +82,15 @@ __all__ = [
     "AccelerationStep",
     "AngleBasis",
     "ArgumentError",
+    "ArmDrawing",
+    "ArmPose",
     "BarrierTerm",
     "Chain",
     "CodegenError",
     "Convention",
     "ConversionError",
     "Determinant",
+    "Ellipsoid",
     "EulerConvention",
     "ExpressionError",
     "FixedTransform",
@@ -114,6 +120,8 @@ __all__ = [
     "__version__",
     "acceleration_propagation",
     "adjoint",
+    "animate",
+    "arm_pose",
     "as_chain",
     "bias_acceleration",
     "body_jacobian",
@@ -124,6 +132,8 @@ __all__ = [
     "coordinate_rates",
     "damped_least_squares",
     "determinant",
+    "draw",
+    "ellipsoid",
     "evaluate_at",
     "exponential_product",
     "extract",
@@ -139,6 +149,7 @@ __all__ = [
     "jacobian_of",
     "jacobian_spaces",
     "joint_accelerations",
+    "joint_path",
     "joint_rate_symbols",
     "joint_torques",
     "latex",
@@ -219,6 +230,9 @@ if _TYPE_CHECKING:  # static checkers see the names as if imported eagerly
     from symjac.analysis.singularity.singularities import LimitStatus, SingularFactor, SingularityReport, singularities
     from symjac.analysis.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
     from symjac.codegen import JacobianRequest, generate, write_module
+    from symjac.drawing.animation import animate, joint_path
+    from symjac.drawing.figure import ArmDrawing, draw
+    from symjac.drawing.geometry import ArmPose, Ellipsoid, arm_pose, ellipsoid
     from symjac.errors import (
         ArgumentError,
         CodegenError,

@@ -9,7 +9,7 @@ import tempfile
 from collections.abc import Mapping
 from pathlib import Path
 
-__all__ = ["write_files", "write_text"]
+__all__ = ["write_bytes", "write_files", "write_text"]
 
 # Paths that name a process's own streams or kernel objects (``/dev/stdout`` resolves through ``/proc/self/fd/1``
 # to whatever the shell redirected it to): always written through, never replaced.
@@ -42,6 +42,20 @@ def write_text(path: str | os.PathLike[str], text: str) -> Path:
     return target
 
 
+def write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
+    """Write ``data`` (an image, an animation) to ``path`` as :func:`write_text` writes text: whole or not at all."""
+    target = Path(path)
+    try:
+        if _is_special(target):
+            with open(target, "wb") as stream:
+                stream.write(data)
+        else:
+            _replace(Path(os.path.realpath(target)), data)
+    except OSError as error:
+        raise _naming(error, target) from None
+    return target
+
+
 def _is_special(target: Path) -> bool:
     """Whether ``target`` is to be written through: anything that exists and is not a regular file."""
     try:
@@ -55,7 +69,7 @@ def _is_special(target: Path) -> bool:
     return mode is not None and not stat.S_ISREG(mode)
 
 
-def _replace(real: Path, text: str) -> None:
+def _replace(real: Path, text: str | bytes) -> None:
     """Atomically replace (or create) the regular file ``real``, keeping an existing file's permissions."""
     temporary = _stage(real, text)
     try:
@@ -96,8 +110,8 @@ def write_files(files: Mapping[Path, str]) -> None:
             temporary.unlink(missing_ok=True)
 
 
-def _stage(real: Path, text: str) -> Path:
-    """``text`` in a temporary file beside ``real``, with the permissions ``real`` has (or the umask's)."""
+def _stage(real: Path, text: str | bytes) -> Path:
+    """``text`` (or bytes) in a temporary file beside ``real``, with the permissions ``real`` has (or the umask's)."""
     try:
         mode = real.stat().st_mode & 0o7777
     except FileNotFoundError:
@@ -106,8 +120,12 @@ def _stage(real: Path, text: str) -> Path:
         mode = 0o666 & ~umask
     handle, temporary = tempfile.mkstemp(dir=real.parent, prefix=f".{real.name}.", suffix=".tmp")
     try:
-        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(text)
+        if isinstance(text, bytes):
+            with os.fdopen(handle, "wb") as binary:
+                binary.write(text)
+        else:
+            with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
+                stream.write(text)
         os.chmod(temporary, mode)
     except BaseException:
         Path(temporary).unlink(missing_ok=True)

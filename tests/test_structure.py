@@ -23,7 +23,7 @@ STAGES: list[tuple[str, ...]] = [
     ("model",),
     ("kinematics",),
     ("analysis",),
-    ("printing",),
+    ("printing", "drawing"),
     ("report", "codegen", "teaching"),
     ("cli",),
 ]

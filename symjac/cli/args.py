@@ -26,6 +26,7 @@ __all__ = [
     "LazyChoices",
     "add_robot_arguments",
     "load",
+    "parse_configuration",
     "parse_frame",
     "parse_point",
     "parse_rows",
@@ -165,6 +166,31 @@ def parse_values(text: str, length: int, option: str, robot: Robot, *, parameter
                 raise ArgumentError(f"{option} takes numbers and expressions with pi only (joint angles in "
                                     f"radians, prismatic offsets in metres), got {part.strip()!r}") from None
             raise ArgumentError(f"{option}: {error}") from None
+    return values
+
+
+def parse_configuration(text: str, robot: Robot, option: str = "--q") -> list[float]:
+    """A configuration ``q1,...,qn``: numbers or expressions with ``pi``; an angle may end in ``deg`` (``30deg``)."""
+    import sympy as sp
+
+    from symjac.model.robot import JointType
+
+    parts = text.split(",")
+    if len(parts) != robot.n_coordinates:
+        raise ArgumentError(f"{option} needs {robot.n_coordinates} comma-separated values for {robot.name}, got "
+                            f"{len(parts)} in {text!r}")
+    values = []
+    for index, (part, kind) in enumerate(zip(parts, robot.coordinate_types, strict=True)):
+        number = part.strip()
+        degrees = number.endswith("deg")
+        if degrees and kind is not JointType.REVOLUTE:
+            raise ArgumentError(f"{option}: {robot.q[index]} is a length (a prismatic joint), so {number!r} cannot "
+                                "be in degrees")
+        [value] = parse_values(number[:-3] if degrees else number, 1, option, robot, parameters=False)
+        value = value * sp.pi / 180 if degrees else value
+        if not value.is_number:
+            raise ArgumentError(f"{option}: {number!r} is not a number")
+        values.append(float(value))
     return values
 
 

@@ -10,7 +10,15 @@ import argparse
 
 from symjac.cli.args import LazyChoices, add_robot_arguments
 
-__all__ = ["codegen_options", "convert_options", "errata_options", "no_options", "result_options", "robot_options"]
+__all__ = [
+    "codegen_options",
+    "convert_options",
+    "draw_options",
+    "errata_options",
+    "no_options",
+    "result_options",
+    "robot_options",
+]
 
 
 def no_options(sub: argparse.ArgumentParser, name: str) -> None:
@@ -57,6 +65,26 @@ def convert_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--to", choices=("modified", "standard", "poe", "general", "toml"), required=True,
                      help="the convention to convert to (poe: screw axes and home pose; general: from poe only), "
                           "or toml to keep the robot as it is")
+
+
+def draw_options(sub: argparse.ArgumentParser, name: str) -> None:
+    """``symjac draw``: configurations, view, ellipsoids, limits, frames, and a path to animate."""
+    add_robot_arguments(sub)
+    sub.add_argument("--q", action="append", metavar="Q",
+                     help="a configuration q1,...,qn in radians and metres, or degrees as 30deg (default: all zero); "
+                          "repeat it to draw configurations side by side, or to give the waypoints of --path")
+    sub.add_argument("--view", default=None, metavar="AZIMUTH,ELEVATION", help="the view in degrees (default -60,25)")
+    sub.add_argument("--ellipsoid", action="append", choices=("velocity", "force"), default=None,
+                     help="the velocity or force ellipsoid at the tool point (repeat for both)")
+    sub.add_argument("--limits", action="store_true", help="colour each joint by its distance to its limits")
+    sub.add_argument("--frames", action=argparse.BooleanOptionalAction, default=None,
+                     help="draw every frame labelled {i} (default: up to 8 joints)")
+    sub.add_argument("--path", action="store_true",
+                     help="animate the arm along straight joint-space lines through the --q waypoints "
+                          "(-o FILE.gif or FILE.mp4)")
+    sub.add_argument("--path-steps", type=int, default=30, metavar="N",
+                     help="with --path: frames per segment between waypoints (default 30)")
+    sub.add_argument("--fps", type=int, default=20, help="with --path: frames per second (default 20)")
 
 
 def result_options(sub: argparse.ArgumentParser, name: str) -> None:

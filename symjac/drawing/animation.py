@@ -1,0 +1,116 @@
+"""The arm moving along a joint path, and figures written to files: :func:`animate`, :func:`figure_bytes`.
+
+An animation is matplotlib's :class:`~matplotlib.animation.FuncAnimation` over one :class:`ArmDrawing` whose
+artists are moved in place, frame by frame. Files are made in memory (or in a private temporary folder for an
+animation) and handed back as bytes, so the caller writes them whole or not at all.
+"""
+
+from __future__ import annotations
+
+import io
+import itertools
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from symjac.drawing.figure import DEFAULT_VIEW, ArmDrawing, equal_axes, matplotlib_figure, view_angles
+from symjac.drawing.geometry import EllipsoidKind, arm_pose, configuration
+from symjac.errors import ArgumentError, SymjacError
+from symjac.kinematics.chain import Chain, as_chain
+from symjac.model.robot import Robot
+
+__all__ = ["ANIMATION_SUFFIXES", "IMAGE_SUFFIXES", "animate", "figure_bytes", "joint_path", "movie_bytes"]
+
+IMAGE_SUFFIXES = (".svg", ".png", ".pdf")
+ANIMATION_SUFFIXES = (".gif", ".mp4")
+
+
+def joint_path(waypoints: Sequence[Sequence[float]] | np.ndarray, steps: int = 30) -> np.ndarray:
+    """Straight lines in joint space through ``waypoints``, ``steps`` configurations per segment (ends included once).
+
+    Examples
+    --------
+    >>> joint_path([[0.0, 0.0], [1.0, 2.0]], steps=2).tolist()
+    [[0.0, 0.0], [0.5, 1.0], [1.0, 2.0]]
+    """
+    points = np.asarray(waypoints, dtype=float)
+    if points.ndim != 2 or len(points) < 2:
+        raise ArgumentError(f"a path needs at least two configurations, got {len(points) if points.ndim else 0}")
+    if not isinstance(steps, int) or steps < 1:
+        raise ArgumentError(f"steps must be a positive integer, got {steps!r}")
+    t = np.linspace(0.0, 1.0, steps + 1)[:-1, None]
+    segments = [a + t * (b - a) for a, b in itertools.pairwise(points)]
+    return np.concatenate([*segments, points[-1:]])
+
+
+def animate(robot: Robot | Chain, path: Sequence[Sequence[float]] | np.ndarray, *, fps: int = 20,
+            frames: bool | None = None, ellipsoids: Sequence[EllipsoidKind] = (), limits: bool = False,
+            view: tuple[float, float] = DEFAULT_VIEW) -> Any:
+    """The arm following ``path`` (configurations as rows), as a :class:`matplotlib.animation.FuncAnimation`.
+
+    The options are those of :func:`~symjac.drawing.figure.draw`. The axes hold every configuration of the path, so
+    the camera stays still. Save it with :func:`movie_bytes` (or matplotlib's own ``save``).
+    """
+    from matplotlib.animation import FuncAnimation
+
+    chain = as_chain(robot)
+    rows = np.asarray(path, dtype=float) if not isinstance(path, str) else np.array(())
+    if rows.ndim != 2 or len(rows) < 1:
+        raise ArgumentError(f"path must be configurations as rows, got shape {rows.shape}")
+    configurations = [configuration(chain, row) for row in rows]
+    if not (isinstance(fps, int) and fps > 0):
+        raise ArgumentError(f"fps must be a positive integer, got {fps!r}")
+    azimuth, elevation = view_angles(view)
+    figure = matplotlib_figure(figsize=(5.6, 5.2), layout="constrained")
+    axes = figure.add_subplot(projection="3d")
+    drawing = ArmDrawing(axes, chain, frames=frames, ellipsoids=ellipsoids, limits=limits)
+    drawing.update(configurations[0])
+    reach = drawing.reach or 1.0
+    points = np.concatenate([drawing.points(), *[arm_pose(chain, q).origins for q in configurations]])
+    equal_axes(axes, points, 0.15 * reach)
+    axes.view_init(elev=elevation, azim=azimuth)
+    axes.set_xlabel("x (m)")
+    axes.set_ylabel("y (m)")
+    axes.set_zlabel("z (m)")
+    figure.suptitle(chain.robot.name)
+
+    def step(index: int) -> list[Any]:
+        drawing.update(configurations[index])
+        return []
+
+    return FuncAnimation(figure, step, frames=len(configurations), interval=1000 / fps, blit=False, repeat=False)
+
+
+def figure_bytes(figure: Any, suffix: str) -> bytes:
+    """The figure as an SVG, PNG or PDF file's bytes (the same input gives the same bytes: no dates, fixed ids)."""
+    if suffix not in IMAGE_SUFFIXES:
+        raise ArgumentError(f"cannot write a figure as {suffix or 'a file without suffix'}: use "
+                            f"{', '.join(IMAGE_SUFFIXES)} (or {', '.join(ANIMATION_SUFFIXES)} with a path)")
+    import matplotlib
+
+    buffer = io.BytesIO()
+    metadata: dict[str, Any] = {"svg": {"Date": None, "Creator": None}, "png": {"Software": None},
+                                "pdf": {"CreationDate": None, "ModDate": None, "Producer": None,
+                                        "Creator": None}}[suffix[1:]]
+    with matplotlib.rc_context({"svg.hashsalt": "symjac-arm", "svg.fonttype": "path"}):
+        figure.savefig(buffer, format=suffix[1:], dpi=110, metadata=metadata)
+    return buffer.getvalue()
+
+
+def movie_bytes(animation: Any, suffix: str, fps: int = 20) -> bytes:
+    """The animation as a GIF (Pillow, which matplotlib needs anyway) or an MP4 (ffmpeg) file's bytes."""
+    from matplotlib import animation as writers
+
+    if suffix not in ANIMATION_SUFFIXES:
+        raise ArgumentError(f"cannot write an animation as {suffix or 'a file without suffix'}: use "
+                            f"{' or '.join(ANIMATION_SUFFIXES)}")
+    if suffix == ".mp4" and not writers.writers.is_available("ffmpeg"):
+        raise SymjacError("writing .mp4 needs ffmpeg on the PATH (Debian: apt-get install ffmpeg); .gif needs nothing")
+    writer = writers.PillowWriter(fps=fps) if suffix == ".gif" else writers.FFMpegWriter(fps=fps)
+    with tempfile.TemporaryDirectory(prefix="symjac-") as folder:
+        path = Path(folder) / f"arm{suffix}"
+        animation.save(path, writer=writer, dpi=80)
+        return path.read_bytes()

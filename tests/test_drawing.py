@@ -16,13 +16,13 @@ import pytest
 
 pytest.importorskip("matplotlib")
 
-from matplotlib.testing.compare import compare_images  # noqa: E402
+from matplotlib.testing.compare import compare_images
 
-from symjac import ArgumentError, arm_pose, catalog, draw, load_robot  # noqa: E402
-from symjac.drawing.animation import figure_bytes, joint_path  # noqa: E402
-from symjac.drawing.geometry import LONGEST_FORCE_AXIS  # noqa: E402
-from symjac.model.robot import JointType  # noqa: E402
-from tests import reference  # noqa: E402
+from symjac import ArgumentError, arm_pose, catalog, draw, load_robot
+from symjac.drawing.animation import figure_bytes, joint_path
+from symjac.drawing.geometry import LONGEST_FORCE_AXIS
+from symjac.model.robot import JointType
+from tests import reference
 
 ROBOTS = [*sorted(catalog()), "gripper.urdf", "panda.urdf", "ur5.urdf"]
 GOLDEN = Path(__file__).resolve().parent / "golden" / "drawings"
@@ -164,7 +164,7 @@ def test_bad_options_are_refused():
         draw(robot, view=(1.0, float("inf")))
     with pytest.raises(ArgumentError, match="ellipsoid_scale"):
         draw(robot, ellipsoids="velocity", ellipsoid_scale=-1.0)
-    with pytest.raises(ArgumentError, match="cannot write a figure as .jpg"):
+    with pytest.raises(ArgumentError, match=r"cannot write a figure as \.jpg"):
         figure_bytes(draw(robot), ".jpg")
 
 
@@ -224,8 +224,8 @@ def test_the_command_animates_a_path_as_gif(cli, tmp_path):
     from PIL import Image
 
     out = tmp_path / "arm.gif"
-    _drawn(cli, "draw", "planar3r", "--q", "0,0,0", "--q", "1,0.5,-0.5", "--q", "0.5,1,1", "--path", "--path-steps", "4",
-           "-o", str(out))
+    _drawn(cli, "draw", "planar3r", "--q", "0,0,0", "--q", "1,0.5,-0.5", "--q", "0.5,1,1", "--path",
+           "--path-steps", "4", "-o", str(out))
     with Image.open(out) as movie:
         assert movie.n_frames == 9
 

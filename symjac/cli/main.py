@@ -23,13 +23,13 @@ from typing import TYPE_CHECKING, Any, NoReturn
 from symjac._version import __version__
 from symjac.cli.args import (
     load,
-    parse_configuration,
     parse_frame,
     parse_point,
     parse_rows,
     parse_values,
     refuse_ignored_options,
 )
+from symjac.cli.drawing import draw_command
 from symjac.cli.options import (
     codegen_options,
     convert_options,
@@ -179,60 +179,6 @@ def _report(args: argparse.Namespace) -> str:
 
     robot = load(args)
     return progress(f"derivation report of {robot.name}", lambda: derivation_report(robot, args.robot))
-
-
-def _draw(args: argparse.Namespace) -> str:
-    """``draw``: the arm as SVG, PNG or PDF, or along a path as GIF or MP4 (matplotlib imported only here)."""
-    from pathlib import Path
-
-    from symjac.drawing.animation import (
-        ANIMATION_SUFFIXES,
-        IMAGE_SUFFIXES,
-        animate,
-        figure_bytes,
-        joint_path,
-        movie_bytes,
-    )
-    from symjac.drawing.figure import DEFAULT_VIEW, draw
-    from symjac.files import write_bytes
-
-    if args.output in (None, "-"):
-        raise ArgumentError("draw writes a file: give -o FILE with a suffix of "
-                            f"{', '.join(IMAGE_SUFFIXES + ANIMATION_SUFFIXES)}")
-    suffix = Path(args.output).suffix.lower()
-    if suffix not in IMAGE_SUFFIXES + ANIMATION_SUFFIXES:
-        raise ArgumentError(f"-o {args.output}: unknown suffix {suffix or '(none)'}; use "
-                            f"{', '.join(IMAGE_SUFFIXES)}, or {' or '.join(ANIMATION_SUFFIXES)} with --path")
-    if args.path != (suffix in ANIMATION_SUFFIXES):
-        raise ArgumentError("--path needs -o FILE.gif or FILE.mp4" if args.path
-                            else f"a {suffix} file animates a path: give --path and two or more --q")
-    for option, value in (("--path-steps", args.path_steps), ("--fps", args.fps)):
-        if value < 1:
-            raise ArgumentError(f"{option} must be at least 1, got {value}")
-    robot = load(args)
-    configurations = [parse_configuration(text, robot) for text in args.q or []] or None
-    view = DEFAULT_VIEW if args.view is None else _view(args.view)
-    options = {"frames": args.frames, "ellipsoids": args.ellipsoid or (), "limits": args.limits, "view": view}
-    if args.path:
-        if configurations is None or len(configurations) < 2:
-            raise ArgumentError("--path needs two or more --q waypoints")
-        motion = animate(robot, joint_path(configurations, args.path_steps), fps=args.fps, **options)
-        data = progress(f"animation of {robot.name}", lambda: movie_bytes(motion, suffix, args.fps))
-    else:
-        figure = draw(robot, configurations, **options)
-        data = figure_bytes(figure, suffix)
-    write_bytes(args.output, data)
-    args.output = None  # written: nothing left for stdout
-    return ""
-
-
-def _view(text: str) -> tuple[float, float]:
-    parts = text.split(",")
-    try:
-        azimuth, elevation = (float(part) for part in parts)
-    except ValueError:
-        raise ArgumentError(f"--view must be two numbers AZIMUTH,ELEVATION in degrees, got {text!r}") from None
-    return azimuth, elevation
 
 
 def _show(args: argparse.Namespace) -> Document:
@@ -414,7 +360,7 @@ COMMANDS: dict[str, tuple[Handler, str, Options]] = {
     "robots": (_robots, "list the built-in robots", no_options),
     "errata": (_errata, "the errata sheet of the course notes: every printed formula checked", errata_options),
     "codegen": (_codegen, "generate a numeric module: forward kinematics, Jacobians, torques", codegen_options),
-    "draw": (_draw, "draw the arm (SVG, PNG, PDF), or animate it along a joint path (GIF, MP4)", draw_options),
+    "draw": (draw_command, "draw the arm (SVG, PNG, PDF), or animate it along a joint path (GIF, MP4)", draw_options),
     "report": (_report, "write the whole derivation as one self-contained HTML page", robot_options),
     "convert": (_convert, "print the robot as a TOML robot file, converted to another convention", convert_options),
     "show": (_show, "show the DH table and the link transforms", result_options),

@@ -87,7 +87,12 @@ def test_page_is_well_formed_and_self_contained(pages, name):
     assert not re.search(r"(src|href)\s*=\s*[\"']?\s*(https?:)?//", text)
     assert "<script" not in text and "@import" not in text and "url(http" not in text
     assert "mfenced" not in text and "merror" not in text
-    assert checker.tags["svg"] == 2 and checker.tags["math"] > 40 and checker.tags["table"] >= 2
+    assert checker.tags["svg"] == 2 + text.count('<figure class="arm">') and checker.tags["math"] > 40
+    assert checker.tags["table"] >= 2
+    # the arm drawings' parts keep their ids apart (matplotlib's own ids, figure_1 or the glyphs' DejaVuSans-11,
+    # repeat from one SVG to the next, with the same content)
+    ids = re.findall(r'\sid="(arm-[^"]+)"', text)
+    assert ids and len(ids) == len(set(ids))
     for words in ("Denavit-Hartenberg table", "Forward kinematics", "All four methods agree",
                   "Singular configurations", "drawn exactly from its solutions", "Joint rates"):
         assert words in text, words
@@ -105,7 +110,7 @@ def test_the_tip_link_chooses_a_urdf_chain(gripper, tmp_path, capsys):
     assert "choose --tip-link" in capsys.readouterr().err
     assert main(["report", gripper, "--tip-link", "finger_a", "-o", "-"]) == 0
     text = capsys.readouterr().out
-    assert "gripper_arm: derivation report" in text and text.count("<svg") == 2
+    assert "gripper_arm: derivation report" in text and text.count("<svg") == 2 + text.count('<figure class="arm">')
 
 
 def test_user_strings_are_escaped(tmp_path, capsys):
@@ -174,7 +179,15 @@ PROBE = """<script>
   });
   var maths = document.querySelectorAll("math"), empty = 0;
   maths.forEach(function (m) { if (m.getBoundingClientRect().width < 1) empty++; });
+  var arms = document.querySelectorAll("figure.arm svg"), shown = 0;
+  arms.forEach(function (svg) {  // drawn: the figure has a size on the page and so do its links and an axis
+    var links = svg.querySelector('g[id$="-links"]'), frame = svg.querySelector('g[id*="-frame-"]');
+    if (svg.getBoundingClientRect().width > 150 && links && links.getBoundingClientRect().height > 5
+        && frame && frame.getBoundingClientRect().width > 0) shown++;
+  });
   var out = {scrollWidth: root.scrollWidth, innerWidth: width, math: maths.length, emptyMath: empty,
+             arms: arms.length, armsShown: shown,
+             arrows: document.querySelectorAll('figure.arm g[id$="-arrow"]').length,
              svg: document.querySelectorAll("svg").length, merror: document.querySelectorAll("merror").length,
              mathDisplay: maths.length ? getComputedStyle(maths[0]).display : "", wide: wide,
              height: root.scrollHeight, text: document.body.innerText.length};
@@ -212,7 +225,10 @@ def test_the_page_renders_in_chromium(pages, tmp_path, name):
     assert found, result.stderr[-2000:]
     seen = json.loads(found.group(1).replace("&quot;", '"').replace("&amp;", "&"))
     assert seen["merror"] == 0 and seen["emptyMath"] == 0, seen
-    assert seen["math"] > 40 and seen["svg"] == 2 and seen["text"] > 2000 and seen["height"] > 2000, seen
+    assert seen["math"] > 40 and seen["svg"] == 2 + seen["arms"] and seen["text"] > 2000, seen
+    assert seen["height"] > 2000, seen
+    # the arm at home and at each solved singular configuration, each with its lost direction
+    assert seen["arms"] == seen["armsShown"] == 1 + seen["arrows"] and seen["arrows"] >= 2, seen
     assert "math" in seen["mathDisplay"], seen  # laid out as MathML, not as unknown inline elements
     assert seen["scrollWidth"] <= seen["innerWidth"] and not seen["wide"], seen  # nothing wider than the page
     ARTIFACTS.mkdir(parents=True, exist_ok=True)

@@ -258,7 +258,7 @@ def equal_axes(axes: Any, points: np.ndarray, margin: float) -> None:
     axes.set_xlim(centre[0] - half, centre[0] + half)
     axes.set_ylim(centre[1] - half, centre[1] + half)
     axes.set_zlim(centre[2] - half, centre[2] + half)
-    axes.set_box_aspect((1.0, 1.0, 1.0))
+    axes.set_box_aspect((1.0, 1.0, 1.0), zoom=0.9)  # a little room for the z label
 
 
 def _configurations(robot: Robot | Chain, q: Any) -> list[np.ndarray]:
@@ -283,7 +283,7 @@ def draw(robot: Robot | Chain, q: Any = None, *, frames: bool | None = None,
          ellipsoids: Sequence[EllipsoidKind] | EllipsoidKind = (), limits: bool = False,
          ellipsoid_scale: float | None = None, view: tuple[float, float] = DEFAULT_VIEW,
          arrow: Sequence[float] | None = None, title: str | None = None,
-         size: tuple[float, float] | None = None) -> Figure:
+         size: tuple[float, float] | None = None, prefix: str = "") -> Figure:
     r"""A 3-D drawing of ``robot`` at ``q``: links, joints, frames, and optionally ellipsoids, as a matplotlib figure.
 
     Parameters
@@ -305,8 +305,11 @@ def draw(robot: Robot | Chain, q: Any = None, *, frames: bool | None = None,
     arrow : 3-vector, optional
         A direction drawn as an arrow at the tool point of every panel.
     title : str, optional
-        The figure's title (default: the robot's name; several panels are titled by their configurations).
+        The figure's title (default: the robot's name, ``""`` for none); several panels are also titled by their
+        configurations.
     size : (width, height) in inches, optional
+    prefix : str
+        Put before the ids (``gid``) of the artists; with several panels, panel k's ids start ``{prefix}panelk-``.
 
     Returns
     -------
@@ -330,7 +333,8 @@ def draw(robot: Robot | Chain, q: Any = None, *, frames: bool | None = None,
     for index, values in enumerate(configurations):
         axes = figure.add_subplot(1, count, index + 1, projection="3d")
         drawing = ArmDrawing(axes, robot, frames=frames, ellipsoids=kinds, limits=limits, reach=reach,
-                             ellipsoid_scale=ellipsoid_scale if not drawings else None)
+                             ellipsoid_scale=ellipsoid_scale if not drawings else None,
+                             prefix=prefix if count == 1 else f"{prefix}panel{index + 1}-")
         if drawings:
             drawing.scales = dict(drawings[0].scales)  # panels side by side share one scale
         drawing.update(values)
@@ -351,7 +355,8 @@ def draw(robot: Robot | Chain, q: Any = None, *, frames: bool | None = None,
                                                     for d in drawings if d.pose is not None]])
     for drawing in drawings:
         equal_axes(drawing.axes, everything, 0.1 * (reach or 1.0))
-    figure.suptitle(title if title is not None else as_chain(robot).robot.name)
+    if title != "":
+        figure.suptitle(title if title is not None else as_chain(robot).robot.name)
     return figure
 
 

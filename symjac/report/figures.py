@@ -8,14 +8,16 @@ from __future__ import annotations
 
 import io
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
 from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath
 from symjac.errors import SymjacError
+from symjac.model.robot import Robot
 
-__all__ = ["CURVE_COLOURS", "map_svg", "rates_svg"]
+__all__ = ["CURVE_COLOURS", "arm_svg", "map_svg", "rates_svg"]
 
 CURVE_COLOURS = ("#e41a1c", "#ff7f00", "#f781bf", "#a65628", "#ffff33", "#4daf4a")
 """Colours of the singular factors' curves, in the order of the factors (the captions name them)."""
@@ -39,6 +41,15 @@ def _svg(figure: Any, salt: str) -> str:
         figure.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None, "Format": None, "Type": None})
     text = buffer.getvalue()
     return text[text.index("<svg"):].strip() + "\n"
+
+
+def arm_svg(robot: Robot, q: Sequence[float], name: str, arrow: Sequence[float] | None = None) -> str:
+    """The arm at ``q`` (with ``arrow`` at the tool, world coordinates) as SVG; ``name`` keeps its ids apart."""
+    _matplotlib()
+    from symjac.drawing.figure import draw
+
+    figure = draw(robot, q, arrow=arrow, title="", size=(3.9, 3.7), prefix=f"{name}-")
+    return _svg(figure, f"symjac-{name}")
 
 
 def map_svg(plane: ManipulabilityMap, names: tuple[str, str], path: SingularPath | None = None) -> str:

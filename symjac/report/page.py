@@ -2,7 +2,8 @@ r"""One self-contained HTML page with a robot's whole derivation: :func:`derivat
 
 The page holds the DH table, the link transforms, the forward kinematics, the Jacobian in frame {0} and in the frame
 where it is most compact, the exact comparison of the four derivation methods, the singularity report with its
-explanations, and two inline SVG pictures: the manipulability over two joints with the singular curves drawn from
+explanations, the arm drawn at home and at each solved singular configuration (with the direction it loses there),
+and two inline SVG pictures: the manipulability over two joints with the singular curves drawn from
 the solved factors, and the joint rates along a path through a singularity. Math is MathML Core (rendered natively
 by browsers); nothing is fetched when the page is viewed (no scripts, fonts, or images from elsewhere). Every string
 that comes from the user (robot name, description, file name) is HTML-escaped. Identical input gives identical
@@ -14,11 +15,13 @@ from __future__ import annotations
 import html
 from dataclasses import dataclass
 
+import numpy as np
 import sympy as sp
 
 from symjac._version import __version__
 from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath, manipulability_map, singular_path
 from symjac.analysis.singularity.singularities import SingularityReport, singularities
+from symjac.drawing.geometry import arm_pose
 from symjac.kinematics.chain import Frame, chain_of, forward_kinematics
 from symjac.kinematics.jacobian import ROW_NAMES, jacobian
 from symjac.model.robot import Robot
@@ -32,7 +35,7 @@ from symjac.printing.results import (
     transforms_document,
 )
 from symjac.report.content import Agreement, block_html, caption_html, method_agreement
-from symjac.report.figures import CURVE_COLOURS, map_svg, rates_svg
+from symjac.report.figures import CURVE_COLOURS, arm_svg, map_svg, rates_svg
 from symjac.resources import render_template
 
 __all__ = ["Section", "derivation_report"]
@@ -101,6 +104,45 @@ def _singularities(robot: Robot, report: SingularityReport) -> Section:
     return Section("singularities", "Singular configurations", _html(singularities_document(robot, report)))
 
 
+def _home(robot: Robot) -> list[float]:
+    """Zero, or the middle of a joint's limits where zero lies outside them (each joint its own coordinate)."""
+    home = [0.0] * robot.n_coordinates
+    if robot.coupling is None:
+        for k, joint in enumerate(robot.joints):
+            if joint.limits is not None:
+                low, high = (float(bound.subs(robot.defaults)) for bound in joint.limits)
+                home[k] = 0.0 if low <= 0.0 <= high else (low + high) / 2
+    return home
+
+
+def _arm_figure(svg: str, caption: str) -> str:
+    return f'<figure class="arm">{svg}<figcaption>{caption}</figcaption></figure>'
+
+
+def _arm_section(robot: Robot, report: SingularityReport) -> Section:
+    """The arm at home, and at each solved singular configuration with the direction lost drawn at the tool."""
+    home = _home(robot)
+    figures = [_arm_figure(arm_svg(robot, home, "arm-home"),
+                           html.escape(prose.arm_home_caption(", ".join(f"{v:.3g}" for v in home))))]
+    chain = chain_of(robot)
+    for number, factor in enumerate(report.factors, start=1):
+        lost = factor.lost_direction
+        if factor.sample is None or lost is None:
+            continue
+        angular = float(np.linalg.norm(lost.full[3:])) > float(np.linalg.norm(lost.full[:3]))  # the larger half
+        part = lost.angular if angular else lost.linear
+        if part is None:
+            continue
+        frame = arm_pose(robot, factor.sample).frames[chain.position(report.frame) + 1]
+        direction = frame[:3, :3] @ np.array(part.unit)  # from the analysis frame to the world
+        configuration = ", ".join(f"{v:.3g}" for v in factor.sample)
+        caption = caption_html(prose.arm_singular_parts(factor.expression, str(factor.kind), configuration,
+                                                        angular))
+        figures.append(_arm_figure(arm_svg(robot, factor.sample, f"arm-singular-{number}", direction), caption))
+    return Section("arm", "The arm", f"<p>{html.escape(prose.ARM_INTRO)}</p>"
+                   f'<div class="arms">{"".join(figures)}</div>')
+
+
 def _map_section(robot: Robot, plane: ManipulabilityMap, path: SingularPath | None) -> Section:
     names = (_joint_name(robot, plane.joints[0]), _joint_name(robot, plane.joints[1]))
     fixed = ", ".join(f"{_joint_name(robot, k)} = {value:.3f}" for k, value in enumerate(plane.configuration)
@@ -137,7 +179,7 @@ def derivation_report(robot: Robot, source: str | None = None) -> str:
     point = report.determinant.point
     agreements = [method_agreement(robot, frame, point) for frame in frames]
     sections = [*_dh_and_transforms(robot), _forward(robot), _jacobians(robot, frames, point, agreements),
-                _singularities(robot, report)]
+                _singularities(robot, report), _arm_section(robot, report)]
     plane = manipulability_map(robot, report)
     if plane is not None:
         path = singular_path(robot, plane)

@@ -6,9 +6,12 @@ analysis, so printing a Jacobian loads none.
 """
 
 from symjac.printing.prose.report import (
+    ARM_INTRO,
     METHODS_HEADING,
     NO_SINGULAR_CURVE,
     PATH_IN_MAP,
+    arm_home_caption,
+    arm_singular_parts,
     curve_parts,
     forward_kinematics_intro,
     jacobian_frame_heading,
@@ -58,6 +61,7 @@ from symjac.printing.prose.singularities import (
 )
 
 __all__ = [
+    "ARM_INTRO",
     "BIAS_ACCELERATION",
     "HOME_POSE",
     "KIND_REASONS",
@@ -68,6 +72,8 @@ __all__ = [
     "RATE_MATRIX",
     "REPRESENTATION_COORDINATES",
     "SCREW_JACOBIAN_CAPTIONS",
+    "arm_home_caption",
+    "arm_singular_parts",
     "axis_name",
     "curve_parts",
     "derivative_caption",

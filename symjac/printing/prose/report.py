@@ -14,9 +14,12 @@ import sympy as sp
 from symjac.model.robot import Robot
 
 __all__ = [
+    "ARM_INTRO",
     "METHODS_HEADING",
     "NO_SINGULAR_CURVE",
     "PATH_IN_MAP",
+    "arm_home_caption",
+    "arm_singular_parts",
     "curve_parts",
     "forward_kinematics_intro",
     "jacobian_frame_heading",
@@ -31,6 +34,23 @@ METHODS_HEADING = "Four methods, one Jacobian"
 NO_SINGULAR_CURVE = ("No singular curve crosses this plane (the singular factors do not involve these joints, or the "
                      "arm is redundant and singular only where every minor vanishes).")
 PATH_IN_MAP = "The dashed white segment is the path of the next figure."
+
+
+ARM_INTRO = ("The arm drawn from its forward kinematics (parameters at their defaults): links between the frame "
+             "origins, a cylinder on each revolute axis and a box on each prismatic one, and the frames' axes "
+             "(x red, y green, z blue).")
+
+
+def arm_home_caption(configuration: str) -> str:
+    """The caption of the arm at its home configuration (``configuration``: the values, formatted)."""
+    return f"Home: q = ({configuration})."
+
+
+def arm_singular_parts(factor: sp.Expr, kind: str, configuration: str, angular: bool) -> tuple[Any, ...]:
+    """The caption of the arm at a singular configuration, with the lost direction as a red arrow at the tool."""
+    arrow = ("the axis of the rotation the arm cannot make (mostly rotation is lost here)" if angular
+             else "the direction the tool point cannot move in")
+    return ("Singular where ", factor, f" = 0 ({kind}), at q = ({configuration}). The red arrow is {arrow}.")
 
 
 def point_words(robot: Robot, point: Sequence[sp.Expr]) -> str:

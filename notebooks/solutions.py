@@ -47,4 +47,9 @@ SOLUTIONS: dict[str, dict[str, str]] = {
         "answer_2": "answer_2 = sp.Matrix([0, 0, 1, 0, 0, 0])",
         "answer_3": "answer_3 = 6",
     },
+    "09_drawing_the_arm": {
+        "answer_1": "answer_1 = 0.0  # stretched: the tool cannot move along the arm",
+        "answer_2": "answer_2 = np.sqrt((0.57 + np.sqrt(0.57**2 - 4 * 0.04)) / 2)  # eigenvalues of J_v J_v^T",
+        "answer_3": "answer_3 = 3  # {1} and {2}, {3}, and the wrist centre {4}, {5}, {6}",
+    },
 }

@@ -272,3 +272,23 @@ def test_prismatic_coordinates_are_not_in_degrees(cli, tmp_path):
     error = cli.one_line_error("draw", "stanford", "--q", "0,0,10deg,0,0,0", "-o", str(tmp_path / "a.png"))
     assert "d3 is a length" in error
     assert load_robot("stanford").joints[2].type is JointType.PRISMATIC
+
+
+@pytest.mark.external
+def test_the_slider_notebook_shows_one_static_figure_when_run_headless(tmp_path, monkeypatch):
+    jupytext = pytest.importorskip("jupytext")
+    nbclient = pytest.importorskip("nbclient")
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    monkeypatch.setenv("SYMJAC_NOTEBOOK_OUTPUT", str(tmp_path))
+    notebook = jupytext.read(Path(__file__).resolve().parent.parent / "notebooks" / "09_drawing_the_arm.py")
+    notebook.cells = [cell for cell in notebook.cells if "answer_" not in cell.source]  # the exercises: elsewhere
+    nbclient.NotebookClient(notebook, timeout=240, kernel_name="python3",
+                            resources={"metadata": {"path": str(tmp_path)}}).execute()
+    images = [output for cell in notebook.cells if cell.cell_type == "code" for output in cell.outputs
+              if "image/png" in output.get("data", {})]
+    assert len(images) == 2  # the PUMA's frames and the 2R ellipsoids, shown without pyplot
+    state = notebook.metadata["widgets"]["application/vnd.jupyter.widget-state+json"]["state"]
+    shown = [output for model in state.values() if model["model_name"] == "OutputModel"
+             for output in model["state"].get("outputs", []) if "image/png" in output.get("data", {})]
+    assert len(shown) == 1  # the sliders' figure, drawn once at their starting values
+    assert (tmp_path / "panda_sliders.png").stat().st_size > 10_000

@@ -24,6 +24,8 @@ while the arm moves. The axes are equal in scale: a cube around everything drawn
 
 from __future__ import annotations
 
+import functools
+import io
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -56,12 +58,29 @@ _SIDES = 16  # facets of a joint cylinder and meridians of an ellipsoid
 
 
 def matplotlib_figure(**options: Any) -> Figure:
-    """A matplotlib Figure not tied to pyplot (no window, no global state); a clear error without matplotlib."""
+    """A matplotlib Figure not tied to pyplot (no window, no global state); a clear error without matplotlib.
+
+    Jupyter shows it as a PNG whatever matplotlib's backend (it has a ``_repr_png_``), so ``draw(...)`` as the last
+    line of a cell shows the arm even where pyplot was never imported.
+    """
     try:
         from matplotlib.figure import Figure
     except ImportError:
         raise SymjacError("drawing the arm needs matplotlib: pip install 'symjac[draw]'") from None
-    return Figure(**options)
+    return _shown_in_notebooks(Figure)(**options)  # type: ignore[no-any-return]
+
+
+@functools.cache
+def _shown_in_notebooks(base: type) -> type:
+    class ArmFigure(base):  # type: ignore[valid-type, misc]
+        """A matplotlib Figure with a PNG representation for IPython."""
+
+        def _repr_png_(self) -> bytes:
+            buffer = io.BytesIO()
+            self.savefig(buffer, format="png", dpi=90, metadata={"Software": None})
+            return buffer.getvalue()
+
+    return ArmFigure
 
 
 def _perpendicular(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -128,6 +147,7 @@ class ArmDrawing:
                  ellipsoids: Sequence[EllipsoidKind] = (), limits: bool = False, reach: float | None = None,
                  ellipsoid_scale: float | None = None, prefix: str = ""):
         self.axes = axes
+        axes.set_autoscale_on(False)  # the limits are set once, from everything drawn (a flat arm broke autoscaling)
         self.chain = as_chain(robot)
         n = self.chain.n_joints
         self.frames = n <= MOST_JOINTS_WITH_FRAMES if frames is None else bool(frames)

@@ -223,25 +223,25 @@ class ArmDrawing:
                 for c, line in enumerate(lines):
                     line.set_data_3d(*np.array([origin, origin + length * frame[:3, c]]).T)
                 text.set_position_3d(label_at)
-        for kind in self.ellipsoids:
-            shape = ellipsoid(pose, kind)
-            if kind not in self.scales:
+        for shown in self.ellipsoids:
+            shape = ellipsoid(pose, shown)
+            if shown not in self.scales:
                 longest = float(np.max(np.linalg.norm(shape.axes, axis=1)))
-                self.scales[kind] = 0.5 * size / longest if longest > 0 else 1.0
-            drawn = self.scales[kind] * shape.axes
+                self.scales[shown] = 0.5 * size / longest if longest > 0 else 1.0
+            drawn = self.scales[shown] * shape.axes
             mesh = _ellipsoid_mesh(shape.centre, drawn)
             segments = [np.array([shape.centre - a, shape.centre + a]) for a in drawn]
-            if kind not in self.meshes:
-                colour = ELLIPSOID_COLOURS[kind]
+            if shown not in self.meshes:
+                colour = ELLIPSOID_COLOURS[shown]
                 surface = Poly3DCollection(mesh, facecolors=colour, edgecolors="none", alpha=0.18,
-                                           gid=f"{self.prefix}{kind}-ellipsoid")
+                                           gid=f"{self.prefix}{shown}-ellipsoid")
                 self.axes.add_collection3d(surface)
                 lines = [self.axes.plot(*segment.T, color=colour, linewidth=1.2,
-                                        gid=f"{self.prefix}{kind}-ellipsoid-axis-{k}")[0]
+                                        gid=f"{self.prefix}{shown}-ellipsoid-axis-{k}")[0]
                          for k, segment in enumerate(segments)]
-                self.meshes[kind] = (surface, lines)
+                self.meshes[shown] = (surface, lines)
             else:
-                surface, lines = self.meshes[kind]
+                surface, lines = self.meshes[shown]
                 surface.set_verts(mesh)
                 for line, segment in zip(lines, segments, strict=True):
                     line.set_data_3d(*segment.T)
@@ -348,7 +348,7 @@ def draw(robot: Robot | Chain, q: Any = None, *, frames: bool | None = None,
     azimuth, elevation = view_angles(view)
     count = len(configurations)
     figure = matplotlib_figure(figsize=size or (4.8 * count, 4.8), layout="constrained")
-    drawings = []
+    drawings: list[ArmDrawing] = []
     reach = None
     for index, values in enumerate(configurations):
         axes = figure.add_subplot(1, count, index + 1, projection="3d")

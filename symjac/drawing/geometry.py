@@ -210,11 +210,10 @@ def ellipsoid(pose: ArmPose, kind: EllipsoidKind = "velocity") -> Ellipsoid:
     sigma = np.concatenate([sigma, np.zeros(3 - len(sigma))])
     if kind == "velocity":
         lengths = sigma
-        clipped = (False, False, False)
     else:
-        longest = LONGEST_FORCE_AXIS * pose.reach
         with np.errstate(divide="ignore"):
-            inverse = np.where(sigma > 0, 1.0 / np.where(sigma > 0, sigma, 1.0), np.inf)
-        clipped = tuple(bool(v > longest) for v in inverse)
-        lengths = np.minimum(inverse, longest)
-    return Ellipsoid(kind, pose.tool[:3, 3].copy(), U.T * lengths[:, None], clipped)  # type: ignore[arg-type]
+            lengths = np.where(sigma > 0, 1.0 / np.where(sigma > 0, sigma, 1.0), np.inf)
+    longest = LONGEST_FORCE_AXIS * pose.reach if kind == "force" else np.inf
+    first, second, third = (bool(length > longest) for length in lengths)
+    return Ellipsoid(kind, pose.tool[:3, 3].copy(), U.T * np.minimum(lengths, longest)[:, None],
+                     (first, second, third))

@@ -172,6 +172,8 @@ GOLDEN_CASES = {
     "puma560-ellipsoid": ("puma560", [[0.3, -0.6, 0.4, 0.2, 0.8, 0.0]], {"ellipsoids": ("velocity",)}),
     "stanford-side-by-side": ("stanford", [[0.2, -0.4, 0.3, 0.0, 0.5, 0.0], [1.0, 0.3, 0.6, 0.4, -0.5, 0.2]],
                               {"limits": True}),
+    "ur5-report-arrow": ("ur5", [[0.3, -1.2, 0.0, -0.8, 1.2, 0.0]],  # as the report draws a singular configuration
+                         {"arrow": (0.0, 0.6, 0.8), "title": "", "size": (3.9, 3.7)}),
     "panda-force-limits": ("panda", [[0.3, -0.5, 0.2, -2.0, 0.1, 1.5, 0.4]],
                            {"ellipsoids": ("force",), "limits": True, "frames": False, "view": (-100.0, 15.0)}),
 }

@@ -31,6 +31,7 @@ from symjac.cli.main import main
 from symjac.errors import SymjacError
 from symjac.report import derivation_report
 from symjac.report.figures import map_svg
+from tests import reference
 
 ARTIFACTS = Path(os.environ.get("SYMJAC_ARTIFACTS", Path(__file__).parent / "artifacts"))
 
@@ -236,3 +237,28 @@ def test_the_page_renders_in_chromium(pages, tmp_path, name):
     screenshot.unlink(missing_ok=True)
     _browser(binary, f"--screenshot={screenshot}", page.as_uri())
     assert screenshot.is_file() and screenshot.stat().st_size > 20_000
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "ur5_poe"])
+def test_the_arrow_at_the_tool_is_the_lost_direction_in_the_world(name):
+    from symjac import numeric_jacobian
+    from symjac.report.page import lost_arrow
+
+    robot = load_robot(name)
+    report = singularities(robot)
+    drawn = 0
+    for factor in report.factors:
+        arrow = lost_arrow(robot, report, factor)
+        if arrow is None:
+            continue
+        drawn += 1
+        direction, angular = arrow
+        q = np.array(factor.sample)
+        # the whole lost direction, turned into the world: no joint rate moves the arm along it
+        R = reference.frames(robot, q)[reference.frame_index(robot, report.frame)][:3, :3]
+        u = np.concatenate([R @ factor.lost_direction.full[:3], R @ factor.lost_direction.full[3:]])
+        J = numeric_jacobian(robot, q.tolist(), "world", report.determinant.point)
+        assert np.abs(u @ J).max() < 1e-9
+        half = u[3:] if angular else u[:3]
+        np.testing.assert_allclose(direction, half / np.linalg.norm(half), atol=1e-9)
+    assert drawn >= 2

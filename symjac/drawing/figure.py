@@ -279,6 +279,7 @@ def equal_axes(axes: Any, points: np.ndarray, margin: float) -> None:
     axes.set_ylim(centre[1] - half, centre[1] + half)
     axes.set_zlim(centre[2] - half, centre[2] + half)
     axes.set_box_aspect((1.0, 1.0, 1.0), zoom=0.9)  # a little room for the z label
+    axes.tick_params(labelsize=7, pad=1)
 
 
 def _configurations(robot: Robot | Chain, q: Any) -> list[np.ndarray]:

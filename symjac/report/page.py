@@ -20,7 +20,7 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath, manipulability_map, singular_path
-from symjac.analysis.singularity.singularities import SingularityReport, singularities
+from symjac.analysis.singularity.singularities import SingularFactor, SingularityReport, singularities
 from symjac.drawing.geometry import arm_pose
 from symjac.kinematics.chain import Frame, chain_of, forward_kinematics
 from symjac.kinematics.jacobian import ROW_NAMES, jacobian
@@ -38,7 +38,7 @@ from symjac.report.content import Agreement, block_html, caption_html, method_ag
 from symjac.report.figures import CURVE_COLOURS, arm_svg, map_svg, rates_svg
 from symjac.resources import render_template
 
-__all__ = ["Section", "derivation_report"]
+__all__ = ["Section", "derivation_report", "lost_arrow"]
 
 TEMPLATE = "documents/report.html.j2"
 
@@ -115,6 +115,23 @@ def _home(robot: Robot) -> list[float]:
     return home
 
 
+def lost_arrow(robot: Robot, report: SingularityReport, factor: SingularFactor) -> tuple[np.ndarray, bool] | None:
+    """The arrow drawn at the tool for a singular factor: a unit world vector, and whether it is the angular half.
+
+    The larger half of the lost direction is drawn, turned from the analysis frame into the world; ``None`` without
+    a sample or a lost direction.
+    """
+    lost = factor.lost_direction
+    if factor.sample is None or lost is None:
+        return None
+    angular = float(np.linalg.norm(lost.full[3:])) > float(np.linalg.norm(lost.full[:3]))
+    part = lost.angular if angular else lost.linear
+    if part is None:
+        return None
+    frame = arm_pose(robot, factor.sample).frames[chain_of(robot).position(report.frame) + 1]
+    return frame[:3, :3] @ np.array(part.unit), angular  # from the analysis frame to the world
+
+
 def _arm_figure(svg: str, caption: str) -> str:
     return f'<figure class="arm">{svg}<figcaption>{caption}</figcaption></figure>'
 
@@ -124,17 +141,11 @@ def _arm_section(robot: Robot, report: SingularityReport) -> Section:
     home = _home(robot)
     figures = [_arm_figure(arm_svg(robot, home, "arm-home"),
                            html.escape(prose.arm_home_caption(", ".join(f"{v:.3g}" for v in home))))]
-    chain = chain_of(robot)
     for number, factor in enumerate(report.factors, start=1):
-        lost = factor.lost_direction
-        if factor.sample is None or lost is None:
+        arrow = lost_arrow(robot, report, factor)
+        if arrow is None or factor.sample is None:
             continue
-        angular = float(np.linalg.norm(lost.full[3:])) > float(np.linalg.norm(lost.full[:3]))  # the larger half
-        part = lost.angular if angular else lost.linear
-        if part is None:
-            continue
-        frame = arm_pose(robot, factor.sample).frames[chain.position(report.frame) + 1]
-        direction = frame[:3, :3] @ np.array(part.unit)  # from the analysis frame to the world
+        direction, angular = arrow
         configuration = ", ".join(f"{v:.3g}" for v in factor.sample)
         caption = caption_html(prose.arm_singular_parts(factor.expression, str(factor.kind), configuration,
                                                         angular))

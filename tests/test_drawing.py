@@ -20,7 +20,7 @@ from matplotlib.testing.compare import compare_images
 
 from symjac import ArgumentError, arm_pose, catalog, draw, load_robot
 from symjac.drawing.animation import figure_bytes, joint_path
-from symjac.drawing.geometry import LONGEST_FORCE_AXIS
+from symjac.drawing.geometry import FORCE_AXIS_RATIO
 from symjac.model.robot import JointType
 from tests import reference
 
@@ -97,8 +97,7 @@ def test_the_ellipsoids_axes_are_the_singular_vectors_times_the_singular_values(
                                    sorted(np.concatenate([sigma, np.zeros(3 - len(sigma))])), atol=1e-7)
         centre = (_segment(axes, "velocity-ellipsoid-axis-0")).mean(axis=0)
         np.testing.assert_allclose(centre, reference.frames(robot, q)[-1][:3, 3], atol=1e-12)
-        longest = LONGEST_FORCE_AXIS * arm_pose(robot, q).reach
-        if len(sigma) == 3 and np.min(sigma) * 0.99 * longest > 1:  # force ellipsoid: (J_v J_v^T)^-1 (not clipped)
+        if len(sigma) == 3 and np.min(sigma) * FORCE_AXIS_RATIO > 1.01 * np.max(sigma):  # not clipped: (J_v J_v^T)^-1
             np.testing.assert_allclose(semi["force"].T @ semi["force"], np.linalg.inv(J_v @ J_v.T), rtol=1e-5,
                                        atol=1e-6)
 
@@ -111,7 +110,21 @@ def test_a_singular_force_ellipsoid_is_clipped_and_says_so():
     shape = ellipsoid(pose, "force")
     lengths = np.linalg.norm(shape.axes, axis=1)
     assert sum(shape.clipped) == 2  # along the arm, and out of the plane (no joint moves the tool along z)
-    np.testing.assert_allclose(sorted(lengths)[1:], [LONGEST_FORCE_AXIS * pose.reach] * 2)
+    sigma = np.linalg.svd(pose.jacobian[:3], compute_uv=False)
+    np.testing.assert_allclose(sorted(lengths), [1 / sigma.max()] + [FORCE_AXIS_RATIO / sigma.max()] * 2)
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "panda", "planar3r"])
+def test_a_regular_force_ellipsoid_is_never_clipped(name):
+    robot = load_robot(name)
+    rng = np.random.default_rng(3)
+    from symjac import ellipsoid
+
+    for _ in range(50):
+        pose = arm_pose(robot, reference.random_configuration(robot, rng))
+        sigma = np.linalg.svd(pose.jacobian[:3], compute_uv=False)
+        if len(sigma) == 3 and sigma.min() > 0.05 * sigma.max():
+            assert not any(ellipsoid(pose, "force").clipped)
 
 
 def test_joints_are_coloured_by_their_distance_to_the_limits():

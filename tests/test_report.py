@@ -246,19 +246,25 @@ def test_the_arrow_at_the_tool_is_the_lost_direction_in_the_world(name):
 
     robot = load_robot(name)
     report = singularities(robot)
-    drawn = 0
+    drawn, kinds = 0, set()
     for factor in report.factors:
         arrow = lost_arrow(robot, report, factor)
         if arrow is None:
             continue
         drawn += 1
-        direction, angular = arrow
+        direction, shown = arrow
         q = np.array(factor.sample)
         # the whole lost direction, turned into the world: no joint rate moves the arm along it
         R = reference.frames(robot, q)[reference.frame_index(robot, report.frame)][:3, :3]
         u = np.concatenate([R @ factor.lost_direction.full[:3], R @ factor.lost_direction.full[3:]])
         J = numeric_jacobian(robot, q.tolist(), "world", report.determinant.point)
         assert np.abs(u @ J).max() < 1e-9
-        half = u[3:] if angular else u[:3]
+        half = u[3:] if shown == "angular" else u[:3]
         np.testing.assert_allclose(direction, half / np.linalg.norm(half), atol=1e-9)
+        rows = J[3:] if shown == "angular" else J[:3]
+        lost_alone = np.abs(direction @ rows).max() < 1e-7
+        assert lost_alone == (shown != "mixed"), (name, factor.expression, shown)
+        kinds.add(shown)
     assert drawn >= 2
+    if name == "puma560":  # the elbow and the shoulder lose a translation; the wrist a translation with a turn
+        assert kinds == {"linear", "mixed"}

@@ -8,6 +8,7 @@ parsers import what they use when they are called.
 from __future__ import annotations
 
 import argparse
+import math
 import re
 from collections.abc import Iterator, Sequence
 from importlib import import_module
@@ -188,8 +189,8 @@ def parse_configuration(text: str, robot: Robot, option: str = "--q") -> list[fl
                                 "be in degrees")
         [value] = parse_values(number[:-3] if degrees else number, 1, option, robot, parameters=False)
         value = value * sp.pi / 180 if degrees else value
-        if not value.is_number:
-            raise ArgumentError(f"{option}: {number!r} is not a number")
+        if not value.is_number or not math.isfinite(float(value)):
+            raise ArgumentError(f"{option}: {number!r} is not a finite number")
         values.append(float(value))
     return values
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 
 from symjac.cli.args import load, parse_configuration
-from symjac.cli.output import progress
 from symjac.errors import ArgumentError
 
 __all__ = ["draw_command"]
@@ -47,7 +46,7 @@ def draw_command(args: argparse.Namespace) -> str:
         if configurations is None or len(configurations) < 2:
             raise ArgumentError("--path needs two or more --q waypoints")
         motion = animate(robot, joint_path(configurations, args.path_steps), fps=args.fps, **options)
-        data = progress(f"animation of {robot.name}", lambda: movie_bytes(motion, suffix, args.fps))
+        data = movie_bytes(motion, suffix, args.fps)
     else:
         figure = draw(robot, configurations, **options)
         data = figure_bytes(figure, suffix)

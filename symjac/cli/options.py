@@ -71,9 +71,11 @@ def draw_options(sub: argparse.ArgumentParser, name: str) -> None:
     """``symjac draw``: configurations, view, ellipsoids, limits, frames, and a path to animate."""
     add_robot_arguments(sub)
     sub.add_argument("--q", action="append", metavar="Q",
-                     help="a configuration q1,...,qn in radians and metres, or degrees as 30deg (default: all zero); "
-                          "repeat it to draw configurations side by side, or to give the waypoints of --path")
-    sub.add_argument("--view", default=None, metavar="AZIMUTH,ELEVATION", help="the view in degrees (default -60,25)")
+                     help="a configuration q1,...,qn in radians and metres, or degrees as 30deg (default: zero, or "
+                          "mid-range where a joint's limits exclude zero); repeat it to draw configurations side by "
+                          "side, or to give the waypoints of --path; write --q=-1,0 when it starts with a minus")
+    sub.add_argument("--view", default=None, metavar="AZIMUTH,ELEVATION",
+                     help="the view in degrees (default: --view=-60,25; the = is needed before a minus)")
     sub.add_argument("--ellipsoid", action="append", choices=("velocity", "force"), default=None,
                      help="the velocity or force ellipsoid at the tool point (repeat for both)")
     sub.add_argument("--limits", action="store_true", help="colour each joint by its distance to its limits")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io
 import itertools
+import numbers
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
@@ -17,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from symjac.drawing.figure import DEFAULT_VIEW, ArmDrawing, equal_axes, matplotlib_figure, view_angles
-from symjac.drawing.geometry import EllipsoidKind, arm_pose, configuration
+from symjac.drawing.geometry import EllipsoidKind, arm_pose, configuration, ellipsoid
 from symjac.errors import ArgumentError, SymjacError
 from symjac.kinematics.chain import Chain, as_chain
 from symjac.model.robot import Robot
@@ -36,41 +37,61 @@ def joint_path(waypoints: Sequence[Sequence[float]] | np.ndarray, steps: int = 3
     >>> joint_path([[0.0, 0.0], [1.0, 2.0]], steps=2).tolist()
     [[0.0, 0.0], [0.5, 1.0], [1.0, 2.0]]
     """
-    points = np.asarray(waypoints, dtype=float)
+    try:
+        points = np.asarray(waypoints, dtype=float)
+    except (TypeError, ValueError):
+        raise ArgumentError(f"waypoints must be configurations (rows of numbers), got {waypoints!r}") from None
     if points.ndim != 2 or len(points) < 2:
-        raise ArgumentError(f"a path needs at least two configurations, got {len(points) if points.ndim else 0}")
-    if not isinstance(steps, int) or steps < 1:
-        raise ArgumentError(f"steps must be a positive integer, got {steps!r}")
+        raise ArgumentError(f"a path needs at least two configurations, got shape {points.shape}")
+    if not np.all(np.isfinite(points)):
+        raise ArgumentError("waypoints must be finite")
+    steps = _positive_integer(steps, "steps")
     t = np.linspace(0.0, 1.0, steps + 1)[:-1, None]
     segments = [a + t * (b - a) for a, b in itertools.pairwise(points)]
     return np.concatenate([*segments, points[-1:]])
 
 
+def _positive_integer(value: object, name: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or int(value) < 1:
+        raise ArgumentError(f"{name} must be a positive integer, got {value!r}")
+    return int(value)
+
+
 def animate(robot: Robot | Chain, path: Sequence[Sequence[float]] | np.ndarray, *, fps: int = 20,
-            frames: bool | None = None, ellipsoids: Sequence[EllipsoidKind] = (), limits: bool = False,
+            frames: bool | None = None, ellipsoids: Sequence[EllipsoidKind] | EllipsoidKind = (),
+            limits: bool = False,
             view: tuple[float, float] = DEFAULT_VIEW) -> Any:
     """The arm following ``path`` (configurations as rows), as a :class:`matplotlib.animation.FuncAnimation`.
 
     The options are those of :func:`~symjac.drawing.figure.draw`. The axes hold every configuration of the path, so
     the camera stays still. Save it with :func:`movie_bytes` (or matplotlib's own ``save``).
     """
-    from matplotlib.animation import FuncAnimation
-
     chain = as_chain(robot)
-    rows = np.asarray(path, dtype=float) if not isinstance(path, str) else np.array(())
+    try:
+        rows = np.asarray(path, dtype=float)
+    except (TypeError, ValueError):
+        raise ArgumentError(f"path must be configurations as rows of numbers, got {path!r}") from None
     if rows.ndim != 2 or len(rows) < 1:
         raise ArgumentError(f"path must be configurations as rows, got shape {rows.shape}")
     configurations = [configuration(chain, row) for row in rows]
-    if not (isinstance(fps, int) and fps > 0):
-        raise ArgumentError(f"fps must be a positive integer, got {fps!r}")
+    fps = _positive_integer(fps, "fps")
+    figure = matplotlib_figure(figsize=(5.6, 5.2), layout="constrained")  # says so when matplotlib is missing
+    from matplotlib.animation import FuncAnimation
+
     azimuth, elevation = view_angles(view)
-    figure = matplotlib_figure(figsize=(5.6, 5.2), layout="constrained")
     axes = figure.add_subplot(projection="3d")
     drawing = ArmDrawing(axes, chain, frames=frames, ellipsoids=ellipsoids, limits=limits)
     drawing.update(configurations[0])
     reach = drawing.reach or 1.0
-    points = np.concatenate([drawing.points(), *[arm_pose(chain, q).origins for q in configurations]])
-    equal_axes(axes, points, 0.15 * reach)
+    points = [drawing.points()]
+    for values in configurations:  # the camera holds the whole motion, ellipsoids included
+        pose = arm_pose(chain, values)
+        points.append(pose.origins)
+        for kind in drawing.ellipsoids:
+            shape = ellipsoid(pose, kind)
+            drawn = drawing.scales[kind] * shape.axes
+            points += [shape.centre + drawn, shape.centre - drawn]
+    equal_axes(axes, np.concatenate(points), 0.15 * reach)
     axes.view_init(elev=elevation, azim=azimuth)
     axes.set_xlabel("x (m)")
     axes.set_ylabel("y (m)")

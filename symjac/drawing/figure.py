@@ -13,7 +13,8 @@ numbers it holds:
   (world, or {0}) and the last (tool, or {n}) are always drawn, the others when ``frames`` is true (the default up to
   8 joints);
 * ``velocity-ellipsoid`` / ``force-ellipsoid``: a translucent mesh at the tool point, and its three semi-axes as the
-  lines ``velocity-ellipsoid-axis-k`` (:func:`~symjac.drawing.geometry.ellipsoid`, times the drawing's scale);
+  lines ``velocity-ellipsoid-axis-k`` (:func:`~symjac.drawing.geometry.ellipsoid`, times the drawing's scale),
+  dotted where a force semi-axis was clipped (near a singularity it is far longer, or infinite);
 * ``arrow``: a direction drawn at the tool point (the report's lost direction).
 
 The ids are valid SVG and HTML ids: matplotlib writes them into an SVG file as the ``id`` of each artist's group.
@@ -129,7 +130,8 @@ class ArmDrawing:
         Where to draw.
     robot : Robot or Chain
     frames : bool, optional
-        Draw the triads of the intermediate frames {1}..{n-1} (default: up to 8 joints).
+        Draw the triads of the frames between the first and the last drawn (default: up to 8 joints). The first is
+        the world frame with a base transform, else {0}; the last the tool frame with a tool, else {n}.
     ellipsoids : sequence of "velocity" and "force"
         Ellipsoids at the tool point.
     limits : bool
@@ -144,17 +146,19 @@ class ArmDrawing:
     """
 
     def __init__(self, axes: Any, robot: Robot | Chain, *, frames: bool | None = None,
-                 ellipsoids: Sequence[EllipsoidKind] = (), limits: bool = False, reach: float | None = None,
+                 ellipsoids: Sequence[EllipsoidKind] | EllipsoidKind = (), limits: bool = False,
+                 reach: float | None = None,
                  ellipsoid_scale: float | None = None, prefix: str = ""):
         self.axes = axes
         axes.set_autoscale_on(False)  # the limits are set once, from everything drawn (a flat arm broke autoscaling)
         self.chain = as_chain(robot)
         n = self.chain.n_joints
         self.frames = n <= MOST_JOINTS_WITH_FRAMES if frames is None else bool(frames)
-        for kind in ellipsoids:
+        kinds = (ellipsoids,) if isinstance(ellipsoids, str) else tuple(ellipsoids)
+        for kind in kinds:
             if kind not in ELLIPSOID_COLOURS:
                 raise ArgumentError(f"unknown ellipsoid {kind!r}; choose velocity or force")
-        self.ellipsoids = tuple(dict.fromkeys(ellipsoids))
+        self.ellipsoids: tuple[EllipsoidKind, ...] = tuple(dict.fromkeys(kinds))
         self.limits = limits
         self.reach = reach
         self.prefix = prefix
@@ -178,7 +182,7 @@ class ArmDrawing:
         return [first, *middle, final]
 
     def update(self, q: Sequence[float] | np.ndarray | None = None) -> ArmPose:
-        """Move every artist to configuration ``q`` (zeros when ``None``); the numbers drawn."""
+        """Move every artist to configuration ``q`` (the home configuration when ``None``); the numbers drawn."""
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
         pose = arm_pose(self.chain, q)
@@ -245,6 +249,8 @@ class ArmDrawing:
                 surface.set_verts(mesh)
                 for line, segment in zip(lines, segments, strict=True):
                     line.set_data_3d(*segment.T)
+            for line, cut in zip(lines, shape.clipped, strict=True):
+                line.set_linestyle("dotted" if cut else "solid")  # a clipped semi-axis is longer than drawn
         self.pose = pose
         return pose
 
@@ -311,7 +317,8 @@ def draw(robot: Robot | Chain, q: Any = None, *, frames: bool | None = None,
     ----------
     robot : Robot or Chain
     q : sequence of floats, shape (n,) or (k, n), optional
-        The configuration (radians and metres; zeros when omitted), or k of them drawn side by side.
+        The configuration (radians and metres), or k of them drawn side by side. Default: zero, or mid-range for a
+        joint whose limits exclude zero (:func:`~symjac.drawing.geometry.home_configuration`).
     frames : bool, optional
         Draw every frame's triad labelled {i} (default: up to 8 joints); the base and tool frames are always drawn.
     ellipsoids : "velocity", "force" or both

@@ -27,21 +27,21 @@ from symjac.kinematics.chain import Chain, as_chain
 from symjac.kinematics.memo import memoized
 from symjac.model.robot import JointType, Robot
 
-__all__ = ["ArmPose", "Ellipsoid", "arm_pose", "configuration", "ellipsoid"]
+__all__ = ["ArmPose", "Ellipsoid", "arm_pose", "configuration", "ellipsoid", "home_configuration"]
 
 EllipsoidKind = Literal["velocity", "force"]
 
-LONGEST_FORCE_AXIS = 3.0
-"""The force ellipsoid's semi-axes are clipped at this many times the arm's reach (they grow without bound as a
-singular value goes to zero: the arm holds that force with no torque at all)."""
+FORCE_AXIS_RATIO = 100.0
+"""The force ellipsoid's semi-axes are clipped at this many times its shortest one, 1 / sigma_max: they grow
+without bound as a singular value goes to zero (the arm then holds that force with no torque at all)."""
 
 
 @dataclass(frozen=True)
 class Ellipsoid:
     r"""An ellipsoid at ``centre`` with semi-axes ``axes[k]`` (rows: unit direction times length, world coordinates).
 
-    ``clipped[k]`` says the k-th length was cut at :data:`LONGEST_FORCE_AXIS` times the reach (it is larger, or
-    infinite at a singular configuration).
+    ``clipped[k]`` says the k-th length was cut at :data:`FORCE_AXIS_RATIO` times the shortest (it is larger, or
+    infinite at a singular configuration); velocity ellipsoids are never cut.
     """
 
     kind: EllipsoidKind
@@ -82,11 +82,33 @@ class ArmPose:
         return self.frames[-1]
 
 
+def home_configuration(robot: Robot | Chain) -> np.ndarray:
+    """Zero, or the middle of a joint's limits where zero lies outside them (a coupled robot: zero).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> np.round(home_configuration(load_robot("panda")), 4).tolist()  # joint 4 cannot reach 0
+    [0.0, 0.0, 0.0, -1.5708, 0.0, 0.0, 0.0]
+    """
+    model = as_chain(robot).robot
+    home = np.zeros(model.n_coordinates)
+    if model.coupling is None:
+        for k, joint in enumerate(model.joints):
+            if joint.limits is not None:
+                low, high = (float(sp.sympify(bound).xreplace(model.defaults)) for bound in joint.limits)
+                home[k] = 0.0 if low <= 0.0 <= high else (low + high) / 2
+    return home
+
+
 def configuration(robot: Robot | Chain, q: Sequence[float] | np.ndarray | None) -> np.ndarray:
-    """``q`` as a float array of the robot's coordinates (zeros when ``None``); a clear error for anything else."""
+    """``q`` as a float array of the robot's coordinates; a clear error for anything else.
+
+    ``None`` stands for :func:`home_configuration`.
+    """
     model = as_chain(robot).robot
     if q is None:
-        return np.zeros(model.n_coordinates)
+        return home_configuration(model)
     if isinstance(q, str | bytes):
         raise ArgumentError(f"q must be {model.n_coordinates} numbers, got the text {q!r}")
     try:
@@ -195,7 +217,9 @@ def ellipsoid(pose: ArmPose, kind: EllipsoidKind = "velocity") -> Ellipsoid:
     r"""The velocity or force ellipsoid of the linear rows at the tool point, semi-axes as rows.
 
     .. math:: J_v = U \Sigma V^T: \quad a_k = \sigma_k u_k \text{ (velocity)}, \qquad a_k = u_k / \sigma_k
-       \text{ (force)}.
+       \text{ (force)},
+
+    a force semi-axis longer than :data:`FORCE_AXIS_RATIO` times the shortest being cut to that length.
 
     Examples
     --------
@@ -213,7 +237,8 @@ def ellipsoid(pose: ArmPose, kind: EllipsoidKind = "velocity") -> Ellipsoid:
     else:
         with np.errstate(divide="ignore"):
             lengths = np.where(sigma > 0, 1.0 / np.where(sigma > 0, sigma, 1.0), np.inf)
-    longest = LONGEST_FORCE_AXIS * pose.reach if kind == "force" else np.inf
+    strongest = float(sigma.max())
+    longest = np.inf if kind == "velocity" else FORCE_AXIS_RATIO / strongest if strongest > 0 else pose.reach
     first, second, third = (bool(length > longest) for length in lengths)
     return Ellipsoid(kind, pose.tool[:3, 3].copy(), U.T * np.minimum(lengths, longest)[:, None],
                      (first, second, third))

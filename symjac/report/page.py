@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import html
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 import sympy as sp
@@ -21,9 +22,10 @@ import sympy as sp
 from symjac._version import __version__
 from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath, manipulability_map, singular_path
 from symjac.analysis.singularity.singularities import SingularFactor, SingularityReport, singularities
-from symjac.drawing.geometry import arm_pose
+from symjac.drawing.geometry import arm_pose, home_configuration
 from symjac.kinematics.chain import Frame, chain_of, forward_kinematics
 from symjac.kinematics.jacobian import ROW_NAMES, jacobian
+from symjac.kinematics.numeric import numeric_jacobian
 from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Document
@@ -104,32 +106,28 @@ def _singularities(robot: Robot, report: SingularityReport) -> Section:
     return Section("singularities", "Singular configurations", _html(singularities_document(robot, report)))
 
 
-def _home(robot: Robot) -> list[float]:
-    """Zero, or the middle of a joint's limits where zero lies outside them (each joint its own coordinate)."""
-    home = [0.0] * robot.n_coordinates
-    if robot.coupling is None:
-        for k, joint in enumerate(robot.joints):
-            if joint.limits is not None:
-                low, high = (float(bound.subs(robot.defaults)) for bound in joint.limits)
-                home[k] = 0.0 if low <= 0.0 <= high else (low + high) / 2
-    return home
+def lost_arrow(robot: Robot, report: SingularityReport,
+               factor: SingularFactor) -> tuple[np.ndarray, Literal["linear", "angular", "mixed"]] | None:
+    """The arrow drawn at the tool for a singular factor: a unit world vector, and what it shows.
 
-
-def lost_arrow(robot: Robot, report: SingularityReport, factor: SingularFactor) -> tuple[np.ndarray, bool] | None:
-    """The arrow drawn at the tool for a singular factor: a unit world vector, and whether it is the angular half.
-
-    The larger half of the lost direction is drawn, turned from the analysis frame into the world; ``None`` without
-    a sample or a lost direction.
+    ``linear``: the lost direction's translation half is lost on its own (no joint rate moves the point along it);
+    ``angular``: its rotation half is (no joint rate turns the tool about it); ``mixed``: only the two together are
+    lost, and the arrow is the translation half (or the rotation half when there is no translation). ``None``
+    without a sample or a lost direction.
     """
     lost = factor.lost_direction
     if factor.sample is None or lost is None:
         return None
-    angular = float(np.linalg.norm(lost.full[3:])) > float(np.linalg.norm(lost.full[:3]))
-    part = lost.angular if angular else lost.linear
-    if part is None:
-        return None
+    J = numeric_jacobian(robot, list(factor.sample), report.frame, report.determinant.point)
+    halves = {"linear": lost.full[:3], "angular": lost.full[3:]}
+    tolerance = 1e-7 * max(1.0, float(np.abs(J).max()))
+    alone = [name for name, half in halves.items() if np.linalg.norm(half) > 1e-9
+             and np.abs(half @ J[(0 if name == "linear" else 3):][:3]).max() < tolerance * np.linalg.norm(half)]
+    kind: Literal["linear", "angular", "mixed"] = "mixed" if not alone else alone[0]  # type: ignore[assignment]
+    half = halves["angular"] if kind == "angular" or np.linalg.norm(halves["linear"]) <= 1e-9 else halves["linear"]
     frame = arm_pose(robot, factor.sample).frames[chain_of(robot).position(report.frame) + 1]
-    return frame[:3, :3] @ np.array(part.unit), angular  # from the analysis frame to the world
+    direction = frame[:3, :3] @ half  # from the analysis frame to the world
+    return direction / np.linalg.norm(direction), kind
 
 
 def _arm_figure(svg: str, caption: str) -> str:
@@ -138,18 +136,18 @@ def _arm_figure(svg: str, caption: str) -> str:
 
 def _arm_section(robot: Robot, report: SingularityReport) -> Section:
     """The arm at home, and at each solved singular configuration with the direction lost drawn at the tool."""
-    home = _home(robot)
+    home = home_configuration(robot).tolist()
     figures = [_arm_figure(arm_svg(robot, home, "arm-home"),
                            html.escape(prose.arm_home_caption(", ".join(f"{v:.3g}" for v in home))))]
     for number, factor in enumerate(report.factors, start=1):
         arrow = lost_arrow(robot, report, factor)
         if arrow is None or factor.sample is None:
             continue
-        direction, angular = arrow
+        direction, shown = arrow
         configuration = ", ".join(f"{v:.3g}" for v in factor.sample)
-        caption = caption_html(prose.arm_singular_parts(factor.expression, str(factor.kind), configuration,
-                                                        angular))
-        figures.append(_arm_figure(arm_svg(robot, factor.sample, f"arm-singular-{number}", direction), caption))
+        caption = caption_html(prose.arm_singular_parts(factor.expression, str(factor.kind), configuration, shown))
+        figures.append(_arm_figure(arm_svg(robot, factor.sample, f"arm-singular-{number}", direction.tolist()),
+                                   caption))
     return Section("arm", "The arm", f"<p>{html.escape(prose.ARM_INTRO)}</p>"
                    f'<div class="arms">{"".join(figures)}</div>')
 

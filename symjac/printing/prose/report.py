@@ -46,10 +46,16 @@ def arm_home_caption(configuration: str) -> str:
     return f"Home: q = ({configuration})."
 
 
-def arm_singular_parts(factor: sp.Expr, kind: str, configuration: str, angular: bool) -> tuple[Any, ...]:
-    """The caption of the arm at a singular configuration, with the lost direction as a red arrow at the tool."""
-    arrow = ("the axis of the rotation the arm cannot make (mostly rotation is lost here)" if angular
-             else "the direction the tool point cannot move in")
+def arm_singular_parts(factor: sp.Expr, kind: str, configuration: str, shown: str) -> tuple[Any, ...]:
+    """The caption of the arm at a singular configuration, with the lost direction as a red arrow at the tool.
+
+    ``shown`` says what the arrow is: ``linear`` (a direction the tool point cannot move in), ``angular`` (an axis
+    the tool cannot turn about), or ``mixed`` (the translation part of a lost twist, lost only with its rotation).
+    """
+    arrow = {"linear": "the direction the tool point cannot move in",
+             "angular": "the axis the tool cannot turn about",
+             "mixed": ("the translation part of the lost direction: the arm cannot move this way while turning as "
+                       "the lost direction says, though it can move this way alone")}[shown]
     return ("Singular where ", factor, f" = 0 ({kind}), at q = ({configuration}). The red arrow is {arrow}.")
 
 

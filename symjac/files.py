@@ -30,25 +30,20 @@ def write_text(path: str | os.PathLike[str], text: str) -> Path:
 
     Every :class:`OSError` raised names ``path`` as given, never the temporary file.
     """
-    target = Path(path)
-    try:
-        if _is_special(target):
-            with open(target, "w", encoding="utf-8", newline="\n") as stream:
-                stream.write(text)
-        else:
-            _replace(Path(os.path.realpath(target)), text)
-    except OSError as error:
-        raise _naming(error, target) from None
-    return target
+    return _write(path, text)
 
 
 def write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
     """Write ``data`` (an image, an animation) to ``path`` as :func:`write_text` writes text: whole or not at all."""
+    return _write(path, data)
+
+
+def _write(path: str | os.PathLike[str], data: str | bytes) -> Path:
     target = Path(path)
     try:
         if _is_special(target):
             with open(target, "wb") as stream:
-                stream.write(data)
+                stream.write(data.encode("utf-8") if isinstance(data, str) else data)
         else:
             _replace(Path(os.path.realpath(target)), data)
     except OSError as error:

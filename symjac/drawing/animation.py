@@ -37,18 +37,24 @@ def joint_path(waypoints: Sequence[Sequence[float]] | np.ndarray, steps: int = 3
     >>> joint_path([[0.0, 0.0], [1.0, 2.0]], steps=2).tolist()
     [[0.0, 0.0], [0.5, 1.0], [1.0, 2.0]]
     """
-    try:
-        points = np.asarray(waypoints, dtype=float)
-    except (TypeError, ValueError):
-        raise ArgumentError(f"waypoints must be configurations (rows of numbers), got {waypoints!r}") from None
-    if points.ndim != 2 or len(points) < 2:
-        raise ArgumentError(f"a path needs at least two configurations, got shape {points.shape}")
-    if not np.all(np.isfinite(points)):
-        raise ArgumentError("waypoints must be finite")
+    points = _rows(waypoints, "waypoints", 2)
     steps = _positive_integer(steps, "steps")
     t = np.linspace(0.0, 1.0, steps + 1)[:-1, None]
     segments = [a + t * (b - a) for a, b in itertools.pairwise(points)]
     return np.concatenate([*segments, points[-1:]])
+
+
+def _rows(values: object, name: str, least: int) -> np.ndarray:
+    """``values`` as a 2-D float array of at least ``least`` finite rows (configurations), or a clear error."""
+    try:
+        rows = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ArgumentError(f"{name} must be configurations (rows of numbers), got {values!r}") from None
+    if rows.ndim != 2 or len(rows) < least:
+        raise ArgumentError(f"{name} needs at least {least} configuration(s) as rows, got shape {rows.shape}")
+    if not np.all(np.isfinite(rows)):
+        raise ArgumentError(f"{name} must be finite")
+    return rows
 
 
 def _positive_integer(value: object, name: str) -> int:
@@ -67,12 +73,7 @@ def animate(robot: Robot | Chain, path: Sequence[Sequence[float]] | np.ndarray, 
     the camera stays still. Save it with :func:`movie_bytes` (or matplotlib's own ``save``).
     """
     chain = as_chain(robot)
-    try:
-        rows = np.asarray(path, dtype=float)
-    except (TypeError, ValueError):
-        raise ArgumentError(f"path must be configurations as rows of numbers, got {path!r}") from None
-    if rows.ndim != 2 or len(rows) < 1:
-        raise ArgumentError(f"path must be configurations as rows, got shape {rows.shape}")
+    rows = _rows(path, "path", 1)
     configurations = [configuration(chain, row) for row in rows]
     fps = _positive_integer(fps, "fps")
     figure = matplotlib_figure(figsize=(5.6, 5.2), layout="constrained")  # says so when matplotlib is missing

@@ -183,14 +183,20 @@ class ArmDrawing:
 
     def update(self, q: Sequence[float] | np.ndarray | None = None) -> ArmPose:
         """Move every artist to configuration ``q`` (the home configuration when ``None``); the numbers drawn."""
-        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
         pose = arm_pose(self.chain, q)
         if self.reach is None:
             self.reach = pose.reach
-        size = self.reach
         origins = pose.origins
         self.links.set_data_3d(origins[:, 0], origins[:, 1], origins[:, 2])
+        self._move_joints(pose, self.reach)
+        self._move_frames(pose, 0.12 * self.reach)
+        self._move_ellipsoids(pose, self.reach)
+        self.pose = pose
+        return pose
+
+    def _move_joints(self, pose: ArmPose, size: float) -> None:
+        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
         for i, (origin, axis, kind) in enumerate(zip(pose.joint_origins, pose.joint_axes, pose.joint_types,
                                                      strict=True)):
             sides = _SIDES if kind is JointType.REVOLUTE else 4
@@ -210,7 +216,8 @@ class ArmDrawing:
                 body.set_verts(faces)
                 body.set_facecolor(colour)
                 line.set_data_3d(*axis_line)
-        length = 0.12 * size
+
+    def _move_frames(self, pose: ArmPose, length: float) -> None:
         for k in self._shown_frames(pose):
             frame = pose.frames[k]
             origin = frame[:3, 3]
@@ -227,6 +234,10 @@ class ArmDrawing:
                 for c, line in enumerate(lines):
                     line.set_data_3d(*np.array([origin, origin + length * frame[:3, c]]).T)
                 text.set_position_3d(label_at)
+
+    def _move_ellipsoids(self, pose: ArmPose, size: float) -> None:
+        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
         for shown in self.ellipsoids:
             shape = ellipsoid(pose, shown)
             if shown not in self.scales:
@@ -251,8 +262,6 @@ class ArmDrawing:
                     line.set_data_3d(*segment.T)
             for line, cut in zip(lines, shape.clipped, strict=True):
                 line.set_linestyle("dotted" if cut else "solid")  # a clipped semi-axis is longer than drawn
-        self.pose = pose
-        return pose
 
     def draw_arrow(self, direction: Sequence[float], length: float | None = None) -> None:
         """An arrow at the tool point along ``direction`` (world coordinates), ``length`` default 0.4 x reach."""

@@ -60,6 +60,7 @@ _MODULES: dict[str, tuple[str, ...]] = {
         "joint_rate_symbols", "velocity_propagation", "wrench_symbols"),
     "symjac.kinematics.statics": ("joint_torques", "wrench_between"),
     "symjac.model.io": ("catalog", "load_robot", "robot_from_toml", "robot_to_toml", "urdf_catalog"),
+    "symjac.sweeps.run": ("sweep",),
     "symjac.model.robot": ("Convention", "FixedTransform", "Joint", "JointType", "Parameter", "Robot"),
     "symjac.model.robot_file": ("robot_from_mapping", "robot_to_mapping"),
     "symjac.model.urdf": ("robot_from_urdf",),
@@ -177,6 +178,7 @@ __all__ = [
     "simplify_matrix",
     "singularities",
     "space_jacobian",
+    "sweep",
     "symbolic_spaces",
     "task_rows",
     "twist_transform",
@@ -290,5 +292,6 @@ if _TYPE_CHECKING:  # static checkers see the names as if imported eagerly
     from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
     from symjac.model.urdf import robot_from_urdf
     from symjac.printing import latex, pretty
+    from symjac.sweeps.run import sweep
     from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
     from symjac.symbolic.transforms import adjoint, twist_transform, wrench_transform

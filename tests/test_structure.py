@@ -24,7 +24,7 @@ STAGES: list[tuple[str, ...]] = [
     ("kinematics",),
     ("analysis",),
     ("printing", "drawing"),
-    ("report", "codegen", "teaching"),
+    ("report", "codegen", "teaching", "sweeps"),
     ("cli",),
 ]
 

@@ -1,0 +1,102 @@
+r"""The dexterity of one design over its joint samples, reduced chunk by chunk (:class:`Tally`).
+
+For each configuration, from the singular values :math:`\sigma_1 \ge \dots \ge \sigma_m` of the analysed rows of
+the Jacobian (an m x n matrix):
+
+* the inverse condition number in the 2-norm, :math:`1/\kappa = \sigma_m / \sigma_1` (0 at a singularity); its
+  workspace mean is Gosselin and Angeles' global conditioning index (``gci``);
+* for a square J, the inverse of the normalised Frobenius condition number,
+  :math:`1/\kappa_F = n / (\|J\|_F \|J^{-1}\|_F) = n / \sqrt{\sum \sigma_k^2 \sum \sigma_k^{-2}}`
+  (``gci_frobenius``, its mean);
+* the manipulability :math:`w = \prod \sigma_k = \sqrt{\det J J^T}` (mean, minimum, maximum, standard deviation);
+* the smallest singular value :math:`\sigma_m` (mean and minimum);
+* whether :math:`1/\kappa` is below ``near`` (the fraction of such samples: ``near_singular``);
+* the voxel (edge ``voxel``) holding the tool point: the reachable workspace volume is the number of distinct voxels
+  times the voxel's volume.
+
+A tally holds sums, extremes and the voxel set, so tallies of chunks combine exactly (up to the rounding of sums)
+in any order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["METRICS", "Tally"]
+
+METRICS = ("gci", "gci_frobenius", "manipulability", "sigma_min", "near_singular", "workspace_volume")
+"""The metric names a sweep accepts."""
+
+
+@dataclass
+class Tally:
+    """Running sums and extremes of one design's samples; :meth:`add` a chunk, :meth:`merge` another tally."""
+
+    count: int = 0
+    inverse_kappa: float = 0.0
+    inverse_kappa_f: float = 0.0
+    w_sum: float = 0.0
+    w_squares: float = 0.0
+    w_min: float = np.inf
+    w_max: float = -np.inf
+    sigma_sum: float = 0.0
+    sigma_min: float = np.inf
+    near: int = 0
+    voxels: set[tuple[int, int, int]] = field(default_factory=set)
+
+    def add(self, J: np.ndarray, points: np.ndarray | None, near: float, voxel: float) -> Tally:
+        """Take in a chunk: Jacobians ``J`` (k, m, n) and tool points (k, 3) or None."""
+        sigma = np.linalg.svd(J, compute_uv=False)  # (k, min(m, n)), largest first
+        largest, smallest = sigma[:, 0], sigma[:, -1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            inverse = np.where(largest > 0, smallest / np.where(largest > 0, largest, 1.0), 0.0)
+            if J.shape[1] == J.shape[2]:
+                squares, inverses = np.sum(sigma**2, axis=1), np.sum(1.0 / sigma**2, axis=1)
+                frobenius = np.where(smallest > 0, J.shape[2] / np.sqrt(squares * inverses), 0.0)
+                self.inverse_kappa_f += float(np.sum(frobenius))
+        w = np.prod(sigma, axis=1)
+        self.count += len(J)
+        self.inverse_kappa += float(np.sum(inverse))
+        self.w_sum += float(np.sum(w))
+        self.w_squares += float(np.sum(w * w))
+        self.w_min = min(self.w_min, float(np.min(w)))
+        self.w_max = max(self.w_max, float(np.max(w)))
+        self.sigma_sum += float(np.sum(smallest))
+        self.sigma_min = min(self.sigma_min, float(np.min(smallest)))
+        self.near += int(np.count_nonzero(inverse < near))
+        if points is not None:
+            cells = np.floor(points / voxel).astype(np.int64)
+            self.voxels.update(map(tuple, np.unique(cells, axis=0).tolist()))
+        return self
+
+    def merge(self, other: Tally) -> Tally:
+        """The tally of both chunks: ``self`` and ``other`` together (a new tally)."""
+        return Tally(self.count + other.count, self.inverse_kappa + other.inverse_kappa,
+                     self.inverse_kappa_f + other.inverse_kappa_f, self.w_sum + other.w_sum,
+                     self.w_squares + other.w_squares, min(self.w_min, other.w_min), max(self.w_max, other.w_max),
+                     self.sigma_sum + other.sigma_sum, min(self.sigma_min, other.sigma_min), self.near + other.near,
+                     self.voxels | other.voxels)
+
+    def values(self, metrics: tuple[str, ...], square: bool, voxel: float) -> dict[str, float]:
+        """The requested metrics, named as in the result (``manipulability`` gives four values)."""
+        n = self.count
+        out: dict[str, float] = {}
+        for metric in metrics:
+            if metric == "gci":
+                out["gci"] = self.inverse_kappa / n
+            elif metric == "gci_frobenius":
+                out["gci_frobenius"] = self.inverse_kappa_f / n if square else np.nan
+            elif metric == "manipulability":
+                mean = self.w_sum / n
+                out |= {"manipulability_mean": mean, "manipulability_min": self.w_min,
+                        "manipulability_max": self.w_max,
+                        "manipulability_std": float(np.sqrt(max(self.w_squares / n - mean * mean, 0.0)))}
+            elif metric == "sigma_min":
+                out |= {"sigma_min_mean": self.sigma_sum / n, "sigma_min_min": self.sigma_min}
+            elif metric == "near_singular":
+                out["near_singular"] = self.near / n
+            elif metric == "workspace_volume":
+                out["workspace_volume"] = len(self.voxels) * voxel**3
+        return out

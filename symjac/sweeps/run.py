@@ -1,0 +1,186 @@
+r"""Design sweeps: :func:`sweep` evaluates dexterity metrics over joint samples for every design of a parameter grid.
+
+The work is a task graph: one task per design and chunk of joint samples (the generated kernel evaluates the
+Jacobian of the whole chunk at once, then :class:`~symjac.sweeps.metrics.Tally` reduces it), then one task per design
+merging its chunks' tallies. Memory stays bounded by the chunk size, however many samples there are. The graph runs
+on dask (its local threaded scheduler by default, or a ``distributed.Client``'s cluster), or in the calling process
+without dask (``scheduler="synchronous"``). The kernel is the ``c`` code generation target: compiled C where a
+compiler is present, its NumPy fallback elsewhere; a worker compiles or imports it from the module text it is sent.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import importlib.util
+import itertools
+import math
+import tempfile
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from symjac.codegen import JacobianRequest, generate
+from symjac.errors import ArgumentError, SymjacError
+from symjac.kinematics.chain import Frame
+from symjac.model.robot import Robot
+from symjac.sweeps.metrics import METRICS, Tally
+from symjac.sweeps.sampling import JointSampler, Sampling, joint_ranges, parameter_grid
+
+__all__ = ["sweep"]
+
+DEFAULT_METRICS = ("gci", "manipulability", "sigma_min", "near_singular")
+
+
+@functools.cache
+def _kernel(source: str) -> ModuleType:
+    """The generated module ``source``, imported once per process (from a private temporary folder)."""
+    name = "symjac_sweep_" + hashlib.sha256(source.encode()).hexdigest()[:16]
+    folder = Path(tempfile.mkdtemp(prefix="symjac-sweep-"))
+    path = folder / f"{name}.py"
+    path.write_text(source, encoding="utf-8")
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    if hasattr(module, "THREADS"):
+        module.THREADS = 1  # the scheduler spreads the chunks over the cores
+    return module
+
+
+def _chunk_tally(source: str, design: dict[str, float], sampler: JointSampler, start: int, stop: int,
+                 near: float, voxel: float, points: bool) -> Tally:
+    """One task: the tally of samples ``start`` to ``stop - 1`` for one design."""
+    module = _kernel(source)
+    Q = sampler.chunk(start, stop)
+    J = np.asarray(module.jacobian(Q, **design))
+    tool = np.asarray(module.forward_kinematics(Q, **design))[:, :3, 3] if points else None
+    return Tally().add(J, tool, near, voxel)
+
+
+def _merged(tallies: Sequence[Tally]) -> Tally:
+    return functools.reduce(Tally.merge, tallies, Tally())
+
+
+def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence[float]], *,
+          samples: int = 100_000, metrics: Sequence[str] = DEFAULT_METRICS, frame: Frame = 0,
+          point: Any = "wrist", rows: Sequence[int] | None = None, sampling: Sampling = "sobol",
+          ranges: Mapping[str, tuple[float, float]] | None = None, chunk: int = 65_536, near: float = 0.01,
+          voxel: float | None = None, seed: int = 0, scheduler: str | None = None, client: Any = None) -> Any:
+    r"""Dexterity metrics of every design of a parameter grid, over joint samples, as a labelled array.
+
+    Parameters
+    ----------
+    robot : Robot
+    params : mapping
+        Parameter name to ``(low, high, count)`` (evenly spaced, ends included) or to a list of values; the grid is
+        their product, the other parameters keep their defaults.
+    samples : int
+        Joint configurations per design (a grid rounds up to ``m ** n``).
+    metrics : sequence of str
+        From :data:`~symjac.sweeps.metrics.METRICS` (see :mod:`symjac.sweeps.metrics` for their definitions; the
+        condition number of ``gci`` is in the 2-norm, that of ``gci_frobenius`` the normalised Frobenius one).
+    frame, point, rows
+        The Jacobian analysed, as for :func:`symjac.jacobian` (rows: task rows, default all six).
+    sampling : "sobol" or "grid"
+        A scrambled Sobol sequence (seeded by ``seed``) or a regular grid of cell centres.
+    ranges : mapping, optional
+        Coordinate name to ``(low, high)``, instead of the joint's limits (default; (-pi, pi) without limits).
+    chunk : int
+        Samples per task: memory per task is a few kB per sample of the chunk.
+    near : float
+        ``near_singular`` counts samples with :math:`1/\kappa` below this.
+    voxel : float, optional
+        Edge of the workspace voxels (default: the largest parameter value swept or 1, over 50).
+    scheduler : str, optional
+        A dask scheduler: ``"threads"`` (the default with dask), ``"processes"``, ``"synchronous"`` (one process,
+        also the fallback without dask), or the address of a dask.distributed scheduler (``"tcp://host:8786"``).
+    client : distributed.Client, optional
+        Run on this client's cluster.
+
+    Returns
+    -------
+    xarray.Dataset
+        One variable per metric value, over one dimension per swept parameter (coordinates: its values).
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> result = sweep(load_robot("planar2r"), {"L2": [0.2, 0.5]}, samples=256, metrics=["gci"],
+    ...                rows=[0, 1], scheduler="synchronous")
+    >>> result["gci"].dims, bool(result["gci"].sel(L2=0.5) > result["gci"].sel(L2=0.2))
+    (('L2',), True)
+    """
+    metrics = tuple(metrics)
+    unknown = [m for m in metrics if m not in METRICS]
+    if unknown or not metrics:
+        raise ArgumentError(f"unknown metric {unknown[0]!r}; choose from {', '.join(METRICS)}" if unknown
+                            else "give at least one metric")
+    if not isinstance(chunk, int) or chunk < 1:
+        raise ArgumentError(f"chunk must be a positive integer, got {chunk!r}")
+    if not (isinstance(near, int | float) and math.isfinite(near) and near >= 0):
+        raise ArgumentError(f"near must be a finite number >= 0, got {near!r}")
+    grid = parameter_grid(robot, params)
+    sampler = JointSampler(joint_ranges(robot, ranges), samples, sampling, seed)
+    size = voxel if voxel is not None else max([1.0, *(float(np.max(v)) for v in grid.values())]) / 50
+    if not (math.isfinite(size) and size > 0):
+        raise ArgumentError(f"voxel must be a positive number, got {voxel!r}")
+    source = generate(robot, "c", jacobians=[JacobianRequest(frame, point, None if rows is None else tuple(rows))])
+    square = len(rows if rows is not None else range(6)) == robot.n_coordinates
+    names = list(grid)
+    designs = [dict(zip(names, map(float, values), strict=True)) for values in itertools.product(*grid.values())]
+    bounds = [(start, min(start + chunk, sampler.total)) for start in range(0, sampler.total, chunk)]
+    points = "workspace_volume" in metrics
+    tallies = _run(source, designs, sampler, bounds, near, size, points, scheduler, client)
+    return _dataset(robot, grid, [t.values(metrics, square, size) for t in tallies],
+                    {"samples": sampler.total, "sampling": sampling, "frame": str(frame), "near": near,
+                     "voxel": size, "seed": seed})
+
+
+def _run(source: str, designs: list[dict[str, float]], sampler: JointSampler, bounds: list[tuple[int, int]],
+         near: float, voxel: float, points: bool, scheduler: str | None, client: Any) -> list[Tally]:
+    """Every design's merged tally, on dask or in this process."""
+    def task(design: dict[str, float], start: int, stop: int) -> Tally:
+        return _chunk_tally(source, design, sampler, start, stop, near, voxel, points)
+
+    try:
+        import dask
+    except ImportError:
+        if scheduler not in (None, "synchronous") or client is not None:
+            raise SymjacError("running a sweep on dask needs dask: pip install 'symjac[sweep]'") from None
+        return [_merged([task(d, *b) for b in bounds]) for d in designs]
+    graph = [dask.delayed(_merged)([dask.delayed(_chunk_tally)(source, d, sampler, a, b, near, voxel, points)
+                                    for a, b in bounds]) for d in designs]
+    if client is not None:
+        return list(client.gather(client.compute(graph)))
+    if scheduler is not None and "://" in scheduler:
+        return _on_cluster(graph, scheduler)
+    return list(dask.compute(*graph, scheduler=scheduler or "threads"))
+
+
+def _on_cluster(graph: list[Any], address: str) -> list[Tally]:
+    try:
+        from distributed import Client
+    except ImportError:
+        raise SymjacError("a scheduler address needs dask.distributed: pip install 'symjac[sweep]'") from None
+    try:
+        client = Client(address, timeout="5s")
+    except (OSError, TimeoutError) as error:
+        raise SymjacError(f"no dask scheduler answers at {address} ({type(error).__name__})") from None
+    with client:
+        return list(client.gather(client.compute(graph)))
+
+
+def _dataset(robot: Robot, grid: dict[str, np.ndarray], values: list[dict[str, float]],
+             attrs: dict[str, Any]) -> Any:
+    try:
+        import xarray as xr
+    except ImportError:
+        raise SymjacError("a sweep's result is an xarray Dataset: pip install 'symjac[sweep]'") from None
+    shape = tuple(len(v) for v in grid.values())
+    names = list(grid)
+    variables = {key: (names, np.array([v[key] for v in values]).reshape(shape)) for key in values[0]}
+    return xr.Dataset(variables, coords=dict(grid), attrs={"robot": robot.name, **attrs})

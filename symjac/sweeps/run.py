@@ -47,7 +47,7 @@ def _kernel(source: str) -> ModuleType:
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     if hasattr(module, "THREADS"):
-        module.THREADS = 1  # the scheduler spreads the chunks over the cores
+        setattr(module, "THREADS", 1)  # noqa: B010  # the scheduler spreads the chunks over the cores
     return module
 
 

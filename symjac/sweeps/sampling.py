@@ -45,7 +45,7 @@ def parameter_grid(robot: Robot, params: Mapping[str, tuple[float, float, int] |
             if count < 1 or not (math.isfinite(low) and math.isfinite(high)) or low > high:
                 raise ArgumentError(f"{name}: the range {low}:{high}:{count} is empty or not finite (low <= high, "
                                     "count >= 1)")
-            values = np.linspace(float(low), float(high), count)
+            values = np.linspace(float(low), float(high), int(count))
         else:
             try:
                 values = np.asarray(spec, dtype=float).reshape(-1)

@@ -132,3 +132,47 @@ def test_a_scheduler_that_does_not_answer_is_one_clear_error_within_seconds():
     with pytest.raises(SymjacError, match=r"no dask scheduler answers at tcp://127.0.0.1:9"):
         sweep(load_robot("planar2r"), {"L1": [0.5]}, samples=16, scheduler="tcp://127.0.0.1:9")
     assert time.perf_counter() - start < 15
+
+
+# --- the command ------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".csv", ".json"])
+def test_the_command_writes_the_result_in_the_format_of_the_suffix(cli, tmp_path, suffix):
+    import json
+
+    import xarray as xr
+
+    out, picture = tmp_path / f"result{suffix}", tmp_path / "metrics.png"
+    assert cli.run("sweep", "planar2r", "--param", "L1=0.3:0.5:3", "--param", "L2=0.2,0.4", "--samples", "2e3",
+                   "--rows", "v_x,v_y", "--metric", "gci,manipulability", "--scheduler", "synchronous",
+                   "-o", str(out), "--plot", str(picture)) == (0, "", "")
+    expected = sweep(load_robot("planar2r"), {"L1": (0.3, 0.5, 3), "L2": [0.2, 0.4]}, samples=2000,
+                     metrics=["gci", "manipulability"], rows=[0, 1], scheduler="synchronous")
+    if suffix == ".nc":
+        with xr.open_dataset(out, engine="scipy") as written:
+            xr.testing.assert_allclose(written.load(), expected)
+    elif suffix == ".json":
+        written = xr.Dataset.from_dict(json.loads(out.read_text()))
+        xr.testing.assert_allclose(written, expected)
+    else:
+        lines = out.read_text().splitlines()
+        assert lines[0].startswith("L1,L2,gci,manipulability_mean") and len(lines) == 1 + 6
+    assert picture.read_bytes().startswith(b"\x89PNG")
+
+
+@pytest.mark.parametrize(("arguments", "message"), [
+    (["--param", "L3=0.1:0.2:2"], "planar2r has no parameter 'L3'"),
+    (["--param", "L1=0.5:0.1:2"], "L1: the range 0.5:0.1:2 is empty"),
+    (["--param", "L1=0.1:0.2:x"], "give NAME=LOW:HIGH:COUNT"),
+    (["--param", "L1=0.1:0.2:2", "--samples", "0"], "--samples must be a whole number >= 1"),
+    (["--param", "L1=0.1:0.2:2", "--metric", "dexterity"], "unknown metric 'dexterity'"),
+    ([], "give at least one --param"),
+    (["--param", "L1=0.1:0.2:2", "--plot", "{out}.gif"], "use a .svg, .png or .pdf file"),
+])
+def test_bad_command_input_is_one_line_and_writes_nothing(cli, tmp_path, arguments, message):
+    out = tmp_path / "result"
+    error = cli.one_line_error("sweep", "planar2r", *[a.replace("{out}", str(out)) for a in arguments],
+                               "-o", str(out) + ".nc")
+    assert message in error
+    assert list(tmp_path.iterdir()) == []

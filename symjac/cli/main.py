@@ -38,8 +38,10 @@ from symjac.cli.options import (
     no_options,
     result_options,
     robot_options,
+    sweep_options,
 )
 from symjac.cli.output import emit, note_if_large, one_line, progress, silence_stdout
+from symjac.cli.sweeping import sweep_command
 from symjac.errors import ArgumentError, SymjacError
 
 if TYPE_CHECKING:
@@ -361,6 +363,7 @@ COMMANDS: dict[str, tuple[Handler, str, Options]] = {
     "errata": (_errata, "the errata sheet of the course notes: every printed formula checked", errata_options),
     "codegen": (_codegen, "generate a numeric module: forward kinematics, Jacobians, torques", codegen_options),
     "draw": (draw_command, "draw the arm (SVG, PNG, PDF), or animate it along a joint path (GIF, MP4)", draw_options),
+    "sweep": (sweep_command, "dexterity metrics over a grid of designs and joint samples (on dask)", sweep_options),
     "report": (_report, "write the whole derivation as one self-contained HTML page", robot_options),
     "convert": (_convert, "print the robot as a TOML robot file, converted to another convention", convert_options),
     "show": (_show, "show the DH table and the link transforms", result_options),

@@ -18,6 +18,7 @@ __all__ = [
     "no_options",
     "result_options",
     "robot_options",
+    "sweep_options",
 ]
 
 
@@ -87,6 +88,26 @@ def draw_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--path-steps", type=int, default=30, metavar="N",
                      help="with --path: frames per segment between waypoints (default 30)")
     sub.add_argument("--fps", type=int, default=20, help="with --path: frames per second (default 20)")
+
+
+def sweep_options(sub: argparse.ArgumentParser, name: str) -> None:
+    """``symjac sweep``: the parameters swept, the joint samples, the metrics, the Jacobian, where it runs."""
+    add_robot_arguments(sub)
+    sub.add_argument("--param", action="append", metavar="NAME=LOW:HIGH:COUNT",
+                     help="a parameter to sweep: COUNT values from LOW to HIGH, or NAME=V1,V2,...; repeat for a grid")
+    sub.add_argument("--samples", default="100000", help="joint configurations per design, e.g. 1e6 (default 1e5)")
+    sub.add_argument("--sampling", choices=("sobol", "grid"), default="sobol",
+                     help="a scrambled Sobol sequence over the joint limits (default) or a regular grid")
+    sub.add_argument("--metric", action="append", metavar="M1,M2",
+                     help="gci, gci_frobenius, manipulability, sigma_min, near_singular, workspace_volume "
+                          "(default gci,manipulability,sigma_min,near_singular)")
+    sub.add_argument("--frame", default="0", help="the Jacobian's frame (default 0)")
+    sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
+    sub.add_argument("--rows", default=None, help="task rows from v_x,v_y,v_z,omega_x,omega_y,omega_z (default all)")
+    sub.add_argument("--seed", type=int, default=0, help="seed of the Sobol scrambling (default 0)")
+    sub.add_argument("--scheduler", default=None, metavar="NAME|tcp://HOST:PORT",
+                     help="threads (default), processes, synchronous, or a dask.distributed scheduler's address")
+    sub.add_argument("--plot", default=None, metavar="FILE", help="also draw each metric over the parameters")
 
 
 def result_options(sub: argparse.ArgumentParser, name: str) -> None:

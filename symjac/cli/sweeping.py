@@ -1,0 +1,103 @@
+"""``symjac sweep``: dexterity over a parameter grid, written as netCDF, CSV or JSON, with an optional plot."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+from symjac.cli.args import load, parse_frame, parse_point, parse_rows
+from symjac.errors import ArgumentError
+
+__all__ = ["RESULT_SUFFIXES", "sweep_command"]
+
+RESULT_SUFFIXES = (".nc", ".csv", ".json")
+
+
+def _param(text: str) -> tuple[str, tuple[float, float, int] | list[float]]:
+    """``a2=0.3:0.6:16`` (low:high:count) or ``a2=0.3,0.45,0.6`` (values)."""
+    name, equals, spec = text.partition("=")
+    if not equals or not name.strip():
+        raise ArgumentError(f"--param must be NAME=LOW:HIGH:COUNT or NAME=V1,V2,..., got {text!r}")
+    try:
+        if ":" in spec:
+            low, high, count = spec.split(":")
+            if not count.strip().isdigit():
+                raise ValueError(count)
+            return name.strip(), (float(low), float(high), int(count))
+        return name.strip(), [float(v) for v in spec.split(",")]
+    except ValueError:
+        raise ArgumentError(f"--param {text!r}: give NAME=LOW:HIGH:COUNT (COUNT a whole number) or NAME=V1,V2,... "
+                            "with numbers") from None
+
+
+def _samples(text: str) -> int:
+    try:
+        value = float(text)
+    except ValueError:
+        raise ArgumentError(f"--samples must be a number such as 1e6, got {text!r}") from None
+    if not (math.isfinite(value) and value >= 1 and value == int(value)):
+        raise ArgumentError(f"--samples must be a whole number >= 1, got {text!r}")
+    return int(value)
+
+
+def result_bytes(result: Any, suffix: str) -> bytes:
+    """The sweep's Dataset as a netCDF (SciPy's writer), CSV (one row per design) or JSON file's bytes."""
+    if suffix == ".nc":
+        return bytes(result.to_netcdf(engine="scipy"))
+    if suffix == ".csv":
+        return result.to_dataframe().to_csv().encode("utf-8")
+    return (json.dumps(result.to_dict(data="list"), indent=1, sort_keys=True, default=float) + "\n").encode("utf-8")
+
+
+def sweep_command(args: argparse.Namespace) -> str:
+    """``sweep``: run :func:`symjac.sweep`, write the result (and ``--plot``) only when it is complete."""
+    from symjac.files import write_bytes
+    from symjac.sweeps import METRICS, sweep
+
+    if args.output in (None, "-"):
+        raise ArgumentError(f"sweep writes a file: give -o FILE with a suffix of {', '.join(RESULT_SUFFIXES)}")
+    suffix = Path(args.output).suffix.lower()
+    if suffix not in RESULT_SUFFIXES:
+        raise ArgumentError(f"-o {args.output}: unknown suffix {suffix or '(none)'}; use {', '.join(RESULT_SUFFIXES)}")
+    if args.plot is not None and Path(args.plot).suffix.lower() not in (".svg", ".png", ".pdf"):
+        raise ArgumentError(f"--plot {args.plot}: use a .svg, .png or .pdf file")
+    if not args.param:
+        raise ArgumentError("give at least one --param NAME=LOW:HIGH:COUNT to sweep")
+    params = dict(_param(text) for text in args.param)
+    metrics = [m.strip() for text in (args.metric or ["gci,manipulability,sigma_min,near_singular"])
+               for m in text.split(",")]
+    unknown = [m for m in metrics if m not in METRICS]
+    if unknown:
+        raise ArgumentError(f"--metric: unknown metric {unknown[0]!r}; choose from {', '.join(METRICS)}")
+    robot = load(args)
+    options: dict[str, Any] = {"samples": _samples(args.samples), "metrics": metrics, "sampling": args.sampling,
+                               "frame": parse_frame(args.frame), "point": parse_point(args.point, robot),
+                               "rows": None if args.rows is None else parse_rows(args.rows), "seed": args.seed,
+                               "scheduler": args.scheduler}
+    result = _with_progress(lambda: sweep(robot, params, **options))
+    files = {args.output: result_bytes(result, suffix)}
+    if args.plot is not None:
+        from symjac.drawing.animation import figure_bytes
+        from symjac.sweeps.plot import sweep_figure
+
+        files[args.plot] = figure_bytes(sweep_figure(result), Path(args.plot).suffix.lower())
+    for path, data in files.items():
+        write_bytes(path, data)
+    args.output = None
+    return ""
+
+
+def _with_progress(run: Any) -> Any:
+    """``run()`` with dask's progress bar on stderr when it is a terminal (local schedulers only)."""
+    if not sys.stderr.isatty():
+        return run()
+    try:
+        from dask.diagnostics import ProgressBar
+    except ImportError:
+        return run()
+    with ProgressBar(out=sys.stderr):
+        return run()

@@ -14,8 +14,8 @@ the Jacobian (an m x n matrix):
 * the voxel (edge ``voxel``) holding the tool point: the reachable workspace volume is the number of distinct voxels
   times the voxel's volume.
 
-A tally holds sums, extremes and the voxel set, so tallies of chunks combine exactly (up to the rounding of sums)
-in any order.
+A tally holds sums, extremes and the sorted voxel keys (8 bytes a voxel), so tallies of chunks combine exactly (up
+to the rounding of sums) in any order.
 """
 
 from __future__ import annotations
@@ -24,7 +24,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from symjac.errors import ArgumentError
+
 __all__ = ["METRICS", "Tally"]
+
+_BITS = 21
+"""Bits per axis of a voxel's key: voxel indices from -2**20 to 2**20 - 1 (a million voxels along each axis)."""
 
 METRICS = ("gci", "gci_frobenius", "manipulability", "sigma_min", "near_singular", "workspace_volume")
 """The metric names a sweep accepts."""
@@ -44,7 +49,7 @@ class Tally:
     sigma_sum: float = 0.0
     sigma_min: float = np.inf
     near: int = 0
-    voxels: set[tuple[int, int, int]] = field(default_factory=set)
+    voxels: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64))  # sorted keys, see _keys
 
     def add(self, J: np.ndarray, points: np.ndarray | None, near: float, voxel: float) -> Tally:
         """Take in a chunk: Jacobians ``J`` (k, m, n) and tool points (k, 3) or None."""
@@ -67,8 +72,7 @@ class Tally:
         self.sigma_min = min(self.sigma_min, float(np.min(smallest)))
         self.near += int(np.count_nonzero(inverse < near))
         if points is not None:
-            cells = np.floor(points / voxel).astype(np.int64)
-            self.voxels.update(map(tuple, np.unique(cells, axis=0).tolist()))
+            self.voxels = np.union1d(self.voxels, _keys(points, voxel))
         return self
 
     def merge(self, other: Tally) -> Tally:
@@ -77,7 +81,7 @@ class Tally:
                      self.inverse_kappa_f + other.inverse_kappa_f, self.w_sum + other.w_sum,
                      self.w_squares + other.w_squares, min(self.w_min, other.w_min), max(self.w_max, other.w_max),
                      self.sigma_sum + other.sigma_sum, min(self.sigma_min, other.sigma_min), self.near + other.near,
-                     self.voxels | other.voxels)
+                     np.union1d(self.voxels, other.voxels))
 
     def values(self, metrics: tuple[str, ...], square: bool, voxel: float) -> dict[str, float]:
         """The requested metrics, named as in the result (``manipulability`` gives four values)."""
@@ -100,3 +104,12 @@ class Tally:
             elif metric == "workspace_volume":
                 out["workspace_volume"] = len(self.voxels) * voxel**3
         return out
+
+
+def _keys(points: np.ndarray, voxel: float) -> np.ndarray:
+    """The sorted distinct voxels holding ``points``, each packed into one int64 (21 bits per axis)."""
+    cells = np.floor(points / voxel).astype(np.int64) + (1 << (_BITS - 1))
+    if np.any(cells < 0) or np.any(cells >= 1 << _BITS):
+        raise ArgumentError(f"the workspace spans more than 2**{_BITS} voxels of {voxel} along an axis: give a "
+                            "larger voxel")
+    return np.unique((cells[:, 0] << (2 * _BITS)) | (cells[:, 1] << _BITS) | cells[:, 2])

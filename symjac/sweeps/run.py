@@ -152,13 +152,22 @@ def _run(source: str, designs: list[dict[str, float]], sampler: JointSampler, bo
         if scheduler not in (None, "synchronous") or client is not None:
             raise SymjacError("running a sweep on dask needs dask: pip install 'symjac[sweep]'") from None
         return [_merged([task(d, *b) for b in bounds]) for d in designs]
-    graph = [dask.delayed(_merged)([dask.delayed(_chunk_tally)(source, d, sampler, a, b, near, voxel, points)
-                                    for a, b in bounds]) for d in designs]
+    graph = [_tree([dask.delayed(_chunk_tally)(source, d, sampler, a, b, near, voxel, points) for a, b in bounds])
+             for d in designs]
     if client is not None:
         return list(client.gather(client.compute(graph)))
     if scheduler is not None and "://" in scheduler:
         return _on_cluster(graph, scheduler)
     return list(dask.compute(*graph, scheduler=scheduler or "threads"))
+
+
+def _tree(tallies: list[Any], fan_in: int = 8) -> Any:
+    """Merge delayed tallies in groups of ``fan_in``, level by level: each merge frees its chunks' tallies early."""
+    import dask
+
+    while len(tallies) > 1:
+        tallies = [dask.delayed(_merged)(tallies[k:k + fan_in]) for k in range(0, len(tallies), fan_in)]
+    return tallies[0]
 
 
 def _on_cluster(graph: list[Any], address: str) -> list[Tally]:

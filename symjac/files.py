@@ -81,8 +81,8 @@ def _naming(error: OSError, target: Path) -> OSError:
     return type(error)(error.errno, error.strerror, str(target))
 
 
-def write_files(files: Mapping[Path, str]) -> None:
-    """Write several regular files (UTF-8) all or none: every text goes to a temporary file beside its target first.
+def write_files(files: Mapping[Path, str | bytes]) -> None:
+    """Write several regular files (text as UTF-8, or bytes) all or none, each through a temporary file beside it.
 
     Only when every temporary file is written do they replace their targets (:func:`os.replace`, in the given
     order); if a replacement fails, those already done are put back (old content restored, new files removed). An

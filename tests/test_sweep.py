@@ -17,7 +17,7 @@ pytest.importorskip("xarray")
 pytest.importorskip("dask")
 
 from symjac import ArgumentError, SymjacError, jacobian, load_robot
-from symjac.sweeps import JointSampler, joint_ranges, sweep
+from symjac.sweeps import HISTOGRAM_EDGES, JointSampler, joint_ranges, sweep
 
 ALL = ("gci", "gci_frobenius", "manipulability", "sigma_min", "near_singular", "workspace_volume")
 
@@ -33,6 +33,8 @@ def _brute_force(J: np.ndarray, tool: np.ndarray, near: float, voxel: float) -> 
             "manipulability_mean": w.mean(), "manipulability_min": w.min(), "manipulability_max": w.max(),
             "manipulability_std": w.std(), "sigma_min_mean": sigma[:, -1].mean(), "sigma_min_min": sigma[:, -1].min(),
             "near_singular": np.mean(inverse < near),
+            "manipulability_histogram": np.histogram(w, HISTOGRAM_EDGES)[0],
+            "sigma_min_histogram": np.histogram(sigma[:, -1], HISTOGRAM_EDGES)[0],
             "workspace_volume": len({tuple(c) for c in np.floor(tool / voxel).astype(int)}) * voxel**3}
 
 
@@ -50,11 +52,30 @@ def test_planar_2r_over_its_link_lengths_matches_the_closed_form():
         tool = np.stack([L1 * c1 + L2 * c12, L1 * s1 + L2 * s12, 0 * s1], -1)
         expected = _brute_force(J, tool, 0.01, 0.02)
         for name, value in expected.items():
-            got = float(result[name].sel(L1=L1, L2=L2))
-            assert got == pytest.approx(value, rel=1e-12, abs=1e-14), (name, L1, L2)
+            got = result[name].sel(L1=L1, L2=L2).values
+            np.testing.assert_allclose(got, value, rtol=1e-12, atol=1e-14, err_msg=f"{name} {L1} {L2}")
     # a textbook fact the sweep must show: for the 2R arm, det J = L1 L2 s2, largest for equal links' product
     assert float(result["manipulability_mean"].sel(L1=0.6, L2=0.45)) > float(
         result["manipulability_mean"].sel(L1=0.3, L2=0.2))
+
+
+def test_planar_3r_over_its_link_lengths_matches_the_closed_form():
+    robot = load_robot("planar3r")
+    result = sweep(robot, {"L2": (0.3, 0.5, 2), "L3": [0.1, 0.25]}, samples=2048, metrics=ALL, point="tool",
+                   rows=[0, 1, 5], chunk=500, voxel=0.03, scheduler="synchronous")
+    Q = JointSampler(joint_ranges(robot), 2048).chunk(0, 2048)
+    angles = np.cumsum(Q, axis=1)  # theta1, theta1 + theta2, theta1 + theta2 + theta3
+    for L2, L3 in itertools.product([0.3, 0.5], [0.1, 0.25]):
+        lengths = np.array([0.5, L2, L3])  # L1 keeps its default
+        x = np.cos(angles) * lengths
+        y = np.sin(angles) * lengths
+        # column j: minus y and x summed over the links from j on; the angular row is all ones
+        beyond_x, beyond_y = np.cumsum(x[:, ::-1], axis=1)[:, ::-1], np.cumsum(y[:, ::-1], axis=1)[:, ::-1]
+        J = np.stack([np.stack([-beyond_y[:, j], beyond_x[:, j], np.ones(len(Q))], axis=1) for j in range(3)], axis=2)
+        tool = np.stack([x.sum(axis=1), y.sum(axis=1), 0 * x[:, 0]], axis=1)
+        for name, value in _brute_force(J, tool, 0.01, 0.03).items():
+            np.testing.assert_allclose(result[name].sel(L2=L2, L3=L3).values, value, rtol=1e-12, atol=1e-14,
+                                       err_msg=f"{name} {L2} {L3}")
 
 
 @pytest.mark.slow
@@ -74,8 +95,8 @@ def test_puma_over_a2_and_d4_matches_an_independent_jacobian():
             {s: v for s, v in robot.defaults.items() if s not in (a2, d4)}), modules="numpy")
         tool = np.array([np.array(T(q, value_a2, value_d4), dtype=float)[:3, 3] for q in Q])
         for name, value in _brute_force(J, tool, 0.01, 0.05).items():
-            got = float(result[name].sel(a2=value_a2, d4=value_d4))
-            assert got == pytest.approx(value, rel=1e-9, abs=1e-12), (name, value_a2, value_d4)
+            got = result[name].sel(a2=value_a2, d4=value_d4).values
+            np.testing.assert_allclose(got, value, rtol=1e-9, atol=1e-12, err_msg=f"{name} {value_a2} {value_d4}")
 
 
 def test_chunk_size_and_scheduler_change_nothing():
@@ -175,4 +196,25 @@ def test_bad_command_input_is_one_line_and_writes_nothing(cli, tmp_path, argumen
     error = cli.one_line_error("sweep", "planar2r", *[a.replace("{out}", str(out)) for a in arguments],
                                "-o", str(out) + ".nc")
     assert message in error
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_ctrl_c_stops_the_sweep_says_how_far_it_got_and_writes_nothing(cli, tmp_path, monkeypatch):
+    from symjac.sweeps import run
+
+    calls = []
+
+    def interrupted(*arguments):
+        calls.append(arguments)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return run.Tally()
+
+    monkeypatch.setattr(run, "_chunk_tally", interrupted)
+    status, out, err = cli.run("sweep", "planar2r", "--param", "L1=0.3:0.5:3", "--samples", "4096", "--rows",
+                               "v_x,v_y", "--scheduler", "synchronous", "-o", str(tmp_path / "r.nc"), "--plot",
+                               str(tmp_path / "r.png"))
+    assert (status, out) == (130, "")
+    assert err.splitlines()[0].startswith("symjac: sweep stopped after 2 of ")
+    assert err.splitlines()[-1] == "symjac: interrupted"
     assert list(tmp_path.iterdir()) == []

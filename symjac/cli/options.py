@@ -98,6 +98,9 @@ def sweep_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--samples", default="100000", help="joint configurations per design, e.g. 1e6 (default 1e5)")
     sub.add_argument("--sampling", choices=("sobol", "grid"), default="sobol",
                      help="a scrambled Sobol sequence over the joint limits (default) or a regular grid")
+    sub.add_argument("--range", action="append", metavar="NAME=LOW:HIGH",
+                     help="sample a coordinate over this interval instead of its joint limits (repeatable; write "
+                          "--range=theta2=-1:1 before a minus)")
     sub.add_argument("--metric", action="append", metavar="M1,M2",
                      help="gci, gci_frobenius, manipulability, sigma_min, near_singular, workspace_volume "
                           "(default gci,manipulability,sigma_min,near_singular)")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import sys
@@ -34,6 +35,18 @@ def _param(text: str) -> tuple[str, tuple[float, float, int] | list[float]]:
                             "with numbers") from None
 
 
+def _joint_range(text: str) -> tuple[str, tuple[float, float]]:
+    """``theta2=-1:1``: the interval a coordinate is sampled over instead of its limits."""
+    name, equals, spec = text.partition("=")
+    try:
+        low, high = (float(v) for v in spec.split(":"))
+    except ValueError:
+        raise ArgumentError(f"--range must be NAME=LOW:HIGH with numbers, got {text!r}") from None
+    if not equals or not name.strip():
+        raise ArgumentError(f"--range must be NAME=LOW:HIGH, got {text!r}")
+    return name.strip(), (low, high)
+
+
 def _samples(text: str) -> int:
     try:
         value = float(text)
@@ -45,17 +58,18 @@ def _samples(text: str) -> int:
 
 
 def result_bytes(result: Any, suffix: str) -> bytes:
-    """The sweep's Dataset as a netCDF (SciPy's writer), CSV (one row per design) or JSON file's bytes."""
+    """The sweep's Dataset as a netCDF (SciPy's writer), CSV (one row per design, scalar metrics) or JSON file."""
     if suffix == ".nc":
         return bytes(result.to_netcdf(engine="scipy"))
-    if suffix == ".csv":
-        return result.to_dataframe().to_csv().encode("utf-8")
+    if suffix == ".csv":  # one row per design: the scalar metrics (the distributions are in .nc and .json)
+        scalars = result[[name for name in result.data_vars if "bin" not in result[name].dims]]
+        return scalars.drop_vars([c for c in scalars.coords if c.startswith("bin_")]).to_dataframe().to_csv().encode()
     return (json.dumps(result.to_dict(data="list"), indent=1, sort_keys=True, default=float) + "\n").encode("utf-8")
 
 
 def sweep_command(args: argparse.Namespace) -> str:
     """``sweep``: run :func:`symjac.sweep`, write the result (and ``--plot``) only when it is complete."""
-    from symjac.files import write_bytes
+    from symjac.files import write_files
     from symjac.sweeps import METRICS, sweep
 
     if args.output in (None, "-"):
@@ -68,36 +82,56 @@ def sweep_command(args: argparse.Namespace) -> str:
     if not args.param:
         raise ArgumentError("give at least one --param NAME=LOW:HIGH:COUNT to sweep")
     params = dict(_param(text) for text in args.param)
+    if args.plot is not None and len(params) > 2:
+        raise ArgumentError(f"--plot draws one or two swept parameters, not {len(params)}")
     metrics = [m.strip() for text in (args.metric or ["gci,manipulability,sigma_min,near_singular"])
                for m in text.split(",")]
     unknown = [m for m in metrics if m not in METRICS]
     if unknown:
         raise ArgumentError(f"--metric: unknown metric {unknown[0]!r}; choose from {', '.join(METRICS)}")
     robot = load(args)
-    options: dict[str, Any] = {"samples": _samples(args.samples), "metrics": metrics, "sampling": args.sampling,
-                               "frame": parse_frame(args.frame), "point": parse_point(args.point, robot),
-                               "rows": None if args.rows is None else parse_rows(args.rows), "seed": args.seed,
-                               "scheduler": args.scheduler}
+    ranges = dict(_joint_range(text) for text in args.range or [])
+    options: dict[str, Any] = {
+        "ranges": ranges or None, "samples": _samples(args.samples), "metrics": metrics, "sampling": args.sampling,
+        "frame": parse_frame(args.frame), "point": parse_point(args.point, robot), "seed": args.seed,
+        "rows": None if args.rows is None else parse_rows(args.rows), "scheduler": args.scheduler}
     result = _with_progress(lambda: sweep(robot, params, **options))
-    files = {args.output: result_bytes(result, suffix)}
+    files: dict[Path, str | bytes] = {Path(args.output): result_bytes(result, suffix)}
     if args.plot is not None:
         from symjac.drawing.animation import figure_bytes
         from symjac.sweeps.plot import sweep_figure
 
-        files[args.plot] = figure_bytes(sweep_figure(result), Path(args.plot).suffix.lower())
-    for path, data in files.items():
-        write_bytes(path, data)
+        files[Path(args.plot)] = figure_bytes(sweep_figure(result), Path(args.plot).suffix.lower())
+    write_files(files)  # both or neither
     args.output = None
     return ""
 
 
 def _with_progress(run: Any) -> Any:
-    """``run()`` with dask's progress bar on stderr when it is a terminal (local schedulers only)."""
-    if not sys.stderr.isatty():
-        return run()
+    """``run()`` with dask's progress bar on stderr when it is a terminal (local schedulers only).
+
+    Ctrl-C stops the sweep: one line says how many of its tasks had finished (nothing is written), then the
+    command ends as any interrupted command does.
+    """
     try:
+        from dask.callbacks import Callback
         from dask.diagnostics import ProgressBar
     except ImportError:
         return run()
-    with ProgressBar(out=sys.stderr):
-        return run()
+
+    class Count(Callback):  # type: ignore[misc]
+        done = total = 0
+
+        def _start_state(self, graph: Any, state: Any) -> None:
+            Count.total += len(graph)
+
+        def _posttask(self, *arguments: Any) -> None:
+            Count.done += 1
+
+    bar = ProgressBar(out=sys.stderr) if sys.stderr.isatty() else contextlib.nullcontext()
+    try:
+        with Count(), bar:
+            return run()
+    except KeyboardInterrupt:
+        print(f"symjac: sweep stopped after {Count.done} of {Count.total} tasks; nothing written", file=sys.stderr)
+        raise

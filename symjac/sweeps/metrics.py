@@ -8,9 +8,13 @@ the Jacobian (an m x n matrix):
 * for a square J, the inverse of the normalised Frobenius condition number,
   :math:`1/\kappa_F = n / (\|J\|_F \|J^{-1}\|_F) = n / \sqrt{\sum \sigma_k^2 \sum \sigma_k^{-2}}`
   (``gci_frobenius``, its mean);
-* the manipulability :math:`w = \prod \sigma_k = \sqrt{\det J J^T}` (mean, minimum, maximum, standard deviation);
-* the smallest singular value :math:`\sigma_m` (mean and minimum);
-* whether :math:`1/\kappa` is below ``near`` (the fraction of such samples: ``near_singular``);
+* the manipulability :math:`w = \prod \sigma_k = \sqrt{\det J J^T}` (mean, minimum, maximum, standard deviation,
+  and its distribution: counts over the bins :data:`HISTOGRAM_EDGES`, a quarter decade each);
+* the smallest singular value :math:`\sigma_m` (mean, minimum, distribution over the same bins);
+* whether :math:`1/\kappa` is below ``near`` (the fraction of such samples: ``near_singular``). By the
+  Eckart-Young theorem :math:`\sigma_m` is the distance (in the 2-norm) from J to the nearest singular matrix, so
+  :math:`1/\kappa` is that distance relative to the size of J: these samples lie within a relative distance
+  ``near`` of a singular Jacobian;
 * the voxel (edge ``voxel``) holding the tool point: the reachable workspace volume is the number of distinct voxels
   times the voxel's volume.
 
@@ -26,10 +30,13 @@ import numpy as np
 
 from symjac.errors import ArgumentError
 
-__all__ = ["METRICS", "Tally"]
+__all__ = ["HISTOGRAM_EDGES", "METRICS", "Tally"]
 
 _BITS = 21
 """Bits per axis of a voxel's key: voxel indices from -2**20 to 2**20 - 1 (a million voxels along each axis)."""
+
+HISTOGRAM_EDGES = np.concatenate([[0.0], 10.0 ** np.arange(-12.0, 2.01, 0.25), [np.inf]])
+"""Bin edges of the distributions: [0, 1e-12), then quarter decades up to 100, then [100, inf)."""
 
 METRICS = ("gci", "gci_frobenius", "manipulability", "sigma_min", "near_singular", "workspace_volume")
 """The metric names a sweep accepts."""
@@ -49,6 +56,8 @@ class Tally:
     sigma_sum: float = 0.0
     sigma_min: float = np.inf
     near: int = 0
+    w_histogram: np.ndarray = field(default_factory=lambda: np.zeros(len(HISTOGRAM_EDGES) - 1, dtype=np.int64))
+    sigma_histogram: np.ndarray = field(default_factory=lambda: np.zeros(len(HISTOGRAM_EDGES) - 1, dtype=np.int64))
     voxels: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64))  # sorted keys, see _keys
 
     def add(self, J: np.ndarray, points: np.ndarray | None, near: float, voxel: float) -> Tally:
@@ -71,6 +80,8 @@ class Tally:
         self.sigma_sum += float(np.sum(smallest))
         self.sigma_min = min(self.sigma_min, float(np.min(smallest)))
         self.near += int(np.count_nonzero(inverse < near))
+        self.w_histogram = self.w_histogram + np.histogram(w, HISTOGRAM_EDGES)[0]
+        self.sigma_histogram = self.sigma_histogram + np.histogram(smallest, HISTOGRAM_EDGES)[0]
         if points is not None:
             self.voxels = np.union1d(self.voxels, _keys(points, voxel))
         return self
@@ -81,12 +92,13 @@ class Tally:
                      self.inverse_kappa_f + other.inverse_kappa_f, self.w_sum + other.w_sum,
                      self.w_squares + other.w_squares, min(self.w_min, other.w_min), max(self.w_max, other.w_max),
                      self.sigma_sum + other.sigma_sum, min(self.sigma_min, other.sigma_min), self.near + other.near,
+                     self.w_histogram + other.w_histogram, self.sigma_histogram + other.sigma_histogram,
                      np.union1d(self.voxels, other.voxels))
 
-    def values(self, metrics: tuple[str, ...], square: bool, voxel: float) -> dict[str, float]:
-        """The requested metrics, named as in the result (``manipulability`` gives four values)."""
+    def values(self, metrics: tuple[str, ...], square: bool, voxel: float) -> dict[str, float | np.ndarray]:
+        """The requested metrics, named as in the result (``manipulability`` gives five values, one a histogram)."""
         n = self.count
-        out: dict[str, float] = {}
+        out: dict[str, float | np.ndarray] = {}
         for metric in metrics:
             if metric == "gci":
                 out["gci"] = self.inverse_kappa / n
@@ -96,9 +108,11 @@ class Tally:
                 mean = self.w_sum / n
                 out |= {"manipulability_mean": mean, "manipulability_min": self.w_min,
                         "manipulability_max": self.w_max,
-                        "manipulability_std": float(np.sqrt(max(self.w_squares / n - mean * mean, 0.0)))}
+                        "manipulability_std": float(np.sqrt(max(self.w_squares / n - mean * mean, 0.0))),
+                        "manipulability_histogram": self.w_histogram}
             elif metric == "sigma_min":
-                out |= {"sigma_min_mean": self.sigma_sum / n, "sigma_min_min": self.sigma_min}
+                out |= {"sigma_min_mean": self.sigma_sum / n, "sigma_min_min": self.sigma_min,
+                        "sigma_min_histogram": self.sigma_histogram}
             elif metric == "near_singular":
                 out["near_singular"] = self.near / n
             elif metric == "workspace_volume":

@@ -12,11 +12,11 @@ __all__ = ["sweep_figure"]
 
 def sweep_figure(result: Any) -> Any:
     """One panel per metric of ``result`` (an :func:`~symjac.sweeps.run.sweep` Dataset) over its parameters."""
-    names = list(result.dims)
+    names = [name for name in result.dims if name != "bin"]  # the swept parameters
     if len(names) not in (1, 2):
         raise ArgumentError(f"a plot shows one or two swept parameters, this sweep has {len(names)}: "
                             f"{', '.join(names)}")
-    variables = list(result.data_vars)
+    variables = [name for name in result.data_vars if "bin" not in result[name].dims]  # not the distributions
     columns = min(3, len(variables))
     rows = -(-len(variables) // columns)
     figure = matplotlib_figure(figsize=(4.2 * columns, 3.4 * rows), layout="constrained")

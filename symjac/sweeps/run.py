@@ -27,7 +27,7 @@ from symjac.codegen import JacobianRequest, generate
 from symjac.errors import ArgumentError, SymjacError
 from symjac.kinematics.chain import Frame
 from symjac.model.robot import Robot
-from symjac.sweeps.metrics import METRICS, Tally
+from symjac.sweeps.metrics import HISTOGRAM_EDGES, METRICS, Tally
 from symjac.sweeps.sampling import JointSampler, Sampling, joint_ranges, parameter_grid
 
 __all__ = ["sweep"]
@@ -183,13 +183,20 @@ def _on_cluster(graph: list[Any], address: str) -> list[Tally]:
         return list(client.gather(client.compute(graph)))
 
 
-def _dataset(robot: Robot, grid: dict[str, np.ndarray], values: list[dict[str, float]],
-             attrs: dict[str, Any]) -> Any:
+def _dataset(robot: Robot, grid: dict[str, np.ndarray], values: list[dict[str, Any]], attrs: dict[str, Any]) -> Any:
+    """The labelled result: one variable per metric value over the swept parameters (a histogram over ``bin`` too)."""
     try:
         import xarray as xr
     except ImportError:
         raise SymjacError("a sweep's result is an xarray Dataset: pip install 'symjac[sweep]'") from None
     shape = tuple(len(v) for v in grid.values())
     names = list(grid)
-    variables = {key: (names, np.array([v[key] for v in values]).reshape(shape)) for key in values[0]}
-    return xr.Dataset(variables, coords=dict(grid), attrs={"robot": robot.name, **attrs})
+    variables = {}
+    for key in values[0]:
+        data = np.array([v[key] for v in values])
+        histogram = data.ndim == 2
+        variables[key] = ([*names, "bin"] if histogram else names, data.reshape(shape + data.shape[1:]))
+    coords: dict[str, Any] = dict(grid)
+    if any(key.endswith("_histogram") for key in values[0]):
+        coords |= {"bin_low": ("bin", HISTOGRAM_EDGES[:-1]), "bin_high": ("bin", HISTOGRAM_EDGES[1:])}
+    return xr.Dataset(variables, coords=coords, attrs={"robot": robot.name, **attrs})

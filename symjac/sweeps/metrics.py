@@ -60,31 +60,47 @@ class Tally:
     sigma_histogram: np.ndarray = field(default_factory=lambda: np.zeros(len(HISTOGRAM_EDGES) - 1, dtype=np.int64))
     voxels: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64))  # sorted keys, see _keys
 
-    def add(self, J: np.ndarray, points: np.ndarray | None, near: float, voxel: float) -> Tally:
-        """Take in a chunk: Jacobians ``J`` (k, m, n) and tool points (k, 3) or None."""
-        sigma = np.linalg.svd(J, compute_uv=False)  # (k, min(m, n)), largest first
-        largest, smallest = sigma[:, 0], sigma[:, -1]
+    def add(self, J: np.ndarray, points: np.ndarray | None, near: float, voxel: float, sigma: bool = True) -> Tally:
+        r"""Take in a chunk: Jacobians ``J`` (k, m, n) and tool points (k, 3) or None.
+
+        With ``sigma=False`` only the manipulability (and the voxels) are tallied, from a determinant (LU) instead
+        of singular values: :math:`|\det J|`, or :math:`\sqrt{\det J J^T}` for a wide J.
+        """
+        if not sigma:
+            square = J.shape[1] == J.shape[2]
+            gram = J if square else J @ np.swapaxes(J, 1, 2)
+            determinant = np.linalg.det(gram)
+            self._add_manipulability(np.abs(determinant) if square else np.sqrt(np.maximum(determinant, 0.0)))
+            self._add_points(points, voxel)
+            return self
+        values = np.linalg.svd(J, compute_uv=False)  # (k, min(m, n)), largest first
+        largest, smallest = values[:, 0], values[:, -1]
         with np.errstate(divide="ignore", invalid="ignore"):
             inverse = np.where(largest > 0, smallest / np.where(largest > 0, largest, 1.0), 0.0)
             if J.shape[1] == J.shape[2]:
-                squares, inverses = np.sum(sigma**2, axis=1), np.sum(1.0 / sigma**2, axis=1)
+                squares, inverses = np.sum(values**2, axis=1), np.sum(1.0 / values**2, axis=1)
                 frobenius = np.where(smallest > 0, J.shape[2] / np.sqrt(squares * inverses), 0.0)
                 self.inverse_kappa_f += float(np.sum(frobenius))
-        w = np.prod(sigma, axis=1)
-        self.count += len(J)
+        self._add_manipulability(np.prod(values, axis=1))
         self.inverse_kappa += float(np.sum(inverse))
+        self.sigma_sum += float(np.sum(smallest))
+        self.sigma_min = min(self.sigma_min, float(np.min(smallest)))
+        self.near += int(np.count_nonzero(inverse < near))
+        self.sigma_histogram = self.sigma_histogram + np.histogram(smallest, HISTOGRAM_EDGES)[0]
+        self._add_points(points, voxel)
+        return self
+
+    def _add_manipulability(self, w: np.ndarray) -> None:
+        self.count += len(w)
         self.w_sum += float(np.sum(w))
         self.w_squares += float(np.sum(w * w))
         self.w_min = min(self.w_min, float(np.min(w)))
         self.w_max = max(self.w_max, float(np.max(w)))
-        self.sigma_sum += float(np.sum(smallest))
-        self.sigma_min = min(self.sigma_min, float(np.min(smallest)))
-        self.near += int(np.count_nonzero(inverse < near))
         self.w_histogram = self.w_histogram + np.histogram(w, HISTOGRAM_EDGES)[0]
-        self.sigma_histogram = self.sigma_histogram + np.histogram(smallest, HISTOGRAM_EDGES)[0]
+
+    def _add_points(self, points: np.ndarray | None, voxel: float) -> None:
         if points is not None:
             self.voxels = np.union1d(self.voxels, _keys(points, voxel))
-        return self
 
     def merge(self, other: Tally) -> Tally:
         """The tally of both chunks: ``self`` and ``other`` together (a new tally)."""

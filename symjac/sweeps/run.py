@@ -52,13 +52,13 @@ def _kernel(source: str) -> ModuleType:
 
 
 def _chunk_tally(source: str, design: dict[str, float], sampler: JointSampler, start: int, stop: int,
-                 near: float, voxel: float, points: bool) -> Tally:
+                 near: float, voxel: float, points: bool, sigma: bool) -> Tally:
     """One task: the tally of samples ``start`` to ``stop - 1`` for one design."""
     module = _kernel(source)
     Q = sampler.chunk(start, stop)
     J = np.asarray(module.jacobian(Q, **design))
     tool = np.asarray(module.forward_kinematics(Q, **design))[:, :3, 3] if points else None
-    return Tally().add(J, tool, near, voxel)
+    return Tally().add(J, tool, near, voxel, sigma)
 
 
 def _merged(tallies: Sequence[Tally]) -> Tally:
@@ -134,25 +134,23 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
     designs = [dict(zip(names, map(float, values), strict=True)) for values in itertools.product(*grid.values())]
     bounds = [(start, min(start + chunk, sampler.total)) for start in range(0, sampler.total, chunk)]
     points = "workspace_volume" in metrics
-    tallies = _run(source, designs, sampler, bounds, near, size, points, scheduler, client)
+    sigma = not set(metrics) <= {"manipulability", "workspace_volume"}  # else a determinant is enough
+    tallies = _run(source, designs, sampler, bounds, (near, size, points, sigma), scheduler, client)
     return _dataset(robot, grid, [t.values(metrics, square, size) for t in tallies],
                     {"samples": sampler.total, "sampling": sampling, "frame": str(frame), "near": near,
                      "voxel": size, "seed": seed})
 
 
 def _run(source: str, designs: list[dict[str, float]], sampler: JointSampler, bounds: list[tuple[int, int]],
-         near: float, voxel: float, points: bool, scheduler: str | None, client: Any) -> list[Tally]:
-    """Every design's merged tally, on dask or in this process."""
-    def task(design: dict[str, float], start: int, stop: int) -> Tally:
-        return _chunk_tally(source, design, sampler, start, stop, near, voxel, points)
-
+         settings: tuple[float, float, bool, bool], scheduler: str | None, client: Any) -> list[Tally]:
+    """Every design's merged tally, on dask or in this process (``settings``: near, voxel, points, sigma)."""
     try:
         import dask
     except ImportError:
         if scheduler not in (None, "synchronous") or client is not None:
             raise SymjacError("running a sweep on dask needs dask: pip install 'symjac[sweep]'") from None
-        return [_merged([task(d, *b) for b in bounds]) for d in designs]
-    graph = [_tree([dask.delayed(_chunk_tally)(source, d, sampler, a, b, near, voxel, points) for a, b in bounds])
+        return [_merged([_chunk_tally(source, d, sampler, a, b, *settings) for a, b in bounds]) for d in designs]
+    graph = [_tree([dask.delayed(_chunk_tally)(source, d, sampler, a, b, *settings) for a, b in bounds])
              for d in designs]
     if client is not None:
         return list(client.gather(client.compute(graph)))

@@ -63,14 +63,20 @@ class Tally:
     def add(self, J: np.ndarray, points: np.ndarray | None, near: float, voxel: float, sigma: bool = True) -> Tally:
         r"""Take in a chunk: Jacobians ``J`` (k, m, n) and tool points (k, 3) or None.
 
-        With ``sigma=False`` only the manipulability (and the voxels) are tallied, from a determinant (LU) instead
-        of singular values: :math:`|\det J|`, or :math:`\sqrt{\det J J^T}` for a wide J.
+        With ``sigma=False`` no singular values are taken: the manipulability comes from a determinant (LU),
+        :math:`|\det J|` or :math:`\sqrt{\det J J^T}` for a wide J, and the Frobenius conditioning of a square J
+        from its inverse; the metrics that need :math:`\sigma_m` are left out.
         """
         if not sigma:
             square = J.shape[1] == J.shape[2]
             gram = J if square else J @ np.swapaxes(J, 1, 2)
             determinant = np.linalg.det(gram)
             self._add_manipulability(np.abs(determinant) if square else np.sqrt(np.maximum(determinant, 0.0)))
+            if square:  # 1/kappa_F = n |det J| / (||J||_F ||adj J||_F) = n / (||J||_F ||J^-1||_F), by LU
+                regular = determinant != 0
+                inverse = np.linalg.inv(np.where(regular[:, None, None], J, np.eye(J.shape[1])))
+                norms = np.linalg.norm(J, axis=(1, 2)) * np.linalg.norm(inverse, axis=(1, 2))
+                self.inverse_kappa_f += float(np.sum(np.where(regular, J.shape[2] / norms, 0.0)))
             self._add_points(points, voxel)
             return self
         values = np.linalg.svd(J, compute_uv=False)  # (k, min(m, n)), largest first

@@ -134,7 +134,7 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
     designs = [dict(zip(names, map(float, values), strict=True)) for values in itertools.product(*grid.values())]
     bounds = [(start, min(start + chunk, sampler.total)) for start in range(0, sampler.total, chunk)]
     points = "workspace_volume" in metrics
-    sigma = not set(metrics) <= {"manipulability", "workspace_volume"}  # else a determinant is enough
+    sigma = not set(metrics) <= {"manipulability", "workspace_volume", "gci_frobenius"}  # else LU is enough
     tallies = _run(source, designs, sampler, bounds, (near, size, points, sigma), scheduler, client)
     return _dataset(robot, grid, [t.values(metrics, square, size) for t in tallies],
                     {"samples": sampler.total, "sampling": sampling, "frame": str(frame), "near": near,

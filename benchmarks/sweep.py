@@ -25,7 +25,7 @@ import time
 import numpy as np
 
 from symjac import JacobianRequest, generate, load_robot, sweep
-from symjac.sweeps.run import _kernel
+from symjac.sweeps.run import kernel_module
 from symjac.sweeps.sampling import JointSampler, joint_ranges
 
 METRICS = ("gci", "manipulability", "sigma_min")
@@ -44,7 +44,7 @@ def _best(run, repeat: int = 3) -> float:  # type: ignore[no-untyped-def]
 def by_hand(samples: int, chunk: int = 65_536) -> float:
     """Seconds for the hand-written pipeline: J then SVD per chunk, two threads, all 16 designs."""
     robot = load_robot("puma560")
-    module = _kernel(generate(robot, "c", jacobians=[JacobianRequest(0, "wrist")]))
+    module = kernel_module(generate(robot, "c", jacobians=[JacobianRequest(0, "wrist")]))
     sampler = JointSampler(joint_ranges(robot), samples)
     Q = sampler.chunk(0, samples)  # drawn once, outside the timing: the sweep draws them chunk by chunk
 

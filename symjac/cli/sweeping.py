@@ -13,7 +13,7 @@ from typing import Any
 from symjac.cli.args import load, parse_frame, parse_point, parse_rows
 from symjac.errors import ArgumentError
 
-__all__ = ["RESULT_SUFFIXES", "sweep_command"]
+__all__ = ["RESULT_SUFFIXES", "result_bytes", "sweep_command"]
 
 RESULT_SUFFIXES = (".nc", ".csv", ".json")
 

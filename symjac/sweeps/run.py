@@ -30,13 +30,13 @@ from symjac.model.robot import Robot
 from symjac.sweeps.metrics import HISTOGRAM_EDGES, METRICS, Tally
 from symjac.sweeps.sampling import JointSampler, Sampling, joint_ranges, parameter_grid
 
-__all__ = ["sweep"]
+__all__ = ["kernel_module", "sweep"]
 
 DEFAULT_METRICS = ("gci", "manipulability", "sigma_min", "near_singular")
 
 
 @functools.cache
-def _kernel(source: str) -> ModuleType:
+def kernel_module(source: str) -> ModuleType:
     """The generated module ``source``, imported once per process (from a private temporary folder)."""
     name = "symjac_sweep_" + hashlib.sha256(source.encode()).hexdigest()[:16]
     folder = Path(tempfile.mkdtemp(prefix="symjac-sweep-"))
@@ -54,7 +54,7 @@ def _kernel(source: str) -> ModuleType:
 def _chunk_tally(source: str, design: dict[str, float], sampler: JointSampler, start: int, stop: int,
                  near: float, voxel: float, points: bool, sigma: bool) -> Tally:
     """One task: the tally of samples ``start`` to ``stop - 1`` for one design."""
-    module = _kernel(source)
+    module = kernel_module(source)
     Q = sampler.chunk(start, stop)
     J = np.asarray(module.jacobian(Q, **design))
     tool = np.asarray(module.forward_kinematics(Q, **design))[:, :3, 3] if points else None

@@ -47,6 +47,15 @@ def _joint_range(text: str) -> tuple[str, tuple[float, float]]:
     return name.strip(), (low, high)
 
 
+def _once(pairs: list[tuple[str, Any]], option: str) -> dict[str, Any]:
+    """``pairs`` as a mapping; a name given twice is an error, not a silent override."""
+    names = [name for name, _ in pairs]
+    twice = sorted({name for name in names if names.count(name) > 1})
+    if twice:
+        raise ArgumentError(f"{option} names {twice[0]} twice")
+    return dict(pairs)
+
+
 def _samples(text: str) -> int:
     try:
         value = float(text)
@@ -64,7 +73,19 @@ def result_bytes(result: Any, suffix: str) -> bytes:
     if suffix == ".csv":  # one row per design: the scalar metrics (the distributions are in .nc and .json)
         scalars = result[[name for name in result.data_vars if "bin" not in result[name].dims]]
         return scalars.drop_vars([c for c in scalars.coords if c.startswith("bin_")]).to_dataframe().to_csv().encode()
-    return (json.dumps(result.to_dict(data="list"), indent=1, sort_keys=True, default=float) + "\n").encode("utf-8")
+    text = json.dumps(_no_nan(result.to_dict(data="list")), indent=1, sort_keys=True, default=float, allow_nan=False)
+    return (text + "\n").encode("utf-8")
+
+
+def _no_nan(value: Any) -> Any:
+    """JSON has no NaN: a metric without a value (NaN) becomes null."""
+    if isinstance(value, dict):
+        return {key: _no_nan(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_no_nan(item) for item in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def sweep_command(args: argparse.Namespace) -> str:
@@ -81,7 +102,7 @@ def sweep_command(args: argparse.Namespace) -> str:
         raise ArgumentError(f"--plot {args.plot}: use a .svg, .png or .pdf file")
     if not args.param:
         raise ArgumentError("give at least one --param NAME=LOW:HIGH:COUNT to sweep")
-    params = dict(_param(text) for text in args.param)
+    params = _once([_param(text) for text in args.param], "--param")
     if args.plot is not None and len(params) > 2:
         raise ArgumentError(f"--plot draws one or two swept parameters, not {len(params)}")
     metrics = [m.strip() for text in (args.metric or ["gci,manipulability,sigma_min,near_singular"])
@@ -90,7 +111,7 @@ def sweep_command(args: argparse.Namespace) -> str:
     if unknown:
         raise ArgumentError(f"--metric: unknown metric {unknown[0]!r}; choose from {', '.join(METRICS)}")
     robot = load(args)
-    ranges = dict(_joint_range(text) for text in args.range or [])
+    ranges = _once([_joint_range(text) for text in args.range or []], "--range")
     options: dict[str, Any] = {
         "ranges": ranges or None, "samples": _samples(args.samples), "metrics": metrics, "sampling": args.sampling,
         "frame": parse_frame(args.frame), "point": parse_point(args.point, robot), "seed": args.seed,

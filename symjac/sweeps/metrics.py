@@ -8,8 +8,9 @@ the Jacobian (an m x n matrix):
 * for a square J, the inverse of the normalised Frobenius condition number,
   :math:`1/\kappa_F = n / (\|J\|_F \|J^{-1}\|_F) = n / \sqrt{\sum \sigma_k^2 \sum \sigma_k^{-2}}`
   (``gci_frobenius``, its mean);
-* the manipulability :math:`w = \prod \sigma_k = \sqrt{\det J J^T}` (mean, minimum, maximum, standard deviation,
-  and its distribution: counts over the bins :data:`HISTOGRAM_EDGES`, a quarter decade each);
+* the manipulability :math:`w = \prod \sigma_k` (:math:`\sqrt{\det J J^T}` for a wide or square J): mean,
+  minimum, maximum, standard deviation, and its distribution (counts over the bins :data:`HISTOGRAM_EDGES`, a
+  quarter decade each);
 * the smallest singular value :math:`\sigma_m` (mean, minimum, distribution over the same bins);
 * whether :math:`1/\kappa` is below ``near`` (the fraction of such samples: ``near_singular``). By the
   Eckart-Young theorem :math:`\sigma_m` is the distance (in the 2-norm) from J to the nearest singular matrix, so
@@ -49,8 +50,8 @@ class Tally:
     count: int = 0
     inverse_kappa: float = 0.0
     inverse_kappa_f: float = 0.0
-    w_sum: float = 0.0
-    w_squares: float = 0.0
+    w_mean: float = 0.0
+    w_spread: float = 0.0  # the sum of squared deviations from the mean (merged by Chan's formula)
     w_min: float = np.inf
     w_max: float = -np.inf
     sigma_sum: float = 0.0
@@ -63,13 +64,16 @@ class Tally:
     def add(self, J: np.ndarray, points: np.ndarray | None, near: float, voxel: float, sigma: bool = True) -> Tally:
         r"""Take in a chunk: Jacobians ``J`` (k, m, n) and tool points (k, 3) or None.
 
-        With ``sigma=False`` no singular values are taken: the manipulability comes from a determinant (LU),
-        :math:`|\det J|` or :math:`\sqrt{\det J J^T}` for a wide J, and the Frobenius conditioning of a square J
-        from its inverse; the metrics that need :math:`\sigma_m` are left out.
+        With ``sigma=False`` no singular values are taken: the manipulability (the product of the singular values)
+        comes from a determinant (LU): :math:`|\det J|`, :math:`\sqrt{\det J J^T}` for a wide J,
+        :math:`\sqrt{\det J^T J}` for a tall one; the Frobenius conditioning of a square J comes from its inverse;
+        the metrics that need :math:`\sigma_m` are left out.
         """
         if not sigma:
-            square = J.shape[1] == J.shape[2]
-            gram = J if square else J @ np.swapaxes(J, 1, 2)
+            rows, columns = J.shape[1:]
+            square = rows == columns
+            Jt = np.swapaxes(J, 1, 2)
+            gram = J if square else J @ Jt if rows < columns else Jt @ J  # the Gram matrix of the shorter side
             determinant = np.linalg.det(gram)
             self._add_manipulability(np.abs(determinant) if square else np.sqrt(np.maximum(determinant, 0.0)))
             if square:  # 1/kappa_F = n |det J| / (||J||_F ||adj J||_F) = n / (||J||_F ||J^-1||_F), by LU
@@ -97,9 +101,9 @@ class Tally:
         return self
 
     def _add_manipulability(self, w: np.ndarray) -> None:
-        self.count += len(w)
-        self.w_sum += float(np.sum(w))
-        self.w_squares += float(np.sum(w * w))
+        mean = float(np.mean(w))
+        self.count, self.w_mean, self.w_spread = _pooled(self.count, self.w_mean, self.w_spread, len(w), mean,
+                                                         float(np.sum((w - mean) ** 2)))
         self.w_min = min(self.w_min, float(np.min(w)))
         self.w_max = max(self.w_max, float(np.max(w)))
         self.w_histogram = self.w_histogram + np.histogram(w, HISTOGRAM_EDGES)[0]
@@ -110,9 +114,11 @@ class Tally:
 
     def merge(self, other: Tally) -> Tally:
         """The tally of both chunks: ``self`` and ``other`` together (a new tally)."""
-        return Tally(self.count + other.count, self.inverse_kappa + other.inverse_kappa,
-                     self.inverse_kappa_f + other.inverse_kappa_f, self.w_sum + other.w_sum,
-                     self.w_squares + other.w_squares, min(self.w_min, other.w_min), max(self.w_max, other.w_max),
+        count, mean, spread = _pooled(self.count, self.w_mean, self.w_spread, other.count, other.w_mean,
+                                      other.w_spread)
+        return Tally(count, self.inverse_kappa + other.inverse_kappa,
+                     self.inverse_kappa_f + other.inverse_kappa_f, mean, spread,
+                     min(self.w_min, other.w_min), max(self.w_max, other.w_max),
                      self.sigma_sum + other.sigma_sum, min(self.sigma_min, other.sigma_min), self.near + other.near,
                      self.w_histogram + other.w_histogram, self.sigma_histogram + other.sigma_histogram,
                      np.union1d(self.voxels, other.voxels))
@@ -127,10 +133,8 @@ class Tally:
             elif metric == "gci_frobenius":
                 out["gci_frobenius"] = self.inverse_kappa_f / n if square else np.nan
             elif metric == "manipulability":
-                mean = self.w_sum / n
-                out |= {"manipulability_mean": mean, "manipulability_min": self.w_min,
-                        "manipulability_max": self.w_max,
-                        "manipulability_std": float(np.sqrt(max(self.w_squares / n - mean * mean, 0.0))),
+                out |= {"manipulability_mean": self.w_mean, "manipulability_min": self.w_min,
+                        "manipulability_max": self.w_max, "manipulability_std": float(np.sqrt(self.w_spread / n)),
                         "manipulability_histogram": self.w_histogram}
             elif metric == "sigma_min":
                 out |= {"sigma_min_mean": self.sigma_sum / n, "sigma_min_min": self.sigma_min,
@@ -140,6 +144,16 @@ class Tally:
             elif metric == "workspace_volume":
                 out["workspace_volume"] = len(self.voxels) * voxel**3
         return out
+
+
+def _pooled(n_a: int, mean_a: float, spread_a: float, n_b: int, mean_b: float,
+            spread_b: float) -> tuple[int, float, float]:
+    """Count, mean and sum of squared deviations of two groups together (Chan, Golub and LeVeque)."""
+    n = n_a + n_b
+    if n == 0:
+        return 0, 0.0, 0.0
+    delta = mean_b - mean_a
+    return n, mean_a + delta * n_b / n, spread_a + spread_b + delta * delta * n_a * n_b / n
 
 
 def _keys(points: np.ndarray, voxel: float) -> np.ndarray:

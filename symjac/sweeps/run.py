@@ -10,11 +10,13 @@ compiler is present, its NumPy fallback elsewhere; a worker compiles or imports 
 
 from __future__ import annotations
 
+import concurrent.futures
 import functools
 import hashlib
 import importlib.util
 import itertools
 import math
+import shutil
 import tempfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -23,16 +25,24 @@ from typing import Any
 
 import numpy as np
 
+from symjac._version import __version__
 from symjac.codegen import JacobianRequest, generate
+from symjac.drawing.geometry import arm_pose
 from symjac.errors import ArgumentError, SymjacError
 from symjac.kinematics.chain import Frame
 from symjac.model.robot import Robot
 from symjac.sweeps.metrics import HISTOGRAM_EDGES, METRICS, Tally
 from symjac.sweeps.sampling import JointSampler, Sampling, joint_ranges, parameter_grid
 
-__all__ = ["kernel_module", "sweep"]
+__all__ = ["MOST_TASKS", "SCHEDULERS", "kernel_module", "sweep"]
 
 DEFAULT_METRICS = ("gci", "manipulability", "sigma_min", "near_singular")
+
+SCHEDULERS = ("threads", "processes", "synchronous")
+"""dask's local schedulers by name; anything with ``://`` is the address of a dask.distributed scheduler."""
+
+MOST_TASKS = 1_000_000
+"""A sweep of more tasks (designs times chunks) is refused before it starts: raise ``chunk`` or narrow the grid."""
 
 
 @functools.cache
@@ -45,7 +55,10 @@ def kernel_module(source: str) -> ModuleType:
     spec = importlib.util.spec_from_file_location(name, path)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    try:
+        spec.loader.exec_module(module)  # the c target compiles into its own cache; the file is not needed after
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
     if hasattr(module, "THREADS"):
         setattr(module, "THREADS", 1)  # noqa: B010  # the scheduler spreads the chunks over the cores
     return module
@@ -94,7 +107,9 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
     near : float
         ``near_singular`` counts samples with :math:`1/\kappa` below this.
     voxel : float, optional
-        Edge of the workspace voxels (default: the largest parameter value swept or 1, over 50).
+        Edge of the workspace voxels (default: the arm's reach at its home configuration over 50). The volume
+        counts the voxels the tool frame's origin reaches among the samples: a lower bound that grows towards the
+        workspace volume as the samples fill the voxels (``samples`` much larger than ``(reach / voxel) ** 3``).
     scheduler : str, optional
         A dask scheduler: ``"threads"`` (the default with dask), ``"processes"``, ``"synchronous"`` (one process,
         also the fallback without dask), or the address of a dask.distributed scheduler (``"tcp://host:8786"``).
@@ -119,17 +134,28 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
     if unknown or not metrics:
         raise ArgumentError(f"unknown metric {unknown[0]!r}; choose from {', '.join(METRICS)}" if unknown
                             else "give at least one metric")
-    if not isinstance(chunk, int) or chunk < 1:
+    if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
         raise ArgumentError(f"chunk must be a positive integer, got {chunk!r}")
-    if not (isinstance(near, int | float) and math.isfinite(near) and near >= 0):
+    if isinstance(near, bool) or not (isinstance(near, int | float) and math.isfinite(near) and near >= 0):
         raise ArgumentError(f"near must be a finite number >= 0, got {near!r}")
+    if scheduler is not None and scheduler not in SCHEDULERS and "://" not in str(scheduler):
+        raise ArgumentError(f"unknown scheduler {scheduler!r}; choose {', '.join(SCHEDULERS)} or tcp://HOST:PORT")
+    task_rows = tuple(range(6)) if rows is None else tuple(rows)
+    square = len(task_rows) == robot.n_coordinates
+    if "gci_frobenius" in metrics and not square:
+        raise ArgumentError(f"gci_frobenius needs a square Jacobian: choose {robot.n_coordinates} rows, not "
+                            f"{len(task_rows)}")
     grid = parameter_grid(robot, params)
     sampler = JointSampler(joint_ranges(robot, ranges), samples, sampling, seed)
-    size = voxel if voxel is not None else max([1.0, *(float(np.max(v)) for v in grid.values())]) / 50
-    if not (math.isfinite(size) and size > 0):
+    designs_count = math.prod(len(v) for v in grid.values())
+    tasks = designs_count * -(-sampler.total // chunk)
+    if tasks > MOST_TASKS:
+        raise ArgumentError(f"{designs_count} designs x {-(-sampler.total // chunk)} chunks is {tasks} tasks, more "
+                            f"than {MOST_TASKS}: raise chunk or sweep fewer values")
+    size = voxel if voxel is not None else arm_pose(robot).reach / 50
+    if isinstance(size, bool) or not (isinstance(size, int | float) and math.isfinite(size) and size > 0):
         raise ArgumentError(f"voxel must be a positive number, got {voxel!r}")
-    source = generate(robot, "c", jacobians=[JacobianRequest(frame, point, None if rows is None else tuple(rows))])
-    square = len(rows if rows is not None else range(6)) == robot.n_coordinates
+    source = generate(robot, "c", jacobians=[JacobianRequest(frame, point, None if rows is None else task_rows)])
     names = list(grid)
     designs = [dict(zip(names, map(float, values), strict=True)) for values in itertools.product(*grid.values())]
     bounds = [(start, min(start + chunk, sampler.total)) for start in range(0, sampler.total, chunk)]
@@ -137,8 +163,11 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
     sigma = not set(metrics) <= {"manipulability", "workspace_volume", "gci_frobenius"}  # else LU is enough
     tallies = _run(source, designs, sampler, bounds, (near, size, points, sigma), scheduler, client)
     return _dataset(robot, grid, [t.values(metrics, square, size) for t in tallies],
-                    {"samples": sampler.total, "sampling": sampling, "frame": str(frame), "near": near,
-                     "voxel": size, "seed": seed})
+                    {"symjac": __version__, "samples": sampler.total, "sampling": sampling, "seed": seed,
+                     "metrics": ",".join(metrics), "frame": str(frame), "point": str(point),
+                     "rows": ",".join(map(str, task_rows)), "near": near, "voxel": size, "chunk": chunk,
+                     "ranges": "; ".join(f"{name} {low:.17g}..{high:.17g}" for name, (low, high)
+                                         in zip(map(str, robot.q), sampler.ranges, strict=True))})
 
 
 def _run(source: str, designs: list[dict[str, float]], sampler: JointSampler, bounds: list[tuple[int, int]],
@@ -150,7 +179,8 @@ def _run(source: str, designs: list[dict[str, float]], sampler: JointSampler, bo
         if scheduler not in (None, "synchronous") or client is not None:
             raise SymjacError("running a sweep on dask needs dask: pip install 'symjac[sweep]'") from None
         return [_merged([_chunk_tally(source, d, sampler, a, b, *settings) for a, b in bounds]) for d in designs]
-    graph = [_tree([dask.delayed(_chunk_tally)(source, d, sampler, a, b, *settings) for a, b in bounds])
+    shared = dask.delayed(source)  # one copy of the module text in the graph, not one per task
+    graph = [_tree([dask.delayed(_chunk_tally)(shared, d, sampler, a, b, *settings) for a, b in bounds])
              for d in designs]
     if client is not None:
         return list(client.gather(client.compute(graph)))
@@ -168,15 +198,19 @@ def _tree(tallies: list[Any], fan_in: int = 8) -> Any:
     return tallies[0]
 
 
-def _on_cluster(graph: list[Any], address: str) -> list[Tally]:
+def _on_cluster(graph: list[Any], address: str, deadline: float = 10.0) -> list[Tally]:
+    """The graph on the dask.distributed scheduler at ``address``; one clear error if none answers in time."""
     try:
         from distributed import Client
     except ImportError:
         raise SymjacError("a scheduler address needs dask.distributed: pip install 'symjac[sweep]'") from None
-    try:
-        client = Client(address, timeout="5s")
-    except (OSError, TimeoutError) as error:
+    pool = concurrent.futures.ThreadPoolExecutor(1)
+    try:  # a server that accepts but never speaks dask's protocol must not hang the caller
+        client = pool.submit(Client, address, timeout="5s").result(timeout=deadline)
+    except Exception as error:
         raise SymjacError(f"no dask scheduler answers at {address} ({type(error).__name__})") from None
+    finally:
+        pool.shutdown(wait=False)
     with client:
         return list(client.gather(client.compute(graph)))
 

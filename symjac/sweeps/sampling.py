@@ -1,14 +1,16 @@
 """What a sweep samples: designs (a grid over robot parameters) and configurations (joint values over the limits).
 
-Joint samples are drawn chunk by chunk, each chunk a pure function of its index, so that the same sweep gives the
-same samples however its chunks are scheduled: a scrambled Sobol sequence (SciPy's :class:`scipy.stats.qmc.Sobol`,
-fast-forwarded to the chunk's first point) or a regular grid (``m`` points per joint, ``m ** n`` in all).
+Joint samples are drawn chunk by chunk, each chunk a pure function of its place in the sequence, so that the same
+sweep gives the same samples however it is chunked and scheduled: scrambled Sobol points (SciPy's
+:class:`scipy.stats.qmc.Sobol`, in independently scrambled blocks of :data:`SOBOL_BLOCK`) or a regular grid of cell
+centres (``m`` per coordinate, ``m ** n`` in all: ``samples`` is rounded up to the next such number).
 """
 
 from __future__ import annotations
 
+import functools
 import math
-import warnings
+import numbers
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -19,9 +21,18 @@ import sympy as sp
 from symjac.errors import ArgumentError
 from symjac.model.robot import JointType, Robot
 
-__all__ = ["JointSampler", "Sampling", "joint_ranges", "parameter_grid"]
+__all__ = ["MOST_VALUES", "SOBOL_BLOCK", "JointSampler", "Sampling", "joint_ranges", "parameter_grid"]
 
 Sampling = Literal["sobol", "grid"]
+
+MOST_VALUES = 10_000
+"""The most values one parameter may take in a sweep."""
+
+SOBOL_BLOCK = 1 << 16
+"""Sobol points come in blocks of this many, each block scrambled on its own (seeded by the sweep's seed and the
+block's index): randomized quasi-Monte Carlo with independent replicates. A chunk draws its points from the blocks
+it overlaps, so neither the chunk size nor the scheduling changes the samples, and no chunk pays for skipping the
+points before it."""
 
 
 def parameter_grid(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence[float]]
@@ -40,21 +51,39 @@ def parameter_grid(robot: Robot, params: Mapping[str, tuple[float, float, int] |
         if name not in known:
             raise ArgumentError(f"{robot.name} has no parameter {name!r}; its parameters are "
                                 f"{', '.join(sorted(known)) or 'none'}")
-        if isinstance(spec, tuple) and len(spec) == 3 and isinstance(spec[2], int) and not isinstance(spec[2], bool):
-            low, high, count = spec
-            if count < 1 or not (math.isfinite(low) and math.isfinite(high)) or low > high:
-                raise ArgumentError(f"{name}: the range {low}:{high}:{count} is empty or not finite (low <= high, "
-                                    "count >= 1)")
-            values = np.linspace(float(low), float(high), int(count))
-        else:
-            try:
-                values = np.asarray(spec, dtype=float).reshape(-1)
-            except (TypeError, ValueError):
-                raise ArgumentError(f"{name}: give (low, high, count) or a list of values, got {spec!r}") from None
-            if values.size == 0 or not np.all(np.isfinite(values)):
-                raise ArgumentError(f"{name}: the values must be finite and at least one, got {spec!r}")
+        values = _range(name, spec) if isinstance(spec, tuple) else _values(name, spec)
+        if len(np.unique(values)) != len(values):
+            raise ArgumentError(f"{name}: the values repeat ({values.tolist()}): each design once")
         grid[name] = values
     return grid
+
+
+def _number(value: object, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(float(value)):
+        raise ArgumentError(f"{what} must be a finite number, got {value!r}")
+    return float(value)
+
+
+def _range(name: str, spec: tuple[object, ...]) -> np.ndarray:
+    """``(low, high, count)``: count evenly spaced values, ends included."""
+    if len(spec) != 3:
+        raise ArgumentError(f"{name}: a range is (low, high, count), got {spec!r} (a list gives the values)")
+    low, high = _number(spec[0], f"{name}'s low end"), _number(spec[1], f"{name}'s high end")
+    count = spec[2]
+    if isinstance(count, bool) or not isinstance(count, numbers.Integral) or not 1 <= int(count) <= MOST_VALUES:
+        raise ArgumentError(f"{name}: the count of {spec!r} must be a whole number from 1 to {MOST_VALUES}")
+    if low > high or (low == high and int(count) > 1):
+        raise ArgumentError(f"{name}: the range {low}:{high}:{count} is empty (low < high, or one value)")
+    return np.linspace(low, high, int(count))
+
+
+def _values(name: str, spec: object) -> np.ndarray:
+    if isinstance(spec, str | bytes) or not isinstance(spec, Sequence | np.ndarray):
+        raise ArgumentError(f"{name}: give (low, high, count) or a list of values, got {spec!r}")
+    values = np.array([_number(v, f"a value of {name}") for v in spec], dtype=float)
+    if values.size == 0 or values.size > MOST_VALUES:
+        raise ArgumentError(f"{name}: give from 1 to {MOST_VALUES} values, got {values.size}")
+    return values
 
 
 def joint_ranges(robot: Robot, ranges: Mapping[str, tuple[float, float]] | None = None) -> np.ndarray:
@@ -73,7 +102,10 @@ def joint_ranges(robot: Robot, ranges: Mapping[str, tuple[float, float]] | None 
     for k, (name, kind) in enumerate(zip(names, robot.coordinate_types, strict=True)):
         bounds = limits.get(robot.q[k])
         if name in given:
-            low, high = (float(v) for v in given[name])
+            pair = given[name]
+            if isinstance(pair, str | bytes) or not isinstance(pair, Sequence) or len(pair) != 2:
+                raise ArgumentError(f"the range of {name} must be (low, high), got {pair!r}")
+            low, high = (_number(v, f"an end of {name}'s range") for v in pair)
         elif bounds is not None:
             low, high = (float(sp.sympify(b).xreplace(robot.defaults)) for b in bounds)
         elif kind is JointType.REVOLUTE:
@@ -98,7 +130,7 @@ class JointSampler:
     def __post_init__(self) -> None:
         if self.method not in ("sobol", "grid"):
             raise ArgumentError(f"unknown sampling {self.method!r}; choose sobol or grid")
-        if not isinstance(self.count, int) or isinstance(self.count, bool) or self.count < 1:
+        if isinstance(self.count, bool) or not isinstance(self.count, numbers.Integral) or self.count < 1:
             raise ArgumentError(f"samples must be a positive integer, got {self.count!r}")
 
     @property
@@ -123,12 +155,22 @@ class JointSampler:
             index = np.stack(np.unravel_index(np.arange(start, stop), (m,) * len(self.ranges)), axis=1)
             unit = (index + 0.5) / m  # cell centres: no point on a range's end counted twice for a full turn
         else:
-            from scipy.stats import qmc
-
-            engine = qmc.Sobol(d=len(self.ranges), scramble=True, seed=self.seed)
-            with warnings.catch_warnings():  # chunks need not be powers of 2: the whole sequence is what counts
-                warnings.simplefilter("ignore", UserWarning)
-                if start:
-                    engine.fast_forward(start)
-                unit = engine.random(stop - start)
+            first, last = start // SOBOL_BLOCK, (stop - 1) // SOBOL_BLOCK
+            pieces = []
+            for block in range(first, last + 1):
+                points = _sobol_block(len(self.ranges), self.seed, block)
+                offset = block * SOBOL_BLOCK
+                pieces.append(points[max(start, offset) - offset:min(stop, offset + SOBOL_BLOCK) - offset])
+            unit = np.concatenate(pieces)
         return low + unit * (high - low)
+
+
+@functools.lru_cache(maxsize=4)
+def _sobol_block(dimension: int, seed: int, block: int) -> np.ndarray:
+    """Block ``block`` of the sweep's Sobol points: 2**16 scrambled points in the unit cube (read-only)."""
+    from scipy.stats import qmc
+
+    engine = qmc.Sobol(d=dimension, scramble=True, seed=np.random.default_rng([seed, block]))
+    points = engine.random_base2(16)
+    points.flags.writeable = False
+    return points

@@ -137,6 +137,7 @@ def test_a_grid_covers_cell_centres():
     ({"params": {"L1": (0.3, 0.6, 2.5)}}, r"the count of .* must be a whole number"),
     ({"params": {"L1": (True, 0.6, 2)}}, r"L1's low end must be a finite number"),
     ({"scheduler": "thread"}, r"unknown scheduler 'thread'"),
+    ({"seed": -1}, r"seed must be a whole number >= 0"),
     ({"metrics": ["gci_frobenius"], "rows": [0, 1, 2]}, r"gci_frobenius needs a square Jacobian"),
     ({"samples": 10**15, "chunk": 1000}, r"tasks, more than 1000000"),
     ({"samples": 0}, r"samples must be a positive integer"),

@@ -99,7 +99,8 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
     frame, point, rows
         The Jacobian analysed, as for :func:`symjac.jacobian` (rows: task rows, default all six).
     sampling : "sobol" or "grid"
-        A scrambled Sobol sequence (seeded by ``seed``) or a regular grid of cell centres.
+        Scrambled Sobol points (in independently scrambled blocks of 2**16, seeded by ``seed`` and the block) or a
+        regular grid of cell centres.
     ranges : mapping, optional
         Coordinate name to ``(low, high)``, instead of the joint's limits (default; (-pi, pi) without limits).
     chunk : int
@@ -138,6 +139,8 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
         raise ArgumentError(f"chunk must be a positive integer, got {chunk!r}")
     if isinstance(near, bool) or not (isinstance(near, int | float) and math.isfinite(near) and near >= 0):
         raise ArgumentError(f"near must be a finite number >= 0, got {near!r}")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ArgumentError(f"seed must be a whole number >= 0, got {seed!r}")
     if scheduler is not None and scheduler not in SCHEDULERS and "://" not in str(scheduler):
         raise ArgumentError(f"unknown scheduler {scheduler!r}; choose {', '.join(SCHEDULERS)} or tcp://HOST:PORT")
     task_rows = tuple(range(6)) if rows is None else tuple(rows)

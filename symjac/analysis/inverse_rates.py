@@ -131,7 +131,11 @@ def damped_least_squares(
 
 @dataclass(frozen=True)
 class PathRates:
-    """Joint rates along a path: exact inverse (``nan`` where singular), damped, and the smallest singular value."""
+    r"""Joint rates along a path: exact (``nan`` where singular), damped, and the smallest singular value.
+
+    ``exact`` is :math:`J^{-1}\dot x` for a square Jacobian and the minimum-norm rates
+    :math:`J^+ \dot x = J^T (J J^T)^{-1} \dot x` for a redundant arm's wide one.
+    """
 
     exact: np.ndarray  # (m, n)
     damped: np.ndarray  # (m, n)
@@ -169,8 +173,12 @@ def rates_along_path(
         J = numeric_jacobian(robot, q, frame, point)[chosen, :]
         sigma = np.linalg.svd(J, compute_uv=False)
         smallest.append(float(sigma.min()))
-        square = J.shape[0] == J.shape[1] and sigma.min() > sigma.max() * 1e-12
-        exact.append(np.linalg.solve(J, velocity) if square else np.full(robot.n_coordinates, np.nan))
+        regular = J.shape[0] <= J.shape[1] and sigma.min() > sigma.max() * 1e-12
+        if not regular:
+            exact.append(np.full(robot.n_coordinates, np.nan))
+        else:  # the inverse, or the minimum-norm rates of a wide J
+            exact.append(np.linalg.solve(J, velocity) if J.shape[0] == J.shape[1]
+                         else J.T @ np.linalg.solve(J @ J.T, velocity))
         rates = damped_least_squares(J, velocity, threshold, maximum)
         damped.append(rates)
         error.append(float(np.linalg.norm(J @ rates - velocity)))

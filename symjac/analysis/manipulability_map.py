@@ -27,13 +27,15 @@ import numpy as np
 import sympy as sp
 
 from symjac.analysis.inverse_rates import PathRates, rates_along_path
+from symjac.analysis.singularity.redundant import SingularSet, set_joints
+from symjac.analysis.singularity.sets import Condition
 from symjac.analysis.singularity.singularities import SingularFactor, SingularityReport
 from symjac.analysis.singularity.solve import Solution
 from symjac.kinematics.chain import Frame
 from symjac.kinematics.numeric import numeric_jacobian
 from symjac.model.robot import JointType, Robot
 
-__all__ = ["Curve", "ManipulabilityMap", "SingularPath", "manipulability_map", "singular_path"]
+__all__ = ["Curve", "ManipulabilityMap", "SetMark", "SingularPath", "manipulability_map", "singular_path"]
 
 _KIND_ORDER = ("elbow", "shoulder", "wrist", "other")
 
@@ -50,6 +52,21 @@ class Curve:
 
 
 @dataclass(frozen=True)
+class SetMark:
+    """Where a redundant arm's singular set ``number`` (1-based, as in the report) lies in the plane.
+
+    ``vertical`` and ``horizontal`` hold lines :math:`x = c` and :math:`y = c` (one condition on a plane joint),
+    ``points`` the crossings of two such conditions; ``crossing`` is where a path crosses the set.
+    """
+
+    number: int
+    vertical: tuple[float, ...] = ()
+    horizontal: tuple[float, ...] = ()
+    points: tuple[tuple[float, float], ...] = ()
+    crossing: tuple[float, float] | None = None
+
+
+@dataclass(frozen=True)
 class ManipulabilityMap:
     """Manipulability over a grid of joints ``joints`` (0-based), the others at ``configuration``."""
 
@@ -63,6 +80,7 @@ class ManipulabilityMap:
     rows: tuple[int, ...]
     frame: Frame
     point: tuple[sp.Expr, sp.Expr, sp.Expr]
+    sets: tuple[SetMark, ...] = ()  # a redundant arm's singular sets lying in the plane, the simplest first
 
 
 @dataclass(frozen=True)
@@ -75,6 +93,7 @@ class SingularPath:
     rows: tuple[int, ...]
     rates: PathRates
     curve: Curve | None
+    set_mark: SetMark | None = None  # the redundant arm's singular set crossed, if any
 
 
 def _bounds(robot: Robot, coordinate: int) -> tuple[float, float]:
@@ -155,6 +174,66 @@ def _fixed(robot: Robot, report: SingularityReport, plane: tuple[int, int], seed
     return best[1]
 
 
+def _simplest_set(report: SingularityReport) -> SingularSet | None:
+    """The singular set with the fewest conditions, then joints, among those that exist for the defaults."""
+    shown = [s for s in report.sets if s.sample is not None]
+    return min(shown, key=lambda s: (len(s.conditions), len(set_joints(s)), report.sets.index(s)), default=None)
+
+
+def _set_plane(robot: Robot, report: SingularityReport, simplest: SingularSet) -> tuple[int, int]:
+    """The two joints of the simplest set, or its one joint and the one that shows most other sets with it."""
+    joints = set_joints(simplest)
+    if len(joints) >= 2:
+        return joints[0], joints[1]
+    j = joints[0]
+    others = [k for k in range(robot.n_coordinates) if k != j]
+    best = max(others, key=lambda k: (sum(set(set_joints(s)) <= {j, k} for s in report.sets), -abs(k - j), -k))
+    return (j, best) if j < best else (best, j)
+
+
+def _constant_values(condition: Condition, variable: sp.Symbol, bounds: tuple[float, float],
+                     robot: Robot) -> list[float] | None:
+    """The values ``variable`` takes on ``condition`` when they are constants, within ``bounds``; else ``None``."""
+    values = []
+    for solution in condition.solutions:
+        if solution.lhs != variable or solution.rhs.free_symbols & set(robot.q):
+            return None
+        value = float(solution.rhs.xreplace(robot.defaults))
+        shifted = (value + 2 * math.pi * k for k in (-1, 0, 1))
+        values += [v for v in shifted if bounds[0] - 1e-9 <= v <= bounds[1] + 1e-9]
+    return values
+
+
+def _set_marks(robot: Robot, report: SingularityReport, plane: tuple[int, int],
+               configuration: Sequence[float]) -> tuple[SetMark, ...]:
+    """Every singular set given by constant values of the plane's joints, as lines or points, the simplest first."""
+    marks = []
+    variables = [robot.q[k] for k in plane]
+    bounds = [_bounds(robot, k) for k in plane]
+    for number, singular_set in enumerate(report.sets, start=1):
+        if not set(set_joints(singular_set)) <= set(plane) or singular_set.sample is None:
+            continue
+        lines: list[list[float]] = [[], []]
+        for condition in singular_set.conditions:
+            axis = next(a for a in (0, 1) if condition.expression.has(variables[a]))
+            values = _constant_values(condition, variables[axis], bounds[axis], robot)
+            if values is None:
+                break
+            lines[axis] += values
+        else:
+            if lines[0] and lines[1]:
+                points = tuple((x, y) for x in lines[0] for y in lines[1])
+                marks.append(SetMark(number, points=points, crossing=points[0]))
+            elif lines[0] or lines[1]:
+                axis = 0 if lines[0] else 1
+                other = float(configuration[plane[1 - axis]])
+                crossing = (lines[0][0], other) if axis == 0 else (other, lines[1][0])
+                marks.append(SetMark(number, tuple(lines[0]), tuple(lines[1]), crossing=crossing))
+    simplest = _simplest_set(report)
+    first = None if simplest is None else report.sets.index(simplest) + 1
+    return tuple(sorted(marks, key=lambda mark: mark.number != first))
+
+
 def _measure(J: np.ndarray) -> float:
     if J.shape[0] == J.shape[1]:
         return abs(float(np.linalg.det(J)))
@@ -220,8 +299,12 @@ def manipulability_map(robot: Robot, report: SingularityReport, size: int = 121,
     """Manipulability over a grid of two joints with the exact singular curves; ``None`` for a one-joint arm."""
     if robot.n_coordinates < 2:
         return None
-    plane = _plane(robot, report)
-    configuration = _fixed(robot, report, plane, seed)
+    simplest = _simplest_set(report)
+    if simplest is not None and simplest.sample is not None:  # a redundant arm: the simplest singular set in view
+        plane, configuration = _set_plane(robot, report, simplest), list(simplest.sample)
+    else:
+        plane = _plane(robot, report)
+        configuration = _fixed(robot, report, plane, seed)
     det = report.determinant
     rows = list(det.rows)
     bounds = [_bounds(robot, i) for i in plane]
@@ -246,17 +329,25 @@ def manipulability_map(robot: Robot, report: SingularityReport, size: int = 121,
     curves = [curve for factor in _plotted(report)
               if (curve := _curve(robot, factor, plane, fixed, grids, rank_margin)) is not None]
     measure = "|det J|" if len(rows) == robot.n_coordinates else "sqrt(det(J J^T))"
+    marks = _set_marks(robot, report, plane, configuration) if simplest is not None else ()
     return ManipulabilityMap(plane, tuple(configuration), x, y, w, measure, tuple(curves), det.rows, det.frame,
-                             det.point)
+                             det.point, marks)
 
 
 def singular_path(robot: Robot, plane: ManipulabilityMap, points: int = 200, half_length: float = 0.5) -> SingularPath:
-    """A path across the first solved curve (elbow first), commanded along the direction lost where it crosses."""
+    """A path across the first solved curve (elbow first), or a redundant arm's simplest singular set in the plane.
+
+    The path is commanded along the direction lost where it crosses.
+    """
     solved = [c for c in plane.curves if c.crossing is not None]
     solved.sort(key=lambda c: _KIND_ORDER.index(str(c.factor.kind)) if str(c.factor.kind) in _KIND_ORDER else 9)
     curve = solved[0] if solved else None
+    mark = plane.sets[0] if plane.sets and plane.sets[0].crossing is not None else None
     q0 = np.array(plane.configuration, dtype=float)
-    if curve is not None and curve.crossing is not None:
+    if mark is not None and mark.crossing is not None:
+        q0[plane.joints[0]], q0[plane.joints[1]] = mark.crossing
+        along = 0 if mark.vertical or mark.points else 1
+    elif curve is not None and curve.crossing is not None:
         q0[plane.joints[0]], q0[plane.joints[1]] = curve.crossing
         along = 0 if curve.solutions[0].lhs.has(robot.q[plane.joints[0]]) else 1
     else:  # no solved curve: through the smallest manipulability on the grid
@@ -270,4 +361,4 @@ def singular_path(robot: Robot, plane: ManipulabilityMap, points: int = 200, hal
     u = np.linalg.svd(J)[0][:, -1]
     u = np.where(np.abs(u) < 1e-12, 0.0, u if u[np.argmax(np.abs(u))] > 0 else -u)
     rates = rates_along_path(robot, configurations, u.tolist(), rows=plane.rows, frame=plane.frame, point=plane.point)
-    return SingularPath(t, configurations, u, plane.rows, rates, curve)
+    return SingularPath(t, configurations, u, plane.rows, rates, None if mark else curve, mark)

@@ -15,6 +15,7 @@ from symjac.printing.tables import dh_rows
 
 if TYPE_CHECKING:  # the analyses' types only: printing a Jacobian's JSON does not load them
     from symjac.analysis.singularity.determinant import Determinant
+    from symjac.analysis.singularity.redundant import SingularSet
     from symjac.analysis.singularity.singularities import SingularityReport
     from symjac.kinematics.chain import Frame
 
@@ -28,6 +29,7 @@ __all__ = [
     "metadata",
     "representation_data",
     "screw_jacobian_data",
+    "set_data",
     "show_data",
     "singularity_data",
     "step_data",
@@ -68,6 +70,10 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
         "rows": list(det.row_names), "frame": det.frame, "point": [sp.sstr(c) for c in det.point],
         "redundant": report.redundant, "determinant": determinant_data(det),
         "minors": [determinant_data(m) for m in report.minors],
+        "zero_minors": [{"columns": [c + 1 for c in z.columns], "rank": z.rank,
+                         "concurrent": [[j + 1 for j in group] for group in z.concurrent],
+                         "reason": prose.zero_minor_words(z)} for z in report.zero_minors],
+        "sets": [set_data(s) for s in report.sets],
         "factors": [{
             "expression": sp.sstr(f.expression), "multiplicity": f.multiplicity, "kind": str(f.kind),
             "reason": prose.reason(f), "solutions": [sp.sstr(s.equation) for s in f.solutions],
@@ -80,6 +86,24 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
             "solution_limits": [str(status) for status in f.limits], "reachable_within_limits": f.reachable,
             "limits_words": prose.limit_text(f),
         } for f in report.factors],
+    }
+
+
+def set_data(singular_set: SingularSet) -> dict[str, Any]:
+    """One singular set of a redundant arm: ``EXPR = 0`` conditions, solutions per condition, kind, explanation."""
+    return {
+        "conditions": [f"{sp.sstr(c.expression)} = 0" for c in singular_set.conditions],
+        "solutions": [[f"{sp.sstr(s.lhs)} = {sp.sstr(s.rhs)}" for s in c.solutions] for c in singular_set.conditions],
+        "kind": str(singular_set.kind), "explanation": prose.set_reason(singular_set),
+        "existence": None if singular_set.existence is None else sp.sstr(singular_set.existence),
+        "exists_for_defaults": singular_set.exists_for_defaults, "sample": singular_set.sample,
+        "lost_direction": None if singular_set.lost_direction is None else singular_set.lost_direction.vector,
+        "lost": prose.lost_words(singular_set),
+        "self_motion": None if singular_set.self_motion is None else singular_set.self_motion.rates,
+        "null_space": [m.rates for m in singular_set.null_space],
+        "regular_null_space": [m.rates for m in singular_set.regular_null_space],
+        "solution_limits": [str(status) for status in singular_set.limits],
+        "reachable_within_limits": singular_set.reachable, "limits_words": prose.limit_text(singular_set),
     }
 
 

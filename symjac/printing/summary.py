@@ -22,11 +22,7 @@ def _det(value: sp.Expr) -> Equation:
 def singularity_blocks(report: SingularityReport) -> list[Block]:
     r"""The report as captioned blocks: :math:`\det J` (or every minor of a redundant arm), then each factor."""
     if report.redundant:
-        blocks = [Block(prose.redundant_caption(report))]
-        for minor in report.minors:
-            locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
-            blocks.append(Block((f"Joint {locked + 1} locked:",), (_det(minor.expression),)))
-        return blocks
+        return _redundant_blocks(report)
     blocks = [Block(prose.rows_parts(report), (_det(report.determinant.expression),))]
     for factor in report.factors:
         head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): ",
@@ -39,6 +35,23 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
                 head += [f" There it {prose.lost_words(factor)}; ", *prose.self_motion_parts(factor), "."]
             head.extend(prose.limit_parts(factor))
         blocks.append(Block(tuple(head), tuple(Equation("", "", s.equation) for s in factor.solutions)))
+    return blocks
+
+
+def _redundant_blocks(report: SingularityReport) -> list[Block]:
+    """Every minor (a zero one with its reason), then every singular set with its solutions."""
+    blocks = [Block(prose.redundant_caption(report))]
+    zeros = {zero.columns: zero for zero in report.zero_minors}
+    for minor in report.minors:
+        locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
+        caption = f"Joint {locked + 1} locked:"
+        if minor.columns in zeros:
+            caption = f"Joint {locked + 1} locked: {prose.zero_minor_words(zeros[minor.columns])}."
+        blocks.append(Block((caption,), (_det(minor.expression),)))
+    blocks.append(Block((prose.sets_caption(report),)))
+    for number, singular_set in enumerate(report.sets, start=1):
+        blocks.append(Block((f"Set {number}: ", *prose.set_parts(singular_set)),
+                            tuple(Equation("", "", s.equation) for s in singular_set.solutions)))
     return blocks
 
 

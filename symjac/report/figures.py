@@ -53,7 +53,7 @@ def arm_svg(robot: Robot, q: Sequence[float], name: str, arrow: Sequence[float] 
 
 
 def map_svg(plane: ManipulabilityMap, names: tuple[str, str], path: SingularPath | None = None) -> str:
-    """The manipulability heat map with the singular curves (one colour per factor) and the path, as SVG."""
+    """The manipulability heat map with the singular curves (one colour per factor, then per set) and the path."""
     _, Figure = _matplotlib()
     figure = Figure(figsize=(6.4, 5.0), layout="constrained")
     axes = figure.add_subplot()
@@ -68,6 +68,15 @@ def map_svg(plane: ManipulabilityMap, names: tuple[str, str], path: SingularPath
             X, Y = np.meshgrid(np.linspace(*extent[:2], curve.values.shape[1]),
                                np.linspace(*extent[2:], curve.values.shape[0]))
             axes.contour(X, Y, curve.values, levels=[0.0], colors=[colour], linewidths=1.8, linestyles="dashed")
+    for number, mark in enumerate(plane.sets):
+        colour = CURVE_COLOURS[(len(plane.curves) + number) % len(CURVE_COLOURS)]
+        for x in mark.vertical:
+            axes.axvline(x, color=colour, linewidth=1.8)
+        for y in mark.horizontal:
+            axes.axhline(y, color=colour, linewidth=1.8)
+        if mark.points:
+            axes.plot(*np.array(mark.points).T, linestyle="none", marker="X", markersize=9, color=colour,
+                      markeredgecolor="white")
     if path is not None:
         xy = path.configurations[:, list(plane.joints)]
         axes.plot(xy[:, 0], xy[:, 1], color="white", linewidth=2.2, linestyle=(0, (4, 2)))

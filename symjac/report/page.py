@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import html
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 import sympy as sp
@@ -22,6 +22,7 @@ import sympy as sp
 from symjac._version import __version__
 from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath, manipulability_map, singular_path
 from symjac.analysis.singularity.singularities import SingularFactor, SingularityReport, singularities
+from symjac.analysis.spaces import jacobian_spaces
 from symjac.drawing.geometry import arm_pose, home_configuration
 from symjac.kinematics.chain import Frame, chain_of, forward_kinematics
 from symjac.kinematics.jacobian import ROW_NAMES, jacobian
@@ -152,7 +153,8 @@ def _arm_section(robot: Robot, report: SingularityReport) -> Section:
                    f'<div class="arms">{"".join(figures)}</div>')
 
 
-def _map_section(robot: Robot, plane: ManipulabilityMap, path: SingularPath | None) -> Section:
+def _map_section(robot: Robot, report: SingularityReport, plane: ManipulabilityMap,
+                 path: SingularPath | None) -> Section:
     names = (_joint_name(robot, plane.joints[0]), _joint_name(robot, plane.joints[1]))
     fixed = ", ".join(f"{_joint_name(robot, k)} = {value:.3f}" for k, value in enumerate(plane.configuration)
                       if k not in plane.joints)
@@ -163,17 +165,40 @@ def _map_section(robot: Robot, plane: ManipulabilityMap, path: SingularPath | No
         parts = prose.curve_parts(curve.factor.expression, str(curve.factor.kind),
                                   [s.equation for s in curve.solutions])
         items.append(f"<li>{swatch}{caption_html(parts)}</li>")
+    for number, mark in enumerate(plane.sets, start=len(plane.curves)):
+        swatch = f'<span class="swatch" style="background:{CURVE_COLOURS[number % len(CURVE_COLOURS)]}"></span>'
+        conditions = [c.expression for c in report.sets[mark.number - 1].conditions]
+        items.append(f"<li>{swatch}{caption_html(prose.set_mark_parts(mark.number, conditions, bool(mark.points)))}"
+                     "</li>")
     curves = f"<ul class='curves'>{''.join(items)}</ul>" if items else f"<p>{html.escape(prose.NO_SINGULAR_CURVE)}</p>"
     caption = (f"<p>{html.escape(prose.map_caption(plane.measure, rows, names, fixed))}</p>" + curves
                + (f"<p>{html.escape(prose.PATH_IN_MAP)}</p>" if path else ""))
     return Section("map", "Manipulability map", f'<div class="figure">{map_svg(plane, names, path)}</div>' + caption)
 
 
-def _rates_section(robot: Robot, path: SingularPath) -> Section:
+def _regular_self_motion(robot: Robot, report: SingularityReport, path: SingularPath) -> tuple[Any, ...]:
+    """A redundant arm's self-motion at the start of the path (a regular configuration), as caption parts."""
+    if len(path.rows) >= robot.n_coordinates:
+        return ()
+    J = numeric_jacobian(robot, path.configurations[0].tolist(), report.determinant.frame,
+                         report.determinant.point)[list(path.rows), :]
+    spaces = jacobian_spaces(J)
+    if spaces.null_space.shape[1] != robot.n_coordinates - len(path.rows):
+        return ()
+    names = [_joint_name(robot, k) for k in range(robot.n_coordinates)]
+    return prose.regular_self_motion_parts(float(path.t[0]), spaces.null_space[:, 0], names)
+
+
+def _rates_section(robot: Robot, report: SingularityReport, path: SingularPath) -> Section:
     names = [_joint_name(robot, k) for k in range(robot.n_coordinates)]
     command = ", ".join(f"{ROW_NAMES[r]} {value:+.3f}" for r, value in zip(path.rows, path.xdot, strict=True))
     crossing = None if path.curve is None else path.curve.factor.expression
+    if path.set_mark is not None:
+        crossing = sp.And(*[sp.Eq(c.expression, 0) for c in report.sets[path.set_mark.number - 1].conditions])
     text = f"<p>{caption_html(prose.rates_parts(command, crossing, len(path.rows) == robot.n_coordinates))}</p>"
+    motion = _regular_self_motion(robot, report, path)
+    if motion:
+        text += f"<p>{caption_html(motion)}</p>"
     return Section("rates", "Joint rates through a singularity", f'<div class="figure">{rates_svg(path, names)}</div>'
                    + text)
 
@@ -192,6 +217,6 @@ def derivation_report(robot: Robot, source: str | None = None) -> str:
     plane = manipulability_map(robot, report)
     if plane is not None:
         path = singular_path(robot, plane)
-        sections += [_map_section(robot, plane, path), _rates_section(robot, path)]
+        sections += [_map_section(robot, report, plane, path), _rates_section(robot, report, path)]
     return render_template(TEMPLATE, version=__version__, robot=robot.name, source=source or robot.name,
                            description=robot.description, sections=sections)

@@ -2,9 +2,9 @@ r"""Singular configurations: the factored determinant of the Jacobian, each fact
 
 A square Jacobian :math:`J(q)` (the task rows an arm controls, see :func:`task_rows`) loses rank exactly where
 :math:`\det J = 0`. The determinant is computed on the polynomial image of the simplified Jacobian (sines and
-cosines of the basis angles as independent generators, :mod:`symjac.symbolic.simplify`): a fraction-free determinant
-over the polynomial ring, ``factor_list`` into irreducible factors, then each factor reduced modulo
-:math:`s^2 + c^2 - 1` and laid out in the angle basis where it is shortest. Factors that reduce to a constant
+cosines of the basis angles as independent generators, :mod:`symjac.symbolic.simplify`): a cofactor expansion
+reduced modulo :math:`s^2 + c^2 - 1` as it goes, factored as a function of the angles, and each factor laid out in the
+angle basis where it is shortest (:mod:`symjac.symbolic.trigfactor`). Factors that reduce to a constant
 (:math:`s^2 + c^2`) disappear; what remains reads as in a textbook, e.g. :math:`-L_2 L_3 s_3 (L_1 + L_2 c_2 + L_3
 c_{23})`.
 
@@ -26,7 +26,6 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
-from sympy.polys.matrices import DomainMatrix
 
 from symjac.analysis.spaces import task_rows
 from symjac.errors import ArgumentError, FrameError
@@ -36,8 +35,8 @@ from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_at
 from symjac.model.robot import Robot
 from symjac.symbolic.angles import AngleBasis
-from symjac.symbolic.simplify import simplify_expr
-from symjac.symbolic.trigpoly import image_of, nested_expr, reduce_image
+from symjac.symbolic.trigfactor import compact_expr, determinant_image, trig_factor_list
+from symjac.symbolic.trigpoly import image_of, reduce_image
 
 __all__ = ["Determinant", "determinant", "is_admissible_frame"]
 
@@ -114,13 +113,20 @@ def _square_jacobian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], row
 
 
 def _layout(expr: sp.Expr, bases: Sequence[AngleBasis]) -> sp.Expr:
-    """The shortest nested form of ``expr`` over ``bases``."""
-    forms = [simplify_expr(expr, basis) for basis in bases]
+    """The shortest compact form of ``expr`` over ``bases`` (:func:`symjac.symbolic.trigfactor.compact_expr`)."""
+    forms = [expr]
+    for basis in bases:
+        image, (poly,) = image_of([expr], basis)
+        forms.append(compact_expr(poly, image))
     return min(forms, key=lambda form: (sp.count_ops(form), len(str(form))))
 
 
+@memoized()
 def _best_frame(chain: Chain, rows: tuple[int, ...], point: tuple[sp.Expr, ...]) -> int:
-    """The admissible frame in which the selected rows of the Jacobian have the fewest operations."""
+    """The admissible frame in which the selected rows of the Jacobian have the fewest operations.
+
+    Kept in the chain: a redundant arm's minors all ask for it.
+    """
     sizes = []
     for frame in range(chain.n_joints + 1):
         if is_admissible_frame(chain, rows, frame):
@@ -199,33 +205,21 @@ def _determinant(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point
     return Determinant(coefficient * _frame_sign(chain, rows, frame), factors, rows, frame, point_xyz, columns)
 
 
-_FACTOR_UNREDUCED_TERMS = 150
-
-
 def _factored_determinant(
     J: sp.Matrix, basis: AngleBasis, bases: Sequence[AngleBasis]
 ) -> tuple[sp.Expr, tuple[tuple[sp.Expr, int], ...]]:
-    """Fraction-free determinant over the polynomial ring, factored, each factor reduced and laid out."""
+    """The determinant by reduced cofactor expansion, its factors as functions of the angles, each laid out."""
     image, polys = image_of(list(J), basis)
-    domain = image.ring_and_gens[0].to_domain()
-    matrix = DomainMatrix([polys[i * J.cols:(i + 1) * J.cols] for i in range(J.rows)], J.shape, domain)
-    value = matrix.det()
-    if not value:
+    value = determinant_image([polys[i * J.cols:(i + 1) * J.cols] for i in range(J.rows)], image, reduced=False)
+    if not reduce_image(value, image):
         return sp.S.Zero, ()
-    # Factoring before the reduction keeps products such as s_3 (a c_3 + b s_3) intact (reducing s_3^2 first would
-    # hide the factor s_3); on large determinants (redundant arms' minors) multivariate factoring of the unreduced
-    # polynomial can take minutes, so there the reduced polynomial, much smaller, is factored instead.
-    if len(value.terms()) > _FACTOR_UNREDUCED_TERMS:
-        value = reduce_image(value, image)
-    constant, raw_factors = value.factor_list()
-    coefficient = _number(constant)
+    coefficient, raw_factors = trig_factor_list(value, image)
     collected: dict[sp.Expr, int] = {}
     for raw, multiplicity in raw_factors:
-        reduced = reduce_image(raw, image)
-        if reduced.is_ground:
-            coefficient *= _number(reduced.LC) ** multiplicity
+        if raw.is_ground:
+            coefficient *= _number(raw.LC) ** multiplicity
             continue
-        factor = _layout(nested_expr(reduced, image), bases)
+        factor = _layout(compact_expr(raw, image), bases)
         if factor.could_extract_minus_sign():
             factor, coefficient = -factor, coefficient * (-1) ** multiplicity
         collected[factor] = collected.get(factor, 0) + multiplicity

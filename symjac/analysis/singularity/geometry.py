@@ -33,6 +33,7 @@ __all__ = [
     "Relation",
     "SingularityKind",
     "classify",
+    "concurrent_groups",
     "findings",
     "frame_axes",
     "geometry_at",
@@ -47,6 +48,7 @@ class SingularityKind(StrEnum):
     WRIST = "wrist"
     SHOULDER = "shoulder"
     ELBOW = "elbow"
+    ALIGNMENT = "alignment"  # a redundant arm's axes line up in more than one group of joints
     PARAMETER = "parameter"  # vanishes only for a special design, never by moving the arm
     OTHER = "other"
 
@@ -199,6 +201,27 @@ def findings(robot: Robot | Chain, geometry: Geometry) -> tuple[Finding, ...]:
                 facts[finding.key] = finding
                 break
     return tuple(facts.values())
+
+
+def concurrent_groups(geometry: Geometry, joints: Sequence[int]) -> tuple[tuple[int, ...], ...]:
+    """Groups of three or more of ``joints`` (0-based) whose axes pass through one point, such as a spherical wrist.
+
+    Two axes meet where the distance between their lines vanishes (and they are not parallel); the axes through
+    that point form a group. Groups are listed once, in joint order.
+    """
+    groups: dict[tuple[int, ...], None] = {}
+    for i, j in combinations(joints, 2):
+        (oi, zi), (oj, zj) = geometry.axes[i], geometry.axes[j]
+        normal = np.cross(zi, zj)
+        if np.linalg.norm(normal) < 1e-7 or abs(float(np.dot(oj - oi, normal))) > 1e-7 * np.linalg.norm(normal):
+            continue
+        # the meeting point: oi + t zi closest to the line of j
+        t = float(np.dot(np.cross(oj - oi, zj), normal) / np.dot(normal, normal))
+        point = oi + t * zi
+        group = tuple(k for k in joints if _distance_to_line(point, *geometry.axes[k]) < 1e-7)
+        if len(group) >= 3:
+            groups[group] = None
+    return tuple(g for g in groups if not any(set(g) < set(other) for other in groups))
 
 
 def classify(new: Sequence[Finding], factor_joints: set[int], robot: Robot | Chain) -> Cause:

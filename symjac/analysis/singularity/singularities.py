@@ -19,25 +19,16 @@ import numpy as np
 import sympy as sp
 
 from symjac.analysis.singularity.determinant import Determinant, determinant
-from symjac.analysis.singularity.geometry import (
-    Cause,
-    FrameAxis,
-    Geometry,
-    SingularityKind,
-    classify,
-    findings,
-    frame_axes,
-    geometry_at,
-    named_axis,
-    parallel,
-)
+from symjac.analysis.singularity.directions import DirectionPart, LostDirection, SelfMotion, canonical, lost_direction
+from symjac.analysis.singularity.geometry import Cause, SingularityKind, classify, findings, geometry_at
 from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status
+from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor, explain_sets, zero_minor
 from symjac.analysis.singularity.solve import Solution, solution_sample, solve_factor
 from symjac.analysis.spaces import jacobian_spaces, task_rows
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, point_vector
 from symjac.kinematics.memo import memoized
-from symjac.kinematics.numeric import numeric_at, numeric_jacobian
+from symjac.kinematics.numeric import numeric_jacobian
 
 __all__ = [
     "DirectionPart",
@@ -45,55 +36,12 @@ __all__ = [
     "LostDirection",
     "SelfMotion",
     "SingularFactor",
+    "SingularSet",
     "SingularityKind",
     "SingularityReport",
+    "ZeroMinor",
     "singularities",
 ]
-
-
-@dataclass(frozen=True)
-class DirectionPart:
-    """The linear or angular half of a lost direction: a unit 3-vector, and the frame axis it lies along if any."""
-
-    unit: tuple[float, float, float]
-    axis: FrameAxis | None
-
-
-@dataclass(frozen=True)
-class LostDirection:
-    r"""A Cartesian direction :math:`u` the arm cannot move in, with :math:`u^T J = 0` for the analysed rows.
-
-    ``vector`` holds the components on ``rows`` (``v_x .. omega_z``), expressed in ``frame``; ``linear`` and
-    ``angular`` are its halves (``None`` when zero); ``radial`` tells a pure translation along the line from the
-    origin of frame {0} to the reference point. The same vector is a wrench held with zero joint torque.
-    """
-
-    vector: tuple[float, ...]
-    rows: tuple[int, ...]
-    frame: Frame
-    linear: DirectionPart | None
-    angular: DirectionPart | None
-    radial: bool = False
-
-    @property
-    def full(self) -> np.ndarray:
-        """The 6-vector ``[v; omega]`` with zeros on the rows not analysed."""
-        full = np.zeros(6)
-        full[list(self.rows)] = self.vector
-        return full
-
-
-@dataclass(frozen=True)
-class SelfMotion:
-    r"""Joint rates :math:`\dot q` with :math:`J \dot q = 0`: ``rates[i]`` on joint ``columns[i]`` (0-based).
-
-    A coupled robot's columns are its coordinates, not its joints: ``names`` then gives each column's coordinate
-    (``theta5``) so that words do not call coordinate 4 "joint 4"; empty without a coupling.
-    """
-
-    rates: tuple[float, ...]
-    columns: tuple[int, ...]
-    names: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -146,6 +94,8 @@ class SingularityReport:
     factors: tuple[SingularFactor, ...]
     redundant: bool = False
     minors: tuple[Determinant, ...] = ()
+    sets: tuple[SingularSet, ...] = ()
+    zero_minors: tuple[ZeroMinor, ...] = ()
 
     @property
     def frame(self) -> Frame:
@@ -195,7 +145,11 @@ def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tup
     if model.n_coordinates > len(rows):
         minors = tuple(determinant(chain, rows, frame, point, columns=[c for c in range(model.n_coordinates) if c != k],
                                    numeric=numeric) for k in range(model.n_coordinates))
-        return SingularityReport(model.name, minors[0], (), redundant=True, minors=minors)
+        generic = [random.Random(seed).uniform(-2.5, 2.5) for _ in model.q]
+        zeros = tuple(zero_minor(chain, minor, generic) for minor in minors if minor.coefficient == 0)
+        sets = explain_sets(chain, minors, seed)
+        return SingularityReport(model.name, minors[0], (), redundant=True, minors=minors, sets=sets,
+                                 zero_minors=zeros)
     det = determinant(chain, rows, frame, point, numeric=numeric)
     generator = random.Random(seed)
     generic = findings(chain, geometry_at(chain, [generator.uniform(-2.5, 2.5) for _ in model.q], point))
@@ -229,37 +183,10 @@ def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int,
     spaces = jacobian_spaces(J, tolerance=1e-8 * max(1.0, float(np.abs(J).max())))
     lost = None
     if spaces.left_null_space.shape[1]:
-        lost = _lost_direction(chain, det, sample, geometry, _canonical(spaces.left_null_space[:, 0]))
+        lost = lost_direction(chain, det.rows, det.frame, sample, geometry, canonical(spaces.left_null_space[:, 0]))
     motion = None
     if spaces.null_space.shape[1]:
         names = () if chain.robot.coupling is None else tuple(str(chain.robot.q[c]) for c in det.columns)
-        motion = SelfMotion(tuple(float(x) for x in _canonical(spaces.null_space[:, 0])), det.columns, names)
+        motion = SelfMotion(tuple(float(x) for x in canonical(spaces.null_space[:, 0])), det.columns, names)
     return SingularFactor(factor, multiplicity, solutions, existence, holds, cause, tuple(sample), lost, motion,
                           limits)
-
-
-def _lost_direction(chain: Chain, det: Determinant, sample: Sequence[float], geometry: Geometry,
-                    vector: np.ndarray) -> LostDirection:
-    """The lost direction with each half named by the frame axis it lies along, and whether it is radial."""
-    axes = frame_axes(chain, sample, det.frame)
-    full = np.zeros(6)
-    full[list(det.rows)] = vector
-    halves: list[DirectionPart | None] = []
-    for part in (full[:3], full[3:]):
-        norm = np.linalg.norm(part)
-        if norm < 1e-9:
-            halves.append(None)
-            continue
-        unit = part / norm
-        halves.append(DirectionPart((float(unit[0]), float(unit[1]), float(unit[2])), named_axis(unit, axes)))
-    # radial: the reach vector from the base to the reference point, expressed in the analysis frame
-    reach = numeric_at(chain, chain.rotation(det.frame, 0), sample) @ geometry.points[0][1]
-    radial = bool(np.linalg.norm(full[3:]) < 1e-9 and np.linalg.norm(reach) > 1e-9
-                  and parallel(full[:3], reach, 1e-7))
-    return LostDirection(tuple(float(x) for x in vector), det.rows, det.frame, halves[0], halves[1], radial)
-
-
-def _canonical(vector: np.ndarray) -> np.ndarray:
-    """A unit vector with its largest component positive and round-off zeroed."""
-    vector = np.where(np.abs(vector) < 1e-12, 0.0, vector)
-    return vector if vector[np.argmax(np.abs(vector))] > 0 else -vector

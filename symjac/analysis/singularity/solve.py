@@ -24,7 +24,7 @@ from symjac.model.robot import JointType, Robot
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, reduce_image
 
-__all__ = ["Solution", "solution_sample", "solve_factor"]
+__all__ = ["Solution", "branch_solutions", "solution_sample", "solve_factor"]
 
 
 @dataclass(frozen=True)
@@ -54,8 +54,9 @@ class _Linear:
     image_B: Any
 
 
-def _linear_forms(factor: sp.Expr, bases: Sequence[AngleBasis]) -> list[_Linear]:
-    """Every way of reading ``factor`` as linear in the sine and cosine of one basis angle."""
+def _linear_forms(factor: sp.Expr, bases: Sequence[AngleBasis], nested: bool = True) -> list[_Linear]:
+    """Every way of reading ``factor`` as linear in the sine and cosine of one basis angle (laid out or expanded)."""
+    layout = nested_expr if nested else expanded_expr
     forms = []
     for basis in bases:
         image, (poly,) = image_of([factor], basis)
@@ -72,9 +73,9 @@ def _linear_forms(factor: sp.Expr, bases: Sequence[AngleBasis]) -> list[_Linear]
                 parts[key][tuple(stripped)] = coefficient
             ring = image.ring_and_gens[0]
             A, B, C = (ring.from_dict(parts[k]) if parts[k] else ring.zero for k in "ABC")
-            slack = reduce_image(A**2 + B**2 - C**2, image)
-            forms.append(_Linear(angle, nested_expr(A, image), nested_expr(B, image), nested_expr(C, image),
-                                 nested_expr(slack, image), image, A, B))
+            slack = reduce_image(A**2 + B**2 - C**2, image) if nested else ring.zero
+            forms.append(_Linear(angle, layout(A, image), layout(B, image), layout(C, image),
+                                 layout(slack, image), image, A, B))
     return forms
 
 
@@ -82,7 +83,7 @@ def _angle_equation(angle: sp.Expr, values: Sequence[sp.Expr]) -> tuple[Solution
     """``angle = value`` for each value, with ``-theta1 = v`` turned into ``theta1 = -v``."""
     if angle.could_extract_minus_sign():
         angle, values = -angle, [-v for v in values]
-    return tuple(Solution(angle, _tidy_angle(v)) for v in values)
+    return tuple(dict.fromkeys(Solution(angle, _tidy_angle(v)) for v in values))  # acos(1) = -acos(1): one
 
 
 def _tidy_angle(value: sp.Expr) -> sp.Expr:
@@ -194,6 +195,27 @@ def solve_factor(
     if best is None:
         return (Solution(factor, sp.S.Zero),), None
     return best[1], best[2]
+
+
+def branch_solutions(robot: Robot | Chain, factor: sp.Expr) -> tuple[Solution, ...]:
+    r"""The solutions of ``factor = 0`` for the last joint angle it is linear in, fast and without layout.
+
+    :func:`solve_factor` tries every angle in every basis, lays each out and decides when it exists, which takes
+    seconds on a large factor (a redundant arm's minors); this takes the plain angles and expanded coefficients.
+    ``()`` when the factor is linear in no joint angle.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> t1, t2 = sp.symbols("theta1 theta2", real=True)
+    >>> branch_solutions(load_robot("planar2r"), sp.sin(t2))
+    (Solution(lhs=theta2, rhs=0), Solution(lhs=theta2, rhs=pi))
+    """
+    chain = as_chain(robot)
+    variables = set(chain.robot.q)
+    forms = [form for form in _linear_forms(factor, chain.all_angle_bases()[:1], nested=False)
+             if len(form.angle.free_symbols & variables) == 1]
+    return _solutions(forms[-1]) if forms else ()
 
 
 def solution_sample(robot: Robot | Chain, solution: Solution, generator: random.Random) -> list[float] | None:

@@ -20,6 +20,8 @@ from symjac.printing.prose.report import (
     methods_verdict,
     point_words,
     rates_parts,
+    regular_self_motion_parts,
+    set_mark_parts,
 )
 from symjac.printing.prose.results import (
     BIAS_ACCELERATION,
@@ -58,6 +60,10 @@ from symjac.printing.prose.singularities import (
     rows_parts,
     self_motion_parts,
     self_motion_words,
+    set_parts,
+    set_reason,
+    sets_caption,
+    zero_minor_words,
 )
 
 __all__ = [
@@ -100,6 +106,7 @@ __all__ = [
     "reason",
     "reason_parts",
     "redundant_caption",
+    "regular_self_motion_parts",
     "representation_caption",
     "representation_parts",
     "representation_words",
@@ -107,6 +114,11 @@ __all__ = [
     "rows_parts",
     "self_motion_parts",
     "self_motion_words",
+    "set_mark_parts",
+    "set_parts",
+    "set_reason",
+    "sets_caption",
     "title",
     "torques_caption",
+    "zero_minor_words",
 ]

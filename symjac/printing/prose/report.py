@@ -28,6 +28,8 @@ __all__ = [
     "methods_verdict",
     "point_words",
     "rates_parts",
+    "regular_self_motion_parts",
+    "set_mark_parts",
 ]
 
 METHODS_HEADING = "Four methods, one Jacobian"
@@ -108,12 +110,33 @@ def curve_parts(factor: sp.Expr, kind: str, solutions: Sequence[sp.Basic]) -> tu
     return tuple(parts)
 
 
+def set_mark_parts(number: int, conditions: Sequence[sp.Expr], points: bool) -> tuple[Any, ...]:
+    """One singular set of a redundant arm on the map: its number and conditions, drawn as lines or points."""
+    parts: list[Any] = [f"singular set {number}: "]
+    for index, condition in enumerate(conditions):
+        parts += [" and "] * bool(index) + [sp.Eq(condition, 0, evaluate=False)]
+    shape = "points (crosses)" if points else "lines"
+    return (*parts, f", drawn as {shape} at its exact solutions")
+
+
+def regular_self_motion_parts(t: float, rates: Any, names: Sequence[str]) -> tuple[Any, ...]:
+    """The self-motion of a redundant arm at a regular configuration of the path, as caption parts."""
+    shown = [f"{float(rate):+.3f} on {name}" for rate, name in zip(rates, names, strict=True) if abs(rate) > 1e-9]
+    return (f"At the start of the path (t = {t:.2f}, a regular configuration) the arm keeps one self-motion: joint "
+            f"rates {', '.join(shown)} (a unit vector of the null space of J) move nothing. The minimum-norm rates "
+            "never use it; a redundancy resolution adds it to reach a secondary goal.",)
+
+
 def rates_parts(command: str, crossing: sp.Expr | None, square: bool) -> tuple[Any, ...]:
     """The joint-rates figure's caption: the commanded velocity, the factor crossed at t = 0, what the rates do."""
     behaviour = ("The exact rates (solid) grow like 1/|t|; the damped least-squares rates (dashed) stay bounded at "
                  "the price of a tracking error." if square else
-                 "The arm is redundant, so J has no inverse: the rates shown are the damped least-squares ones.")
+                 "The arm is redundant, so J has no inverse: the solid lines are the minimum-norm rates "
+                 "J\u207a x\u0307 = J\u1d40 (J J\u1d40)\u207b\u00b9 x\u0307, which grow like 1/|t| at the "
+                 "singular set, the dashed ones the damped least-squares rates, which stay bounded.")
     head = (f"Joint rates q\u0307 = J\u207b\u00b9 x\u0307 for a constant commanded velocity x\u0307 = ({command}) "
             "(the direction lost at the singular configuration), along the straight path of the map")
-    middle = () if crossing is None else (" crossing the singular set of the factor ", crossing)
+    middle = () if crossing is None else (
+        (" crossing the singular set ", crossing) if isinstance(crossing, sp.And) else
+        (" crossing the singular set of the factor ", crossing))
     return (head, *middle, f" at t = 0. {behaviour}")

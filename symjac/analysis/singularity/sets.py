@@ -1,0 +1,250 @@
+r"""The singular sets of a redundant arm: where every square minor of its Jacobian vanishes at once.
+
+An arm with more joints than task rows (:math:`m \times n`, :math:`n > m`) loses rank exactly where all its
+:math:`m \times m` minors vanish together, since by the Cauchy-Binet formula
+:math:`\det J J^T = \sum_S \det(J_S)^2` over the sets :math:`S` of :math:`m` columns. Each minor is already factored
+(:func:`symjac.analysis.singularity.determinant.determinant`), so wherever the arm is singular, every minor has a
+vanishing factor, and the singular set is a union of *components*, each a conjunction
+:math:`f_1 = 0 \wedge \dots \wedge f_k = 0` of minor factors (or of single solution branches of them, such as
+:math:`\theta_4 = 0` of :math:`s_4 = 0`) on which every minor vanishes.
+
+:func:`singular_conditions` finds the minimal components:
+
+1. every factor that depends on the joints is solved (:func:`symjac.analysis.singularity.solve.solve_factor`); a
+   *condition* is a factor with all its branches, or one branch alone when the factor has several;
+2. every conjunction of one to three conditions, each solved for a different joint, is sampled at random points
+   (the other joints uniform, the parameters within 20 % of their defaults) and kept when every minor vanishes there
+   (relative to its size at random configurations, to :data:`RELATIVE_ZERO`): a polynomial identity checked at
+   random points, as in the Schwartz-Zippel lemma. All conjunctions are evaluated at once, as arrays;
+3. a conjunction is dropped when a kept one contains it (fewer conditions, or a branch of its condition).
+
+The conditions and their solutions are exact; only the test of which conjunctions make the arm singular is
+numerical, and the tests check each reported set against the smallest singular value of :math:`J`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import sympy as sp
+
+from symjac.analysis.singularity.determinant import Determinant
+from symjac.analysis.singularity.solve import Solution, branch_solutions, solve_factor
+from symjac.kinematics.chain import Chain
+
+__all__ = ["RELATIVE_ZERO", "Condition", "condition_samples", "singular_conditions"]
+
+RELATIVE_ZERO = 1e-7
+"""A minor counts as zero at a point when it is this small relative to its median size at random configurations."""
+
+_SAMPLES = 6  # random points per conjunction (branches taken in turn)
+_MOST_CONDITIONS = 3  # conjunctions of up to this many conditions are tried
+_SOLVE_OPS = 40  # larger factors are solved for their last joint only, unlaid (solve_factor takes seconds on them)
+
+
+@dataclass(frozen=True)
+class Condition:
+    r"""``expression = 0``, with its solution branches (each ``lhs = rhs``) and when they exist at all."""
+
+    expression: sp.Expr
+    solutions: tuple[Solution, ...]
+    existence: sp.Expr | None
+
+    @property
+    def branches(self) -> frozenset[tuple[sp.Expr, sp.Expr]]:
+        """The solutions as (lhs, rhs) pairs: two conditions with the same branches are the same set."""
+        return frozenset((s.lhs, s.rhs) for s in self.solutions)
+
+
+@dataclass(frozen=True)
+class _Branch:
+    """A solution compiled: the joint it sets (0-based) and its value as a function of (q, parameters)."""
+
+    joint: int
+    value: object  # a NumPy function of the coordinates then the parameters
+
+
+def _pick(solution: Solution, variables: Sequence[sp.Symbol]) -> int | None:
+    """The joint a solution is solved for: the latest in its left side, absent from its right side, coefficient 1."""
+    if solution.lhs.atoms(sp.Function) or not solution.lhs.free_symbols <= set(variables):
+        return None
+    candidates = [variables.index(v) for v in solution.lhs.free_symbols if not solution.rhs.has(v)]
+    if not candidates:
+        return None
+    pick = max(candidates)
+    return pick if sp.expand(solution.lhs).coeff(variables[pick]) == 1 else None
+
+
+def _conditions(chain: Chain, minors: Sequence[Determinant]) -> list[Condition]:
+    """Every joint factor of the minors solved, and each branch of a factor with several; equal sets merged."""
+    variables = set(chain.robot.q)
+    found: dict[frozenset[tuple[sp.Expr, sp.Expr]], Condition] = {}
+    factors = dict.fromkeys(f for minor in minors for f, _ in minor.factors if f.free_symbols & variables)
+    for factor in factors:
+        if sp.count_ops(factor) <= _SOLVE_OPS:
+            solutions, existence = solve_factor(chain, factor)
+        else:
+            solutions, existence = branch_solutions(chain, factor), None
+        if not solutions or any(_pick(s, chain.robot.q) is None for s in solutions):
+            continue
+        candidates = [Condition(factor, solutions, existence)]
+        if len(solutions) > 1:
+            candidates += [Condition(s.lhs - s.rhs, (s,), existence) for s in solutions]
+        for condition in candidates:
+            found.setdefault(condition.branches, condition)
+    return sorted(found.values(), key=lambda c: (len(c.expression.free_symbols & variables),
+                                                 sp.count_ops(c.expression), sp.default_sort_key(c.expression)))
+
+
+def _implies(small: Sequence[Condition], large: Sequence[Condition]) -> bool:
+    """Whether the set of ``small`` lies in that of ``large``: each condition of ``large`` holds by one of ``small``."""
+    return all(any(s.branches <= condition.branches for s in small) for condition in large)
+
+
+class _Sampler:
+    """Random points on conjunctions of conditions, and the minors' factors evaluated there, all as arrays."""
+
+    def __init__(self, chain: Chain, minors: Sequence[Determinant], seed: int) -> None:
+        robot = chain.robot
+        self.variables = list(robot.q)
+        self.parameters = [p.symbol for p in robot.parameters]
+        arguments = [*self.variables, *self.parameters]
+        self.generator = np.random.default_rng(seed)
+        joint_factors = [[f for f, _ in minor.factors if f.free_symbols & set(self.variables)] for minor in minors]
+        self.minor_factors = [[sp.lambdify(arguments, f, modules="numpy") for f in fs] for fs in joint_factors]
+        self.arguments = arguments
+        self.defaults = np.array([float(p.default) for p in robot.parameters])
+        q, p = self.random_points(64)
+        with np.errstate(all="ignore"):
+            self.scales = [[_median_size(g, q, p) for g in gs] for gs in self.minor_factors]
+        self.compiled: dict[tuple[sp.Expr, sp.Expr], _Branch] = {}
+
+    def random_points(self, count: int, defaults: bool = False) -> tuple[np.ndarray, np.ndarray]:
+        """Joint values uniform in [-2.5, 2.5] and parameters within 20 % of their defaults (or at them)."""
+        q = self.generator.uniform(-2.5, 2.5, (count, len(self.variables)))
+        scale = 1.0 if defaults else self.generator.uniform(0.8, 1.2, (count, len(self.parameters)))
+        return q, np.broadcast_to(self.defaults * scale, (count, len(self.parameters))).copy()
+
+    def branch(self, solution: Solution) -> _Branch:
+        key = (solution.lhs, solution.rhs)
+        if key not in self.compiled:
+            joint = _pick(solution, self.variables)
+            assert joint is not None  # conditions were filtered by _pick
+            value = solution.rhs - (solution.lhs - self.variables[joint])
+            self.compiled[key] = _Branch(joint, sp.lambdify(self.arguments, value, modules="numpy"))
+        return self.compiled[key]
+
+    def place(self, conjunctions: Sequence[Sequence[Condition]], q: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """Move each row of ``q`` onto its conjunction (row r belongs to conjunction r // samples); valid rows."""
+        samples = len(q) // len(conjunctions)
+        rows: dict[tuple[sp.Expr, sp.Expr], list[int]] = {}
+        for index, conjunction in enumerate(conjunctions):
+            for condition in conjunction:
+                for k in range(samples):
+                    solution = condition.solutions[k % len(condition.solutions)]
+                    rows.setdefault((solution.lhs, solution.rhs), []).append(index * samples + k)
+        solutions = {(s.lhs, s.rhs): s for c in {c for cs in conjunctions for c in cs} for s in c.solutions}
+        with np.errstate(all="ignore"):
+            for _ in range(max(len(c) for c in conjunctions)):  # later conditions may feed earlier ones
+                for key, chosen in rows.items():
+                    branch, chosen_rows = self.branch(solutions[key]), np.array(chosen)
+                    q[chosen_rows, branch.joint] = _evaluate(branch.value, q[chosen_rows], p[chosen_rows])
+            valid = np.all(np.isfinite(q), axis=1)
+            for key, chosen in rows.items():
+                branch, chosen_rows = self.branch(solutions[key]), np.array(chosen)
+                value = _evaluate(branch.value, q[chosen_rows], p[chosen_rows])
+                valid[chosen_rows] &= np.abs(_wrap(value - q[chosen_rows, branch.joint])) < 1e-9
+        return valid
+
+    def contained(self, inner: Sequence[Condition], outer: Sequence[Condition]) -> bool:
+        """Whether random points on ``inner`` all satisfy every condition of ``outer`` (one of its branches)."""
+        q, p = self.random_points(_SAMPLES)
+        valid = self.place([tuple(inner)], q, p)
+        if not valid.any():
+            return False
+        q, p = q[valid], p[valid]
+        with np.errstate(all="ignore"):
+            for condition in outer:
+                residuals = [np.abs(_wrap(_evaluate(b.value, q, p) - q[:, b.joint]))
+                             for b in (self.branch(s) for s in condition.solutions)]
+                if not np.all(np.min(residuals, axis=0) < 1e-7):
+                    return False
+        return True
+
+    def singular(self, q: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """Rows where every minor has a factor that vanishes (relative to its size at random configurations)."""
+        result = np.ones(len(q), dtype=bool)
+        with np.errstate(all="ignore"):
+            for factors, scales in zip(self.minor_factors, self.scales, strict=True):
+                vanishes = np.zeros(len(q), dtype=bool)
+                for g, scale in zip(factors, scales, strict=True):
+                    vanishes |= np.abs(_evaluate(g, q, p)) <= RELATIVE_ZERO * scale
+                result &= vanishes
+        return result
+
+
+def _evaluate(function: object, q: np.ndarray, p: np.ndarray) -> np.ndarray:
+    values = function(*q.T, *p.T)  # type: ignore[operator]
+    return np.broadcast_to(np.real_if_close(np.asarray(values, dtype=complex)), (len(q),)).real \
+        if np.iscomplexobj(values) else np.broadcast_to(np.asarray(values, dtype=float), (len(q),))
+
+
+def _wrap(angle: np.ndarray) -> np.ndarray:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+def _median_size(function: object, q: np.ndarray, p: np.ndarray) -> float:
+    sizes = np.abs(_evaluate(function, q, p))
+    return float(np.median(sizes[np.isfinite(sizes)])) or 1.0
+
+
+def singular_conditions(chain: Chain, minors: Sequence[Determinant], seed: int = 0) -> tuple[tuple[Condition, ...], ...]:
+    """The minimal conjunctions of conditions on which every minor in ``minors`` vanishes (see the module docstring).
+
+    Minors that vanish identically are left out by the caller; ordered by number of conditions, then joints.
+    """
+    sampler = _Sampler(chain, minors, seed)
+    conditions = _conditions(chain, minors)
+    picks = {c.branches: {_pick(s, sampler.variables) for s in c.solutions} for c in conditions}
+    candidates: list[tuple[Condition, ...]] = []
+    for size in range(1, _MOST_CONDITIONS + 1):
+        for conjunction in itertools.combinations(conditions, size):
+            joints = [picks[c.branches] for c in conjunction]
+            if any(a & b for a, b in itertools.combinations(joints, 2)):
+                continue
+            candidates.append(conjunction)
+    if not candidates:
+        return ()
+    q, p = sampler.random_points(len(candidates) * _SAMPLES)
+    valid = sampler.place(candidates, q, p)
+    singular = sampler.singular(q, p) | ~valid
+    valid_count = valid.reshape(len(candidates), _SAMPLES).sum(axis=1)
+    holds = singular.reshape(len(candidates), _SAMPLES).all(axis=1) & (valid_count >= 2)
+    kept: list[tuple[Condition, ...]] = []
+    for conjunction, ok in zip(candidates, holds, strict=True):
+        if ok and not any(_implies(conjunction, found) for found in kept):
+            kept.append(conjunction)
+    kept = [c for c in kept if not any(other is not c and _implies(c, other) for other in kept)]
+    # a conjunction can hold a smaller one without saying so (cos(theta3) = 0 with a factor that then reads
+    # sin(theta2) (...) = 0): drop every set whose points all satisfy an earlier kept one
+    minimal: list[tuple[Condition, ...]] = []
+    for conjunction in kept:
+        if not any(sampler.contained(conjunction, other) for other in minimal):
+            minimal = [other for other in minimal if not sampler.contained(other, conjunction)] + [conjunction]
+    kept = minimal
+    variables = set(sampler.variables)
+    return tuple(sorted(kept, key=lambda c: (len(c), len(set().union(*(x.expression.free_symbols & variables
+                                                                          for x in c))))))
+
+
+def condition_samples(chain: Chain, conjunction: Sequence[Condition], count: int, seed: int = 0,
+                      defaults: bool = True) -> np.ndarray:
+    """Random configurations on a conjunction (parameters at their defaults); fewer rows where no value exists."""
+    sampler = _Sampler(chain, (), seed)
+    q, p = sampler.random_points(count, defaults=defaults)
+    valid = sampler.place([tuple(conjunction)], q, p)
+    return q[valid]

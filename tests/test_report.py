@@ -46,7 +46,9 @@ def pages(tmp_path_factory) -> dict[str, Path]:
     puma.write_text(derivation_report(load_robot("puma560"), "puma560"), encoding="utf-8")
     ur5 = folder / "ur5.html"
     assert main(["report", "ur5.urdf", "-o", str(ur5)]) == 0
-    return {"puma560": puma, "ur5.urdf": ur5}
+    iiwa = folder / "iiwa7.html"
+    assert main(["report", "iiwa7", "-o", str(iiwa)]) == 0
+    return {"puma560": puma, "ur5.urdf": ur5, "iiwa7": iiwa}
 
 
 class _Checker(HTMLParser):
@@ -161,6 +163,41 @@ def test_the_singular_curves_are_the_solved_factors_and_the_rates_blow_up_at_the
     assert np.abs(path.rates.damped).max() < 50
 
 
+def test_a_redundant_arm_maps_its_simplest_singular_set_and_crosses_it():
+    robot = load_robot("iiwa7")
+    report = singularities(robot)
+    plane = manipulability_map(robot, report, size=21)
+    assert plane is not None and 3 in plane.joints  # the elbow set sin(theta4) = 0 is the simplest
+    (mark,) = plane.sets
+    assert report.sets[mark.number - 1].conditions[0].expression == sp.sin(robot.q[3])
+    lines = mark.vertical if plane.joints[0] == 3 else mark.horizontal
+    assert sorted(lines) == pytest.approx([-math.pi, 0.0, math.pi])
+    # on the map, the manipulability vanishes along the set's lines and nowhere else on the grid
+    axis_values = plane.x if plane.joints[0] == 3 else plane.y
+    rows = np.isclose(np.abs(axis_values), 0) | np.isclose(np.abs(axis_values), math.pi)
+    w = plane.w if plane.joints[0] != 3 else plane.w.T
+    assert w[rows].max() < 1e-9 and w[~rows].min() > 1e-4
+    path = singular_path(robot, plane)
+    assert path.set_mark == mark
+    middle = len(path.t) // 2
+    sigma = [np.linalg.svd(reference.finite_difference_jacobian(robot, q), compute_uv=False)[-1]
+             for q in path.configurations]
+    assert min(sigma) < 1e-2 * max(sigma)
+    minimum_norm = np.nan_to_num(np.abs(path.rates.exact), nan=np.inf).max(axis=1)
+    assert np.isfinite(minimum_norm[0]) and minimum_norm[middle] > 50 * max(minimum_norm[0], minimum_norm[-1])
+    assert np.abs(path.rates.damped).max() < 50
+    J = reference.finite_difference_jacobian(robot, path.configurations[0], frame=plane.frame)
+    assert np.allclose(J @ path.rates.exact[0], path.xdot, atol=1e-6)  # the minimum-norm rates do the job
+    assert np.allclose(path.rates.exact[0], np.linalg.pinv(J) @ path.xdot, atol=1e-6)
+
+
+def test_a_redundant_arms_page_shows_its_sets_and_self_motion(pages):
+    text = pages["iiwa7"].read_text(encoding="utf-8")
+    assert "4 singular sets" in text and "singular set 1: " in text
+    assert "keeps one self-motion" in text and "minimum-norm rates" in text
+    assert text.count('class="arm"') == 5  # home and one figure per singular set
+
+
 def test_a_missing_matplotlib_is_a_clear_error(monkeypatch):
     robot = load_robot("planar2r")
     plane = manipulability_map(robot, singularities(robot), size=5)
@@ -212,7 +249,7 @@ def _browser(binary: str, *arguments: str) -> subprocess.CompletedProcess[str]:
         return subprocess.run(command, capture_output=True, text=True, timeout=60, check=False)
 
 
-@pytest.mark.parametrize("name", ["puma560", "ur5.urdf"])
+@pytest.mark.parametrize("name", ["puma560", "ur5.urdf", "iiwa7"])
 @pytest.mark.external
 def test_the_page_renders_in_chromium(pages, tmp_path, name):
     binary = _chromium()

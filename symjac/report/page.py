@@ -21,7 +21,7 @@ import sympy as sp
 
 from symjac._version import __version__
 from symjac.analysis.manipulability_map import ManipulabilityMap, SingularPath, manipulability_map, singular_path
-from symjac.analysis.singularity.singularities import SingularFactor, SingularityReport, singularities
+from symjac.analysis.singularity.singularities import SingularFactor, SingularityReport, SingularSet, singularities
 from symjac.analysis.spaces import jacobian_spaces
 from symjac.drawing.geometry import arm_pose, home_configuration
 from symjac.kinematics.chain import Frame, chain_of, forward_kinematics
@@ -108,8 +108,8 @@ def _singularities(robot: Robot, report: SingularityReport) -> Section:
 
 
 def lost_arrow(robot: Robot, report: SingularityReport,
-               factor: SingularFactor) -> tuple[np.ndarray, Literal["linear", "angular", "mixed"]] | None:
-    """The arrow drawn at the tool for a singular factor: a unit world vector, and what it shows.
+               factor: SingularFactor | SingularSet) -> tuple[np.ndarray, Literal["linear", "angular", "mixed"]] | None:
+    """The arrow drawn at the tool for a singular factor (or set): a unit world vector, and what it shows.
 
     ``linear``: the lost direction's translation half is lost on its own (no joint rate moves the point along it);
     ``angular``: its rotation half is (no joint rate turns the tool about it); ``mixed``: only the two together are
@@ -136,17 +136,19 @@ def _arm_figure(svg: str, caption: str) -> str:
 
 
 def _arm_section(robot: Robot, report: SingularityReport) -> Section:
-    """The arm at home, and at each solved singular configuration with the direction lost drawn at the tool."""
+    """The arm at home, and at each solved singular configuration (or set) with the direction lost at the tool."""
     home = home_configuration(robot).tolist()
     figures = [_arm_figure(arm_svg(robot, home, "arm-home"),
                            html.escape(prose.arm_home_caption(", ".join(f"{v:.3g}" for v in home))))]
-    for number, factor in enumerate(report.factors, start=1):
+    for number, factor in enumerate([*report.factors, *report.sets], start=1):
         arrow = lost_arrow(robot, report, factor)
         if arrow is None or factor.sample is None:
             continue
         direction, shown = arrow
         configuration = ", ".join(f"{v:.3g}" for v in factor.sample)
-        caption = caption_html(prose.arm_singular_parts(factor.expression, str(factor.kind), configuration, shown))
+        where = factor.expression if isinstance(factor, SingularFactor) else sp.And(
+            *[sp.Eq(condition.expression, 0) for condition in factor.conditions])
+        caption = caption_html(prose.arm_singular_parts(where, str(factor.kind), configuration, shown))
         figures.append(_arm_figure(arm_svg(robot, factor.sample, f"arm-singular-{number}", direction.tolist()),
                                    caption))
     return Section("arm", "The arm", f"<p>{html.escape(prose.ARM_INTRO)}</p>"

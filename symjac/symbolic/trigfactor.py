@@ -30,7 +30,8 @@ from sympy.polys.rings import PolyElement
 from symjac.symbolic.simplify import printed_ops
 from symjac.symbolic.trigpoly import TrigImage, nested_expr, reduce_image
 
-__all__ = ["FACTOR_UNREDUCED_TERMS", "SPLIT_TERMS", "compact_expr", "determinant_image", "rewrite_square", "trig_factor_list"]
+__all__ = ["FACTOR_UNREDUCED_TERMS", "SPLIT_TERMS", "compact_expr", "determinant_image", "rewrite_square",
+           "trig_factor_list"]
 
 FACTOR_UNREDUCED_TERMS = 150
 SPLIT_TERMS = 24
@@ -126,7 +127,7 @@ def _split(poly: PolyElement, image: TrigImage) -> tuple[Any, list[tuple[PolyEle
     for form in _rewritings(poly, image):
         constant, factors = form.factor_list()
         if sum(multiplicity for _, multiplicity in factors) > 1:
-            parts = []
+            parts: list[tuple[PolyElement, int]] = []
             for factor, multiplicity in factors:
                 inner, pieces = _split(factor, image)
                 constant *= inner**multiplicity
@@ -179,7 +180,7 @@ def _reduced_factors(poly: PolyElement, image: TrigImage) -> tuple[Any, list[tup
     if poly.is_ground:
         return poly.LC, []
     constant, raw = poly.factor_list()
-    pieces = []
+    pieces: list[tuple[PolyElement, int]] = []
     for factor, multiplicity in raw:
         inner, parts = _split(factor, image)
         constant *= inner**multiplicity

@@ -15,7 +15,7 @@ axes that became collinear, ``alignment``; anything else ``other``.
 from __future__ import annotations
 
 import random
-from collections.abc import Sequence
+from collections.abc import Container, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,7 +35,7 @@ from symjac.analysis.singularity.geometry import (
 from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status
 from symjac.analysis.singularity.sets import Condition, condition_samples, singular_conditions
 from symjac.analysis.singularity.solve import Solution
-from symjac.analysis.spaces import jacobian_spaces
+from symjac.analysis.spaces import JacobianSpaces, jacobian_spaces
 from symjac.kinematics.chain import Chain
 from symjac.kinematics.numeric import numeric_jacobian
 
@@ -65,9 +65,9 @@ class SingularSet:
 
     ``variables`` are the robot's coordinates, which the conditions are written in. ``sample`` is a configuration on
     the set (parameters at their defaults; ``None`` when it exists only for other parameter values). ``null_space``
-    is a basis of the self-motions there, ``regular_null_space`` one at a regular configuration near it; ``self_motion`` is the self-motion that appears on the set (the part of the null space
-    there orthogonal to the one nearby). ``limits`` holds one status per solution, in the order of
-    :attr:`solutions`.
+    is a basis of the self-motions there, ``regular_null_space`` one at a regular configuration near it;
+    ``self_motion`` is the self-motion that appears on the set (the part of the null space there orthogonal to the
+    one nearby). ``limits`` holds one status per solution, in the order of :attr:`solutions`.
     """
 
     conditions: tuple[Condition, ...]
@@ -155,7 +155,7 @@ def _motions(null_space: np.ndarray, names: tuple[str, ...]) -> tuple[SelfMotion
     return tuple(SelfMotion(tuple(float(x) for x in canonical(v)), columns, names) for v in null_space.T)
 
 
-def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant, known: set[object],
+def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant, known: Container[object],
              seed: int) -> SingularSet:
     limits = tuple(limit_status(chain, s) for c in conditions for s in c.solutions)
     samples = condition_samples(chain, conditions, 8, seed)
@@ -166,8 +166,8 @@ def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant
     new = [finding for finding in findings(chain, geometry) if finding.key not in known]
     rows = list(minor.rows)
 
-    def spaces_at(q: np.ndarray):  # noqa: ANN202 - a JacobianSpaces
-        J = numeric_jacobian(chain, q, minor.frame, minor.point)[rows, :]
+    def spaces_at(q: np.ndarray) -> JacobianSpaces:
+        J = numeric_jacobian(chain, q.tolist(), minor.frame, minor.point)[rows, :]
         return jacobian_spaces(J, tolerance=1e-8 * max(1.0, float(np.abs(J).max())))
 
     singular = spaces_at(sample)
@@ -185,8 +185,9 @@ def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant
         u, sigma, _ = np.linalg.svd(extra, full_matrices=False)
         if sigma[0] > 1e-6:
             motion = _motions(u[:, :1], names)[0]
-    return SingularSet(conditions, tuple(chain.robot.q), _cause(chain, conditions, new), True, tuple(float(x) for x in sample), lost,
-                       motion, _motions(singular.null_space, names), _motions(regular.null_space, names), limits)
+    return SingularSet(conditions, tuple(chain.robot.q), _cause(chain, conditions, new), True,
+                       tuple(float(x) for x in sample), lost, motion, _motions(singular.null_space, names),
+                       _motions(regular.null_space, names), limits)
 
 
 def explain_sets(chain: Chain, minors: Sequence[Determinant], seed: int = 0) -> tuple[SingularSet, ...]:

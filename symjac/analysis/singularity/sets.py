@@ -24,6 +24,7 @@ numerical, and the tests check each reported set against the smallest singular v
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from collections.abc import Sequence
@@ -115,7 +116,7 @@ class _Sampler:
         arguments = [*self.variables, *self.parameters]
         self.generator = np.random.default_rng(seed)
         joint_factors = [[f for f, _ in minor.factors if f.free_symbols & set(self.variables)] for minor in minors]
-        self.minor_factors = [[sp.lambdify(arguments, f, modules="numpy") for f in fs] for fs in joint_factors]
+        self.minor_factors = [[_compiled(f, tuple(arguments)) for f in fs] for fs in joint_factors]
         self.arguments = arguments
         self.defaults = np.array([float(p.default) for p in robot.parameters])
         q, p = self.random_points(64)
@@ -135,7 +136,7 @@ class _Sampler:
             joint = _pick(solution, self.variables)
             assert joint is not None  # conditions were filtered by _pick
             value = solution.rhs - (solution.lhs - self.variables[joint])
-            self.compiled[key] = _Branch(joint, sp.lambdify(self.arguments, value, modules="numpy"))
+            self.compiled[key] = _Branch(joint, _compiled(value, tuple(self.arguments)))
         return self.compiled[key]
 
     def place(self, conjunctions: Sequence[Sequence[Condition]], q: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -187,6 +188,12 @@ class _Sampler:
         return result
 
 
+@functools.lru_cache(maxsize=512)
+def _compiled(expr: sp.Expr, arguments: tuple[sp.Symbol, ...]) -> object:
+    """``expr`` as a NumPy function of ``arguments`` (kept: the search and the explanation ask for the same ones)."""
+    return sp.lambdify(arguments, expr, modules="numpy")
+
+
 def _evaluate(function: object, q: np.ndarray, p: np.ndarray) -> np.ndarray:
     values = function(*q.T, *p.T)  # type: ignore[operator]
     return np.broadcast_to(np.real_if_close(np.asarray(values, dtype=complex)), (len(q),)).real \
@@ -202,7 +209,8 @@ def _median_size(function: object, q: np.ndarray, p: np.ndarray) -> float:
     return float(np.median(sizes[np.isfinite(sizes)])) or 1.0
 
 
-def singular_conditions(chain: Chain, minors: Sequence[Determinant], seed: int = 0) -> tuple[tuple[Condition, ...], ...]:
+def singular_conditions(chain: Chain, minors: Sequence[Determinant],
+                        seed: int = 0) -> tuple[tuple[Condition, ...], ...]:
     """The minimal conjunctions of conditions on which every minor in ``minors`` vanishes (see the module docstring).
 
     Minors that vanish identically are left out by the caller; ordered by number of conditions, then joints.

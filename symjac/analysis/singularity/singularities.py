@@ -145,8 +145,8 @@ def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tup
     if model.n_coordinates > len(rows):
         minors = tuple(determinant(chain, rows, frame, point, columns=[c for c in range(model.n_coordinates) if c != k],
                                    numeric=numeric) for k in range(model.n_coordinates))
-        generic = [random.Random(seed).uniform(-2.5, 2.5) for _ in model.q]
-        zeros = tuple(zero_minor(chain, minor, generic) for minor in minors if minor.coefficient == 0)
+        anywhere = [random.Random(seed).uniform(-2.5, 2.5) for _ in model.q]
+        zeros = tuple(zero_minor(chain, minor, anywhere) for minor in minors if minor.coefficient == 0)
         sets = explain_sets(chain, minors, seed)
         return SingularityReport(model.name, minors[0], (), redundant=True, minors=minors, sets=sets,
                                  zero_minors=zeros)

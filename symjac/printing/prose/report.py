@@ -58,7 +58,8 @@ def arm_singular_parts(factor: sp.Expr, kind: str, configuration: str, shown: st
              "angular": "the axis the tool cannot turn about",
              "mixed": ("the translation part of the lost direction: the arm cannot move this way while turning as "
                        "the lost direction says, though it can move this way alone")}[shown]
-    return ("Singular where ", factor, f" = 0 ({kind}), at q = ({configuration}). The red arrow is {arrow}.")
+    where = (factor,) if isinstance(factor, sp.And) else (factor, " = 0")  # a redundant arm's set: its conditions
+    return ("Singular where ", *where, f" ({kind}), at q = ({configuration}). The red arrow is {arrow}.")
 
 
 def point_words(robot: Robot, point: Sequence[sp.Expr]) -> str:

@@ -7,9 +7,11 @@ groups, so a wrench loads none of them), and explains every component of the sin
 loses there (:math:`u^T J = 0`, also the wrench held with zero torque), and the self-motion, the null space of
 :math:`J` on the set (one dimension more than the :math:`n - m` of a regular configuration) and near it.
 
-Kinds, from the joints the conditions involve: the last three joints alone, ``wrist``; the first three alone,
-``shoulder``; one joint between them, ``elbow`` (the arm stretched out or folded back); joints of both groups with
-axes that became collinear, ``alignment``; anything else ``other``.
+Kinds, for an arm of six joints or more, from the joints the conditions involve: the last three joints alone,
+``wrist``; the first three alone, ``shoulder``; one joint between them, ``elbow`` (the arm stretched out or folded
+back); joints of both groups with axes that became collinear, ``alignment``; anything else ``other``. A shorter arm
+(a planar 3R arm on two rows) has no separate groups and is classified by the square arm's geometric rules
+(:func:`symjac.analysis.singularity.geometry.classify`).
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from symjac.analysis.singularity.geometry import (
     Finding,
     Relation,
     SingularityKind,
+    classify,
     concurrent_groups,
     findings,
     geometry_at,
@@ -139,6 +142,8 @@ def set_joints(singular_set: SingularSet) -> tuple[int, ...]:
 
 def _cause(chain: Chain, conditions: Sequence[Condition], new: Sequence[Finding]) -> Cause:
     joints, n = _joints(conditions, chain), chain.robot.n_coordinates
+    if n < 6:  # no separate shoulder and wrist groups: the square arm's geometric rules
+        return classify(new, joints, chain)
     aligned = tuple(f for f in new if f.relation is Relation.PARALLEL_AXES and f.collinear)
     evidence = aligned or tuple(new)
     if joints <= set(range(n - 3, n)):

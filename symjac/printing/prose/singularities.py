@@ -315,9 +315,9 @@ def zero_minor_words(zero: ZeroMinor) -> str:
 
 
 _SET_REASONS = {  # by SingularityKind, a string enum
-    "elbow": "the arm is stretched out or folded back at joint {joints}",
-    "shoulder": "a shoulder singularity, set by joints {joints} alone",
-    "wrist": "a wrist singularity, set by joints {joints} alone",
+    "elbow": "the arm is stretched out or folded back at {joints}",
+    "shoulder": "a shoulder singularity, set by {joints} alone",
+    "wrist": "a wrist singularity, set by {joints} alone",
     "alignment": "axes line up in more than one group of joints at once",
     "other": "",
 }
@@ -327,7 +327,8 @@ def set_reason(singular_set: SingularSet) -> str:
     """What happens on one singular set of a redundant arm, in one sentence (without the final full stop)."""
     from symjac.analysis.singularity.redundant import set_joints
 
-    joints = _joint_list(set_joints(singular_set))
+    involved = set_joints(singular_set)
+    joints = f"joint{'s' if len(involved) > 1 else ''} {_joint_list(involved)}"
     words = _SET_REASONS[singular_set.kind].format(joints=joints)
     evidence = "; ".join(finding_sentence(finding) for finding in singular_set.cause.findings)
     if not singular_set.exists_for_defaults:

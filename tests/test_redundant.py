@@ -62,19 +62,33 @@ def test_a_zero_minor_says_why_it_vanishes():
     assert entry["columns"] == [1, 2, 3, 5, 6, 7] and "line through the two points" in entry["reason"]
 
 
-def _powers_and_pythagoras(expr):
-    """Sines or cosines squared, or a product standing as one factor: what a final form must not hold."""
-    powers = [p for p in expr.atoms(sp.Pow) if isinstance(p.base, sp.sin | sp.cos) and p.exp >= 2]
-    return powers, isinstance(expr, sp.Mul | sp.Pow)
+def _pythagorean_sums(expr):
+    """Sums that hold c^2 - 1, 1 - s^2 or s^2 + c^2 of one angle: what a final form writes as -s^2, c^2 or 1."""
+    found = []
+    for node in sp.preorder_traversal(expr):
+        if not isinstance(node, sp.Add):
+            continue
+        squares = {(type(t.base), t.base.args[0]) for t in node.args
+                   if isinstance(t, sp.Pow) and isinstance(t.base, sp.sin | sp.cos) and t.exp == 2}
+        ones = any(t.is_Number and abs(t) == 1 for t in node.args)
+        for kind, angle in squares:
+            if ones or ((sp.cos if kind is sp.sin else sp.sin), angle) in squares:
+                found.append(node)
+    return found
+
+
+def test_the_final_form_check_can_fail():
+    assert _pythagorean_sums(d3 * (c[4] ** 2 - 1) + s[1])
+    assert _pythagorean_sums(s[4] ** 2 + c[4] ** 2 + d5)
+    assert not _pythagorean_sums(d3 * s[4] ** 2 + c[4])
 
 
 @pytest.mark.parametrize("name", ["panda", "iiwa7"])
-def test_no_minor_factor_is_a_product_or_hides_a_square(name):
+def test_no_minor_factor_is_a_product_or_keeps_a_pythagorean_sum(name):
     for minor in singularities(load_robot(name)).minors:
         for factor, _ in minor.factors:
-            powers, product = _powers_and_pythagoras(factor)
-            assert not product, factor
-            assert not any(sp.expand(p.base**2 - 1 + sp.cos(p.base.args[0]) ** 2) == 0 for p in powers)
+            assert not isinstance(factor, sp.Mul | sp.Pow), factor
+            assert not _pythagorean_sums(factor), factor
 
 
 def test_panda_minors_split_where_they_factor():
@@ -180,11 +194,39 @@ def test_random_seven_joint_chains_sets_are_singular_and_complete(convention, jo
     robot = robot_from_mapping({"name": "random7", "convention": convention, "parameters": {"L": 0.35},
                                 "joints": joints})
     report = singularities(robot)
-    if not report.sets:  # an arm singular everywhere, or nowhere: then every minor is zero, or none shares a zero
+    if all(minor.coefficient == 0 for minor in report.minors):  # singular everywhere: nothing to find
+        assert report.zero_minors and max(zero.rank for zero in report.zero_minors) < 6
         return
     _check_sets(robot, report, off_threshold=1e-8)  # other sets may pass near a random arm's
-    for q in _scan(robot, report, starts=4):
-        assert min(_residual(robot, singular_set, q) for singular_set in report.sets) < 1e-3, q
+    for q in _scan(robot, report, starts=4):  # with no set reported, any singular point found fails here
+        assert report.sets and min(_residual(robot, singular_set, q) for singular_set in report.sets) < 1e-3, q
+
+
+def test_the_sets_do_not_depend_on_the_seed():
+    robot = load_robot("iiwa7")
+    lists = [[tuple(c.expression for c in singular_set.conditions) for singular_set in
+              singularities(as_chain(robot).__class__(robot), seed=seed).sets] for seed in range(3)]
+    assert lists[0] == lists[1] == lists[2]
+
+
+def test_every_combination_of_branches_is_tried():
+    """Minors s2, s3 and c2 - c3 vanish together only where theta2 = theta3 (both 0 or both pi), not on s2 = s3 = 0."""
+    from symjac.analysis.singularity.determinant import Determinant
+    from symjac.analysis.singularity.sets import singular_conditions
+
+    chain = as_chain(load_robot("planar3r"))
+    point = (sp.S.Zero,) * 3
+    minors = [Determinant(sp.S.One, ((f, 1),), (0,), 0, point, (k,)) for k, f in enumerate([s[1], s[2], c[1] - c[2]])]
+    found = singular_conditions(chain, minors)
+    assert found and all({cond.expression for cond in conjunction} != {s[1], s[2]} for conjunction in found)
+    for conjunction in found:
+        for q in condition_samples(chain, conjunction, 8):
+            assert abs(np.sin(q[1])) < 1e-9 and abs(np.cos(q[1]) - np.cos(q[2])) < 1e-9
+
+
+def test_an_arm_singular_everywhere_says_so():
+    text = _run(["singularities", "planar3r", "--rows", "v_x,v_z", "--format", "pretty"])
+    assert "singular at every configuration" in text and "identically zero" in text
 
 
 # --- output ------------------------------------------------------------------------------------------------------

@@ -43,10 +43,10 @@ def _redundant_blocks(report: SingularityReport) -> list[Block]:
     blocks = [Block(prose.redundant_caption(report))]
     zeros = {zero.columns: zero for zero in report.zero_minors}
     for minor in report.minors:
-        locked = next(c for c in range(len(minor.columns) + 1) if c not in minor.columns)
-        caption = f"Joint {locked + 1} locked:"
+        locked = [name for c, name in enumerate(report.coordinates) if c not in minor.columns]
+        caption = f"{prose.locked_words(locked)}:"
         if minor.columns in zeros:
-            caption = f"Joint {locked + 1} locked: {prose.zero_minor_words(zeros[minor.columns])}."
+            caption = f"{prose.locked_words(locked)}: {prose.zero_minor_words(zeros[minor.columns])}."
         blocks.append(Block((caption,), (_det(minor.expression),)))
     blocks.append(Block((prose.sets_caption(report),)))
     for number, singular_set in enumerate(report.sets, start=1):

@@ -140,7 +140,8 @@ def _arm_section(robot: Robot, report: SingularityReport) -> Section:
     home = home_configuration(robot).tolist()
     figures = [_arm_figure(arm_svg(robot, home, "arm-home"),
                            html.escape(prose.arm_home_caption(", ".join(f"{v:.3g}" for v in home))))]
-    for number, factor in enumerate([*report.factors, *report.sets], start=1):
+    singular: list[SingularFactor | SingularSet] = [*report.factors, *report.sets]
+    for number, factor in enumerate(singular, start=1):
         arrow = lost_arrow(robot, report, factor)
         if arrow is None or factor.sample is None:
             continue

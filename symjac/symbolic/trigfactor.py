@@ -8,14 +8,15 @@ read:
    modulo :math:`S_j^2 + C_j^2 - 1` at once. Each sub-determinant of the lower rows is computed once per set of
    columns (at most :math:`2^n` of them rather than :math:`n!` products), and the minors of a redundant arm's
    Jacobian share them. Reducing as it goes keeps the polynomials small; a fraction-free elimination cannot reduce
-   (it divides exactly) and spent 44 s on the Panda's seven minors, which this does in 0.05 s.
+   (it divides exactly) and spent 26 s on the Panda's seven minors, which this does in 0.05 s.
 2. :func:`trig_factor_list`: irreducible factors of the normal form, then of each factor once more after rewriting
    :math:`C_j^2 = 1 - S_j^2` for one angle (the normal form keeps sines of degree one, so
    :math:`s_3 (a c_3 + b s_3)` reads :math:`a s_3 c_3 + b - b c_3^2` there and only splits after that rewriting),
    and the pairs :math:`(c_j - 1)(c_j + 1)` and :math:`(s_j - 1)(s_j + 1)` gathered into :math:`-s_j^2` and
    :math:`-c_j^2`.
 3. :func:`compact_expr`: each factor laid out nested with, per angle, sines or cosines of degree at most one,
-   whichever prints shorter (:math:`-a_6 s_5^2` rather than :math:`a_6 (c_5^2 - 1)`).
+   whichever prints shorter, and what pairs remain inside the parentheses written out (:math:`-a_6 s_5^2` rather
+   than :math:`a_6 (c_5^2 - 1)`).
 """
 
 from __future__ import annotations
@@ -223,4 +224,26 @@ def compact_expr(poly: PolyElement, image: TrigImage) -> sp.Expr:
         ops = printed_ops(expr)
         if ops < best_ops:
             poly, best, best_ops = candidate, expr, ops
-    return best
+    return best.replace(lambda node: isinstance(node, sp.Add), _pythagoras)
+
+
+def _pythagoras(total: sp.Add) -> sp.Expr:
+    r"""One nested sum with :math:`a c^2 - a` written :math:`-a s^2`, :math:`a s^2 - a` as :math:`-a c^2`, and
+    :math:`a s^2 + a c^2` as :math:`a` (one angle at a time; the nesting leaves such pairs inside parentheses).
+    """
+    terms = dict(total.as_coefficients_dict())
+    for term in list(terms):
+        if not (isinstance(term, sp.Pow) and term.exp == 2 and isinstance(term.base, sp.sin | sp.cos)):
+            continue
+        if term not in terms:
+            continue
+        a, angle = terms[term], term.base.args[0]
+        other = (sp.cos if isinstance(term.base, sp.sin) else sp.sin)(angle) ** 2
+        if terms.get(other) == a:  # a s^2 + a c^2 = a
+            del terms[term], terms[other]
+            terms[sp.S.One] = terms.get(sp.S.One, 0) + a
+        elif terms.get(sp.S.One) == -a:  # a c^2 - a = -a s^2 (and the same with s and c exchanged)
+            del terms[term], terms[sp.S.One]
+            terms[other] = terms.get(other, 0) - a
+    rewritten = sp.Add(*[coefficient * term for term, coefficient in terms.items() if coefficient != 0])
+    return rewritten if rewritten != total else total

@@ -11,6 +11,7 @@ or ``partly``.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from enum import StrEnum
 
 import numpy as np
@@ -20,7 +21,7 @@ from symjac.analysis.singularity.solve import Solution
 from symjac.kinematics.chain import Chain, as_chain
 from symjac.model.robot import Joint, Robot
 
-__all__ = ["LimitStatus", "limit_status"]
+__all__ = ["LimitStatus", "limit_status", "within_limits"]
 
 _SAMPLES = 257  # points per other joint on the grid (odd: the middle of each range is on it)
 _MAX_POINTS = 20_000  # grid points in all, whatever the number of other joints
@@ -80,6 +81,13 @@ def limit_status(robot: Robot | Chain, solution: Solution) -> LimitStatus:
     if inside.all():
         return LimitStatus.INSIDE
     return LimitStatus.PARTLY if inside.any() else LimitStatus.OUTSIDE
+
+
+def within_limits(robot: Robot, q: Sequence[float]) -> bool:
+    """Whether every coordinate of ``q`` lies within its joint's limits (a revolute angle modulo 2 pi)."""
+    if robot.coupling is not None:
+        return True  # a coupled joint's limits bound a combination of coordinates: not judged here
+    return all(bool(_within(np.array([value]), joint, robot)[0]) for joint, value in zip(robot.joints, q, strict=True))
 
 
 def _range(joint: Joint, robot: Robot) -> tuple[float, float]:

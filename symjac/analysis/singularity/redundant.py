@@ -8,9 +8,10 @@ loses there (:math:`u^T J = 0`, also the wrench held with zero torque), and the 
 :math:`J` on the set (one dimension more than the :math:`n - m` of a regular configuration) and near it.
 
 Kinds, for an arm of six joints or more, from the joints the conditions involve: the last three joints alone,
-``wrist``; the first three alone, ``shoulder``; one joint between them, ``elbow`` (the arm stretched out or folded
-back); joints of both groups with axes that became collinear, ``alignment``; anything else ``other``. A shorter arm
-(a planar 3R arm on two rows) has no separate groups and is classified by the square arm's geometric rules
+``wrist``; the first three alone, ``shoulder``; one joint between them whose two neighbouring axes now lie on one
+line, ``elbow`` (the arm stretched out or folded back); joints of both groups with axes that became collinear,
+``alignment``; anything else ``other``. A shorter arm (a planar 3R arm on two rows) has no separate groups and is
+classified by the square arm's geometric rules
 (:func:`symjac.analysis.singularity.geometry.classify`).
 """
 
@@ -35,7 +36,7 @@ from symjac.analysis.singularity.geometry import (
     findings,
     geometry_at,
 )
-from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status
+from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status, within_limits
 from symjac.analysis.singularity.sets import Condition, condition_samples, singular_conditions
 from symjac.analysis.singularity.solve import Solution
 from symjac.analysis.spaces import JacobianSpaces, jacobian_spaces
@@ -150,7 +151,8 @@ def _cause(chain: Chain, conditions: Sequence[Condition], new: Sequence[Finding]
         return Cause(SingularityKind.WRIST, evidence)
     if joints <= {0, 1, 2}:
         return Cause(SingularityKind.SHOULDER, evidence)
-    if len(joints) == 1:
+    (joint,) = joints if len(joints) == 1 else (None,)
+    if joint is not None and any(f.joints[0] < joint < f.joints[1] for f in aligned):  # its neighbours line up
         return Cause(SingularityKind.ELBOW, evidence)
     return Cause(SingularityKind.ALIGNMENT if aligned else SingularityKind.OTHER, evidence)
 
@@ -166,15 +168,19 @@ def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant
     samples = condition_samples(chain, conditions, 8, seed)
     if not len(samples):
         return SingularSet(conditions, tuple(chain.robot.q), Cause(SingularityKind.OTHER), False, limits=limits)
-    sample = samples[0]
-    geometry = geometry_at(chain, sample, minor.point)
-    new = [finding for finding in findings(chain, geometry) if finding.key not in known]
     rows = list(minor.rows)
 
     def spaces_at(q: np.ndarray) -> JacobianSpaces:
         J = numeric_jacobian(chain, q.tolist(), minor.frame, minor.point)[rows, :]
         return jacobian_spaces(J, tolerance=1e-8 * max(1.0, float(np.abs(J).max())))
 
+    # the typical point of the set: the highest rank (a sample may also lie on another set, such as the iiwa's
+    # elbow folded back with the wrist centre on the shoulder), then within the joint limits
+    ranked = sorted(range(len(samples)), key=lambda k: (-spaces_at(samples[k]).rank,
+                                                        not within_limits(chain.robot, samples[k].tolist()), k))
+    sample = samples[ranked[0]]
+    geometry = geometry_at(chain, sample, minor.point)
+    new = [finding for finding in findings(chain, geometry) if finding.key not in known]
     singular = spaces_at(sample)
     near = sample.copy()
     near[sorted(_joints(conditions, chain))] += _NEAR

@@ -37,12 +37,12 @@ from symjac.analysis.singularity.determinant import Determinant
 from symjac.analysis.singularity.solve import Solution, branch_solutions, solve_factor
 from symjac.kinematics.chain import Chain
 
-__all__ = ["RELATIVE_ZERO", "Condition", "condition_samples", "singular_conditions"]
+__all__ = ["RELATIVE_ZERO", "Condition", "condition_samples", "singular_conditions", "unsolved_factors"]
 
 RELATIVE_ZERO = 1e-7
 """A minor counts as zero at a point when it is this small relative to its median size at random configurations."""
 
-_SAMPLES = 6  # random points per conjunction (branches taken in turn)
+_SAMPLES = 12  # random points per conjunction (each condition's branch drawn at random for each)
 _MOST_CONDITIONS = 3  # conjunctions of up to this many conditions are tried
 _SOLVE_OPS = 40  # larger factors are solved for their last joint only, unlaid (solve_factor takes seconds on them)
 
@@ -80,9 +80,18 @@ def _pick(solution: Solution, variables: Sequence[sp.Symbol]) -> int | None:
     return pick if sp.expand(solution.lhs).coeff(variables[pick]) == 1 else None
 
 
-def _conditions(chain: Chain, minors: Sequence[Determinant]) -> list[Condition]:
-    """Every joint factor of the minors solved, and each branch of a factor with several; equal sets merged."""
+def unsolved_factors(chain: Chain, minors: Sequence[Determinant]) -> tuple[sp.Expr, ...]:
+    """The joint factors of ``minors`` that could not be solved for one joint, so no condition of the search."""
+    return _conditions(chain, minors)[1]
+
+
+def _conditions(chain: Chain, minors: Sequence[Determinant]) -> tuple[list[Condition], tuple[sp.Expr, ...]]:
+    """Every joint factor of the minors solved, and each branch of a factor with several; equal sets merged.
+
+    Also the factors left out because no solution for one joint was found.
+    """
     variables = set(chain.robot.q)
+    skipped: list[sp.Expr] = []
     found: dict[frozenset[tuple[sp.Expr, sp.Expr]], Condition] = {}
     factors = dict.fromkeys(f for minor in minors for f, _ in minor.factors if f.free_symbols & variables)
     for factor in factors:
@@ -91,14 +100,16 @@ def _conditions(chain: Chain, minors: Sequence[Determinant]) -> list[Condition]:
         else:
             solutions, existence = branch_solutions(chain, factor), None
         if not solutions or any(_pick(s, chain.robot.q) is None for s in solutions):
+            skipped.append(factor)
             continue
         candidates = [Condition(factor, solutions, existence)]
         if len(solutions) > 1:
             candidates += [Condition(s.lhs - s.rhs, (s,), existence) for s in solutions]
         for condition in candidates:
             found.setdefault(condition.branches, condition)
-    return sorted(found.values(), key=lambda c: (len(c.expression.free_symbols & variables),
-                                                 sp.count_ops(c.expression), sp.default_sort_key(c.expression)))
+    ordered = sorted(found.values(), key=lambda c: (len(c.expression.free_symbols & variables),
+                                                    sp.count_ops(c.expression), sp.default_sort_key(c.expression)))
+    return ordered, tuple(skipped)
 
 
 def _implies(small: Sequence[Condition], large: Sequence[Condition]) -> bool:
@@ -123,12 +134,21 @@ class _Sampler:
         with np.errstate(all="ignore"):
             self.scales = [[_median_size(g, q, p) for g in gs] for gs in self.minor_factors]
         self.compiled: dict[tuple[sp.Expr, sp.Expr], _Branch] = {}
+        self.scales_of: dict[sp.Expr, float] = {}
 
     def random_points(self, count: int, defaults: bool = False) -> tuple[np.ndarray, np.ndarray]:
-        """Joint values uniform in [-2.5, 2.5] and parameters within 20 % of their defaults (or at them)."""
+        """Joint values uniform in [-2.5, 2.5]; parameters within 20 % of their defaults (or at them).
+
+        Each parameter also moves by up to 5 % of the largest default, so a parameter whose default is zero is
+        varied too: a set that needs it to be zero is a special design, not found as a general one.
+        """
         q = self.generator.uniform(-2.5, 2.5, (count, len(self.variables)))
-        scale = 1.0 if defaults else self.generator.uniform(0.8, 1.2, (count, len(self.parameters)))
-        return q, np.broadcast_to(self.defaults * scale, (count, len(self.parameters))).copy()
+        shape = (count, len(self.parameters))
+        if defaults:
+            return q, np.broadcast_to(self.defaults, shape).copy()
+        typical = float(np.abs(self.defaults).max(initial=0.0)) or 1.0
+        spread = self.generator.uniform(-0.05, 0.05, shape) * typical
+        return q, self.defaults * self.generator.uniform(0.8, 1.2, shape) + spread
 
     def branch(self, solution: Solution) -> _Branch:
         key = (solution.lhs, solution.rhs)
@@ -144,9 +164,10 @@ class _Sampler:
         samples = len(q) // len(conjunctions)
         rows: dict[tuple[sp.Expr, sp.Expr], list[int]] = {}
         for index, conjunction in enumerate(conjunctions):
-            for condition in conjunction:
+            for condition in conjunction:  # each condition's branch drawn on its own: every combination is met
+                picks = self.generator.integers(0, len(condition.solutions), samples)
                 for k in range(samples):
-                    solution = condition.solutions[k % len(condition.solutions)]
+                    solution = condition.solutions[int(picks[k])]
                     rows.setdefault((solution.lhs, solution.rhs), []).append(index * samples + k)
         solutions = {(s.lhs, s.rhs): s for c in {c for cs in conjunctions for c in cs} for s in c.solutions}
         with np.errstate(all="ignore"):
@@ -162,19 +183,31 @@ class _Sampler:
         return valid
 
     def contained(self, inner: Sequence[Condition], outer: Sequence[Condition]) -> bool:
-        """Whether random points on ``inner`` all satisfy every condition of ``outer`` (one of its branches)."""
-        q, p = self.random_points(_SAMPLES)
+        """Whether random points on ``inner`` all satisfy every condition of ``outer``.
+
+        A condition holds where its expression vanishes relative to its size at random configurations (its branch
+        formulas are no test: they are undefined where the expression vanishes for every value of the solved
+        joint).
+        """
+        q, p = self.random_points(4 * _SAMPLES)
         valid = self.place([tuple(inner)], q, p)
-        if not valid.any():
+        if valid.sum() < 2:
             return False
         q, p = q[valid], p[valid]
         with np.errstate(all="ignore"):
             for condition in outer:
-                residuals = [np.abs(_wrap(_evaluate(b.value, q, p) - q[:, b.joint]))
-                             for b in (self.branch(s) for s in condition.solutions)]
-                if not np.all(np.min(residuals, axis=0) < 1e-7):
+                function = _compiled(condition.expression, tuple(self.arguments))
+                if not np.all(np.abs(_evaluate(function, q, p)) <= RELATIVE_ZERO * self.scale(condition.expression)):
                     return False
         return True
+
+    def scale(self, expr: sp.Expr) -> float:
+        """The median size of ``expr`` at random configurations and parameters (kept per expression)."""
+        if expr not in self.scales_of:
+            q, p = self.random_points(64)
+            with np.errstate(all="ignore"):
+                self.scales_of[expr] = _median_size(_compiled(expr, tuple(self.arguments)), q, p)
+        return self.scales_of[expr]
 
     def singular(self, q: np.ndarray, p: np.ndarray) -> np.ndarray:
         """Rows where every minor has a factor that vanishes (relative to its size at random configurations)."""
@@ -216,7 +249,7 @@ def singular_conditions(chain: Chain, minors: Sequence[Determinant],
     Minors that vanish identically are left out by the caller; ordered by number of conditions, then joints.
     """
     sampler = _Sampler(chain, minors, seed)
-    conditions = _conditions(chain, minors)
+    conditions, _ = _conditions(chain, minors)
     picks = {c.branches: {_pick(s, sampler.variables) for s in c.solutions} for c in conditions}
     candidates: list[tuple[Condition, ...]] = []
     for size in range(1, _MOST_CONDITIONS + 1):
@@ -231,7 +264,7 @@ def singular_conditions(chain: Chain, minors: Sequence[Determinant],
     valid = sampler.place(candidates, q, p)
     singular = sampler.singular(q, p) | ~valid
     valid_count = valid.reshape(len(candidates), _SAMPLES).sum(axis=1)
-    holds = singular.reshape(len(candidates), _SAMPLES).all(axis=1) & (valid_count >= 2)
+    holds = singular.reshape(len(candidates), _SAMPLES).all(axis=1) & (valid_count >= 3)
     kept: list[tuple[Condition, ...]] = []
     for conjunction, ok in zip(candidates, holds, strict=True):
         if ok and not any(_implies(conjunction, found) for found in kept):

@@ -11,6 +11,7 @@ q = 0`). Everything is data; :mod:`symjac.printing` words and formats it.
 
 from __future__ import annotations
 
+import itertools
 import random
 from collections.abc import Container, Sequence
 from dataclasses import dataclass
@@ -23,12 +24,14 @@ from symjac.analysis.singularity.directions import DirectionPart, LostDirection,
 from symjac.analysis.singularity.geometry import Cause, SingularityKind, classify, findings, geometry_at
 from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status
 from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor, explain_sets, zero_minor
+from symjac.analysis.singularity.sets import unsolved_factors
 from symjac.analysis.singularity.solve import Solution, solution_sample, solve_factor
 from symjac.analysis.spaces import jacobian_spaces, task_rows
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, point_vector
 from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_jacobian
+from symjac.model.robot import Robot
 
 __all__ = [
     "DirectionPart",
@@ -96,6 +99,8 @@ class SingularityReport:
     minors: tuple[Determinant, ...] = ()
     sets: tuple[SingularSet, ...] = ()
     zero_minors: tuple[ZeroMinor, ...] = ()
+    unsolved: tuple[sp.Expr, ...] = ()  # minor factors the set search could not use: the sets may be incomplete
+    coordinates: tuple[str, ...] = ()  # a redundant arm's columns: "joint 3", or a coupled robot's "theta5"
 
     @property
     def frame(self) -> Frame:
@@ -124,7 +129,7 @@ def singularities(
     r"""The singular configurations of ``robot``: :func:`determinant`, every factor solved, classified, explained.
 
     A redundant arm (more joints than task rows) has no square Jacobian; its report holds the determinants of the
-    square minors (one joint locked at a time, :attr:`SingularityReport.minors`), and the arm is singular only where
+    square minors (the other joints locked, :attr:`SingularityReport.minors`), and the arm is singular only where
     all of them vanish together (where the manipulability :math:`\sqrt{\det J J^T}` is zero). Arguments are as
     for :func:`symjac.analysis.singularity.determinant.determinant` (``robot`` a Robot or a Chain); ``seed`` fixes the
     random samples on the singular sets.
@@ -143,19 +148,27 @@ def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tup
             numeric: bool, seed: int) -> SingularityReport:
     model = chain.robot
     if model.n_coordinates > len(rows):
-        minors = tuple(determinant(chain, rows, frame, point, columns=[c for c in range(model.n_coordinates) if c != k],
-                                   numeric=numeric) for k in range(model.n_coordinates))
+        n = model.n_coordinates
+        kept = sorted(itertools.combinations(range(n), len(rows)),  # by the joints locked: joint 1 locked first
+                      key=lambda columns: tuple(c for c in range(n) if c not in columns))
+        minors = tuple(determinant(chain, rows, frame, point, columns=columns, numeric=numeric) for columns in kept)
         anywhere = [random.Random(seed).uniform(-2.5, 2.5) for _ in model.q]
         zeros = tuple(zero_minor(chain, minor, anywhere) for minor in minors if minor.coefficient == 0)
         sets = explain_sets(chain, minors, seed)
+        unsolved = unsolved_factors(chain, [minor for minor in minors if minor.coefficient != 0])
         return SingularityReport(model.name, minors[0], (), redundant=True, minors=minors, sets=sets,
-                                 zero_minors=zeros)
+                                 zero_minors=zeros, unsolved=unsolved, coordinates=_column_names(model))
     det = determinant(chain, rows, frame, point, numeric=numeric)
     generator = random.Random(seed)
     generic = findings(chain, geometry_at(chain, [generator.uniform(-2.5, 2.5) for _ in model.q], point))
     known = {finding.key for finding in generic}
     explained = [_explain(chain, det, factor, multiplicity, known, generator) for factor, multiplicity in det.factors]
     return SingularityReport(model.name, det, tuple(explained))
+
+
+def _column_names(model: Robot) -> tuple[str, ...]:
+    """What each Jacobian column drives, in words: ``joint 3``, or a coupled robot's coordinate ``theta5``."""
+    return tuple(f"joint {k + 1}" if model.coupling is None else str(v) for k, v in enumerate(model.q))
 
 
 def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int, known: Container[object],

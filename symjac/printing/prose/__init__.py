@@ -5,6 +5,7 @@ captions the command line's results, :mod:`.report` holds the HTML report's sent
 analysis, so printing a Jacobian loads none.
 """
 
+from symjac.printing.prose.redundant import locked_words, set_parts, set_reason, sets_caption, zero_minor_words
 from symjac.printing.prose.report import (
     ARM_INTRO,
     METHODS_HEADING,
@@ -60,10 +61,6 @@ from symjac.printing.prose.singularities import (
     rows_parts,
     self_motion_parts,
     self_motion_words,
-    set_parts,
-    set_reason,
-    sets_caption,
-    zero_minor_words,
 )
 
 __all__ = [
@@ -96,6 +93,7 @@ __all__ = [
     "landmark_name",
     "limit_parts",
     "limit_text",
+    "locked_words",
     "lost_words",
     "map_caption",
     "methods_verdict",

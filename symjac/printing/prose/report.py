@@ -58,7 +58,8 @@ def arm_singular_parts(factor: sp.Expr, kind: str, configuration: str, shown: st
              "angular": "the axis the tool cannot turn about",
              "mixed": ("the translation part of the lost direction: the arm cannot move this way while turning as "
                        "the lost direction says, though it can move this way alone")}[shown]
-    where = (factor,) if isinstance(factor, sp.And) else (factor, " = 0")  # a redundant arm's set: its conditions
+    # a redundant arm's set comes as its conditions (an And, or one equation)
+    where = (factor,) if isinstance(factor, sp.And | sp.core.relational.Relational) else (factor, " = 0")
     return ("Singular where ", *where, f" ({kind}), at q = ({configuration}). The red arrow is {arrow}.")
 
 
@@ -135,9 +136,10 @@ def rates_parts(command: str, crossing: sp.Expr | None, square: bool) -> tuple[A
                  "The arm is redundant, so J has no inverse: the solid lines are the minimum-norm rates "
                  "J\u207a x\u0307 = J\u1d40 (J J\u1d40)\u207b\u00b9 x\u0307, which grow like 1/|t| at the "
                  "singular set, the dashed ones the damped least-squares rates, which stay bounded.")
-    head = (f"Joint rates q\u0307 = J\u207b\u00b9 x\u0307 for a constant commanded velocity x\u0307 = ({command}) "
+    inverse = "J\u207b\u00b9" if square else "J\u207a"
+    head = (f"Joint rates q\u0307 = {inverse} x\u0307 for a constant commanded velocity x\u0307 = ({command}) "
             "(the direction lost at the singular configuration), along the straight path of the map")
     middle = () if crossing is None else (
-        (" crossing the singular set ", crossing) if isinstance(crossing, sp.And) else
+        (" crossing the singular set ", crossing) if isinstance(crossing, sp.And | sp.core.relational.Relational) else
         (" crossing the singular set of the factor ", crossing))
     return (head, *middle, f" at t = 0. {behaviour}")

@@ -8,7 +8,6 @@ types only for checkers and compares their string enums by value, so printing a 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import sympy as sp
@@ -21,7 +20,7 @@ from symjac.printing.document import Inline
 if TYPE_CHECKING:
     from symjac.analysis.representations import RepresentationSingularity
     from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark
-    from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor
+    from symjac.analysis.singularity.redundant import SingularSet
     from symjac.analysis.singularity.singularities import (
         DirectionPart,
         LostDirection,
@@ -51,10 +50,6 @@ __all__ = [
     "rows_parts",
     "self_motion_parts",
     "self_motion_words",
-    "set_parts",
-    "set_reason",
-    "sets_caption",
-    "zero_minor_words",
 ]
 
 KIND_REASONS = {
@@ -295,76 +290,6 @@ def redundant_caption(report: SingularityReport) -> tuple[str | Inline, ...]:
     condition = Inline(r"\sqrt{\det(J J^{T})} = 0", "sqrt(det(J J^T)) = 0")
     return (f"Redundant arm: {report.robot} has more joints than task rows (", *rows, "); it is singular only where "
             "every square minor below vanishes (where ", condition, f"). Minors in frame {{{det.frame}}}.")
-
-
-def _joint_list(joints: Sequence[int]) -> str:
-    numbers = [str(j + 1) for j in sorted(joints)]
-    return numbers[0] if len(numbers) == 1 else f"{', '.join(numbers[:-1])} and {numbers[-1]}"
-
-
-def zero_minor_words(zero: ZeroMinor) -> str:
-    """Why a minor vanishes at every configuration, in one sentence (without the final full stop)."""
-    groups = [f"joints {_joint_list(group)}" for group in zero.concurrent]
-    rank = f"its {len(zero.columns)} columns have rank {zero.rank} wherever the arm is"
-    if len(groups) == 2:
-        return (f"identically zero: the axes of {groups[0]} meet at one point and those of {groups[1]} at another, "
-                f"so a force along the line through the two points loads none of these joints ({rank})")
-    if groups:
-        return f"identically zero: the axes of {groups[0]} meet at one point ({rank})"
-    return f"identically zero: {rank}"
-
-
-_SET_REASONS = {  # by SingularityKind, a string enum
-    "elbow": "the arm is stretched out or folded back at {joints}",
-    "shoulder": "a shoulder singularity, set by {joints} alone",
-    "wrist": "a wrist singularity, set by {joints} alone",
-    "alignment": "axes line up in more than one group of joints at once",
-    "other": "",
-}
-
-
-def set_reason(singular_set: SingularSet) -> str:
-    """What happens on one singular set of a redundant arm, in one sentence (without the final full stop)."""
-    from symjac.analysis.singularity.redundant import set_joints
-
-    involved = set_joints(singular_set)
-    joints = f"joint{'s' if len(involved) > 1 else ''} {_joint_list(involved)}"
-    words = _SET_REASONS[singular_set.kind].format(joints=joints)
-    evidence = "; ".join(finding_sentence(finding) for finding in singular_set.cause.findings)
-    if not singular_set.exists_for_defaults:
-        words = (words + "; " if words else "") + "no configuration of it exists for the default parameters"
-    text = f"{words} ({evidence})" if words and evidence else words or evidence
-    return text or "no aligned axes found; see the lost direction and the self-motion"
-
-
-def sets_caption(report: SingularityReport) -> str:
-    """How many singular sets a redundant arm has, and how they were found."""
-    count = len(report.sets)
-    if not count:
-        return ("Singular sets: none found; no combination of up to three minor factors makes every minor vanish at "
-                "once.")
-    sets = "one singular set" if count == 1 else f"{count} singular sets"
-    return (f"Singular sets: the arm loses rank exactly where every nonzero minor vanishes; {sets}, each a "
-            "combination of minor factors:")
-
-
-def _motion_count(singular_set: SingularSet) -> str:
-    there, near = len(singular_set.null_space), len(singular_set.regular_null_space)
-    return f"the self-motions form a space of dimension {there} there ({near} nearby)"
-
-
-def set_parts(singular_set: SingularSet) -> tuple[str | sp.Basic, ...]:
-    """One singular set as caption parts: its conditions, kind, reason, what is lost, its self-motions and limits."""
-    parts: list[str | sp.Basic] = []
-    for number, condition in enumerate(singular_set.conditions):
-        parts += [" and "] * bool(number) + [sp.Eq(condition.expression, 0, evaluate=False)]
-    parts += [f" ({singular_set.kind}): {set_reason(singular_set)}."]
-    if singular_set.lost_direction is not None:
-        parts += [f" There the arm {lost_words(singular_set)}; {_motion_count(singular_set)}"]
-        motion = self_motion_parts(singular_set)
-        parts += ["; the new one: ", *motion, "."] if motion else ["."]
-    parts.extend(limit_parts(singular_set))
-    return tuple(parts)
 
 
 def dh_caption(robot: Robot) -> str:

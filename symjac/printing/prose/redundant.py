@@ -1,0 +1,109 @@
+"""A redundant arm's singularities in words: minors locked and vanishing everywhere, and each singular set.
+
+Like :mod:`symjac.printing.prose.singularities`, this names the analyses' types only for checkers and compares their
+string enums by value.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import sympy as sp
+
+from symjac.printing.prose.singularities import finding_sentence, limit_parts, lost_words, self_motion_parts
+
+if TYPE_CHECKING:
+    from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor
+    from symjac.analysis.singularity.singularities import SingularityReport
+
+__all__ = ["locked_words", "set_parts", "set_reason", "sets_caption", "zero_minor_words"]
+
+
+def _joint_list(joints: Sequence[int]) -> str:
+    numbers = [str(j + 1) for j in sorted(joints)]
+    return numbers[0] if len(numbers) == 1 else f"{', '.join(numbers[:-1])} and {numbers[-1]}"
+
+
+def locked_words(locked: Sequence[str]) -> str:
+    """``Joint 4 locked``, ``Joints 1 and 2 locked``, ``theta5 locked`` (a coupled robot's coordinate)."""
+    if len(locked) == 1:
+        return f"{locked[0][0].upper()}{locked[0][1:]} locked"
+    joints = [name.removeprefix("joint ") for name in locked]
+    label = "Joints " if all(name.startswith("joint ") for name in locked) else ""
+    words = f"{', '.join(joints[:-1])} and {joints[-1]}"
+    return f"{label}{words} locked" if label else f"{words[0].upper()}{words[1:]} locked"
+
+
+def zero_minor_words(zero: ZeroMinor) -> str:
+    """Why a minor vanishes at every configuration, in one sentence (without the final full stop)."""
+    groups = [f"joints {_joint_list(group)}" for group in zero.concurrent]
+    rank = f"its {len(zero.columns)} columns have rank {zero.rank} wherever the arm is"
+    if len(groups) == 2:
+        return (f"identically zero: the axes of {groups[0]} meet at one point and those of {groups[1]} at another, "
+                f"so a force along the line through the two points loads none of these joints ({rank})")
+    if groups:
+        return f"identically zero: the axes of {groups[0]} meet at one point ({rank})"
+    return f"identically zero: {rank}"
+
+
+_SET_REASONS = {  # by SingularityKind, a string enum
+    "elbow": "the arm is stretched out or folded back at {joints}",
+    "shoulder": "a shoulder singularity, set by {joints} alone",
+    "wrist": "a wrist singularity, set by {joints} alone",
+    "alignment": "axes line up in more than one group of joints at once",
+    "other": "",
+}
+
+
+def set_reason(singular_set: SingularSet) -> str:
+    """What happens on one singular set of a redundant arm, in one sentence (without the final full stop)."""
+    from symjac.analysis.singularity.redundant import set_joints
+
+    involved = set_joints(singular_set)
+    joints = f"joint{'s' if len(involved) > 1 else ''} {_joint_list(involved)}"
+    words = _SET_REASONS[singular_set.kind].format(joints=joints)
+    evidence = "; ".join(finding_sentence(finding) for finding in singular_set.cause.findings)
+    if not singular_set.exists_for_defaults:
+        words = (words + "; " if words else "") + "no configuration of it exists for the default parameters"
+    text = f"{words} ({evidence})" if words and evidence else words or evidence
+    return text or "no aligned axes found; see the lost direction and the self-motion"
+
+
+def sets_caption(report: SingularityReport) -> str:
+    """How many singular sets a redundant arm has, how they were found, and whether the list may be incomplete."""
+    if all(minor.coefficient == 0 for minor in report.minors):
+        rank = max((zero.rank for zero in report.zero_minors), default=0)
+        return (f"Every minor vanishes identically: the arm is singular at every configuration (rank {rank} at "
+                "most).")
+    count = len(report.sets)
+    incomplete = ""
+    if report.unsolved:
+        shown = ", ".join(sp.sstr(f) for f in report.unsolved[:3]) + (", ..." if len(report.unsolved) > 3 else "")
+        incomplete = (f" Factors not solved for one joint were left out of the search ({shown}), so the list may be "
+                      "incomplete.")
+    if not count:
+        return ("Singular sets: none found among the combinations of up to three minor factors, each solved for a "
+                f"different joint.{incomplete}")
+    sets = "one singular set" if count == 1 else f"{count} singular sets"
+    return (f"Singular sets: the arm loses rank exactly where every nonzero minor vanishes; {sets} found, each a "
+            f"combination of minor factors:{incomplete}")
+
+
+def _motion_count(singular_set: SingularSet) -> str:
+    there, near = len(singular_set.null_space), len(singular_set.regular_null_space)
+    return f"the self-motions form a space of dimension {there} there ({near} nearby)"
+
+
+def set_parts(singular_set: SingularSet) -> tuple[str | sp.Basic, ...]:
+    """One singular set as caption parts: its conditions, kind, reason, what is lost, its self-motions and limits."""
+    parts: list[str | sp.Basic] = []
+    for number, condition in enumerate(singular_set.conditions):
+        parts += [" and "] * bool(number) + [sp.Eq(condition.expression, 0, evaluate=False)]
+    parts += [f" ({singular_set.kind}): {set_reason(singular_set)}."]
+    if singular_set.lost_direction is not None:
+        parts += [f" There the arm {lost_words(singular_set)}; {_motion_count(singular_set)}"]
+        motion = self_motion_parts(singular_set)
+        parts += ["; the new one: ", *motion, "."] if motion else ["."]
+    parts.extend(limit_parts(singular_set))
+    return tuple(parts)

@@ -228,8 +228,10 @@ def compact_expr(poly: PolyElement, image: TrigImage) -> sp.Expr:
 
 
 def _pythagoras(total: sp.Add) -> sp.Expr:
-    r"""One nested sum with :math:`a c^2 - a` written :math:`-a s^2`, :math:`a s^2 - a` as :math:`-a c^2`, and
-    :math:`a s^2 + a c^2` as :math:`a` (one angle at a time; the nesting leaves such pairs inside parentheses).
+    r"""One nested sum with the squares of one angle paired off: :math:`a c^2 - a = -a s^2`, and so on.
+
+    Also :math:`a s^2 - a = -a c^2` and :math:`a s^2 + a c^2 = a`. The nesting leaves such pairs inside parentheses
+    when no single choice of sines or cosines per angle suits the whole factor.
     """
     terms = dict(total.as_coefficients_dict())
     for term in list(terms):

@@ -128,13 +128,19 @@ def _split(poly: PolyElement, image: TrigImage) -> tuple[Any, list[tuple[PolyEle
     for form in _rewritings(poly, image):
         constant, factors = form.factor_list()
         if sum(multiplicity for _, multiplicity in factors) > 1:
-            parts: list[tuple[PolyElement, int]] = []
-            for factor, multiplicity in factors:
-                inner, pieces = _split(factor, image)
-                constant *= inner**multiplicity
-                parts.extend((piece, m * multiplicity) for piece, m in pieces)
-            return constant, parts
+            return _split_each(constant, factors, image)
     return poly.ring.domain.one, [(poly, 1)]
+
+
+def _split_each(constant: Any, factors: list[tuple[PolyElement, int]],
+                image: TrigImage) -> tuple[Any, list[tuple[PolyElement, int]]]:
+    """Every factor split by :func:`_split`, multiplicities multiplied and constants gathered into ``constant``."""
+    parts: list[tuple[PolyElement, int]] = []
+    for factor, multiplicity in factors:
+        inner, pieces = _split(factor, image)
+        constant *= inner**multiplicity
+        parts.extend((piece, m * multiplicity) for piece, m in pieces)
+    return constant, parts
 
 
 def trig_factor_list(poly: PolyElement, image: TrigImage) -> tuple[sp.Rational, list[tuple[PolyElement, int]]]:
@@ -180,13 +186,8 @@ def _reduced_factors(poly: PolyElement, image: TrigImage) -> tuple[Any, list[tup
     """The factors of a reduced polynomial, each split further by :func:`_split` (a constant has none)."""
     if poly.is_ground:
         return poly.LC, []
-    constant, raw = poly.factor_list()
-    pieces: list[tuple[PolyElement, int]] = []
-    for factor, multiplicity in raw:
-        inner, parts = _split(factor, image)
-        constant *= inner**multiplicity
-        pieces.extend((part, m * multiplicity) for part, m in parts)
-    return constant, pieces
+    constant, factors = poly.factor_list()
+    return _split_each(constant, factors, image)
 
 
 def _normalised(poly: PolyElement) -> tuple[PolyElement, int]:

@@ -55,7 +55,7 @@ class Condition:
     solutions: tuple[Solution, ...]
     existence: sp.Expr | None
 
-    @property
+    @functools.cached_property
     def branches(self) -> frozenset[tuple[sp.Expr, sp.Expr]]:
         """The solutions as (lhs, rhs) pairs: two conditions with the same branches are the same set."""
         return frozenset((s.lhs, s.rhs) for s in self.solutions)
@@ -251,24 +251,25 @@ def singular_conditions(chain: Chain, minors: Sequence[Determinant],
     sampler = _Sampler(chain, minors, seed)
     conditions, _ = _conditions(chain, minors)
     picks = {c.branches: {_pick(s, sampler.variables) for s in c.solutions} for c in conditions}
-    candidates: list[tuple[Condition, ...]] = []
-    for size in range(1, _MOST_CONDITIONS + 1):
+    kept: list[tuple[Condition, ...]] = []
+    for size in range(1, _MOST_CONDITIONS + 1):  # size by size: a superset of a kept set is not even tried
+        candidates = []
         for conjunction in itertools.combinations(conditions, size):
             joints = [picks[c.branches] for c in conjunction]
             if any(a & b for a, b in itertools.combinations(joints, 2)):
                 continue
-            candidates.append(conjunction)
-    if not candidates:
-        return ()
-    q, p = sampler.random_points(len(candidates) * _SAMPLES)
-    valid = sampler.place(candidates, q, p)
-    singular = sampler.singular(q, p) | ~valid
-    valid_count = valid.reshape(len(candidates), _SAMPLES).sum(axis=1)
-    holds = singular.reshape(len(candidates), _SAMPLES).all(axis=1) & (valid_count >= 3)
-    kept: list[tuple[Condition, ...]] = []
-    for conjunction, ok in zip(candidates, holds, strict=True):
-        if ok and not any(_implies(conjunction, found) for found in kept):
-            kept.append(conjunction)
+            if not any(_implies(conjunction, found) for found in kept):
+                candidates.append(conjunction)
+        if not candidates:
+            continue
+        q, p = sampler.random_points(len(candidates) * _SAMPLES)
+        valid = sampler.place(candidates, q, p)
+        singular = sampler.singular(q, p) | ~valid
+        valid_count = valid.reshape(len(candidates), _SAMPLES).sum(axis=1)
+        holds = singular.reshape(len(candidates), _SAMPLES).all(axis=1) & (valid_count >= 3)
+        for conjunction, ok in zip(candidates, holds, strict=True):
+            if ok and not any(_implies(conjunction, found) for found in kept):
+                kept.append(conjunction)
     kept = [c for c in kept if not any(other is not c and _implies(c, other) for other in kept)]
     # a conjunction can hold a smaller one without saying so (cos(theta3) = 0 with a factor that then reads
     # sin(theta2) (...) = 0): drop every set whose points all satisfy an earlier kept one

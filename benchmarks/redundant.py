@@ -39,6 +39,7 @@ print(json.dumps([middle - start, end - middle, end - start, len(report.sets)]))
 
 
 def main() -> None:
+    """Time every robot in its own process and print one table."""
     print(f"{'robot':8} {'minors (s)':>10} {'sets (s)':>9} {'total (s)':>9} {'sets':>5} {'command (s)':>11} "
           f"{'before (s)':>10}")
     for name in ROBOTS:

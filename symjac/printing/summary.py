@@ -50,8 +50,10 @@ def _redundant_blocks(report: SingularityReport) -> list[Block]:
         blocks.append(Block((caption,), (_det(minor.expression),)))
     blocks.append(Block((prose.sets_caption(report),)))
     for number, singular_set in enumerate(report.sets, start=1):
-        blocks.append(Block((f"Set {number}: ", *prose.set_parts(singular_set)),
-                            tuple(Equation("", "", s.equation) for s in singular_set.solutions)))
+        long = [Equation(sp.latex(prose.long_name(k)), str(prose.long_name(k)), c.expression)
+                for k, c in enumerate(singular_set.conditions) if prose.is_long(c.expression)]
+        solutions = [Equation("", "", s.equation) for s in singular_set.solutions if not prose.is_long(s.rhs)]
+        blocks.append(Block((f"Set {number}: ", *prose.set_parts(singular_set)), (*long, *solutions)))
     return blocks
 
 

@@ -5,7 +5,16 @@ captions the command line's results, :mod:`.report` holds the HTML report's sent
 analysis, so printing a Jacobian loads none.
 """
 
-from symjac.printing.prose.redundant import locked_words, set_parts, set_reason, sets_caption, zero_minor_words
+from symjac.printing.prose.redundant import (
+    LONG_INLINE,
+    is_long,
+    locked_words,
+    long_name,
+    set_parts,
+    set_reason,
+    sets_caption,
+    zero_minor_words,
+)
 from symjac.printing.prose.report import (
     ARM_INTRO,
     METHODS_HEADING,
@@ -69,6 +78,7 @@ __all__ = [
     "HOME_POSE",
     "KIND_REASONS",
     "LATEX_TOO_LONG",
+    "LONG_INLINE",
     "METHODS_HEADING",
     "NO_SINGULAR_CURVE",
     "PATH_IN_MAP",
@@ -87,6 +97,7 @@ __all__ = [
     "fixed_transform_caption",
     "forward_kinematics_intro",
     "hessian_caption",
+    "is_long",
     "jacobian_caption",
     "jacobian_frame_heading",
     "jacobian_intro",
@@ -94,6 +105,7 @@ __all__ = [
     "limit_parts",
     "limit_text",
     "locked_words",
+    "long_name",
     "lost_words",
     "map_caption",
     "methods_verdict",

@@ -17,7 +17,16 @@ if TYPE_CHECKING:
     from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor
     from symjac.analysis.singularity.singularities import SingularityReport
 
-__all__ = ["locked_words", "set_parts", "set_reason", "sets_caption", "zero_minor_words"]
+__all__ = [
+    "LONG_INLINE",
+    "is_long",
+    "locked_words",
+    "long_name",
+    "set_parts",
+    "set_reason",
+    "sets_caption",
+    "zero_minor_words",
+]
 
 
 def _joint_list(joints: Sequence[int]) -> str:
@@ -95,15 +104,53 @@ def _motion_count(singular_set: SingularSet) -> str:
     return f"the self-motions form a space of dimension {there} there ({near} nearby)"
 
 
+LONG_INLINE = 60
+"""Characters (SymPy syntax) beyond which a condition or solution is displayed below a caption, not inside it."""
+
+
+def long_name(number: int) -> sp.Symbol:
+    """The name ``F_k`` a long condition (0-based ``number``) goes by in a caption."""
+    return sp.Symbol(f"F_{number + 1}")
+
+
+def is_long(expr: sp.Basic) -> bool:
+    """Whether ``expr`` is too long to stand inside a sentence (it would overrun a printed line)."""
+    return len(sp.sstr(expr)) > LONG_INLINE
+
+
 def set_parts(singular_set: SingularSet) -> tuple[str | sp.Basic, ...]:
-    """One singular set as caption parts: its conditions, kind, reason, what is lost, its self-motions and limits."""
+    """One singular set as caption parts: its conditions, kind, reason, what is lost, its self-motions and limits.
+
+    A long condition is named ``F_k = 0`` (k its place) and displayed below as ``F_k = ...``; solutions too long for a
+    page are left to the JSON output.
+    """
     parts: list[str | sp.Basic] = []
     for number, condition in enumerate(singular_set.conditions):
-        parts += [" and "] * bool(number) + [sp.Eq(condition.expression, 0, evaluate=False)]
+        shown = sp.Eq(long_name(number) if is_long(condition.expression) else condition.expression, 0,
+                      evaluate=False)
+        parts += [" and "] * bool(number) + [shown]
     parts += [f" ({singular_set.kind}): {set_reason(singular_set)}."]
     if singular_set.lost_direction is not None:
         parts += [f" There the arm {lost_words(singular_set)}; {_motion_count(singular_set)}"]
         motion = self_motion_parts(singular_set)
         parts += ["; the new one: ", *motion, "."] if motion else ["."]
-    parts.extend(limit_parts(singular_set))
+    if any(is_long(solution.rhs) for solution in singular_set.solutions):
+        parts.append(" Solutions too long to print here are in the JSON output.")
+        parts.append(_limit_counts(singular_set))
+    else:
+        parts.extend(limit_parts(singular_set))
     return tuple(parts)
+
+
+def _limit_counts(singular_set: SingularSet) -> str:
+    """The solutions against the joint limits as counts, for solutions too long to name in a sentence."""
+    counts: dict[str, int] = {}
+    for status in singular_set.limits:
+        if status != "unlimited":
+            counts[str(status)] = counts.get(str(status), 0) + 1
+    if not counts:
+        return ""
+    words = {"inside": "inside them", "outside": "outside them", "partly": "partly inside them",
+             "unknown": "not checked"}
+    listed = ", ".join(f"{count} {words[status]}" for status, count in counts.items())
+    return f" Joint limits, over the {len(singular_set.limits)} solution branches: {listed}."

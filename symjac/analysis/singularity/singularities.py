@@ -152,7 +152,8 @@ def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tup
         kept = sorted(itertools.combinations(range(n), len(rows)),  # by the joints locked: joint 1 locked first
                       key=lambda columns: tuple(c for c in range(n) if c not in columns))
         minors = tuple(determinant(chain, rows, frame, point, columns=columns, numeric=numeric) for columns in kept)
-        anywhere = [random.Random(seed).uniform(-2.5, 2.5) for _ in model.q]
+        draw = random.Random(seed)
+        anywhere = [draw.uniform(-2.5, 2.5) for _ in model.q]
         zeros = tuple(zero_minor(chain, minor, anywhere) for minor in minors if minor.coefficient == 0)
         sets = explain_sets(chain, minors, seed)
         unsolved = unsolved_factors(chain, [minor for minor in minors if minor.coefficient != 0])

@@ -53,7 +53,7 @@ class RobotFileError(SymjacError, ValueError):
 
 
 class ExpressionError(SymjacError, ValueError):
-    """A field expression is not in the accepted grammar (numbers, names, + - * / **, pi)."""
+    """A field expression is not in the accepted grammar (numbers, names, ``+ - * / **``, ``pi``)."""
 
 
 class UnknownRobotError(SymjacError, LookupError):

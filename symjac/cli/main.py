@@ -356,7 +356,9 @@ def _digits(args: argparse.Namespace) -> int | None:
 
 
 Handler = Callable[[argparse.Namespace], "str | Document"]
+"""A command's handler: the parsed arguments in, the text or document to emit out."""
 Options = Callable[[argparse.ArgumentParser, str], None]
+"""A command's option builder: adds its options to the command's subparser (see :mod:`symjac.cli.options`)."""
 
 COMMANDS: dict[str, tuple[Handler, str, Options]] = {
     "robots": (_robots, "list the built-in robots", no_options),

@@ -32,6 +32,7 @@ __all__ = [
 ]
 
 LINE_WIDTH = 120
+"""Longest line of generated source, in characters (the project's ruff setting)."""
 
 
 class _Printer(Protocol):

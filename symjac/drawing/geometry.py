@@ -30,6 +30,7 @@ from symjac.model.robot import JointType, Robot
 __all__ = ["ArmPose", "Ellipsoid", "arm_pose", "configuration", "ellipsoid", "home_configuration"]
 
 EllipsoidKind = Literal["velocity", "force"]
+"""Which ellipsoid: of the tool velocities that unit joint rates give, or of the wrenches unit torques resist."""
 
 FORCE_AXIS_RATIO = 100.0
 """The force ellipsoid's semi-axes are clipped at this many times its shortest one, 1 / sigma_max: they grow

@@ -94,7 +94,7 @@ class Chain:
 
     @property
     def n_joints(self) -> int:
-        """Number of joints: the chain's frames are 0..n_joints."""
+        """Number of joints; the chain's frames are 0..n_joints."""
         return self.robot.n_joints
 
     @cached_property

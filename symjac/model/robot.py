@@ -250,7 +250,7 @@ class Robot:
 
     @property
     def n_joints(self) -> int:
-        """Number of joints: links, frames {1}..{n} and propagation steps are counted in joints."""
+        """Number of joints; links, frames {1}..{n} and propagation steps are counted in joints."""
         return len(self.joints)
 
     @property

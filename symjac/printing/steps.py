@@ -18,6 +18,7 @@ __all__ = ["Propagation", "propagation_steps", "step_equations"]
 
 
 Propagation = VelocityPropagation | AccelerationPropagation | ForcePropagation
+"""Any of the three iterations whose steps can be printed one by one."""
 
 
 def step_equations(propagation: Propagation, values: Mapping[Any, Any] | None = None) -> list[Equation]:

@@ -119,7 +119,7 @@ class AngleExpansion:
               \cos(\psi_1 + \psi_2) = \cos\psi_1 \cos\psi_2 - \sin\psi_1 \sin\psi_2
 
     The sine and cosine of each angle :math:`\psi_j` (joint variable plus its constant offset) become the symbols
-    :attr:`sines` and :attr:`cosines` (``_s{i}``, ``_c{i}`` for joint i).
+    ``sines`` and ``cosines`` (``_s{i}``, ``_c{i}`` for joint i).
 
     Parameters
     ----------

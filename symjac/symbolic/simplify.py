@@ -4,14 +4,12 @@ Kinematic expressions are polynomials in the sines and cosines of joint angles (
 variables). SymPy's general ``simplify``/``trigsimp`` search that space blindly and are slow on robot Jacobians.
 This module exploits the structure instead:
 
-1. **Angle basis** (:class:`~symjac.symbolic.angles.AngleBasis`). Pick angles :math:`\psi_j`, integer combinations of
-the
-   joint angles, in which the result should read; for parallel joints these are the textbook sums
+1. **Angle basis** (:class:`~symjac.symbolic.angles.AngleBasis`). Pick angles :math:`\psi_j`, integer combinations
+   of the joint angles, in which the result should read; for parallel joints these are the textbook sums
    (:math:`\theta_2 + \theta_3`, giving :math:`c_{23}`). The chain chooses them per frame
    (see :meth:`symjac.kinematics.chain.Chain.angle_basis`).
-2. **Polynomial image** (:mod:`symjac.symbolic.trigpoly`). Every :math:`\sin`/:math:`\cos` of a joint-angle combination
-is
-   expanded in the basis,
+2. **Polynomial image** (:mod:`symjac.symbolic.trigpoly`). Every :math:`\sin`/:math:`\cos` of a joint-angle
+   combination is expanded in the basis,
    :math:`\cos(\sum_j m_j\psi_j) + i\sin(\sum_j m_j\psi_j) = \prod_j (C_j + i S_j)^{m_j}`, with :math:`S_j, C_j`
    independent polynomial generators (sparse polynomials over the rationals, which are fast).
 3. **Reduction** modulo :math:`S_j^2 + C_j^2 - 1`. These generators form a Groebner basis (their leading terms

@@ -35,7 +35,9 @@ __all__ = ["FACTOR_UNREDUCED_TERMS", "SPLIT_TERMS", "compact_expr", "determinant
            "trig_factor_list"]
 
 FACTOR_UNREDUCED_TERMS = 150
+"""Largest determinant (in terms) factored before reduction, where products such as (c - 1)(c + 1) still show."""
 SPLIT_TERMS = 24
+"""Largest factor (in terms) tried for a split by grouping terms."""
 
 
 def determinant_image(matrix: Sequence[Sequence[PolyElement]], image: TrigImage,

@@ -45,7 +45,7 @@ The chapter's printed :math:`E_r` (4.31) is, in this convention, the Z-X-Z matri
 angles of the lecture slides give the matrix below.
 
 Modules: :mod:`.conventions` (the representation values, their names and coordinates, the registry),
-:mod:`.rates` (symbolic :math:`R`, :math:`p`, :math:`B`, :math:`E` and singularities), :mod:`.extraction` (NumPy),
+:mod:`.maps` (symbolic :math:`R`, :math:`p`, :math:`B`, :math:`E` and singularities), :mod:`.extraction` (NumPy),
 :mod:`.jacobian` (robots), :mod:`.derivative` (:math:`\dot J_x` and the bias :math:`\dot J_x \dot q` of an
 analytic-Jacobian controller). Adding a representation: a value type and its registry entry in ``conventions.py``,
 its maps in ``rates.py``, its extraction in ``extraction.py``.

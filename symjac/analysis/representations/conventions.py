@@ -1,6 +1,6 @@
 r"""What each representation *is*: its name, its coordinates, and the one registry that finds it by name.
 
-Every representation is a value (a frozen dataclass); the symbolic maps (:mod:`.rates`) and the numeric extraction
+Every representation is a value (a frozen dataclass); the symbolic maps (:mod:`.maps`) and the numeric extraction
 (:mod:`.extraction`) dispatch on its type, so nothing anywhere switches on a name.
 
 Euler and Tait-Bryan angles are one type, :class:`EulerConvention`, covering all 24 conventions:
@@ -214,7 +214,9 @@ ALIASES: dict[str, str] = {"xyz" + EXTRINSIC_SUFFIX: "rpy"}
 
 REPRESENTATIONS: tuple[str, ...] = tuple(name for name, spec in REGISTRY.items() if spec.kind == "orientation")
 EULER_ORDERS: tuple[str, ...] = tuple(spec.name for spec in EULER_CONVENTIONS if not spec.extrinsic)
+"""Names of the twelve intrinsic Euler-angle orders (``"zyz"``, ``"xyz"``, ...)."""
 POSITIONS: tuple[str, ...] = tuple(name for name, spec in REGISTRY.items() if spec.kind == "position")
+"""Names of the position representations: Cartesian, spherical, cylindrical."""
 
 
 @overload

@@ -57,7 +57,7 @@ class Condition:
 
     @functools.cached_property
     def branches(self) -> frozenset[tuple[sp.Expr, sp.Expr]]:
-        """The solutions as (lhs, rhs) pairs: two conditions with the same branches are the same set."""
+        """The solutions as (lhs, rhs) pairs; two conditions with the same branches are the same set."""
         return frozenset((s.lhs, s.rhs) for s in self.solutions)
 
 

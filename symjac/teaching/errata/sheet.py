@@ -19,6 +19,7 @@ from symjac.teaching.errata.formulas import DOCUMENTS, formulas
 __all__ = ["SHEET_FORMATS", "comparisons", "errata_sheet", "summary"]
 
 SHEET_FORMATS = ("markdown", "latex")
+"""Formats of the errata sheet: Markdown, or a standalone LaTeX document."""
 
 
 @cache

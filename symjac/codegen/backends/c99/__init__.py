@@ -5,7 +5,7 @@ No Python, no allocation, no global state: every function takes the coordinates 
 including code defines ``<ROBOT>_REAL`` (``-DPUMA560_REAL=float`` for a single-precision controller); literals are
 cast to it and ``<tgmath.h>`` picks ``sinf`` or ``sin`` accordingly. ``<robot>_selftest()`` checks every function
 against central differences in C. The expressions are printed by the c target's C99 printer
-(:class:`~symjac.codegen.backends.c99.printer.RealPrinter` only casts the literals).
+(:class:`~symjac.codegen.backends.c.printer.RealPrinter` only casts the literals).
 """
 
 from __future__ import annotations

@@ -15,6 +15,7 @@ DOCS = Path(__file__).resolve().parent
 sys.path.insert(0, str(DOCS / "_ext"))
 
 import symjac  # noqa: E402
+from symjac_docs import figure_scraper  # noqa: E402
 
 project = "symjac"
 author = "the symjac developers"
@@ -104,7 +105,7 @@ sphinx_gallery_conf = {
     "download_all_examples": False,
     "remove_config_comments": True,
     "within_subsection_order": "FileNameSortKey",
-    "image_scrapers": ("matplotlib",),
+    "image_scrapers": ("matplotlib", figure_scraper),
 }
 
 # --- HTML ---------------------------------------------------------------------------------------------------------

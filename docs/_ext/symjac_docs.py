@@ -330,6 +330,25 @@ def copy_mathjax(app: Sphinx, exception: Exception | None) -> None:
             shutil.copyfile(origin, destination)
 
 
+def figure_scraper(block: Any, block_vars: dict[str, Any], gallery_conf: dict[str, Any]) -> str:
+    """sphinx-gallery scraper for figures that pyplot does not hold: :func:`symjac.draw` returns a figure of its own.
+
+    Every matplotlib ``Figure`` among the example's variables is saved once, as PNG, into the gallery's images.
+    """
+    from matplotlib.figure import Figure
+    from sphinx_gallery.scrapers import figure_rst
+
+    seen = block_vars.setdefault("symjac_figures", set())
+    paths = []
+    for value in list(block_vars["example_globals"].values()):
+        if isinstance(value, Figure) and id(value) not in seen:
+            seen.add(id(value))
+            path = next(block_vars["image_path_iterator"])
+            value.savefig(path, dpi=100)
+            paths.append(path)
+    return figure_rst(paths, gallery_conf["src_dir"])
+
+
 def generate_pages(app: Sphinx, config: Any) -> None:
     """Write the API pages and the tutorials before Sphinx looks for its sources (autosummary reads the pages)."""
     mathjax_source()  # fail early, before minutes of building, when MathJax is missing

@@ -49,7 +49,7 @@ if TYPE_CHECKING:
     from symjac.model.robot import Robot
     from symjac.printing.document import Document
 
-__all__ = ["main", "run"]
+__all__ = ["full_parser", "main", "run"]
 
 RECURSION_LIMIT = 10_000
 """Python frames the command line allows (see :func:`main`)."""
@@ -127,7 +127,16 @@ def _command_in(argv: Sequence[str]) -> str | None:
     return next((word for word in argv if not word.startswith("-")), None)
 
 
-def _parser(command: str | None = None) -> argparse.ArgumentParser:
+def full_parser() -> argparse.ArgumentParser:
+    """The parser with every command's options set up: what the documentation's CLI reference is made from.
+
+    The command line itself builds only the options of the command given (:func:`main`), so that ``symjac fk``
+    imports no code generator; this one imports what every command lists.
+    """
+    return _parser(every=True)
+
+
+def _parser(command: str | None = None, *, every: bool = False) -> argparse.ArgumentParser:
     """The parser; only ``command``'s own options are set up (the others' would import what they list)."""
     parser = _Parser(prog="symjac", description="Symbolic kinematics and Jacobians of serial arms.")
     parser.add_argument("--version", action="version", version=f"symjac {__version__}")
@@ -138,7 +147,7 @@ def _parser(command: str | None = None) -> argparse.ArgumentParser:
         sub.add_argument("-o", "--output", metavar="FILE",  # kept as typed: "./-" is a file, "-" is stdout
                          help="write the result to this file instead of stdout (- for stdout); a code generation "
                               "target that writes several files takes a folder")
-        if name == command:
+        if every or name == command:
             options(sub, name)
     return parser
 

@@ -14,12 +14,13 @@ from pathlib import Path
 DOCS = Path(__file__).resolve().parent
 sys.path.insert(0, str(DOCS / "_ext"))
 
-import symjac  # noqa: E402
 from symjac_docs import figure_scraper  # noqa: E402
+
+import symjac  # noqa: E402
 
 project = "symjac"
 author = "the symjac developers"
-copyright = "2026, the symjac developers"  # noqa: A001 (Sphinx's name)
+copyright = "2026, the symjac developers"
 release = symjac.__version__
 version = ".".join(release.split(".")[:2])
 

@@ -155,13 +155,13 @@ def test_toml_keeps_exact_decimals():
     assert "d3 = 0.15005" in text
 
 
-def test_readme_robot_file_example_loads_and_matches_the_catalog_puma():
+def test_documented_robot_file_example_loads_and_matches_the_catalog_puma():
     from pathlib import Path
 
-    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
-    (example,) = [block for block in re.findall(r"```toml\n(.*?)```", readme, flags=re.S)
+    page = Path(__file__).resolve().parent.parent / "docs" / "guide" / "robot_files.md"
+    (example,) = [block for block in re.findall(r"```toml\n(.*?)```", page.read_text(encoding="utf-8"), flags=re.S)
                   if 'name = "puma560"' in block]
-    robot = robot_from_toml(example, source="README.md")
+    robot = robot_from_toml(example, source="docs/guide/robot_files.md")
     puma = load_robot("puma560")
     def rows(joints):
         return [(j.placement.alpha, j.placement.a, j.d, j.theta) for j in joints]

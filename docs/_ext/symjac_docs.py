@@ -252,8 +252,11 @@ def public_reference(app: Sphinx, env: Any, node: Any, contnode: Any) -> Any:
 
 
 def _documented_names(public: dict[int, str], place: str) -> list[str]:
-    """Names an object at ``place`` may be documented under: its public name, the module that defines it, or, for
-    a member (a method, a dataclass field), its class's names with the member's name appended."""
+    """Names an object at ``place`` may be documented under.
+
+    Its public name, its name in the module that defines it, or, for a member (a method, a dataclass field), its
+    class's names with the member's name appended.
+    """
     names = []
     value = _lookup(place)
     if value is not None:
@@ -267,8 +270,10 @@ def _documented_names(public: dict[int, str], place: str) -> list[str]:
 
 
 def _unique_suffix(app: Sphinx, env: Any, domain: Any, node: Any, contnode: Any, target: str) -> Any:
-    """A short name used outside its module (``:func:`generate``` in a module that only mentions it) resolves when
-    exactly one documented object ends with it, or exactly one public one does."""
+    """The object a short name used outside its module means (``:func:`generate``` in a module that mentions it).
+
+    It resolves when exactly one documented object ends with it, or exactly one public one does.
+    """
     ends = [full for full in domain.objects if full == target or full.endswith(f".{target}")]
     public = [full for full in ends if full.count(".") == target.count(".") + 1 or full.startswith("symjac.codegen.")]
     for choices in (ends, public):

@@ -59,8 +59,7 @@ from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_
 
 __all__ = ["MAX_URDF_BYTES", "robot_from_urdf"]
 
-MAX_URDF_BYTES = 5_000_000
-"""Largest URDF file read, in bytes (a real arm's file is tens of kilobytes; larger is refused in one line)."""
+MAX_URDF_BYTES = 5_000_000  # largest file read, in bytes (a real arm's URDF is tens of kilobytes)
 MAX_URDF_ANGLE = 10**9  # radians; a float angle this large has lost every digit below 1e-7 rad anyway
 _MOVING = {"revolute": JointType.REVOLUTE, "continuous": JointType.REVOLUTE, "prismatic": JointType.PRISMATIC}
 _KNOWN_TYPES = {*_MOVING, "fixed", "floating", "planar"}

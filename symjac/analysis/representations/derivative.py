@@ -1,6 +1,7 @@
 r"""Time derivatives of representation Jacobians: the bias term of an analytic-Jacobian controller.
 
-With :math:`\dot x = J_x \dot q` and :math:`J_x = E(x)\,J_0(q)` (:mod:`symjac.analysis.representations.jacobian`), one more derivative gives
+With :math:`\dot x = J_x \dot q` and :math:`J_x = E(x)\,J_0(q)` (:mod:`symjac.analysis.representations.jacobian`),
+one more derivative gives
 
 .. math::
     \ddot x = J_x \ddot q + \dot J_x \dot q, \qquad
@@ -67,7 +68,7 @@ def _rate_symbol(coordinate: sp.Symbol) -> sp.Symbol:
 
 
 def coordinate_rates(name: str | Representation) -> tuple[sp.Symbol, ...]:
-    r"""The rate symbols :math:`\dot x` of a representation's coordinates, in the order of :func:`~symjac.analysis.representations.conventions.coordinates`.
+    r"""The rate symbols :math:`\dot x` of a representation's coordinates, in the order of :func:`.coordinates`.
 
     Examples
     --------

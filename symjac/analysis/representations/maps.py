@@ -250,7 +250,7 @@ def rotation_from(name: Orientation, coords: Sequence[sp.Expr] | None = None) ->
     name : str or EulerConvention
         One of :data:`REPRESENTATIONS` (or an alias), or a representation value.
     coords : sequence, optional
-        Values or expressions for the coordinates (default: the symbols of :func:`~symjac.analysis.representations.conventions.coordinates`).
+        Values or expressions for the coordinates (default: the symbols of :func:`.coordinates`).
 
     Returns
     -------

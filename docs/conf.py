@@ -1,6 +1,6 @@
 """Sphinx configuration of the symjac documentation site.
 
-Build it with ``python -m sphinx -W --keep-going -b html docs docs/_build/html`` (the ``docs`` extra installs the
+Build it with ``python -m sphinx -W --keep-going -n -b html docs docs/_build/html`` (the ``docs`` extra installs the
 tools). Three things are made at build time by :mod:`symjac_docs` (in ``docs/_ext``), so the site cannot drift from
 the code: the API reference from the package's ``__all__`` lists, the tutorials from ``notebooks/``, and the offline
 copy of MathJax.
@@ -95,6 +95,7 @@ nb_execution_timeout = 300
 nb_execution_in_temp = True
 nb_execution_raise_on_error = True
 nb_execution_show_tb = True
+nb_ipywidgets_js: dict[str, dict[str, str]] = {}  # no widget scripts from a CDN: the site works offline (no kernel)
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3
 
@@ -107,6 +108,7 @@ sphinx_gallery_conf = {
     "remove_config_comments": True,
     "within_subsection_order": "FileNameSortKey",
     "image_scrapers": ("matplotlib", figure_scraper),
+    "capture_repr": (),  # figures are shown by the scrapers, not as text
 }
 
 # --- HTML ---------------------------------------------------------------------------------------------------------
@@ -116,6 +118,6 @@ html_static_path: list[str] = []
 html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
-    "header_links_before_dropdown": 8,
+    "header_links_before_dropdown": 6,
 }
 html_show_sourcelink = False

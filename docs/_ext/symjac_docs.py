@@ -24,11 +24,15 @@ from typing import Any
 from sphinx.application import Sphinx
 from sphinx.errors import ConfigError
 from sphinx.pycode import ModuleAnalyzer
+from sphinx.util import logging
 
 import symjac
 
 DOCS = Path(__file__).resolve().parent.parent
 REPO = DOCS.parent
+LOGGER = logging.getLogger(__name__)
+_PUBLIC: dict[object, str] = {}
+"""Filled at builder-inited: the identity of each public name (see :func:`identity`) -> that name."""
 
 STAGES: list[tuple[str, str, str]] = [
     ("symbolic", "Symbolic tools",
@@ -64,35 +68,69 @@ def public_names() -> dict[str, list[str]]:
     from); a sub-package's name that is the same object as a top-level one is not listed twice.
     """
     pages: dict[str, list[str]] = {stage: [] for stage, _, _ in STAGES}
-    top_level: dict[int, str] = {}
-    homes = symjac._HOME
+    top_level = set()
     for name in symjac.__all__:
-        module = homes.get(name, "symjac._version")
-        stage = module.split(".")[1]
+        if name not in symjac._HOME and name != "__version__":
+            raise ConfigError(f"symjac.{name} is in symjac.__all__ but not in symjac._MODULES")
+        stage = symjac._HOME.get(name, "symjac._version").split(".")[1]
         stage = "errors" if stage in ("_version", "errors") else stage
+        if stage not in pages:
+            raise ConfigError(f"symjac.{name} comes from symjac.{stage}, which is no stage of the API reference")
         pages[stage].append(f"symjac.{name}")
-        top_level[id(getattr(symjac, name))] = name
+        top_level.add(identity(f"symjac.{name}"))
     for stage in pages:
         if stage == "errors":  # a module, not a stage folder
             continue
         package = importlib.import_module(f"symjac.{stage}")
         for name in getattr(package, "__all__", ()):
             shadows_module = importlib.util.find_spec(f"symjac.{stage}.{name}") is not None
-            if id(getattr(package, name)) not in top_level and not shadows_module:  # codegen.lower: module page
+            if identity(f"symjac.{stage}.{name}") not in top_level and not shadows_module:  # codegen.lower
                 pages[stage].append(f"symjac.{stage}.{name}")
     return pages
 
 
-def home_module(qualified: str) -> str:
-    """The module whose source assigns the public name ``qualified`` (``symjac.X`` or ``symjac.<stage>.X``)."""
+def _is_code(value: object) -> bool:
+    """A class or a function: an object with one identity wherever it is imported (unlike a shared tuple)."""
+    return inspect.isclass(value) or inspect.isroutine(value)
+
+
+def identity(qualified: str) -> object:
+    """What makes two public names one object: the identity of a class or function, the home of a constant."""
     package, name = qualified.rsplit(".", 1)
-    if package == "symjac":
-        return symjac._HOME.get(name, "symjac._version")
-    source = Path(importlib.import_module(package).__file__ or "").read_text(encoding="utf-8")
-    for node in ast.walk(ast.parse(source)):
-        if isinstance(node, ast.ImportFrom) and node.module and any(a.name == name for a in node.names):
-            return node.module
-    return package
+    value = getattr(importlib.import_module(package), name)
+    return id(value) if _is_code(value) else (home_module(qualified), name)
+
+
+def home_module(qualified: str) -> str:
+    """The module whose source assigns the public name ``qualified`` (``symjac.X`` or ``symjac.<stage>.X``).
+
+    Imports are followed from module to module (``symjac.codegen`` takes ``STRATEGIES`` from ``.module``, which
+    takes it from ``.request``) until one assigns the name.
+    """
+    package, name = qualified.rsplit(".", 1)
+    module = symjac._HOME.get(name, "symjac._version") if package == "symjac" else package
+    for _ in range(10):
+        source = _module_source(module)
+        imported = None
+        for node in ast.walk(ast.parse(source)):
+            if isinstance(node, ast.ImportFrom) and any(alias.name == name for alias in node.names):
+                imported = importlib.util.resolve_name("." * node.level + (node.module or ""), _package_of(module))
+        if imported is None:
+            return module
+        module = imported
+    return module
+
+
+def _module_source(module: str) -> str:
+    spec = importlib.util.find_spec(module)
+    assert spec is not None and spec.origin is not None, module
+    return Path(spec.origin).read_text(encoding="utf-8")
+
+
+def _package_of(module: str) -> str:
+    """The package relative imports of ``module`` start from: itself for a package, else its parent."""
+    spec = importlib.util.find_spec(module)
+    return module if spec is not None and spec.submodule_search_locations else module.rsplit(".", 1)[0]
 
 
 def data_docstring(app: Sphinx, what: str, name: str, obj: object, options: Any, lines: list[str]) -> None:
@@ -108,13 +146,23 @@ def data_docstring(app: Sphinx, what: str, name: str, obj: object, options: Any,
     attribute = name.rsplit(".", 1)[1]
     found = ModuleAnalyzer.for_module(home).find_attr_docs().get(("", attribute))
     lines[:] = list(found) if found else []
+    if not found and name.count(".") <= 2 and not inspect.isclass(obj):  # a public constant: symjac(.<stage>).X
+        LOGGER.warning(f"{name} has no docstring under its assignment in {home}")
 
 
-def _write_if_changed(path: Path, text: str) -> None:
+def _write_if_changed(path: Path, text: str) -> Path:
     """Write ``text`` unless the file already holds it (an unchanged file keeps Sphinx's cache valid)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     if not path.exists() or path.read_text(encoding="utf-8") != text:
         path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _remove_others(folder: Path, pattern: str, kept: set[Path]) -> None:
+    """Delete the generated files of an earlier build that this one did not write (a renamed module or notebook)."""
+    for path in folder.glob(pattern):
+        if path not in kept:
+            path.unlink()
 
 
 def write_api_pages(folder: Path) -> None:
@@ -124,11 +172,12 @@ def write_api_pages(folder: Path) -> None:
              "Every public name, grouped by the stage of the pipeline that defines it: a robot is **modelled**, "
              "its kinematics **derived**, **analysed**, then **printed**, **drawn** or **generated** as code. "
              "On each page the names of the top level come first (``from symjac import jacobian``), then those "
-             "imported from the stage's own package (``from symjac.codegen import render_files``).",
-             "", ".. toctree::", "   :maxdepth: 1", ""]
-    index.append("   modules")
+             "imported from the stage's own package (``from symjac.codegen import render_files``).", ""]
+    toctree = ["", ".. toctree::", "   :hidden:", ""]
+    written = set()
     for stage, title, summary in STAGES:
-        index.insert(-1, f"   {stage}")
+        index.append(f"* :doc:`{stage}`: {summary}")
+        toctree.append(f"   {stage}")
         names = pages[stage]
         body = [title, "=" * len(title), "", summary, ""]
         for module in ("symjac", f"symjac.{stage}"):
@@ -139,37 +188,32 @@ def write_api_pages(folder: Path) -> None:
                 body += [f"From ``{module}``", "-" * (len(module) + 9), ""]
             body += [f".. currentmodule:: {module}", "", ".. autosummary::", "   :toctree: generated",
                      "   :nosignatures:", "", *(f"   {name}" for name in listed), ""]
-        _write_if_changed(folder / f"{stage}.rst", "\n".join(body) + "\n")
-    _write_if_changed(folder / "index.rst", "\n".join(index) + "\n")
+        written.add(_write_if_changed(folder / f"{stage}.rst", "\n".join(body) + "\n"))
+    index.append("* :doc:`modules`: every module, with the helpers the public names are built from.")
+    toctree.append("   modules")
+    written.add(_write_if_changed(folder / "index.rst", "\n".join(index + toctree) + "\n"))
+    written.add(folder / "modules.rst")
+    _remove_others(folder, "*.rst", written)
+    stubs = {folder / "generated" / f"{name}.rst" for names in pages.values() for name in names}
+    _remove_others(folder / "generated", "*.rst", stubs)
     write_module_pages(folder)
 
 
 def modules() -> list[str]:
-    """Every module of the package but ``symjac.__main__`` (importing it runs the command line)."""
+    """Every public module of the package (private ones, ``_version`` or ``_c_family``, and ``__main__`` left out)."""
     found = ["symjac"]
     for info in pkgutil.walk_packages(symjac.__path__, prefix="symjac."):
-        if info.name != "symjac.__main__":
+        if not any(part.startswith("_") for part in info.name.split(".")):
             found.append(info.name)
     return sorted(found)
-
-
-def public_objects() -> dict[int, str]:
-    """``id(object) -> the public name it is documented under`` (``symjac.X`` or ``symjac.<stage>.X``)."""
-    found: dict[int, str] = {}
-    for names in public_names().values():
-        for qualified in names:
-            package, name = qualified.rsplit(".", 1)
-            found.setdefault(id(getattr(importlib.import_module(package), name)), qualified)
-    return found
 
 
 def _defined_here(module: Any, name: str) -> bool:
     """Whether ``module`` itself defines ``name`` (a function or class made there, or data assigned there)."""
     value = getattr(module, name)
-    owner = getattr(value, "__module__", None)
-    if inspect.isclass(value) or inspect.isroutine(value):
-        return owner == module.__name__
-    return home_module(f"{module.__name__}.{name}") == module.__name__ if module.__name__ != "symjac" else False
+    if _is_code(value):
+        return getattr(value, "__module__", None) == module.__name__
+    return module.__name__ != "symjac" and home_module(f"{module.__name__}.{name}") == module.__name__
 
 
 def documented_constants(module: str, exclude: set[str]) -> list[str]:
@@ -190,31 +234,36 @@ def write_module_pages(folder: Path) -> None:
     helper classes named in docstrings), so every cross-reference resolves. A name is documented once: a public
     one on its stage page, the others in the module that defines them.
     """
-    public = public_objects()
+    public = {identity(name) for names in public_names().values() for name in names}
     index = ["All modules", "===========", "",
              "Every module of the package with the names of its ``__all__`` that are not on the stage pages: the "
              "code behind the public names, for readers who want to see how a result is made.", "",
              ".. toctree::", "   :maxdepth: 1", ""]
+    written = set()
     for name in modules():
         module = importlib.import_module(name)
         members = [member for member in getattr(module, "__all__", ())
-                   if _defined_here(module, member) and id(getattr(module, member)) not in public]
-        members += documented_constants(name, exclude=set(members) | set(getattr(module, "__all__", ())))
+                   if _defined_here(module, member) and identity(f"{name}.{member}") not in public]
+        constants = documented_constants(name, exclude=set(members) | set(getattr(module, "__all__", ())))
+        members += [constant for constant in constants if identity(f"{name}.{constant}") not in public]
         index.append(f"   modules/{name}")
         title = f"``{name}``"
         options = [f"   :members: {', '.join(members)}", "   :undoc-members:"] if members else ["   :no-members:"]
         body = [title, "=" * len(title), "", f".. automodule:: {name}", *options, ""]
-        _write_if_changed(folder / "modules" / f"{name}.rst", "\n".join(body))
+        written.add(_write_if_changed(folder / "modules" / f"{name}.rst", "\n".join(body)))
+    _remove_others(folder / "modules", "*.rst", written)
     _write_if_changed(folder / "modules.rst", "\n".join(index) + "\n")
 
 
 def _lookup(dotted: str) -> Any:
     """The object at a dotted path (``symjac.kinematics.chain.Chain.transform``), or None."""
     parts = dotted.split(".")
+    if "__main__" in parts:  # importing it runs the command line
+        return None
     for cut in range(len(parts), 0, -1):
         try:
             value: Any = importlib.import_module(".".join(parts[:cut]))
-        except ImportError:
+        except Exception:  # any failure to import means: not this path
             continue
         try:
             for attribute in parts[cut:]:
@@ -239,7 +288,7 @@ def public_reference(app: Sphinx, env: Any, node: Any, contnode: Any) -> Any:
     if module:
         places += [f"{module}.{owner}.{target}"] if owner else []
         places += [f"{module}.{target}", f"{module.rsplit('.', 1)[0]}.{target}"]
-    public = app.env.symjac_public  # type: ignore[attr-defined]
+    public = _PUBLIC
     domain = env.get_domain("py")
     for place in places:
         if not place.startswith("symjac"):
@@ -251,7 +300,7 @@ def public_reference(app: Sphinx, env: Any, node: Any, contnode: Any) -> Any:
     return _unique_suffix(app, env, domain, node, contnode, target)
 
 
-def _documented_names(public: dict[int, str], place: str) -> list[str]:
+def _documented_names(public: dict[object, str], place: str) -> list[str]:
     """Names an object at ``place`` may be documented under.
 
     Its public name, its name in the module that defines it, or, for a member (a method, a dataclass field), its
@@ -260,13 +309,22 @@ def _documented_names(public: dict[int, str], place: str) -> list[str]:
     names = []
     value = _lookup(place)
     if value is not None:
-        names += [public[id(value)]] if id(value) in public else []
+        identity = id(value) if _is_code(value) else (_safe_home(place), place.rsplit(".", 1)[-1])
+        names += [public[identity]] if identity in public else []
         if getattr(value, "__module__", None) and getattr(value, "__qualname__", None):
             names.append(f"{value.__module__}.{value.__qualname__}")
     if "." in place:
         head, member = place.rsplit(".", 1)
         names += [f"{owner}.{member}" for owner in _documented_names(public, head)]
     return names
+
+
+def _safe_home(place: str) -> str | None:
+    """:func:`home_module` of a dotted path that may name no module attribute at all."""
+    try:
+        return home_module(place)
+    except Exception:  # a path into a class or an unknown module: no home
+        return None
 
 
 def _unique_suffix(app: Sphinx, env: Any, domain: Any, node: Any, contnode: Any, target: str) -> Any:
@@ -295,14 +353,19 @@ def copy_notebooks(folder: Path) -> None:
     that message (tag ``raises-exception``). The worked answers (``solutions.py``) stay out of the site.
     """
     import jupytext
+    from nbformat.v4 import new_code_cell
 
     folder.mkdir(parents=True, exist_ok=True)
+    written = set()
     for path in sorted((REPO / "notebooks").glob("[0-9][0-9]_*.py")):
         notebook = jupytext.reads(path.read_text(encoding="utf-8"), fmt="py:percent")
         for cell in notebook.cells:
             if cell.cell_type == "code" and EXERCISE in cell.source:
                 cell.metadata.setdefault("tags", []).append("raises-exception")
-        _write_if_changed(folder / f"{path.stem}.ipynb", jupytext.writes(notebook, fmt="ipynb"))
+        # an unanswered exercise shows its one-line message, not a traceback through the checker
+        notebook.cells.insert(0, new_code_cell("%xmode Minimal", metadata={"tags": ["remove-cell"]}))
+        written.add(_write_if_changed(folder / f"{path.stem}.ipynb", jupytext.writes(notebook, fmt="ipynb")))
+    _remove_others(folder, "*.ipynb", written)
 
 
 MATHJAX_PARTS = ("MathJax.js", "config/TeX-AMS_SVG.js", "jax/input/TeX", "jax/element", "extensions",
@@ -346,7 +409,8 @@ def figure_scraper(block: Any, block_vars: dict[str, Any], gallery_conf: dict[st
     seen = block_vars.setdefault("symjac_figures", set())
     paths = []
     for value in list(block_vars["example_globals"].values()):
-        if isinstance(value, Figure) and id(value) not in seen:
+        managed = getattr(getattr(value, "canvas", None), "manager", None) is not None  # pyplot's: its own scraper
+        if isinstance(value, Figure) and not managed and id(value) not in seen:
             seen.add(id(value))
             path = next(block_vars["image_path_iterator"])
             value.savefig(path, dpi=100)
@@ -356,14 +420,17 @@ def figure_scraper(block: Any, block_vars: dict[str, Any], gallery_conf: dict[st
 
 def generate_pages(app: Sphinx, config: Any) -> None:
     """Write the API pages and the tutorials before Sphinx looks for its sources (autosummary reads the pages)."""
-    mathjax_source()  # fail early, before minutes of building, when MathJax is missing
     write_api_pages(DOCS / "api")
     copy_notebooks(DOCS / "tutorials" / "notebooks")
 
 
 def remember_public_names(app: Sphinx) -> None:
-    """Keep the map from objects to their public names for :func:`public_reference`."""
-    app.env.symjac_public = public_objects()  # type: ignore[attr-defined]
+    """Keep the map from objects to their public names for :func:`public_reference`; check MathJax for HTML."""
+    if app.builder.format == "html":
+        mathjax_source()  # fail early, before minutes of building, when MathJax is missing
+    _PUBLIC.clear()
+    for names in reversed(public_names().values()):
+        _PUBLIC.update({identity(name): name for name in names})
 
 
 def setup(app: Sphinx) -> dict[str, Any]:

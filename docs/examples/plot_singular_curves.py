@@ -1,10 +1,11 @@
 """
-Singular curves of the planar 3R arm at its tool point
-======================================================
+Distance from singularity of the planar 3R arm
+==============================================
 
-For a planar arm the task is the tool point's x and y; the 2 x 3 Jacobian loses rank where every 2 x 2 minor
-vanishes. This script samples the (theta2, theta3) plane, computes the smallest singular value of the numeric
-Jacobian, and draws it: the dark lines are the configurations where the arm is stretched out or folded back.
+For a planar arm the task is the tool point's x and y, and the 2 x 3 Jacobian loses rank only where every 2 x 2
+minor vanishes: all three links in one line, theta2 and theta3 each 0 or pi. Those are four isolated points of the
+(theta2, theta3) plane, and the smallest singular value of the numeric Jacobian, drawn here, shows how the arm
+approaches them: the dark spots. (The 2R arm's singular set, by contrast, is the lines theta2 = 0 and theta2 = pi.)
 """
 
 import matplotlib.pyplot as plt
@@ -27,5 +28,6 @@ for i, t3 in enumerate(grid):
 figure, axes = plt.subplots(figsize=(6.4, 5.0), layout="constrained")
 image = axes.imshow(sigma, origin="lower", extent=(-np.pi, np.pi, -np.pi, np.pi), cmap="magma", aspect="auto")
 figure.colorbar(image, ax=axes, label="smallest singular value of J (m/rad)")
-axes.set(xlabel="theta2 (rad)", ylabel="theta3 (rad)", title="planar3r: distance from singularity")
+axes.plot([0, 0, np.pi, np.pi, -np.pi, -np.pi], [0, np.pi, 0, np.pi, 0, np.pi], "x", color="white", markersize=8)
+axes.set(xlabel="theta2 (rad)", ylabel="theta3 (rad)", title="planar3r: distance from singularity (x: singular)")
 plt.show()

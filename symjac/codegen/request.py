@@ -38,7 +38,9 @@ __all__ = [
 ]
 
 Strategy = Literal["fastest", "raw", "simplified"]
+"""A lowering strategy (see :data:`STRATEGIES`)."""
 STRATEGIES: tuple[str, ...] = get_args(Strategy)
+"""Which expressions a generated function starts from: the fewest operations, raw chain products, or compact."""
 
 strategy_of = one_of(STRATEGIES, "strategy")
 """The :func:`~symjac.kinematics.memo.memoized` normaliser of a lowering strategy: one of :data:`STRATEGIES`."""

@@ -54,6 +54,7 @@ from symjac.symbolic.simplify import simplify_matrix
 
 DerivativeMethod = Literal["hessian", "differentiation"]
 DERIVATIVE_METHODS: tuple[str, ...] = get_args(DerivativeMethod)
+"""How dJ/dt is derived: from the Hessian's column cross products, or by SymPy's chain rule."""
 
 __all__ = [
     "DERIVATIVE_METHODS",

@@ -28,6 +28,7 @@ from symjac.symbolic.simplify import simplify_product
 from symjac.symbolic.transforms import Composition, Motion, compose, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
+"""A frame: ``"world"``, a number from ``0`` to ``n``, or ``"tool"``."""
 T = TypeVar("T")
 
 __all__ = [

@@ -63,6 +63,7 @@ Method = Literal["differentiation", "cross_product", "velocity_propagation", "fo
 Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
 
 METHODS: tuple[str, ...] = get_args(Method)
+"""The four derivations of the basic Jacobian; all give the same matrix."""
 
 ROW_NAMES: tuple[str, ...] = VELOCITY_NAMES
 """The six rows of a basic Jacobian, linear velocity first: the one spelling symjac reads and prints."""

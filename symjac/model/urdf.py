@@ -25,11 +25,10 @@ Mimic joints
     ``<mimic>`` on fixed joints, are ignored.
 
 Numbers
-    Every number becomes an exact rational (``0.333 -> 333/1000``), so derivations stay exact and fast. An angle
-    (an ``rpy`` entry or a revolute limit) within :data:`symjac.model.expressions.ANGLE_SNAP_TOLERANCE` (1e-9) of a
-    multiple of :math:`\pi/12` becomes that exact multiple of :math:`\pi` (``1.5707963267949 -> pi/2``), so
-    symbolic results read :math:`\cos(\pi/2) = 0` instead of a long decimal. Axes are normalised exactly
-    (``0 0.707107 0.707107`` becomes :math:`(0, \sqrt2/2, \sqrt2/2)`).
+    Every number becomes an exact rational (``0.333 -> 333/1000``), so derivations stay exact and fast. An angle (an
+    ``rpy`` entry or a revolute limit) within :data:`symjac.model.expressions.ANGLE_SNAP_TOLERANCE` (1e-9) of a multiple
+    of :math:`\pi/12` becomes that exact multiple of :math:`\pi` (``1.5707963267949 -> pi/2``), so symbolic results read
+    :math:`\cos(\pi/2) = 0`, not a decimal. Axes are made unit exactly: ``0 1 1`` is :math:`(0, \sqrt2/2, \sqrt2/2)`.
 
 Safety
     The file is parsed with the standard library's expat parser, after refusing any document type declaration
@@ -59,7 +58,8 @@ from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_
 
 __all__ = ["MAX_URDF_BYTES", "robot_from_urdf"]
 
-MAX_URDF_BYTES = 5_000_000  # largest file read, in bytes (a real arm's URDF is tens of kilobytes)
+MAX_URDF_BYTES = 5_000_000
+"""Largest URDF file read, in bytes (a real arm's file is tens of kilobytes; larger is refused in one line)."""
 MAX_URDF_ANGLE = 10**9  # radians; a float angle this large has lost every digit below 1e-7 rad anyway
 _MOVING = {"revolute": JointType.REVOLUTE, "continuous": JointType.REVOLUTE, "prismatic": JointType.PRISMATIC}
 _KNOWN_TYPES = {*_MOVING, "fixed", "floating", "planar"}

@@ -53,6 +53,7 @@ __all__ = [
 ]
 
 FORMATS = ("latex", "pretty", "json")
+"""Output formats of a document: LaTeX, Unicode text, JSON."""
 Style = Literal["latex", "pretty"]
 LATEX_LIMIT = 200_000
 """Bytes of LaTeX written to a terminal at most; a longer result is written only to a file (``-o FILE``)."""

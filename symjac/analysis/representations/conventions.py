@@ -213,6 +213,8 @@ ALIASES: dict[str, str] = {"xyz" + EXTRINSIC_SUFFIX: "rpy"}
 """Other accepted spellings: the systematic name of roll-pitch-yaw."""
 
 REPRESENTATIONS: tuple[str, ...] = tuple(name for name, spec in REGISTRY.items() if spec.kind == "orientation")
+"""Names of the orientation representations: the 24 Euler-angle conventions (roll-pitch-yaw among them),
+direction cosines, quaternions and axis-angle."""
 EULER_ORDERS: tuple[str, ...] = tuple(spec.name for spec in EULER_CONVENTIONS if not spec.extrinsic)
 """Names of the twelve intrinsic Euler-angle orders (``"zyz"``, ``"xyz"``, ...)."""
 POSITIONS: tuple[str, ...] = tuple(name for name, spec in REGISTRY.items() if spec.kind == "position")

@@ -37,7 +37,9 @@ def _discover() -> Mapping[str, Backend]:
 
 
 BACKENDS: Mapping[str, Backend] = _discover()
+"""Each code generation target's spec, by name: one folder of :mod:`symjac.codegen.backends` each."""
 TARGETS: tuple[str, ...] = tuple(BACKENDS)
+"""Names of the code generation targets, in the order of the documentation."""
 
 
 def backend(target: str) -> Backend:

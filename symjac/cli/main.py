@@ -144,9 +144,9 @@ def _parser(command: str | None = None, *, every: bool = False) -> argparse.Argu
     for name, (handler, help_text, options) in COMMANDS.items():
         sub = commands.add_parser(name, help=help_text, description=help_text)
         sub.set_defaults(handler=handler)
+        folder = "; a target that writes several files takes a folder" if name == "codegen" else ""
         sub.add_argument("-o", "--output", metavar="FILE",  # kept as typed: "./-" is a file, "-" is stdout
-                         help="write the result to this file instead of stdout (- for stdout); a code generation "
-                              "target that writes several files takes a folder")
+                         help=f"write the result to this file instead of stdout (- for stdout){folder}")
         if every or name == command:
             options(sub, name)
     return parser

@@ -14,7 +14,7 @@ import pytest
 
 from symjac import load_robot
 from symjac.cli.main import main
-from symjac.codegen import JacobianRequest, generate
+from symjac.codegen import JacobianRequest, describe, generate, render_files
 from symjac.model.robot_file import robot_from_mapping
 
 ARM = """name = "my_arm"
@@ -125,3 +125,21 @@ def test_a_robot_from_a_mapping_is_named_robot_in_the_header():
     exec(f"import symjac\ntext = {call}", namespace)
     assert namespace["text"] == text
     assert np.allclose(_namespace(text)["jacobian"]([0.2, 0.1])[0], [-np.sin(0.2), 0.0])
+
+
+@pytest.mark.parametrize("target", ["python", "c99"])
+@pytest.mark.parametrize("repeat", [1, 4])
+def test_a_robot_file_at_a_long_path_still_generates(tmp_path, target, repeat):
+    """The header's regenerating call names the file's absolute path: a call too wide for one line is cut after a
+    parenthesis (it stays Python), a path wider than a line into pieces; no line is ever too wide."""
+    folder = tmp_path / ("a_rather_long_folder_name_" * repeat)
+    folder.mkdir()
+    (folder / "my_arm.toml").write_text(ARM, encoding="utf-8")
+    files = render_files(describe(load_robot(str(folder / "my_arm.toml")), target))
+    assert all(len(line) <= 120 for text in files.values() for line in text.splitlines())
+    if target == "python" and repeat == 1:
+        (text,) = files.values()
+        call, _ = _header_command(text)
+        namespace: dict = {}
+        exec(f"import symjac\ntext = {call}", namespace)
+        assert namespace["text"] == text

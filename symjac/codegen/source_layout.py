@@ -86,7 +86,8 @@ def comment_lines(text: str, *, continuation: str = "", width: int = LINE_WIDTH)
     room = width - len("#   ")
     lines: list[str] = []
     current = ""
-    for word in text.split():  # any whitespace: a line break in the text must not end the comment
+    words = [piece for word in text.split() for piece in _pieces(word, room - 4 - len(continuation))]
+    for word in words:  # any whitespace: a line break in the text must not end the comment
         candidate = f"{current} {word}" if current.strip() else f"{current}{word}"
         if len(candidate) + len(continuation) > room and current.strip():
             lines.append(current + continuation)
@@ -95,6 +96,21 @@ def comment_lines(text: str, *, continuation: str = "", width: int = LINE_WIDTH)
             current = candidate
     lines.append(current)
     return tuple(lines)
+
+
+def _pieces(word: str, room: int) -> list[str]:
+    """``word`` cut to fit ``room``: after an opening parenthesis first (a Python call stays valid across the
+    lines), then, for a path longer than a line, every ``room`` characters (join those lines to use it)."""
+    if len(word) <= room:
+        return [word]
+    pieces = [part + "(" for part in word.split("(")[:-1]] + [word.split("(")[-1]]
+    merged: list[str] = []
+    for part in pieces:
+        if merged and len(merged[-1]) + len(part) <= room:
+            merged[-1] += part
+        else:
+            merged.append(part)
+    return [chunk for part in merged for chunk in (part[i:i + room] for i in range(0, len(part), room))]
 
 
 def tuple_literal(items: Iterable[str]) -> str:

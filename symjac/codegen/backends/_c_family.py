@@ -121,8 +121,11 @@ def line_comment(text: str, indent: str = "", width: int = 120) -> tuple[str, ..
     return tuple(f"{indent}// {line}" for line in lines)
 
 
-def declaration(head: str, arguments: list[str], width: int = 120) -> tuple[str, ...]:
-    """``head(arguments)`` on one line, or broken after commas into lines indented by four spaces."""
+def declaration(head: str, arguments: list[str], width: int = 119) -> tuple[str, ...]:
+    """``head(arguments)`` on one line, or broken after commas into lines indented by four spaces.
+
+    The width leaves one column of the 120 for the semicolon that ends a declaration in the header.
+    """
     line = f"{head}({', '.join(arguments)})"
     if len(line) <= width:
         return (line,)

@@ -99,8 +99,11 @@ def comment_lines(text: str, *, continuation: str = "", width: int = LINE_WIDTH)
 
 
 def _pieces(word: str, room: int) -> list[str]:
-    """``word`` cut to fit ``room``: after an opening parenthesis first (a Python call stays valid across the
-    lines), then, for a path longer than a line, every ``room`` characters (join those lines to use it)."""
+    """``word`` cut to fit ``room``.
+
+    First after an opening parenthesis (a Python call stays valid across the lines), then, for a path longer than a
+    line, every ``room`` characters (join those lines to use it).
+    """
     if len(word) <= room:
         return [word]
     pieces = [part + "(" for part in word.split("(")[:-1]] + [word.split("(")[-1]]

@@ -333,7 +333,7 @@ def _unique_suffix(app: Sphinx, env: Any, domain: Any, node: Any, contnode: Any,
     It resolves when exactly one documented object ends with it, or exactly one public one does.
     """
     ends = [full for full in domain.objects if full == target or full.endswith(f".{target}")]
-    public = [full for full in ends if full.count(".") == target.count(".") + 1 or full.startswith("symjac.codegen.")]
+    public = [full for full in ends if full.count(".") == target.count(".") + 1]
     for choices in (ends, public):
         if len(choices) == 1:
             found = domain.resolve_any_xref(env, node["refdoc"], app.builder, choices[0], node, contnode)

@@ -35,12 +35,15 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symjac.codegen import TARGETS, describe, generate, write_module
+from symjac.codegen import describe, generate, write_module
 from symjac.kinematics.jacobian import jacobian
 from symjac.model.io import load_robot
 from symjac.model.robot import Robot
 
 __all__ = ["Measurement", "main", "measure", "measure_acceleration"]
+
+PYTHON_TARGETS = ("python", "numpy", "lambdify", "c")
+"""The targets that write one Python module (the others have their own benchmarks: cpp_vs_pinocchio, jax_casadi)."""
 
 
 @dataclass(frozen=True)
@@ -102,7 +105,7 @@ def measure(robot: Robot, count: int = 100_000, seconds: float = 0.2) -> list[Me
                             _best("baseline_batch()", names, seconds) * 1e9 / count, "math / numpy modules"))
 
     with tempfile.TemporaryDirectory() as folder:
-        for target in TARGETS:
+        for target in PYTHON_TARGETS:
             path = Path(folder) / f"bench_{robot.name}_{target}.py"
             write_module(path, generate(robot, target))
             names[target] = _import(path, f"bench_{robot.name}_{target}")

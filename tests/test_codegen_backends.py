@@ -6,6 +6,7 @@ from __future__ import annotations
 import builtins
 import keyword
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -109,3 +110,27 @@ def test_name_sets_the_module_name_and_is_checked_by_the_target(target, tmp_path
 def test_a_module_name_reserved_in_the_language_is_refused_in_one_line(target, word, language):
     with pytest.raises(CodegenError, match=f"module name '{word}' is a {language} keyword"):
         generate(load_robot("planar2r"), target, name=word)
+
+
+def _bodies(source: str) -> dict[str, str]:
+    """The ``sj_body_*`` functions of a C source, by name, from their comment to their closing brace."""
+    bodies = re.findall(r"\n(/\* [^\n]*(?:\n \*[^\n]*)*\*/\nstatic \w+ (sj_body_\w+)\(.*?\n}\n)", source, re.S)
+    return {name: text for text, name in bodies}
+
+
+_SLIDES = {"name": "slides", "convention": "standard",
+           "joints": [{"type": "prismatic", "alpha": "-pi/2"}, {"type": "prismatic", "alpha": "pi/2"}]}
+
+
+@pytest.mark.parametrize("name", ["planar2r", "puma560", "scara", "palletizer", "slides"])
+def test_the_c_extension_compiles_the_c99_targets_function_bodies(name):
+    """One template prints the function bodies of both C targets: the extension holds the c99 file's, byte for byte
+    (all but the self-test's kinematics, which the c module computes in NumPy); a robot without revolute joints has
+    no sines and cosines to pass."""
+    robot = robot_from_mapping(_SLIDES) if name == "slides" else load_robot(name)
+    c99 = _bodies(render_files(describe(robot, "c99", acceleration=True))[f"{robot.name}.c"])
+    module = generate(robot, "c", acceleration=True)
+    extension = _bodies(module[module.index('_C_SOURCE = r"""'):])
+    assert extension and set(extension) == set(c99) - {"sj_body_kinematics"}
+    assert all(extension[function] == c99[function] for function in extension)
+    assert all(("const real S[" in text) == (name != "slides") for text in extension.values())

@@ -11,6 +11,7 @@ import ctypes
 import os
 import shutil
 import subprocess
+import sysconfig
 from pathlib import Path
 
 import numpy as np
@@ -112,6 +113,20 @@ def test_the_selftest_catches_a_wrong_entry(tmp_path):
     broken = {**files, "planar3r.c": source.replace("    J[1] = ", "    J[1] = (real)1e-3 + ", 1)}
     (tmp_path / "bad").mkdir()
     assert Compiled(tmp_path / "bad", broken).selftest() > 0
+
+
+@pytest.mark.parametrize("case", ["puma560", "puma560 acceleration", "several", "scara"])
+def test_the_c_targets_extension_compiles_without_a_warning(tmp_path, case):
+    """The c target's extension (the same function bodies, a batch loop, CPython glue) is warning-free C too."""
+    robot = numbers_only_robot() if case == "several" else load_robot(case.split()[0])
+    options = SEVERAL if case == "several" else {"acceleration": case.endswith("acceleration")}
+    module = generate(robot, "c", **options)
+    source = module[module.index('_C_SOURCE = r"""') + len('_C_SOURCE = r"""'):]
+    (tmp_path / "extension.c").write_text(source[:source.index('"""')])
+    includes = [f"-I{sysconfig.get_paths()['include']}", f"-I{np.get_include()}"]
+    result = subprocess.run(["gcc", "-O2", "-Wall", "-Wextra", "-Werror", "-fPIC", *includes, "-DSYMJAC_NUMPY",
+                             "-DSYMJAC_LIBMVEC", "-c", "extension.c"], cwd=tmp_path, capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
 
 
 @pytest.mark.parametrize("suffix", [".h", ".c"])

@@ -41,16 +41,21 @@ class Dialect:
     ``reserved``: names a temporary may not take (keywords, library names, the function's own locals);
     ``printer``: the target's printer class (its literals cast to ``real``); ``parameter(index, name)``: a
     parameter's value;
-    ``element(output, shape, k)``: entry ``k`` (row-major) of an output of ``shape``.
+    ``element(output, shape, k)``: entry ``k`` (row-major) of an output of ``shape``; ``angle_array``: the
+    sines and cosines come from one ``sj_sincos(n, A, S, C)`` call over the array ``A`` of the angles the function
+    uses (C: the file defines ``sj_sincos``, the c target with vectorised sines and cosines), else from one
+    ``sin`` or ``cos`` call each (C++: overloads pick the scalar type's own).
     """
 
     reserved: frozenset[str]
     printer: Callable[[Mapping[sp.Symbol, str]], CPrinter]
     parameter: Callable[[int, str], str]
     element: Callable[[str, tuple[int, ...], int], str]
+    angle_array: bool = False
 
 
-_LOCALS = frozenset(("q", "p", "params", "F", "qdot", "T", "J", "tau", "H", "out", "real", "k", "m", "i", "j"))
+_LOCALS = frozenset(("q", "p", "params", "F", "qdot", "T", "J", "tau", "H", "out", "real", "k", "m", "i", "j", "A",
+                     "S", "C"))
 """Names the generated functions use themselves: a temporary never takes one."""
 
 _OUTPUT = {"forward_kinematics": "T", "jacobian": "J", "joint_torques": "tau", "kinematics": "out", "hessian": "H",
@@ -72,18 +77,48 @@ class CFunction:
     size: int
     shape: tuple[int, ...]
     body: tuple[str, ...]
+    angles: tuple[str, ...]  # with an angle array: the angles whose sines S and cosines C the body reads
     op_count: int
     trig_count: int
     origin: str
 
+    @property
+    def body_name(self) -> str:
+        """The C function of the body alone, given the sines and cosines (``sj_body_jacobian``)."""
+        return f"sj_body_{self.base}"
+
     def signature(self, real: str, n: int) -> tuple[str, ...]:
         """The C declaration (without the semicolon) in the real type ``real``, as lines of at most 120 characters."""
-        arguments = [f"const {real} q[{n}]", f"const {real} *params"]
-        arguments += [f"const {real} {name}[{length}]" for name, length, _ in self.inputs]
+        return self._declaration(self.name, real, [f"const {real} q[{n}]", f"const {real} *params"])
+
+    def body_signature(self, real: str, n: int) -> tuple[str, ...]:
+        """The declaration of :attr:`body_name`: after ``q`` and ``p``, the sines ``S`` and cosines ``C`` if any."""
+        arguments = [f"const {real} q[{n}]", f"const {real} *p"]
+        if self.angles:
+            arguments += [f"const {real} S[{len(self.angles)}]", f"const {real} C[{len(self.angles)}]"]
+        return self._declaration(self.body_name, real, arguments, static=True)
+
+    def _declaration(self, name: str, real: str, arguments: list[str], static: bool = False) -> tuple[str, ...]:
+        arguments += [f"const {real} {input_name}[{length}]" for input_name, length, _ in self.inputs]
         if self.output:
             arguments.append(f"{real} {self.output}[{self.size}]")
         result = real if not self.output else "void"
-        return declaration(f"{'static ' if self.static else ''}{result} {self.name}", arguments)
+        return declaration(f"{'static ' if self.static or static else ''}{result} {name}", arguments)
+
+    def angle_initializer(self, indent: str) -> tuple[str, ...]:
+        """``const real A[n] = {q[0], q[1] + q[2]};``: the angles whose sines and cosines the body reads."""
+        return tuple(wrap_statement(f"{indent}const real A[{len(self.angles)}] = {{", ", ".join(self.angles), "};",
+                                    language="c"))
+
+    def angle_assignments(self, indent: str, row: str) -> tuple[str, ...]:
+        """``A[row][i] = angle;`` for each angle: one configuration's row of a block of angles."""
+        return tuple(line for i, angle in enumerate(self.angles)
+                     for line in wrap_statement(f"{indent}A[{row}][{i}] = ", angle, ";", language="c"))
+
+    def body_call(self, q: str, p: str, inputs: tuple[str, ...], output: str, S: str = "S", C: str = "C") -> str:
+        """A call of the body: ``sj_body_jacobian(q, p, S, C, J)``, or ``return sj_body_...(...)`` for a scalar."""
+        arguments = [q, p, *((S, C) if self.angles else ()), *inputs, *((output,) if self.output else ())]
+        return f"{'' if self.output else 'return '}{self.body_name}({', '.join(arguments)});"
 
 
 def block_comment(text: str, indent: str = "", width: int = 120) -> tuple[str, ...]:
@@ -155,28 +190,42 @@ def comment(text: str) -> str:
 
 @dataclass(frozen=True)
 class Statements:
-    """A lowered function as C statements: sines and cosines, CSE temporaries, output assignments."""
+    """A lowered function as C statements: sines and cosines, CSE temporaries, output assignments.
+
+    ``angles`` are the statements that compute or read the sines and cosines; ``angle_values`` the printed angles
+    whose sines and cosines an ``angle_array`` function receives (``S[i] = sin(angle_values[i])``).
+    """
 
     angles: tuple[str, ...]
+    angle_values: tuple[str, ...]
     temporaries: tuple[str, ...]
     outputs: tuple[str, ...]
 
 
 def c_statements(lowered: LoweredFunction, mapping: Mapping[sp.Symbol, str], printer: CPrinter, indent: str,
-                 real: str, target: Callable[[int], str | None], precomputed: bool = False) -> Statements:
+                 real: str, target: Callable[[int], str | None], angle_array: bool = False) -> Statements:
     """The C statements of ``lowered``, symbols named by ``mapping``, values of type ``real``.
 
-    With ``precomputed`` the sines and cosines are computed elsewhere (the c target's vectorised block arrays
-    ``S[j][k]``, which ``mapping`` names) and not here; ``target(k)`` is where output entry ``k`` goes, or ``None``
+    The sines and cosines of the joint angles come first: one ``sin`` or ``cos`` call per value used, or with
+    ``angle_array`` reads such as ``const real s2 = S[1], c2 = C[1];`` from the arrays ``S`` and ``C`` of the
+    sines and cosines of the angles whose sine or cosine is used (computed by the caller, which a target may
+    vectorise). The CSE temporaries follow, then the outputs: ``target(k)`` is where entry ``k`` goes, or ``None``
     for a scalar function (``return value;``). Every C-family target (c, c99, cpp) prints its statements here.
     """
-    angles: list[str] = []
     used = lowered.used_symbols
-    for sine, cosine, angle in () if precomputed else lowered.angles:
+    angles = [(s, c, a) for s, c, a in lowered.angles if s in used or c in used]
+    lines: list[str] = []
+    for index, (sine, cosine, angle) in enumerate(angles):
+        if angle_array:
+            reads = [f"{mapping[symbol]} = {array}[{index}]" for symbol, array in ((sine, "S"), (cosine, "C"))
+                     if symbol in used]
+            lines.append(f"{indent}const {real} {', '.join(reads)};")
+            continue
         for symbol, function_name in ((sine, "sin"), (cosine, "cos")):
             if symbol in used:
-                angles += wrap_statement(f"{indent}const {real} {mapping[symbol]} = ",
-                                         f"{function_name}({printer.doprint(angle)})", ";", language="c")
+                lines += wrap_statement(f"{indent}const {real} {mapping[symbol]} = ",
+                                        f"{function_name}({printer.doprint(angle)})", ";", language="c")
+    values = tuple(printer.doprint(angle) for _, _, angle in angles) if angle_array else ()
     temporaries: list[str] = []
     for symbol, expr in lowered.temporaries:
         temporaries += wrap_statement(f"{indent}const {real} {mapping[symbol]} = ", printer.doprint(expr), ";",
@@ -186,7 +235,7 @@ def c_statements(lowered: LoweredFunction, mapping: Mapping[sp.Symbol, str], pri
         place = target(k)
         head = f"{indent}return " if place is None else f"{indent}{place} = "
         outputs += wrap_statement(head, printer.doprint(expr), ";", language="c")
-    return Statements(tuple(angles), tuple(temporaries), tuple(outputs))
+    return Statements(tuple(lines), values, tuple(temporaries), tuple(outputs))
 
 
 def c_function(description: ModuleDescription, function: FunctionDescription, dialect: Dialect) -> CFunction:
@@ -206,7 +255,8 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
         mapping[symbol] = dialect.parameter(k, symbol.name)
     output = _OUTPUT[function.kind]
     statements = c_statements(lowered, mapping, dialect.printer(mapping), "    ", "real",
-                              lambda k: dialect.element(output, lowered.shape, k) if output else None)
+                              lambda k: dialect.element(output, lowered.shape, k) if output else None,
+                              dialect.angle_array)
     body = [*statements.angles, *statements.temporaries, *statements.outputs]
     size = math.prod(lowered.shape)
     static = function.name.startswith("_")
@@ -214,8 +264,11 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
     return CFunction(name=name, base=function.name.lstrip("_"), kind=function.kind,
                      summary=comment(function.spec.summary), static=static,
                      inputs=tuple(inputs), output=output, size=size, shape=lowered.shape, body=tuple(body),
-                     op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin)
+                     angles=statements.angle_values, op_count=lowered.op_count, trig_count=lowered.trig_count,
+                     origin=lowered.origin)
 
 
-C_DIALECT = Dialect(frozenset(), RealPrinter, lambda index, _: f"p[{index}]", lambda output, _, k: f"{output}[{k}]")
-"""Plain C: parameters by index into ``p``, outputs as flat row-major arrays."""
+C_DIALECT = Dialect(frozenset(), RealPrinter, lambda index, _: f"p[{index}]", lambda output, _, k: f"{output}[{k}]",
+                    angle_array=True)
+"""Plain C (c99, and the c target's extension): parameters by index into ``p``, outputs as flat row-major arrays,
+sines and cosines through the file's ``sj_sincos``."""

@@ -28,7 +28,15 @@ from symjac.errors import CodegenError
 from symjac.kinematics.chain import Chain
 from symjac.resources import render_template
 
-__all__ = ["Emitter", "Extras", "GeneratedFunction", "PythonModule", "generated_function", "python_module_renderer"]
+__all__ = [
+    "Emitter",
+    "Extras",
+    "GeneratedFunction",
+    "PythonModule",
+    "generated_function",
+    "kernel_name",
+    "python_module_renderer",
+]
 
 
 @dataclass(frozen=True)
@@ -57,7 +65,7 @@ class GeneratedFunction:
     @property
     def kernel_name(self) -> str:
         """Name of the block kernel (NumPy) or C function that evaluates it."""
-        return f"_{self.name.lstrip('_')}_kernel"
+        return kernel_name(self.name)
 
     @property
     def shape_literal(self) -> str:
@@ -90,6 +98,14 @@ class GeneratedFunction:
         for extent in self.shape:
             size *= extent
         return size
+
+
+def kernel_name(function: str) -> str:
+    """The name of the kernel that evaluates ``function`` on a batch: ``_jacobian_kernel``.
+
+    The numpy module defines it in Python; the c module's extension exports a C function of that name.
+    """
+    return f"_{function.lstrip('_')}_kernel"
 
 
 def generated_function(lowered: LoweredFunction, spec: FunctionSpec, body: Sequence[str], outputs: Sequence[str],

@@ -4,8 +4,9 @@ No Python, no allocation, no global state: every function takes the coordinates 
 (``NULL`` for the defaults) and the caller's output buffer, row-major. The real type is ``double`` unless the
 including code defines ``<ROBOT>_REAL`` (``-DPUMA560_REAL=float`` for a single-precision controller); literals are
 cast to it and ``<tgmath.h>`` picks ``sinf`` or ``sin`` accordingly. ``<robot>_selftest()`` checks every function
-against central differences in C. The expressions are printed by the c target's C99 printer
-(:class:`~symjac.codegen.backends.c.printer.RealPrinter` only casts the literals).
+against central differences in C. The functions are those the c target compiles into its extension: one template
+(``c_common/functions.c.j2``) and one printer (:class:`~symjac.codegen.backends.c.printer.RealPrinter`) for both;
+each computes the sines and cosines of the angles it uses in one ``sj_sincos`` loop.
 """
 
 from __future__ import annotations
@@ -70,7 +71,7 @@ BACKEND = Backend(
     emits="a C99 header and source file (<math.h> only, no allocation)",
     identifiers=IDENTIFIERS,
     files=("{robot}.h", "{robot}.c"),
-    templates=("c99/header.h.j2", "c99/source.c.j2"),
+    templates=("c99/header.h.j2", "c99/source.c.j2", "c_common/functions.c.j2"),
     title="Kinematics and Jacobians in standalone C99",
     description="Row-major outputs in the caller's buffers; params == NULL means the defaults.",
     nan_policy="NaN and infinite inputs give NaN outputs; nothing is checked at run time.",

@@ -351,14 +351,19 @@ def test_c_kernels_match_the_numpy_fallback(workspace):
     assert module.BACKEND == "c", module.BUILD_ERROR
     q = np.random.default_rng(5).uniform(-3, 3, (20000, 7))  # large enough for threads and vectorised sines
     parameters = tuple(module.PARAMETERS.values())
+    threads = module.THREADS
     for function, kernel in ((module.jacobian, module._jacobian_kernel),
                              (module.forward_kinematics, module._forward_kinematics_kernel)):
+        module.THREADS = 2  # the batch split over two threads
         fast = function(q)
         reference = module._evaluate(kernel, ((q, 7, "q"),), fast.shape[1:], None, parameters)
         np.testing.assert_allclose(fast, reference, atol=1e-13)
         out = np.empty_like(fast)
         assert function(q, out) is out
         np.testing.assert_array_equal(out, fast)
+        module.THREADS = 1  # the whole batch in one call of the kernel
+        np.testing.assert_array_equal(function(q), fast)
+    module.THREADS = threads
     # non-contiguous and integer inputs take the converting path
     np.testing.assert_allclose(module.jacobian(q[::2].astype(np.float32).astype(int)),
                                module._evaluate(module._jacobian_kernel, ((q[::2].astype(int), 7, "q"),),

@@ -1,0 +1,38 @@
+"""The benchmark scripts run: each quick one once, on a small robot and a small batch, as a user would start it.
+
+A benchmark asserts nothing about speed (a timed test would flake on a shared machine), but a script that no longer
+runs is a defect the suite can see: ``generated_code.py`` once failed on a target that writes C, not Python. The
+slowest scripts (``drawing.py``, ``redundant.py``, ``sweep.py``, ``cpp_vs_pinocchio.py``, which builds pinocchio,
+and ``before_after.py``, which needs a second checkout) are left to their authors' runs.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+BENCHMARKS = Path(__file__).resolve().parent.parent / "benchmarks"
+
+pytestmark = pytest.mark.slow  # seconds per script
+
+
+@pytest.mark.parametrize("command", [
+    pytest.param("generated_code.py planar2r -n 64 --seconds 0.001", marks=pytest.mark.external),  # a C compiler
+    "jax_casadi.py planar2r -n 64",
+    "acceleration.py planar2r",
+    "derivation.py planar2r",
+    "growth.py --family planar --sizes 2 3 --limit 10",
+    "poe.py",
+    "urdf_vs_dh.py",
+])
+def test_a_benchmark_script_runs_and_prints_its_table(command, tmp_path):
+    script, *arguments = command.split()
+    environment = {**os.environ, "SYMJAC_CACHE_DIR": str(tmp_path / "cache"), "MPLBACKEND": "Agg"}
+    result = subprocess.run([sys.executable, str(BENCHMARKS / script), *arguments], cwd=tmp_path, env=environment,
+                            capture_output=True, text=True, timeout=600, check=False)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert len(result.stdout.splitlines()) >= 2, result.stdout  # a header and at least one row

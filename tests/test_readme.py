@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+from symjac import catalog
 from symjac.cli.main import main
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -91,3 +92,15 @@ def test_documented_python_examples_run(page: Path, readme_folder: Path, capsys:
             exec(compile(block, f"{_name(page)} python block {number}", "exec"), namespace)
         except Exception as error:  # name the block, keep the cause
             raise AssertionError(f"{_name(page)} python block {number} fails: {error!r}\n{block}") from error
+
+
+def _catalog_rows(text: str) -> list[tuple[str, str]]:
+    """The (name, description) rows of the catalog table: the one headed ``| name | robot |``."""
+    return re.findall(r"^\| `(\w+)` \| (.+) \|$", text[text.index("| name | robot |"):], re.MULTILINE)
+
+
+def test_the_catalog_tables_list_every_built_in_robot_once():
+    """The README's catalog and the site's catalog page are the same table, one row per robot of ``catalog()``."""
+    readme = _catalog_rows(README.read_text(encoding="utf-8"))
+    assert readme == _catalog_rows((ROOT / "docs" / "catalog.md").read_text(encoding="utf-8"))
+    assert sorted(name for name, _ in readme) == sorted(catalog())

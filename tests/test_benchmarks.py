@@ -8,6 +8,7 @@ and ``before_after.py``, which needs a second checkout) are left to their author
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import subprocess
 import sys
@@ -22,7 +23,9 @@ pytestmark = pytest.mark.slow  # seconds per script
 
 @pytest.mark.parametrize("command", [
     pytest.param("generated_code.py planar2r -n 64 --seconds 0.001", marks=pytest.mark.external),  # a C compiler
-    "jax_casadi.py planar2r -n 64",
+    pytest.param("jax_casadi.py planar2r -n 64", marks=pytest.mark.skipif(
+        importlib.util.find_spec("jax") is None or importlib.util.find_spec("casadi") is None,
+        reason="jax and casadi come with the test extra")),
     "acceleration.py planar2r",
     "derivation.py planar2r",
     "growth.py --family planar --sizes 2 3 --limit 10",

@@ -352,18 +352,22 @@ def test_c_kernels_match_the_numpy_fallback(workspace):
     q = np.random.default_rng(5).uniform(-3, 3, (20000, 7))  # large enough for threads and vectorised sines
     parameters = tuple(module.PARAMETERS.values())
     threads = module.THREADS
-    for function, kernel in ((module.jacobian, module._jacobian_kernel),
-                             (module.forward_kinematics, module._forward_kinematics_kernel)):
-        module.THREADS = 2  # the batch split over two threads
-        fast = function(q)
-        reference = module._evaluate(kernel, ((q, 7, "q"),), fast.shape[1:], None, parameters)
-        np.testing.assert_allclose(fast, reference, atol=1e-13)
-        out = np.empty_like(fast)
-        assert function(q, out) is out
-        np.testing.assert_array_equal(out, fast)
-        module.THREADS = 1  # the whole batch in one call of the kernel
-        np.testing.assert_array_equal(function(q), fast)
-    module.THREADS = threads
+    try:
+        for function, kernel in ((module.jacobian, module._jacobian_kernel),
+                                 (module.forward_kinematics, module._forward_kinematics_kernel)):
+            module.THREADS = 2  # the batch split over two threads
+            fast = function(q)
+            reference = module._evaluate(kernel, ((q, 7, "q"),), fast.shape[1:], None, parameters)
+            np.testing.assert_allclose(fast, reference, atol=1e-13)
+            out = np.empty_like(fast)
+            assert function(q, out) is out
+            np.testing.assert_array_equal(out, fast)
+            module.THREADS = 1  # the whole batch in one call of the kernel
+            np.testing.assert_array_equal(function(q), fast)
+        module.THREADS = 2  # an array-like that is not an ndarray takes the converting path, threads included
+        np.testing.assert_array_equal(module.jacobian(q.tolist()), module.jacobian(q))
+    finally:
+        module.THREADS = threads
     # non-contiguous and integer inputs take the converting path
     np.testing.assert_allclose(module.jacobian(q[::2].astype(np.float32).astype(int)),
                                module._evaluate(module._jacobian_kernel, ((q[::2].astype(int), 7, "q"),),
@@ -409,6 +413,7 @@ def test_unusable_parameter_names_are_refused(parameter, message):
         ({"scalars": {"f": sp.exp(sp.Symbol("theta1", real=True))}}, CodegenError, "exp.* is not supported"),
         ({"scalars": {"f": sp.Symbol("k")}}, CodegenError, "depend on k, which is not an argument"),
         ({"scalars": {"jacobian": sp.S.One}}, CodegenError, "'jacobian' clashes with a function in the generated"),
+        ({"scalars": {"kinematics": sp.S.One}}, CodegenError, "'kinematics' clashes with a function of the generated"),
         ({"frames": (0, 0)}, CodegenError, "requested twice"),
     ],
 )

@@ -123,7 +123,7 @@ _SLIDES = {"name": "slides", "convention": "standard",
 
 
 @pytest.mark.parametrize("name", ["planar2r", "puma560", "scara", "palletizer", "slides"])
-def test_the_c_extension_compiles_the_c99_targets_function_bodies(name):
+def test_the_c_extension_holds_the_c99_targets_function_bodies(name):
     """One template prints the function bodies of both C targets: the extension holds the c99 file's, byte for byte
     (all but the self-test's kinematics, which the c module computes in NumPy); a robot without revolute joints has
     no sines and cosines to pass."""

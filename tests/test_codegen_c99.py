@@ -142,7 +142,8 @@ def test_golden_files_and_determinism(suffix):
 
 @pytest.mark.parametrize(("word", "message"), [("double", "is a C keyword"), ("restrict", "is a C keyword"),
                                                ("NULL", "would shadow the C builtin"),
-                                               ("fabs", "would shadow the C builtin")])
+                                               ("fabs", "would shadow the C builtin"),
+                                               ("sj_body", "starts with 'sj_', which the generated C keeps")])
 def test_c_reserved_names_are_refused_in_one_line(word, message):
     with pytest.raises(CodegenError, match=f"parameter name '{word}' {message}"):
         generate(two_joint_robot(parameter=word), "c99")

@@ -114,17 +114,25 @@ class IdentifierRule:
     keywords: Mapping[str, str]
     shadowed: Mapping[str, str]
     pattern: re.Pattern[str] = _ASCII_IDENTIFIER
+    prefixes: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))  # kept by the generated code
 
     @classmethod
-    def of(cls, language: str, keywords: Iterable[str], shadowed: Iterable[str] = ()) -> IdentifierRule:
-        """The rule of one language: its keywords, and the names (builtins) a generated name must not shadow."""
+    def of(cls, language: str, keywords: Iterable[str], shadowed: Iterable[str] = (),
+           prefixes: Iterable[str] = ()) -> IdentifierRule:
+        """The rule of one language: its keywords, names not to shadow, and its generated code's own prefixes.
+
+        ``shadowed`` are the builtins a generated name must not hide; a name starting with one of ``prefixes`` could
+        collide with a name the generated code makes itself.
+        """
         return cls(MappingProxyType(dict.fromkeys(keywords, language)),
-                   MappingProxyType(dict.fromkeys(shadowed, language)))
+                   MappingProxyType(dict.fromkeys(shadowed, language)),
+                   prefixes=MappingProxyType(dict.fromkeys(prefixes, language)))
 
     def __or__(self, other: IdentifierRule) -> IdentifierRule:
         """A rule that refuses whatever either rule refuses (the first one's pattern)."""
         return IdentifierRule(MappingProxyType({**other.keywords, **self.keywords}),
-                              MappingProxyType({**other.shadowed, **self.shadowed}), self.pattern)
+                              MappingProxyType({**other.shadowed, **self.shadowed}), self.pattern,
+                              MappingProxyType({**other.prefixes, **self.prefixes}))
 
     def check(self, name: object, what: str, reserved: Mapping[str, str] | None = None) -> str:
         """Return ``name`` if it may be an identifier of the generated code, else raise :class:`CodegenError`.
@@ -137,6 +145,10 @@ class IdentifierRule:
             raise CodegenError(f"{what} {name!r} is a {self.keywords[name]} keyword")
         if name in self.shadowed:
             raise CodegenError(f"{what} {name!r} would shadow the {self.shadowed[name]} builtin of that name")
+        for prefix, language in self.prefixes.items():
+            if name.startswith(prefix):
+                raise CodegenError(f"{what} {name!r} starts with {prefix!r}, which the generated {language} keeps for "
+                                   "its own names")
         if reserved is not None and name in reserved:
             raise CodegenError(f"{what} {name!r} clashes with {reserved[name]} in the generated module")
         return name

@@ -60,7 +60,8 @@ RESERVED: Mapping[str, str] = {
     **{name: "a function of the generated module" for name in ("selftest", "forward_kinematics", "jacobian",
                                                                 "joint_torques", "manipulability",
                                                                 "jacobian_determinant", "hessian",
-                                                                "bias_acceleration", "manipulability_gradient")},
+                                                                "bias_acceleration", "manipulability_gradient",
+                                                                "kinematics")},
 }
 
 

@@ -1,4 +1,4 @@
-"""What the C-family targets share (c99, cpp): one function printed as C statements, and safe comments.
+"""What the C-family targets share (c, c99, cpp): one function printed as C statements, and safe comments.
 
 A lowered function becomes the same statements in both languages (sines and cosines of the angles it uses, the CSE
 temporaries, each output entry) in a type ``real``; a :class:`Dialect` says how each language names a parameter
@@ -42,9 +42,9 @@ class Dialect:
     ``printer``: the target's printer class (its literals cast to ``real``); ``parameter(index, name)``: a
     parameter's value;
     ``element(output, shape, k)``: entry ``k`` (row-major) of an output of ``shape``; ``angle_array``: the
-    sines and cosines come from one ``sj_sincos(n, A, S, C)`` call over the array ``A`` of the angles the function
-    uses (C: the file defines ``sj_sincos``, the c target with vectorised sines and cosines), else from one
-    ``sin`` or ``cos`` call each (C++: overloads pick the scalar type's own).
+    function's body receives the sines ``S`` and cosines ``C`` of the angles it uses from its caller (C: the c99
+    file computes them per call, the c target's extension for a block of configurations, vectorised), else it
+    calls ``sin`` or ``cos`` once per value (C++: overloads pick the scalar type's own).
     """
 
     reserved: frozenset[str]
@@ -105,15 +105,18 @@ class CFunction:
         result = real if not self.output else "void"
         return declaration(f"{'static ' if self.static or static else ''}{result} {name}", arguments)
 
-    def angle_initializer(self, indent: str) -> tuple[str, ...]:
-        """``const real A[n] = {q[0], q[1] + q[2]};``: the angles whose sines and cosines the body reads."""
-        return tuple(wrap_statement(f"{indent}const real A[{len(self.angles)}] = {{", ", ".join(self.angles), "};",
-                                    language="c"))
+    def sine_initializers(self, indent: str) -> tuple[str, ...]:
+        """``const real S[n] = {sin(q[0]), ...};`` and the cosines ``C``: one configuration's, for the body."""
+        return tuple(line for array, function in (("S", "sin"), ("C", "cos"))
+                     for line in wrap_statement(f"{indent}const real {array}[{len(self.angles)}] = {{",
+                                                ", ".join(f"{function}({angle})" for angle in self.angles), "};",
+                                                language="c"))
 
     def angle_assignments(self, indent: str, row: str) -> tuple[str, ...]:
-        """``A[row][i] = angle;`` for each angle: one configuration's row of a block of angles."""
+        """``A[row * n + i] = angle;`` for each angle: one configuration's row of a block of angles (flat, n wide)."""
+        n = len(self.angles)
         return tuple(line for i, angle in enumerate(self.angles)
-                     for line in wrap_statement(f"{indent}A[{row}][{i}] = ", angle, ";", language="c"))
+                     for line in wrap_statement(f"{indent}A[{row} * {n} + {i}] = ", angle, ";", language="c"))
 
     def body_call(self, q: str, p: str, inputs: tuple[str, ...], output: str, S: str = "S", C: str = "C") -> str:
         """A call of the body: ``sj_body_jacobian(q, p, S, C, J)``, or ``return sj_body_...(...)`` for a scalar."""
@@ -271,4 +274,4 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
 C_DIALECT = Dialect(frozenset(), RealPrinter, lambda index, _: f"p[{index}]", lambda output, _, k: f"{output}[{k}]",
                     angle_array=True)
 """Plain C (c99, and the c target's extension): parameters by index into ``p``, outputs as flat row-major arrays,
-sines and cosines through the file's ``sj_sincos``."""
+sines and cosines from the caller."""

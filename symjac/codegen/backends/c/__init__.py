@@ -29,8 +29,8 @@ C_KEYWORDS = frozenset((
     "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return", "short", "signed",
     "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void", "volatile", "while",
 ))
-_KERNEL_LOCALS = frozenset(("qs", "w", "out", "b", "start", "sin", "cos", "fabs", "sqrt", "pow"))
-"""Names of the extension a temporary may not take, besides those of every C function (``_c_family``)."""
+_MATH = frozenset(("sin", "cos", "fabs", "sqrt", "pow"))
+"""The functions of ``<math.h>`` the bodies may call: a temporary may not take their names."""
 
 IDENTIFIERS: IdentifierRule = PYTHON_IDENTIFIERS | IdentifierRule.of("C", C_KEYWORDS)
 """A Python module with C kernels: names must be neither Python nor C keywords (nor Python builtins)."""
@@ -39,7 +39,9 @@ IDENTIFIERS: IdentifierRule = PYTHON_IDENTIFIERS | IdentifierRule.of("C", C_KEYW
 def batch_call(function: CFunction) -> str:
     """The body's call for configuration ``i`` of a batch, ``k`` of its block: inputs and output at row ``i``."""
     inputs = tuple(f"w + i * {length}" for _, length, _ in function.inputs)
-    call = function.body_call("qs + i * DOF", "p", inputs, f"out + i * {function.size}", "S[k]", "C[k]")
+    n = len(function.angles)
+    call = function.body_call("qs + i * DOF", "p", inputs, f"out + i * {function.size}", f"S + k * {n}",
+                              f"C + k * {n}")
     return call if function.output else f"out[i] = {call.removeprefix('return ')}"
 
 
@@ -53,7 +55,7 @@ def c_sources(description: ModuleDescription, taken: frozenset[str]) -> Mapping[
     del taken
     if description.chain is None:
         raise CodegenError("internal error: the module description carries no chain")
-    dialect = dataclasses.replace(C_DIALECT, reserved=C_KEYWORDS | _KERNEL_LOCALS)
+    dialect = dataclasses.replace(C_DIALECT, reserved=C_KEYWORDS | _MATH)
     functions = tuple(c_function(description, f, dialect) for f in description.functions if f.kind != "kinematics")
     data = {
         "module": description,

@@ -6,7 +6,7 @@ including code defines ``<ROBOT>_REAL`` (``-DPUMA560_REAL=float`` for a single-p
 cast to it and ``<tgmath.h>`` picks ``sinf`` or ``sin`` accordingly. ``<robot>_selftest()`` checks every function
 against central differences in C. The functions are those the c target compiles into its extension: one template
 (``c_common/functions.c.j2``) and one printer (:class:`~symjac.codegen.backends.c.printer.RealPrinter`) for both;
-each computes the sines and cosines of the angles it uses in one ``sj_sincos`` loop.
+each public function computes the sines and cosines of the angles it uses and passes them to its body.
 """
 
 from __future__ import annotations
@@ -38,9 +38,10 @@ LIBRARY_NAMES = frozenset((
 GENERATED_NAMES = frozenset(("sj", "real", "kinematics", "selftest"))
 """Names the generated files use themselves (the ``sj_`` helpers, ``<robot>_real``, ``<robot>_kinematics``)."""
 
-IDENTIFIERS = IdentifierRule.of("C", C99_KEYWORDS, LIBRARY_NAMES | GENERATED_NAMES)
-"""C99's rule: no keyword, no name of the standard library a generated file includes (``NULL``, ``sin``), and
-none of the names the generated files use themselves."""
+IDENTIFIERS = IdentifierRule.of("C", C99_KEYWORDS, LIBRARY_NAMES | GENERATED_NAMES, prefixes=("sj_",))
+"""C99's rule: no keyword, no name of the standard library a generated file includes (``NULL``, ``sin``), none of
+the names the generated files use themselves, and no name starting with ``sj_`` (their helpers and function bodies:
+a robot ``sj_body`` would name its Jacobian like the Jacobian's body)."""
 
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header and the source file: ``{"<robot>.h": ..., "<robot>.c": ...}``."""

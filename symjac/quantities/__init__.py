@@ -26,8 +26,7 @@ from symjac.quantities.spec import COUPLING_LAWS, Quantity
 
 __all__ = ["COUPLING_LAWS", "MEMBERS", "QUANTITIES", "Quantity"]
 
-MEMBERS = ("forward_kinematics", "jacobian", "bias_acceleration", "hessian", "joint_torques", "manipulability",
-           "position")
+MEMBERS = ("forward_kinematics", "jacobian", "bias_acceleration", "hessian", "joint_torques", "manipulability")
 """The quantity modules, in the order the command line lists their commands."""
 
 

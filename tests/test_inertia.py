@@ -332,3 +332,19 @@ def test_robot_checks_inertials_it_is_given() -> None:
     assert robot.inertials == (None, None)
     with pytest.raises(RobotFileError, match=r"link 1: the parameter m1 exists already"):
         with_symbolic_inertials(with_symbolic_inertials(robot, links=[1]), links=[1])
+
+
+@pytest.mark.parametrize("name", ["planar2r", "planar3r"])
+def test_dh_rewrites_move_the_bodies_and_come_back_exactly(name: str) -> None:
+    from symjac.model.conventions.standard import modified_from_standard, standard_from_modified
+
+    robot = load_robot(name)
+    with_data = with_file_inertials(robot, sample_inertials(robot.n_joints, seed=2))
+    there = (modified_from_standard if robot.convention == "standard" else standard_from_modified)(with_data)
+    back = (standard_from_modified if robot.convention == "standard" else modified_from_standard)(there)
+    assert back == with_data
+    q = np.array([0.3, -1.1, 0.7][: robot.n_joints])
+    for link in range(1, robot.n_joints + 1):
+        before = world_body(with_data, with_data.inertials[link - 1], link, q)
+        after = world_body(there, there.inertials[link - 1], link, q)
+        assert np.allclose(before[0], after[0]) and np.allclose(before[1], after[1])

@@ -348,3 +348,28 @@ def test_dh_rewrites_move_the_bodies_and_come_back_exactly(name: str) -> None:
         before = world_body(with_data, with_data.inertials[link - 1], link, q)
         after = world_body(there, there.inertials[link - 1], link, q)
         assert np.allclose(before[0], after[0]) and np.allclose(before[1], after[1])
+
+
+ENTRY = st.one_of(st.integers(-5, 5), st.floats(allow_nan=True, allow_infinity=True, width=32),
+                  st.sampled_from(["L", "-L/2", "1/(L - 1)", "pi", "q", "", "L**9", "1e308*10", "1e-300*1e-300"]),
+                  st.lists(st.integers(0, 2), max_size=4), st.none(), st.booleans())
+TABLES = st.dictionaries(st.sampled_from(["mass", "com", "about", "ixx", "ixy", "iyy", "izz", "inertia", "bogus"]),
+                         st.one_of(ENTRY, st.sampled_from(["com", "origin"]),
+                                   st.lists(st.lists(st.integers(-2, 2), min_size=3, max_size=3), min_size=3,
+                                            max_size=3)), max_size=6)
+
+
+@settings(max_examples=60, deadline=None)
+@given(TABLES, st.sampled_from(["standard", "general"]))
+def test_any_inertial_table_gives_a_robot_or_one_line(table: dict, convention: str) -> None:
+    """Hostile tables: a robot that writes back to itself, or a RobotFileError naming the file and link 1."""
+    data = {"name": "r", "convention": convention, "parameters": {"L": 0.5},
+            "joints": [{"type": "revolute", **({"axis": [1, 1, 0]} if convention == "general" else {}),
+                        "inertial": {k: v for k, v in table.items() if v is not None}}]}
+    try:
+        robot = robot_from_mapping(data, source="fuzz.toml")
+    except RobotFileError as error:
+        assert str(error).startswith("fuzz.toml, joint 1, field 'inertial") and "link 1: " in str(error)
+        assert "\n" not in str(error)
+        return
+    assert robot_from_toml(robot_to_toml(robot)) == robot

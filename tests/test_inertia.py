@@ -328,8 +328,9 @@ def test_robot_checks_inertials_it_is_given() -> None:
     with pytest.raises(RobotFileError, match=r"planar2r\.toml, joint 2, field 'inertial': link 2: the mass -1"):
         with_file_inertials(robot, [None, Inertial(-1)])
     with pytest.raises(RobotFileError, match=r"3 inertial entries for 2 links"):
-        replace(robot, inertials=(None,) * 3)
+        replace(robot, inertials=(None, None, Inertial(1)))
     assert robot.inertials == (None, None)
+    assert replace(robot, joints=robot.joints[:1]).inertials == (None,)  # nothing known: one None per link
     with pytest.raises(RobotFileError, match=r"link 1: the parameter m1 exists already"):
         with_symbolic_inertials(with_symbolic_inertials(robot, links=[1]), links=[1])
 

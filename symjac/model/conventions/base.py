@@ -21,11 +21,12 @@ import sympy as sp
 
 from symjac.errors import RobotFileError
 from symjac.model.expressions import expression_text
+from symjac.model.inertia import Inertial
 from symjac.model.robot import Convention, FixedTransform, Joint, Placement, Robot
 from symjac.symbolic.transforms import Motion
 
 __all__ = ["Cell", "Column", "ConventionPlugin", "JointForm", "JointReader", "NoRobotFields", "joint_form",
-           "transform_fields"]
+           "moved_inertial", "transform_fields"]
 
 Step: TypeAlias = Motion | sp.Matrix
 Cell: TypeAlias = sp.Expr | tuple[sp.Expr, ...]
@@ -94,6 +95,21 @@ class JointReader(Protocol):
 
     def is_finite(self, number: sp.Expr) -> bool:
         """Whether ``number`` is a finite real number."""
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """Multiplied out exactly; sines and cosines of constant angles (rpy = 0.3) squared and summed to one."""
+    expr = sp.radsimp(sp.expand(expr))
+    return sp.trigsimp(expr) if expr.has(sp.sin, sp.cos) else expr
+
+
+def moved_inertial(inertial: Inertial | None, T: sp.MatrixBase | None) -> Inertial | None:
+    """``inertial`` seen from a frame in which its own frame sits at ``T`` (unchanged when either is None)."""
+    if inertial is None or T is None:
+        return inertial
+    moved = inertial.expressed_in(T)
+    return Inertial(moved.mass, tuple(map(_tidy, moved.com)), moved.inertia.applyfunc(_tidy),  # type: ignore[arg-type]
+                    moved.given_about)
 
 
 def transform_fields(transform: FixedTransform) -> dict[str, Any]:
@@ -167,6 +183,9 @@ class ConventionPlugin(Protocol):
     def write_settings(self, robot: Robot) -> dict[str, Any]:
         """The top-level robot-file fields under :attr:`robot_keys`, as :meth:`read_settings` reads them."""
 
+    def inertial_frames(self, robot: Robot) -> tuple[sp.Matrix | None, ...]:
+        """Per link, the pose in frame {i} of the frame its robot-file ``inertial`` table is written in (None: {i})."""
+
 
 class NoRobotFields:
     """The defaults of a convention that reads joint tables only (both DH conventions, general joints)."""
@@ -187,6 +206,10 @@ class NoRobotFields:
     def write_settings(self, robot: Robot) -> dict[str, Any]:
         """Nothing."""
         return {}
+
+    def inertial_frames(self, robot: Robot) -> tuple[sp.Matrix | None, ...]:
+        """Frame {i} itself: a DH table's link frames are the ones textbooks give inertial parameters in."""
+        return (None,) * robot.n_joints
 
     def from_axes(self, robot: Robot, axes: Callable[[], tuple[Sequence[sp.MatrixBase], sp.MatrixBase]]
                   ) -> Robot | None:

@@ -155,7 +155,8 @@ def test_show_stanford(cli, fmt):
     if fmt == "json":
         data = json.loads(out)
         assert data["robot"] == "stanford"
-        assert len(data["dh_table"]) == 6
+        assert len(data["parameter_table"]) == 6
+        assert data["dh_table"] == data["parameter_table"]  # the old key, deprecated
         assert {f"T_{i - 1}_{i}" for i in range(1, 7)} <= data["transforms"].keys()
         assert all(len(m) == 4 and all(len(row) == 4 for row in m) for m in data["transforms"].values())
     elif fmt == "pretty":
@@ -473,7 +474,7 @@ JSON_KEYS = {
     ("singularities", "articulated3r"): META | {"rows", "frame", "point", "redundant", "determinant", "minors",
                                                 "zero_minors", "sets", "factors"},
     ("jacobian", "planar2r"): META | {"frame", "point", "method", "shape", "rows", "columns", "entries", "latex"},
-    ("show", "stanford"): META | {"dh_table", "transforms"},
+    ("show", "stanford"): META | {"parameter_table", "dh_table", "transforms"},
 }
 
 

@@ -15,8 +15,8 @@ from symjac.errors import RobotFileError
 from symjac.model.conventions import PLUGINS, joint_forms, plugin
 from symjac.model.conventions.base import JointForm
 from symjac.model.robot import Convention
-from symjac.printing.tables import column_html, column_latex, column_text, dh_table_latex, table_headings
-from symjac.report.content import dh_table_html
+from symjac.printing.tables import column_html, column_latex, column_text, parameter_table_latex, table_headings
+from symjac.report.content import parameter_table_html
 from symjac.symbolic.transforms import Motion
 
 CHAIN_SOURCE = Path(__file__).resolve().parent.parent / "symjac" / "kinematics" / "chain.py"
@@ -112,7 +112,7 @@ def test_axis_frames_and_parallel_axes_come_from_the_joint_forms(convention, fra
 def test_html_and_latex_tables_share_the_plugins_columns():
     for name in ("puma560", "ur5.urdf"):
         robot = load_robot(name)
-        latex_table, html_table = dh_table_latex(robot), dh_table_html(robot)
+        latex_table, html_table = parameter_table_latex(robot), parameter_table_html(robot)
         for column in table_headings(robot):
             assert column_latex(column) in latex_table and f"<th>{column_html(column)}</th>" in html_table
             assert column_text(column)

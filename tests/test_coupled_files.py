@@ -29,8 +29,8 @@ from symjac.model.coordinates import Coupling
 from symjac.model.io import robot_from_toml, robot_to_toml
 from symjac.model.robot_file import robot_to_mapping
 from symjac.printing.json import metadata, show_data
-from symjac.printing.tables import dh_table_latex, dh_table_text
-from symjac.report.content import dh_table_html
+from symjac.printing.tables import parameter_table_latex, parameter_table_text
+from symjac.report.content import parameter_table_html
 
 METHODS = ("differentiation", "cross_product", "velocity_propagation", "force_propagation")
 t1, t2, t3, t4, t5 = sp.symbols("theta1:6", real=True)
@@ -191,22 +191,22 @@ def test_palletizer_square_jacobian_and_singular_conditions_derived_by_hand(pall
 
 
 def test_tables_show_the_coupled_joint_and_what_it_equals(palletizer):
-    text = dh_table_text(palletizer)
+    text = parameter_table_text(palletizer)
     assert text.splitlines()[0].split()[-1] == "variable"
     assert text.splitlines()[4].endswith("theta4 = -theta2 - theta3")
     assert text.splitlines()[5].endswith("theta5")
-    assert r"\text{variable}" in dh_table_latex(palletizer)
-    assert r"\theta_{4} = - \theta_{2} - \theta_{3}" in dh_table_latex(palletizer)
-    html = dh_table_html(palletizer)
+    assert r"\text{variable}" in parameter_table_latex(palletizer)
+    assert r"\theta_{4} = - \theta_{2} - \theta_{3}" in parameter_table_latex(palletizer)
+    html = parameter_table_html(palletizer)
     assert "<th>variable</th>" in html and html.count("<tr>") == 6 and "<mo>=</mo>" in html
-    assert "variable" not in dh_table_text(load_robot("scara"))  # uncoupled tables are unchanged
+    assert "variable" not in parameter_table_text(load_robot("scara"))  # uncoupled tables are unchanged
 
 
 def test_json_names_the_coordinates_and_the_coupling(palletizer):
     data = json.loads(json.dumps(show_data(palletizer, {})))
     assert data["joint_variables"] == ["theta1", "theta2", "theta3", "theta5"]
     assert data["coupling"] == {"theta4": "-theta2 - theta3"}
-    assert data["dh_table"][3][-1] == "theta4 = -theta2 - theta3"
+    assert data["parameter_table"][3][-1] == "theta4 = -theta2 - theta3"
     assert "coupling" not in metadata(load_robot("scara"))
 
 

@@ -418,7 +418,7 @@ def test_command_line_space_and_body_jacobians_and_the_screw_table(tmp_path):
     assert r"\omega_i & v_i & q_i" in run("show", "ur5_poe")
     data = json.loads(run("show", "ur5_poe", "--format", "json"))
     assert data["transforms"]["M"][0] == ["-1", "0", "0", "L1 + L2"]
-    assert data["dh_table"][1] == ["2", "revolute", "[0, 1, 0]", "[-H1, 0, 0]", "[0, 0, H1]"]
+    assert data["parameter_table"][1] == ["2", "revolute", "[0, 1, 0]", "[-H1, 0, 0]", "[0, 0, H1]"]
     converted_text = run("convert", "puma560", "--to", "poe")
     path = tmp_path / "puma_poe.toml"
     path.write_text(converted_text)
@@ -426,9 +426,9 @@ def test_command_line_space_and_body_jacobians_and_the_screw_table(tmp_path):
 
 
 def test_the_report_shows_the_screw_table():
-    from symjac.report.content import dh_table_html
+    from symjac.report.content import parameter_table_html
 
-    html = dh_table_html(load_robot("ur5_poe"))
+    html = parameter_table_html(load_robot("ur5_poe"))
     assert "&#969;<sub>i</sub>" in html and "q<sub>i</sub>" in html
 
 

@@ -1,10 +1,11 @@
-"""The output layer, the one place for words and formats: LaTeX, pretty text, JSON, DH tables and sentences.
+"""The output layer, the one place for words and formats: LaTeX, pretty text, JSON, parameter tables and sentences.
 
 Analyses return data; these modules print it. :mod:`.latex` and :mod:`.pretty` print SymPy objects in textbook
-shorthand, :mod:`.tables` DH tables, :mod:`.prose` every sentence, :mod:`.steps` propagation steps,
-:mod:`.summary` singularity reports, :mod:`.json` JSON-ready data, and :mod:`.document` lays any result out as
-LaTeX (bare or a standalone document, whose long results :mod:`.latex_layout` breaks to fit the page), pretty text or
-JSON. :mod:`.results` builds the document of each result, for the command line and the report alike.
+shorthand, :mod:`.tables` each convention's parameter table (DH parameters, screw axes, origins and axes),
+:mod:`.prose` every sentence, :mod:`.steps` propagation steps, :mod:`.summary` singularity reports, :mod:`.json`
+JSON-ready data, and :mod:`.document` lays any result out as LaTeX (bare or a standalone document, whose long
+results :mod:`.latex_layout` breaks to fit the page), pretty text or JSON. :mod:`.results` builds the document of
+each result, for the command line and the report alike.
 """
 
 from importlib import import_module as _import_module
@@ -17,7 +18,8 @@ from symjac.printing.latex import TextbookLatexPrinter, latex
 from symjac.printing.pretty import TextbookPrettyPrinter, pretty
 
 _HOME = {
-    "FORMATS": "document", "Block": "document", "DHTable": "document", "Document": "document", "Equation": "document",
+    "FORMATS": "document", "Block": "document", "Document": "document", "Equation": "document",
+    "ParameterTable": "document",
     "render": "document", "singularity_data": "json", "shorthand_indices": "shorthand",
     "textbook_factors": "shorthand", "propagation_steps": "steps", "step_equations": "steps",
     "singularity_blocks": "summary", "singularity_summary": "summary",
@@ -28,9 +30,9 @@ uses (``symjac jacobian`` no JSON or page-layout code)."""
 __all__ = [
     "FORMATS",
     "Block",
-    "DHTable",
     "Document",
     "Equation",
+    "ParameterTable",
     "TextbookLatexPrinter",
     "TextbookPrettyPrinter",
     "latex",
@@ -48,6 +50,10 @@ __all__ = [
 
 def __getattr__(name: str) -> _Any:
     """Import a re-exported name on first use (its module stays loaded, the name is kept here)."""
+    if name == "DHTable":  # the name before the convention-neutral one
+        from symjac.printing.document import DHTable
+
+        return DHTable
     module = _HOME.get(name)
     if module is None:
         raise AttributeError(f"module 'symjac.printing' has no attribute {name!r}")
@@ -61,7 +67,7 @@ def __dir__() -> list[str]:
 
 
 if _TYPE_CHECKING:
-    from symjac.printing.document import FORMATS, Block, DHTable, Document, Equation, render
+    from symjac.printing.document import FORMATS, Block, Document, Equation, ParameterTable, render
     from symjac.printing.json import singularity_data
     from symjac.printing.shorthand import shorthand_indices, textbook_factors
     from symjac.printing.steps import propagation_steps, step_equations

@@ -25,11 +25,12 @@ from typing import Any, Literal
 import sympy as sp
 
 from symjac._version import __version__
+from symjac.deprecation import renamed
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Frame
 from symjac.model.robot import Robot
 from symjac.printing.latex import LatexTooLargeError, escape_text, latex, latex_size_limit
-from symjac.printing.tables import dh_table_latex, dh_table_text
+from symjac.printing.tables import parameter_table_latex, parameter_table_text
 
 # Each format imports its own printer when used: a LaTeX result loads no pretty printer, page layout or jinja2.
 
@@ -37,12 +38,12 @@ __all__ = [
     "FORMATS",
     "LATEX_LIMIT",
     "Block",
-    "DHTable",
     "Document",
     "Equation",
     "Inline",
     "JsonKey",
     "LatexTooLargeError",
+    "ParameterTable",
     "Prescripted",
     "Style",
     "blocks_as_pairs",
@@ -54,6 +55,11 @@ __all__ = [
     "render",
     "render_for_terminal",
 ]
+
+# The names these had before they were convention-neutral (a DH table is one convention's parameter table).
+__getattr__ = renamed("symjac.printing.document", {
+    "DHTable": "ParameterTable",
+})
 
 FORMATS = ("latex", "pretty", "json")
 """Output formats of a document: LaTeX, Unicode text, JSON."""
@@ -111,13 +117,13 @@ class Equation:
 
 
 @dataclass(frozen=True)
-class DHTable:
-    """The Denavit-Hartenberg table (or the origins and axes of a general chain) of ``robot``."""
+class ParameterTable:
+    """The parameter table of ``robot`` in its convention: DH parameters, screw axes, or origins and axes."""
 
     robot: Robot
 
 
-Math = Equation | DHTable
+Math = Equation | ParameterTable
 
 
 @dataclass(frozen=True)
@@ -265,8 +271,8 @@ def math_text(block: Block, style: Style) -> str:
     _check(style)
     if style == "latex":
         return r",\quad ".join(
-            dh_table_latex(m.robot) if isinstance(m, DHTable) else equation_latex(m) for m in block.math)
-    return "\n".join(dh_table_text(m.robot).rstrip("\n") if isinstance(m, DHTable) else equation_text(m)
+            parameter_table_latex(m.robot) if isinstance(m, ParameterTable) else equation_latex(m) for m in block.math)
+    return "\n".join(parameter_table_text(m.robot).rstrip("\n") if isinstance(m, ParameterTable) else equation_text(m)
                      for m in block.math)
 
 
@@ -298,7 +304,7 @@ def _fitted(block: Block) -> str:
     equations = [m for m in block.math if isinstance(m, Equation)]
     if len(block.math) == 1 and equations and not isinstance(equations[0].rhs, tuple):
         return fit_equation(equations[0].tex, equations[0].rhs).body()
-    texts = [dh_table_latex(m.robot) if isinstance(m, DHTable) else equation_latex(m) for m in block.math]
+    texts = [parameter_table_latex(m.robot) if isinstance(m, ParameterTable) else equation_latex(m) for m in block.math]
     if all(tex_width(text) <= TEXT_WIDTH for text in texts):
         return fit_side_by_side(texts) if texts else ""
     return "\n".join(fit_equation(m.tex, m.rhs).body() if isinstance(m, Equation) else rf"\[ {text} \]"

@@ -15,8 +15,8 @@ import sympy as sp
 from symjac._version import __version__
 from symjac.model.robot import Robot
 from symjac.printing import prose
-from symjac.printing.document import Block, DHTable, Document, Equation, JsonKey, equation_latex
-from symjac.printing.tables import dh_rows
+from symjac.printing.document import Block, Document, Equation, JsonKey, ParameterTable, equation_latex
+from symjac.printing.tables import parameter_rows
 
 if TYPE_CHECKING:  # the analyses' types only: printing a Jacobian's JSON does not load them
     from symjac.analysis.singularity.determinant import Determinant
@@ -108,16 +108,17 @@ def document_data(document: Document) -> dict[str, Any]:
     """The JSON form of any document: metadata, facts, then every keyed equation (:class:`.document.JsonKey`).
 
     ``document.model``'s :func:`metadata` first (when it has a robot), then ``document.facts`` as they are, then
-    the math of each block and of ``document.extra`` in order: a :class:`~.document.DHTable` as ``dh_table`` (rows
-    of strings), an equation with a key as its right side's SymPy strings (and its LaTeX line where the key asks).
+    the math of each block and of ``document.extra`` in order: a :class:`~.document.ParameterTable` as
+    ``parameter_table`` (rows of strings; also under its old key ``dh_table``, deprecated), an equation with a key
+    as its right side's SymPy strings (and its LaTeX line where the key asks).
     This is the only JSON builder of a result: what LaTeX and pretty text print is what JSON holds.
     """
     data: dict[str, Any] = {} if document.model is None else metadata(document.model)
     data.update(document.facts)
     stacks: dict[str, list[sp.MatrixBase]] = {}
     for math in (*(m for block in document.blocks for m in block.math), *document.extra):
-        if isinstance(math, DHTable):
-            data["dh_table"] = dh_rows(math.robot)
+        if isinstance(math, ParameterTable):
+            data["parameter_table"] = data["dh_table"] = parameter_rows(math.robot)
         elif math.key is not None:
             _place(data, math, math.key, stacks)
     for name, matrices in stacks.items():  # entries[i][j][k]: item k's [i, j]
@@ -150,6 +151,6 @@ def show_data(robot: Robot, transforms: dict[str, sp.MatrixBase]) -> dict[str, A
     warnings.warn("show_data is deprecated: a document's JSON is document_data(document), built from the document "
                   "itself (symjac.printing.results.transforms_document)", DeprecationWarning, stacklevel=2)
     equations = tuple(Equation(name, name, m, key=JsonKey("transforms", item=name)) for name, m in transforms.items())
-    document = Document("", robot.name, (Block((), (DHTable(robot),)), Block((), equations)),
+    document = Document("", robot.name, (Block((), (ParameterTable(robot),)), Block((), equations)),
                         facts={"transforms": {}}, model=robot)
     return document_data(document)

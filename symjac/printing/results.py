@@ -24,7 +24,7 @@ from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose
 from symjac.model.robot import Robot
 from symjac.printing import prose
-from symjac.printing.document import Block, DHTable, Document, Equation, JsonKey, Prescripted
+from symjac.printing.document import Block, Document, Equation, JsonKey, ParameterTable, Prescripted
 from symjac.printing.latex import rounded
 
 if TYPE_CHECKING:
@@ -89,7 +89,7 @@ def transforms_document(robot: Robot, transforms: Sequence[Transform], digits: i
     equations = [transform_equation(source, target, shown(robot, T, digits),
                                     JsonKey("transforms", item=f"T_{source}_{target}"))
                  for source, target, T in transforms]
-    blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
+    blocks = [Block((prose.table_caption(robot),), (ParameterTable(robot),))]
     if robot.convention == PRODUCT_OF_EXPONENTIALS:  # the home pose M, with the product of exponentials it ends
         home = Equation("M", "M", shown(robot, home_pose(robot), digits), key=JsonKey("transforms", item="M"))
         blocks.append(Block(prose.HOME_POSE, (home,)))

@@ -12,13 +12,22 @@ import unicodedata
 
 import sympy as sp
 
+from symjac.deprecation import renamed
 from symjac.model.conventions import plugin
 from symjac.model.conventions.base import Cell, Column
 from symjac.model.robot import Robot
 from symjac.printing.latex import latex
 
-__all__ = ["VARIABLE", "column_html", "column_latex", "column_text", "dh_headers", "dh_rows", "dh_table_latex",
-           "dh_table_text", "table_cells", "table_headings", "text_table"]
+__all__ = ["VARIABLE", "column_html", "column_latex", "column_text", "parameter_headers", "parameter_rows",
+           "parameter_table_latex", "parameter_table_text", "table_cells", "table_headings", "text_table"]
+
+# The names these had before they were convention-neutral (a DH table is one convention's parameter table).
+__getattr__ = renamed("symjac.printing.tables", {
+    "dh_headers": "parameter_headers",
+    "dh_rows": "parameter_rows",
+    "dh_table_text": "parameter_table_text",
+    "dh_table_latex": "parameter_table_latex",
+})
 
 
 VARIABLE = Column("variable")
@@ -82,13 +91,13 @@ def column_html(column: Column) -> str:
     return f"{symbol}<sub>{column.subscript}</sub>" if column.subscript else symbol
 
 
-def dh_headers(robot: Robot) -> list[str]:
+def parameter_headers(robot: Robot) -> list[str]:
     """Plain-text column names after ``joint`` and ``type``."""
     return [column_text(column) for column in table_headings(robot)]
 
 
-def dh_rows(robot: Robot) -> list[list[str]]:
-    """One row of strings per joint: index, type, then the columns of :func:`dh_headers` (SymPy strings)."""
+def parameter_rows(robot: Robot) -> list[list[str]]:
+    """One row of strings per joint: index, type, then the columns of :func:`parameter_headers` (SymPy strings)."""
     return [[str(joint.index), joint.type.value, *map(_cell_text, cells)]
             for joint, cells in zip(robot.joints, table_cells(robot), strict=True)]
 
@@ -101,9 +110,9 @@ def text_table(headers: list[str], rows: list[list[str]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def dh_table_text(robot: Robot) -> str:
+def parameter_table_text(robot: Robot) -> str:
     """The DH table as aligned plain text."""
-    return text_table(["joint", "type", *dh_headers(robot)], dh_rows(robot))
+    return text_table(["joint", "type", *parameter_headers(robot)], parameter_rows(robot))
 
 
 def _cell_latex(cell: Cell) -> str:
@@ -112,13 +121,13 @@ def _cell_latex(cell: Cell) -> str:
     return latex(cell)
 
 
-def dh_table_latex(robot: Robot) -> str:
+def parameter_table_latex(robot: Robot) -> str:
     r"""The table as a LaTeX ``array``: the joint number, then the columns (entries in textbook shorthand).
 
     Examples
     --------
     >>> from symjac import load_robot
-    >>> print(dh_table_latex(load_robot("planar2r"))[:46])
+    >>> print(parameter_table_latex(load_robot("planar2r"))[:46])
     \begin{array}{c|cccc} i & \alpha_i & a_i & d_i
     """
     headings = table_headings(robot)

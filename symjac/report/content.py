@@ -13,10 +13,11 @@ from xml.dom.minidom import Element
 
 import sympy as sp
 
+from symjac.deprecation import renamed
 from symjac.kinematics.chain import Frame, chain_of
 from symjac.kinematics.jacobian import METHODS, Method, jacobian
 from symjac.model.robot import Robot
-from symjac.printing.document import Block, DHTable, Equation, Inline, Prescripted
+from symjac.printing.document import Block, Equation, Inline, ParameterTable, Prescripted
 from symjac.printing.mathml import TextbookMathMLPrinter, math_element, mathml_node
 from symjac.printing.mathml_layout import displays
 from symjac.printing.tables import column_html, table_cells, table_headings
@@ -25,14 +26,19 @@ __all__ = [
     "Agreement",
     "block_html",
     "caption_html",
-    "dh_table_html",
     "equation_html",
     "frame_symbol",
     "inline_math",
     "jacobian_symbol",
     "method_agreement",
+    "parameter_table_html",
     "transform_symbol",
 ]
+
+# The names these had before they were convention-neutral (a DH table is one convention's parameter table).
+__getattr__ = renamed("symjac.report.content", {
+    "dh_table_html": "parameter_table_html",
+})
 
 
 def inline_math(expr: sp.Basic) -> str:
@@ -125,8 +131,8 @@ def block_html(block: Block) -> str:
     caption = f"<p>{caption_html(block.caption)}</p>\n" if block.caption else ""
     math = []
     for item in block.math:
-        if isinstance(item, DHTable):
-            math.append(dh_table_html(item.robot))
+        if isinstance(item, ParameterTable):
+            math.append(parameter_table_html(item.robot))
         elif isinstance(item, Equation):
             lhs = _name(item.name) if item.name else frame_symbol(item.text) if item.text else None
             rhs = item.rhs if not isinstance(item.rhs, tuple) else item.rhs[-1]
@@ -134,7 +140,7 @@ def block_html(block: Block) -> str:
     return caption + "".join(math)
 
 
-def dh_table_html(robot: Robot) -> str:
+def parameter_table_html(robot: Robot) -> str:
     """The robot's table (DH rows, or a general chain's origins and axes) as HTML with MathML entries.
 
     The same columns and entries as the LaTeX table (:func:`symjac.printing.tables.table_cells`).

@@ -5,6 +5,7 @@ captions the command line's results, :mod:`.report` holds the HTML report's sent
 analysis, so printing a Jacobian loads none.
 """
 
+from symjac.deprecation import renamed
 from symjac.printing.prose.redundant import (
     LONG_INLINE,
     is_long,
@@ -51,7 +52,6 @@ from symjac.printing.prose.results import (
 from symjac.printing.prose.singularities import (
     KIND_REASONS,
     axis_name,
-    dh_caption,
     existence_parts,
     existence_words,
     finding_sentence,
@@ -70,6 +70,7 @@ from symjac.printing.prose.singularities import (
     rows_parts,
     self_motion_parts,
     self_motion_words,
+    table_caption,
 )
 
 __all__ = [
@@ -90,7 +91,6 @@ __all__ = [
     "axis_name",
     "curve_parts",
     "derivative_caption",
-    "dh_caption",
     "existence_parts",
     "existence_words",
     "finding_sentence",
@@ -128,7 +128,13 @@ __all__ = [
     "set_parts",
     "set_reason",
     "sets_caption",
+    "table_caption",
     "title",
     "torques_caption",
     "zero_minor_words",
 ]
+
+# The names these had before they were convention-neutral (a DH table is one convention's parameter table).
+__getattr__ = renamed("symjac.printing.prose", {
+    "dh_caption": "table_caption",
+})

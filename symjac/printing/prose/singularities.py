@@ -31,7 +31,6 @@ if TYPE_CHECKING:
 __all__ = [
     "KIND_REASONS",
     "axis_name",
-    "dh_caption",
     "existence_parts",
     "existence_words",
     "finding_sentence",
@@ -50,6 +49,7 @@ __all__ = [
     "rows_parts",
     "self_motion_parts",
     "self_motion_words",
+    "table_caption",
 ]
 
 KIND_REASONS = {
@@ -292,7 +292,7 @@ def redundant_caption(report: SingularityReport) -> tuple[str | Inline, ...]:
             "every square minor below vanishes (where ", condition, f"). Minors in frame {{{det.frame}}}.")
 
 
-def dh_caption(robot: Robot) -> str:
+def table_caption(robot: Robot) -> str:
     """The robot and the kind of its table: ``puma560: Unimation PUMA 560 ..., standard DH table``."""
     return f"{robot.name}: {robot.description}, {plugin(robot.convention).table_name}"
 

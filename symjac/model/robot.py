@@ -33,6 +33,7 @@ import sympy as sp
 from symjac.errors import RobotFileError
 from symjac.model.coordinates import Coupling, acceleration_symbol, coupling_problem, rate_symbol
 from symjac.model.expressions import snap_angle
+from symjac.model.inertia import Inertial, inertial_problem
 from symjac.symbolic.transforms import homogeneous, rotation_rpy
 
 __all__ = ["VELOCITY_NAMES", "WRENCH_NAMES", "Convention", "FixedTransform", "Joint", "JointType", "Parameter",
@@ -219,6 +220,10 @@ class Robot:
     ``coupling`` (the default) every joint variable is its own coordinate and the two coincide; with one
     (:class:`~symjac.model.coordinates.Coupling`), each joint variable is an affine expression of the coordinates,
     and every result symjac returns (transforms, Jacobians, Hessians, rates, torques) is in the coordinates.
+
+    Inertial data: ``inertials[i - 1]`` is link *i*'s :class:`~symjac.model.inertia.Inertial` (mass, centre of mass
+    and tensor about it, in frame {i}), or None where it is unknown; without it (the default ``()``) every link's is
+    None. Each is checked with the parameters' defaults (:func:`~symjac.model.inertia.inertial_problem`).
     """
 
     name: str
@@ -230,9 +235,14 @@ class Robot:
     tool: FixedTransform | None = None
     source: str = field(default="<mapping>", compare=False)
     coupling: Coupling | None = None
+    inertials: tuple[Inertial | None, ...] = ()
 
     def __post_init__(self) -> None:
-        """Refuse a parameter named like a symbol symjac generates, and a coupling that is not affine and complete."""
+        """Refuse bad parameter names, couplings and inertial data.
+
+        A parameter may not be named like a symbol symjac generates; a coupling must be affine and complete; inertial
+        data must be one per link and physically possible (one line naming the link).
+        """
         reserved = reserved_names([joint.type for joint in self.joints])
         if self.coupling is not None and self.coupling.values == self.joint_variables == self.coupling.coordinates:
             object.__setattr__(self, "coupling", None)  # the identity: one robot, one chain, today's results
@@ -247,6 +257,24 @@ class Robot:
             if parameter.name in reserved:
                 raise RobotFileError(f"{parameter.name!r} is reserved: {reserved[parameter.name]}",
                                      source=self.source, field=f"parameters.{parameter.name}")
+        self._check_inertials()
+
+    def _check_inertials(self) -> None:
+        inertials = tuple(self.inertials) or (None,) * len(self.joints)
+        object.__setattr__(self, "inertials", inertials)
+        if len(inertials) != len(self.joints):
+            raise RobotFileError(f"{len(inertials)} inertial entries for {len(self.joints)} links: give one per link "
+                                 f"(None where unknown)", source=self.source, field="inertial")
+        defaults = self.defaults
+        for link, inertial in enumerate(inertials, start=1):
+            if inertial is None:
+                continue
+            if not isinstance(inertial, Inertial):
+                raise RobotFileError(f"link {link}: expected Inertial or None, got {type(inertial).__name__}",
+                                     source=self.source, joint=link, field="inertial")
+            problem = inertial_problem(inertial, defaults)
+            if problem is not None:
+                raise RobotFileError(f"link {link}: {problem}", source=self.source, joint=link, field="inertial")
 
     @property
     def n_joints(self) -> int:

@@ -38,8 +38,17 @@ import sympy as sp
 from symjac.errors import RobotFileError
 from symjac.model.conventions.general import GeneralPlacement
 from symjac.model.coordinates import Coupling
-from symjac.model.expressions import is_valid_name
-from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Robot, fixed_transform_from_matrix
+from symjac.model.expressions import exact_number, is_valid_name
+from symjac.model.inertia import Inertial, combined_inertial, inertial_problem
+from symjac.model.robot import (
+    Convention,
+    FixedTransform,
+    Joint,
+    JointType,
+    Robot,
+    fixed_transform_from_matrix,
+    unit_vector,
+)
 from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_motions
 
 __all__ = ["JointLimits", "KinematicTree", "LinkInertial", "Mimic", "TreeJoint", "TreeJointType", "TreeLink",
@@ -173,7 +182,7 @@ def robot_from_tree(tree: KinematicTree, source: str, *, base_link: str | None =
     robot_name = name if name is not None else identifier(tree.name or "robot")
     if not is_valid_name(robot_name):
         raise _fail(source, f"robot name {robot_name!r} is not an identifier (letters, digits, underscore)")
-    return _robot(robot_name, path, source, joints)
+    return _robot(robot_name, path, source, links, joints)
 
 
 def identifier(text: str) -> str:
@@ -312,7 +321,8 @@ def _coupled(robot: Robot, moving: list[TreeJoint], joints: dict[str, TreeJoint]
     return replace(robot, coupling=Coupling(coordinates, tuple(values)))
 
 
-def _robot(robot_name: str, path: list[TreeJoint], source: str, all_joints: dict[str, TreeJoint]) -> Robot:
+def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str, TreeLink],
+           all_joints: dict[str, TreeJoint]) -> Robot:
     pending: list[FixedTransform] = []
     joints: list[Joint] = []
     for tree_joint in path:
@@ -329,11 +339,12 @@ def _robot(robot_name: str, path: list[TreeJoint], source: str, all_joints: dict
                             limits=bounds, name=tree_joint.name))
     last_alignment = alignment(placement.unit_axis)
     tool = _combine(pending, list(inverse_motions(last_alignment)))
+    moving = [joint for joint in path if joint.type in _MOVING]
+    inertials = tuple(_link_inertial(joint, links, all_joints, source) for joint in moving)
     # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
     robot = Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
                   description=f"from {Path(source).name}", tool=None if tool == FixedTransform() else tool,
-                  source=source)
-    moving = [joint for joint in path if joint.type in _MOVING]
+                  source=source, inertials=inertials if any(inertials) else ())
     return _coupled(robot, moving, all_joints, {joint.name for joint in path}, source)
 
 
@@ -344,3 +355,56 @@ def _combine(transforms: list[FixedTransform], prefix: list) -> FixedTransform:
         return nontrivial[0] if nontrivial else FixedTransform()
     rotation_matrix, position = compose([*prefix, *(sp.Matrix(t.matrix) for t in nontrivial)])
     return fixed_transform_from_matrix(homogeneous(rotation_matrix, position))
+
+
+def _link_inertial(joint: TreeJoint, links: dict[str, TreeLink], joints: dict[str, TreeJoint],
+                   source: str) -> Inertial | None:
+    r"""The inertial data of the chain link that moving ``joint`` drives, in symjac's frame {i} (None if none given).
+
+    The link is the joint's child :math:`L` and every link fixed to it (through fixed joints only, on the chain or
+    beside it). Body :math:`X`, with its inertial frame {c} at :math:`T_{X,c}` and tensor :math:`I` about its centre,
+    is expressed in {i} by :math:`T_{i,X} = A_i^{-1}\,T_{L,X}` (frame {i} is :math:`L` turned by the alignment
+    :math:`A_i`): :math:`c_i = R\,p_{X,c} + p`, :math:`I_i = R\,R_{X,c}\,I\,R_{X,c}^T R^T`; several bodies are
+    combined by the parallel-axis theorem (:func:`~symjac.model.inertia.combined_inertial`). A link without
+    ``<inertial>`` has no mass. Bodies behind moving joints off the chain (held at zero) are not added: lumping them
+    is the dynamics' choice.
+    """
+    R_A = compose(alignment(unit_vector(joint.axis)))[0]
+    start = homogeneous(R_A.T, sp.zeros(3, 1))
+    children: dict[str, list[TreeJoint]] = {}
+    for other in joints.values():
+        children.setdefault(other.parent, []).append(other)
+    parts = []
+    stack = [(joint.child, start)]
+    while stack:
+        name, T_i_X = stack.pop()
+        body = links[name].inertial
+        if body is not None:
+            own = Inertial(body.mass, body.xyz, _rotated(body.tensor, sp.Matrix(body.origin.matrix)[:3, :3]))
+            problem = inertial_problem(own)
+            if problem is not None:
+                raise _fail(source, problem, f"link {name} inertial")
+            parts.append(own.expressed_in(T_i_X))
+        stack += [(child.child, T_i_X * sp.Matrix(child.origin.matrix))
+                  for child in children.get(name, []) if child.type is TreeJointType.FIXED]
+    if not parts:
+        return None
+    return _plain(parts[0] if len(parts) == 1 else combined_inertial(parts))
+
+
+def _plain(inertial: Inertial) -> Inertial:
+    """``inertial`` with every entry that is not a rational number (``cos(3/10)/4``) as the rational of its float.
+
+    Exact forms pay for kinematics, where a textbook form exists; a tensor turned by a generic angle has none, and
+    rational entries keep the data cheap for the dynamics and writable in a robot file.
+    """
+    def plain(value: sp.Expr) -> sp.Expr:
+        return value if value.is_Rational else exact_number(float(value))
+
+    return Inertial(plain(inertial.mass), tuple(plain(v) for v in inertial.com),  # type: ignore[arg-type]
+                    sp.ImmutableMatrix(inertial.inertia.applyfunc(plain)))
+
+
+def _rotated(tensor: sp.MatrixBase, R: sp.MatrixBase) -> sp.ImmutableMatrix:
+    r""":math:`R\,I\,R^T`: a tensor given along the axes of a frame turned by ``R``, along the original axes."""
+    return sp.ImmutableMatrix((R * tensor * R.T).applyfunc(sp.expand))

@@ -1,8 +1,9 @@
 """Reading and writing robot files (TOML, URDF), and the built-in catalog.
 
-``load_robot`` accepts a catalog name (``"puma560"``), a path to a TOML file, or a URDF file (a path, or the name of
-a built-in one: ``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The
-catalog lives in ``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
+``load_robot`` accepts a catalog name (``"puma560"``), or a robot file in any format a reader of
+:mod:`symjac.model.readers` claims by its content (a TOML robot file, a URDF file; a built-in URDF by its name:
+``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The catalog lives in
+``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
 """
 
 from __future__ import annotations

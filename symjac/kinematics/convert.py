@@ -15,7 +15,7 @@ import sympy as sp
 
 from symjac.errors import ConversionError
 from symjac.kinematics.chain import chain_of
-from symjac.model.conventions import plugin
+from symjac.model.conventions import carried_inertials, plugin
 from symjac.model.conventions.dh import DHPlacement
 from symjac.model.conventions.standard import modified_from_standard, standard_from_modified
 from symjac.model.expressions import snap_angle
@@ -70,7 +70,7 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
             raise ConversionError(f"cannot convert {robot.name}: its joints are coupled and the {target.value} table "
                                   f"would change its joint variables")
         result = replace(result, coupling=robot.coupling)
-    return result, notes
+    return carried_inertials(robot, result), notes
 
 
 def axes_at_home(robot: Robot) -> tuple[list[sp.Matrix], sp.Matrix]:

@@ -18,16 +18,17 @@ parameters take their defaults; an entry left purely symbolic cannot be checked 
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
 import sympy as sp
 
-from symjac.model.expressions import exact_number
+from symjac.model.expressions import exact_number, expression_text
 
-__all__ = ["INERTIA_NAMES", "Inertial", "combined_inertial", "inertial_problem", "symbolic_inertial"]
+__all__ = ["INERTIAL_KEYS", "INERTIA_NAMES", "Inertial", "combined_inertial", "inertial_from_table", "inertial_problem",
+           "inertial_table", "symbolic_inertial"]
 
 INERTIA_NAMES: tuple[str, ...] = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 """The six independent entries of a symmetric tensor, in the order robot files and URDF list them."""
@@ -62,8 +63,8 @@ class Inertial:
     inertia : sympy.ImmutableMatrix, shape (3, 3)
         The symmetric tensor :math:`I_c` about the centre of mass, axes of frame {i}.
     given_about : ``"com"`` or ``"origin"``
-        About which point the source gave the tensor (ignored by ``==``): the stored one is always about the centre
-        of mass.
+        About which point the source gave the tensor (the centre of mass, or the origin of the frame it gave it in;
+        ignored by ``==``, kept to write it back that way): the stored one is always about the centre of mass.
 
     Examples
     --------
@@ -127,7 +128,8 @@ class Inertial:
         R, p = sp.Matrix(T[:3, :3]), sp.Matrix(T[:3, 3])
         com = (R * sp.Matrix(self.com) + p).applyfunc(sp.expand)
         inertia = (R * self.inertia * R.T).applyfunc(sp.expand)
-        return Inertial(self.mass, tuple(com), sp.ImmutableMatrix(inertia))  # type: ignore[arg-type]
+        return Inertial(self.mass, tuple(com), sp.ImmutableMatrix(inertia),  # type: ignore[arg-type]
+                        given_about=self.given_about)
 
     @property
     def entries(self) -> dict[str, sp.Expr]:
@@ -165,7 +167,7 @@ def inertial_problem(inertial: Inertial, defaults: Mapping[sp.Symbol, sp.Expr] |
     subs = dict(defaults or {})
 
     def number(e: sp.Expr) -> float | None:
-        value = e.xreplace(subs) if subs else e
+        value = sp.sympify(e.xreplace(subs)) if subs else e
         if not value.is_number:
             return None
         try:
@@ -244,3 +246,58 @@ def combined_inertial(parts: Sequence[Inertial]) -> Inertial:
     for part in parts:
         inertia += part.inertia_about(com)
     return Inertial(mass, com, sp.ImmutableMatrix(inertia.applyfunc(sp.cancel)))  # type: ignore[arg-type]
+
+
+INERTIAL_KEYS: tuple[str, ...] = ("mass", "com", "about", *INERTIA_NAMES, "inertia")
+"""The keys of a robot file's ``[joints.inertial]`` table, in the order they are written."""
+
+
+def inertial_from_table(table: object, value: Callable[[object, str], sp.Expr],
+                        fail: Callable[[str, str], Exception]) -> Inertial:
+    """The :class:`Inertial` a robot file's ``inertial`` table gives, in the frame the file gives it in.
+
+    ``mass`` (required), ``com`` (``[x, y, z]``, default the origin), ``about`` (``"com"``, the default, or
+    ``"origin"``: the point the tensor is about) and the tensor as the six entries ``ixx ixy ixz iyy iyz izz`` (missing
+    ones 0) or as ``inertia``, 3 rows of 3. ``value(raw, field)`` parses one entry; ``fail(message, field)`` is the
+    error to raise.
+    """
+    if not isinstance(table, Mapping):
+        raise fail("'inertial' must be a table with 'mass', 'com' and the tensor entries ixx .. izz", "inertial")
+    unknown = sorted(set(table) - set(INERTIAL_KEYS))
+    if unknown:
+        raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(INERTIAL_KEYS)}",
+                   "inertial")
+    if "mass" not in table:
+        raise fail("'mass' is required", "inertial.mass")
+    about = table.get("about", "com")
+    if about not in ("com", "origin"):
+        raise fail(f"'about' must be 'com' (the centre of mass) or 'origin' (of the link frame), got {about!r}",
+                   "inertial.about")
+    com = table.get("com", [0, 0, 0])
+    if not isinstance(com, Sequence) or isinstance(com, str) or len(com) != 3:
+        raise fail("'com' must be a list of 3 numbers or expressions", "inertial.com")
+    entries = {name: value(table[name], f"inertial.{name}") for name in INERTIA_NAMES if name in table}
+    mass = value(table["mass"], "inertial.mass")
+    centre = tuple(value(v, "inertial.com") for v in com)
+    if "inertia" not in table:
+        return Inertial.from_entries(mass, centre, entries, about)  # type: ignore[arg-type]
+    rows = table["inertia"]
+    if entries:
+        raise fail("give the tensor either as 'inertia' or as ixx .. izz, not both", "inertial.inertia")
+    if not (isinstance(rows, Sequence) and not isinstance(rows, str) and len(rows) == 3
+            and all(isinstance(r, Sequence) and not isinstance(r, str) and len(r) == 3 for r in rows)):
+        raise fail("'inertia' must be 3 rows of 3 entries", "inertial.inertia")
+    matrix = sp.Matrix([[value(v, "inertial.inertia") for v in row] for row in rows])
+    return Inertial.from_origin(mass, centre, matrix) if about == "origin" else Inertial(mass, centre, matrix)
+
+
+def inertial_table(inertial: Inertial) -> dict[str, object]:
+    """The ``inertial`` table of a robot file for ``inertial`` (about the point it was given about)."""
+    tensor = inertial.inertia_about_origin if inertial.given_about == "origin" else inertial.inertia
+    table: dict[str, object] = {"mass": expression_text(inertial.mass),
+                                "com": [expression_text(v) for v in inertial.com], "about": inertial.given_about}
+    if all(sp.expand(tensor[i, j] - tensor[j, i]) == 0 for i, j in ((0, 1), (0, 2), (1, 2))):
+        table.update({name: expression_text(tensor[i, j]) for name, (i, j) in _INDEX.items()})
+    else:  # only symbols can be unequal across the diagonal (numbers are refused): keep both
+        table["inertia"] = [[expression_text(tensor[i, j]) for j in range(3)] for i in range(3)]
+    return table

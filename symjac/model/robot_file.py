@@ -21,10 +21,11 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
-from symjac.model.conventions import PLUGINS, convention_named, plugin
+from symjac.model.conventions import PLUGINS, convention_named, file_inertials, plugin, with_file_inertials
 from symjac.model.conventions.base import transform_fields
 from symjac.model.coordinates import Coupling
 from symjac.model.expressions import exact_number, expression_text, name_problem, parse_expression
+from symjac.model.inertia import Inertial, inertial_from_table, inertial_problem, inertial_table
 from symjac.model.robot import FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
 
 __all__ = ["robot_from_mapping", "robot_to_mapping"]
@@ -129,12 +130,13 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         data, lambda key: _fixed_transform(data[key], key, value, defaults, fail, angle_scale),
         lambda message, field: fail(message, field=field))
 
-    allowed = {"type", "d", "theta", "limits", "coupled", *spec.keys}
-    joints = []
+    allowed = {"type", "d", "theta", "limits", "coupled", "inertial", *spec.keys}
+    joints, inertials = [], []
     for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
         unknown = sorted(set(joint_data) - allowed)
         if unknown:
-            raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(sorted(allowed))}",
+            listed = [*sorted(allowed - {"inertial"}), "inertial"]  # the link's data after the joint's own fields
+            raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(listed)}",
                        joint=number)
         reader = _JointReader(joint_data, number, value, defaults, fail, angle_scale, settings)
         placement, joint_name = spec.read(joint_data, reader)
@@ -146,6 +148,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
                              defaults, lambda message, j=number: fail(message, joint=j, field="limits"))
         joints.append(Joint(index=number, type=kind, placement=placement, d=d, theta=theta, limits=limits,
                             name=joint_name))
+        inertials.append(_inertial(joint_data, number, value, defaults, fail))
 
     coupling = _coupling(joints_data, joints, names, defaults, fail)
     transforms: dict[str, FixedTransform | None] = {}
@@ -155,7 +158,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     if spec.owns_tool:
         transforms["tool"] = spec.tool(joints, settings)
 
-    return Robot(
+    robot = Robot(
         name=name,
         convention=convention,
         joints=tuple(joints),
@@ -166,6 +169,31 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         source=source,
         coupling=coupling,
     )
+    return robot if all(i is None for i in inertials) else with_file_inertials(robot, inertials)
+
+
+def _inertial(table: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
+              fail: Any) -> Inertial | None:
+    """Joint ``number``'s ``inertial`` table (link *number*'s data, in its convention's frame), checked, or None."""
+    if "inertial" not in table:
+        return None
+
+    def problem(message: str, field: str) -> RobotFileError:
+        return fail(f"link {number}: {message}", joint=number, field=field)
+
+    def entry(raw: Any, field: str) -> sp.Expr:
+        try:
+            return value(raw, field, number)
+        except RobotFileError as error:  # say the link, as every inertial error does
+            raise problem(error.message, field) from None
+
+    inertial = inertial_from_table(table["inertial"], entry, problem)
+    for entry in (inertial.mass, *inertial.com, *inertial.inertia):
+        _require_finite(entry, defaults, lambda message: problem(message, "inertial"))
+    reason = inertial_problem(inertial, defaults)
+    if reason is not None:
+        raise problem(reason, "inertial")
+    return inertial
 
 
 def _coupling(tables: Sequence[Mapping[str, Any]], joints: Sequence[Joint], names: Mapping[str, sp.Symbol],
@@ -352,12 +380,15 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
     spec = plugin(robot.convention)
     data.update(spec.write_settings(robot))
     joints = []
-    for joint, value in zip(robot.joints, _written_values(robot), strict=True):
+    written = zip(robot.joints, _written_values(robot), file_inertials(robot), strict=True)
+    for joint, value, inertial in written:
         row: dict[str, Any] = {"type": joint.type.value, **spec.write(joint)}
         if value != joint.variable:
             row["coupled"] = expression_text(value)
         if joint.limits is not None:
             row["limits"] = [expression_text(limit) for limit in joint.limits]
+        if inertial is not None:
+            row["inertial"] = inertial_table(inertial)
         joints.append(row)
     data["joints"] = joints
     for key in ("base",) if spec.owns_tool else ("base", "tool"):

@@ -167,6 +167,9 @@ class ConventionPlugin(Protocol):
     def write_settings(self, robot: Robot) -> dict[str, Any]:
         """The top-level robot-file fields under :attr:`robot_keys`, as :meth:`read_settings` reads them."""
 
+    def inertial_frames(self, robot: Robot) -> tuple[sp.Matrix | None, ...]:
+        """Per link, the pose in frame {i} of the frame its robot-file ``inertial`` table is written in (None: {i})."""
+
 
 class NoRobotFields:
     """The defaults of a convention that reads joint tables only (both DH conventions, general joints)."""
@@ -187,6 +190,10 @@ class NoRobotFields:
     def write_settings(self, robot: Robot) -> dict[str, Any]:
         """Nothing."""
         return {}
+
+    def inertial_frames(self, robot: Robot) -> tuple[sp.Matrix | None, ...]:
+        """Frame {i} itself: a DH table's link frames are the ones textbooks give inertial parameters in."""
+        return (None,) * robot.n_joints
 
     def from_axes(self, robot: Robot, axes: Callable[[], tuple[Sequence[sp.MatrixBase], sp.MatrixBase]]
                   ) -> Robot | None:

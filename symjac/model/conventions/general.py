@@ -31,7 +31,7 @@ from symjac.model.conventions.base import (
 )
 from symjac.model.expressions import expression_text
 from symjac.model.robot import Convention, FixedTransform, Joint, Placement, Robot, unit_vector
-from symjac.symbolic.transforms import Motion, alignment, inverse_motions
+from symjac.symbolic.transforms import Motion, alignment, compose, homogeneous, inverse_motions
 
 __all__ = ["GENERAL", "PLUGIN", "General", "GeneralPlacement", "general_placement", "origin_motions"]
 
@@ -132,6 +132,18 @@ class General(NoRobotFields):
         origin = placement.origin
         return (origin.xyz if origin else _ZERO, origin.rpy if origin else _ZERO, placement.axis or (0, 0, 1),
                 joint.offset, joint.angle)
+
+    def inertial_frames(self, robot: Robot) -> tuple[sp.Matrix | None, ...]:
+        r"""The joint's child link frame, as URDF gives inertial data: :math:`A_i^{-1}` in frame {i}."""
+        frames: list[sp.Matrix | None] = []
+        for joint in robot.joints:
+            placement = general_placement(joint)
+            if placement.axis is None:
+                frames.append(None)
+                continue
+            R, _ = compose(alignment(placement.unit_axis))
+            frames.append(homogeneous(R.T, sp.zeros(3, 1)))
+        return tuple(frames)
 
     def to_modified(self, robot: Robot) -> None:
         """None: a DH table is found from the joint axes (:func:`symjac.kinematics.convert.dh_from_general`)."""

@@ -330,6 +330,13 @@ class ProductOfExponentials(NoRobotFields):
         fields["home"] = transform_fields(given or fixed_transform_from_matrix(home_pose(robot)))
         return fields
 
+    def inertial_frames(self, robot: Robot) -> tuple[sp.Matrix | None, ...]:
+        r"""The frame the screws are written in, at home: {s} (:math:`G_i^{-1}` in {i}), or {b} (:math:`G_i^{-1} M`)."""
+        body = any(screw_placement(joint).body for joint in robot.joints)
+        home = home_pose(robot) if body else sp.eye(4)
+        return tuple((inverse_transform(_frame_matrix(point, direction)) * home).applyfunc(_tidy)
+                     for point, direction in _home_frames(robot.joints))
+
     def forms(self, robot: Robot) -> tuple[JointForm, ...]:
         r"""The forms of :func:`as_general`: :math:`G_{i-1}^{-1} G_i` before :math:`R_z T_z`."""
         return GENERAL.forms(as_general(robot))

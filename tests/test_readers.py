@@ -341,3 +341,14 @@ def test_links_without_inertial_data_have_none_and_bad_data_names_the_link():
     assert robot_from_urdf(INERTIAL.replace('<mass value="5"/>', '<mass value="-5"/>'), tip_link="tool").n_joints == 3
     with pytest.raises(RobotFileError, match=r"link l1 inertial.*needs <mass"):
         robot_from_urdf(INERTIAL.replace('<mass value="2.5"/>', ""), tip_link="tool")
+
+
+def test_urdf_inertials_agree_with_the_general_robot_file_frames():
+    # a general robot file gives inertial data in the joint's child link frame, as URDF does: a single body's
+    # centre is written back as the URDF gave it, and the file reads back to the same robot
+    from symjac.model.io import robot_from_toml, robot_to_toml
+
+    robot = robot_from_urdf(INERTIAL, tip_link="tool")
+    text = robot_to_toml(robot)
+    assert "com = [0.01, 0.02, 0.15]" in text
+    assert robot_from_toml(text) == robot

@@ -86,6 +86,7 @@ UNKNOWN = {
     "sdf with a doctype": ("arm.sdf", '<!DOCTYPE sdf [<!ENTITY x "y">]><sdf version="1.6"/>', "root element <sdf>"),
     "binary": ("arm.bin", b"\x7fELF\x00\x01\x02", "binary data"),
     "text": ("arm.txt", "hello: this is no robot\n", "text that is neither TOML nor XML"),
+    "empty": ("arm", " \n", "an empty file"),
     "latin-1": ("arm.dat", 'robot = "\xe9"'.encode("latin-1") + b"\xff" * 10, "binary data"),
 }
 
@@ -113,6 +114,10 @@ def test_a_suffix_sends_what_no_reader_claims_to_its_reader(tmp_path):
         load_robot(_write(tmp_path, "arm.urdf", "<sdf/>"))
     with pytest.raises(RobotFileError, match="invalid TOML"):
         load_robot(_write(tmp_path, "arm.toml", "robot: arm\n"))
+    with pytest.raises(RobotFileError, match="invalid XML"):
+        load_robot(_write(tmp_path, "empty.urdf", ""))
+    with pytest.raises(RobotFileError, match="the file is empty"):
+        load_robot(_write(tmp_path, "empty.toml", ""))
 
 
 def test_xml_root_skips_the_prolog_and_stays_fast_on_hostile_heads():

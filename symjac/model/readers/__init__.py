@@ -173,7 +173,7 @@ _TOML_START = re.compile(rf"{_KEY}(?:\s*\.\s*{_KEY})*\s*=|\[")
 def _is_toml(head: bytes) -> bool:
     """Text whose first statement (after blank lines and ``#`` comments) is TOML's, or only comments: TOML."""
     text = _text(head)
-    if text is None:
+    if text is None or not text.strip():  # an empty file is any format's: its suffix decides
         return False
     for line in text.splitlines():
         stripped = line.strip()

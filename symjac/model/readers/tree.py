@@ -340,7 +340,8 @@ def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str,
     last_alignment = alignment(placement.unit_axis)
     tool = _combine(pending, list(inverse_motions(last_alignment)))
     moving = [joint for joint in path if joint.type in _MOVING]
-    inertials = tuple(_link_inertial(joint, links, all_joints, source) for joint in moving)
+    inertials = tuple(_link_inertial(joint, links, all_joints, source) for joint in moving) \
+        if any(link.inertial is not None for link in links.values()) else ()
     # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
     robot = Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
                   description=f"from {Path(source).name}", tool=None if tool == FixedTransform() else tool,

@@ -16,8 +16,10 @@ Every name is imported on first use (PEP 562), so ``import symjac`` costs nothin
 work as if everything had been imported up front.
 """
 
+import ast as _ast
 import os as _os
 from importlib import import_module as _import_module
+from pathlib import Path as _Path
 from typing import TYPE_CHECKING as _TYPE_CHECKING
 from typing import Any as _Any
 
@@ -28,167 +30,24 @@ _os.environ.setdefault("SYMPY_CACHE_SIZE", "10000")
 
 from symjac._version import __version__
 
-_MODULES: dict[str, tuple[str, ...]] = {
-    "symjac.analysis.inverse_rates": ("damped_least_squares", "inverse_rates", "rates_along_path"),
-    "symjac.analysis.manipulability": ("BarrierTerm", "LogDetGradient", "ManipulabilityGradient", "log_det_gradient",
-        "manipulability_gradient"),
-    "symjac.analysis.representations": ("REPRESENTATIONS", "EulerConvention", "RepresentationJacobian",
-        "RepresentationJacobianDerivative", "coordinate_rates", "extract", "rate_matrix", "representation_jacobian",
-        "representation_jacobian_at", "representation_jacobian_derivative", "representation_jacobian_derivative_at",
-        "rotation_from"),
-    "symjac.analysis.singularity.determinant": ("Determinant", "determinant"),
-    "symjac.analysis.singularity.singularities": ("LimitStatus", "SingularFactor", "SingularityReport",
-        "singularities"),
-    "symjac.analysis.spaces": ("JacobianSpaces", "SymbolicSpaces", "jacobian_spaces", "symbolic_spaces", "task_rows"),
-    "symjac.codegen": ("JacobianRequest", "generate", "write_module"),
-    "symjac.drawing.animation": ("animate", "joint_path"),
-    "symjac.drawing.figure": ("ArmDrawing", "draw"),
-    "symjac.drawing.geometry": ("ArmPose", "Ellipsoid", "arm_pose", "ellipsoid"),
-    "symjac.errors": ("ArgumentError", "CodegenError", "ConversionError", "ExpressionError", "FrameError",
-        "RepresentationError", "ResultTooLargeError", "RobotFileError", "SymjacError", "UnknownRobotError"),
-    "symjac.kinematics.acceleration": ("DERIVATIVE_METHODS", "bias_acceleration", "hessian", "hessian_slice",
-        "jacobian_derivative"),
-    "symjac.kinematics.acceleration_propagation": ("AccelerationPropagation", "AccelerationStep",
-        "acceleration_propagation", "joint_accelerations"),
-    "symjac.kinematics.chain": ("Chain", "Frame", "as_chain", "chain_of", "clear_caches", "forward_kinematics"),
-    "symjac.kinematics.jacobian": ("METHODS", "ROW_NAMES", "change_frame", "jacobian", "jacobian_of",
-        "rows_from_names", "shift_point"),
-    "symjac.kinematics.numeric": ("evaluate_at", "numeric_jacobian"),
-    "symjac.kinematics.screws": ("SCREW_ROWS", "body_jacobian", "exponential_product", "screw_exponential",
-        "space_jacobian"),
-    "symjac.kinematics.propagation": ("ForcePropagation", "VelocityPropagation", "force_propagation",
-        "joint_rate_symbols", "velocity_propagation", "wrench_symbols"),
-    "symjac.kinematics.statics": ("joint_torques", "wrench_between"),
-    "symjac.model.io": ("catalog", "load_robot", "robot_from_toml", "robot_to_toml", "urdf_catalog"),
-    "symjac.sweeps.run": ("sweep",),
-    "symjac.model.robot": ("Convention", "FixedTransform", "Joint", "JointType", "Parameter", "Robot"),
-    "symjac.model.robot_file": ("robot_from_mapping", "robot_to_mapping"),
-    "symjac.model.urdf": ("robot_from_urdf",),
-    "symjac.printing": ("latex", "pretty"),
-    "symjac.symbolic.angles": ("AngleBasis",),
-    "symjac.symbolic.simplify": ("is_identity", "simplify_expr", "simplify_matrix"),
-    "symjac.symbolic.transforms": ("adjoint", "twist_transform", "wrench_transform"),
-}
-"""Each module of the public API and the names :mod:`symjac` re-exports from it."""
 
-_HOME = {name: module for module, names in _MODULES.items() for name in names}
+def _public_names() -> dict[str, str]:
+    """Each public name and the module it is imported from.
 
-__all__ = [
-    "DERIVATIVE_METHODS",
-    "METHODS",
-    "REPRESENTATIONS",
-    "ROW_NAMES",
-    "SCREW_ROWS",
-    "AccelerationPropagation",
-    "AccelerationStep",
-    "AngleBasis",
-    "ArgumentError",
-    "ArmDrawing",
-    "ArmPose",
-    "BarrierTerm",
-    "Chain",
-    "CodegenError",
-    "Convention",
-    "ConversionError",
-    "Determinant",
-    "Ellipsoid",
-    "EulerConvention",
-    "ExpressionError",
-    "FixedTransform",
-    "ForcePropagation",
-    "Frame",
-    "FrameError",
-    "JacobianRequest",
-    "JacobianSpaces",
-    "Joint",
-    "JointType",
-    "LimitStatus",
-    "LogDetGradient",
-    "ManipulabilityGradient",
-    "Parameter",
-    "RepresentationError",
-    "RepresentationJacobian",
-    "RepresentationJacobianDerivative",
-    "ResultTooLargeError",
-    "Robot",
-    "RobotFileError",
-    "SingularFactor",
-    "SingularityReport",
-    "SymbolicSpaces",
-    "SymjacError",
-    "UnknownRobotError",
-    "VelocityPropagation",
-    "__version__",
-    "acceleration_propagation",
-    "adjoint",
-    "animate",
-    "arm_pose",
-    "as_chain",
-    "bias_acceleration",
-    "body_jacobian",
-    "catalog",
-    "chain_of",
-    "change_frame",
-    "clear_caches",
-    "coordinate_rates",
-    "damped_least_squares",
-    "determinant",
-    "draw",
-    "ellipsoid",
-    "evaluate_at",
-    "exponential_product",
-    "extract",
-    "force_propagation",
-    "forward_kinematics",
-    "generate",
-    "hessian",
-    "hessian_slice",
-    "inverse_rates",
-    "is_identity",
-    "jacobian",
-    "jacobian_derivative",
-    "jacobian_of",
-    "jacobian_spaces",
-    "joint_accelerations",
-    "joint_path",
-    "joint_rate_symbols",
-    "joint_torques",
-    "latex",
-    "load_robot",
-    "log_det_gradient",
-    "manipulability_gradient",
-    "numeric_jacobian",
-    "pretty",
-    "rate_matrix",
-    "rates_along_path",
-    "representation_jacobian",
-    "representation_jacobian_at",
-    "representation_jacobian_derivative",
-    "representation_jacobian_derivative_at",
-    "robot_from_mapping",
-    "robot_from_toml",
-    "robot_from_urdf",
-    "robot_to_mapping",
-    "robot_to_toml",
-    "rotation_from",
-    "rows_from_names",
-    "screw_exponential",
-    "shift_point",
-    "simplify_expr",
-    "simplify_matrix",
-    "singularities",
-    "space_jacobian",
-    "sweep",
-    "symbolic_spaces",
-    "task_rows",
-    "twist_transform",
-    "urdf_catalog",
-    "velocity_propagation",
-    "wrench_between",
-    "wrench_symbols",
-    "wrench_transform",
-    "write_module",
-]
+    The one list of the public API is the block of imports under ``if _TYPE_CHECKING`` at the end of this file:
+    static checkers read it as eager imports (``name as name`` marks a re-export), and this reads it at run time.
+    """
+    tree = _ast.parse(_Path(__file__).read_text(encoding="utf-8"))
+    block = next(node for node in tree.body if isinstance(node, _ast.If) and isinstance(node.test, _ast.Name)
+                 and node.test.id == "_TYPE_CHECKING")
+    return {alias.asname or alias.name: node.module for node in block.body if isinstance(node, _ast.ImportFrom)
+            for alias in node.names if node.module}
+
+
+_HOME = _public_names()
+"""Each public name and the module it lives in."""
+
+__all__ = ["__version__", *sorted(_HOME)]
 
 
 def __getattr__(name: str) -> _Any:
@@ -205,93 +64,119 @@ def __dir__() -> list[str]:
     return sorted({*globals(), *__all__})
 
 
-if _TYPE_CHECKING:  # static checkers see the names as if imported eagerly
-    from symjac.analysis.inverse_rates import damped_least_squares, inverse_rates, rates_along_path
-    from symjac.analysis.manipulability import (
-        BarrierTerm,
-        LogDetGradient,
-        ManipulabilityGradient,
-        log_det_gradient,
-        manipulability_gradient,
-    )
+if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public_names)
+    from symjac.analysis.inverse_rates import damped_least_squares as damped_least_squares
+    from symjac.analysis.inverse_rates import inverse_rates as inverse_rates
+    from symjac.analysis.inverse_rates import rates_along_path as rates_along_path
+    from symjac.analysis.manipulability import BarrierTerm as BarrierTerm
+    from symjac.analysis.manipulability import LogDetGradient as LogDetGradient
+    from symjac.analysis.manipulability import ManipulabilityGradient as ManipulabilityGradient
+    from symjac.analysis.manipulability import log_det_gradient as log_det_gradient
+    from symjac.analysis.manipulability import manipulability_gradient as manipulability_gradient
+    from symjac.analysis.representations import REPRESENTATIONS as REPRESENTATIONS
+    from symjac.analysis.representations import EulerConvention as EulerConvention
+    from symjac.analysis.representations import RepresentationJacobian as RepresentationJacobian
+    from symjac.analysis.representations import RepresentationJacobianDerivative as RepresentationJacobianDerivative
+    from symjac.analysis.representations import coordinate_rates as coordinate_rates
+    from symjac.analysis.representations import extract as extract
+    from symjac.analysis.representations import rate_matrix as rate_matrix
+    from symjac.analysis.representations import representation_jacobian as representation_jacobian
+    from symjac.analysis.representations import representation_jacobian_at as representation_jacobian_at
+    from symjac.analysis.representations import representation_jacobian_derivative as representation_jacobian_derivative
     from symjac.analysis.representations import (
-        REPRESENTATIONS,
-        EulerConvention,
-        RepresentationJacobian,
-        RepresentationJacobianDerivative,
-        coordinate_rates,
-        extract,
-        rate_matrix,
-        representation_jacobian,
-        representation_jacobian_at,
-        representation_jacobian_derivative,
-        representation_jacobian_derivative_at,
-        rotation_from,
+        representation_jacobian_derivative_at as representation_jacobian_derivative_at,
     )
-    from symjac.analysis.singularity.determinant import Determinant, determinant
-    from symjac.analysis.singularity.singularities import LimitStatus, SingularFactor, SingularityReport, singularities
-    from symjac.analysis.spaces import JacobianSpaces, SymbolicSpaces, jacobian_spaces, symbolic_spaces, task_rows
-    from symjac.codegen import JacobianRequest, generate, write_module
-    from symjac.drawing.animation import animate, joint_path
-    from symjac.drawing.figure import ArmDrawing, draw
-    from symjac.drawing.geometry import ArmPose, Ellipsoid, arm_pose, ellipsoid
-    from symjac.errors import (
-        ArgumentError,
-        CodegenError,
-        ConversionError,
-        ExpressionError,
-        FrameError,
-        RepresentationError,
-        ResultTooLargeError,
-        RobotFileError,
-        SymjacError,
-        UnknownRobotError,
-    )
-    from symjac.kinematics.acceleration import (
-        DERIVATIVE_METHODS,
-        bias_acceleration,
-        hessian,
-        hessian_slice,
-        jacobian_derivative,
-    )
-    from symjac.kinematics.acceleration_propagation import (
-        AccelerationPropagation,
-        AccelerationStep,
-        acceleration_propagation,
-        joint_accelerations,
-    )
-    from symjac.kinematics.chain import Chain, Frame, as_chain, chain_of, clear_caches, forward_kinematics
-    from symjac.kinematics.jacobian import (
-        METHODS,
-        ROW_NAMES,
-        change_frame,
-        jacobian,
-        jacobian_of,
-        rows_from_names,
-        shift_point,
-    )
-    from symjac.kinematics.numeric import evaluate_at, numeric_jacobian
-    from symjac.kinematics.propagation import (
-        ForcePropagation,
-        VelocityPropagation,
-        force_propagation,
-        joint_rate_symbols,
-        velocity_propagation,
-        wrench_symbols,
-    )
-    from symjac.kinematics.screws import (
-        SCREW_ROWS,
-        body_jacobian,
-        exponential_product,
-        screw_exponential,
-        space_jacobian,
-    )
-    from symjac.kinematics.statics import joint_torques, wrench_between
-    from symjac.model.io import catalog, load_robot, robot_from_toml, robot_to_toml, urdf_catalog
-    from symjac.model.robot import Convention, FixedTransform, Joint, JointType, Parameter, Robot
-    from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
-    from symjac.model.urdf import robot_from_urdf
-    from symjac.printing import latex, pretty
-    from symjac.sweeps.run import sweep
-    from symjac.symbolic.simplify import AngleBasis, is_identity, simplify_expr, simplify_matrix
-    from symjac.symbolic.transforms import adjoint, twist_transform, wrench_transform
+    from symjac.analysis.representations import rotation_from as rotation_from
+    from symjac.analysis.singularity.determinant import Determinant as Determinant
+    from symjac.analysis.singularity.determinant import determinant as determinant
+    from symjac.analysis.singularity.singularities import LimitStatus as LimitStatus
+    from symjac.analysis.singularity.singularities import SingularFactor as SingularFactor
+    from symjac.analysis.singularity.singularities import SingularityReport as SingularityReport
+    from symjac.analysis.singularity.singularities import singularities as singularities
+    from symjac.analysis.spaces import JacobianSpaces as JacobianSpaces
+    from symjac.analysis.spaces import SymbolicSpaces as SymbolicSpaces
+    from symjac.analysis.spaces import jacobian_spaces as jacobian_spaces
+    from symjac.analysis.spaces import symbolic_spaces as symbolic_spaces
+    from symjac.analysis.spaces import task_rows as task_rows
+    from symjac.codegen import JacobianRequest as JacobianRequest
+    from symjac.codegen import generate as generate
+    from symjac.codegen import write_module as write_module
+    from symjac.drawing.animation import animate as animate
+    from symjac.drawing.animation import joint_path as joint_path
+    from symjac.drawing.figure import ArmDrawing as ArmDrawing
+    from symjac.drawing.figure import draw as draw
+    from symjac.drawing.geometry import ArmPose as ArmPose
+    from symjac.drawing.geometry import Ellipsoid as Ellipsoid
+    from symjac.drawing.geometry import arm_pose as arm_pose
+    from symjac.drawing.geometry import ellipsoid as ellipsoid
+    from symjac.errors import ArgumentError as ArgumentError
+    from symjac.errors import CodegenError as CodegenError
+    from symjac.errors import ConversionError as ConversionError
+    from symjac.errors import ExpressionError as ExpressionError
+    from symjac.errors import FrameError as FrameError
+    from symjac.errors import RepresentationError as RepresentationError
+    from symjac.errors import ResultTooLargeError as ResultTooLargeError
+    from symjac.errors import RobotFileError as RobotFileError
+    from symjac.errors import SymjacError as SymjacError
+    from symjac.errors import UnknownRobotError as UnknownRobotError
+    from symjac.kinematics.acceleration import DERIVATIVE_METHODS as DERIVATIVE_METHODS
+    from symjac.kinematics.acceleration import bias_acceleration as bias_acceleration
+    from symjac.kinematics.acceleration import hessian as hessian
+    from symjac.kinematics.acceleration import hessian_slice as hessian_slice
+    from symjac.kinematics.acceleration import jacobian_derivative as jacobian_derivative
+    from symjac.kinematics.acceleration_propagation import AccelerationPropagation as AccelerationPropagation
+    from symjac.kinematics.acceleration_propagation import AccelerationStep as AccelerationStep
+    from symjac.kinematics.acceleration_propagation import acceleration_propagation as acceleration_propagation
+    from symjac.kinematics.acceleration_propagation import joint_accelerations as joint_accelerations
+    from symjac.kinematics.chain import Chain as Chain
+    from symjac.kinematics.chain import Frame as Frame
+    from symjac.kinematics.chain import as_chain as as_chain
+    from symjac.kinematics.chain import chain_of as chain_of
+    from symjac.kinematics.chain import clear_caches as clear_caches
+    from symjac.kinematics.chain import forward_kinematics as forward_kinematics
+    from symjac.kinematics.jacobian import METHODS as METHODS
+    from symjac.kinematics.jacobian import ROW_NAMES as ROW_NAMES
+    from symjac.kinematics.jacobian import change_frame as change_frame
+    from symjac.kinematics.jacobian import jacobian as jacobian
+    from symjac.kinematics.jacobian import jacobian_of as jacobian_of
+    from symjac.kinematics.jacobian import rows_from_names as rows_from_names
+    from symjac.kinematics.jacobian import shift_point as shift_point
+    from symjac.kinematics.numeric import evaluate_at as evaluate_at
+    from symjac.kinematics.numeric import numeric_jacobian as numeric_jacobian
+    from symjac.kinematics.propagation import ForcePropagation as ForcePropagation
+    from symjac.kinematics.propagation import VelocityPropagation as VelocityPropagation
+    from symjac.kinematics.propagation import force_propagation as force_propagation
+    from symjac.kinematics.propagation import joint_rate_symbols as joint_rate_symbols
+    from symjac.kinematics.propagation import velocity_propagation as velocity_propagation
+    from symjac.kinematics.propagation import wrench_symbols as wrench_symbols
+    from symjac.kinematics.screws import SCREW_ROWS as SCREW_ROWS
+    from symjac.kinematics.screws import body_jacobian as body_jacobian
+    from symjac.kinematics.screws import exponential_product as exponential_product
+    from symjac.kinematics.screws import screw_exponential as screw_exponential
+    from symjac.kinematics.screws import space_jacobian as space_jacobian
+    from symjac.kinematics.statics import joint_torques as joint_torques
+    from symjac.kinematics.statics import wrench_between as wrench_between
+    from symjac.model.io import catalog as catalog
+    from symjac.model.io import load_robot as load_robot
+    from symjac.model.io import robot_from_toml as robot_from_toml
+    from symjac.model.io import robot_to_toml as robot_to_toml
+    from symjac.model.io import urdf_catalog as urdf_catalog
+    from symjac.model.robot import Convention as Convention
+    from symjac.model.robot import FixedTransform as FixedTransform
+    from symjac.model.robot import Joint as Joint
+    from symjac.model.robot import JointType as JointType
+    from symjac.model.robot import Parameter as Parameter
+    from symjac.model.robot import Robot as Robot
+    from symjac.model.robot_file import robot_from_mapping as robot_from_mapping
+    from symjac.model.robot_file import robot_to_mapping as robot_to_mapping
+    from symjac.model.urdf import robot_from_urdf as robot_from_urdf
+    from symjac.printing import latex as latex
+    from symjac.printing import pretty as pretty
+    from symjac.sweeps.run import sweep as sweep
+    from symjac.symbolic.angles import AngleBasis as AngleBasis
+    from symjac.symbolic.simplify import is_identity as is_identity
+    from symjac.symbolic.simplify import simplify_expr as simplify_expr
+    from symjac.symbolic.simplify import simplify_matrix as simplify_matrix
+    from symjac.symbolic.transforms import adjoint as adjoint
+    from symjac.symbolic.transforms import twist_transform as twist_transform
+    from symjac.symbolic.transforms import wrench_transform as wrench_transform

@@ -25,6 +25,7 @@ STAGES: list[tuple[str, ...]] = [
     ("analysis",),
     ("printing", "drawing"),
     ("report", "codegen", "teaching", "sweeps"),
+    ("quantities",),
     ("cli",),
 ]
 

@@ -34,6 +34,7 @@ from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Frame, chain_of
 from symjac.kinematics.jacobian import ROW_NAMES, Point, jacobian
 from symjac.kinematics.numeric import numeric_jacobian
+from symjac.model.ends import end_point
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
 
@@ -159,7 +160,7 @@ def rates_along_path(
     :func:`symjac.analysis.singularity.determinant.task_rows`), expressed in ``frame``.
     """
     if point is None:
-        point = "tool" if robot.tool is not None else "wrist"
+        point = end_point(robot)
     chain_of(robot).position(frame)
     configurations = np.asarray(path, dtype=float)
     if configurations.ndim != 2 or configurations.shape[1] != robot.n_coordinates:

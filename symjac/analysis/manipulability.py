@@ -45,6 +45,7 @@ from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point, point_vector, rows_from_names
 from symjac.kinematics.memo import frame_of, memoized
 from symjac.kinematics.numeric import numeric_jacobian
+from symjac.model.ends import end_point
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
 
@@ -83,7 +84,7 @@ def _resolve_rows(chain: Chain, rows: Rows | None, point: tuple[sp.Expr, ...]) -
 
 
 def _default_point(chain: Chain, point: Point | None) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
-    return point_vector(chain, ("tool" if chain.robot.tool is not None else "wrist") if point is None else point)
+    return point_vector(chain, end_point(chain) if point is None else point)
 
 
 # --- numeric ---------------------------------------------------------------------------------------------------

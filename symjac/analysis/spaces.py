@@ -22,6 +22,7 @@ from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import Point, jacobian, point_vector
 from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_jacobian
+from symjac.model.ends import end_point
 from symjac.model.robot import Robot
 
 __all__ = [
@@ -121,7 +122,7 @@ def symbolic_spaces(
     chain = as_chain(robot)
     robot = chain.robot
     if point is None:
-        point = "tool" if robot.tool is not None else "wrist"
+        point = end_point(robot)
     point_xyz = point_vector(robot, point)
     chosen = list(task_rows(chain, point_xyz) if rows is None else rows)
     J = jacobian(chain, frame=frame, point=point_xyz)[chosen, :].xreplace(dict(values))

@@ -4,7 +4,8 @@ Results go to stdout (or ``-o FILE``, written only once complete: see :func:`sym
 stdout); progress of slow steps goes to stderr when it is a terminal. Any failure after the arguments are parsed
 prints one line and exits with status 2, Ctrl-C prints ``symjac: interrupted`` and exits with 130 (:func:`main`).
 Turning option text into API arguments lives in :mod:`symjac.cli.args`, output and error lines in
-:mod:`symjac.cli.output`, the documents in :mod:`symjac.printing.results`.
+:mod:`symjac.cli.output`, the documents in :mod:`symjac.printing.results`. The commands that print a derived quantity
+(``fk``, ``jacobian``, ``hessian``, ``torques``) are built from the quantities' specs (:mod:`symjac.cli.quantities`).
 
 A handler parses, calls the API, builds the document; :func:`main` renders it. Only the command given is set up,
 and each handler imports what it uses: ``symjac --version`` loads no SymPy, ``symjac fk`` no code generator.
@@ -18,17 +19,10 @@ import os
 import shlex
 import sys
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import TYPE_CHECKING, NoReturn
 
 from symjac._version import __version__
-from symjac.cli.args import (
-    load,
-    parse_frame,
-    parse_point,
-    parse_rows,
-    parse_values,
-    refuse_ignored_options,
-)
+from symjac.cli.args import load, parse_frame, parse_point, parse_rows, refuse_ignored_options
 from symjac.cli.drawing import draw_command
 from symjac.cli.options import (
     codegen_options,
@@ -40,13 +34,14 @@ from symjac.cli.options import (
     robot_options,
     sweep_options,
 )
-from symjac.cli.output import emit, note_if_large, one_line, progress, silence_stdout
+from symjac.cli.output import emit, one_line, progress, silence_stdout
+from symjac.cli.quantities import quantity_commands
 from symjac.cli.sweeping import sweep_command
-from symjac.errors import ArgumentError, SymjacError
+from symjac.errors import SymjacError
+from symjac.quantities.bias_acceleration import command as derivative_command
+from symjac.quantities.jacobian import propagation, representation
 
 if TYPE_CHECKING:
-    from symjac.kinematics.chain import Frame
-    from symjac.model.robot import Robot
     from symjac.printing.document import Document
 
 __all__ = ["full_parser", "main", "run"]
@@ -152,9 +147,6 @@ def _parser(command: str | None = None, *, every: bool = False) -> argparse.Argu
     return parser
 
 
-# --- options of each command ----------------------------------------------------------------------------------
-
-
 # --- commands ----------------------------------------------------------------------------------------------
 
 
@@ -197,131 +189,6 @@ def _show(args: argparse.Namespace) -> Document:
 
     robot = load(args)
     return transforms_document(robot, link_transforms(robot), _digits(args))
-
-
-def _fk(args: argparse.Namespace) -> Document:
-    from symjac.kinematics.chain import forward_kinematics
-    from symjac.printing.results import forward_kinematics_document
-
-    robot = load(args)
-    note_if_large(robot.name, robot.n_joints)
-    source: Frame = "world" if robot.base else 0
-    target: Frame = "tool" if robot.tool else robot.n_joints
-    T = progress(f"forward kinematics of {robot.name}", lambda: forward_kinematics(robot, source, target))
-    return forward_kinematics_document(robot, source, target, T, _digits(args))
-
-
-def _jacobian(args: argparse.Namespace) -> Document:
-    from symjac.kinematics.jacobian import jacobian
-    from symjac.printing.results import jacobian_document
-
-    robot = load(args)
-    note_if_large(robot.name, robot.n_joints)
-    frame = parse_frame(args.frame)
-    point = parse_point(args.point, robot)
-    if args.kind != "geometric":
-        return _screw_jacobian(args, robot)
-    if args.representation is not None:
-        return _representation(args, robot, frame, point)
-    if args.derivative:
-        return _derivative(args, robot, frame, point)
-    propagation = _propagation(args, robot, point) if args.steps else None
-    J = progress(f"Jacobian of {robot.name} in frame {frame}",
-                  lambda: jacobian(robot, frame=frame, point=point, method=args.method))
-    return jacobian_document(robot, J, frame, args.point, args.method, propagation, _digits(args))
-
-
-def _screw_jacobian(args: argparse.Namespace, robot: Robot) -> Document:
-    """``jacobian --kind space|body``: J_s or J_b (the frame and point are the space and tool frames)."""
-    from symjac.kinematics.screws import body_jacobian, space_jacobian
-    from symjac.printing.results import screw_jacobian_document
-
-    others = [flag for flag, given in (("--frame", args.frame != "0"), ("--point", args.point != "wrist"),
-                                       ("--representation", args.representation is not None),
-                                       ("--derivative", args.derivative), ("--steps", args.steps)) if given]
-    if others:
-        raise ArgumentError(f"--kind {args.kind} takes neither {' nor '.join(others)}: J_s is in the space frame "
-                            f"{{0}}, J_b in the tool frame")
-    derive = space_jacobian if args.kind == "space" else body_jacobian
-    J = progress(f"{args.kind} Jacobian of {robot.name}", lambda: derive(robot))
-    return screw_jacobian_document(robot, J, args.kind, _digits(args))
-
-
-def _representation(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> Document:
-    """``jacobian --representation``: x, E(x), the basic Jacobian and J_x = E(x) J_0, then E's own singularities."""
-    from symjac.analysis.representations import representation_jacobian
-    from symjac.printing.results import representation_document
-
-    position = args.position or "cartesian"
-    result = progress(f"{args.representation} representation Jacobian of {robot.name}",
-                      lambda: representation_jacobian(robot, args.representation, position, point, frame))
-    return representation_document(robot, result, args.point, args.representation, position, _digits(args))
-
-
-def _derivative(args: argparse.Namespace, robot: Robot, frame: Frame, point: Any) -> Document:
-    """``jacobian --derivative``: the time derivative of the Jacobian and the bias acceleration."""
-    from symjac.kinematics.acceleration import bias_acceleration, carried_joints, jacobian_derivative
-    from symjac.kinematics.acceleration_propagation import acceleration_propagation
-    from symjac.kinematics.jacobian import point_vector
-    from symjac.kinematics.propagation import joint_rate_symbols
-    from symjac.printing.results import derivative_document
-
-    propagation = None
-    if args.steps:
-        tip = None if point == "tool" else point_vector(robot, point)
-        propagation = progress(f"acceleration propagation of {robot.name}",
-                               lambda: acceleration_propagation(robot, tip))
-    Jdot = progress(f"Jacobian derivative of {robot.name} in frame {frame}",
-                     lambda: jacobian_derivative(robot, frame=frame, point=point))
-    bias = bias_acceleration(robot, frame=frame, point=point)
-    return derivative_document(robot, Jdot, bias, frame, args.point, bool(carried_joints(robot, frame)),
-                               joint_rate_symbols(robot), propagation, _digits(args))
-
-
-def _hessian(args: argparse.Namespace) -> Document:
-    """``hessian``: one 6 x n slice dJ/dq_k per joint."""
-    from symjac.kinematics.acceleration import hessian, hessian_slice
-    from symjac.printing.results import hessian_document
-
-    robot = load(args)
-    frame = parse_frame(args.frame)
-    point = parse_point(args.point, robot)
-    H = progress(f"Hessian of {robot.name} in frame {frame}", lambda: hessian(robot, frame=frame, point=point))
-    slices = [hessian_slice(H, k) for k in range(len(robot.q))]
-    return hessian_document(robot, slices, frame, args.point, _digits(args))
-
-
-def _propagation(args: argparse.Namespace, robot: Robot, point: Any) -> Any:
-    """The velocity or force propagation whose steps ``--steps`` prints."""
-    from symjac.kinematics.jacobian import point_vector
-    from symjac.kinematics.propagation import force_propagation, velocity_propagation
-
-    tip = None if point == "tool" else point_vector(robot, point)
-    derive: dict[str, Callable[[], Any]] = {
-        "velocity_propagation": lambda: velocity_propagation(robot, tip),
-        "force_propagation": lambda: force_propagation(robot, tip),
-    }
-    if args.method not in derive:
-        raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
-    return progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
-
-
-def _torques(args: argparse.Namespace) -> Document:
-    from symjac.kinematics.propagation import wrench_symbols
-    from symjac.kinematics.statics import joint_torques
-    from symjac.printing.latex import DIGITS
-    from symjac.printing.results import torques_document
-
-    robot = load(args)
-    frame = parse_frame(args.frame)
-    point = parse_point(args.point, robot)
-    wrench = None if args.wrench is None else parse_values(args.wrench, 6, "--wrench", robot)
-    q = None if args.q is None else parse_values(args.q, robot.n_coordinates, "--q", robot, parameters=False)
-    tau = progress(f"joint torques of {robot.name}",
-                    lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q))
-    evaluated = None if q is None else args.digits or DIGITS  # at a configuration: numbers, shown as decimals
-    return torques_document(robot, tau, frame, args.point, args.wrench, args.q, wrench_symbols(), _digits(args),
-                            evaluated)
 
 
 def _singularities(args: argparse.Namespace) -> Document:
@@ -378,14 +245,14 @@ COMMANDS: dict[str, tuple[Handler, str, Options]] = {
     "report": (_report, "write the whole derivation as one self-contained HTML page", robot_options),
     "convert": (_convert, "print the robot as a TOML robot file, converted to another convention", convert_options),
     "show": (_show, "show the DH table and the link transforms", result_options),
-    "fk": (_fk, "print the forward kinematics", result_options),
-    "jacobian": (_jacobian, "print the basic Jacobian [v; omega]", result_options),
-    "hessian": (_hessian, "print the kinematic Hessian: dJ/dq_k for every joint k", result_options),
-    "torques": (_torques, "print the joint torques tau = J^T F that hold a wrench", result_options),
+    **quantity_commands(),  # fk, jacobian, hessian, torques, ...: one per quantity spec (symjac.quantities)
     "singularities": (_singularities, "factor det J, solve every factor and explain what the arm loses there",
                       result_options),
 }
 """Each command: its handler, its one-line help, and the function that adds its options."""
+
+# The jacobian command's variants, under the names they had when their code was here (tests read their source).
+_representation, _derivative, _propagation = representation, derivative_command, propagation
 
 
 if __name__ == "__main__":  # pragma: no cover

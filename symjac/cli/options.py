@@ -1,14 +1,14 @@
 """The options of each ``symjac`` command, added only to the command given (:data:`symjac.cli.main.COMMANDS`).
 
 Each function takes the command's subparser and its name; heavy modules are imported only inside the function of
-the command that needs them.
+the command that needs them. A derived quantity's own options are in its spec (:mod:`symjac.quantities`).
 """
 
 from __future__ import annotations
 
 import argparse
 
-from symjac.cli.args import LazyChoices, add_robot_arguments
+from symjac.cli.args import add_robot_arguments
 
 __all__ = [
     "codegen_options",
@@ -114,7 +114,10 @@ def sweep_options(sub: argparse.ArgumentParser, name: str) -> None:
 
 
 def result_options(sub: argparse.ArgumentParser, name: str) -> None:
-    """The options of the commands that print a result as a document (LaTeX, pretty or JSON)."""
+    """The options of the commands that print a result as a document (LaTeX, pretty or JSON).
+
+    A quantity's command adds its own after these (:mod:`symjac.cli.quantities`).
+    """
     from symjac.printing.document import FORMATS
     from symjac.printing.latex import DIGITS
 
@@ -125,27 +128,6 @@ def result_options(sub: argparse.ArgumentParser, name: str) -> None:
     if name != "singularities":
         sub.add_argument("--digits", type=int, default=None, metavar="N",
                          help=f"with --numeric (or torques --q): significant digits printed (default {DIGITS})")
-    if name in ("jacobian", "torques", "hessian"):
-        sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
-        sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
-    if name == "jacobian":
-        from symjac.kinematics.jacobian import METHODS
-
-        representations = "symjac.analysis.representations"  # loaded only when one is asked for (it loads NumPy)
-        sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
-        sub.add_argument("--kind", choices=("geometric", "space", "body"), default="geometric",
-                         help="geometric: the basic Jacobian [v; omega] (default); space or body: J_s or J_b of "
-                              "screw theory, rows (omega; v) as in Lynch and Park (--frame and --point do not apply)")
-        sub.add_argument("--steps", action="store_true",
-                         help="with a propagation method (or --derivative): print every propagation step first")
-        sub.add_argument("--representation", choices=LazyChoices(representations, "REPRESENTATIONS"), default=None,
-                         metavar="NAME", help="print the representation Jacobian J_x = E(x) J_0 for these "
-                                              "orientation coordinates: %(choices)s")
-        sub.add_argument("--position", choices=LazyChoices(representations, "POSITIONS"), default=None,
-                         metavar="NAME", help="with --representation: position coordinates, %(choices)s (default "
-                                              "cartesian)")
-        sub.add_argument("--derivative", action="store_true",
-                         help="print the time derivative dJ/dt and the bias acceleration Jdot qdot instead")
     if name == "singularities":
         sub.add_argument("--frame", default=None, help="frame to analyse in (default: the most compact one)")
         sub.add_argument("--point", default=None, help="wrist, tool, or x,y,z in frame {n} (default: tool if "
@@ -153,6 +135,3 @@ def result_options(sub: argparse.ArgumentParser, name: str) -> None:
         sub.add_argument("--rows", default=None,
                          help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z "
                               "(default: chosen automatically)")
-    if name == "torques":
-        sub.add_argument("--wrench", help="fx,fy,fz,nx,ny,nz applied at the point, in the frame (default symbolic)")
-        sub.add_argument("--q", help="a configuration q1,...,qn (numbers or expressions with pi)")

@@ -6,8 +6,10 @@ A CLI command (or a notebook) builds a :class:`Document` (a title, blocks of cap
 * ``latex``: one line per equation (captions as ``%`` comments when the document asks for them), or with
   ``standalone`` a complete document through the ``documents/latex_document.tex.j2`` template;
 * ``pretty``: each block's caption, then its equations in Unicode (``name =`` above a matrix);
-* ``json``: the document's data, indented. The data is built only then (:attr:`Document.data` may be a function),
-  so a LaTeX or pretty result never pays for its JSON form.
+* ``json``: the document's data, indented, built only then (so a LaTeX or pretty result never pays for it) and from
+  the document itself: the robot's metadata, the document's :attr:`~Document.facts`, then every equation that names
+  its :class:`JsonKey` (:func:`symjac.printing.json.document_data`). A result is described once; no format has a
+  builder of its own.
 
 A LaTeX result longer than :data:`LATEX_LIMIT` is more than anyone reads on a terminal: :func:`check_latex_size`
 refuses it unless it goes to a file.
@@ -39,6 +41,7 @@ __all__ = [
     "Document",
     "Equation",
     "Inline",
+    "JsonKey",
     "LatexTooLargeError",
     "Prescripted",
     "Style",
@@ -72,17 +75,39 @@ class Prescripted:
 
 
 @dataclass(frozen=True)
+class JsonKey:
+    """Where an equation's right side goes in the JSON form of its document (:func:`.json.document_data`).
+
+    ``name`` is the key of the right side as SymPy strings: rows of strings (a matrix), or with ``flat`` one list
+    (a vector's entries). ``latex``, when given, is the key of the equation as one LaTeX line beside it.
+    ``item``: the equation is one of several under ``name`` (and ``latex``), a mapping ``item -> value``;
+    ``stacked`` then also writes every item's matrix, stacked along a last axis, under that key
+    (``data[stacked][i][j][k]`` is item k's entry ``[i, j]``). ``record``: the equation is one of a list under
+    ``name``, each ``{"name": text, "latex": ..., "entries": [...]}`` (propagation steps).
+    """
+
+    name: str
+    latex: str | None = None
+    item: str | None = None
+    flat: bool = False
+    record: bool = False
+    stacked: str | None = None
+
+
+@dataclass(frozen=True)
 class Equation:
     r"""``lhs = rhs``: the left side spelled for LaTeX (``{}^{0}J``) and for text (``J_0``), the right side SymPy.
 
     ``rhs`` is one SymPy object, or a tuple of them printed side by side (a product :math:`E(x)\,J_0`). With empty
-    names the right side prints alone (a solution ``theta2 = 0`` is already an equation).
+    names the right side prints alone (a solution ``theta2 = 0`` is already an equation). ``key`` says where it goes
+    in the JSON form (none: it is printed only).
     """
 
     tex: str
     text: str
     rhs: Any
     name: Prescripted | None = None
+    key: JsonKey | None = None
 
 
 @dataclass(frozen=True)
@@ -121,21 +146,32 @@ class Block:
 
 @dataclass(frozen=True)
 class Document:
-    """A result ready to render: ``title`` and ``robot`` head a standalone document, ``data`` is the JSON output.
+    """A result ready to render: ``title`` and ``robot`` (its name) head a standalone document.
 
-    ``data`` is the JSON-ready mapping, or a function that builds it (called only for ``json``: building it prints
-    every entry once more). ``comments`` keeps the captions in bare LaTeX output as ``%`` lines (for results whose
-    captions explain, such as singularities); otherwise bare LaTeX is the equations alone, one per line.
+    Its JSON form is built from the document itself (:func:`symjac.printing.json.document_data`): ``model``'s
+    metadata (the robot), ``facts`` (JSON-ready values beside the math: frame, point, shape, row names), then each
+    equation of the blocks and of ``extra`` (equations only the JSON form carries) that has a :class:`JsonKey`.
+    ``data``, when given, replaces that form: the JSON-ready mapping, or a function that builds it (called only for
+    ``json``), for a result whose data is no equation (a singularity report). ``comments`` keeps the captions in
+    bare LaTeX output as ``%`` lines (for results whose captions explain, such as singularities); otherwise bare
+    LaTeX is the equations alone, one per line.
     """
 
     title: str
     robot: str
     blocks: tuple[Block, ...]
-    data: Mapping[str, Any] | Callable[[], Mapping[str, Any]] = field(default_factory=dict)
+    data: Mapping[str, Any] | Callable[[], Mapping[str, Any]] | None = None
     comments: bool = False
+    facts: Mapping[str, Any] = field(default_factory=dict)
+    model: Robot | None = None
+    extra: tuple[Equation, ...] = ()
 
     def json_data(self) -> Mapping[str, Any]:
-        """The JSON-ready data, built now if it was given as a function."""
+        """The JSON-ready data, built now: ``data`` (called if a function), else the document's own form."""
+        if self.data is None:
+            from symjac.printing import json as json_form  # looked up when called: the JSON code loads only here
+
+            return json_form.document_data(self)
         return self.data() if callable(self.data) else self.data
 
 

@@ -1,39 +1,36 @@
-"""JSON-ready data for every result: plain dicts and lists, expressions as SymPy strings (``sp.sstr``)."""
+"""JSON-ready data: plain dicts and lists, expressions as SymPy strings (``sp.sstr``).
+
+Every result's JSON is built by one function from its document (:func:`document_data`): what the LaTeX and pretty
+forms print, with the keys the document's equations name. Only a singularity report, whose data is no equation,
+has its own (:func:`singularity_data`).
+"""
 
 from __future__ import annotations
 
+import warnings
 from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
 from symjac._version import __version__
-from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.robot import Robot
 from symjac.printing import prose
-from symjac.printing.document import Equation, equation_latex
+from symjac.printing.document import Block, DHTable, Document, Equation, JsonKey, equation_latex
 from symjac.printing.tables import dh_rows
 
 if TYPE_CHECKING:  # the analyses' types only: printing a Jacobian's JSON does not load them
     from symjac.analysis.singularity.determinant import Determinant
     from symjac.analysis.singularity.redundant import SingularSet
     from symjac.analysis.singularity.singularities import SingularityReport
-    from symjac.kinematics.chain import Frame
 
 __all__ = [
     "determinant_data",
-    "forward_kinematics_data",
-    "hessian_data",
-    "jacobian_data",
-    "jacobian_derivative_data",
+    "document_data",
     "matrix_strings",
     "metadata",
-    "representation_data",
-    "screw_jacobian_data",
     "set_data",
     "show_data",
     "singularity_data",
-    "step_data",
-    "torques_data",
 ]
 
 
@@ -107,90 +104,52 @@ def set_data(singular_set: SingularSet) -> dict[str, Any]:
     }
 
 
+def document_data(document: Document) -> dict[str, Any]:
+    """The JSON form of any document: metadata, facts, then every keyed equation (:class:`.document.JsonKey`).
+
+    ``document.model``'s :func:`metadata` first (when it has a robot), then ``document.facts`` as they are, then
+    the math of each block and of ``document.extra`` in order: a :class:`~.document.DHTable` as ``dh_table`` (rows
+    of strings), an equation with a key as its right side's SymPy strings (and its LaTeX line where the key asks).
+    This is the only JSON builder of a result: what LaTeX and pretty text print is what JSON holds.
+    """
+    data: dict[str, Any] = {} if document.model is None else metadata(document.model)
+    data.update(document.facts)
+    stacks: dict[str, list[sp.MatrixBase]] = {}
+    for math in (*(m for block in document.blocks for m in block.math), *document.extra):
+        if isinstance(math, DHTable):
+            data["dh_table"] = dh_rows(math.robot)
+        elif math.key is not None:
+            _place(data, math, math.key, stacks)
+    for name, matrices in stacks.items():  # entries[i][j][k]: item k's [i, j]
+        rows, cols = matrices[0].shape
+        data[name] = [[[sp.sstr(m[i, j]) for m in matrices] for j in range(cols)] for i in range(rows)]
+    return data
+
+
+def _place(data: dict[str, Any], equation: Equation, key: JsonKey, stacks: dict[str, list[sp.MatrixBase]]) -> None:
+    """Write one keyed equation into ``data`` (see :class:`.document.JsonKey`)."""
+    entries = [sp.sstr(e) for e in equation.rhs] if key.flat or key.record else matrix_strings(equation.rhs)
+    if key.record:
+        data.setdefault(key.name, []).append(
+            {"name": equation.text, "latex": equation_latex(equation), "entries": entries})
+    elif key.item is not None:
+        if key.stacked is not None:
+            data.setdefault(key.stacked, None)  # its place among the keys; filled once every item is in
+            stacks.setdefault(key.stacked, []).append(equation.rhs)
+        data.setdefault(key.name, {})[key.item] = entries
+        if key.latex is not None:
+            data.setdefault(key.latex, {})[key.item] = equation_latex(equation)
+    else:
+        data[key.name] = entries
+        if key.latex is not None:
+            data[key.latex] = equation_latex(equation)
+
+
 def show_data(robot: Robot, transforms: dict[str, sp.MatrixBase]) -> dict[str, Any]:
-    """``symjac show``: the DH table as rows of strings and each named transform as a matrix of strings."""
-    return {**metadata(robot), "dh_table": dh_rows(robot),
-            "transforms": {name: matrix_strings(m) for name, m in transforms.items()}}
-
-
-def forward_kinematics_data(robot: Robot, equation: Equation, source: Frame, target: Frame) -> dict[str, Any]:
-    r"""``symjac fk``: the pose (``equation.rhs``) between two frames, as strings and as LaTeX (``{}^{0}_{6}T =``)."""
-    return {**metadata(robot), "source": source, "target": target, "entries": matrix_strings(equation.rhs),
-            "latex": equation_latex(equation)}
-
-
-def step_data(step: Equation) -> dict[str, Any]:
-    """One propagation step: its name in words, its LaTeX equation and its entries as SymPy strings."""
-    return {"name": step.text, "latex": equation_latex(step), "entries": [sp.sstr(e) for e in step.rhs]}
-
-
-def jacobian_data(robot: Robot, equation: Equation, frame: Frame, point: str, method: str,
-                  steps: list[Equation] | None = None) -> dict[str, Any]:
-    """``symjac jacobian``: the basic Jacobian (``equation.rhs``, in ``frame``), with the propagation steps if any."""
-    J = equation.rhs
-    return {**metadata(robot), "frame": frame, "point": point, "method": method,
-            "shape": list(J.shape), "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q],
-            "entries": matrix_strings(J), "latex": equation_latex(equation),
-            **({"steps": [step_data(step) for step in steps]} if steps is not None else {})}
-
-
-def screw_jacobian_data(robot: Robot, equation: Equation, kind: str) -> dict[str, Any]:
-    """``symjac jacobian --kind space|body``: J_s or J_b, rows angular part first, one column (screw) per joint."""
-    from symjac.kinematics.screws import SCREW_ROWS
-
-    J = equation.rhs
-    return {**metadata(robot), "kind": kind, "shape": list(J.shape), "rows": list(SCREW_ROWS),
-            "columns": [str(q) for q in robot.q], "entries": matrix_strings(J), "latex": equation_latex(equation)}
-
-
-def jacobian_derivative_data(robot: Robot, Jdot: Equation, bias: Equation, frame: Frame, point: str,
-                             rates: list[str], steps: list[Equation] | None = None) -> dict[str, Any]:
-    """``symjac jacobian --derivative``: dJ/dt and the bias acceleration Jdot qdot, in the joint rates ``rates``.
-
-    ``Jdot`` and ``bias`` are the equations printed; with ``steps`` (the acceleration propagation), each step as
-    :func:`step_data`.
-    """
-    return {**metadata(robot), "frame": frame, "point": point, "rates": rates, "shape": list(Jdot.rhs.shape),
-            "rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q], "entries": matrix_strings(Jdot.rhs),
-            "bias_acceleration": [sp.sstr(b) for b in bias.rhs], "latex": equation_latex(Jdot),
-            "bias_latex": equation_latex(bias),
-            **({"steps": [step_data(step) for step in steps]} if steps is not None else {})}
-
-
-def hessian_data(robot: Robot, equations: list[Equation], frame: Frame, point: str) -> dict[str, Any]:
-    """``symjac hessian``: ``entries[i][j][k]`` = dJ[i, j]/dq_k (layout (6, n, n)), each slice dJ/dq_k and its LaTeX."""
-    n = robot.n_coordinates
-    slices = [equation.rhs for equation in equations]
-    entries = [[[sp.sstr(slices[k][i, j]) for k in range(n)] for j in range(n)] for i in range(6)]
-    return {**metadata(robot), "frame": frame, "point": point, "shape": [6, n, n],
-            "layout": "entries[i][j][k] = d J[i][j] / d q[k]", "rows": list(ROW_NAMES),
-            "columns": [str(q) for q in robot.q], "entries": entries,
-            "slices": {str(q): matrix_strings(slices[k]) for k, q in enumerate(robot.q)},
-            "slices_latex": {str(q): equation_latex(equations[k]) for k, q in enumerate(robot.q)}}
-
-
-def representation_data(robot: Robot, result: Any, J_0: sp.MatrixBase, J_x: sp.MatrixBase, point: str,
-                        orientation: str, position: str) -> dict[str, Any]:
-    """``symjac jacobian --representation``: coordinates, the rate matrix E, the basic Jacobian and its singularities.
-
-    ``result`` is a :class:`symjac.analysis.representations.RepresentationJacobian` (fields ``coordinates``, ``E``,
-    ``frame``, ``singularities``); ``J_x`` is E(x) J_0 multiplied out.
-    """
-    return {**metadata(robot), "frame": result.frame, "point": point, "orientation": orientation,
-            "position": position, "coordinates": [str(c) for c in result.coordinates], "E": matrix_strings(result.E),
-            "J_0": matrix_strings(J_0), "J_x": matrix_strings(J_x),
-            "representation_singularities": [_representation_singularity(s) for s in result.singularities],
-            "latex": equation_latex(Equation(r"J_x = E(x)\,J_0", "J_x", J_x))}
-
-
-def _representation_singularity(singularity: Any) -> str:
-    """``factor = 0 (variable = values): what goes wrong there`` (:func:`.prose.representation_words`)."""
-    values = " or ".join(str(value) for value in singularity.solutions)
-    return f"{singularity.factor} = 0 ({singularity.variable} = {values}): {prose.representation_words(singularity)}"
-
-
-def torques_data(robot: Robot, equation: Equation, frame: Frame, point: str, wrench: str | None,
-                 q: str | None, wrench_names: list[str]) -> dict[str, Any]:
-    """``symjac torques``: the joint torques (``equation.rhs``) for the wrench given (or the symbolic one)."""
-    return {**metadata(robot), "frame": frame, "point": point, "wrench": wrench or wrench_names, "q": q,
-            "torques": [sp.sstr(t) for t in equation.rhs], "latex": equation_latex(equation)}
+    """``symjac show``'s JSON: the DH table and each named transform (deprecated: :func:`document_data`)."""
+    warnings.warn("show_data is deprecated: a document's JSON is document_data(document), built from the document "
+                  "itself (symjac.printing.results.transforms_document)", DeprecationWarning, stacklevel=2)
+    equations = tuple(Equation(name, name, m, key=JsonKey("transforms", item=name)) for name, m in transforms.items())
+    document = Document("", robot.name, (Block((), (DHTable(robot),)), Block((), equations)),
+                        facts={"transforms": {}}, model=robot)
+    return document_data(document)

@@ -1,7 +1,9 @@
 r"""One document builder per result: what the command line prints and what the report shows, assembled once.
 
 Each builder takes a result the API derived and returns a :class:`~symjac.printing.document.Document`: captioned
-equations for LaTeX, pretty text and MathML, and (built only when asked for) its JSON data. ``digits``, when given,
+equations for LaTeX, pretty text and MathML, each with the key it has in the JSON form, and the facts beside them
+(frame, point, shape, row names). The JSON form is built from the document, only when asked for
+(:func:`symjac.printing.json.document_data`); no result has a JSON builder of its own. ``digits``, when given,
 substitutes the parameters' defaults and rounds every number to that many significant digits (``--numeric``): the
 derivation stays exact, only the printed result is rounded (``0.4318``, not ``2159/5000``).
 
@@ -13,16 +15,16 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Sequence
-from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 import sympy as sp
 
 from symjac.kinematics.chain import Frame, chain_of
+from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose
 from symjac.model.robot import Robot
 from symjac.printing import prose
-from symjac.printing.document import Block, DHTable, Document, Equation, Prescripted
+from symjac.printing.document import Block, DHTable, Document, Equation, JsonKey, Prescripted
 from symjac.printing.latex import rounded
 
 if TYPE_CHECKING:
@@ -49,13 +51,6 @@ Transform = tuple[Frame, Frame, sp.MatrixBase]
 """``(source, target, T)``: the pose of frame ``target`` relative to frame ``source``."""
 
 
-def _json() -> ModuleType:
-    """:mod:`symjac.printing.json`, imported when a document's data is built (only for ``--format json``)."""
-    from symjac.printing import json
-
-    return json
-
-
 def frame_tex(frame: Frame | str) -> str:
     r"""A frame as a LaTeX index: ``3``, or an upright name (``\mathrm{tool}``)."""
     return str(frame) if isinstance(frame, int) else rf"\mathrm{{{frame}}}"
@@ -66,10 +61,15 @@ def shown(robot: Robot, matrix: Any, digits: int | None) -> Any:
     return matrix if digits is None else rounded(matrix.xreplace(robot.defaults), digits)
 
 
-def transform_equation(source: Frame, target: Frame, T: sp.MatrixBase) -> Equation:
-    r""":math:`{}^{source}_{target}T = T`."""
+def transform_equation(source: Frame, target: Frame, T: sp.MatrixBase, key: JsonKey | None = None) -> Equation:
+    r""":math:`{}^{source}_{target}T = T` (``key``: where it goes in the JSON form)."""
     return Equation(f"{{}}^{{{frame_tex(source)}}}_{{{frame_tex(target)}}}T", f"T_{source}_{target}", T,
-                    Prescripted("T", source, target))
+                    Prescripted("T", source, target), key)
+
+
+def _columns(robot: Robot) -> dict[str, Any]:
+    """The JSON facts of a 6 x n matrix in the coordinates: its row and column names."""
+    return {"rows": list(ROW_NAMES), "columns": [str(q) for q in robot.q]}
 
 
 def link_transforms(robot: Robot) -> list[Transform]:
@@ -86,24 +86,24 @@ def link_transforms(robot: Robot) -> list[Transform]:
 
 def transforms_document(robot: Robot, transforms: Sequence[Transform], digits: int | None = None) -> Document:
     """``symjac show`` and the report's first sections: the DH table, then each transform of :func:`link_transforms`."""
-    equations = [transform_equation(source, target, shown(robot, T, digits)) for source, target, T in transforms]
+    equations = [transform_equation(source, target, shown(robot, T, digits),
+                                    JsonKey("transforms", item=f"T_{source}_{target}"))
+                 for source, target, T in transforms]
     blocks = [Block((prose.dh_caption(robot),), (DHTable(robot),))]
-    home = []
     if robot.convention == PRODUCT_OF_EXPONENTIALS:  # the home pose M, with the product of exponentials it ends
-        home = [Equation("M", "M", shown(robot, home_pose(robot), digits))]
-        blocks.append(Block(prose.HOME_POSE, tuple(home)))
+        home = Equation("M", "M", shown(robot, home_pose(robot), digits), key=JsonKey("transforms", item="M"))
+        blocks.append(Block(prose.HOME_POSE, (home,)))
     blocks += [Block(prose.fixed_transform_caption(source, target), (e,))
                for (source, target, _), e in zip(transforms, equations, strict=True)]
-    return Document(prose.title(robot, "show"), robot.name, tuple(blocks),
-                    lambda: _json().show_data(robot, {e.text: e.rhs for e in (*home, *equations)}))
+    return Document(prose.title(robot, "show"), robot.name, tuple(blocks), model=robot)
 
 
 def forward_kinematics_document(robot: Robot, source: Frame, target: Frame, T: sp.MatrixBase,
                                 digits: int | None = None) -> Document:
     """``symjac fk``: the pose of ``target`` relative to ``source``."""
-    equation = transform_equation(source, target, shown(robot, T, digits))
+    equation = transform_equation(source, target, shown(robot, T, digits), JsonKey("entries", latex="latex"))
     return Document(prose.title(robot, "fk"), robot.name, (Block((), (equation,)),),
-                    lambda: _json().forward_kinematics_data(robot, equation, source, target))
+                    facts={"source": source, "target": target}, model=robot)
 
 
 def _steps(robot: Robot, propagation: Propagation | None, digits: int | None) -> list[Equation]:
@@ -111,7 +111,8 @@ def _steps(robot: Robot, propagation: Propagation | None, digits: int | None) ->
         return []
     from symjac.printing.steps import step_equations
 
-    return [dataclasses.replace(step, rhs=shown(robot, step.rhs, digits)) for step in step_equations(propagation)]
+    return [dataclasses.replace(step, rhs=shown(robot, step.rhs, digits), key=JsonKey("steps", record=True))
+            for step in step_equations(propagation)]
 
 
 def _jacobian_name(frame: Frame) -> Prescripted:
@@ -123,20 +124,23 @@ def jacobian_document(robot: Robot, J: sp.MatrixBase, frame: Frame, point: str, 
     """``symjac jacobian``: the basic Jacobian in ``frame`` at ``point`` (``--steps``: the propagation first)."""
     steps = _steps(robot, propagation, digits)
     equation = Equation(f"{{}}^{{{frame_tex(frame)}}}J", f"J in frame {frame}", shown(robot, J, digits),
-                        _jacobian_name(frame))
+                        _jacobian_name(frame), JsonKey("entries", latex="latex"))
     blocks = [Block((), (step,)) for step in steps] + [Block((prose.jacobian_caption(point, method),), (equation,))]
     return Document(prose.title(robot, "jacobian", frame), robot.name, tuple(blocks),
-                    lambda: _json().jacobian_data(robot, equation, frame, point, method,
-                                               steps if propagation is not None else None))
+                    facts={"frame": frame, "point": point, "method": method, "shape": list(J.shape),
+                           **_columns(robot)}, model=robot)
 
 
 def screw_jacobian_document(robot: Robot, J: sp.MatrixBase, kind: str, digits: int | None = None) -> Document:
     """``symjac jacobian --kind space|body``: :math:`J_s` or :math:`J_b`, rows angular part first."""
+    from symjac.kinematics.screws import SCREW_ROWS
+
     letter = kind[0]
-    equation = Equation(f"J_{letter}", f"J_{letter}", shown(robot, J, digits))
+    equation = Equation(f"J_{letter}", f"J_{letter}", shown(robot, J, digits), key=JsonKey("entries", latex="latex"))
     return Document(prose.title(robot, "screw_jacobian", kind), robot.name,
                     (Block(prose.SCREW_JACOBIAN_CAPTIONS[kind], (equation,)),),
-                    lambda: _json().screw_jacobian_data(robot, equation, kind))
+                    facts={"kind": kind, "shape": list(J.shape), "rows": list(SCREW_ROWS),
+                           "columns": [str(q) for q in robot.q]}, model=robot)
 
 
 def representation_document(robot: Robot, result: Any, point: str, orientation: str, position: str,
@@ -151,15 +155,26 @@ def representation_document(robot: Robot, result: Any, point: str, orientation: 
     J_x = simplify_matrix(result.J_x, chain_of(robot).angle_basis(result.frame)).applyfunc(
         lambda entry: sp.factor_terms(sp.together(entry)))
     J_0, J_x = shown(robot, result.J_0, digits), shown(robot, J_x, digits)
-    blocks = [Block(prose.REPRESENTATION_COORDINATES, (Equation("x", "x", sp.Matrix(result.coordinates)),)),
-              Block(prose.RATE_MATRIX, (Equation("E(x)", "E(x)", result.E),)),
+    blocks = [Block(prose.REPRESENTATION_COORDINATES, (Equation("x", "x", sp.Matrix(result.coordinates),
+                                                                key=JsonKey("coordinates", flat=True)),)),
+              Block(prose.RATE_MATRIX, (Equation("E(x)", "E(x)", result.E, key=JsonKey("E")),)),
               Block(prose.representation_caption(point),
                     (Equation(rf"J_x = E(x)\,{{}}^{{{frame_tex(result.frame)}}}J", f"J_x = E(x) J_{result.frame}",
                               J_x),))]
     blocks += [Block(prose.representation_parts(s)) for s in result.singularities]
-    return Document(prose.title(robot, "representation", orientation), robot.name, tuple(blocks),
-                    lambda: _json().representation_data(robot, result, J_0, J_x, point, orientation, position),
-                    comments=True)
+    # JSON only: the basic Jacobian the product starts from, and J_x under the name it had there
+    extra = (Equation("J_0", "J_0", J_0, key=JsonKey("J_0")),
+             Equation(r"J_x = E(x)\,J_0", "J_x", J_x, key=JsonKey("J_x", latex="latex")))
+    facts = {"frame": result.frame, "point": point, "orientation": orientation, "position": position,
+             "representation_singularities": [_representation_singularity(s) for s in result.singularities]}
+    return Document(prose.title(robot, "representation", orientation), robot.name, tuple(blocks), comments=True,
+                    facts=facts, model=robot, extra=extra)
+
+
+def _representation_singularity(singularity: Any) -> str:
+    """``factor = 0 (variable = values): what goes wrong there`` (:func:`.prose.representation_words`)."""
+    values = " or ".join(str(value) for value in singularity.solutions)
+    return f"{singularity.factor} = 0 ({singularity.variable} = {values}): {prose.representation_words(singularity)}"
 
 
 def derivative_document(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, frame: Frame, point: str,
@@ -171,26 +186,30 @@ def derivative_document(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, 
     """
     steps = _steps(robot, propagation, digits)
     Jdot_equation = Equation(rf"{{}}^{{{frame_tex(frame)}}}\dot{{J}}", f"Jdot in frame {frame}",
-                             shown(robot, Jdot, digits))
+                             shown(robot, Jdot, digits), key=JsonKey("entries", latex="latex"))
     bias_equation = Equation(rf"{{}}^{{{frame_tex(frame)}}}\dot{{J}}\,\dot{{q}}", f"Jdot qdot in frame {frame}",
-                             shown(robot, bias, digits))
+                             shown(robot, bias, digits),
+                             key=JsonKey("bias_acceleration", latex="bias_latex", flat=True))
     blocks = (*(Block((), (step,)) for step in steps),
               Block((prose.derivative_caption(point, moving),), (Jdot_equation,)),
               Block(prose.BIAS_ACCELERATION, (bias_equation,)))
     return Document(prose.title(robot, "derivative", frame), robot.name, blocks,
-                    lambda: _json().jacobian_derivative_data(robot, Jdot_equation, bias_equation, frame, point,
-                                                          [str(r) for r in rates],
-                                                          steps if propagation is not None else None))
+                    facts={"frame": frame, "point": point, "rates": [str(r) for r in rates],
+                           "shape": list(Jdot.shape), **_columns(robot)}, model=robot)
 
 
 def hessian_document(robot: Robot, slices: Sequence[sp.MatrixBase], frame: Frame, point: str,
                      digits: int | None = None) -> Document:
     r"""``symjac hessian``: one slice :math:`\partial J / \partial q_k` per joint."""
     equations = [Equation(rf"\frac{{\partial\,{{}}^{{{frame_tex(frame)}}}J}}{{\partial {sp.latex(q)}}}", f"dJ/d{q}",
-                          shown(robot, H_k, digits)) for q, H_k in zip(robot.q, slices, strict=True)]
+                          shown(robot, H_k, digits),
+                          key=JsonKey("slices", latex="slices_latex", item=str(q), stacked="entries"))
+                 for q, H_k in zip(robot.q, slices, strict=True)]
     blocks = tuple(Block((prose.hessian_caption(k),), (equation,)) for k, equation in enumerate(equations))
+    n = robot.n_coordinates
     return Document(prose.title(robot, "hessian", frame), robot.name, blocks,
-                    lambda: _json().hessian_data(robot, equations, frame, point))
+                    facts={"frame": frame, "point": point, "shape": [6, n, n],
+                           "layout": "entries[i][j][k] = d J[i][j] / d q[k]", **_columns(robot)}, model=robot)
 
 
 def torques_document(robot: Robot, tau: sp.MatrixBase, frame: Frame, point: str, wrench: str | None,
@@ -203,11 +222,11 @@ def torques_document(robot: Robot, tau: sp.MatrixBase, frame: Frame, point: str,
     tau = shown(robot, tau, digits)
     if evaluated_digits is not None:
         tau = rounded(tau, evaluated_digits)
-    equation = Equation(r"\tau", "tau", tau)
+    equation = Equation(r"\tau", "tau", tau, key=JsonKey("torques", latex="latex", flat=True))
     return Document(prose.title(robot, "torques"), robot.name, (Block((prose.torques_caption(frame, point),),
                                                                       (equation,)),),
-                    lambda: _json().torques_data(robot, equation, frame, point, wrench, q,
-                                              [str(s) for s in wrench_names]))
+                    facts={"frame": frame, "point": point, "wrench": wrench or [str(s) for s in wrench_names],
+                           "q": q}, model=robot)
 
 
 def singularities_document(robot: Robot, report: Any) -> Document:
@@ -217,6 +236,11 @@ def singularities_document(robot: Robot, report: Any) -> Document:
     """
     from symjac.printing.summary import singularity_blocks
 
-    return Document(prose.title(robot, "singularities"), robot.name, tuple(singularity_blocks(report)),
-                    lambda: {**_json().metadata(robot), **_json().singularity_data(report)}, comments=True)
+    def data() -> dict[str, Any]:  # a report, not equations: its own JSON form, built only for JSON
+        from symjac.printing import json as json_form  # looked up when called, so that the JSON code loads only here
+
+        return {**json_form.metadata(robot), **json_form.singularity_data(report)}
+
+    return Document(prose.title(robot, "singularities"), robot.name, tuple(singularity_blocks(report)), data,
+                    comments=True)
 

@@ -27,6 +27,8 @@ from symjac.drawing.geometry import arm_pose, home_configuration
 from symjac.kinematics.chain import Frame, chain_of, forward_kinematics
 from symjac.kinematics.jacobian import ROW_NAMES, jacobian
 from symjac.kinematics.numeric import numeric_jacobian
+from symjac.model.conventions import plugin
+from symjac.model.ends import end_point, first_frame, last_frame
 from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Document
@@ -65,16 +67,22 @@ def _html(document: Document) -> str:
 
 
 def _dh_and_transforms(robot: Robot) -> tuple[Section, Section]:
-    """The DH table and the link transforms: the blocks of ``symjac show``."""
-    dh, *transforms = transforms_document(robot, link_transforms(robot)).blocks
-    return (Section("dh", "Denavit-Hartenberg table", block_html(dh)),
+    """The convention's table (DH parameters, screw axes, origins and axes) and the link transforms: ``symjac show``."""
+    table, *transforms = transforms_document(robot, link_transforms(robot)).blocks
+    return (Section("dh", _table_heading(robot), block_html(table)),
             Section("transforms", "Link transforms", "".join(block_html(block) for block in transforms)))
+
+
+def _table_heading(robot: Robot) -> str:
+    """The heading of the robot's table: what its convention calls it (``Standard Denavit-Hartenberg table``)."""
+    name = plugin(robot.convention).table_name
+    return name[:1].upper() + name[1:]
 
 
 def _forward(robot: Robot) -> Section:
     """The forward kinematics: the document of ``symjac fk``."""
-    source: Frame = "world" if robot.base else 0
-    target: Frame = "tool" if robot.tool else robot.n_joints
+    source: Frame = first_frame(robot)
+    target: Frame = last_frame(robot)
     document = forward_kinematics_document(robot, source, target, forward_kinematics(robot, source, target))
     return Section("fk", "Forward kinematics",
                    f"<p>{html.escape(prose.forward_kinematics_intro(source, target))}</p>" + _html(document))
@@ -86,7 +94,7 @@ def _jacobians(robot: Robot, frames: list[Frame], point: tuple[sp.Expr, ...],
     chain = chain_of(robot)
     words = prose.point_words(robot, point)
     parts = [f"<p>{html.escape(prose.jacobian_intro(words))}</p>"]
-    name = "tool" if robot.tool is not None else "wrist" if not any(point) else "reference"
+    name = end_point(robot) if robot.tool is not None or not any(point) else "reference"
     for frame in frames:
         parts.append(f"<h3>{html.escape(prose.jacobian_frame_heading(frame))}</h3>")
         J = jacobian(chain, frame=frame, point=point)

@@ -44,11 +44,11 @@ reported by :func:`representation_singularities`, apart from the kinematic singu
 The chapter's printed :math:`E_r` (4.31) is, in this convention, the Z-X-Z matrix (``rate_matrix("zxz")``); the Z-Y-Z
 angles of the lecture slides give the matrix below.
 
-Modules: :mod:`.conventions` (the representation values, their names and coordinates, the registry),
+Modules: :mod:`.registry` (the representation values, their names and coordinates, the registry),
 :mod:`.maps` (symbolic :math:`R`, :math:`p`, :math:`B`, :math:`E` and singularities), :mod:`.extraction` (NumPy),
 :mod:`.jacobian` (robots), :mod:`.derivative` (:math:`\dot J_x` and the bias :math:`\dot J_x \dot q` of an
-analytic-Jacobian controller). Adding a representation: a value type and its registry entry in ``conventions.py``,
-its maps in ``rates.py``, its extraction in ``extraction.py``.
+analytic-Jacobian controller). Adding a representation: a value type and its registry entry in ``registry.py``,
+its maps in ``maps.py``, its extraction in ``extraction.py``.
 
 Examples
 --------
@@ -59,25 +59,6 @@ Matrix([
 [           cos(alpha)/sin(beta),            sin(alpha)/sin(beta), 0]])
 """
 
-from symjac.analysis.representations.conventions import (
-    EULER_CONVENTIONS,
-    EULER_ORDERS,
-    POSITIONS,
-    REPRESENTATIONS,
-    AxisAngle,
-    Cartesian,
-    Cylindrical,
-    DirectionCosines,
-    EulerConvention,
-    Orientation,
-    Position,
-    Quaternion,
-    Representation,
-    RepresentationSingularity,
-    Spherical,
-    coordinates,
-    representation,
-)
 from symjac.analysis.representations.derivative import (
     NumericRepresentationJacobianDerivative,
     RepresentationJacobianDerivative,
@@ -99,6 +80,25 @@ from symjac.analysis.representations.maps import (
     rate_matrix,
     representation_singularities,
     rotation_from,
+)
+from symjac.analysis.representations.registry import (
+    EULER_CONVENTIONS,
+    EULER_ORDERS,
+    POSITIONS,
+    REPRESENTATIONS,
+    AxisAngle,
+    Cartesian,
+    Cylindrical,
+    DirectionCosines,
+    EulerConvention,
+    Orientation,
+    Position,
+    Quaternion,
+    Representation,
+    RepresentationSingularity,
+    Spherical,
+    coordinates,
+    representation,
 )
 from symjac.errors import RepresentationError
 

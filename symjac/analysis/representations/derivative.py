@@ -31,7 +31,9 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symjac.analysis.representations.conventions import (
+from symjac.analysis.representations.jacobian import representation_jacobian, representation_jacobian_at
+from symjac.analysis.representations.maps import position_rate_matrix, rate_matrix
+from symjac.analysis.representations.registry import (
     Orientation,
     OrientationSpec,
     Position,
@@ -39,8 +41,6 @@ from symjac.analysis.representations.conventions import (
     Representation,
     representation,
 )
-from symjac.analysis.representations.jacobian import representation_jacobian, representation_jacobian_at
-from symjac.analysis.representations.maps import position_rate_matrix, rate_matrix
 from symjac.errors import ArgumentError, RepresentationError
 from symjac.kinematics.acceleration import jacobian_derivative
 from symjac.kinematics.chain import Chain, Frame, as_chain

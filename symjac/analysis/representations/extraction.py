@@ -13,7 +13,7 @@ from functools import singledispatch
 
 import numpy as np
 
-from symjac.analysis.representations.conventions import (
+from symjac.analysis.representations.registry import (
     AxisAngle,
     Cartesian,
     Cylindrical,

@@ -12,7 +12,9 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from symjac.analysis.representations.conventions import (
+from symjac.analysis.representations.extraction import extract, extract_position
+from symjac.analysis.representations.maps import position_rate_matrix, rate_matrix, representation_singularities
+from symjac.analysis.representations.registry import (
     Orientation,
     OrientationSpec,
     Position,
@@ -20,8 +22,6 @@ from symjac.analysis.representations.conventions import (
     RepresentationSingularity,
     representation,
 )
-from symjac.analysis.representations.extraction import extract, extract_position
-from symjac.analysis.representations.maps import position_rate_matrix, rate_matrix, representation_singularities
 from symjac.errors import RepresentationError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import Point, jacobian, point_vector

@@ -1,7 +1,7 @@
 r"""Symbolic maps of each representation: :math:`R(x_r)`, :math:`p(x_p)`, :math:`B`, :math:`E = B^{-1}`, singularities.
 
 Each map is defined once per representation *type* (``functools.singledispatch``); one definition covers all 24
-:class:`~symjac.analysis.representations.conventions.EulerConvention` values. The angular velocity :math:`\omega` is the
+:class:`~symjac.analysis.representations.registry.EulerConvention` values. The angular velocity :math:`\omega` is the
 spatial one, expressed in the base frame: :math:`\dot R = \hat\omega R`.
 """
 
@@ -12,7 +12,7 @@ from functools import cache, singledispatch
 
 import sympy as sp
 
-from symjac.analysis.representations.conventions import (
+from symjac.analysis.representations.registry import (
     AxisAngle,
     Cartesian,
     Cylindrical,

@@ -33,6 +33,7 @@ from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point, check_row_indices, jacobian, point_vector
 from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_at
+from symjac.model.ends import end_point
 from symjac.model.robot import Robot
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.trigfactor import compact_expr, determinant_image, trig_factor_list
@@ -137,7 +138,7 @@ def _best_frame(chain: Chain, rows: tuple[int, ...], point: tuple[sp.Expr, ...])
 
 def _point(chain: Chain, point: Point | None) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     """The point validated; by default the tool point when the robot has a tool, else the wrist."""
-    return point_vector(chain, ("tool" if chain.robot.tool is not None else "wrist") if point is None else point)
+    return point_vector(chain, end_point(chain) if point is None else point)
 
 
 def _rows(chain: Chain, rows: Sequence[int] | None, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:

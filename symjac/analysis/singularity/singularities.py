@@ -31,6 +31,7 @@ from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, point_vector
 from symjac.kinematics.memo import memoized
 from symjac.kinematics.numeric import numeric_jacobian
+from symjac.model.ends import end_point
 from symjac.model.robot import Robot
 
 __all__ = [
@@ -109,7 +110,7 @@ class SingularityReport:
 
 
 def _point(chain: Chain, point: Point | None) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
-    return point_vector(chain, ("tool" if chain.robot.tool is not None else "wrist") if point is None else point)
+    return point_vector(chain, end_point(chain) if point is None else point)
 
 
 def _rows(chain: Chain, rows: Sequence[int] | None, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:

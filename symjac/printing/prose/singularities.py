@@ -299,7 +299,7 @@ def dh_caption(robot: Robot) -> str:
 
 def representation_words(singularity: RepresentationSingularity) -> str:
     """What goes wrong at a representation singularity, in one sentence (without the final full stop)."""
-    from symjac.analysis.representations.conventions import REGISTRY
+    from symjac.analysis.representations.registry import REGISTRY
 
     spec = REGISTRY[singularity.representation]
     if singularity.cause == "gimbal lock":

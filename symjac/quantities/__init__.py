@@ -1,0 +1,39 @@
+r"""Derived quantities as plug-ins: one module per quantity, each holding one :class:`~.spec.Quantity`.
+
+A quantity's spec names its derivation, the coupling law that moves it to a coupled robot's coordinates, its
+document (LaTeX, pretty text and JSON all print that document), its ``symjac`` command and options, and the codegen
+function kind generated modules compute it with. The command line builds its per-quantity commands from
+:data:`QUANTITIES`; nothing else lists them.
+
+Adding a quantity is one module here with a ``QUANTITY`` and its name in :data:`MEMBERS` (plus its codegen kind, when
+generated code computes it). Importing this package loads no SymPy: entry points are imported when called.
+
+Examples
+--------
+>>> QUANTITIES["jacobian"].coupling
+'columns'
+>>> [q.name for q in QUANTITIES.values() if q.command == "jacobian"]
+['jacobian', 'bias_acceleration']
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from importlib import import_module
+from types import MappingProxyType
+
+from symjac.quantities.spec import COUPLING_LAWS, Quantity
+
+__all__ = ["COUPLING_LAWS", "MEMBERS", "QUANTITIES", "Quantity"]
+
+MEMBERS = ("forward_kinematics", "jacobian", "bias_acceleration", "hessian", "joint_torques", "manipulability")
+"""The quantity modules, in the order the command line lists their commands."""
+
+
+def _registry() -> Mapping[str, Quantity]:
+    quantities = [import_module(f"{__name__}.{member}").QUANTITY for member in MEMBERS]
+    return MappingProxyType({quantity.name: quantity for quantity in quantities})
+
+
+QUANTITIES: Mapping[str, Quantity] = _registry()
+"""Every quantity by name, in :data:`MEMBERS` order."""

@@ -1,0 +1,42 @@
+r"""Forward kinematics: the pose :math:`{}^{0}_{n}T` of the end of the chain (``symjac fk``).
+
+The pose runs from the world frame when the robot has a base transform (else frame {0}) to the tool frame when it
+has a tool (else the last joint frame {n}): the whole arm, as generated code computes it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from symjac.quantities.spec import Quantity, Request
+
+if TYPE_CHECKING:
+    from symjac.kinematics.chain import Frame
+    from symjac.printing.document import Document
+
+__all__ = ["QUANTITY", "command"]
+
+
+def command(request: Request) -> Document:
+    """``symjac fk``: the pose of the end of the chain relative to its start."""
+    from symjac.kinematics.chain import forward_kinematics
+    from symjac.printing.results import forward_kinematics_document
+
+    robot = request.robot
+    source: Frame = "world" if robot.base else 0
+    target: Frame = "tool" if robot.tool else robot.n_joints
+    T = request.progress(f"forward kinematics of {robot.name}", lambda: forward_kinematics(robot, source, target))
+    return forward_kinematics_document(robot, source, target, T, request.digits)
+
+
+QUANTITY = Quantity(
+    name="forward_kinematics",
+    summary="print the forward kinematics",
+    derivation="symjac.kinematics.chain:forward_kinematics",
+    coupling="substituted",
+    document="symjac.printing.results:forward_kinematics_document",
+    kind="forward_kinematics",
+    command="fk",
+    options=lambda sub: None,  # the common options only
+    handler=command,
+)

@@ -1,0 +1,118 @@
+r"""The basic Jacobian :math:`{}^{k}J` (rows :math:`[v; \omega]`) at a point, in a frame (``symjac jacobian``).
+
+The command also prints the screw Jacobians :math:`J_s`, :math:`J_b` (``--kind``), the representation Jacobian
+:math:`J_x = E(x)\,J_0` (``--representation``) and the steps of a propagation method (``--steps``); its
+``--derivative`` is another quantity's (:mod:`.bias_acceleration`).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from symjac.errors import ArgumentError
+from symjac.quantities.options import LazyChoices, frame_and_point_options
+from symjac.quantities.spec import Quantity, Request
+
+if TYPE_CHECKING:
+    from symjac.kinematics.chain import Frame
+    from symjac.kinematics.jacobian import Point
+    from symjac.printing.document import Document
+
+__all__ = ["QUANTITY", "command", "options", "propagation", "representation", "screw_jacobian"]
+
+
+def options(sub: argparse.ArgumentParser) -> None:
+    """``--frame``, ``--point``, the method, the kind, ``--steps``, a representation and its position part."""
+    from symjac.kinematics.jacobian import METHODS
+
+    frame_and_point_options(sub)
+    representations = "symjac.analysis.representations"  # loaded only when one is asked for (it loads NumPy)
+    sub.add_argument("--method", choices=METHODS, default="differentiation", help="derivation method")
+    sub.add_argument("--kind", choices=("geometric", "space", "body"), default="geometric",
+                     help="geometric: the basic Jacobian [v; omega] (default); space or body: J_s or J_b of "
+                          "screw theory, rows (omega; v) as in Lynch and Park (--frame and --point do not apply)")
+    sub.add_argument("--steps", action="store_true",
+                     help="with a propagation method (or --derivative): print every propagation step first")
+    sub.add_argument("--representation", choices=LazyChoices(representations, "REPRESENTATIONS"), default=None,
+                     metavar="NAME", help="print the representation Jacobian J_x = E(x) J_0 for these "
+                                          "orientation coordinates: %(choices)s")
+    sub.add_argument("--position", choices=LazyChoices(representations, "POSITIONS"), default=None,
+                     metavar="NAME", help="with --representation: position coordinates, %(choices)s (default "
+                                          "cartesian)")
+
+
+def command(request: Request) -> Document:
+    """``symjac jacobian``: the basic Jacobian, or (``--kind``, ``--representation``) one of its relatives."""
+    from symjac.kinematics.jacobian import jacobian
+    from symjac.printing.results import jacobian_document
+
+    args, robot = request.args, request.robot
+    frame, point = request.frame(), request.point()
+    if args.kind != "geometric":
+        return screw_jacobian(request)
+    if args.representation is not None:
+        return representation(request, frame, point)
+    steps = propagation(request, point) if args.steps else None
+    J = request.progress(f"Jacobian of {robot.name} in frame {frame}",
+                         lambda: jacobian(robot, frame=frame, point=point, method=args.method))
+    return jacobian_document(robot, J, frame, args.point, args.method, steps, request.digits)
+
+
+def screw_jacobian(request: Request) -> Document:
+    """``jacobian --kind space|body``: J_s or J_b (the frame and point are the space and tool frames)."""
+    from symjac.kinematics.screws import body_jacobian, space_jacobian
+    from symjac.printing.results import screw_jacobian_document
+
+    args, robot = request.args, request.robot
+    others = [flag for flag, given in (("--frame", args.frame != "0"), ("--point", args.point != "wrist"),
+                                       ("--representation", args.representation is not None),
+                                       ("--derivative", args.derivative), ("--steps", args.steps)) if given]
+    if others:
+        raise ArgumentError(f"--kind {args.kind} takes neither {' nor '.join(others)}: J_s is in the space frame "
+                            f"{{0}}, J_b in the tool frame")
+    derive = space_jacobian if args.kind == "space" else body_jacobian
+    J = request.progress(f"{args.kind} Jacobian of {robot.name}", lambda: derive(robot))
+    return screw_jacobian_document(robot, J, args.kind, request.digits)
+
+
+def representation(request: Request, frame: Frame, point: Point) -> Document:
+    """``jacobian --representation``: x, E(x), the basic Jacobian and J_x = E(x) J_0, then E's own singularities."""
+    from symjac.analysis.representations import representation_jacobian
+    from symjac.printing.results import representation_document
+
+    args, robot = request.args, request.robot
+    position = args.position or "cartesian"
+    result = request.progress(f"{args.representation} representation Jacobian of {robot.name}",
+                              lambda: representation_jacobian(robot, args.representation, position, point, frame))
+    return representation_document(robot, result, args.point, args.representation, position, request.digits)
+
+
+def propagation(request: Request, point: Point) -> Any:
+    """The velocity or force propagation whose steps ``--steps`` prints."""
+    from symjac.kinematics.jacobian import point_vector
+    from symjac.kinematics.propagation import force_propagation, velocity_propagation
+
+    args, robot = request.args, request.robot
+    tip = None if point == "tool" else point_vector(robot, point)
+    derive: dict[str, Callable[[], Any]] = {
+        "velocity_propagation": lambda: velocity_propagation(robot, tip),
+        "force_propagation": lambda: force_propagation(robot, tip),
+    }
+    if args.method not in derive:
+        raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
+    return request.progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
+
+
+QUANTITY = Quantity(
+    name="jacobian",
+    summary="print the basic Jacobian [v; omega]",
+    derivation="symjac.kinematics.jacobian:jacobian",
+    coupling="columns",
+    document="symjac.printing.results:jacobian_document",
+    kind="jacobian",
+    command="jacobian",
+    options=options,
+    handler=command,
+)

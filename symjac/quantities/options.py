@@ -1,0 +1,47 @@
+"""Options several quantities' commands share, and choices read only when argparse needs them."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Iterator, Sequence
+from importlib import import_module
+from typing import overload
+
+__all__ = ["LazyChoices", "frame_and_point_options"]
+
+
+class LazyChoices(Sequence[str]):
+    """An option's choices, read from ``module.name`` only when argparse checks a value or prints them.
+
+    Give the option a ``metavar`` (argparse lists plain choices while it builds the parser) and name the choices
+    in its help with ``%(choices)s`` (expanded only for ``--help``). The same tool as
+    :class:`symjac.cli.args.LazyChoices`, here because a quantity's options sit below the command line.
+    """
+
+    def __init__(self, module: str, name: str):
+        self.module, self.name = module, name
+
+    def _values(self) -> Sequence[str]:
+        return getattr(import_module(self.module), self.name)  # type: ignore[no-any-return]
+
+    @overload
+    def __getitem__(self, index: int) -> str: ...
+    @overload
+    def __getitem__(self, index: slice) -> Sequence[str]: ...
+    def __getitem__(self, index: int | slice) -> str | Sequence[str]:
+        return self._values()[index]
+
+    def __len__(self) -> int:
+        return len(self._values())
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._values())
+
+    def __contains__(self, value: object) -> bool:
+        return value in self._values()
+
+
+def frame_and_point_options(sub: argparse.ArgumentParser) -> None:
+    """``--frame`` and ``--point``, as every quantity at a point of the arm takes them."""
+    sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
+    sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")

@@ -328,7 +328,49 @@ def test_robot_checks_inertials_it_is_given() -> None:
     with pytest.raises(RobotFileError, match=r"planar2r\.toml, joint 2, field 'inertial': link 2: the mass -1"):
         with_file_inertials(robot, [None, Inertial(-1)])
     with pytest.raises(RobotFileError, match=r"3 inertial entries for 2 links"):
-        replace(robot, inertials=(None,) * 3)
+        replace(robot, inertials=(None, None, Inertial(1)))
     assert robot.inertials == (None, None)
+    assert replace(robot, joints=robot.joints[:1]).inertials == (None,)  # nothing known: one None per link
     with pytest.raises(RobotFileError, match=r"link 1: the parameter m1 exists already"):
         with_symbolic_inertials(with_symbolic_inertials(robot, links=[1]), links=[1])
+
+
+@pytest.mark.parametrize("name", ["planar2r", "planar3r"])
+def test_dh_rewrites_move_the_bodies_and_come_back_exactly(name: str) -> None:
+    from symjac.model.conventions.standard import modified_from_standard, standard_from_modified
+
+    robot = load_robot(name)
+    with_data = with_file_inertials(robot, sample_inertials(robot.n_joints, seed=2))
+    there = (modified_from_standard if robot.convention == "standard" else standard_from_modified)(with_data)
+    back = (standard_from_modified if robot.convention == "standard" else modified_from_standard)(there)
+    assert back == with_data
+    q = np.array([0.3, -1.1, 0.7][: robot.n_joints])
+    for link in range(1, robot.n_joints + 1):
+        before = world_body(with_data, with_data.inertials[link - 1], link, q)
+        after = world_body(there, there.inertials[link - 1], link, q)
+        assert np.allclose(before[0], after[0]) and np.allclose(before[1], after[1])
+
+
+ENTRY = st.one_of(st.integers(-5, 5), st.floats(allow_nan=True, allow_infinity=True, width=32),
+                  st.sampled_from(["L", "-L/2", "1/(L - 1)", "pi", "q", "", "L**9", "1e308*10", "1e-300*1e-300"]),
+                  st.lists(st.integers(0, 2), max_size=4), st.none(), st.booleans())
+TABLES = st.dictionaries(st.sampled_from(["mass", "com", "about", "ixx", "ixy", "iyy", "izz", "inertia", "bogus"]),
+                         st.one_of(ENTRY, st.sampled_from(["com", "origin"]),
+                                   st.lists(st.lists(st.integers(-2, 2), min_size=3, max_size=3), min_size=3,
+                                            max_size=3)), max_size=6)
+
+
+@settings(max_examples=60, deadline=None)
+@given(TABLES, st.sampled_from(["standard", "general"]))
+def test_any_inertial_table_gives_a_robot_or_one_line(table: dict, convention: str) -> None:
+    """Hostile tables: a robot that writes back to itself, or a RobotFileError naming the file and link 1."""
+    data = {"name": "r", "convention": convention, "parameters": {"L": 0.5},
+            "joints": [{"type": "revolute", **({"axis": [1, 1, 0]} if convention == "general" else {}),
+                        "inertial": {k: v for k, v in table.items() if v is not None}}]}
+    try:
+        robot = robot_from_mapping(data, source="fuzz.toml")
+    except RobotFileError as error:
+        assert str(error).startswith("fuzz.toml, joint 1, field 'inertial") and "link 1: " in str(error)
+        assert "\n" not in str(error)
+        return
+    assert robot_from_toml(robot_to_toml(robot)) == robot

@@ -96,7 +96,7 @@ def test_page_is_well_formed_and_self_contained(pages, name):
     # repeat from one SVG to the next, with the same content)
     ids = re.findall(r'\sid="(arm-[^"]+)"', text)
     assert ids and len(ids) == len(set(ids))
-    table = {"puma560": "Standard Denavit-Hartenberg table", "ur5.urdf": "General chain (URDF-style origin and axis)"}
+    table = {"puma560": "Modified Denavit-Hartenberg table", "ur5.urdf": "General chain (URDF-style origin and axis)"}
     for words in (table[name], "Forward kinematics", "All four methods agree",
                   "Singular configurations", "drawn exactly from its solutions", "Joint rates"):
         assert words in text, words

@@ -55,6 +55,8 @@ STAGES: list[tuple[str, str, str]] = [
      "CasADi."),
     ("report", "Report", "The derivation as one HTML page (extra ``report``)."),
     ("sweeps", "Design sweeps", "Singular and dexterity measures over parameter grids, on dask (extra ``sweep``)."),
+    ("quantities", "Quantities", "Each derived quantity as one spec: its derivation, coupling law, document, "
+     "command and codegen kind (the seam new quantities plug into)."),
     ("errors", "Errors and version", "Every error symjac raises derives from :class:`symjac.SymjacError`; each says "
      "what was wrong and where."),
 ]
@@ -71,7 +73,7 @@ def public_names() -> dict[str, list[str]]:
     top_level = set()
     for name in symjac.__all__:
         if name not in symjac._HOME and name != "__version__":
-            raise ConfigError(f"symjac.{name} is in symjac.__all__ but not in symjac._MODULES")
+            raise ConfigError(f"symjac.{name} is in symjac.__all__ but not imported under symjac's TYPE_CHECKING block")
         stage = symjac._HOME.get(name, "symjac._version").split(".")[1]
         stage = "errors" if stage in ("_version", "errors") else stage
         if stage not in pages:

@@ -260,7 +260,9 @@ class Robot:
         self._check_inertials()
 
     def _check_inertials(self) -> None:
-        inertials = tuple(self.inertials) or (None,) * len(self.joints)
+        inertials = tuple(self.inertials)
+        if all(inertial is None for inertial in inertials):  # none known: one None per link, whatever the count
+            inertials = (None,) * len(self.joints)
         object.__setattr__(self, "inertials", inertials)
         if len(inertials) != len(self.joints):
             raise RobotFileError(f"{len(inertials)} inertial entries for {len(self.joints)} links: give one per link "

@@ -20,11 +20,12 @@ __all__ = ["QUANTITY", "command"]
 def command(request: Request) -> Document:
     """``symjac fk``: the pose of the end of the chain relative to its start."""
     from symjac.kinematics.chain import forward_kinematics
+    from symjac.model.ends import first_frame, last_frame
     from symjac.printing.results import forward_kinematics_document
 
     robot = request.robot
-    source: Frame = "world" if robot.base else 0
-    target: Frame = "tool" if robot.tool else robot.n_joints
+    source: Frame = first_frame(robot)
+    target: Frame = last_frame(robot)
     T = request.progress(f"forward kinematics of {robot.name}", lambda: forward_kinematics(robot, source, target))
     return forward_kinematics_document(robot, source, target, T, request.digits)
 

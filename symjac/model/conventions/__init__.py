@@ -16,7 +16,7 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import RobotFileError
-from symjac.model.conventions.base import ConventionPlugin, JointForm
+from symjac.model.conventions.base import ConventionPlugin, JointForm, moved_inertial
 from symjac.model.inertia import Inertial
 from symjac.model.robot import Convention, Robot
 from symjac.symbolic.transforms import Composition, homogeneous, inverse_transform
@@ -61,17 +61,9 @@ def _choices() -> str:
     return ", ".join(names[:-1]) + f" or {names[-1]}" if len(names) > 1 else names[0]
 
 
-def _tidy(expr: sp.Expr) -> sp.Expr:
-    """Multiplied out exactly; sines and cosines of constant angles (rpy = 0.3) squared and summed to one."""
+def _exact(expr: sp.Expr) -> sp.Expr:
     expr = sp.radsimp(sp.expand(expr))
     return sp.trigsimp(expr) if expr.has(sp.sin, sp.cos) else expr
-
-
-def _moved(inertial: Inertial | None, T: sp.MatrixBase | None) -> Inertial | None:
-    if inertial is None or T is None:
-        return inertial
-    moved = inertial.expressed_in(T)
-    return replace(moved, com=tuple(map(_tidy, moved.com)), inertia=moved.inertia.applyfunc(_tidy))
 
 
 def with_file_inertials(robot: Robot, inertials: Sequence[Inertial | None]) -> Robot:
@@ -84,14 +76,14 @@ def with_file_inertials(robot: Robot, inertials: Sequence[Inertial | None]) -> R
     :math:`I_i = R I R^T`.
     """
     frames = plugin(robot.convention).inertial_frames(robot)
-    moved = tuple(_moved(inertial, T) for inertial, T in zip(inertials, frames, strict=True))
+    moved = tuple(moved_inertial(inertial, T) for inertial, T in zip(inertials, frames, strict=True))
     return replace(robot, inertials=moved)
 
 
 def file_inertials(robot: Robot) -> tuple[Inertial | None, ...]:
     """Each link's inertial data in the frame its convention's files use (inverse of :func:`with_file_inertials`)."""
     frames = plugin(robot.convention).inertial_frames(robot)
-    return tuple(_moved(inertial, None if T is None else inverse_transform(sp.Matrix(T)))
+    return tuple(moved_inertial(inertial, None if T is None else inverse_transform(sp.Matrix(T)))
                  for inertial, T in zip(robot.inertials, frames, strict=True))
 
 
@@ -103,7 +95,7 @@ def home_frames(robot: Robot) -> tuple[sp.Matrix, ...]:
     for form in joint_forms(robot.uncoupled):
         composition = composition.then(form.motions)
         R, p = composition.result()
-        frames.append(homogeneous(R, p).xreplace(zero).applyfunc(_tidy))
+        frames.append(homogeneous(R, p).xreplace(zero).applyfunc(_exact))
     return tuple(frames)
 
 
@@ -119,8 +111,8 @@ def carried_inertials(source: Robot, result: Robot) -> Robot:
     lost = {symbol: value for symbol, value in source.defaults.items() if symbol not in kept}
     inertials = []
     for inertial, old, new in zip(source.inertials, home_frames(source), home_frames(result), strict=True):
-        T = (inverse_transform(new) * old).applyfunc(_tidy)
-        moved = _moved(inertial, None if T.equals(sp.eye(4)) else T)
+        T = (inverse_transform(new) * old).applyfunc(_exact)
+        moved = moved_inertial(inertial, None if T.equals(sp.eye(4)) else T)
         if moved is not None and lost:
             moved = Inertial(moved.mass.xreplace(lost), tuple(c.xreplace(lost) for c in moved.com),
                              moved.inertia.xreplace(lost), moved.given_about)

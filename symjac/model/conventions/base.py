@@ -21,11 +21,12 @@ import sympy as sp
 
 from symjac.errors import RobotFileError
 from symjac.model.expressions import expression_text
+from symjac.model.inertia import Inertial
 from symjac.model.robot import Convention, FixedTransform, Joint, Placement, Robot
 from symjac.symbolic.transforms import Motion
 
 __all__ = ["Cell", "Column", "ConventionPlugin", "JointForm", "JointReader", "NoRobotFields", "joint_form",
-           "transform_fields"]
+           "moved_inertial", "transform_fields"]
 
 Step: TypeAlias = Motion | sp.Matrix
 Cell: TypeAlias = sp.Expr | tuple[sp.Expr, ...]
@@ -94,6 +95,21 @@ class JointReader(Protocol):
 
     def is_finite(self, number: sp.Expr) -> bool:
         """Whether ``number`` is a finite real number."""
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """Multiplied out exactly; sines and cosines of constant angles (rpy = 0.3) squared and summed to one."""
+    expr = sp.radsimp(sp.expand(expr))
+    return sp.trigsimp(expr) if expr.has(sp.sin, sp.cos) else expr
+
+
+def moved_inertial(inertial: Inertial | None, T: sp.MatrixBase | None) -> Inertial | None:
+    """``inertial`` seen from a frame in which its own frame sits at ``T`` (unchanged when either is None)."""
+    if inertial is None or T is None:
+        return inertial
+    moved = inertial.expressed_in(T)
+    return Inertial(moved.mass, tuple(map(_tidy, moved.com)), moved.inertia.applyfunc(_tidy),  # type: ignore[arg-type]
+                    moved.given_about)
 
 
 def transform_fields(transform: FixedTransform) -> dict[str, Any]:

@@ -29,10 +29,10 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ConversionError
-from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields
+from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields, moved_inertial
 from symjac.model.conventions.dh import DHPlacement, dh_cells, dh_columns, dh_forms, dh_placement, read_dh, write_dh
 from symjac.model.robot import Convention, FixedTransform, Joint, Robot, fixed_transform_from_matrix
-from symjac.symbolic.transforms import homogeneous, rotation
+from symjac.symbolic.transforms import homogeneous, inverse_transform, rotation
 
 __all__ = ["PLUGIN", "STANDARD", "StandardDH", "modified_from_standard", "standard_from_modified"]
 
@@ -94,7 +94,10 @@ def modified_from_standard(robot: Robot) -> Robot:
         joints.append(replace(joint, placement=previous))
         previous = dh_placement(joint)
     tool = _prepend_x(previous.a, previous.alpha, robot.tool)
-    return replace(robot, convention=Convention.MODIFIED, joints=tuple(joints), tool=tool)
+    # standard frame {i} is modified frame {i} followed by X_i = Tx(a_i) Rx(alpha_i): each body moves with it
+    inertials = tuple(moved_inertial(inertial, _x_matrix(dh_placement(joint).a, dh_placement(joint).alpha))
+                      for inertial, joint in zip(robot.inertials, robot.joints, strict=True))
+    return replace(robot, convention=Convention.MODIFIED, joints=tuple(joints), tool=tool, inertials=inertials)
 
 
 def standard_from_modified(robot: Robot) -> Robot:
@@ -110,7 +113,10 @@ def standard_from_modified(robot: Robot) -> Robot:
         # a tool that is exactly X_n = Tx(a) Rx(alpha) belongs in the last row
         joints[-1] = replace(joints[-1], placement=DHPlacement(alpha=tool.rpy[0], a=tool.xyz[0]))
         tool = None
-    return replace(robot, convention=Convention.STANDARD, joints=tuple(joints), base=base, tool=tool)
+    inertials = tuple(moved_inertial(inertial, inverse_transform(_x_matrix(row.a, row.alpha)))
+                      for inertial, row in zip(robot.inertials, map(dh_placement, joints), strict=True))
+    return replace(robot, convention=Convention.STANDARD, joints=tuple(joints), base=base, tool=tool,
+                   inertials=inertials)
 
 
 def _x_matrix(a: sp.Expr, alpha: sp.Expr) -> sp.Matrix:

@@ -69,27 +69,31 @@ class LazyChoices(Sequence[str]):
 
 
 def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
-    """The ``ROBOT`` argument and the options that choose a URDF file's chain."""
+    """The ``ROBOT`` argument and the options that choose the chain of a tree format (URDF)."""
+    from symjac.model.readers import tree_formats  # the registry only: no reader is imported
+
+    formats = tree_formats()
     parser.add_argument("robot", metavar="ROBOT", help=ROBOT_HELP)
     parser.add_argument("--base-link", default=None, metavar="LINK",
-                        help="URDF files only: first link of the chain (default: the root link)")
+                        help=f"{formats} files only: first link of the chain (default: the root link)")
     parser.add_argument("--tip-link", default=None, metavar="LINK",
-                        help="URDF files only: last link of the chain (default: the only leaf link)")
+                        help=f"{formats} files only: last link of the chain (default: the only leaf link)")
 
 
 def load(args: argparse.Namespace) -> Robot:
-    """The robot named by ``args.robot``, with the chain ``--base-link`` / ``--tip-link`` choose in a URDF file."""
+    """The robot named by ``args.robot``; ``--base-link`` / ``--tip-link`` choose the chain of a tree format (URDF)."""
     from symjac.model.io import load_robot
+    from symjac.model.readers import LinksNotApplicableError
 
     links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
     try:
         return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
-    except RobotFileError as error:
+    except LinksNotApplicableError as error:  # say it with the options the user typed
         given = [option for option, value in links.items() if value is not None]
-        if given and "URDF files only" in error.message:  # say it with the options the user typed
-            verb = "applies" if len(given) == 1 else "apply"
-            raise ArgumentError(f"{' and '.join(given)} {verb} to URDF files only; {args.robot!r} is not one") \
-                from None
+        verb = "applies" if len(given) == 1 else "apply"
+        raise ArgumentError(f"{' and '.join(given)} {verb} to {error.formats} files only; {args.robot!r} is not "
+                            "one") from None
+    except RobotFileError as error:
         message = re.sub(r"\b(base|tip)_link\b", r"--\1-link", error.message)  # the option, not the API name
         raise RobotFileError(message, source=error.source, joint=error.joint, field=error.field) from None
 

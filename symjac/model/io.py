@@ -1,8 +1,9 @@
 """Reading and writing robot files (TOML, URDF), and the built-in catalog.
 
-``load_robot`` accepts a catalog name (``"puma560"``), a path to a TOML file, or a URDF file (a path, or the name of
-a built-in one: ``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The
-catalog lives in ``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
+``load_robot`` accepts a catalog name (``"puma560"``), or a robot file in any format a reader of
+:mod:`symjac.model.readers` claims by its content (a TOML robot file, a URDF file; a built-in URDF by its name:
+``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The catalog lives in
+``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from symjac.errors import RobotFileError, UnknownRobotError
+from symjac.model.readers import HEAD_BYTES, LinksNotApplicableError, Reader, reader_for, tree_formats
 from symjac.model.robot import Robot
 from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
 
@@ -43,20 +45,24 @@ def urdf_catalog() -> dict[str, str]:
 
 
 def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_link: str | None = None) -> Robot:
-    """Load a robot: a catalog name (see :func:`catalog`), the path of a TOML robot file, or a URDF file.
+    """Load a robot: a catalog name (see :func:`catalog`), or a robot file in any format symjac reads.
 
-    A file whose text starts with ``<`` is read as URDF whatever its extension (``arm.xml``). A ``.urdf`` argument
-    is a path, or, when no such file exists and it has no directory part, a built-in URDF file
-    (see :func:`urdf_catalog`). ``base_link`` and ``tip_link`` choose the URDF chain (defaults: the root link and the
-    only leaf, or for a built-in file with several leaves the one its ``<!-- tip_link: ... -->`` comment names); see
-    :mod:`symjac.model.urdf`.
+    A file's format is chosen by its content, whatever its name (:func:`symjac.model.readers.reader_for`): a URDF
+    file is XML with the root element ``<robot>`` (``arm.xml`` too), a TOML robot file starts with a key or a table;
+    a file whose content no reader claims goes to the reader of its suffix (``.urdf``, ``.toml``), which says what is
+    wrong with it, or gets one line naming the formats known. A name without a directory part that is no file is
+    looked up in the catalog, then among the built-in URDF files (see :func:`urdf_catalog`); a catalog name wins over
+    a TOML file of the same name. ``base_link`` and ``tip_link`` choose the chain of a tree format such as URDF
+    (defaults: the root link and the only leaf, or for a built-in file with several leaves the one its
+    ``<!-- tip_link: ... -->`` comment names); see :mod:`symjac.model.readers.tree`.
 
     Raises
     ------
     UnknownRobotError
         If the argument is neither a catalog name nor an existing file.
     RobotFileError
-        If the file is malformed (the message names file, joint and field), or links are given for a TOML robot.
+        If the file is malformed or in no format symjac reads (the message names file, joint and field);
+        :class:`~symjac.model.readers.LinksNotApplicableError` if links are given for a robot that is no tree.
 
     Examples
     --------
@@ -66,57 +72,64 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
     7
     """
     path = Path(name_or_path)
-    if path.suffix.lower() == ".urdf" or _is_xml(path):
-        return _load_urdf(name_or_path, path, base_link, tip_link)
-    if base_link is not None or tip_link is not None:
-        raise RobotFileError("base_link and tip_link apply to URDF files only", source=str(name_or_path))
-    if isinstance(name_or_path, str) and path.suffix != ".toml" and "/" not in name_or_path:
-        entry = resources.files("symjac.robots").joinpath(f"{name_or_path}.toml")
-        if entry.is_file():
-            return robot_from_toml(entry.read_text(encoding="utf-8"), source=f"{name_or_path}.toml")
-    if path.is_file():
+    head = _head(path)
+    builtin = isinstance(name_or_path, str) and "/" not in name_or_path and "\\" not in name_or_path
+    entry = resources.files("symjac.robots").joinpath(f"{name_or_path}.toml") \
+        if builtin and path.suffix != ".toml" and name_or_path else None
+    if entry is not None and not entry.is_file():
+        entry = None
+    if head is not None:
         try:
-            text = path.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as error:
-            raise RobotFileError(f"cannot read file: {error}", source=str(path)) from None
-        return robot_from_toml(text, source=str(path))
+            reader = reader_for(head, str(path), path.suffix)
+        except RobotFileError:
+            if entry is None:
+                raise
+        else:
+            if entry is None or reader.tree:  # a catalog name wins over a TOML file of the same name
+                return _read(reader, _file_bytes(path, reader), str(path), base_link, tip_link)
+    if entry is not None:
+        data = entry.read_bytes()
+        return _read(reader_for(data[:HEAD_BYTES], f"{name_or_path}.toml", ".toml"), data, f"{name_or_path}.toml",
+                     base_link, tip_link)
+    urdf_entry = resources.files("symjac.robots").joinpath("urdf", str(name_or_path)) if builtin else None
+    if urdf_entry is not None and name_or_path and urdf_entry.is_file():
+        data = urdf_entry.read_bytes()
+        if tip_link is None:  # a built-in file with several leaves names its default tip in a comment
+            tip = re.search(rb"<!--\s*tip_link:\s*([A-Za-z0-9_.-]+)\s*-->", data)
+            tip_link = tip.group(1).decode("ascii") if tip else None
+        return _read(reader_for(data[:HEAD_BYTES], str(name_or_path)), data, str(name_or_path), base_link, tip_link)
+    if path.suffix.lower() == ".urdf":
+        raise UnknownRobotError(f"{str(name_or_path)!r} is neither a URDF file nor a built-in one "
+                                f"({', '.join(urdf_catalog())})")
     known = ", ".join(catalog())
     raise UnknownRobotError(f"{str(name_or_path)!r} is neither a built-in robot ({known}) nor a robot file")
 
 
-def _is_xml(path: Path) -> bool:
-    """Whether ``path`` is a file whose text starts with ``<`` (a URDF whatever its name): TOML never does."""
+def _head(path: Path) -> bytes | None:
+    """The first :data:`~symjac.model.readers.HEAD_BYTES` of a regular file (None for a directory, a FIFO, nothing)."""
     if not path.is_file():  # a directory, a FIFO (opening it would block), or nothing
-        return False
+        return None
     try:
         with path.open("rb") as file:
-            start = file.read(4096).removeprefix(b"\xef\xbb\xbf").lstrip()
-    except OSError:  # not a file, or unreadable: the caller says so in its own words
-        return False
-    return start.startswith(b"<")
+            return file.read(HEAD_BYTES)
+    except OSError as error:
+        raise RobotFileError(f"cannot read file: {error}", source=str(path)) from None
 
 
-def _load_urdf(name_or_path: str | Path, path: Path, base_link: str | None, tip_link: str | None) -> Robot:
-    from symjac.model.urdf import MAX_URDF_BYTES, robot_from_urdf  # the XML machinery only when a URDF is asked for
+def _file_bytes(path: Path, reader: Reader) -> bytes:
+    """The whole file, after refusing one larger than its reader takes."""
+    try:
+        if reader.max_bytes is not None and path.stat().st_size > reader.max_bytes:
+            raise RobotFileError(f"file larger than {reader.max_bytes} bytes", source=str(path))
+        return path.read_bytes()
+    except OSError as error:
+        raise RobotFileError(f"cannot read file: {error}", source=str(path)) from None
 
-    if path.is_file():
-        try:
-            if path.stat().st_size > MAX_URDF_BYTES:
-                raise RobotFileError(f"file larger than {MAX_URDF_BYTES} bytes", source=str(path))
-            data = path.read_bytes()
-        except OSError as error:
-            raise RobotFileError(f"cannot read file: {error}", source=str(path)) from None
-        return robot_from_urdf(data, source=str(path), base_link=base_link, tip_link=tip_link)
-    if isinstance(name_or_path, str) and "/" not in name_or_path and "\\" not in name_or_path:
-        entry = resources.files("symjac.robots").joinpath("urdf", name_or_path)
-        if entry.is_file():
-            data = entry.read_bytes()
-            if tip_link is None:  # a built-in file with several leaves names its default tip in a comment
-                tip = re.search(rb"<!--\s*tip_link:\s*([A-Za-z0-9_.-]+)\s*-->", data)
-                tip_link = tip.group(1).decode("ascii") if tip else None
-            return robot_from_urdf(data, source=name_or_path, base_link=base_link, tip_link=tip_link)
-    known = ", ".join(urdf_catalog())
-    raise UnknownRobotError(f"{str(name_or_path)!r} is neither a URDF file nor a built-in one ({known})")
+
+def _read(reader: Reader, data: bytes, source: str, base_link: str | None, tip_link: str | None) -> Robot:
+    if not reader.tree and (base_link is not None or tip_link is not None):
+        raise LinksNotApplicableError(source, tree_formats())
+    return reader.read(data, source, base_link=base_link, tip_link=tip_link)
 
 
 def robot_from_toml(text: str, source: str = "<string>") -> Robot:

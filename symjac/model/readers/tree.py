@@ -1,0 +1,411 @@
+r"""The kinematic tree every robot reader produces, and the one way symjac cuts a serial chain out of it.
+
+A reader (URDF today, MJCF next) turns its file into a :class:`KinematicTree`: named links, each with its inertial
+data as the file gives it (:class:`LinkInertial`), and named joints, each with its type, parent and child link, the
+fixed ``origin`` transform from the parent link's frame to the child link's frame at zero motion, a constant ``axis``
+(in the child link's frame, which the origin places), its limits and a mimic rule. :func:`robot_from_tree` then
+builds the general-convention :class:`~symjac.model.robot.Robot` of the chain between two links, the same way for
+every format.
+
+The chain
+    From ``base_link`` (default: the root link) to ``tip_link`` (default: the only leaf below the base; with several
+    the error lists them). Revolute, continuous and prismatic joints become joints of the robot, in order; fixed
+    joints are folded into the origin of the next moving joint, and those after the last moving joint into the tool
+    transform. Floating and planar joints are refused on the chain; joints on other branches are held at zero
+    (a gripper beside the arm does not stop the arm from loading). Frame {0} is ``base_link``; frame {i} is the child
+    link of moving joint *i* turned by the constant alignment :math:`A_i` that takes :math:`z` onto the joint axis
+    (:mod:`symjac.model.conventions.general`); the ``"tool"`` frame is ``tip_link``.
+
+Mimic joints
+    A moving joint of the chain with a :class:`Mimic` rule follows another moving joint *J* of the chain:
+    :math:`x_i = m\,x_J + o`. The variable of a general joint is its position along the axis as written, so
+    :math:`\vartheta_i = m\,\vartheta_J + o` exactly; the robot's coordinates are the variables of the joints that
+    mimic nothing, in chain order (a :class:`~symjac.model.coordinates.Coupling`). A mimic of a mimic is followed to
+    the joint that mimics nothing (:math:`\vartheta_i = m_1 (m_2 \vartheta_K + o_2) + o_1`); a cycle is refused.
+    Mimic rules on other branches, and on fixed joints, are ignored.
+
+Every problem raises :class:`~symjac.errors.RobotFileError` naming the source and the link or joint.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from enum import StrEnum
+from pathlib import Path
+
+import sympy as sp
+
+from symjac.errors import RobotFileError
+from symjac.model.conventions.general import GeneralPlacement
+from symjac.model.coordinates import Coupling
+from symjac.model.expressions import exact_number, is_valid_name
+from symjac.model.inertia import Inertial, combined_inertial, inertial_problem
+from symjac.model.robot import (
+    Convention,
+    FixedTransform,
+    Joint,
+    JointType,
+    Robot,
+    fixed_transform_from_matrix,
+    unit_vector,
+)
+from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_motions
+
+__all__ = ["JointLimits", "KinematicTree", "LinkInertial", "Mimic", "TreeJoint", "TreeJointType", "TreeLink",
+           "identifier", "robot_from_tree"]
+
+
+class TreeJointType(StrEnum):
+    """The kinds of joint a tree holds; only the first three move along a chain symjac models."""
+
+    REVOLUTE = "revolute"
+    CONTINUOUS = "continuous"  # a revolute joint without position limits
+    PRISMATIC = "prismatic"
+    FIXED = "fixed"
+    FLOATING = "floating"
+    PLANAR = "planar"
+
+
+_MOVING = {TreeJointType.REVOLUTE: JointType.REVOLUTE, TreeJointType.CONTINUOUS: JointType.REVOLUTE,
+           TreeJointType.PRISMATIC: JointType.PRISMATIC}
+
+
+@dataclass(frozen=True)
+class LinkInertial:
+    r"""A link's inertial data as its file gives it: raw numbers, not yet in any frame symjac uses.
+
+    ``xyz`` and ``rpy`` place the inertial frame {c} in the link's frame (:math:`R = R_z(y) R_y(p) R_x(r)`); the
+    centre of mass is the origin of {c}, and ``ixx .. izz`` are the entries of the tensor about it, along the axes
+    of {c}.
+    """
+
+    mass: sp.Expr
+    xyz: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+    rpy: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+    ixx: sp.Expr = sp.S.Zero
+    ixy: sp.Expr = sp.S.Zero
+    ixz: sp.Expr = sp.S.Zero
+    iyy: sp.Expr = sp.S.Zero
+    iyz: sp.Expr = sp.S.Zero
+    izz: sp.Expr = sp.S.Zero
+
+    @property
+    def origin(self) -> FixedTransform:
+        """The pose of the inertial frame {c} in the link's frame."""
+        return FixedTransform(xyz=self.xyz, rpy=self.rpy)
+
+    @property
+    def tensor(self) -> sp.ImmutableMatrix:
+        """The symmetric 3 x 3 tensor about the centre of mass, axes of the inertial frame {c}."""
+        return sp.ImmutableMatrix([[self.ixx, self.ixy, self.ixz], [self.ixy, self.iyy, self.iyz],
+                                   [self.ixz, self.iyz, self.izz]])
+
+
+@dataclass(frozen=True)
+class TreeLink:
+    """A named rigid body of the tree, with its inertial data when the file gives it."""
+
+    name: str
+    inertial: LinkInertial | None = None
+
+
+@dataclass(frozen=True)
+class JointLimits:
+    """Position bounds (``lower < upper``; None when the file gives none), and speed and effort limits (or None)."""
+
+    lower: sp.Expr | None = None
+    upper: sp.Expr | None = None
+    velocity: sp.Expr | None = None
+    effort: sp.Expr | None = None
+
+    @property
+    def bounds(self) -> tuple[sp.Expr, sp.Expr] | None:
+        """``(lower, upper)`` when both are given, else None."""
+        return None if self.lower is None or self.upper is None else (self.lower, self.upper)
+
+
+@dataclass(frozen=True)
+class Mimic:
+    """A mimic rule: the joint's position is ``multiplier * position(joint) + offset``."""
+
+    joint: str
+    multiplier: sp.Expr = sp.S.One
+    offset: sp.Expr = sp.S.Zero
+
+
+@dataclass(frozen=True)
+class TreeJoint:
+    """A named joint from ``parent`` to ``child``: the fixed ``origin``, then a motion about or along ``axis``."""
+
+    name: str
+    type: TreeJointType
+    parent: str
+    child: str
+    origin: FixedTransform = field(default_factory=FixedTransform)
+    axis: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.One)
+    limits: JointLimits | None = None
+    mimic: Mimic | None = None
+
+
+@dataclass(frozen=True)
+class KinematicTree:
+    """What a reader found: the robot's ``name`` as the file writes it, its links and its joints, in file order."""
+
+    name: str
+    links: tuple[TreeLink, ...]
+    joints: tuple[TreeJoint, ...]
+
+
+def robot_from_tree(tree: KinematicTree, source: str, *, base_link: str | None = None,
+                    tip_link: str | None = None, name: str | None = None) -> Robot:
+    """The general-convention robot of the chain ``base_link`` .. ``tip_link`` of ``tree`` (see the module text).
+
+    Parameters
+    ----------
+    tree : KinematicTree
+        The links and joints a reader found.
+    source : str
+        The file name, used in error messages and kept as the robot's source.
+    base_link, tip_link : str, optional
+        The chain's first and last link (defaults: the root, and the only leaf below the base).
+    name : str, optional
+        The robot's name (default: the tree's, made an identifier).
+
+    Raises
+    ------
+    RobotFileError
+        For trees that are no trees (links defined twice or missing, a link with two parents, loops) and chains
+        symjac cannot model (floating or planar joints on it, bad mimic rules, no moving joint, bad limits).
+    """
+    links, joints = _checked(tree, source)
+    path = _chain(links, joints, source, base_link, tip_link)
+    robot_name = name if name is not None else identifier(tree.name or "robot")
+    if not is_valid_name(robot_name):
+        raise _fail(source, f"robot name {robot_name!r} is not an identifier (letters, digits, underscore)")
+    return _robot(robot_name, path, source, links, joints)
+
+
+def identifier(text: str) -> str:
+    """``text`` made an identifier: other characters become ``_``; ``r_`` is prefixed unless it starts with a letter."""
+    name = "".join(c if c.isascii() and (c.isalnum() or c == "_") else "_" for c in text)
+    return name if name[:1].isalpha() else f"r_{name}"
+
+
+def _fail(source: str, message: str, element: str | None = None) -> RobotFileError:
+    return RobotFileError(message, source=source, field=element)
+
+
+def _checked(tree: KinematicTree, source: str) -> tuple[dict[str, TreeLink], dict[str, TreeJoint]]:
+    """The links and joints by name, after checking names, ends, axes and limits."""
+    links: dict[str, TreeLink] = {}
+    for link in tree.links:
+        if link.name in links:
+            raise _fail(source, f"link {link.name!r} is defined twice", f"link {link.name}")
+        links[link.name] = link
+    joints: dict[str, TreeJoint] = {}
+    for joint in tree.joints:
+        where = f"joint {joint.name}"
+        if joint.name in joints:
+            raise _fail(source, f"joint {joint.name!r} is defined twice", where)
+        for end, link_name in (("parent", joint.parent), ("child", joint.child)):
+            if link_name not in links:
+                raise _fail(source, f"{end} link {link_name!r} is not defined", where)
+        if joint.type in _MOVING and all(v == 0 for v in joint.axis):
+            raise _fail(source, "the axis must not be the zero vector", f"{where} axis")
+        bounds = joint.limits.bounds if joint.limits is not None else None
+        if bounds is not None and not float(bounds[0]) < float(bounds[1]):  # the TOML reader's wording
+            raise _fail(source, f"'limits' must be finite with lower < upper, got "
+                                f"[{float(bounds[0])}, {float(bounds[1])}]", f"{where} limit")
+        joints[joint.name] = joint
+    return links, joints
+
+
+def _chain(links: dict[str, TreeLink], joints: dict[str, TreeJoint], source: str, base_link: str | None,
+           tip_link: str | None) -> list[TreeJoint]:
+    """The joints from ``base_link`` to ``tip_link``, base first, after checking that the links form a tree."""
+    if not links:
+        raise _fail(source, "the robot has no links")
+    parent_joint: dict[str, TreeJoint] = {}
+    for joint in joints.values():
+        if joint.child in parent_joint:
+            raise _fail(source, f"link {joint.child!r} is the child of two joints "
+                                f"({parent_joint[joint.child].name!r} and {joint.name!r})", f"joint {joint.name}")
+        parent_joint[joint.child] = joint
+    roots = sorted(set(links) - set(parent_joint))
+    if not roots:
+        raise _fail(source, "the joints form a loop: every link has a parent")
+    # every link must reach a root; a loop elsewhere would otherwise go unnoticed
+    for link in sorted(links):
+        seen = {link}
+        while link in parent_joint:
+            link = parent_joint[link].parent
+            if link in seen:
+                raise _fail(source, f"the joints form a loop through link {link!r}", f"link {link}")
+            seen.add(link)
+    if base_link is None:
+        if len(roots) > 1:
+            raise _fail(source, f"several root links ({', '.join(roots)}); choose one with base_link")
+        base_link = roots[0]
+    if base_link not in links:
+        raise _fail(source, f"base_link {base_link!r} is not a link of this robot (links: {', '.join(sorted(links))})")
+    if tip_link is None:
+        parents = {joint.parent for joint in joints.values()}
+        below = [link for link in sorted(set(links) - parents) if _reaches(link, base_link, parent_joint)]
+        if len(below) != 1:
+            raise _fail(source, f"choose tip_link: the links without children below {base_link!r} are "
+                                f"{', '.join(below) or 'none'}")
+        tip_link = below[0]
+    if tip_link not in links:
+        raise _fail(source, f"tip_link {tip_link!r} is not a link of this robot (links: {', '.join(sorted(links))})")
+    if not _reaches(tip_link, base_link, parent_joint):
+        raise _fail(source, f"tip_link {tip_link!r} is not below base_link {base_link!r}")
+    path: list[TreeJoint] = []
+    link = tip_link
+    while link != base_link:
+        path.append(parent_joint[link])
+        link = parent_joint[link].parent
+    path.reverse()
+    for joint in path:
+        if joint.type in (TreeJointType.FLOATING, TreeJointType.PLANAR):
+            raise _fail(source, f"{joint.type} joints are not supported on the chain", f"joint {joint.name}")
+    if not any(joint.type in _MOVING for joint in path):
+        raise _fail(source, f"no revolute, continuous or prismatic joint between {base_link!r} and {tip_link!r}")
+    return path
+
+
+def _reaches(link: str, ancestor: str, parent_joint: dict[str, TreeJoint]) -> bool:
+    while link != ancestor:
+        if link not in parent_joint:
+            return False
+        link = parent_joint[link].parent
+    return True
+
+
+def _leader(joint: TreeJoint, joints: dict[str, TreeJoint], chain: set[str],
+            source: str) -> tuple[str, sp.Expr, sp.Expr]:
+    """The joint of the chain that mimics nothing which ``joint`` follows, and ``(m, o)``: x = m * x_leader + o."""
+    multiplier, offset = sp.S.One, sp.S.Zero
+    followed = [joint.name]
+    current = joint
+    while current.mimic is not None:
+        mimic = current.mimic
+        where = f"joint {current.name} mimic"
+        if mimic.joint not in joints:
+            raise _fail(source, f"joint {current.name!r} mimics {mimic.joint!r}, which is not a joint of this robot",
+                        where)
+        if mimic.joint not in chain:
+            raise _fail(source, f"joint {current.name!r} mimics joint {mimic.joint!r}, which is not on the chain "
+                                f"(choose base_link and tip_link so that the chain holds both)", where)
+        if mimic.joint in followed:
+            raise _fail(source, f"mimic joints form a cycle: {' -> '.join([*followed, mimic.joint])}", where)
+        leader = joints[mimic.joint]
+        if leader.type not in _MOVING:
+            raise _fail(source, f"joint {current.name!r} mimics joint {mimic.joint!r}, a {leader.type} joint", where)
+        offset, multiplier = offset + multiplier * mimic.offset, multiplier * mimic.multiplier
+        followed.append(leader.name)
+        current = leader
+    return current.name, multiplier, offset
+
+
+def _coupled(robot: Robot, moving: list[TreeJoint], joints: dict[str, TreeJoint], chain: set[str],
+             source: str) -> Robot:
+    """``robot`` with the coupling of the mimic joints of its chain (``robot`` itself when there are none)."""
+    if all(joint.mimic is None for joint in moving):
+        return robot
+    variable = {joint.name: symbol for joint, symbol in zip(moving, robot.joint_variables, strict=True)}
+    values = []
+    for joint in moving:
+        leader, multiplier, offset = _leader(joint, joints, chain, source)
+        values.append(multiplier * variable[leader] + offset)
+    coordinates = tuple(variable[joint.name] for joint in moving if joint.mimic is None)
+    return replace(robot, coupling=Coupling(coordinates, tuple(values)))
+
+
+def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str, TreeLink],
+           all_joints: dict[str, TreeJoint]) -> Robot:
+    pending: list[FixedTransform] = []
+    joints: list[Joint] = []
+    for tree_joint in path:
+        if tree_joint.type not in _MOVING:
+            pending.append(tree_joint.origin)
+            continue
+        origin = _combine([*pending, tree_joint.origin], [])
+        pending = []
+        axis = tree_joint.axis
+        placement = GeneralPlacement(None if origin == FixedTransform() else origin,
+                                     None if tuple(axis) == (0, 0, 1) else axis)
+        bounds = tree_joint.limits.bounds if tree_joint.limits is not None else None
+        joints.append(Joint(index=len(joints) + 1, type=_MOVING[tree_joint.type], placement=placement,
+                            limits=bounds, name=tree_joint.name))
+    last_alignment = alignment(placement.unit_axis)
+    tool = _combine(pending, list(inverse_motions(last_alignment)))
+    moving = [joint for joint in path if joint.type in _MOVING]
+    inertials = tuple(_link_inertial(joint, links, all_joints, source) for joint in moving) \
+        if any(link.inertial is not None for link in links.values()) else ()
+    # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
+    robot = Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
+                  description=f"from {Path(source).name}", tool=None if tool == FixedTransform() else tool,
+                  source=source, inertials=inertials if any(inertials) else ())
+    return _coupled(robot, moving, all_joints, {joint.name for joint in path}, source)
+
+
+def _combine(transforms: list[FixedTransform], prefix: list) -> FixedTransform:
+    """The product ``prefix @ transforms[0] @ ...`` as one fixed transform, in xyz/rpy form whenever exact."""
+    nontrivial = [t for t in transforms if t != FixedTransform()]
+    if not prefix and len(nontrivial) <= 1:
+        return nontrivial[0] if nontrivial else FixedTransform()
+    rotation_matrix, position = compose([*prefix, *(sp.Matrix(t.matrix) for t in nontrivial)])
+    return fixed_transform_from_matrix(homogeneous(rotation_matrix, position))
+
+
+def _link_inertial(joint: TreeJoint, links: dict[str, TreeLink], joints: dict[str, TreeJoint],
+                   source: str) -> Inertial | None:
+    r"""The inertial data of the chain link that moving ``joint`` drives, in symjac's frame {i} (None if none given).
+
+    The link is the joint's child :math:`L` and every link fixed to it (through fixed joints only, on the chain or
+    beside it). Body :math:`X`, with its inertial frame {c} at :math:`T_{X,c}` and tensor :math:`I` about its centre,
+    is expressed in {i} by :math:`T_{i,X} = A_i^{-1}\,T_{L,X}` (frame {i} is :math:`L` turned by the alignment
+    :math:`A_i`): :math:`c_i = R\,p_{X,c} + p`, :math:`I_i = R\,R_{X,c}\,I\,R_{X,c}^T R^T`; several bodies are
+    combined by the parallel-axis theorem (:func:`~symjac.model.inertia.combined_inertial`). A link without
+    ``<inertial>`` has no mass. Bodies behind moving joints off the chain (held at zero) are not added: lumping them
+    is the dynamics' choice.
+    """
+    R_A = compose(alignment(unit_vector(joint.axis)))[0]
+    start = homogeneous(R_A.T, sp.zeros(3, 1))
+    children: dict[str, list[TreeJoint]] = {}
+    for other in joints.values():
+        children.setdefault(other.parent, []).append(other)
+    parts = []
+    stack = [(joint.child, start)]
+    while stack:
+        name, T_i_X = stack.pop()
+        body = links[name].inertial
+        if body is not None:
+            own = Inertial(body.mass, body.xyz, _rotated(body.tensor, sp.Matrix(body.origin.matrix)[:3, :3]))
+            problem = inertial_problem(own)
+            if problem is not None:
+                raise _fail(source, problem, f"link {name} inertial")
+            parts.append(own.expressed_in(T_i_X))
+        stack += [(child.child, T_i_X * sp.Matrix(child.origin.matrix))
+                  for child in children.get(name, []) if child.type is TreeJointType.FIXED]
+    if not parts:
+        return None
+    return _plain(parts[0] if len(parts) == 1 else combined_inertial(parts))
+
+
+def _plain(inertial: Inertial) -> Inertial:
+    """``inertial`` with every entry that is not a rational number (``cos(3/10)/4``) as the rational of its float.
+
+    Exact forms pay for kinematics, where a textbook form exists; a tensor turned by a generic angle has none, and
+    rational entries keep the data cheap for the dynamics and writable in a robot file.
+    """
+    def plain(value: sp.Expr) -> sp.Expr:
+        return value if value.is_Rational else exact_number(float(value))
+
+    return Inertial(plain(inertial.mass), tuple(plain(v) for v in inertial.com),  # type: ignore[arg-type]
+                    sp.ImmutableMatrix(inertial.inertia.applyfunc(plain)))
+
+
+def _rotated(tensor: sp.MatrixBase, R: sp.MatrixBase) -> sp.ImmutableMatrix:
+    r""":math:`R\,I\,R^T`: a tensor given along the axes of a frame turned by ``R``, along the original axes."""
+    return sp.ImmutableMatrix((R * tensor * R.T).applyfunc(sp.expand))

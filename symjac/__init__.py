@@ -114,6 +114,7 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.errors import ConversionError as ConversionError
     from symjac.errors import ExpressionError as ExpressionError
     from symjac.errors import FrameError as FrameError
+    from symjac.errors import InertialWarning as InertialWarning
     from symjac.errors import RepresentationError as RepresentationError
     from symjac.errors import ResultTooLargeError as ResultTooLargeError
     from symjac.errors import RobotFileError as RobotFileError

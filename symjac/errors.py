@@ -12,6 +12,7 @@ __all__ = [
     "ConversionError",
     "ExpressionError",
     "FrameError",
+    "InertialWarning",
     "RepresentationError",
     "ResultTooLargeError",
     "RobotFileError",
@@ -78,6 +79,14 @@ class CodegenError(SymjacError, ValueError):
 
 class ConversionError(SymjacError, ValueError):
     """A robot cannot be written in the requested convention."""
+
+
+class InertialWarning(UserWarning):
+    """Inertial data in a robot description that no rigid body can have, kept as the file gives it.
+
+    A tensor that is not positive semi-definite or whose principal moments break the triangle inequality: CAD exports
+    round into these often, and a URDF file is still read (its kinematics does not depend on them).
+    """
 
 
 class ResultTooLargeError(SymjacError, ArithmeticError):

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from reference import frames
 
 from symjac import load_robot
-from symjac.errors import RobotFileError
+from symjac.errors import InertialWarning, RobotFileError
 from symjac.kinematics.convert import convert
 from symjac.model.conventions import file_inertials, with_file_inertials
 from symjac.model.inertia import Inertial, combined_inertial, inertial_problem, symbolic_inertial
@@ -302,9 +302,20 @@ ROW = {"type": "revolute", "a": 1}
 
 
 @pytest.mark.parametrize(("inertial", "message"), [
-    ({"mass": -1}, r"joint 2, field 'inertial': link 2: the mass -1 is negative"),
     ({"mass": 1, "ixx": 1, "iyy": 1, "izz": 3}, r"link 2: the principal moments 1, 1, 3 break the triangle"),
     ({"mass": 1, "ixx": -1, "iyy": 1, "izz": 1}, r"link 2: the inertia tensor is not positive semi-definite"),
+])
+def test_data_no_body_can_have_is_kept_with_a_warning_naming_the_link(inertial: dict, message: str) -> None:
+    # CAD exports round into these (URDF files of real arms do); kinematics does not need them, so the file reads
+    data = {"name": "r", "convention": "standard", "parameters": {"L": 1},
+            "joints": [ROW, {**ROW, "inertial": inertial}]}
+    with pytest.warns(InertialWarning, match=rf"^arm\.toml, .*{message}.*\(kept as given\)$"):
+        robot = robot_from_mapping(data, source="arm.toml")
+    assert robot.inertials[1] is not None and robot.inertials[1].mass == 1
+
+
+@pytest.mark.parametrize(("inertial", "message"), [
+    ({"mass": -1}, r"joint 2, field 'inertial': link 2: the mass -1 is negative"),
     ({"mass": 1, "inertia": [[1, 0.5, 0], [0, 1, 0], [0, 0, 1]]}, r"link 2: the inertia tensor is not symmetric"),
     ({"mass": 1, "colour": "red"}, r"field 'inertial': link 2: unknown key\(s\) 'colour'"),
     ({"ixx": 1}, r"field 'inertial.mass': link 2: 'mass' is required"),

@@ -149,13 +149,16 @@ class Inertial:
         return cls.from_origin(mass, com, M) if about == "origin" else cls(_expr(mass), tuple(com), M)  # type: ignore
 
 
-def inertial_problem(inertial: Inertial, defaults: Mapping[sp.Symbol, sp.Expr] | None = None) -> str | None:
+def inertial_problem(inertial: Inertial, defaults: Mapping[sp.Symbol, sp.Expr] | None = None, *,
+                     physical: bool = True) -> str | None:
     r"""What is physically wrong with ``inertial`` once parameters take ``defaults``, in a few words, or None.
 
     Checked where the values are numbers: the mass is finite and not negative; the centre of mass is finite; the
     tensor about the centre of mass is symmetric, positive semi-definite, and its principal moments
     :math:`\lambda_1 \le \lambda_2 \le \lambda_3` obey the triangle inequality :math:`\lambda_1 + \lambda_2 \ge
     \lambda_3` (then every permutation does), all to a relative tolerance of 1e-9. Entries that stay symbolic pass.
+    ``physical=False`` checks only that the data is well formed (a mass that is not negative, finite values, a
+    symmetric tensor), not that a rigid body can have it.
 
     Examples
     --------
@@ -198,8 +201,8 @@ def inertial_problem(inertial: Inertial, defaults: Mapping[sp.Symbol, sp.Expr] |
         x, y = values[i][j], values[j][i]
         if x is None or y is None or abs(x - y) > tolerance:
             return f"the inertia tensor is not symmetric (I[{i + 1},{j + 1}] = {a}, I[{j + 1},{i + 1}] = {b})"
-    if any(v is None for row in values for v in row):
-        return None  # symbolic entries: nothing more can be checked
+    if not physical or any(v is None for row in values for v in row):
+        return None  # not asked, or symbolic entries: nothing more can be checked
     moments = np.linalg.eigvalsh(np.array(values, dtype=float))
     if moments[0] < -tolerance:
         return f"the inertia tensor is not positive semi-definite (principal moment {moments[0]:.6g})"

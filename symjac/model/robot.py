@@ -223,7 +223,10 @@ class Robot:
 
     Inertial data: ``inertials[i - 1]`` is link *i*'s :class:`~symjac.model.inertia.Inertial` (mass, centre of mass
     and tensor about it, in frame {i}), or None where it is unknown; without it (the default ``()``) every link's is
-    None. Each is checked with the parameters' defaults (:func:`~symjac.model.inertia.inertial_problem`).
+    None. Each must be well formed with the parameters' defaults (a mass that is not negative, finite values, a
+    symmetric tensor: :func:`~symjac.model.inertia.inertial_problem` with ``physical=False``); robot files also
+    refuse a tensor no rigid body can have, which the URDF reader reads with an
+    :class:`~symjac.errors.InertialWarning`.
     """
 
     name: str
@@ -274,7 +277,7 @@ class Robot:
             if not isinstance(inertial, Inertial):
                 raise RobotFileError(f"link {link}: expected Inertial or None, got {type(inertial).__name__}",
                                      source=self.source, joint=link, field="inertial")
-            problem = inertial_problem(inertial, defaults)
+            problem = inertial_problem(inertial, defaults, physical=False)
             if problem is not None:
                 raise RobotFileError(f"link {link}: {problem}", source=self.source, joint=link, field="inertial")
 

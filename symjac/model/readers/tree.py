@@ -29,13 +29,14 @@ Every problem raises :class:`~symjac.errors.RobotFileError` naming the source an
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
 
 import sympy as sp
 
-from symjac.errors import RobotFileError
+from symjac.errors import InertialWarning, RobotFileError
 from symjac.model.conventions.general import GeneralPlacement
 from symjac.model.coordinates import Coupling
 from symjac.model.expressions import exact_number, is_valid_name
@@ -382,9 +383,12 @@ def _link_inertial(joint: TreeJoint, links: dict[str, TreeLink], joints: dict[st
         body = links[name].inertial
         if body is not None:
             own = Inertial(body.mass, body.xyz, _rotated(body.tensor, sp.Matrix(body.origin.matrix)[:3, :3]))
-            problem = inertial_problem(own)
+            problem = inertial_problem(own, physical=False)
             if problem is not None:
                 raise _fail(source, problem, f"link {name} inertial")
+            problem = inertial_problem(own)
+            if problem is not None:  # CAD exports round into these: read the file, say so (pinocchio reads it too)
+                warnings.warn(f"{source}, link {name}: {problem} (kept as given)", InertialWarning, stacklevel=2)
             parts.append(own.expressed_in(T_i_X))
         stack += [(child.child, T_i_X * sp.Matrix(child.origin.matrix))
                   for child in children.get(name, []) if child.type is TreeJointType.FIXED]

@@ -349,6 +349,17 @@ def test_links_without_inertial_data_have_none_and_bad_data_names_the_link():
         robot_from_urdf(INERTIAL.replace('<mass value="2.5"/>', ""), tip_link="tool")
 
 
+def test_the_command_line_says_a_kept_inertial_in_one_warning_line(tmp_path, capsys):
+    path = tmp_path / "arm.urdf"
+    path.write_text(INERTIAL.replace('ixx="0.004" iyy="0.004" izz="0.001"', 'ixx="0.001" iyy="0.001" izz="0.004"'),
+                    encoding="utf-8")
+    assert main(["fk", str(path), "--tip-link", "tool"]) == 0
+    out, err = capsys.readouterr()
+    assert out.strip()  # the pose is printed: a kept inertial does not stop the kinematics
+    assert err.count("\n") == 1 and err.startswith("symjac: warning: ")
+    assert "link l3: the principal moments" in err and err.rstrip().endswith("(kept as given)")
+
+
 def test_urdf_inertials_agree_with_the_general_robot_file_frames():
     # a general robot file gives inertial data in the joint's child link frame, as URDF does: a single body's
     # centre is written back as the URDF gave it, and the file reads back to the same robot

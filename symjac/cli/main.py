@@ -18,6 +18,7 @@ import contextlib
 import os
 import shlex
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, NoReturn
 
@@ -80,9 +81,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     # more than Python's default 1000 frames.
     sys.setrecursionlimit(max(sys.getrecursionlimit(), RECURSION_LIMIT))
     try:
-        refuse_ignored_options(args)
-        result = args.handler(args)
-        emit(result if isinstance(result, str) else _rendered(result, args), args.output)
+        with warnings.catch_warnings():
+            warnings.showwarning = _warning_line
+            refuse_ignored_options(args)
+            result = args.handler(args)
+            emit(result if isinstance(result, str) else _rendered(result, args), args.output)
     except KeyboardInterrupt:
         print("symjac: interrupted", file=sys.stderr)
         return 130
@@ -98,6 +101,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"symjac: error: {one_line(error)}", file=sys.stderr)
         return 2
     return 0
+
+
+def _warning_line(message: Warning | str, category: type[Warning], filename: str, lineno: int, file: object = None,
+                  line: str | None = None) -> None:
+    """A warning as one line on stderr, ``symjac: warning: ...``, as errors are (no source file or line of code)."""
+    text = " ".join(str(message).split())
+    print(f"symjac: warning: {text}", file=sys.stderr)
 
 
 def _rendered(document: Document, args: argparse.Namespace) -> str:

@@ -10,11 +10,10 @@ from __future__ import annotations
 import argparse
 import math
 import re
-from collections.abc import Iterator, Sequence
-from importlib import import_module
-from typing import TYPE_CHECKING, overload
+from typing import TYPE_CHECKING
 
 from symjac.errors import ArgumentError, ExpressionError, FrameError, RobotFileError
+from symjac.quantities.options import LazyChoices
 
 if TYPE_CHECKING:
     import sympy as sp
@@ -36,36 +35,6 @@ __all__ = [
 ]
 
 ROBOT_HELP = "a built-in robot name (see 'symjac robots'), a TOML file or a URDF file"
-
-
-class LazyChoices(Sequence[str]):
-    """An option's choices, read from ``module.name`` only when argparse checks a value or prints them.
-
-    Give the option a ``metavar`` (argparse lists plain choices while it builds the parser) and name the choices
-    in its help with ``%(choices)s`` (expanded only for ``--help``).
-    """
-
-    def __init__(self, module: str, name: str):
-        self.module, self.name = module, name
-
-    def _values(self) -> Sequence[str]:
-        return getattr(import_module(self.module), self.name)  # type: ignore[no-any-return]
-
-    @overload
-    def __getitem__(self, index: int) -> str: ...
-    @overload
-    def __getitem__(self, index: slice) -> Sequence[str]: ...
-    def __getitem__(self, index: int | slice) -> str | Sequence[str]:
-        return self._values()[index]
-
-    def __len__(self) -> int:
-        return len(self._values())
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._values())
-
-    def __contains__(self, value: object) -> bool:
-        return value in self._values()
 
 
 def add_robot_arguments(parser: argparse.ArgumentParser) -> None:

@@ -14,8 +14,8 @@ class LazyChoices(Sequence[str]):
     """An option's choices, read from ``module.name`` only when argparse checks a value or prints them.
 
     Give the option a ``metavar`` (argparse lists plain choices while it builds the parser) and name the choices
-    in its help with ``%(choices)s`` (expanded only for ``--help``). The same tool as
-    :class:`symjac.cli.args.LazyChoices`, here because a quantity's options sit below the command line.
+    in its help with ``%(choices)s`` (expanded only for ``--help``). Quantities' options and the
+    command line's own (:mod:`symjac.cli.args`) use it.
     """
 
     def __init__(self, module: str, name: str):

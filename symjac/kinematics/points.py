@@ -116,8 +116,8 @@ def point_position(robot: Robot | Chain, point: Point | None = None, link: int |
     Examples
     --------
     >>> from symjac import load_robot
-    >>> point_position(load_robot("planar3r"), [1, 0, 0], link=1).T
-    Matrix([[(L1 + 1)*cos(theta1), (L1 + 1)*sin(theta1), 0]])
+    >>> point_position(load_robot("planar3r"), [1, 0, 0], link=2).T  # modified DH: {2} sits at the end of link 1
+    Matrix([[L1*cos(theta1) + cos(theta1 + theta2), L1*sin(theta1) + sin(theta1 + theta2), 0]])
     """
     chain = as_chain(robot)
     k = link_of(chain, link)

@@ -25,6 +25,7 @@ from symjac.kinematics.acceleration_propagation import acceleration_propagation
 from symjac.kinematics.chain import Chain
 from symjac.kinematics.coupling import COUPLING_LAWS, LAW_NAMES
 from symjac.kinematics.jacobian import METHODS, jacobian
+from symjac.kinematics.memo import memoized
 from symjac.kinematics.points import point_position
 from symjac.kinematics.propagation import force_propagation, joint_rate_symbols, velocity_propagation
 from symjac.kinematics.screws import space_jacobian
@@ -200,6 +201,8 @@ def test_each_quantity_names_its_coupling_law():
     assert set(LAW_NAMES) == set(COUPLING_LAWS) == set(laws.values())
     for function, name in laws.items():
         assert function.coupling_law is COUPLING_LAWS[name], function.__name__
+    with pytest.raises(ArgumentError, match="unknown coupling law 'rows'; choose one of columns, transposed"):
+        memoized(coupling="rows")
 
 
 @settings(deadline=None, max_examples=12)

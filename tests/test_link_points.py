@@ -22,7 +22,7 @@ from symjac import load_robot
 from symjac.errors import ArgumentError, FrameError
 from symjac.kinematics.acceleration import bias_acceleration, hessian, jacobian_derivative
 from symjac.kinematics.acceleration_propagation import acceleration_propagation
-from symjac.kinematics.chain import Chain
+from symjac.kinematics.chain import Chain, forward_kinematics
 from symjac.kinematics.coupling import COUPLING_LAWS, LAW_NAMES
 from symjac.kinematics.jacobian import METHODS, jacobian
 from symjac.kinematics.memo import memoized
@@ -197,7 +197,7 @@ def test_named_points_belong_to_the_last_link(call, error, message):
 def test_each_quantity_names_its_coupling_law():
     laws = {jacobian: "columns", jacobian_derivative: "columns", velocity_propagation: "columns",
             space_jacobian: "columns", force_propagation: "transposed", hessian: "congruent",
-            bias_acceleration: "rates", acceleration_propagation: "rates"}
+            bias_acceleration: "rates", acceleration_propagation: "rates", forward_kinematics: "rates"}
     assert set(LAW_NAMES) == set(COUPLING_LAWS) == set(laws.values())
     for function, name in laws.items():
         assert function.coupling_law is COUPLING_LAWS[name], function.__name__

@@ -28,6 +28,15 @@ where :math:`{}^k\dot J_0` is the fixed-frame derivative re-expressed in {k}. Pe
 Hessian loses the same term; the two coincide for m < j, which therefore vanish. Both are computed from the
 columns of :math:`{}^kJ` alone (cross products do not care which frame they are written in).
 
+**Points of earlier links.** For a point fixed in link l (``link=l``) the columns of joints m > l are zero, and the
+same formula gives every fixed-frame slice. Only the moving-frame term needs joint m's own angular velocity
+:math:`a_m` (:math:`z_m` for a revolute joint, zero for a prismatic one) where the Jacobian's column is zero: a
+joint after l that carries {k} still turns the frame the Jacobian is written in,
+
+.. math::
+    \frac{\partial\,{}^kJ_j}{\partial q_m} = -\begin{bmatrix} a_m \times v_j \\ a_m \times \omega_j \end{bmatrix}
+    \qquad (m > l,\ m \text{ carries } \{k\}).
+
 How this maps onto other tools: pinocchio's ``getFrameJacobianTimeVariation`` in ``LOCAL_WORLD_ALIGNED`` is the
 fixed-frame derivative (``frame=0`` with the frame's origin as the point, rotated to the world frame); in
 ``LOCAL`` it is the derivative of the Jacobian expressed in the moving frame itself (``frame="tool"`` with
@@ -45,9 +54,9 @@ import sympy as sp
 
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
-from symjac.kinematics.coupling import hessian_in_coordinates, in_coordinates, jacobian_in_coordinates
-from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.memo import frame_of, memoized, one_of
+from symjac.kinematics.points import Point, link_of, link_point
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
@@ -73,18 +82,18 @@ def carried_joints(robot: Robot | Chain, frame: Frame) -> tuple[int, ...]:
     return tuple(range(1, min(max(chain.position(frame), 0), chain.n_joints) + 1))
 
 
-@memoized(frame=frame_of, point=point_vector)
+@memoized(frame=frame_of, link=link_of, point=link_point, coupling="congruent", layout="frame")
 def hessian(
-    chain: Chain, frame: Frame = 0, point: Point = "wrist", *, simplify: bool = True
+    chain: Chain, frame: Frame = 0, point: Point | None = None, *, simplify: bool = True, link: int | None = None
 ) -> sp.ImmutableDenseNDimArray:
     r"""The kinematic Hessian :math:`H_{ijm} = \partial J_{ij} / \partial q_m` of the basic Jacobian :math:`{}^kJ`.
 
     Parameters
     ----------
     robot : Robot or Chain
-    frame, point
+    frame, point, link
         As for :func:`symjac.kinematics.jacobian`: the Hessian is that of exactly the Jacobian ``jacobian(robot, frame,
-        point)``, moving frame included (see the module docstring).
+        point, link=link)``, moving frame included (see the module docstring).
     simplify : bool
         Compact textbook form (default), or the cross products of the (compact) Jacobian's columns as they come,
         unexpanded.
@@ -109,7 +118,7 @@ def hessian(
     [-L2*cos(theta1 + theta2), -L2*cos(theta1 + theta2)],
     [-L2*sin(theta1 + theta2), -L2*sin(theta1 + theta2)]])
     """
-    return _hessian(chain, frame, point, simplify)  # type: ignore[arg-type]  # normalised by @memoized
+    return _hessian(chain, frame, point, simplify, link)  # type: ignore[arg-type]  # normalised by @memoized
 
 
 def hessian_slice(H: sp.NDimArray, m: int) -> sp.Matrix:
@@ -125,29 +134,33 @@ def _columns(J: sp.MatrixBase) -> list[tuple[sp.Matrix, sp.Matrix]]:
 
 
 def _hessian_pair(columns: list[tuple[sp.Matrix, sp.Matrix]], j: int, m: int,
-                  carried: frozenset[int]) -> tuple[sp.Matrix, sp.Matrix]:
-    r""":math:`\partial J_j / \partial q_m` (0-based j, m) from the columns of :math:`{}^kJ`: (linear, angular)."""
+                  carried: dict[int, sp.Matrix]) -> tuple[sp.Matrix, sp.Matrix]:
+    r""":math:`\partial J_j / \partial q_m` (0-based j, m) from the columns of :math:`{}^kJ`: (linear, angular).
+
+    ``carried`` maps each joint that turns {k} to its angular velocity :math:`a_m` (its column's, but also for a
+    joint past the point's link, whose column is zero).
+    """
     v_j, w_j = columns[j]
     v_m, w_m = columns[m]
     zero = sp.zeros(3, 1)
     if m < j:
         return (zero, zero) if m in carried else (w_m.cross(v_j), w_m.cross(w_j))
     if m in carried:
-        return w_j.cross(v_m) - w_m.cross(v_j), -w_m.cross(w_j)
+        a_m = carried[m]
+        return w_j.cross(v_m) - a_m.cross(v_j), -a_m.cross(w_j)
     return w_j.cross(v_m), zero
 
 
-def _hessian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], simplify: bool) -> sp.ImmutableDenseNDimArray:
-    if chain.joint_chain is not chain:  # coupled: H_q[:, j, m] = sum_a sum_b H[:, a, b] C[a, j] C[b, m]
-        H = hessian(chain.joint_chain, frame, list(point), simplify=simplify)
-        return hessian_in_coordinates(chain, H, frame if simplify else None)
+def _hessian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], simplify: bool,
+             link: int) -> sp.ImmutableDenseNDimArray:
     n = chain.n_joints
     if simplify:
-        raw = hessian(chain, frame, list(point), simplify=False)
+        raw = hessian(chain, frame, list(point), simplify=False, link=link)
         flat = simplify_matrix(sp.Matrix(raw.reshape(6, n * n).tolist()), chain.angle_bases(frame))
         return sp.ImmutableDenseNDimArray(list(flat), (6, n, n))
-    columns = _columns(jacobian(chain, frame, list(point)))
-    carried = frozenset(m - 1 for m in carried_joints(chain, frame))
+    columns = _columns(jacobian(chain, frame, list(point), link=link))
+    carried = {m - 1: columns[m - 1][1] if m <= link else _spin(chain, frame, m)
+               for m in carried_joints(chain, frame)}
     H = sp.MutableDenseNDimArray.zeros(6, n, n)
     for j in range(n):
         for m in range(n):
@@ -157,14 +170,23 @@ def _hessian(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], simplify: b
     return sp.ImmutableDenseNDimArray(H)
 
 
-@memoized(frame=frame_of, point=point_vector, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix)
+def _spin(chain: Chain, frame: Frame, joint: int) -> sp.Matrix:
+    r"""Joint ``joint``'s (1-based) angular velocity per unit rate in ``frame``, compact: :math:`z_a` or zero."""
+    if not chain.robot.joints[joint - 1].is_revolute:
+        return sp.zeros(3, 1)
+    return sp.Matrix(chain.simplified_transform(frame, chain.axis_frame(joint))[:3, 2])
+
+
+@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix,
+          coupling="columns", layout="frame")
 def jacobian_derivative(
     chain: Chain,
     frame: Frame = 0,
-    point: Point = "wrist",
+    point: Point | None = None,
     method: DerivativeMethod = "hessian",
     *,
     simplify: bool = True,
+    link: int | None = None,
 ) -> sp.Matrix:
     r"""The time derivative :math:`\frac{d}{dt}{}^kJ` of the basic Jacobian, in the joint variables and rates.
 
@@ -173,7 +195,7 @@ def jacobian_derivative(
     Parameters
     ----------
     robot : Robot or Chain
-    frame, point
+    frame, point, link
         As for :func:`symjac.kinematics.jacobian`. For a fixed frame ({0}, "world") this is what
         :math:`[\dot v; \dot\omega] = J\ddot q + \dot J\dot q` needs; for a moving frame it is the derivative of the
         Jacobian *expressed in that moving frame*, which differs (module docstring).
@@ -195,36 +217,36 @@ def jacobian_derivative(
     >>> jacobian_derivative(load_robot("planar2r"))[0, 1]
     -L2*(thetadot1 + thetadot2)*cos(theta1 + theta2)
     """
-    return _jacobian_derivative(chain, frame, point, method, simplify)  # type: ignore[arg-type]  # normalised
+    # coupled: Jdot_q = Jdot(theta(q), C qdot) C = sum_m H_q[:, :, m] qdot_m, the columns law
+    return _jacobian_derivative(chain, frame, point, method, simplify, link)  # type: ignore[arg-type]  # normalised
 
 
 def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], method: DerivativeMethod,
-                         simplify: bool) -> sp.ImmutableMatrix:
-    if chain.joint_chain is not chain:  # coupled: Jdot_q = Jdot(theta(q), C qdot) C = sum_m H_q[:, :, m] qdot_m
-        joints = jacobian_derivative(chain.joint_chain, frame, list(point), method, simplify=simplify)
-        return jacobian_in_coordinates(chain, joints, frame if simplify else None)
+                         simplify: bool, link: int) -> sp.ImmutableMatrix:
     if simplify:
-        raw = jacobian_derivative(chain, frame, list(point), method, simplify=False)
+        raw = jacobian_derivative(chain, frame, list(point), method, simplify=False, link=link)
         return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))
     rates = joint_rate_symbols(chain)
     if method == "differentiation":
-        J = jacobian(chain, frame, list(point), simplify=False)
+        J = jacobian(chain, frame, list(point), simplify=False, link=link)
         q = chain.robot.joint_variables
         return sp.ImmutableMatrix(J.rows, J.cols, lambda i, j: sum(J[i, j].diff(q_m) * rate
                                                                     for q_m, rate in zip(q, rates, strict=True)))
-    H = hessian(chain, frame, list(point), simplify=False)
+    H = hessian(chain, frame, list(point), simplify=False, link=link)
     n = chain.n_joints
     return sp.ImmutableMatrix(6, n, lambda i, j: sum(H[i, j, m] * rates[m] for m in range(n)))
 
 
-@memoized(frame=frame_of, point=point_vector, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix)
+@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix,
+          coupling="rates", layout="frame")
 def bias_acceleration(
     chain: Chain,
     frame: Frame = 0,
-    point: Point = "wrist",
+    point: Point | None = None,
     method: DerivativeMethod = "hessian",
     *,
     simplify: bool = True,
+    link: int | None = None,
 ) -> sp.Matrix:
     r"""The bias acceleration :math:`\dot J\dot q` (6 x 1), the term a resolved-acceleration controller subtracts.
 
@@ -238,10 +260,9 @@ def bias_acceleration(
     >>> bias_acceleration(load_robot("planar2r"))[0]
     -L1*thetadot1**2*cos(theta1) - L2*(thetadot1 + thetadot2)**2*cos(theta1 + theta2)
     """
-    if chain.joint_chain is not chain:  # coupled: Jdot_q qdot = Jdot thetadot with thetadot = C qdot
-        joints = bias_acceleration(chain.joint_chain, frame, list(point), method, simplify=simplify)
-        return in_coordinates(chain, sp.ImmutableMatrix(joints), frame if simplify else None)
-    raw = jacobian_derivative(chain, frame, point, method, simplify=False) * sp.Matrix(joint_rate_symbols(chain))
+    # coupled: Jdot_q qdot = Jdot thetadot with thetadot = C qdot, the rates law
+    raw = jacobian_derivative(chain, frame, point, method, simplify=False, link=link) * sp.Matrix(
+        joint_rate_symbols(chain))
     if not simplify:
         return sp.ImmutableMatrix(raw)
     return sp.ImmutableMatrix(_collect_rates(simplify_matrix(raw, chain.angle_bases(frame)), chain))

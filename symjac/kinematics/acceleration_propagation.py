@@ -20,7 +20,8 @@ and :math:`\dot\theta_k = 0` for a prismatic, :math:`\dot d_k = 0` for a revolut
 The first term of each line carries link k-1's motion rigidly to the origin of {k}; the rest is joint k's motion
 relative to link k-1, with the Coriolis term :math:`2\,\omega' \times u`. For the modified convention r = 0, and
 these are Craig's (6.45)-(6.47) (his :math:`2\,\omega_{k} \times \dot d_k z_k` equals ours: a prismatic joint adds
-no rotation). Past frame {n} a rigid step (no joint) reaches the tool frame or a point fixed in {n} (axes of {n}).
+no rotation). Past frame {n} a rigid step (no joint) reaches the tool frame or a point fixed in {n} (axes of {n});
+for a point fixed in an earlier link l (``link=l``) the iteration stops at {l} and the rigid step starts there.
 :math:`\dot v` is the classical acceleration :math:`\ddot p` of the origin, expressed in the moving frame.
 
 With :math:`\ddot q = 0` the tip acceleration, rotated into {0}, is the bias acceleration :math:`\dot J\dot q` of
@@ -33,11 +34,11 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from symjac.errors import FrameError
 from symjac.kinematics.chain import Chain, Frame, as_chain
-from symjac.kinematics.coupling import in_coordinates
-from symjac.kinematics.jacobian import Point, point_vector
+from symjac.kinematics.coupling import CouplingLaw
 from symjac.kinematics.memo import memoized
-from symjac.kinematics.propagation import joint_rate_symbols
+from symjac.kinematics.points import Point, link_of, link_point
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
 
@@ -70,7 +71,7 @@ def joint_accelerations(robot: Robot | Chain) -> tuple[sp.Symbol, ...]:
 class AccelerationStep:
     r"""Motion of one frame's origin, in that frame's axes: :math:`\omega, \dot\omega, v, \dot v` (3 x 1 each).
 
-    ``frame`` is 0..n, ``"tool"``, or ``"point"`` (a point fixed in {n}, axes of {n}).
+    ``frame`` is 0..n, ``"tool"``, or ``"point"`` (a point fixed in the last link propagated, in its axes).
     """
 
     frame: Frame | str
@@ -103,14 +104,26 @@ class AccelerationPropagation:
         r"""The tip acceleration at :math:`\ddot q = 0`, in the tip frame's axes: :math:`\dot J\dot q` rotated there."""
         return self.acceleration.xreplace(dict.fromkeys(self.accelerations, sp.S.Zero))
 
+    def in_coordinates(self, chain: Chain, law: CouplingLaw) -> AccelerationPropagation:
+        r"""Written in ``chain``'s coordinates: every vector moved by ``law`` (the rates law, :math:`\vartheta(q)`)."""
+        return AccelerationPropagation(chain.robot.coordinate_rates, chain.robot.coordinate_accelerations, tuple(
+            AccelerationStep(s.frame, *(law(chain, m) for m in (s.omega, s.omegadot, s.v, s.vdot)))
+            for s in self.steps))
 
-def _coordinates(chain: Chain, point: Point | None) -> tuple[sp.Expr, ...] | None:
-    return None if point is None else point_vector(chain, point)  # validated; floats become exact rationals
+
+def _coordinates(chain: Chain, point: Point | None, link: int) -> tuple[sp.Expr, ...] | None:
+    """``None`` (the tool frame, on the last link only) or the point's coordinates in {link}, validated."""
+    if point is None:
+        if link != chain.n_joints:
+            raise FrameError(f"the tool frame is fixed in the last link ({chain.n_joints}), not in link {link}")
+        return None
+    return link_point(chain, point, link)  # floats become exact rationals
 
 
-@memoized(point=_coordinates)
+@memoized(link=link_of, point=_coordinates, coupling="rates")
 def acceleration_propagation(
-    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True,
+    link: int | None = None,
 ) -> AccelerationPropagation:
     r"""Propagate angular and linear velocities and accelerations from the base to the tip (module docstring).
 
@@ -118,16 +131,18 @@ def acceleration_propagation(
     ----------
     robot : Robot or Chain
     point : tuple of 3, or None
-        The tip, as for :func:`symjac.kinematics.propagation.velocity_propagation`: a point given in frame {n} (default
-        its origin, the wrist, which adds no step), or ``None`` for the tool frame.
+        The tip, as for :func:`symjac.kinematics.propagation.velocity_propagation`: a point given in frame {l} of its
+        link (default its origin, which adds no step), or ``None`` for the tool frame.
     simplify : bool
         Lay every step out in compact textbook form (default); ``False`` keeps the raw products. The iteration
         always runs on the raw products.
+    link : int, optional
+        The link l the point is fixed in (default n): the iteration stops at frame {l}.
 
     Returns
     -------
     AccelerationPropagation
-        Steps for frames 0..n (then the tool frame or the point), each in the joint variables, the rates of
+        Steps for frames 0..l (then the tool frame or the point), each in the joint variables, the rates of
         :func:`symjac.kinematics.propagation.joint_rate_symbols` and the accelerations of :func:`joint_accelerations`.
 
     Examples
@@ -139,21 +154,17 @@ def acceleration_propagation(
     >>> result.tip.omegadot.T
     Matrix([[0, 0, thetaddot1 + thetaddot2]])
     """
-    return _derive(chain, point, simplify)
+    # coupled: theta = theta(q), thetadot = C qdot, thetaddot = C qddot (the rates law)
+    return _derive(chain, point, simplify, link)  # type: ignore[arg-type]  # normalised by @memoized
 
 
-def _derive(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> AccelerationPropagation:
-    if chain.joint_chain is not chain:  # coupled: theta = theta(q), thetadot = C qdot, thetaddot = C qddot
-        joints = acceleration_propagation(chain.joint_chain, point, simplify=simplify)
-        return AccelerationPropagation(joint_rate_symbols(chain), joint_accelerations(chain), tuple(
-            AccelerationStep(s.frame, *(in_coordinates(chain, m) for m in (s.omega, s.omegadot, s.v, s.vdot)))
-            for s in joints.steps))
+def _derive(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool, link: int) -> AccelerationPropagation:
     if not simplify:
-        return _propagate(chain, point)
-    raw = acceleration_propagation(chain, point, simplify=False)
+        return _propagate(chain, point, link)
+    raw = acceleration_propagation(chain, point, simplify=False, link=link)
 
     def layout(step: AccelerationStep) -> AccelerationStep:
-        frame: Frame = chain.n_joints if step.frame == "point" else step.frame  # type: ignore[assignment]  # "point": {n}
+        frame: Frame = link if step.frame == "point" else step.frame  # type: ignore[assignment]  # "point": {l}
         stacked = sp.Matrix.vstack(step.omega, step.omegadot, step.v, step.vdot)
         flat = _collect_rates(simplify_matrix(stacked, chain.angle_bases(frame)), raw.rates)
         parts = [sp.ImmutableMatrix(flat[i:i + 3, :]) for i in (0, 3, 6, 9)]
@@ -182,12 +193,12 @@ def _rigid(omega: sp.Matrix, omegadot: sp.Matrix, v: sp.Matrix, vdot: sp.Matrix,
     return v + omega.cross(p), vdot + omegadot.cross(p) + omega.cross(omega.cross(p))
 
 
-def _propagate(chain: Chain, point: tuple[sp.Expr, ...] | None) -> AccelerationPropagation:
+def _propagate(chain: Chain, point: tuple[sp.Expr, ...] | None, link: int) -> AccelerationPropagation:
     model = chain.robot
     rates, accelerations = model.coordinate_rates, model.coordinate_accelerations  # uncoupled: the joints' own
     omega, omegadot, v, vdot = (sp.zeros(3, 1) for _ in range(4))
     steps = [AccelerationStep(0, _ZERO, _ZERO, _ZERO, _ZERO)]
-    for k, joint in enumerate(model.joints, start=1):
+    for k, joint in enumerate(model.joints[:link], start=1):
         R = sp.Matrix(chain.rotation(k, k - 1))
         p = sp.Matrix(chain.transform(k - 1, k)[:3, 3])
         v_moved, vdot_moved = _rigid(omega, omegadot, v, vdot, p)

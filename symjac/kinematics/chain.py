@@ -18,7 +18,7 @@ from typing import Any, Literal, NamedTuple, TypeVar
 import sympy as sp
 
 from symjac.errors import FrameError
-from symjac.kinematics.coupling import in_coordinates
+from symjac.kinematics.coupling import COUPLING_LAWS, in_coordinates
 from symjac.model.conventions import joint_forms
 from symjac.model.conventions.base import JointForm
 from symjac.model.robot import Robot
@@ -395,3 +395,6 @@ def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | 
     chain = as_chain(robot)
     T = chain.simplified_transform(source, chain.n_joints if target is None else target)
     return in_coordinates(chain, sp.Matrix(T))
+
+
+forward_kinematics.coupling_law = COUPLING_LAWS["rates"]  # type: ignore[attr-defined]  # applied above, as memoized

@@ -15,15 +15,34 @@ the bias :math:`\dot J_q\dot q = \dot J\dot\vartheta` with :math:`\dot\vartheta 
 Transforms and anything else written in the joint variables, their rates and accelerations take
 :math:`\vartheta = \vartheta(q)`, :math:`\dot\vartheta = C\dot q`, :math:`\ddot\vartheta = C\ddot q`
 (:func:`in_coordinates`). Without a coupling every function here returns its argument unchanged.
+
+**The laws, by name.** Each derived quantity states once which of four laws moves it to the coordinates
+(:data:`COUPLING_LAWS`); :func:`symjac.kinematics.memo.memoized` (its ``coupling=`` argument) is the one place that
+asks whether a robot is coupled, derives the quantity on the joint chain and applies the law:
+
+==============  ==============================================  ======================================
+law             equation                                        quantities
+==============  ==============================================  ======================================
+``columns``     :math:`J_q = J(\vartheta(q))\,C`                Jacobians, J-dot, velocity propagation
+``transposed``  :math:`\tau_q = C^T\tau`                        torque maps (force propagation)
+``congruent``   :math:`H_q[i] = C^T H[i]\,C`                    the kinematic Hessian
+``rates``       :math:`\vartheta(q),\ \dot\vartheta = C\dot q`  poses, bias, acceleration propagation
+==============  ==============================================  ======================================
+
+A structured result (a propagation with its steps) is moved field by field by its own ``in_coordinates(chain,
+law)`` method, which applies the named laws to its matrices.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, TypeVar
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Literal, TypeVar, get_args
 
 import sympy as sp
 
+from symjac.errors import ArgumentError
 from symjac.model.robot import JointType, Robot
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.simplify import simplify_matrix
@@ -33,9 +52,20 @@ if TYPE_CHECKING:  # the chain module applies the coupling to forward kinematics
 
 M = TypeVar("M", sp.MatrixBase, sp.NDimArray)
 
+LawName = Literal["columns", "transposed", "congruent", "rates"]
+"""The name of a coupling law (:data:`COUPLING_LAWS`)."""
+
+LAW_NAMES: tuple[str, ...] = get_args(LawName)
+"""The four coupling laws by name, as a quantity states its own (``coupling="columns"``)."""
+
 __all__ = [
+    "COUPLING_LAWS",
+    "LAW_NAMES",
+    "CouplingLaw",
+    "LawName",
     "coordinate_bases",
     "coordinate_substitution",
+    "coupling_law",
     "coupling_matrix",
     "hessian_in_coordinates",
     "in_coordinates",
@@ -192,3 +222,45 @@ def _product(left: sp.MatrixBase, right: sp.MatrixBase) -> sp.Matrix:
 
 def _model(robot: Robot | Chain) -> Robot:
     return robot if isinstance(robot, Robot) else robot.robot
+
+
+@dataclass(frozen=True)
+class CouplingLaw:
+    r"""How a quantity derived in the joint variables is written in the coordinates (module docstring).
+
+    ``name`` is one of :data:`LAW_NAMES`, ``equation`` the law in LaTeX, and ``move(chain, value, layout)`` applies
+    it to a matrix or array in the joint variables (``layout``: a frame to lay the result out again in, or None).
+    """
+
+    name: str
+    equation: str
+    move: Callable[[Any, Any, Any], Any]
+
+    def __call__(self, chain: Chain, value: Any, layout: Frame | None = None) -> Any:
+        """``value`` (a matrix, an array, or a result with an ``in_coordinates(chain, law)`` method) moved."""
+        if isinstance(value, sp.MatrixBase | sp.NDimArray):
+            return self.move(chain, value, layout)
+        return value.in_coordinates(chain, self)
+
+
+COUPLING_LAWS: dict[str, CouplingLaw] = {law.name: law for law in (
+    CouplingLaw("columns", r"J_q = J(\vartheta(q))\,C", jacobian_in_coordinates),
+    CouplingLaw("transposed", r"\tau_q = C^T \tau", lambda chain, M, layout: torques_in_coordinates(chain, M)),
+    CouplingLaw("congruent", r"H_q[i] = C^T H[i]\,C", hessian_in_coordinates),
+    CouplingLaw("rates", r"\vartheta = \vartheta(q),\ \dot\vartheta = C\dot q,\ \ddot\vartheta = C\ddot q",
+                lambda chain, value, layout: in_coordinates(chain, value, layout)),
+)}
+"""The coupling laws by name (:data:`LAW_NAMES`)."""
+
+
+def coupling_law(name: str) -> CouplingLaw:
+    r"""The law called ``name``; an :class:`~symjac.errors.ArgumentError` names the known ones.
+
+    Examples
+    --------
+    >>> coupling_law("columns").equation
+    'J_q = J(\\vartheta(q))\\,C'
+    """
+    if name not in COUPLING_LAWS:
+        raise ArgumentError(f"unknown coupling law {name!r}; choose one of {', '.join(LAW_NAMES)}")
+    return COUPLING_LAWS[name]

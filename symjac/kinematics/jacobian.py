@@ -7,7 +7,11 @@ the last link, the columns of the basic Jacobian are
 .. math::
     J_i = \begin{bmatrix} \epsilon_i z_i + \bar\epsilon_i\, z_i \times p_{iP} \\ \bar\epsilon_i z_i \end{bmatrix}
 
-expressed in any frame {k} as :math:`{}^kJ = \mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J`.
+expressed in any frame {k} as :math:`{}^kJ = \mathrm{diag}({}^k_0R, {}^k_0R)\,{}^0J`. For a point fixed in an
+earlier link l (``link=l``, :mod:`symjac.kinematics.points`) the same holds with the chain cut at frame {l}: its
+coordinates are given in {l}, only joints 1..l move it, and the columns of joints l+1..n are zero. Every method
+then works up to {l} where it would work up to {n} (differentiation of :math:`{}^0_lT\,p`, cross products with
+:math:`p_{iP}` read from {l}, velocities propagated out to {l}, a wrench propagated in from {l}).
 
 Methods (all return the same matrix, simplified to the same unique normal form):
 
@@ -48,19 +52,18 @@ from typing import Literal, get_args
 
 import sympy as sp
 
-from symjac.errors import ArgumentError, FrameError
+from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame
-from symjac.kinematics.coupling import jacobian_in_coordinates
 from symjac.kinematics.memo import frame_of, memoized, one_of
+from symjac.kinematics.points import Point, link_of, link_point, point_vector
 from symjac.kinematics.propagation import force_propagation, velocity_propagation
-from symjac.model.robot import VELOCITY_NAMES, Robot
+from symjac.model.robot import VELOCITY_NAMES
 from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.simplify import simplify_matrix, simplify_product
 from symjac.symbolic.transforms import block_rotation, point_shift
 
 Method = Literal["differentiation", "cross_product", "velocity_propagation", "force_propagation"]
-Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
 
 METHODS: tuple[str, ...] = get_args(Method)
 """The four derivations of the basic Jacobian; all give the same matrix."""
@@ -116,39 +119,16 @@ def check_row_indices(rows: Sequence[int]) -> tuple[int, ...]:
     return values
 
 
-def point_vector(robot: Robot | Chain, point: Point) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
-    """Coordinates in frame {n} of a point given as ``"wrist"``, ``"tool"`` or three coordinates (validated)."""
-    robot = robot.robot if isinstance(robot, Chain) else robot
-    if isinstance(point, str):
-        if point == "wrist":
-            return (sp.S.Zero,) * 3
-        if point == "tool":
-            if robot.tool is None:
-                raise FrameError(f"{robot.name} has no tool transform, so it has no 'tool' point")
-            x, y, z = robot.tool.matrix[:3, 3]
-            return x, y, z
-        raise FrameError(f"unknown point {point!r}: use 'wrist', 'tool' or three coordinates in frame {{n}}")
-    values = tuple(point)
-    if len(values) != 3:
-        raise FrameError(f"a point needs 3 coordinates in frame {{n}}, got {len(values)}")
-    coordinates = []
-    for value in values:
-        expr = sp.sympify(value)
-        if not isinstance(expr, sp.Expr) or expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo):
-            raise FrameError(f"point coordinate {value!r} is not a finite number or expression")
-        coordinates.append(sp.nsimplify(expr, rational=True) if expr.is_Float else expr)
-    x, y, z = coordinates
-    return x, y, z
-
-
-@memoized(frame=frame_of, point=point_vector, method=one_of(METHODS), fresh=sp.Matrix)
+@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(METHODS), fresh=sp.Matrix,
+          coupling="columns", layout="frame")
 def jacobian(
     chain: Chain,
     frame: Frame = 0,
-    point: Point = "wrist",
+    point: Point | None = None,
     method: Method = "differentiation",
     *,
     simplify: bool = True,
+    link: int | None = None,
 ) -> sp.Matrix:
     r"""The 6 x n basic Jacobian :math:`{}^kJ` of ``robot``, rows :math:`[v; \omega]`, one column per coordinate.
 
@@ -160,13 +140,17 @@ def jacobian(
     robot : Robot or Chain
     frame : int or "world" or "tool"
         Frame {k} the Jacobian is expressed in (default {0}).
-    point : "wrist", "tool" or sequence of 3
-        Where the linear velocity is taken: the origin of frame {n} (default), the origin of the tool frame, or a
-        point given by its coordinates in frame {n}.
+    point : "wrist", "tool" or sequence of 3, optional
+        Where the linear velocity is taken: a point given by its coordinates in frame {l} of its ``link`` (default
+        the origin of {l}: the wrist, the origin of frame {n}, for the last link), or by name on the last link:
+        ``"wrist"`` or ``"tool"``, the origin of the tool frame.
     method : "differentiation", "cross_product", "velocity_propagation" or "force_propagation"
         Derivation (see the module docstring); all give the same matrix.
     simplify : bool
         Lay the result out in compact textbook form (default). ``False`` returns the raw structured products.
+    link : int, optional
+        The link l the point is fixed in: 0 (the base) .. n (default, the last link, which carries the tool). The
+        columns of joints l+1..n are zero.
 
     Returns
     -------
@@ -181,36 +165,37 @@ def jacobian(
     Matrix([
     [    -L2*sin(theta2), -L2*sin(theta2)],
     [L1 + L2*cos(theta2),  L2*cos(theta2)]])
+    >>> jacobian(load_robot("planar2r"), link=1)[:2, :]  # the end of link 1 (standard DH: the origin of {1})
+    Matrix([
+    [-L1*sin(theta1), 0],
+    [ L1*cos(theta1), 0]])
     """
-    return _derive(chain, frame, point, method, simplify)  # type: ignore[arg-type]  # normalised by @memoized
+    return _derive(chain, frame, point, method, simplify, link)  # type: ignore[arg-type]  # normalised by @memoized
 
 
 def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
-            simplify: bool) -> sp.ImmutableMatrix:
-    if chain.joint_chain is not chain:  # a coupled robot: derived for its joints, then J_q = J(theta(q)) C
-        J = jacobian(chain.joint_chain, frame, point, method, simplify=simplify)
-        return jacobian_in_coordinates(chain, J, frame if simplify else None)
+            simplify: bool, link: int) -> sp.ImmutableMatrix:
     if simplify and method != "cross_product":  # from the frame the method works in, link by link on normal forms
-        source = 0 if method == "differentiation" else chain.n_joints
-        raw = jacobian(chain, source, point, method, simplify=False)
+        source = 0 if method == "differentiation" else link
+        raw = jacobian(chain, source, point, method, simplify=False, link=link)
         report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
         factors = [*_link_rotations(chain, frame, source), raw]
         return sp.ImmutableMatrix(simplify_product(factors, chain.angle_bases(frame)))
     if simplify:  # the compact form starts from the raw one, which is kept too (code generation wants both)
-        raw = jacobian(chain, frame, point, method, simplify=False)
+        raw = jacobian(chain, frame, point, method, simplify=False, link=link)
         report(f"simplifying the {method.replace('_', ' ')} Jacobian in frame {frame}")
         return sp.ImmutableMatrix(simplify_matrix(raw, chain.angle_bases(frame)))
     derive = {"differentiation": _differentiation, "cross_product": _cross_product,
               "velocity_propagation": _velocity_propagation, "force_propagation": _force_propagation}[method]
-    return sp.ImmutableMatrix(derive(chain, frame, point))
+    return sp.ImmutableMatrix(derive(chain, frame, point, link))
 
 
-def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+def _differentiation(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], link: int) -> sp.Matrix:
     robot = chain.robot
-    T_0_n = chain.transform(0, chain.n_joints)
-    x_P = T_0_n[:3, :3] * sp.Matrix(point) + T_0_n[:3, 3]
+    T_0_l = chain.transform(0, link)
+    x_P = T_0_l[:3, :3] * sp.Matrix(point) + T_0_l[:3, 3]
     J_0 = sp.zeros(6, chain.n_joints)
-    for i, joint in enumerate(robot.joints):
+    for i, joint in enumerate(robot.joints[:link]):  # later joints do not move the point: their columns are zero
         report(f"differentiation, joint {i + 1} of {chain.n_joints}")
         J_0[:3, i] = x_P.applyfunc(_Derivative(joint.variable))
         if joint.is_revolute:
@@ -267,13 +252,13 @@ class _Derivative:
         return result
 
 
-def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp.Matrix:
+def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], link: int) -> sp.Matrix:
     k = chain.position(frame)
-    T_k_n = chain.transform(frame, chain.n_joints)
-    p_kP = T_k_n[:3, :3] * sp.Matrix(point) + T_k_n[:3, 3]  # the point P, in {k}
+    T_k_l = chain.transform(frame, link)
+    p_kP = T_k_l[:3, :3] * sp.Matrix(point) + T_k_l[:3, 3]  # the point P, in {k}
     n = chain.n_joints
     J = sp.zeros(6, n)
-    for i, joint in enumerate(chain.robot.joints):
+    for i, joint in enumerate(chain.robot.joints[:link]):  # the axes of joints 1..l all come before frame {l}
         report(f"cross product, joint {i + 1} of {n}")
         a = chain.axis_frame(joint.index)
         T_k_a = chain.transform(frame, a)
@@ -281,11 +266,11 @@ def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...]) -> sp
         if not joint.is_revolute:
             J[:3, i] = z_a
             continue
-        if _turns(chain, k, n) <= _turns(chain, a, n):  # p_P is no longer in {k}: read all in {k}
+        if _turns(chain, k, link) <= _turns(chain, a, link):  # p_P is no longer in {k}: read all in {k}
             J[:3, i] = z_a.cross(p_kP - T_k_a[:3, 3])
         else:  # p_aP is shorter in {a}, where z_a = [0, 0, 1]: take the cross product there, then rotate
-            T_a_n = chain.transform(a, chain.n_joints)
-            p_aP = T_a_n[:3, :3] * sp.Matrix(point) + T_a_n[:3, 3]
+            T_a_l = chain.transform(a, link)
+            p_aP = T_a_l[:3, :3] * sp.Matrix(point) + T_a_l[:3, 3]
             J[:3, i] = T_k_a[:3, :3] * sp.Matrix([-p_aP[1], p_aP[0], 0])
         J[3:, i] = z_a
     return J
@@ -300,12 +285,13 @@ def _turns(chain: Chain, start: int, end: int) -> int:
     return sum(low <= group[-1] < high for group in chain.parallel_groups[:-1])
 
 
-def _velocity_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    return _from_tip_frame(chain, frame, velocity_propagation(chain, point, simplify=False).jacobian)
+def _velocity_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr],
+                          link: int) -> sp.Matrix:
+    return _from_tip_frame(chain, frame, velocity_propagation(chain, point, simplify=False, link=link).jacobian, link)
 
 
-def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> sp.Matrix:
-    return _from_tip_frame(chain, frame, force_propagation(chain, point, simplify=False).jacobian)
+def _force_propagation(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], link: int) -> sp.Matrix:
+    return _from_tip_frame(chain, frame, force_propagation(chain, point, simplify=False, link=link).jacobian, link)
 
 
 def _link_rotations(chain: Chain, frame: Frame, source: int) -> list[sp.Matrix]:
@@ -323,16 +309,18 @@ def _link_rotations(chain: Chain, frame: Frame, source: int) -> list[sp.Matrix]:
     return rotations
 
 
-def _from_tip_frame(chain: Chain, frame: Frame, J_n: sp.Matrix) -> sp.Matrix:
+def _from_tip_frame(chain: Chain, frame: Frame, J_n: sp.Matrix, link: int) -> sp.Matrix:
     r"""Move :math:`{}^nJ` into frame {k}: :math:`{}^kJ = \mathrm{diag}({}^k_nR, {}^k_nR)\,{}^nJ`, raw.
+
+    For a point of an earlier link l the propagation ends in {l}, and n reads l.
 
     One product with the chain's own (shared) :math:`{}^k_nR`: 36 n products of shared subexpressions, where moving
     link by link cost n times more (a generic 30-joint chain: 20 s). The compact form never starts from this one:
     it multiplies the link rotations on normal forms (:func:`_derive`).
     """
-    if chain.position(frame) == chain.n_joints:
+    if chain.position(frame) == link:
         return J_n
-    return block_rotation(chain.rotation(frame, chain.n_joints)) * J_n
+    return block_rotation(chain.rotation(frame, link)) * J_n
 
 
 def change_frame(J: sp.MatrixBase, R_b_a: sp.MatrixBase) -> sp.Matrix:

@@ -9,6 +9,10 @@ entry (frame ``3`` and ``numpy.int64(3)``; point ``"wrist"`` and ``(0, 0, 0)``) 
 is derived. The key is a :class:`~symjac.kinematics.chain.MemoKey`: the function itself and its normalised arguments
 in signature order, never a string.
 
+It is also the one place a coupling is applied (:mod:`symjac.kinematics.coupling`): a function that names its law
+(``coupling="columns"``) is derived, for a robot that couples joints, on the chain of its joints (kept there) and
+moved to the coordinates by that law; the function itself never sees a coupled chain.
+
 Examples
 --------
 >>> from symjac import load_robot
@@ -34,6 +38,7 @@ from typing import Any, Concatenate, ParamSpec, TypeVar
 
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, MemoKey, as_chain
+from symjac.kinematics.coupling import CouplingLaw, LawName, coupling_law
 from symjac.model.robot import Robot
 
 P = ParamSpec("P")
@@ -58,7 +63,8 @@ def one_of(choices: Collection[str], what: str = "method") -> Callable[[Chain, s
 
 
 def memoized(
-    *, fresh: Callable[[Any], Any] | None = None, **normalisers: Callable[..., Any]
+    *, fresh: Callable[[Any], Any] | None = None, coupling: LawName | None = None, layout: str | int | None = None,
+    **normalisers: Callable[..., Any],
 ) -> Callable[[Callable[Concatenate[Chain, P], R]], Callable[Concatenate[Robot | Chain, P], R]]:
     """Keep ``function(chain, ...)`` in ``chain`` under a :class:`~symjac.kinematics.chain.MemoKey`, derived once.
 
@@ -67,12 +73,22 @@ def memoized(
     fresh : callable, optional
         Applied to the kept value on every call, e.g. ``sympy.Matrix`` to hand each caller its own mutable copy of a
         kept immutable matrix.
+    coupling : "columns", "transposed", "congruent" or "rates", optional
+        The quantity's coupling law (:data:`symjac.kinematics.coupling.COUPLING_LAWS`). With it, a coupled robot's
+        value is the function's value on :attr:`Chain.joint_chain <symjac.kinematics.chain.Chain.joint_chain>`
+        (same arguments) moved by the law; ``function`` is then only ever called with an uncoupled chain. Without
+        it the function handles couplings itself. The law is kept as the wrapper's ``coupling_law`` attribute.
+    layout : str or int, optional
+        Where the law lays its result out again when the function's ``simplify`` argument is true (or it has none):
+        the name of the argument that holds the frame (``"frame"``), or a fixed frame number.
     **normalisers
         One per argument that needs it, named like the argument: called as ``normalise(chain, value, *others)``
         where ``others`` are the arguments named by the normaliser's further parameters (already normalised when
         their normaliser comes earlier in this call). The result replaces the argument, in the key and in the call.
         Every argument must end up hashable.
     """
+    law = None if coupling is None else coupling_law(coupling)
+
     def decorate(function: Callable[Concatenate[Chain, P], R]) -> Callable[Concatenate[Robot | Chain, P], R]:
         first, *rest = inspect.signature(function).parameters.values()
         names = [parameter.name for parameter in rest]
@@ -85,8 +101,8 @@ def memoized(
         needs = {name: _other_arguments(normalise, names, function.__name__, name)
                  for name, normalise in normalisers.items()}
 
-        @functools.wraps(function)
-        def wrapper(*args: Any, **kwargs: Any) -> R:
+        def kept(*args: Any, **kwargs: Any) -> R:
+            """The value kept in the chain (not yet ``fresh``)."""
             bound = public.bind(*args, **kwargs)
             bound.apply_defaults()
             arguments = bound.arguments
@@ -94,14 +110,30 @@ def memoized(
             for name, normalise in normalisers.items():
                 arguments[name] = normalise(chain, arguments[name], *(arguments[other] for other in needs[name]))
             key = MemoKey(function, tuple(arguments[name] for name in names))
+            if law is not None and chain.joint_chain is not chain:
+                return chain.memo(key, lambda: _coupled(law, chain, kept, bound, layout))
             # ``robot`` comes first and is not keyword-only: bound.args[0] passes the chain positionally.
-            value = chain.memo(key, lambda: function(*bound.args, **bound.kwargs))
+            return chain.memo(key, lambda: function(*bound.args, **bound.kwargs))
+
+        @functools.wraps(function)
+        def wrapper(*args: Any, **kwargs: Any) -> R:
+            value = kept(*args, **kwargs)
             return value if fresh is None else fresh(value)
 
         wrapper.__signature__ = public  # type: ignore[attr-defined]
+        wrapper.coupling_law = law  # type: ignore[attr-defined]  # read by whoever lists the quantities
         return wrapper
 
     return decorate
+
+
+def _coupled(law: CouplingLaw, chain: Chain, kept: Callable[..., Any], bound: inspect.BoundArguments,
+             layout: str | int | None) -> Any:
+    """The value for a coupled chain: the same request on its joint chain (kept there), moved by ``law``."""
+    arguments = bound.arguments
+    joints = kept(chain.joint_chain, *bound.args[1:], **bound.kwargs)
+    laid_out = arguments.get("simplify", True) and layout is not None
+    return law(chain, joints, (arguments[layout] if isinstance(layout, str) else layout) if laid_out else None)
 
 
 def _other_arguments(normalise: Callable[..., Any], names: list[str], function: str, name: str) -> tuple[str, ...]:

@@ -12,8 +12,10 @@ joint k turning at :math:`\dot\theta_k` or sliding at :math:`\dot d_k` about or 
               + \dot\theta_k\,{}^kz_a \times {}^kp_{ak} + \dot d_k\,{}^kz_a
 
 For the modified convention :math:`p_{ak} = 0` and these are exactly Craig's (5.45)-(5.47). Past frame {n}, a rigid
-step carries the motion to the tool frame or to a point fixed in {n}. Every quantity is linear in the joint rates,
-so it is propagated as its coefficient matrix (3 x n), and the last one *is* the Jacobian :math:`{}^nJ`.
+step carries the motion to the tool frame or to a point fixed in {n}. For a point fixed in an earlier link l
+(``link=l``) the iteration stops at {l} and the rigid step starts there; joints after l add nothing. Every quantity
+is linear in the joint rates, so it is propagated as its coefficient matrix (3 x n), and the last one *is* the
+Jacobian :math:`{}^nJ`.
 
 **Force propagation** (tip to base). A wrench :math:`[f; n]` applied by the arm at the tip, expressed in the tip
 frame, is carried to every frame origin:
@@ -22,7 +24,8 @@ frame, is carried to every frame origin:
     {}^{k-1}f = {}^{k-1}_{k}R\,{}^kf, \qquad {}^{k-1}n = {}^{k-1}_{k}R\,{}^kn + {}^{k-1}p_k \times {}^{k-1}f,
 
 and joint k bears :math:`\tau_k = {}^an \cdot z_a` (revolute) or :math:`{}^af \cdot z_a` (prismatic). The torques are
-linear in the wrench; their coefficient matrix is :math:`{}^nJ^T` (the duality of velocity and force).
+linear in the wrench; their coefficient matrix is :math:`{}^nJ^T` (the duality of velocity and force). A wrench at a
+point of an earlier link l (``link=l``) starts at {l}: the joints after l bear none of it.
 """
 
 from __future__ import annotations
@@ -32,9 +35,11 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from symjac.errors import FrameError
 from symjac.kinematics.chain import Chain, Frame, as_chain
-from symjac.kinematics.coupling import in_coordinates, jacobian_in_coordinates, torques_in_coordinates
+from symjac.kinematics.coupling import COUPLING_LAWS, CouplingLaw
 from symjac.kinematics.memo import memoized
+from symjac.kinematics.points import link_of
 from symjac.model.robot import WRENCH_NAMES, Robot
 from symjac.progress import report
 from symjac.symbolic.simplify import simplify_matrix
@@ -81,7 +86,7 @@ class VelocityStep:
     r"""Velocities of one frame, expressed in that frame, as coefficient matrices of the joint rates.
 
     ``omega`` and ``v`` (each 3 x n) give :math:`{}^k\omega_k = W_k\,\dot q` and :math:`{}^kv_k = V_k\,\dot q`.
-    ``frame`` is 0..n, ``"tool"``, or ``"point"`` (a point fixed in {n}, axes of {n}).
+    ``frame`` is 0..n, ``"tool"``, or ``"point"`` (a point fixed in the last link propagated, in its axes).
     """
 
     frame: Frame | str
@@ -106,6 +111,11 @@ class VelocityPropagation:
         """The Jacobian read off the last step, expressed in the tip frame: rows [v; omega]."""
         tip = self.steps[-1]
         return sp.Matrix.vstack(sp.Matrix(tip.v), sp.Matrix(tip.omega))
+
+    def in_coordinates(self, chain: Chain, law: CouplingLaw) -> VelocityPropagation:
+        """The steps of a joint chain written in ``chain``'s coordinates: each coefficient matrix moved by ``law``."""
+        return VelocityPropagation(joint_rate_symbols(chain), tuple(
+            VelocityStep(s.frame, law(chain, s.omega), law(chain, s.v)) for s in self.steps))
 
 
 @dataclass(frozen=True)
@@ -140,6 +150,13 @@ class ForcePropagation:
         """The Jacobian in the tip frame, the transpose of the torque map: :math:`J = M^T`."""
         return sp.Matrix(self.torques).T
 
+    def in_coordinates(self, chain: Chain, law: CouplingLaw) -> ForcePropagation:
+        """Written in ``chain``'s coordinates: the torque map moved by ``law``, the steps by substitution."""
+        rates = COUPLING_LAWS["rates"]
+        return ForcePropagation(self.wrench, tuple(
+            ForceStep(s.frame, rates(chain, s.force), rates(chain, s.moment)) for s in self.steps),
+            law(chain, self.torques))
+
 
 def linear_combination(coefficients: sp.MatrixBase, values: sp.MatrixBase) -> sp.Matrix:
     r"""The product :math:`M x` laid out as :math:`\sum_j M_{rj} x_j`, keeping each coefficient whole.
@@ -159,9 +176,11 @@ def linear_combination(coefficients: sp.MatrixBase, values: sp.MatrixBase) -> sp
                                                               for j in range(coefficients.cols)]))
 
 
-def _tip(point: tuple[sp.Expr, ...] | None) -> str | None:
-    """Where the iteration ends past frame {n}: ``"tool"``, ``"point"`` or nowhere (``None``: the wrist)."""
+def _tip(chain: Chain, point: tuple[sp.Expr, ...] | None, link: int) -> str | None:
+    """Where the iteration ends past frame {l}: ``"tool"``, ``"point"`` or nowhere (``None``: the origin of {l})."""
     if point is None:
+        if link != chain.n_joints:
+            raise FrameError(f"the tool frame is fixed in the last link ({chain.n_joints}), not in link {link}")
         return "tool"
     return None if all(c == 0 for c in point) else "point"
 
@@ -181,9 +200,10 @@ def _coordinates(chain: Chain, point: Sequence[sp.Expr] | None) -> tuple[sp.Expr
     return None if point is None else tuple(point)
 
 
-@memoized(point=_coordinates)
+@memoized(link=link_of, point=_coordinates, coupling="columns")
 def velocity_propagation(
-    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True,
+    link: int | None = None,
 ) -> VelocityPropagation:
     r"""Propagate link velocities from the base to the tip (see the module docstring).
 
@@ -191,14 +211,17 @@ def velocity_propagation(
     ----------
     robot : Robot
     point : tuple of 3, or None
-        The tip: a point given in frame {n} (default its origin, the wrist), or ``None`` for the tool frame.
+        The tip: a point given in frame {l} of its link (default its origin, the wrist for the last link), or
+        ``None`` for the tool frame.
     simplify : bool
         Lay every step out in compact textbook form (default); ``False`` keeps the raw products.
+    link : int, optional
+        The link l the point is fixed in (default n): the iteration stops at frame {l}.
 
     Returns
     -------
     VelocityPropagation
-        Steps for frames 0..n (and the tool frame or the point); ``.jacobian`` is the 6 x n Jacobian expressed in
+        Steps for frames 0..l (and the tool frame or the point); ``.jacobian`` is the 6 x n Jacobian expressed in
         the last frame.
 
     Examples
@@ -211,21 +234,18 @@ def velocity_propagation(
     [L2*thetadot2 + thetadot1*(L1*cos(theta2) + L2)],
     [                                             0]])
     """
-    return _velocity_propagation(chain, point, simplify)
+    return _velocity_propagation(chain, point, simplify, link)  # type: ignore[arg-type]  # normalised by @memoized
 
 
-def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> VelocityPropagation:
-    if chain.joint_chain is not chain:  # coupled: each step's coefficients of the joint rates times C
-        joints = velocity_propagation(chain.joint_chain, point, simplify=simplify)
-        return VelocityPropagation(joint_rate_symbols(chain), tuple(
-            VelocityStep(s.frame, jacobian_in_coordinates(chain, s.omega), jacobian_in_coordinates(chain, s.v))
-            for s in joints.steps))
+def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool,
+                          link: int) -> VelocityPropagation:
     robot = chain.robot
     layout = _layout(chain, simplify)
     n = chain.n_joints
     omega, v = sp.zeros(3, n), sp.zeros(3, n)
     steps = [VelocityStep(0, sp.ImmutableMatrix(omega), sp.ImmutableMatrix(v))]
-    for k, joint in enumerate(robot.joints, start=1):
+    tip = _tip(chain, point, link)
+    for k, joint in enumerate(robot.joints[:link], start=1):
         report(f"velocity propagation, link {k} of {n}")
         R_k_prev = chain.rotation(k, k - 1)
         p_prev_k = chain.transform(k - 1, k)[:3, 3]
@@ -241,19 +261,19 @@ def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simpl
         else:
             v[:, column] += z_a
         steps.append(VelocityStep(k, layout(omega, k), layout(v, k)))
-    tip = _tip(point)
     if tip == "tool":
         R_t_n, p_n_t = chain.rotation("tool", n), chain.transform(n, "tool")[:3, 3]
         v_t = R_t_n * (v + skew(-p_n_t) * omega)
         steps.append(VelocityStep("tool", layout(R_t_n * omega, "tool"), layout(v_t, "tool")))
     elif tip == "point":
-        steps.append(VelocityStep("point", layout(omega, n), layout(v + skew(-sp.Matrix(point)) * omega, n)))
+        steps.append(VelocityStep("point", layout(omega, link), layout(v + skew(-sp.Matrix(point)) * omega, link)))
     return VelocityPropagation(tuple(joint.rate for joint in robot.joints), tuple(steps))
 
 
-@memoized(point=_coordinates)
+@memoized(link=link_of, point=_coordinates, coupling="transposed")
 def force_propagation(
-    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True,
+    link: int | None = None,
 ) -> ForcePropagation:
     r"""Propagate a tip wrench from the tip to the base and project it on the joint axes (module docstring).
 
@@ -261,15 +281,19 @@ def force_propagation(
     ----------
     robot : Robot
     point : tuple of 3, or None
-        Where the wrench acts: a point given in frame {n} (default the wrist; the wrench is then expressed in {n}),
-        or ``None`` for the origin of the tool frame (the wrench expressed in the tool frame).
+        Where the wrench acts: a point given in frame {l} of its link (default its origin, the wrist for the last
+        link; the wrench is then expressed in {l}), or ``None`` for the origin of the tool frame (the wrench
+        expressed in the tool frame).
     simplify : bool
         Lay every step out in compact textbook form (default); ``False`` keeps the raw products.
+    link : int, optional
+        The link l the point is fixed in (default n): the wrench starts at frame {l}.
 
     Returns
     -------
     ForcePropagation
-        Steps from the tip down to frame {0}; ``.torques`` (n x 6) maps :math:`[f; n]` to :math:`\tau`.
+        Steps from the tip down to frame {0}; ``.torques`` (n x 6) maps :math:`[f; n]` to :math:`\tau` (rows of
+        joints after l zero).
 
     Examples
     --------
@@ -279,22 +303,18 @@ def force_propagation(
     [L1*sin(theta2), L1*cos(theta2) + L2],
     [             0,                  L2]])
     """
-    return _force_propagation(chain, point, simplify)
+    return _force_propagation(chain, point, simplify, link)  # type: ignore[arg-type]  # normalised by @memoized
 
 
-def _force_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool) -> ForcePropagation:
-    if chain.joint_chain is not chain:  # coupled: the steps in the coordinates, the torques tau_q = C^T tau
-        joints = force_propagation(chain.joint_chain, point, simplify=simplify)
-        return ForcePropagation(joints.wrench, tuple(
-            ForceStep(s.frame, in_coordinates(chain, s.force), in_coordinates(chain, s.moment)) for s in joints.steps),
-            torques_in_coordinates(chain, joints.torques))
+def _force_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify: bool,
+                       link: int) -> ForcePropagation:
     robot = chain.robot
     layout = _layout(chain, simplify)
     n = chain.n_joints
     force = sp.Matrix.hstack(sp.eye(3), sp.zeros(3, 3))
     moment = sp.Matrix.hstack(sp.zeros(3, 3), sp.eye(3))
     steps: list[ForceStep] = []
-    tip = _tip(point)
+    tip = _tip(chain, point, link)
     if tip is not None:
         steps.append(ForceStep(tip, sp.ImmutableMatrix(force), sp.ImmutableMatrix(moment)))
         if tip == "tool":
@@ -304,16 +324,16 @@ def _force_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simplify
         force = R_n_t * force
         moment = R_n_t * moment + skew(p_n_t) * force
     frames: dict[int, ForceStep] = {}
-    for k in range(n, -1, -1):
+    for k in range(link, -1, -1):
         report(f"force propagation, frame {k} of {n}")
-        if k < n:
+        if k < link:
             R_k_next, p_k_next = chain.rotation(k, k + 1), chain.transform(k, k + 1)[:3, 3]
             force = R_k_next * force
             moment = R_k_next * moment + skew(p_k_next) * force
         frames[k] = ForceStep(k, layout(force, k), layout(moment, k))
         steps.append(frames[k])
     torques = sp.zeros(n, 6)
-    for k, joint in enumerate(robot.joints, start=1):
+    for k, joint in enumerate(robot.joints[:link], start=1):  # joints after the link bear nothing
         step = frames[chain.axis_frame(k)]
         torques[k - 1, :] = (_Z.T * (step.moment if joint.is_revolute else step.force))
     return ForcePropagation(wrench_symbols(), tuple(steps), sp.ImmutableMatrix(torques))

@@ -23,8 +23,9 @@ import sympy as sp
 
 from symjac.errors import FrameError
 from symjac.kinematics.chain import Chain, as_chain
-from symjac.kinematics.coupling import in_coordinates, jacobian_in_coordinates
+from symjac.kinematics.coupling import in_coordinates
 from symjac.kinematics.jacobian import jacobian
+from symjac.kinematics.memo import memoized
 from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose, space_screws
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
@@ -89,7 +90,8 @@ def exponential_product(robot: Robot | Chain) -> sp.Matrix:
     return in_coordinates(chain, product * home_pose(model))
 
 
-def space_jacobian(robot: Robot | Chain, *, simplify: bool = True) -> sp.Matrix:
+@memoized(fresh=sp.Matrix, coupling="columns", layout=0)
+def space_jacobian(chain: Chain, *, simplify: bool = True) -> sp.Matrix:
     r"""The space Jacobian :math:`J_s(\theta)`, 6 x n, rows :math:`(\omega, v)` in frame {0} (see the module).
 
     Column *i* is the screw axis of joint *i* at the current configuration, read from the frame whose z-axis is
@@ -104,17 +106,13 @@ def space_jacobian(robot: Robot | Chain, *, simplify: bool = True) -> sp.Matrix:
     [0,  L1*sin(theta1)],
     [0, -L1*cos(theta1)]])
     """
-    chain = as_chain(robot)
-    joints = chain.joint_chain
-    columns = []
-    for joint in joints.robot.joints:
-        frame = joints.transform(0, joints.axis_frame(joint.index))
+    columns = []  # a coupled robot's columns: J_s C (the columns law, applied by @memoized)
+    for joint in chain.robot.joints:
+        frame = chain.transform(0, chain.axis_frame(joint.index))
         z, p = sp.Matrix(frame[:3, 2]), sp.Matrix(frame[:3, 3])
         columns.append([*z, *p.cross(z)] if joint.is_revolute else [0, 0, 0, *z])
     J = sp.Matrix(columns).T
-    if simplify:
-        J = simplify_matrix(J, joints.angle_bases(0))
-    return sp.Matrix(jacobian_in_coordinates(chain, J, 0 if simplify else None))
+    return sp.ImmutableMatrix(simplify_matrix(J, chain.angle_bases(0)) if simplify else J)
 
 
 def body_jacobian(robot: Robot | Chain, *, simplify: bool = True) -> sp.Matrix:

@@ -14,8 +14,9 @@ from collections.abc import Sequence
 import sympy as sp
 
 from symjac.kinematics.chain import Chain, Frame, as_chain
-from symjac.kinematics.jacobian import Point, jacobian
+from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.numeric import as_vector, evaluate_at
+from symjac.kinematics.points import Point
 from symjac.kinematics.propagation import linear_combination, wrench_symbols
 from symjac.model.robot import Robot
 from symjac.symbolic.transforms import wrench_transform
@@ -27,8 +28,10 @@ def joint_torques(
     robot: Robot | Chain,
     wrench: Sequence[sp.Expr | float] | None = None,
     frame: Frame = 0,
-    point: Point = "wrist",
+    point: Point | None = None,
     q: Sequence[float | sp.Expr] | None = None,
+    *,
+    link: int | None = None,
 ) -> sp.Matrix:
     r"""The joint torques (forces, for prismatic joints) :math:`\tau = ({}^kJ_P)^T\,{}^kF` that hold a wrench.
 
@@ -38,8 +41,9 @@ def joint_torques(
     wrench : sequence of 6, optional
         :math:`[f_x, f_y, f_z, n_x, n_y, n_z]` applied by the arm at ``point``, expressed in ``frame``. Default: the
         symbols ``f_x .. n_z``.
-    frame, point
-        As for :func:`symjac.kinematics.jacobian`.
+    frame, point, link
+        As for :func:`symjac.kinematics.jacobian`: the wrench acts at a point fixed in link ``link`` (default the
+        last; joints after it bear none of it).
     q : sequence of n_coordinates, optional
         A configuration. With it, joint variables and parameters take numbers (the parameters' defaults) and the
         result is numeric.
@@ -57,7 +61,7 @@ def joint_torques(
     Matrix([[-L2*f_x*sin(theta2) + f_y*(L1 + L2*cos(theta2)) + n_z, -L2*f_x*sin(theta2) + L2*f_y*cos(theta2) + n_z]])
     """
     F = sp.Matrix(wrench_symbols()) if wrench is None else as_vector(wrench, 6, "wrench")
-    tau = linear_combination(jacobian(robot, frame=frame, point=point).T, F)
+    tau = linear_combination(jacobian(robot, frame=frame, point=point, link=link).T, F)
     if q is None:
         return tau
     return evaluate_at(robot, tau, q)

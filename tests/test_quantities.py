@@ -18,7 +18,7 @@ from symjac.model.io import load_robot
 from symjac.printing.document import Block, Document, Equation, JsonKey, equation_latex, render
 from symjac.printing.json import document_data, matrix_strings
 from symjac.printing.results import jacobian_document
-from symjac.quantities import COUPLING_LAWS, MEMBERS, QUANTITIES, Quantity
+from symjac.quantities import MEMBERS, QUANTITIES, LawName, Quantity
 from symjac.quantities.spec import entry_point
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -29,7 +29,12 @@ def test_every_spec_names_what_exists(name):
     quantity = QUANTITIES[name]
     assert callable(entry_point(quantity.derivation)), quantity.derivation
     assert quantity.document is None or callable(entry_point(quantity.document)), quantity.document
-    assert quantity.coupling in COUPLING_LAWS
+    assert quantity.law.name == quantity.coupling  # a law of symjac.kinematics.coupling, the one place applying it
+    derived = entry_point(quantity.derivation)
+    # the derivation applies the law the spec states (kinematics.memo), or is computed from J_q, which does
+    law = getattr(derived, "coupling_law", None)
+    assert law is not None or name in {"manipulability", "joint_torques"}, f"{quantity.derivation} applies no law"
+    assert law is None or law.name == quantity.coupling, (name, law)
     assert quantity.kind is None or quantity.kind.isidentifier()
     assert quantity.command is None or quantity.command in COMMANDS
 
@@ -51,8 +56,16 @@ def test_the_quantity_commands_come_from_the_registry():
     assert QUANTITIES["bias_acceleration"].command == "jacobian"  # jacobian --derivative
 
 
+def test_the_specs_laws_are_the_kinematics_laws():
+    from typing import get_args
+
+    from symjac.kinematics.coupling import LAW_NAMES
+
+    assert set(get_args(LawName)) == set(LAW_NAMES)
+
+
 def test_a_spec_says_what_is_wrong_with_it():
-    with pytest.raises(ArgumentError, match=r"quantity 'q': coupling law 'rows' is none of substituted, columns"):
+    with pytest.raises(ArgumentError, match=r"quantity 'q': coupling law 'rows' is none of columns, transposed"):
         Quantity("q", "a quantity", "symjac.kinematics.jacobian:jacobian", "rows")  # type: ignore[arg-type]
     with pytest.raises(ArgumentError, match=r"quantity 'q': a command needs a handler"):
         Quantity("q", "a quantity", "symjac.kinematics.jacobian:jacobian", "columns", command="q")

@@ -18,6 +18,7 @@ from symjac.kinematics.chain import chain_of
 from symjac.model.conventions import carried_inertials, plugin
 from symjac.model.conventions.dh import DHPlacement
 from symjac.model.conventions.standard import modified_from_standard, standard_from_modified
+from symjac.model.ends import last_frame
 from symjac.model.expressions import snap_angle
 from symjac.model.robot import Convention, Joint, Robot, fixed_transform_from_matrix
 from symjac.symbolic.transforms import homogeneous, inverse_transform
@@ -81,7 +82,7 @@ def axes_at_home(robot: Robot) -> tuple[list[sp.Matrix], sp.Matrix]:
     chain = chain_of(robot.uncoupled)
     zero = dict.fromkeys(robot.joint_variables, sp.S.Zero)
     frames = [sp.Matrix(chain.transform(0, chain.axis_frame(joint.index))).xreplace(zero) for joint in robot.joints]
-    home = sp.Matrix(chain.transform(0, "tool" if robot.tool is not None else robot.n_joints)).xreplace(zero)
+    home = sp.Matrix(chain.transform(0, last_frame(robot))).xreplace(zero)
     return frames, home
 
 

@@ -27,6 +27,7 @@ from symjac.kinematics.coupling import in_coordinates
 from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.memo import memoized
 from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose, space_screws
+from symjac.model.ends import end_point, last_frame
 from symjac.model.robot import Robot
 from symjac.symbolic.simplify import simplify_matrix
 from symjac.symbolic.transforms import homogeneous, skew
@@ -122,6 +123,5 @@ def body_jacobian(robot: Robot | Chain, *, simplify: bool = True) -> sp.Matrix:
     halves swapped, derived the way :func:`~symjac.kinematics.jacobian.jacobian` derives it.
     """
     chain = as_chain(robot)
-    has_tool = chain.robot.tool is not None
-    J = jacobian(chain, "tool" if has_tool else chain.n_joints, "tool" if has_tool else "wrist", simplify=simplify)
+    J = jacobian(chain, last_frame(chain), end_point(chain), simplify=simplify)
     return sp.Matrix(J)[_SWAP, :]

@@ -22,9 +22,9 @@ from collections.abc import Mapping
 from importlib import import_module
 from types import MappingProxyType
 
-from symjac.quantities.spec import COUPLING_LAWS, Quantity
+from symjac.quantities.spec import LawName, Quantity
 
-__all__ = ["COUPLING_LAWS", "MEMBERS", "QUANTITIES", "Quantity"]
+__all__ = ["MEMBERS", "QUANTITIES", "LawName", "Quantity"]
 
 MEMBERS = ("forward_kinematics", "jacobian", "bias_acceleration", "hessian", "joint_torques", "manipulability")
 """The quantity modules, in the order the command line lists their commands."""

@@ -17,11 +17,10 @@ frames, points and values), so a quantity depends on no front end; :mod:`symjac.
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import import_module
-from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Literal, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, Literal, Protocol, TypeVar, get_args
 
 from symjac.errors import ArgumentError
 
@@ -34,8 +33,7 @@ if TYPE_CHECKING:
     from symjac.printing.document import Document
 
 __all__ = [
-    "COUPLING_LAWS",
-    "CouplingLaw",
+    "LawName",
     "Quantity",
     "Request",
     "entry_point",
@@ -43,17 +41,9 @@ __all__ = [
 
 T = TypeVar("T")
 
-CouplingLaw = Literal["substituted", "columns", "transposed", "congruent", "rates"]
-COUPLING_LAWS: Mapping[str, str] = MappingProxyType({
-    "substituted": "theta = theta(q): written in the coordinates, nothing multiplies it (poses, transforms)",
-    "columns": "J_q = J C: the columns combined by the coupling matrix (Jacobians; manipulability from J_q)",
-    "transposed": "tau_q = C^T tau: the generalised forces doing the same work (joint torques)",
-    "congruent": "H_q[:, j, m] = sum_a sum_b H[:, a, b] C_aj C_bm: C on both joint axes (the Hessian)",
-    "rates": "Jdot_q qdot = Jdot thetadot with thetadot = C qdot: rates through the coupling (J-dot, bias)",
-})
-r"""How each quantity moves from the joint variables :math:`\vartheta` to a coupled robot's coordinates
-:math:`q` (:math:`\vartheta = C q + \vartheta_0`): the law's name and its formula. The laws themselves are applied in
-one place, :mod:`symjac.kinematics.coupling`; a spec names the law its quantity follows."""
+LawName = Literal["columns", "transposed", "congruent", "rates"]
+"""The coupling law a quantity follows, by its name in :data:`symjac.kinematics.coupling.COUPLING_LAWS` (where the
+laws are written and applied; a test checks the two lists agree, so reading a spec loads no SymPy)."""
 
 
 def entry_point(path: str) -> Any:
@@ -127,8 +117,9 @@ class Quantity:
         One line saying what it is (a command's help when it owns a command).
     derivation : str
         The entry point of its derivation in the API, ``"module:function"`` (:meth:`derive` calls it).
-    coupling : CouplingLaw
-        How it moves to a coupled robot's coordinates (:data:`COUPLING_LAWS`).
+    coupling : LawName
+        How it moves to a coupled robot's coordinates: the name of its law in
+        :data:`symjac.kinematics.coupling.COUPLING_LAWS`, the one place that applies it (:attr:`law`).
     document : str or None
         The entry point of its document builder (:meth:`build_document`), or None when nothing prints it.
     kind : str or None
@@ -147,7 +138,7 @@ class Quantity:
     name: str
     summary: str
     derivation: str
-    coupling: CouplingLaw
+    coupling: LawName
     document: str | None = None
     kind: str | None = None
     command: str | None = None
@@ -157,8 +148,8 @@ class Quantity:
 
     def __post_init__(self) -> None:
         where = f"quantity {self.name!r}"
-        if self.coupling not in COUPLING_LAWS:
-            raise ArgumentError(f"{where}: coupling law {self.coupling!r} is none of {', '.join(COUPLING_LAWS)}")
+        if self.coupling not in get_args(LawName):
+            raise ArgumentError(f"{where}: coupling law {self.coupling!r} is none of {', '.join(get_args(LawName))}")
         if (self.command is None) != (self.handler is None):
             raise ArgumentError(f"{where}: a command needs a handler and a handler a command")
         if self.flag is not None and (self.command is None or self.options is None):
@@ -166,6 +157,13 @@ class Quantity:
         for path in (self.derivation, self.document):
             if path is not None and path.count(":") != 1:
                 raise ArgumentError(f"{where}: an entry point is 'module:name', got {path!r}")
+
+    @property
+    def law(self) -> Any:
+        """Its :class:`~symjac.kinematics.coupling.CouplingLaw` (name, equation, and how it is applied)."""
+        from symjac.kinematics.coupling import coupling_law
+
+        return coupling_law(self.coupling)
 
     def derive(self, *args: Any, **kwargs: Any) -> Any:
         """Derive the quantity: the :attr:`derivation` entry point called with these arguments."""

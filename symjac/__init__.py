@@ -144,6 +144,7 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.kinematics.jacobian import shift_point as shift_point
     from symjac.kinematics.numeric import evaluate_at as evaluate_at
     from symjac.kinematics.numeric import numeric_jacobian as numeric_jacobian
+    from symjac.kinematics.points import point_position as point_position
     from symjac.kinematics.propagation import ForcePropagation as ForcePropagation
     from symjac.kinematics.propagation import VelocityPropagation as VelocityPropagation
     from symjac.kinematics.propagation import force_propagation as force_propagation

@@ -8,19 +8,14 @@ into files of its language.
 
 from __future__ import annotations
 
-import builtins
-import keyword
-import re
-from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
-from types import MappingProxyType
-from typing import TYPE_CHECKING, Literal
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Literal
 
-from symjac.errors import CodegenError
+import sympy as sp
 
-if TYPE_CHECKING:  # lowering imports the request, which imports the identifier rules from here
-    from symjac.codegen.lower import LoweredFunction
-    from symjac.kinematics.chain import Chain
+from symjac.codegen.lower import LoweredFunction
+from symjac.codegen.names import PYTHON_IDENTIFIERS, IdentifierRule
 
 __all__ = [
     "PYTHON_IDENTIFIERS",
@@ -90,72 +85,6 @@ class FunctionDescription:
         """Sine and cosine evaluations per configuration."""
         return self.lowered.trig_count
 
-
-_ASCII_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
-
-
-@dataclass(frozen=True)
-class IdentifierRule:
-    """Which names a target's language accepts as identifiers: a pattern, keywords, and names not to shadow.
-
-    ``keywords`` and ``shadowed`` map each word to the language it belongs to, so that one rule can serve a file
-    that mixes two languages (the c target: a Python module embedding C) and the error still names the right one.
-
-    Examples
-    --------
-    >>> PYTHON_IDENTIFIERS.check("a2", "parameter name")
-    'a2'
-    >>> PYTHON_IDENTIFIERS.check("lambda", "parameter name")
-    Traceback (most recent call last):
-    ...
-    symjac.errors.CodegenError: parameter name 'lambda' is a Python keyword
-    """
-
-    keywords: Mapping[str, str]
-    shadowed: Mapping[str, str]
-    pattern: re.Pattern[str] = _ASCII_IDENTIFIER
-    prefixes: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))  # kept by the generated code
-
-    @classmethod
-    def of(cls, language: str, keywords: Iterable[str], shadowed: Iterable[str] = (),
-           prefixes: Iterable[str] = ()) -> IdentifierRule:
-        """The rule of one language: its keywords, names not to shadow, and its generated code's own prefixes.
-
-        ``shadowed`` are the builtins a generated name must not hide; a name starting with one of ``prefixes`` could
-        collide with a name the generated code makes itself.
-        """
-        return cls(MappingProxyType(dict.fromkeys(keywords, language)),
-                   MappingProxyType(dict.fromkeys(shadowed, language)),
-                   prefixes=MappingProxyType(dict.fromkeys(prefixes, language)))
-
-    def __or__(self, other: IdentifierRule) -> IdentifierRule:
-        """A rule that refuses whatever either rule refuses (the first one's pattern)."""
-        return IdentifierRule(MappingProxyType({**other.keywords, **self.keywords}),
-                              MappingProxyType({**other.shadowed, **self.shadowed}), self.pattern,
-                              MappingProxyType({**other.prefixes, **self.prefixes}))
-
-    def check(self, name: object, what: str, reserved: Mapping[str, str] | None = None) -> str:
-        """Return ``name`` if it may be an identifier of the generated code, else raise :class:`CodegenError`.
-
-        ``reserved`` maps names the generated module uses itself to the reason (the error says which).
-        """
-        if not isinstance(name, str) or not self.pattern.match(name):
-            raise CodegenError(f"{what} {name!r} is not an ASCII identifier (letters, digits, underscore)")
-        if name in self.keywords:
-            raise CodegenError(f"{what} {name!r} is a {self.keywords[name]} keyword")
-        if name in self.shadowed:
-            raise CodegenError(f"{what} {name!r} would shadow the {self.shadowed[name]} builtin of that name")
-        for prefix, language in self.prefixes.items():
-            if name.startswith(prefix):
-                raise CodegenError(f"{what} {name!r} starts with {prefix!r}, which the generated {language} keeps for "
-                                   "its own names")
-        if reserved is not None and name in reserved:
-            raise CodegenError(f"{what} {name!r} clashes with {reserved[name]} in the generated module")
-        return name
-
-
-PYTHON_IDENTIFIERS = IdentifierRule.of("Python", (*keyword.kwlist, *keyword.softkwlist), dir(builtins))
-"""Python's rule: ASCII identifiers, no keyword or soft keyword, no builtin (a parameter ``len`` would shadow it)."""
 
 Renderer = Callable[["ModuleDescription", "Backend"], Mapping[str, str]]
 """Turns a module description into the target's files: ``{relative file name: text}``, the primary file first."""
@@ -254,8 +183,10 @@ class ModuleDescription:
     equivalent Python call) and ``command_note`` what else the reader needs to know to run it (the folder a relative
     path is relative to, which robot ``robot`` is), or nothing. ``joints`` are the entries of ``q`` (name, type):
     the joint variables, or for a coupled robot its independent coordinates, and then ``coupling`` holds each other
-    joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``chain`` is the robot's cached derivation,
-    for backends that need more of it (the c target's joint angles).
+    joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``coordinate_symbols`` and
+    ``parameter_symbols`` are the SymPy symbols of the entries of ``q`` and of the parameters (in the order of
+    ``joints`` and ``parameters``): what the lowered assignments read, which a printer names. Nothing here refers
+    to the robot's derivation (no ``Chain``): a backend prints from this data alone.
     """
 
     target: str
@@ -275,7 +206,13 @@ class ModuleDescription:
     command_note: str = ""
     rates: tuple[str, ...] = ()
     coupling: tuple[str, ...] = ()
-    chain: Chain | None = field(default=None, compare=False, repr=False)
+    coordinate_symbols: tuple[sp.Symbol, ...] = ()
+    parameter_symbols: tuple[sp.Symbol, ...] = ()
+
+    @property
+    def symbols(self) -> tuple[sp.Symbol, ...]:
+        """The symbols that keep their own names in every function: the coordinates, then the parameters."""
+        return (*self.coordinate_symbols, *self.parameter_symbols)
 
     @property
     def acceleration(self) -> bool:

@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import itertools
-import json
 import os
-import shlex
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,6 +33,7 @@ from symjac.codegen.description import (
 )
 from symjac.codegen.lower import LoweredFunction, angle_expansion, lower_function
 from symjac.codegen.printers import float_literal
+from symjac.codegen.provenance import names_relative_file, robot_loader
 from symjac.codegen.request import (
     RESERVED,
     STRATEGIES,
@@ -49,12 +48,11 @@ from symjac.codegen.request import (
     requests_from,
     validate_robot,
 )
-from symjac.errors import CodegenError, SymjacError
+from symjac.errors import CodegenError
 from symjac.files import write_files, write_text
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point
 from symjac.kinematics.propagation import joint_rate_symbols
-from symjac.model.io import catalog, load_robot
 from symjac.model.robot import WRENCH_NAMES, Robot
 
 __all__ = [
@@ -94,10 +92,18 @@ class ModuleRequest:
     name: str | None = None
 
 
-def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args: Any, **options: Any
-             ) -> ModuleDescription:
-    """The language-neutral description of the module :func:`generate` renders (same arguments, or a request)."""
-    request = robot if isinstance(robot, ModuleRequest) else ModuleRequest(robot, target, *args, **options)
+def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
+    """The language-neutral description of the module a :class:`ModuleRequest` asks for (what :func:`generate` renders).
+
+    The old form ``describe(robot, target, ...)`` (the arguments of :func:`generate`) still works but is deprecated:
+    it warns with a :class:`DeprecationWarning`; build ``ModuleRequest(robot, target, ...)`` instead.
+    """
+    if not isinstance(request, ModuleRequest):
+        warnings.warn("describe(robot, target, ...) is deprecated; pass a ModuleRequest(robot, target, ...)",
+                      DeprecationWarning, stacklevel=2)
+        request = ModuleRequest(request, *args, **options)
+    elif args or options:
+        raise CodegenError("describe takes a ModuleRequest alone; put the options in the request")
     spec = backend(request.target)
     if request.strategy not in STRATEGIES:
         raise CodegenError(f"unknown strategy {request.strategy!r}; choose one of {', '.join(STRATEGIES)}")
@@ -198,12 +204,12 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
                | {f.name for f in functions if not f.name.startswith("_")} | _defined_names((), infos))
     command, shell = request.command, request.command is not None
     if command is None:
-        loader, command_note = _robot_loader(request.robot if isinstance(request.robot, Robot) else model)
+        loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
                               request.acceleration, request.name)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
-        command_note = "in the folder it was run in" if _names_relative_file(source, command) else ""
+        command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
@@ -214,52 +220,14 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
-        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (), chain=chain,
+        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (),
+        coordinate_symbols=tuple(model.q), parameter_symbols=tuple(model.parameter_symbols),
     )
 
 
 def _q_words(robot: Robot) -> str:
     """What the entries of ``q`` are: the joint values, or a coupled robot's independent coordinates."""
     return "Joint values" if robot.coupling is None else "Independent coordinates"
-
-
-def _robot_loader(robot: Robot) -> tuple[str, str]:
-    """How the header's Python call gets ``robot`` back, and a note when that needs saying.
-
-    A catalog robot loads by name, a robot from a file by the file's path as it was given (the note says from which
-    folder when it is relative) as long as loading it again gives the same robot; anything else (a mapping, a URDF
-    that needed ``tip_link``) is written ``robot`` and the note says which robot that is.
-    """
-    candidates = [robot.name] if robot.name in catalog() else []
-    candidates += [robot.source] if robot.source not in ("<mapping>", "<string>") else []
-    for candidate in candidates:
-        try:
-            same = load_robot(candidate) == robot
-        except SymjacError:
-            continue
-        if same:
-            path = Path(candidate)
-            relative = candidate not in catalog() and not path.is_absolute() and path.is_file()
-            return f"symjac.load_robot({_string(candidate)})", "in the folder it was run in" if relative else ""
-    origin = "a mapping" if robot.source in ("<mapping>", "<string>") else robot.source
-    return "robot", f"robot: the Robot given to symjac.generate, from {origin}"
-
-
-def _string(text: str) -> str:
-    """A Python string literal for ``text`` in double quotes, control characters escaped (JSON's are Python's)."""
-    return json.dumps(text)
-
-
-def _names_relative_file(source: str, command: str) -> bool:
-    """Whether the command line refers to the robot file, or writes its output, through a relative path."""
-    try:
-        words = shlex.split(command)
-    except ValueError:
-        return False
-    outputs = [after for before, after in itertools.pairwise(words) if before in ("-o", "--output")]
-    outputs += [word.split("=", 1)[1] for word in words if word.startswith("--output=")]
-    paths = [source] if Path(source).is_file() and source in words else []
-    return any(not Path(path).is_absolute() and path != "-" for path in paths + outputs)
 
 
 def _sorted_exports(names: Iterable[str]) -> list[str]:

@@ -243,10 +243,8 @@ def c_statements(lowered: LoweredFunction, mapping: Mapping[sp.Symbol, str], pri
 
 def c_function(description: ModuleDescription, function: FunctionDescription, dialect: Dialect) -> CFunction:
     """Print one function: sines and cosines of the angles it uses, the temporaries, then each output entry."""
-    chain = description.chain
-    assert chain is not None
-    robot, lowered = chain.robot, function.lowered
-    names = symbol_names(robot, lowered, dialect.reserved | _LOCALS)
+    lowered = function.lowered
+    names = symbol_names(description.symbols, lowered, dialect.reserved | _LOCALS)
     mapping = dict(names.mapping)
     inputs = []
     for argument, symbols in lowered.inputs:
@@ -254,7 +252,7 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
             mapping[symbol] = f"{_INPUT[argument]}[{k}]"
     for spec_argument in function.spec.arguments[1:]:
         inputs.append((_INPUT[spec_argument.name], len(spec_argument.entries), comment(spec_argument.description)))
-    for k, symbol in enumerate(robot.parameter_symbols):
+    for k, symbol in enumerate(description.parameter_symbols):
         mapping[symbol] = dialect.parameter(k, symbol.name)
     output = _OUTPUT[function.kind]
     statements = c_statements(lowered, mapping, dialect.printer(mapping), "    ", "real",

@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-from symjac.codegen.description import Backend, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
 from symjac.codegen.lower import LoweredFunction
-from symjac.codegen.request import RESERVED
+from symjac.codegen.names import RESERVED
 from symjac.codegen.source_layout import (
     LINE_WIDTH,
     check_layout,
@@ -24,8 +24,6 @@ from symjac.codegen.source_layout import (
     tuple_literal,
     wrap_statement,
 )
-from symjac.errors import CodegenError
-from symjac.kinematics.chain import Chain
 from symjac.resources import render_template
 
 __all__ = [
@@ -120,8 +118,8 @@ def generated_function(lowered: LoweredFunction, spec: FunctionSpec, body: Seque
     )
 
 
-Emitter = Callable[[Chain, LoweredFunction, FunctionSpec, frozenset[str]], GeneratedFunction]
-"""Print one lowered function for a target: ``emit(chain, lowered, spec, taken_names)``."""
+Emitter = Callable[[ModuleDescription, FunctionDescription, frozenset[str]], GeneratedFunction]
+"""Print one function of a module for a target: ``emit(description, function, taken_names)``."""
 
 Extras = Callable[[ModuleDescription, frozenset[str]], Mapping[str, str]]
 """Module-level text a target needs besides its functions (the C target's kernel source and extension name)."""
@@ -194,11 +192,8 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
     always = tuple(imports)
 
     def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
-        chain = description.chain
-        if chain is None:
-            raise CodegenError("internal error: the module description carries no chain")
         taken = frozenset(RESERVED) | set(description.parameter_names)
-        functions = tuple(emit(chain, f.lowered, f.spec, taken) for f in description.functions)
+        functions = tuple(emit(description, f, taken) for f in description.functions)
         module = PythonModule(
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,

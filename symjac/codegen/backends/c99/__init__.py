@@ -19,7 +19,6 @@ from symjac.codegen.backends.c import C_KEYWORDS
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
 from symjac.codegen.source_layout import check_layout
-from symjac.errors import CodegenError
 from symjac.resources import render_template
 
 __all__ = ["BACKEND", "C99_KEYWORDS", "IDENTIFIERS", "LIBRARY_NAMES", "render"]
@@ -45,8 +44,6 @@ a robot ``sj_body`` would name its Jacobian like the Jacobian's body)."""
 
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header and the source file: ``{"<robot>.h": ..., "<robot>.c": ...}``."""
-    if description.chain is None:
-        raise CodegenError("internal error: the module description carries no chain")
     dialect = dataclasses.replace(C_DIALECT, reserved=C99_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES)
     functions = tuple(c_function(description, f, dialect) for f in description.functions)
     data = {

@@ -19,7 +19,6 @@ from symjac.codegen.backends.cpp.printer import CppPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
 from symjac.codegen.source_layout import check_layout
-from symjac.errors import CodegenError
 from symjac.resources import render_template
 
 __all__ = ["BACKEND", "CPP_KEYWORDS", "IDENTIFIERS", "cpp_type", "render"]
@@ -69,8 +68,6 @@ DIALECT = Dialect(CPP_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES, CppPrinter, la
 
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header: ``{"<robot>.hpp": ...}``."""
-    if description.chain is None:
-        raise CodegenError("internal error: the module description carries no chain")
     functions = tuple(c_function(description, f, DIALECT) for f in description.functions if not f.name.startswith("_"))
     data = {
         "module": description,

@@ -125,6 +125,9 @@ class Backend:
     language : str
         The language of the files it writes: ``"Python"`` (a module with the API of the python and numpy targets),
         ``"Python/JAX"`` (pure functions of one configuration), ``"C"`` or ``"C++"`` (files to compile).
+    runtime : str
+        The numeric runtime its files carry, a file of ``templates/runtime/`` (:mod:`symjac.codegen.runtime`):
+        ``"python.py"``, ``"numpy.py"``, ``"c99.h"``, ``"eigen.hpp"``; empty for none.
     """
 
     name: str
@@ -142,6 +145,7 @@ class Backend:
     batched: bool = True
     exports: tuple[str, ...] = ()
     language: str = "Python"
+    runtime: str = ""
 
     @property
     def suffix(self) -> str:

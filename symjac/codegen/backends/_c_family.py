@@ -27,6 +27,7 @@ __all__ = [
     "block_comment",
     "c_function",
     "c_statements",
+    "call_statement",
     "comment",
     "declaration",
     "header_comments",
@@ -173,6 +174,31 @@ def declaration(head: str, arguments: list[str], width: int = 119) -> tuple[str,
         if len(current) + len(piece) > width:
             lines.append(current)
             current = "   "
+        current += piece
+    return (*lines, current)
+
+
+def call_statement(head: str, function: str, arguments: list[object], width: int = 120) -> tuple[str, ...]:
+    """``head function(arguments);`` on one line, or broken after commas, continued four spaces further in.
+
+    Examples
+    --------
+    >>> call_statement("    n += ", "f", [1, "q"])
+    ('    n += f(1, q);',)
+    >>> call_statement("  ", "f", ["alpha", "beta", "gamma"], width=18)
+    ('  f(alpha, beta,', '      gamma);')
+    """
+    texts = [str(argument) for argument in arguments]
+    line = f"{head}{function}({', '.join(texts)});"
+    if len(line) <= width:
+        return (line,)
+    indent = " " * (len(head) - len(head.lstrip()) + 4)
+    lines, current = [], f"{head}{function}("
+    for k, text in enumerate(texts):
+        piece = text + (", " if k < len(texts) - 1 else ");")
+        if len(current) + len(piece.rstrip()) > width:
+            lines.append(current.rstrip())
+            current = indent
         current += piece
     return (*lines, current)
 

@@ -16,6 +16,7 @@ from typing import Any
 from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import RESERVED
+from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import (
     LINE_WIDTH,
     check_layout,
@@ -142,6 +143,7 @@ class PythonModule:
     functions: tuple[GeneratedFunction, ...]
     imports: tuple[str, ...]
     extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    runtime: str = ""  # the runtime's text, copied into the module at its end
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__"):
@@ -200,6 +202,7 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
             imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always))),
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
+            runtime=runtime_source(backend.runtime) if backend.runtime else "",
         )
         name = backend.files[0].format(robot=description.robot)
         return check_layout({name: render_template(backend.template, module=module)})

@@ -90,4 +90,5 @@ BACKEND = Backend(
     render=python_module_renderer(numpy_function, extras=c_sources),
     dependencies=("numpy",),
     exports=("BACKEND",),
+    runtime="numpy.py",
 )

@@ -14,10 +14,18 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 
-from symjac.codegen.backends._c_family import C_DIALECT, block_comment, c_function, declaration, header_comments
+from symjac.codegen.backends._c_family import (
+    C_DIALECT,
+    block_comment,
+    c_function,
+    call_statement,
+    declaration,
+    header_comments,
+)
 from symjac.codegen.backends.c import C_KEYWORDS
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
+from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
 from symjac.resources import render_template
 
@@ -54,6 +62,8 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "defaults": tuple(float_literal(value) for _, value in description.parameters),
         "dimension": max([6, description.n_coordinates]),
         "declaration": declaration,
+        "wrap_call": call_statement,
+        "runtime": runtime_source(backend.runtime).rstrip("\n"),
         "block_comment": block_comment,
         **header_comments(description),
     }
@@ -77,4 +87,5 @@ BACKEND = Backend(
     dependencies=(),
     batched=False,
     language="C",
+    runtime="c99.h",
 )

@@ -43,4 +43,5 @@ BACKEND = Backend(
     nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs.",
     render=python_module_renderer(sympy_function),
     dependencies=("numpy", "sympy"),
+    runtime="numpy.py",
 )

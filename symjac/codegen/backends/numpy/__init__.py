@@ -44,4 +44,5 @@ BACKEND = Backend(
                "RuntimeWarning).",
     render=python_module_renderer(numpy_function),
     dependencies=("numpy",),
+    runtime="numpy.py",
 )

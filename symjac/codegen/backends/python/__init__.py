@@ -81,4 +81,5 @@ BACKEND = Backend(
                "ValueError from math.sin).",
     render=python_module_renderer(python_function, imports=("pi", "sqrt")),  # the self-test uses them always
     batched=False,
+    runtime="python.py",
 )

@@ -128,8 +128,9 @@ def test_no_template_holds_an_elimination_loop():
         if "documents" in path.parts:
             continue
         text = path.read_text(encoding="utf-8").lower()
-        for word in ("pivot", "cholesky", "gauss", "elimination"):
-            assert word not in text, f"{path.relative_to(REPO)} mentions {word}"
+        for code in ("pivot =", "factor =", "linalg.det(", "linalg.solve(", "ca.det(", ".determinant(", "partialpivlu",
+                     ".llt(", "cholesky("):
+            assert code not in text, f"{path.relative_to(REPO)} computes with {code!r}"
 
 
 # --- the description: data without a Chain, one kind of argument, a leaf module for names ------------------------
@@ -219,3 +220,78 @@ def test_the_c_runtime_compiles_alone_and_agrees_with_numpy(tmp_path):
     np.testing.assert_allclose(values[2:5], np.linalg.solve(m, [1, -2, 0.5]), rtol=1e-12)
     assert values[5] == pytest.approx(NP._manipulability(J), rel=1e-12)
     np.testing.assert_allclose(values[6:9], NP._manipulability_gradient(J, H), rtol=1e-10)
+
+
+CPP_TEST = r"""
+#include <cstdio>
+#include "eigen.hpp"
+int main()
+{
+    using namespace symjac_runtime_test::runtime;
+    Eigen::Matrix<double, 2, 3> J;
+    J << 1, 2, 0.5, -1, 0.3, 2;
+    std::array<Eigen::Matrix<double, 2, 3>, 3> H;
+    for (int m = 0; m < 3; m++) {
+        H[m].setZero();
+    }
+    H[0](0, 0) = 1; H[1](0, 1) = 1; H[2](0, 2) = 1; H[0](1, 0) = 0.5; H[1](1, 1) = 0.5; H[2](1, 2) = 0.5;
+    Eigen::Matrix3d M;
+    M << 4, 2, 0.4, 2, 5, 1, 0.4, 1, 3;
+    bool ok = false;
+    const Eigen::Vector3d x = cholesky_solve(M, Eigen::Vector3d(1, -2, 0.5), &ok);
+    const Eigen::Vector3d g = manipulability_gradient(J, H);
+    const Eigen::Matrix<double, 3, 2> tall = J.transpose();
+    std::printf("%.17g %.17g %d %.17g %.17g %.17g %.17g %.17g %.17g\n", manipulability(J), manipulability(tall), ok,
+                x(0), x(1), x(2), g(0), g(1), g(2));
+    return 0;
+}
+"""
+
+
+@pytest.mark.external  # a C++ compiler and Eigen
+def test_the_eigen_runtime_compiles_alone_and_agrees_with_numpy(tmp_path):
+    import shutil
+
+    if shutil.which("g++") is None or not Path("/usr/include/eigen3/Eigen/Dense").is_file():
+        pytest.skip("g++ or Eigen's headers (Debian libeigen3-dev) are missing")
+    (tmp_path / "eigen.hpp").write_text((RUNTIME / "eigen.hpp").read_text())
+    (tmp_path / "main.cpp").write_text(CPP_TEST)
+    subprocess.run(["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-I/usr/include/eigen3", "main.cpp", "-o",
+                    "main"], cwd=tmp_path, check=True, capture_output=True, text=True)
+    values = [float(v) for v in subprocess.run([str(tmp_path / "main")], check=True, capture_output=True,
+                                                text=True).stdout.split()]
+    J = np.array([[1, 2, 0.5], [-1, 0.3, 2]])
+    H = np.zeros((2, 3, 3))
+    for m in range(3):
+        H[0, m, m], H[1, m, m] = 1.0, 0.5
+    M = np.array([[4, 2, 0.4], [2, 5, 1], [0.4, 1, 3]])
+    assert values[0] == pytest.approx(NP._manipulability(J), rel=1e-12)
+    assert values[1] == pytest.approx(NP._manipulability(J.T), rel=1e-12)
+    assert values[2] == 1
+    np.testing.assert_allclose(values[3:6], np.linalg.solve(M, [1, -2, 0.5]), rtol=1e-12)
+    np.testing.assert_allclose(values[6:9], NP._manipulability_gradient(J, H), rtol=1e-10)
+
+
+@pytest.mark.parametrize("family", ["jax", "casadi"])
+def test_the_jax_and_casadi_runtimes_agree_with_numpy(family):
+    pytest.importorskip(family)
+    module = _module(family)
+    rng = np.random.default_rng(5)
+    for rows, n in [(3, 3), (2, 4), (5, 3)]:
+        J, H = rng.normal(size=(rows, n)), rng.normal(size=(rows, n, n))
+        M, b = _spd(rng, n), rng.normal(size=n)
+        if family == "jax":
+            w, gradient = module._manipulability(J), module._manipulability_gradient(J, H)
+            x = module._cholesky_solve(M, b)
+        else:
+            import casadi as ca
+
+            q = ca.SX.sym("q", n)
+            J_q = ca.DM(J) + sum((ca.DM(H[:, :, m]) * q[m] for m in range(n)), ca.SX.zeros(rows, n))
+            w_q = module._manipulability(J_q)
+            f = ca.Function("f", [q], [w_q, module._manipulability_gradient(w_q, q)])
+            w, gradient = (np.array(v).ravel() for v in f(np.zeros(n)))
+            x = np.array(ca.Function("s", [], [module._cholesky_solve(ca.SX(M), ca.SX(b))])()["o0"]).ravel()
+        assert float(np.ravel(w)[0]) == pytest.approx(float(NP._manipulability(J)), rel=1e-6)
+        np.testing.assert_allclose(np.ravel(gradient), NP._manipulability_gradient(J, H), rtol=1e-5, atol=1e-8)
+        np.testing.assert_allclose(np.ravel(x), np.linalg.solve(M, b), rtol=1e-5)

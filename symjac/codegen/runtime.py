@@ -3,7 +3,8 @@
 The linear algebra a generated module needs (LU determinant, Gauss-Jordan and Cholesky solves, the manipulability
 and its gradient) and its self-test driver live in ``templates/runtime/`` as ordinary source files of their
 language, tested on their own, not in the templates: ``python.py`` (standard library), ``numpy.py`` (the NumPy
-family), ``c99.h`` (C99, the standard library only) and ``eigen.hpp`` (C++ on Eigen). A generated module stays
+family: numpy, lambdify, c), ``jax.py``, ``casadi.py``, ``c99.h`` (C99, the standard library only) and
+``eigen.hpp`` (C++ on Eigen). A generated module stays
 standalone: the part of the file after its runtime mark is copied into it (a Python runtime's imports and
 docstring above the mark are the module's own; a header's include guard and includes likewise).
 """
@@ -17,11 +18,14 @@ from symjac.resources import templates_dir
 
 __all__ = ["RUNTIMES", "runtime_source"]
 
-RUNTIMES: tuple[str, ...] = ("python.py", "numpy.py", "c99.h", "eigen.hpp")
+RUNTIMES: tuple[str, ...] = ("python.py", "numpy.py", "jax.py", "casadi.py", "c99.h", "eigen.hpp")
 """The runtime files in ``templates/runtime/``, one per language family."""
 
 MARK = "---- runtime: everything below is copied into every generated module of the target ----"
 """The line (after its language's comment sign) that starts the part a generated module carries."""
+
+END = "---- end of runtime ----"
+"""The line that ends it, where the file goes on (a C++ test namespace closes after it); else the file's end."""
 
 
 @functools.cache
@@ -40,4 +44,7 @@ def runtime_source(name: str) -> str:
     if not mark:
         raise CodegenError(f"internal error: templates/runtime/{name} has no runtime mark")
     del head  # the file's own docstring and imports
-    return body.split("\n", 1)[1].strip("\n") + "\n"
+    body = body.split("\n", 1)[1]
+    if END in body:
+        body = body.partition(END)[0].rsplit("\n", 1)[0]  # without the comment line that holds the end mark
+    return body.strip("\n") + "\n"

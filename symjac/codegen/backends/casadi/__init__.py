@@ -95,4 +95,5 @@ BACKEND = Backend(
     dependencies=("casadi",),
     batched=False,
     language="Python/CasADi",
+    runtime="casadi.py",
 )

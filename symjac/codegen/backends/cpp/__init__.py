@@ -18,6 +18,7 @@ from symjac.codegen.backends.c99 import C99_KEYWORDS, LIBRARY_NAMES
 from symjac.codegen.backends.cpp.printer import CppPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
+from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
 from symjac.resources import render_template
 
@@ -76,6 +77,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "defaults": tuple(float_literal(value) for _, value in description.parameters),
         "line_comment": line_comment,
         "cpp_type": cpp_type,
+        "runtime": runtime_source(backend.runtime).rstrip("\n"),
         **header_comments(description),
     }
     name = backend.files[0].format(robot=description.robot)
@@ -96,4 +98,5 @@ BACKEND = Backend(
     render=render,
     batched=False,
     language="C++",
+    runtime="eigen.hpp",
 )

@@ -91,4 +91,5 @@ BACKEND = Backend(
     dependencies=("jax",),
     batched=False,
     language="Python/JAX",
+    runtime="jax.py",
 )

@@ -188,7 +188,7 @@ int main(void)
     double J[6] = {1, 2, 0.5, -1, 0.3, 2};
     double H[18] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0.5, 0, 0, 0, 0.5, 0, 0, 0, 0.5};
     double g[3];
-    const double d = sj_determinant(a, 3);
+    const double d = sj_determinant(a, 3, 3);
     const int ok = sj_cholesky_solve(m, b, 3, x);
     const double w = sj_manipulability(J, 2, 3);
     sj_manipulability_gradient(J, H, 2, 3, g);
@@ -288,8 +288,8 @@ def test_the_jax_and_casadi_runtimes_agree_with_numpy(family):
 
             q = ca.SX.sym("q", n)
             J_q = ca.DM(J) + sum((ca.DM(H[:, :, m]) * q[m] for m in range(n)), ca.SX.zeros(rows, n))
-            w_q = module._manipulability(J_q)
-            f = ca.Function("f", [q], [w_q, module._manipulability_gradient(w_q, q)])
+            w_q = module._manipulability(J_q, q)
+            f = ca.Function("f", [q], [w_q, module._manipulability_gradient(J_q, ca.SX.zeros(rows, n * n), q)])
             w, gradient = (np.array(v).ravel() for v in f(np.zeros(n)))
             x = np.array(ca.Function("s", [], [module._cholesky_solve(ca.SX(M), ca.SX(b))])()["o0"]).ravel()
         assert float(np.ravel(w)[0]) == pytest.approx(float(NP._manipulability(J)), rel=1e-6)

@@ -14,6 +14,7 @@ from typing import Literal
 
 import sympy as sp
 
+from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import PYTHON_IDENTIFIERS, IdentifierRule
 
@@ -21,6 +22,7 @@ __all__ = [
     "PYTHON_IDENTIFIERS",
     "Argument",
     "Backend",
+    "DerivedFunction",
     "FunctionDescription",
     "FunctionKind",
     "FunctionSpec",
@@ -31,7 +33,8 @@ __all__ = [
 ]
 
 FunctionKind = Literal["forward_kinematics", "jacobian", "joint_torques", "scalar", "kinematics", "hessian",
-                       "bias_acceleration"]
+                       "bias_acceleration", "manipulability", "jacobian_determinant", "manipulability_gradient"]
+"""The kinds of :data:`~symjac.codegen.kinds.KINDS` (its table says what each returns and how it is laid out)."""
 
 
 @dataclass(frozen=True)
@@ -45,12 +48,16 @@ class Argument:
 
 @dataclass(frozen=True)
 class FunctionSpec:
-    """What one generated function is, before any target prints it: name, kind, docstring summary, arguments."""
+    """What one generated function is, before any target prints it: name, kind, docstring summary, arguments.
+
+    ``returns`` documents the result (from :data:`~symjac.codegen.kinds.KINDS`, its fields filled).
+    """
 
     name: str
     kind: FunctionKind
     summary: str
     arguments: tuple[Argument, ...]
+    returns: str = ""
 
 
 @dataclass(frozen=True)
@@ -76,6 +83,16 @@ class FunctionDescription:
         return self.lowered.shape
 
     @property
+    def returns(self) -> str:
+        """What the result is, for a docstring."""
+        return self.spec.returns
+
+    @property
+    def selftest_only(self) -> bool:
+        """Whether the function exists for the self-test only (private, no compiled kernel)."""
+        return kind_spec(self.kind).selftest_only
+
+    @property
     def op_count(self) -> int:
         """Arithmetic operations per configuration after CSE (``sympy.count_ops``)."""
         return self.lowered.op_count
@@ -84,6 +101,44 @@ class FunctionDescription:
     def trig_count(self) -> int:
         """Sine and cosine evaluations per configuration."""
         return self.lowered.trig_count
+
+
+@dataclass(frozen=True)
+class DerivedFunction:
+    """A function computed by a runtime routine from the results of other functions of the module.
+
+    ``sources`` name those functions, in the order the routine takes their results (all called with ``q`` and the
+    parameters), ``source_kinds`` and ``source_shapes`` say what they return; ``routine`` is the routine's base
+    name (:attr:`~symjac.codegen.kinds.KindSpec.routine`), which each target prefixes with its runtime's
+    (``_manipulability``, ``sj_manipulability``, ``runtime::manipulability``).
+    ``shape`` is the result's (``()``: a scalar), ``summary``, ``details`` and ``returns`` its documentation.
+    """
+
+    name: str
+    kind: FunctionKind
+    summary: str
+    details: str
+    returns: str
+    sources: tuple[str, ...]
+    source_kinds: tuple[FunctionKind, ...]
+    source_shapes: tuple[tuple[int, ...], ...]
+    routine: str
+    shape: tuple[int, ...]
+
+    @property
+    def output(self) -> str:
+        """The C family's output buffer of a non-scalar result (``gradient``), else ``""`` (a scalar is returned)."""
+        return kind_spec(self.kind).output if self.shape else ""
+
+    @property
+    def result_name(self) -> str:
+        """The result's name where every result has one (a CasADi output: ``w``, ``det``, ``gradient``)."""
+        return kind_spec(self.kind).output or "value"
+
+    @property
+    def source_outputs(self) -> tuple[str, ...]:
+        """The C family's buffer names of the sources' results (``J``, ``H``), from their kinds."""
+        return tuple(kind_spec(kind).output for kind in self.source_kinds)
 
 
 Renderer = Callable[["ModuleDescription", "Backend"], Mapping[str, str]]
@@ -190,7 +245,9 @@ class ModuleDescription:
     joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``coordinate_symbols`` and
     ``parameter_symbols`` are the SymPy symbols of the entries of ``q`` and of the parameters (in the order of
     ``joints`` and ``parameters``): what the lowered assignments read, which a printer names. Nothing here refers
-    to the robot's derivation (no ``Chain``): a backend prints from this data alone.
+    to the robot's derivation (no ``Chain``): a backend prints from this data alone. ``derived`` are the functions
+    computed by the runtime from others (manipulability, determinant, gradient), ``listing`` every public function
+    with its line for the module docstring, in order.
     """
 
     target: str
@@ -210,6 +267,8 @@ class ModuleDescription:
     command_note: str = ""
     rates: tuple[str, ...] = ()
     coupling: tuple[str, ...] = ()
+    derived: tuple[DerivedFunction, ...] = ()
+    listing: tuple[tuple[str, str], ...] = ()
     coordinate_symbols: tuple[sp.Symbol, ...] = ()
     parameter_symbols: tuple[sp.Symbol, ...] = ()
 

@@ -14,36 +14,26 @@ import sympy as sp
 from symjac._version import __version__
 from symjac.codegen.backends import backend
 from symjac.codegen.coupled import (
-    coordinate_bias_acceleration,
-    coordinate_forward_kinematics,
-    coordinate_hessian,
-    coordinate_jacobian,
-    coordinate_kinematics,
-    coordinate_torques,
     coupling_lines,
 )
 from symjac.codegen.description import (
-    Argument,
     FunctionDescription,
-    FunctionKind,
-    FunctionSpec,
-    IdentifierRule,
     JacobianInfo,
     ModuleDescription,
 )
-from symjac.codegen.lower import LoweredFunction, angle_expansion, lower_function
+from symjac.codegen.functions import (
+    defined_names,
+    derived_functions,
+    function_descriptions,
+    listing,
+    scalar_descriptions,
+)
 from symjac.codegen.printers import float_literal
 from symjac.codegen.provenance import names_relative_file, robot_loader
 from symjac.codegen.request import (
-    RESERVED,
     STRATEGIES,
     JacobianRequest,
     Strategy,
-    check_rows,
-    frame_text,
-    function_labels,
-    point_text,
-    point_words,
     python_call,
     requests_from,
     validate_robot,
@@ -51,9 +41,9 @@ from symjac.codegen.request import (
 from symjac.errors import CodegenError
 from symjac.files import write_files, write_text
 from symjac.kinematics.chain import Chain, Frame, as_chain
-from symjac.kinematics.jacobian import ROW_NAMES, Point
+from symjac.kinematics.jacobian import Point
 from symjac.kinematics.propagation import joint_rate_symbols
-from symjac.model.robot import WRENCH_NAMES, Robot
+from symjac.model.robot import Robot
 
 __all__ = [
     "STRATEGIES",
@@ -119,89 +109,13 @@ def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescri
     return module_header(request, chain, requests, functions, infos)
 
 
-def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool
-                          ) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
-    """Forward kinematics, then per Jacobian request its Jacobian, torques, kinematics (and acceleration functions)."""
-    model = chain.robot
-    q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
-    coupled = ", in the coordinates (J_q = J C)" if model.coupling is not None else ""
-    rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
-    functions: list[FunctionDescription] = []
-
-    def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:
-        functions.append(FunctionDescription(FunctionSpec(name, kind, summary, (q_argument, *arguments)), lowered))
-
-    add(coordinate_forward_kinematics(chain, strategy), "forward_kinematics", "forward_kinematics",
-        "The pose of the tool frame in frame {0}")
-    infos: list[JacobianInfo] = []
-    for request, label in zip(requests, function_labels(model, requests), strict=True):
-        point_name, point = point_text(model, request.point)
-        selected = check_rows(request.rows)
-        names = {kind: f"{kind}{label}" for kind in ("jacobian", "joint_torques", "manipulability",
-                                                      "jacobian_determinant", "_kinematics", "hessian",
-                                                      "bias_acceleration", "manipulability_gradient")}
-        J = coordinate_jacobian(chain, request.frame, point, selected, strategy)
-        where, at = frame_text(request.frame), point_words(point_name)
-        add(J, names["jacobian"], "jacobian", f"The basic Jacobian [v; omega] at the {at}, in frame {where}{coupled}")
-        add(coordinate_torques(chain, request.frame, point, selected, strategy), names["joint_torques"],
-            "joint_torques", f"Joint torques tau = {'C^T ' if coupled else ''}J^T F holding a wrench F at the {at}, "
-            f"F in frame {where}",
-            Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected), "Wrench (force, moment) at the point"))
-        add(coordinate_kinematics(chain, request.frame, point), names["_kinematics"], "kinematics",
-            "Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)")
-        if acceleration:
-            add(coordinate_hessian(chain, request.frame, point, selected, strategy), names["hessian"], "hessian",
-                f"The kinematic Hessian H[i, j, m] = dJ[i, j]/dq_m of ``{names['jacobian']}``")
-            add(coordinate_bias_acceleration(chain, request.frame, point, selected, strategy),
-                names["bias_acceleration"], "bias_acceleration",
-                f"The bias acceleration Jdot qdot of ``{names['jacobian']}`` (the acceleration at zero qddot)",
-                Argument("qdot", rates, "Coordinate rates" if coupled else "Joint rates"))
-        infos.append(JacobianInfo(
-            jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
-            determinant=names["jacobian_determinant"] if len(selected) == model.n_coordinates else None,
-            kinematics=names["_kinematics"], frame=where, point=point_name,
-            point_values=tuple(float_literal(v.subs(model.defaults)) for v in point),  # type: ignore[arg-type]
-            rows=selected, row_names=tuple(ROW_NAMES[r] for r in selected),
-            wrench_names=tuple(WRENCH_NAMES[r] for r in selected),
-            **({"hessian": names["hessian"], "bias_acceleration": names["bias_acceleration"],
-                "manipulability_gradient": names["manipulability_gradient"]} if acceleration else {}),
-        ))
-    return functions, infos
-
-
-def _defined_names(functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> set[str]:
-    """Every function name the module defines: the lowered ones and those computed from a Jacobian."""
-    defined = {f.name for f in functions} | {i.manipulability for i in infos}
-    defined |= {i.determinant for i in infos if i.determinant}
-    return defined | {i.manipulability_gradient for i in infos if i.manipulability_gradient}
-
-
-def scalar_descriptions(chain: Chain, scalars: Mapping[str, sp.Expr], functions: Sequence[FunctionDescription],
-                        infos: Sequence[JacobianInfo], identifiers: IdentifierRule) -> list[FunctionDescription]:
-    """The extra scalar functions of the joint variables and parameters, names checked against everything else."""
-    model = chain.robot
-    defined = _defined_names(functions, infos)
-    q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
-    found: list[FunctionDescription] = []
-    for scalar_name, expr in scalars.items():
-        identifiers.check(scalar_name, "scalar function name", {**RESERVED, **{n: "a function" for n in defined}})
-        if scalar_name.startswith("_") or scalar_name in {p.name for p in model.parameters}:
-            raise CodegenError(f"scalar function name {scalar_name!r} is private or a parameter name")
-        lowered = lower_function(angle_expansion(chain), [sp.sympify(expr)], (), (("q", model.q),),
-                                 model.parameter_symbols, "given expression")
-        found.append(FunctionDescription(FunctionSpec(scalar_name, "scalar", f"The scalar function {scalar_name}",
-                                                      (q_argument,)), lowered))
-        defined.add(scalar_name)
-    return found
-
-
 def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[JacobianRequest],
                   functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> ModuleDescription:
     """The module around its functions: robot facts, exported names and the command that regenerates it."""
     model = chain.robot
     spec = backend(request.target)
     exports = ({"PARAMETERS", "JOINTS", "ROBOT", "selftest", *spec.exports}
-               | {f.name for f in functions if not f.name.startswith("_")} | _defined_names((), infos))
+               | {f.name for f in functions if not f.name.startswith("_")} | defined_names((), infos))
     command, shell = request.command, request.command is not None
     if command is None:
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
@@ -210,6 +124,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
+    coupled, n = model.coupling is not None, model.n_coordinates
+    derived = derived_functions(infos, n, coupled)
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
@@ -222,12 +138,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
         rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (),
         coordinate_symbols=tuple(model.q), parameter_symbols=tuple(model.parameter_symbols),
+        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled),
     )
-
-
-def _q_words(robot: Robot) -> str:
-    """What the entries of ``q`` are: the joint values, or a coupled robot's independent coordinates."""
-    return "Joint values" if robot.coupling is None else "Independent coordinates"
 
 
 def _sorted_exports(names: Iterable[str]) -> list[str]:

@@ -17,7 +17,7 @@ typedef void (*sj_map_with)(const real *q, const real *params, const real *input
 typedef real (*sj_scalar)(const real *q, const real *params);
 
 /* Determinant of the n x n row-major matrix a (overwritten): Gaussian elimination with partial pivoting. */
-static inline real sj_determinant(real *a, int n)
+static inline real sj_lu_determinant(real *a, int n)
 {
     real result = 1;
     for (int k = 0; k < n; k++) {
@@ -49,6 +49,13 @@ static inline real sj_determinant(real *a, int n)
     return result;
 }
 
+/* det J of a square rows x cols Jacobian J (overwritten; cols == rows): the routine of the determinant kind. */
+static inline real sj_determinant(real *J, int rows, int cols)
+{
+    (void)cols;
+    return sj_lu_determinant(J, rows);
+}
+
 /* The Gram matrix of the shorter side of the rows x cols matrix J: J J^T (wide) or J^T J (tall); its side. */
 static inline int sj_gram(const real *J, int rows, int cols, real *g)
 {
@@ -74,9 +81,9 @@ static inline real sj_manipulability(const real *J, int rows, int cols)
         for (int k = 0; k < rows * cols; k++) {
             g[k] = J[k];
         }
-        return fabs(sj_determinant(g, rows));
+        return fabs(sj_lu_determinant(g, rows));
     }
-    const real d = sj_determinant(g, sj_gram(J, rows, cols, g));
+    const real d = sj_lu_determinant(g, sj_gram(J, rows, cols, g));
     return d > 0 ? sqrt(d) : 0;
 }
 
@@ -132,7 +139,7 @@ static inline void sj_manipulability_gradient(const real *J, const real *H, int 
     for (int k = 0; k < small * small; k++) {
         a[k] = g[k];
     }
-    const real d = sj_determinant(a, small);
+    const real d = sj_lu_determinant(a, small);
     const real w = d > 0 ? sqrt(d) : 0;
     for (int m = 0; m < cols; m++) {
         gradient[m] = 0;

@@ -65,21 +65,28 @@ def _selftest_error(forward_kinematics: ca.Function, cases: Sequence[tuple[Any, 
     return worst
 
 
-def _determinant(J: ca.SX) -> ca.SX:
-    """The determinant of a square Jacobian (CasADi's expansion)."""
+def _determinant(J: ca.SX, q: ca.SX | None = None) -> ca.SX:
+    """The determinant of a square Jacobian (CasADi's expansion); ``q``, the variables, is not needed."""
     return ca.det(J)
 
 
-def _manipulability(J: ca.SX) -> ca.SX:
-    """The manipulability: |det J| for a square J, else sqrt(det G), G = J J^T (wide) or J^T J (tall)."""
+def _manipulability(J: ca.SX, q: ca.SX | None = None) -> ca.SX:
+    """The manipulability: |det J| for a square J, else sqrt(det G), G = J J^T (wide) or J^T J (tall).
+
+    ``q``, the variables, is not needed (every routine here takes its sources' results, then the variables).
+    """
     rows, columns = J.shape
     if rows == columns:
         return ca.fabs(ca.det(J))
     return ca.sqrt(ca.fmax(ca.det(ca.mtimes(J, J.T) if rows < columns else ca.mtimes(J.T, J)), 0.0))
 
 
-def _manipulability_gradient(w: ca.SX, q: ca.SX) -> ca.SX:
-    """Dw/dq by CasADi's own differentiation of the manipulability graph ``w``; zero where w = 0 (a kink there)."""
+def _manipulability_gradient(J: ca.SX, H: ca.SX, q: ca.SX) -> ca.SX:
+    """Dw/dq by CasADi's own differentiation of the manipulability of J(q); zero where w = 0 (a kink there).
+
+    ``H`` (the Hessian) is not needed: CasADi differentiates the graph of w itself.
+    """
+    w = _manipulability(J)
     return ca.if_else(w > 0, ca.gradient(w, q), ca.SX.zeros(q.numel(), 1))
 
 

@@ -16,6 +16,7 @@ import sympy as sp
 
 from symjac.codegen.backends.c.printer import CPrinter, RealPrinter
 from symjac.codegen.description import FunctionDescription, ModuleDescription
+from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction, symbol_names
 from symjac.codegen.source_layout import comment_lines, wrap_statement
 
@@ -59,8 +60,6 @@ _LOCALS = frozenset(("q", "p", "params", "F", "qdot", "T", "J", "tau", "H", "out
                      "S", "C"))
 """Names the generated functions use themselves: a temporary never takes one."""
 
-_OUTPUT = {"forward_kinematics": "T", "jacobian": "J", "joint_torques": "tau", "kinematics": "out", "hessian": "H",
-           "bias_acceleration": "out", "scalar": ""}
 _INPUT = {"q": "q", "wrench": "F", "qdot": "qdot"}
 
 
@@ -82,6 +81,7 @@ class CFunction:
     op_count: int
     trig_count: int
     origin: str
+    layout: str = ""  # how a flat three-dimensional output is indexed (the kinds table's layout)
 
     @property
     def body_name(self) -> str:
@@ -280,7 +280,8 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
         inputs.append((_INPUT[spec_argument.name], len(spec_argument.entries), comment(spec_argument.description)))
     for k, symbol in enumerate(description.parameter_symbols):
         mapping[symbol] = dialect.parameter(k, symbol.name)
-    output = _OUTPUT[function.kind]
+    kind = kind_spec(function.kind)
+    output = kind.output
     statements = c_statements(lowered, mapping, dialect.printer(mapping), "    ", "real",
                               lambda k: dialect.element(output, lowered.shape, k) if output else None,
                               dialect.angle_array)
@@ -289,6 +290,7 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
     static = function.name.startswith("_")
     name = f"{description.robot}{'' if static else '_'}{function.name}"
     return CFunction(name=name, base=function.name.lstrip("_"), kind=function.kind,
+                     layout=kind.layout.format(shape=lowered.shape) if kind.layout else "",
                      summary=comment(function.spec.summary), static=static,
                      inputs=tuple(inputs), output=output, size=size, shape=lowered.shape, body=tuple(body),
                      angles=statements.angle_values, op_count=lowered.op_count, trig_count=lowered.trig_count,

@@ -14,6 +14,7 @@ from types import MappingProxyType
 from typing import Any
 
 from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import RESERVED
 from symjac.codegen.runtime import runtime_source
@@ -60,6 +61,8 @@ class GeneratedFunction:
     output_lines: tuple[str, ...] = ()
     constant: tuple[bool, ...] = ()
     uses: tuple[str, ...] = ()
+    returns: str = ""
+    selftest_only: bool = False
 
     @property
     def kernel_name(self) -> str:
@@ -116,6 +119,7 @@ def generated_function(lowered: LoweredFunction, spec: FunctionSpec, body: Seque
         name=spec.name, kind=spec.kind, summary=spec.summary, arguments=spec.arguments, shape=lowered.shape,
         op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin, body=tuple(body),
         outputs=tuple(outputs), output_lines=tuple(output_lines), constant=constant, uses=tuple(sorted(used)),
+        returns=spec.returns, selftest_only=kind_spec(spec.kind).selftest_only,
     )
 
 

@@ -54,7 +54,7 @@ def c_sources(description: ModuleDescription, taken: frozenset[str]) -> Mapping[
     """
     del taken
     dialect = dataclasses.replace(C_DIALECT, reserved=C_KEYWORDS | _MATH)
-    functions = tuple(c_function(description, f, dialect) for f in description.functions if f.kind != "kinematics")
+    functions = tuple(c_function(description, f, dialect) for f in description.functions if not f.selftest_only)
     data = {
         "module": description,
         "functions": functions,

@@ -12,6 +12,7 @@ each public function computes the sines and cosines of the angles it uses and pa
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 
 from symjac.codegen.backends._c_family import (
@@ -19,6 +20,7 @@ from symjac.codegen.backends._c_family import (
     block_comment,
     c_function,
     call_statement,
+    comment,
     declaration,
     header_comments,
 )
@@ -63,6 +65,8 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "dimension": max([6, description.n_coordinates]),
         "declaration": declaration,
         "wrap_call": call_statement,
+        "comment": comment,
+        "size": math.prod,
         "runtime": runtime_source(backend.runtime).rstrip("\n"),
         "block_comment": block_comment,
         **header_comments(description),

@@ -17,13 +17,14 @@ from symjac.codegen.description import (
     IdentifierRule,
     ModuleDescription,
 )
+from symjac.codegen.kinds import KINDS
 from symjac.codegen.lower import symbol_names
 from symjac.codegen.source_layout import angle_lines, entry_names, temporary_lines, unpack, wrap_statement
 
 __all__ = ["BACKEND", "casadi_function", "entry"]
 
-_OUTPUT = {"forward_kinematics": "T", "jacobian": "J", "joint_torques": "tau", "kinematics": "out", "hessian": "H",
-           "bias_acceleration": "out", "scalar": "value"}
+_OUTPUT = {name: spec.output or "value" for name, spec in KINDS.items() if not spec.derived}
+"""Each lowered kind's output name in its builder (the kinds table's C-family name; ``value`` for a scalar)."""
 
 IDENTIFIERS = PYTHON_IDENTIFIERS | IdentifierRule.of(
     "CasADi", ("jac", "hess", "null"), ("ca", "casadi", "p", "q", "wrench", "qdot", *_OUTPUT.values()))

@@ -295,3 +295,37 @@ def test_the_jax_and_casadi_runtimes_agree_with_numpy(family):
         assert float(np.ravel(w)[0]) == pytest.approx(float(NP._manipulability(J)), rel=1e-6)
         np.testing.assert_allclose(np.ravel(gradient), NP._manipulability_gradient(J, H), rtol=1e-5, atol=1e-8)
         np.testing.assert_allclose(np.ravel(x), np.linalg.solve(M, b), rtol=1e-5)
+
+
+# --- templates lay data out: the kinds table decides, not the templates ----------------------------------------------
+
+QUANTITIES = ("jacobian", "hessian", "torques", "manipulability", "forward_kinematics", "bias")
+
+
+def test_no_template_branches_on_a_kind_or_names_a_quantity():
+    for path in (REPO / "templates").rglob("*.j2"):
+        if "documents" in path.parts:
+            continue
+        text = path.read_text(encoding="utf-8")
+        assert "kind ==" not in text and "kind !=" not in text, path
+        for word in QUANTITIES:
+            assert word not in text.lower(), f"{path.relative_to(REPO)} names {word}"
+
+
+def test_every_function_is_documented_from_the_kinds_table():
+    import sympy as sp
+
+    from symjac.codegen.kinds import KINDS
+
+    t2 = sp.Symbol("theta2", real=True)
+    description = describe(ModuleRequest(load_robot("planar2r"), "python", acceleration=True, frames=(0, "tool"),
+                                         scalars={"reach": 2 * t2}))
+    for function in (*description.functions, *description.derived):
+        assert function.returns, function.name
+        assert function.kind in KINDS
+    # 6 x 2 Jacobians: not square, so no determinant
+    assert [d.kind for d in description.derived] == ["manipulability", "manipulability_gradient"] * 2
+    listed = [name for name, _ in description.listing]
+    assert listed[0] == "forward_kinematics" and listed[-1] == "reach" and "_kinematics" not in listed
+    assert [check.routine for check in description.checks] == ["pose", "jacobian", "jacobian", "acceleration",
+                                                                "acceleration"]

@@ -14,7 +14,7 @@ from typing import Literal
 
 import sympy as sp
 
-from symjac.codegen.kinds import kind_spec
+from symjac.codegen.kinds import CHECK_WORDS, COUPLED_WORDS, kind_spec
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import PYTHON_IDENTIFIERS, IdentifierRule
 
@@ -22,6 +22,7 @@ __all__ = [
     "PYTHON_IDENTIFIERS",
     "Argument",
     "Backend",
+    "Check",
     "DerivedFunction",
     "FunctionDescription",
     "FunctionKind",
@@ -141,6 +142,21 @@ class DerivedFunction:
         return tuple(kind_spec(kind).output for kind in self.source_kinds)
 
 
+@dataclass(frozen=True)
+class Check:
+    """One check of a module's self-test: the runtime's check ``routine`` applied to module functions.
+
+    ``routine`` is ``"pose"`` (the forward kinematics is a rigid transform), ``"jacobian"`` (a Jacobian against
+    central differences of its kinematics, its torques against J^T F) or ``"acceleration"`` (the Hessian, bias
+    acceleration and manipulability gradient against central differences); ``functions`` are the names it calls, in
+    the routine's order; ``rows`` the Jacobian's task rows (none for the pose). The checks run in the order given.
+    """
+
+    routine: str
+    functions: tuple[str, ...]
+    rows: tuple[int, ...] = ()
+
+
 Renderer = Callable[["ModuleDescription", "Backend"], Mapping[str, str]]
 """Turns a module description into the target's files: ``{relative file name: text}``, the primary file first."""
 
@@ -247,7 +263,8 @@ class ModuleDescription:
     ``joints`` and ``parameters``): what the lowered assignments read, which a printer names. Nothing here refers
     to the robot's derivation (no ``Chain``): a backend prints from this data alone. ``derived`` are the functions
     computed by the runtime from others (manipulability, determinant, gradient), ``listing`` every public function
-    with its line for the module docstring, in order.
+    with its line for the module docstring, in order, ``checks`` the self-test's checks in order and
+    ``request_lines`` each requested Jacobian's name with what it is (frame, point, rows), for headers.
     """
 
     target: str
@@ -269,6 +286,8 @@ class ModuleDescription:
     coupling: tuple[str, ...] = ()
     derived: tuple[DerivedFunction, ...] = ()
     listing: tuple[tuple[str, str], ...] = ()
+    checks: tuple[Check, ...] = ()
+    request_lines: tuple[tuple[str, str], ...] = ()
     coordinate_symbols: tuple[sp.Symbol, ...] = ()
     parameter_symbols: tuple[sp.Symbol, ...] = ()
 
@@ -281,6 +300,18 @@ class ModuleDescription:
     def acceleration(self) -> bool:
         """Whether the module has the acceleration-level functions (Hessian, bias acceleration, gradient)."""
         return any(info.hessian for info in self.jacobians)
+
+    @property
+    def check_words(self) -> str:
+        """What the self-test checks, for its docstring: the words of each routine of ``checks``, once each."""
+        routines = list(dict.fromkeys(check.routine for check in self.checks))
+        routines.sort(key=lambda routine: list(CHECK_WORDS).index(routine))
+        return "; ".join(CHECK_WORDS[routine] for routine in routines)
+
+    @property
+    def coupled_words(self) -> str:
+        """What the functions compute for a coupled robot (empty for another)."""
+        return COUPLED_WORDS if self.coupling else ""
 
     @property
     def q_words(self) -> str:

@@ -23,6 +23,7 @@ from symjac.codegen.coupled import (
 )
 from symjac.codegen.description import (
     Argument,
+    Check,
     DerivedFunction,
     FunctionDescription,
     FunctionKind,
@@ -48,7 +49,15 @@ from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import WRENCH_NAMES, Robot
 
-__all__ = ["defined_names", "derived_functions", "function_descriptions", "listing", "scalar_descriptions"]
+__all__ = [
+    "defined_names",
+    "derived_functions",
+    "function_descriptions",
+    "listing",
+    "request_lines",
+    "scalar_descriptions",
+    "self_checks",
+]
 
 
 def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool
@@ -161,6 +170,22 @@ def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedF
     return tuple(entries)
 
 
+def self_checks(infos: Sequence[JacobianInfo]) -> tuple[Check, ...]:
+    """The self-test: the pose, then every Jacobian (with its torques), then every acceleration-level family."""
+    checks = [Check("pose", ("forward_kinematics",))]
+    checks += [Check("jacobian", (info.jacobian, info.joint_torques, info.kinematics), info.rows) for info in infos]
+    checks += [Check("acceleration", (info.jacobian, info.hessian, info.bias_acceleration, info.manipulability,
+                                      info.manipulability_gradient), info.rows)
+               for info in infos if info.hessian and info.bias_acceleration and info.manipulability_gradient]
+    return tuple(checks)
+
+
+def request_lines(infos: Sequence[JacobianInfo]) -> tuple[tuple[str, str], ...]:
+    """Each requested Jacobian's name and what it is, for the header of every file: frame, point and rows."""
+    return tuple((info.jacobian, f"frame {info.frame}, point {info.point}, rows {', '.join(info.row_names)}.")
+                 for info in infos)
+
+
 def defined_names(functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> set[str]:
     """Every function name the module defines: the lowered ones and those computed from a Jacobian."""
     defined = {f.name for f in functions} | {i.manipulability for i in infos}
@@ -181,8 +206,9 @@ def scalar_descriptions(chain: Chain, scalars: Mapping[str, sp.Expr], functions:
             raise CodegenError(f"scalar function name {scalar_name!r} is private or a parameter name")
         lowered = lower_function(angle_expansion(chain), [sp.sympify(expr)], (), (("q", model.q),),
                                  model.parameter_symbols, "given expression")
+        returns = kind_spec("scalar").returns_text(model.coupling is not None, shape=())
         found.append(FunctionDescription(FunctionSpec(scalar_name, "scalar", f"The scalar function {scalar_name}",
-                                                      (q_argument,)), lowered))
+                                                      (q_argument,), returns), lowered))
         defined.add(scalar_name)
     return found
 

@@ -21,7 +21,7 @@ from types import MappingProxyType
 
 from symjac.errors import CodegenError
 
-__all__ = ["KINDS", "KindSpec", "kind_spec"]
+__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "KINDS", "KindSpec", "kind_spec"]
 
 
 @dataclass(frozen=True)
@@ -104,6 +104,21 @@ KINDS: Mapping[str, KindSpec] = MappingProxyType({spec.name: spec for spec in (
                      "kink, not a gradient, and the result is zero there (zero lies in its subdifferential)."),
 )})
 """Every kind of generated function, by name: lowered kinds first, then the derived ones."""
+
+
+CHECK_WORDS: Mapping[str, str] = MappingProxyType({
+    "jacobian": "every Jacobian against central differences of the module's own kinematics, and its joint torques "
+                "against J^T F",
+    "pose": "that the forward kinematics is a rigid transform",
+    "acceleration": "the Hessians, bias accelerations and manipulability gradients against central differences of "
+                    "the Jacobians and manipulabilities",
+})
+"""What each check of the self-test (:class:`~symjac.codegen.description.Check`) checks, for docstrings."""
+
+COUPLED_WORDS = ("Every function takes q in these coordinates and computes theta(q) first: Jacobians are "
+                 "J_q = J(theta(q)) C, joint torques C^T J^T F (one generalised force per coordinate), Hessians and "
+                 "bias accelerations are those of J_q, with the coordinate rates qdot")
+"""What the functions of a coupled robot's module compute, for its docstring."""
 
 
 def kind_spec(kind: str) -> KindSpec:

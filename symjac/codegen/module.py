@@ -26,7 +26,9 @@ from symjac.codegen.functions import (
     derived_functions,
     function_descriptions,
     listing,
+    request_lines,
     scalar_descriptions,
+    self_checks,
 )
 from symjac.codegen.printers import float_literal
 from symjac.codegen.provenance import names_relative_file, robot_loader
@@ -138,7 +140,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
         rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (),
         coordinate_symbols=tuple(model.q), parameter_symbols=tuple(model.parameter_symbols),
-        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled),
+        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled), checks=self_checks(infos),
+        request_lines=request_lines(infos),
     )
 
 

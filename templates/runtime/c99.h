@@ -219,11 +219,18 @@ static inline void sj_sample(int sample, int n, real *q)
     }
 }
 
+/* Every check takes (n, size, rows, its functions, q, h, tolerance) and returns its count of failures. */
+
 /* The forward kinematics is a rigid transform: R^T R = I and the last row is (0, 0, 0, 1). */
-static inline int sj_check_pose(sj_map forward_kinematics, const real *q, real tolerance)
+static inline int sj_check_pose(int n, int size, const int *rows, sj_map forward_kinematics, const real *q, real h,
+                                real tolerance)
 {
     real T[16];
     int failures = 0;
+    (void)n;
+    (void)size;
+    (void)rows;
+    (void)h;
     forward_kinematics(q, NULL, T);
     for (int r = 0; r < 3; r++) {
         for (int c = 0; c < 3; c++) {
@@ -243,8 +250,8 @@ static inline int sj_check_pose(sj_map forward_kinematics, const real *q, real t
 /* A Jacobian (rows `rows` of [v; omega], size of them, n columns) against central differences of its kinematics
  * (point position, ^0_nR and ^0_kR: 21 values; omega from dR R^T), turned into frame {k}; its torques against
  * J^T F. */
-static inline int sj_check_jacobian(int n, int size, const int *rows, sj_map jacobian, sj_map kinematics,
-                                    sj_map_with torques, const real *q, real h, real tolerance)
+static inline int sj_check_jacobian(int n, int size, const int *rows, sj_map jacobian, sj_map_with torques,
+                                    sj_map kinematics, const real *q, real h, real tolerance)
 {
     real J[6 * SJ_DIM], at[21], plus[21], minus[21], step[SJ_DIM], F[6], tau[SJ_DIM];
     int failures = 0;
@@ -295,13 +302,14 @@ static inline int sj_check_jacobian(int n, int size, const int *rows, sj_map jac
 
 /* The Hessian, the manipulability gradient and the bias acceleration Jdot qdot of a Jacobian (size x n) against
  * central differences of the Jacobian and of the manipulability. */
-static inline int sj_check_acceleration(int n, int size, sj_map jacobian, sj_map hessian, sj_map_with bias,
-                                        sj_scalar manipulability, sj_map manipulability_gradient, const real *q,
-                                        real h, real tolerance)
+static inline int sj_check_acceleration(int n, int size, const int *rows, sj_map jacobian, sj_map hessian,
+                                        sj_map_with bias, sj_scalar manipulability, sj_map manipulability_gradient,
+                                        const real *q, real h, real tolerance)
 {
     real H[6 * SJ_DIM * SJ_DIM], Jplus[6 * SJ_DIM], Jminus[6 * SJ_DIM], qdot[SJ_DIM], out[6], step[SJ_DIM];
     real gradient[SJ_DIM];
     int failures = 0;
+    (void)rows;
     hessian(q, NULL, H);
     manipulability_gradient(q, NULL, gradient);
     for (int m = 0; m < n; m++) {

@@ -10,21 +10,20 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import Any
 
 import casadi as ca
 
 # ---- runtime: everything below is copied into every generated module of the target ----
 
 
-def _selftest_error(forward_kinematics: ca.Function, cases: Sequence[tuple[Any, ...]],
-                    acceleration_cases: Sequence[tuple[Any, ...]], n: int, defaults: Sequence[float],
-                    samples: int) -> float:
-    """The largest error of the self-test, relative to 1 + |entry|, at the default parameters.
+def _selftest_error(checks: Sequence[tuple[str, tuple[ca.Function, ...], tuple[int, ...]]], n: int,
+                    defaults: Sequence[float], samples: int) -> float:
+    """The largest error of the self-test's ``checks``, relative to 1 + |entry|, at the default parameters.
 
-    ``cases`` are (jacobian, torques, kinematics, rows) per Jacobian; ``acceleration_cases`` (jacobian, hessian,
-    bias acceleration) per Jacobian, or none. Also checks the torques against J^T F and the forward kinematics for
-    a rigid transform.
+    Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
+    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or
+    ``"acceleration"`` (Jacobian, Hessian, bias acceleration, ...: against central differences of the Jacobian;
+    CasADi differentiates the manipulability itself).
     """
     step = 1e-6
     p = ca.DM(defaults)
@@ -36,32 +35,34 @@ def _selftest_error(forward_kinematics: ca.Function, cases: Sequence[tuple[Any, 
     for sample in range(samples):
         q = ca.DM([1.3 * math.sin(0.9 * (sample + 1) * (k + 1)) for k in range(n)])
         unit = ca.DM.eye(n)
-        rotation = forward_kinematics(q, p)[:3, :3]
-        worst = max(worst, error(ca.mtimes(rotation.T, rotation), ca.DM.eye(3)))
-        for jacobian_function, torque_function, kinematics, rows in cases:
-            at = kinematics(q, p)
-            columns = []
-            for m in range(n):
-                change = (kinematics(q + step * unit[:, m], p) - kinematics(q - step * unit[:, m], p)) / (2 * step)
-                W = ca.mtimes(ca.reshape(change[3:12], 3, 3).T, ca.reshape(at[3:12], 3, 3))  # dR R^T = [omega]x
-                frame = ca.reshape(at[12:21], 3, 3)  # column-major reshape of row-major entries: R^T
-                omega = ca.vertcat(W[2, 1], W[0, 2], W[1, 0])
-                twist = ca.vertcat(ca.mtimes(frame, change[:3]), ca.mtimes(frame, omega))
-                columns.append(ca.vertcat(*[twist[row] for row in rows]))
-            J = jacobian_function(q, p)
-            worst = max(worst, error(J, ca.horzcat(*columns)))
-            wrench = ca.DM([0.3 + 0.2 * k for k in range(len(rows))])
-            worst = max(worst, error(torque_function(q, wrench, p), ca.mtimes(J.T, wrench)))
-        if acceleration_cases:
-            qdot = ca.DM([0.8 - 0.3 * k for k in range(n)])
-        for jacobian_function, hessian_function, bias_function in acceleration_cases:
-            H = hessian_function(q, p)
-            J = jacobian_function(q, p)
-            for m in range(n):
-                change = (jacobian_function(q + step * unit[:, m], p) - jacobian_function(q - step * unit[:, m], p))
-                worst = max(worst, error(H[:, m * n:(m + 1) * n], change / (2 * step)))
-            change = (jacobian_function(q + step * qdot, p) - jacobian_function(q - step * qdot, p)) / (2 * step)
-            worst = max(worst, error(bias_function(q, qdot, p), ca.mtimes(change, qdot)))
+        qdot = ca.DM([0.8 - 0.3 * k for k in range(n)])
+        for routine, functions, rows in checks:
+            if routine == "pose":
+                rotation = functions[0](q, p)[:3, :3]
+                worst = max(worst, error(ca.mtimes(rotation.T, rotation), ca.DM.eye(3)))
+            elif routine == "jacobian":
+                jacobian_function, torque_function, kinematics = functions
+                at = kinematics(q, p)
+                columns = []
+                for m in range(n):
+                    change = (kinematics(q + step * unit[:, m], p) - kinematics(q - step * unit[:, m], p)) / (2 * step)
+                    W = ca.mtimes(ca.reshape(change[3:12], 3, 3).T, ca.reshape(at[3:12], 3, 3))  # dR R^T = [omega]x
+                    frame = ca.reshape(at[12:21], 3, 3)  # column-major reshape of row-major entries: R^T
+                    omega = ca.vertcat(W[2, 1], W[0, 2], W[1, 0])
+                    twist = ca.vertcat(ca.mtimes(frame, change[:3]), ca.mtimes(frame, omega))
+                    columns.append(ca.vertcat(*[twist[row] for row in rows]))
+                J = jacobian_function(q, p)
+                worst = max(worst, error(J, ca.horzcat(*columns)))
+                wrench = ca.DM([0.3 + 0.2 * k for k in range(len(rows))])
+                worst = max(worst, error(torque_function(q, wrench, p), ca.mtimes(J.T, wrench)))
+            else:
+                jacobian_function, hessian_function, bias_function = functions[:3]
+                H = hessian_function(q, p)
+                for m in range(n):
+                    change = (jacobian_function(q + step * unit[:, m], p) - jacobian_function(q - step * unit[:, m], p))
+                    worst = max(worst, error(H[:, m * n:(m + 1) * n], change / (2 * step)))
+                change = (jacobian_function(q + step * qdot, p) - jacobian_function(q - step * qdot, p)) / (2 * step)
+                worst = max(worst, error(bias_function(q, qdot, p), ca.mtimes(change, qdot)))
     return worst
 
 

@@ -9,7 +9,6 @@ compose with it. Tested on its own: ``tests/test_codegen_runtime.py`` imports th
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any
 
 import jax.numpy as jnp
 from jax import Array
@@ -18,13 +17,14 @@ from jax.typing import ArrayLike
 # ---- runtime: everything below is copied into every generated module of the target ----
 
 
-def _selftest_error(forward_kinematics: Callable[..., Array], cases: Sequence[tuple[Any, ...]],
-                    acceleration_cases: Sequence[tuple[Any, ...]], n: int, samples: int, step: float) -> float:
-    """The largest error of the self-test, relative to 1 + |entry|: every Jacobian against central differences.
+def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Array], ...], tuple[int, ...]]], n: int,
+                    samples: int, step: float) -> float:
+    """The largest error of the self-test's ``checks``, relative to 1 + |entry|, at ``samples`` configurations.
 
-    ``cases`` are (jacobian, torques, kinematics, rows) per Jacobian; ``acceleration_cases`` (jacobian, hessian,
-    bias acceleration, manipulability, gradient) per Jacobian, or none. Also checks the torques against J^T F and
-    the forward kinematics for a rigid transform.
+    Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
+    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or
+    ``"acceleration"`` (Jacobian, Hessian, bias acceleration, manipulability, gradient: against central
+    differences).
     """
     worst = 0.0
 
@@ -37,31 +37,33 @@ def _selftest_error(forward_kinematics: Callable[..., Array], cases: Sequence[tu
     for sample in range(samples):
         q = 1.3 * jnp.sin(0.9 * (sample + 1) * jnp.arange(1.0, n + 1.0))
         unit = jnp.eye(n, dtype=q.dtype)
-        rotation = forward_kinematics(q)[:3, :3]
-        worst = max(worst, error(rotation.T @ rotation, jnp.eye(3)))
-        for jacobian_function, torque_function, kinematics, rows in cases:
-            at = kinematics(q)
-            columns = []
-            for m in range(q.shape[0]):
-                change = central(kinematics, q, unit[m])
-                W = change[3:12].reshape(3, 3) @ at[3:12].reshape(3, 3).T  # dR R^T = [omega]x
-                twist = jnp.concatenate([change[:3], jnp.stack([W[2, 1], W[0, 2], W[1, 0]])])
-                frame = at[12:21].reshape(3, 3)
-                columns.append(jnp.concatenate([frame.T @ twist[:3], frame.T @ twist[3:]])[jnp.asarray(rows)])
-            J = jacobian_function(q)
-            worst = max(worst, error(J, jnp.stack(columns, axis=1)))
-            wrench = jnp.linspace(-0.7, 0.9, len(rows))
-            worst = max(worst, error(torque_function(q, wrench), J.T @ wrench))
-        if acceleration_cases:
-            qdot = jnp.linspace(0.8, -0.6, n)
-        for jacobian_function, hessian_function, bias_function, manipulability_function, gradient_function in (
-            acceleration_cases
-        ):
-            H = hessian_function(q)
-            for m in range(q.shape[0]):
-                worst = max(worst, error(H[:, :, m], central(jacobian_function, q, unit[m])))
-                worst = max(worst, error(gradient_function(q)[m], central(manipulability_function, q, unit[m])))
-            worst = max(worst, error(bias_function(q, qdot), central(jacobian_function, q, qdot) @ qdot))
+        qdot = jnp.linspace(0.8, -0.6, n)
+        for routine, functions, rows in checks:
+            if routine == "pose":
+                rotation = functions[0](q)[:3, :3]
+                worst = max(worst, error(rotation.T @ rotation, jnp.eye(3)))
+            elif routine == "jacobian":
+                jacobian_function, torque_function, kinematics = functions
+                at = kinematics(q)
+                columns = []
+                for m in range(q.shape[0]):
+                    change = central(kinematics, q, unit[m])
+                    W = change[3:12].reshape(3, 3) @ at[3:12].reshape(3, 3).T  # dR R^T = [omega]x
+                    twist = jnp.concatenate([change[:3], jnp.stack([W[2, 1], W[0, 2], W[1, 0]])])
+                    frame = at[12:21].reshape(3, 3)
+                    columns.append(jnp.concatenate([frame.T @ twist[:3], frame.T @ twist[3:]])[jnp.asarray(rows)])
+                J = jacobian_function(q)
+                worst = max(worst, error(J, jnp.stack(columns, axis=1)))
+                wrench = jnp.linspace(-0.7, 0.9, len(rows))
+                worst = max(worst, error(torque_function(q, wrench), J.T @ wrench))
+            else:
+                jacobian_function, hessian_function, bias_function, manipulability_function, gradient_function = (
+                    functions)
+                H = hessian_function(q)
+                for m in range(q.shape[0]):
+                    worst = max(worst, error(H[:, :, m], central(jacobian_function, q, unit[m])))
+                    worst = max(worst, error(gradient_function(q)[m], central(manipulability_function, q, unit[m])))
+                worst = max(worst, error(bias_function(q, qdot), central(jacobian_function, q, qdot) @ qdot))
     return worst
 
 

@@ -10,7 +10,6 @@ Every routine takes batches: arrays of shape (..., rows, columns), the leading a
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,35 +17,46 @@ from numpy.typing import ArrayLike
 # ---- runtime: everything below is copied into every generated module of the target ----
 
 
-def _selftest_error(forward_kinematics: Callable[..., np.ndarray], cases: Sequence[tuple[Any, ...]],
-                    acceleration_cases: Sequence[tuple[Any, ...]], revolute: Sequence[bool], samples: int,
-                    seed: int) -> float:
-    """The largest error of the self-test: every Jacobian against central differences of its kinematics.
+def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., np.ndarray], ...], tuple[int, ...]]],
+                    revolute: Sequence[bool], samples: int, seed: int) -> float:
+    """The largest error of the self-test's ``checks`` over a batch of ``samples`` random configurations (seeded).
 
-    ``cases`` are (jacobian, torques, kinematics, rows) per Jacobian; ``acceleration_cases`` (jacobian, hessian,
-    bias acceleration, manipulability, gradient) per Jacobian, or none. Also checks batched against
-    one-configuration calls, the torques against J^T F and the forward kinematics for a rigid transform.
+    Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
+    torques, kinematics: the Jacobian against central differences of the kinematics, batched against
+    one-configuration calls, the torques against J^T F) or ``"acceleration"`` (Jacobian, Hessian, bias
+    acceleration, manipulability, gradient: against central differences).
     """
     generator = np.random.default_rng(seed)
     angles = generator.uniform(-np.pi, np.pi, (samples, len(revolute)))
     q = np.where(revolute, angles, generator.uniform(-1.0, 1.0, (samples, len(revolute))))
-    rotation = forward_kinematics(q)[..., :3, :3]
-    worst = float(np.abs(np.swapaxes(rotation, -1, -2) @ rotation - np.eye(3)).max(initial=0.0))
-    for jacobian_function, torque_function, kinematics, rows in cases:
-        actual = jacobian_function(q)
-        expected = _finite_difference_jacobian(kinematics, q)[..., rows, :]
-        worst = max(worst, float((np.abs(actual - expected) / (1.0 + np.abs(expected))).max(initial=0.0)))
-        for k in range(min(samples, 3)):
-            worst = max(worst, float(np.abs(jacobian_function(q[k]) - actual[k]).max()))
-        wrench = generator.uniform(-1.0, 1.0, (samples, len(rows)))
-        expected_torques = np.einsum("...ki,...k->...i", actual, wrench)
-        error = np.abs(torque_function(q, wrench) - expected_torques) / (1.0 + np.abs(expected_torques))
-        worst = max(worst, float(error.max(initial=0.0)))
-    if acceleration_cases:
-        qdot = generator.uniform(-1.0, 1.0, (samples, len(revolute)))
-        for case in acceleration_cases:
-            worst = max(worst, _acceleration_error(*case, q, qdot))
+    worst = 0.0
+    qdot = None
+    for routine, functions, rows in checks:
+        if routine == "pose":
+            rotation = functions[0](q)[..., :3, :3]
+            worst = max(worst, float(np.abs(np.swapaxes(rotation, -1, -2) @ rotation - np.eye(3)).max(initial=0.0)))
+        elif routine == "jacobian":
+            worst = max(worst, _jacobian_error(*functions, list(rows), q, generator))
+        else:
+            if qdot is None:  # drawn once, after every Jacobian's wrench
+                qdot = generator.uniform(-1.0, 1.0, (samples, len(revolute)))
+            worst = max(worst, _acceleration_error(*functions, q, qdot))
     return worst
+
+
+def _jacobian_error(jacobian_function: Callable[..., np.ndarray], torque_function: Callable[..., np.ndarray],
+                    kinematics: Callable[..., np.ndarray], rows: list[int], q: np.ndarray,
+                    generator: np.random.Generator) -> float:
+    """Largest relative error of a Jacobian (central differences, one-configuration calls) and its torques."""
+    actual = jacobian_function(q)
+    expected = _finite_difference_jacobian(kinematics, q)[..., rows, :]
+    worst = float((np.abs(actual - expected) / (1.0 + np.abs(expected))).max(initial=0.0))
+    for k in range(min(q.shape[0], 3)):
+        worst = max(worst, float(np.abs(jacobian_function(q[k]) - actual[k]).max()))
+    wrench = generator.uniform(-1.0, 1.0, (q.shape[0], len(rows)))
+    expected_torques = np.einsum("...ki,...k->...i", actual, wrench)
+    error = np.abs(torque_function(q, wrench) - expected_torques) / (1.0 + np.abs(expected_torques))
+    return max(worst, float(error.max(initial=0.0)))
 
 
 def _acceleration_error(

@@ -17,39 +17,57 @@ from typing import Any
 # ---- runtime: everything below is copied into every generated module of the target ----
 
 
-def _selftest_error(forward_kinematics: Callable[..., Any], cases: Sequence[tuple[Any, ...]],
-                    acceleration_cases: Sequence[tuple[Any, ...]], revolute: Sequence[bool], samples: int,
-                    seed: int) -> float:
-    """The largest error of the self-test: every Jacobian against central differences of its kinematics.
+def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Any], ...], tuple[int, ...]]],
+                    revolute: Sequence[bool], samples: int, seed: int) -> float:
+    """The largest error of the self-test's ``checks`` at ``samples`` random configurations (seeded).
 
-    ``cases`` are (jacobian, torques, kinematics, rows) per Jacobian; ``acceleration_cases`` (jacobian, hessian,
-    bias acceleration, manipulability, gradient) per Jacobian, or none. Also checks that the torques are J^T F and
-    that the forward kinematics is a rigid transform (R^T R = I).
+    Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
+    torques, kinematics: the Jacobian against central differences of the kinematics, the torques against J^T F)
+    or ``"acceleration"`` (Jacobian, Hessian, bias acceleration, manipulability, gradient: against central
+    differences). Angles are drawn in (-pi, pi), prismatic joints in (-1, 1).
     """
     generator = random.Random(seed)
     worst = 0.0
     for _ in range(samples):
         q = [generator.uniform(-pi, pi) if flag else generator.uniform(-1.0, 1.0) for flag in revolute]
-        pose = forward_kinematics(q)
-        for r in range(3):
-            for c in range(3):
-                dot = sum(pose[k][r] * pose[k][c] for k in range(3))
-                worst = max(worst, abs(dot - (1.0 if r == c else 0.0)))
-        for jacobian_function, torque_function, kinematics, rows in cases:
-            expected = _finite_difference_jacobian(kinematics, q)
-            actual = jacobian_function(q)
-            for k, row in enumerate(rows):
-                for i in range(len(q)):
-                    worst = max(worst, abs(actual[k][i] - expected[row][i]) / (1.0 + abs(expected[row][i])))
-            wrench = [generator.uniform(-1.0, 1.0) for _ in rows]
-            torques = torque_function(q, wrench)
-            for i in range(len(q)):
-                expected_torque = sum(actual[k][i] * wrench[k] for k in range(len(rows)))
-                worst = max(worst, abs(torques[i] - expected_torque) / (1.0 + abs(expected_torque)))
-        if acceleration_cases:
-            qdot = [generator.uniform(-1.0, 1.0) for _ in q]
-            for case in acceleration_cases:
-                worst = max(worst, _acceleration_error(*case, q, qdot))
+        qdot: list[float] = []
+        for routine, functions, rows in checks:
+            if routine == "pose":
+                worst = max(worst, _pose_error(functions[0], q))
+            elif routine == "jacobian":
+                worst = max(worst, _jacobian_error(*functions, rows, q, generator))
+            else:
+                qdot = qdot or [generator.uniform(-1.0, 1.0) for _ in q]  # drawn once per configuration
+                worst = max(worst, _acceleration_error(*functions, q, qdot))
+    return worst
+
+
+def _pose_error(forward_kinematics: Callable[..., Sequence[Sequence[float]]], q: Sequence[float]) -> float:
+    """Largest entry of R^T R - I of the pose at ``q``."""
+    pose = forward_kinematics(q)
+    worst = 0.0
+    for r in range(3):
+        for c in range(3):
+            dot = sum(pose[k][r] * pose[k][c] for k in range(3))
+            worst = max(worst, abs(dot - (1.0 if r == c else 0.0)))
+    return worst
+
+
+def _jacobian_error(jacobian_function: Callable[..., Sequence[Sequence[float]]],
+                    torque_function: Callable[..., Sequence[float]], kinematics: Callable[..., Sequence[float]],
+                    rows: Sequence[int], q: Sequence[float], generator: random.Random) -> float:
+    """Largest relative error of a Jacobian (central differences of its kinematics) and its torques (J^T F)."""
+    worst = 0.0
+    expected = _finite_difference_jacobian(kinematics, q)
+    actual = jacobian_function(q)
+    for k, row in enumerate(rows):
+        for i in range(len(q)):
+            worst = max(worst, abs(actual[k][i] - expected[row][i]) / (1.0 + abs(expected[row][i])))
+    wrench = [generator.uniform(-1.0, 1.0) for _ in rows]
+    torques = torque_function(q, wrench)
+    for i in range(len(q)):
+        expected_torque = sum(actual[k][i] * wrench[k] for k in range(len(rows)))
+        worst = max(worst, abs(torques[i] - expected_torque) / (1.0 + abs(expected_torque)))
     return worst
 
 

@@ -171,6 +171,28 @@ class PythonModule:
         return tuple(tuple_lines("_RATE_NAMES = ", (f'"{name}"' for name in self.description.rates)))
 
     @property
+    def check_lines(self) -> tuple[str, ...]:
+        """The self-test's checks as the entries of a tuple: ``("jacobian", (jacobian, ...), (0, 1)),`` each.
+
+        ``module.checks`` laid out for the runtime's ``_selftest_error``: routine, functions, rows; one line per check
+        if it fits, else one line per part.
+        """
+        lines: list[str] = []
+        for check in self.description.checks:
+            parts = [f'"{check.routine}"', tuple_literal(check.functions),
+                     tuple_literal(str(row) for row in check.rows) if check.rows else "()"]
+            single = f"    ({', '.join(parts)}),"
+            if len(single) <= LINE_WIDTH:
+                lines.append(single)
+                continue
+            lines += ["    (", f"        {parts[0]},"]
+            for items in (check.functions, tuple(str(row) for row in check.rows)):
+                part = tuple_lines("        ", items) if items else ["        ()"]
+                lines += [*part[:-1], part[-1] + ","]
+            lines.append("    ),")
+        return tuple(lines)
+
+    @property
     def joints_lines(self) -> tuple[str, ...]:
         """``JOINTS = ("theta1", "theta2")`` as Python source lines."""
         return tuple(tuple_lines("JOINTS = ", (f'"{name}"' for name in self.description.joint_names)))

@@ -121,10 +121,10 @@ def derived_functions(infos: Sequence[JacobianInfo], n: int, coupled: bool) -> l
     found: list[DerivedFunction] = []
     for info in infos:
         fields = {"jacobian": info.jacobian, "hessian": info.hessian or "", "manipulability": info.manipulability}
-        jacobian = (info.jacobian, "jacobian", (len(info.rows), n))
-        hessian = (info.hessian or "", "hessian", (len(info.rows), n, n))
-        wanted: list[tuple[str | None, FunctionKind, tuple[tuple[str, FunctionKind, tuple[int, ...]], ...],
-                           tuple[int, ...]]] = [
+        Source = tuple[str, FunctionKind, tuple[int, ...]]
+        jacobian: Source = (info.jacobian, "jacobian", (len(info.rows), n))
+        hessian: Source = (info.hessian or "", "hessian", (len(info.rows), n, n))
+        wanted: list[tuple[str | None, FunctionKind, tuple[Source, ...], tuple[int, ...]]] = [
             (info.manipulability, "manipulability", (jacobian,), ()),
             (info.determinant, "jacobian_determinant", (jacobian,), ()),
             (info.manipulability_gradient, "manipulability_gradient", (jacobian, hessian), (n,)),

@@ -30,7 +30,7 @@ from pathlib import Path
 import sympy as sp
 
 from symjac import load_robot
-from symjac.codegen import describe, render_files
+from symjac.codegen import ModuleRequest, describe, render_files
 from symjac.kinematics.chain import Chain
 from symjac.model.robot import Convention, Robot
 
@@ -155,7 +155,8 @@ def _pinocchio_prefix() -> Path | None:
 def measure(name: str, folder: Path) -> dict[str, float]:
     """Generate, compile and run the driver for one robot; its figures in nanoseconds (and compile seconds)."""
     robot = load_robot(name)
-    files = {**render_files(describe(robot, "cpp")), **render_files(describe(robot, "c99"))}
+    files = {**render_files(describe(ModuleRequest(robot, "cpp"))),
+             **render_files(describe(ModuleRequest(robot, "c99")))}
     for file_name, text in files.items():
         (folder / file_name).write_text(text)
     prefix = _pinocchio_prefix()

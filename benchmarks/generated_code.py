@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
-from symjac.codegen import describe, generate, write_module
+from symjac.codegen import ModuleRequest, describe, generate, write_module
 from symjac.kinematics.jacobian import jacobian
 from symjac.model.io import load_robot
 from symjac.model.robot import Robot
@@ -149,7 +149,7 @@ def measure_acceleration(robot: Robot, count: int = 100_000, seconds: float = 0.
             path = Path(folder) / f"bench_{robot.name}_{target}_acceleration.py"
             write_module(path, generate(robot, target, acceleration=True))
             names[target] = _import(path, f"bench_{robot.name}_{target}_acceleration")
-        functions = {f.name: f for f in describe(robot, "python", acceleration=True).functions}
+        functions = {f.name: f for f in describe(ModuleRequest(robot, "python", acceleration=True)).functions}
         for name, call, batched, out in (("jacobian", "(q_list)", "(batch)", "J_out"),
                                          ("bias_acceleration", "(q_list, qdot_list)", "(batch, rates)", "bias_out")):
             spec = functions[name]
@@ -181,7 +181,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     print(f"\n{'robot':<10}{'acceleration=True module':<32}{'us/call':>9}{'ns/config':>11}  operations")
     for name in args.robots:
         robot = load_robot(name)
-        functions = {f.name: f for f in describe(robot, "python", acceleration=True).functions}
+        functions = {f.name: f for f in describe(ModuleRequest(robot, "python", acceleration=True)).functions}
         for row in measure_acceleration(robot, args.n, args.seconds):
             us = "-" if np.isnan(row.us_per_call) else f"{row.us_per_call:.2f}"
             ns = "-" if np.isnan(row.ns_per_config) else f"{row.ns_per_config:.1f}"

@@ -13,7 +13,16 @@ import pytest
 from marks import PYTHON_TARGETS
 
 from symjac import load_robot, robot_from_mapping
-from symjac.codegen import BACKENDS, TARGETS, CodegenError, describe, generate, render_files, write_module
+from symjac.codegen import (
+    BACKENDS,
+    TARGETS,
+    CodegenError,
+    ModuleRequest,
+    describe,
+    generate,
+    render_files,
+    write_module,
+)
 from symjac.codegen.backends.c import C_KEYWORDS
 
 BACKENDS_DIR = Path(__file__).resolve().parent.parent / "symjac" / "codegen" / "backends"
@@ -32,7 +41,7 @@ def test_the_registry_lists_each_backend_folder():
 
 @pytest.mark.parametrize("target", PYTHON_TARGETS)
 def test_rendering_returns_a_mapping_whose_primary_file_is_the_module(target):
-    files = render_files(describe(load_robot("planar2r"), target))
+    files = render_files(describe(ModuleRequest(load_robot("planar2r"), target)))
     assert list(files) == ["planar2r.py"]
     assert files["planar2r.py"] == generate(load_robot("planar2r"), target)
 
@@ -96,13 +105,13 @@ def test_generated_file_names_stay_in_the_output_folder(tmp_path):
 
 @pytest.mark.parametrize("target", TARGETS)
 def test_name_sets_the_module_name_and_is_checked_by_the_target(target, tmp_path):
-    files = render_files(describe(load_robot("planar2r"), target, name="arm_two"))
+    files = render_files(describe(ModuleRequest(load_robot("planar2r"), target, name="arm_two")))
     assert all(name.startswith("arm_two.") for name in files)
     # prefixes, namespace and ROBOT take the name; the robot is still loaded as planar2r by the regenerating call
     assert all("planar2r" not in text.replace('load_robot("planar2r")', "") for text in files.values())
     assert 'name="arm_two"' in next(iter(files.values()))  # the primary file says how to regenerate
     with pytest.raises(CodegenError, match="module name 'two-arms' is not an ASCII identifier"):
-        describe(load_robot("planar2r"), target, name="two-arms")
+        describe(ModuleRequest(load_robot("planar2r"), target, name="two-arms"))
 
 
 @pytest.mark.parametrize(("target", "word", "language"), [("c99", "int", "C"), ("cpp", "namespace", "C\\+\\+"),
@@ -128,7 +137,7 @@ def test_the_c_extension_holds_the_c99_targets_function_bodies(name):
     (all but the self-test's kinematics, which the c module computes in NumPy); a robot without revolute joints has
     no sines and cosines to pass."""
     robot = robot_from_mapping(_SLIDES) if name == "slides" else load_robot(name)
-    c99 = _bodies(render_files(describe(robot, "c99", acceleration=True))[f"{robot.name}.c"])
+    c99 = _bodies(render_files(describe(ModuleRequest(robot, "c99", acceleration=True)))[f"{robot.name}.c"])
     module = generate(robot, "c", acceleration=True)
     extension = _bodies(module[module.index('_C_SOURCE = r"""'):])
     assert extension and set(extension) == set(c99) - {"sj_body_kinematics"}

@@ -21,7 +21,7 @@ from marks import marked
 
 from symjac import load_robot
 from symjac.cli.main import main
-from symjac.codegen import CodegenError, describe, generate, render_files
+from symjac.codegen import CodegenError, ModuleRequest, describe, generate, render_files
 from symjac.model.io import catalog
 
 pytestmark = pytest.mark.external  # a C compiler
@@ -74,7 +74,7 @@ class Compiled:
 @pytest.mark.parametrize("name", marked(ROBOTS))
 def test_every_function_agrees_with_the_python_target(tmp_path, name):
     robot = load_robot(name)
-    compiled = Compiled(tmp_path, render_files(describe(robot, "c99", acceleration=True)))
+    compiled = Compiled(tmp_path, render_files(describe(ModuleRequest(robot, "c99", acceleration=True))))
     assert compiled.selftest() == 0
     agrees_with_python_target(compiled, robot)
 
@@ -82,7 +82,7 @@ def test_every_function_agrees_with_the_python_target(tmp_path, name):
 @pytest.mark.parametrize("name", ["planar2r", "stanford", "palletizer", "puma560"])
 def test_single_precision_builds_and_passes_its_selftest(tmp_path, name):
     robot = load_robot(name)
-    files = render_files(describe(robot, "c99", acceleration=True))
+    files = render_files(describe(ModuleRequest(robot, "c99", acceleration=True)))
     single = Compiled(tmp_path, files, real="float")
     double = Compiled(tmp_path, files)
     assert single.selftest() == 0
@@ -94,7 +94,7 @@ def test_single_precision_builds_and_passes_its_selftest(tmp_path, name):
 
 def test_several_jacobians_rows_a_point_a_scalar_and_no_parameters(tmp_path):
     robot = numbers_only_robot()
-    compiled = Compiled(tmp_path, render_files(describe(robot, "c99", **SEVERAL)))
+    compiled = Compiled(tmp_path, render_files(describe(ModuleRequest(robot, "c99", **SEVERAL))))
     reference = python_module(robot, **SEVERAL)
     assert compiled.selftest() == 0
     q = np.array([0.3, -0.7, 0.2])
@@ -106,7 +106,7 @@ def test_several_jacobians_rows_a_point_a_scalar_and_no_parameters(tmp_path):
 
 
 def test_the_selftest_catches_a_wrong_entry(tmp_path):
-    files = render_files(describe(load_robot("planar3r"), "c99"))
+    files = render_files(describe(ModuleRequest(load_robot("planar3r"), "c99")))
     assert Compiled(tmp_path, files).selftest() == 0
     source = files["planar3r.c"]
     assert "    J[1] = " in source
@@ -131,8 +131,8 @@ def test_the_c_targets_extension_compiles_without_a_warning(tmp_path, case):
 
 @pytest.mark.parametrize("suffix", [".h", ".c"])
 def test_golden_files_and_determinism(suffix):
-    files = render_files(describe(load_robot("planar2r"), "c99", acceleration=True))
-    assert files == render_files(describe(load_robot("planar2r"), "c99", acceleration=True))
+    files = render_files(describe(ModuleRequest(load_robot("planar2r"), "c99", acceleration=True)))
+    assert files == render_files(describe(ModuleRequest(load_robot("planar2r"), "c99", acceleration=True)))
     path = GOLDEN / f"planar2r_c99{suffix}.golden"
     text = files[f"planar2r{suffix}"]
     if os.environ.get("SYMJAC_UPDATE_GOLDEN") == "1":
@@ -153,7 +153,7 @@ def test_c_reserved_names_are_refused_in_one_line(word, message):
 
 @pytest.mark.parametrize("command", ["symjac codegen */ int x; /* ??/", "x *\\/ int y; /*\nz ??= \\"])
 def test_comment_text_cannot_end_a_comment(tmp_path, command):
-    files = render_files(describe(load_robot("planar2r"), "c99", command=command))
+    files = render_files(describe(ModuleRequest(load_robot("planar2r"), "c99", command=command)))
     for text in files.values():
         assert "int x" not in text.replace("* / int x", "") and "int y" not in text.replace("* // int y", "")
         assert "??" not in text

@@ -20,7 +20,7 @@ from compiled import SEVERAL, agrees_with_python_target, numbers_only_robot, pyt
 from marks import marked
 
 from symjac import JacobianRequest, load_robot
-from symjac.codegen import CodegenError, describe, generate, render_files
+from symjac.codegen import CodegenError, ModuleRequest, describe, generate, render_files
 from symjac.model.io import catalog
 
 pytestmark = pytest.mark.external  # a C++ compiler and Eigen
@@ -153,7 +153,7 @@ class Shim:
 @pytest.mark.parametrize("name", marked(ROBOTS))
 def test_every_function_agrees_with_the_python_target(tmp_path, name):
     robot = load_robot(name)
-    shim = Shim(tmp_path, robot, render_files(describe(robot, "cpp", acceleration=True)))
+    shim = Shim(tmp_path, robot, render_files(describe(ModuleRequest(robot, "cpp", acceleration=True))))
     agrees_with_python_target(shim, robot)
     q = np.linspace(-1.1, 1.2, robot.n_coordinates)
     np.testing.assert_allclose(shim.jacobian_float(q, robot.n_coordinates),
@@ -208,7 +208,8 @@ int main()
 def test_autodiff_of_the_generated_functions_gives_the_jacobian_and_the_hessian(tmp_path, name):
     robot = load_robot(name)
     point = "tool" if robot.tool is not None else "wrist"  # where forward_kinematics ends
-    files = render_files(describe(robot, "cpp", jacobians=[JacobianRequest(0, point)], acceleration=True))
+    request = ModuleRequest(robot, "cpp", jacobians=[JacobianRequest(0, point)], acceleration=True)
+    files = render_files(describe(request))
     for file_name, text in files.items():
         (tmp_path / file_name).write_text(text)
     (tmp_path / "autodiff.cpp").write_text(AUTODIFF.format(robot=robot.name))
@@ -219,8 +220,8 @@ def test_autodiff_of_the_generated_functions_gives_the_jacobian_and_the_hessian(
 
 
 def test_golden_file_and_determinism():
-    files = render_files(describe(load_robot("planar2r"), "cpp", acceleration=True))
-    assert files == render_files(describe(load_robot("planar2r"), "cpp", acceleration=True))
+    files = render_files(describe(ModuleRequest(load_robot("planar2r"), "cpp", acceleration=True)))
+    assert files == render_files(describe(ModuleRequest(load_robot("planar2r"), "cpp", acceleration=True)))
     path = GOLDEN / "planar2r_cpp.hpp.golden"
     if os.environ.get("SYMJAC_UPDATE_GOLDEN") == "1":
         path.write_text(files["planar2r.hpp"])
@@ -268,7 +269,7 @@ int main()
 
 def test_several_jacobians_rows_a_point_a_scalar_and_no_parameters(tmp_path):
     robot = numbers_only_robot()
-    for name, text in render_files(describe(robot, "cpp", **SEVERAL)).items():
+    for name, text in render_files(describe(ModuleRequest(robot, "cpp", **SEVERAL))).items():
         (tmp_path / name).write_text(text)
     (tmp_path / "several.cpp").write_text(SEVERAL_DRIVER)
     subprocess.run(["g++", *FLAGS, "several.cpp", "-o", "several"], cwd=tmp_path, check=True, capture_output=True)

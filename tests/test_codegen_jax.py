@@ -20,7 +20,7 @@ from compiled import SEVERAL, agrees_with_python_target, load_module, numbers_on
 from marks import marked
 
 from symjac import JacobianRequest, generate, load_robot
-from symjac.codegen import describe, render_files
+from symjac.codegen import ModuleRequest, describe, render_files
 from symjac.model.io import catalog
 
 jax = pytest.importorskip("jax")
@@ -112,7 +112,7 @@ def test_golden_file_determinism_and_lint(tmp_path):
     if os.environ.get("SYMJAC_UPDATE_GOLDEN") == "1":
         path.write_text(text)
     assert path.read_text() == text, "review and regenerate with SYMJAC_UPDATE_GOLDEN=1"
-    files = render_files(describe(load_robot("puma560"), "jax", acceleration=True))
+    files = render_files(describe(ModuleRequest(load_robot("puma560"), "jax", acceleration=True)))
     (tmp_path / "puma560.py").write_text(files["puma560.py"])
     result = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "--isolated", "--select",
                              "E,F,W,I,UP,B,SIM,PIE,RUF", "--line-length", "120", str(tmp_path / "puma560.py")],

@@ -14,7 +14,7 @@ import pytest
 
 from symjac import load_robot
 from symjac.cli.main import main
-from symjac.codegen import JacobianRequest, describe, generate, render_files
+from symjac.codegen import JacobianRequest, ModuleRequest, describe, generate, render_files
 from symjac.model.robot_file import robot_from_mapping
 
 ARM = """name = "my_arm"
@@ -136,7 +136,7 @@ def test_a_robot_file_at_a_long_path_still_generates(tmp_path, target, repeat):
     folder = tmp_path / ("long_folder_" * repeat)
     folder.mkdir()
     (folder / "my_arm.toml").write_text(ARM, encoding="utf-8")
-    files = render_files(describe(load_robot(str(folder / "my_arm.toml")), target))
+    files = render_files(describe(ModuleRequest(load_robot(str(folder / "my_arm.toml")), target)))
     assert all(len(line) <= 120 for text in files.values() for line in text.splitlines())
     if target == "python" and len(str(folder / "my_arm.toml")) < 100:  # the quoted path fits on its line
         (text,) = files.values()

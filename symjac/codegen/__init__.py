@@ -15,12 +15,17 @@ Pipeline (one function at a time)
    counts; cached in the robot's :class:`~symjac.kinematics.chain.Chain`. With ``acceleration=True`` the Hessian and the
    bias acceleration are lowered on top of the lowered Jacobian, as cross products of its entries
    (:mod:`~symjac.codegen.acceleration`).
-3. **Description** (:mod:`~symjac.codegen.module`, :mod:`~symjac.codegen.description`): one
-   :class:`ModuleRequest` becomes a frozen, language-neutral :class:`ModuleDescription` (names, shapes, parameter
-   defaults, each function's lowered assignments as SymPy data); every name passes the target's identifier rule.
+3. **Description** (:mod:`~symjac.codegen.module`, :mod:`~symjac.codegen.functions`,
+   :mod:`~symjac.codegen.description`): one :class:`ModuleRequest` becomes a frozen, language-neutral
+   :class:`ModuleDescription` (names, shapes, parameter symbols and defaults, each function's lowered assignments as
+   SymPy data, the functions derived from them, the self-test's checks; no ``Chain``); what each kind of function
+   returns and how it is documented comes from one table, :mod:`~symjac.codegen.kinds`; every name passes the
+   target's identifier rule (:mod:`~symjac.codegen.names`, a leaf module).
 4. **Printing and rendering** (``backends/<target>/``): the target's printer maps symbols to validated names, its
-   templates lay the files out (one jinja2 environment, :mod:`symjac.resources`); :func:`render_files` gives
-   ``{file name: text}`` and :func:`write_module` writes every file atomically, all or none.
+   templates lay the files out (one jinja2 environment, :mod:`symjac.resources`) and carry the numeric runtime of
+   the target's language family (:mod:`~symjac.codegen.runtime`: ``templates/runtime/``, the linear algebra and
+   the self-test); :func:`render_files` gives ``{file name: text}`` and :func:`write_module` writes every file
+   atomically, all or none.
 """
 
 from symjac.codegen.backends import BACKENDS, TARGETS, backend

@@ -8,24 +8,22 @@ into files of its language.
 
 from __future__ import annotations
 
-import builtins
-import keyword
-import re
-from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
-from types import MappingProxyType
-from typing import TYPE_CHECKING, Literal
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Literal
 
-from symjac.errors import CodegenError
+import sympy as sp
 
-if TYPE_CHECKING:  # lowering imports the request, which imports the identifier rules from here
-    from symjac.codegen.lower import LoweredFunction
-    from symjac.kinematics.chain import Chain
+from symjac.codegen.kinds import CHECK_WORDS, COUPLED_WORDS, kind_spec
+from symjac.codegen.lower import LoweredFunction
+from symjac.codegen.names import PYTHON_IDENTIFIERS, IdentifierRule
 
 __all__ = [
     "PYTHON_IDENTIFIERS",
     "Argument",
     "Backend",
+    "Check",
+    "DerivedFunction",
     "FunctionDescription",
     "FunctionKind",
     "FunctionSpec",
@@ -36,7 +34,8 @@ __all__ = [
 ]
 
 FunctionKind = Literal["forward_kinematics", "jacobian", "joint_torques", "scalar", "kinematics", "hessian",
-                       "bias_acceleration"]
+                       "bias_acceleration", "manipulability", "jacobian_determinant", "manipulability_gradient"]
+"""The kinds of :data:`~symjac.codegen.kinds.KINDS` (its table says what each returns and how it is laid out)."""
 
 
 @dataclass(frozen=True)
@@ -50,12 +49,16 @@ class Argument:
 
 @dataclass(frozen=True)
 class FunctionSpec:
-    """What one generated function is, before any target prints it: name, kind, docstring summary, arguments."""
+    """What one generated function is, before any target prints it: name, kind, docstring summary, arguments.
+
+    ``returns`` documents the result (from :data:`~symjac.codegen.kinds.KINDS`, its fields filled).
+    """
 
     name: str
     kind: FunctionKind
     summary: str
     arguments: tuple[Argument, ...]
+    returns: str = ""
 
 
 @dataclass(frozen=True)
@@ -81,6 +84,16 @@ class FunctionDescription:
         return self.lowered.shape
 
     @property
+    def returns(self) -> str:
+        """What the result is, for a docstring."""
+        return self.spec.returns
+
+    @property
+    def selftest_only(self) -> bool:
+        """Whether the function exists for the self-test only (private, no compiled kernel)."""
+        return kind_spec(self.kind).selftest_only
+
+    @property
     def op_count(self) -> int:
         """Arithmetic operations per configuration after CSE (``sympy.count_ops``)."""
         return self.lowered.op_count
@@ -91,71 +104,58 @@ class FunctionDescription:
         return self.lowered.trig_count
 
 
-_ASCII_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+@dataclass(frozen=True)
+class DerivedFunction:
+    """A function computed by a runtime routine from the results of other functions of the module.
+
+    ``sources`` name those functions, in the order the routine takes their results (all called with ``q`` and the
+    parameters), ``source_kinds`` and ``source_shapes`` say what they return; ``routine`` is the routine's base
+    name (:attr:`~symjac.codegen.kinds.KindSpec.routine`), which each target prefixes with its runtime's
+    (``_manipulability``, ``sj_manipulability``, ``runtime::manipulability``).
+    ``shape`` is the result's (``()``: a scalar), ``summary``, ``details`` and ``returns`` its documentation.
+    """
+
+    name: str
+    kind: FunctionKind
+    summary: str
+    details: str
+    returns: str
+    sources: tuple[str, ...]
+    source_kinds: tuple[FunctionKind, ...]
+    source_shapes: tuple[tuple[int, ...], ...]
+    routine: str
+    shape: tuple[int, ...]
+
+    @property
+    def output(self) -> str:
+        """The C family's output buffer of a non-scalar result (``gradient``), else ``""`` (a scalar is returned)."""
+        return kind_spec(self.kind).output if self.shape else ""
+
+    @property
+    def result_name(self) -> str:
+        """The result's name where every result has one (a CasADi output: ``w``, ``det``, ``gradient``)."""
+        return kind_spec(self.kind).output or "value"
+
+    @property
+    def source_outputs(self) -> tuple[str, ...]:
+        """The C family's buffer names of the sources' results (``J``, ``H``), from their kinds."""
+        return tuple(kind_spec(kind).output for kind in self.source_kinds)
 
 
 @dataclass(frozen=True)
-class IdentifierRule:
-    """Which names a target's language accepts as identifiers: a pattern, keywords, and names not to shadow.
+class Check:
+    """One check of a module's self-test: the runtime's check ``routine`` applied to module functions.
 
-    ``keywords`` and ``shadowed`` map each word to the language it belongs to, so that one rule can serve a file
-    that mixes two languages (the c target: a Python module embedding C) and the error still names the right one.
-
-    Examples
-    --------
-    >>> PYTHON_IDENTIFIERS.check("a2", "parameter name")
-    'a2'
-    >>> PYTHON_IDENTIFIERS.check("lambda", "parameter name")
-    Traceback (most recent call last):
-    ...
-    symjac.errors.CodegenError: parameter name 'lambda' is a Python keyword
+    ``routine`` is ``"pose"`` (the forward kinematics is a rigid transform), ``"jacobian"`` (a Jacobian against
+    central differences of its kinematics, its torques against J^T F) or ``"acceleration"`` (the Hessian, bias
+    acceleration and manipulability gradient against central differences); ``functions`` are the names it calls, in
+    the routine's order; ``rows`` the Jacobian's task rows (none for the pose). The checks run in the order given.
     """
 
-    keywords: Mapping[str, str]
-    shadowed: Mapping[str, str]
-    pattern: re.Pattern[str] = _ASCII_IDENTIFIER
-    prefixes: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))  # kept by the generated code
+    routine: str
+    functions: tuple[str, ...]
+    rows: tuple[int, ...] = ()
 
-    @classmethod
-    def of(cls, language: str, keywords: Iterable[str], shadowed: Iterable[str] = (),
-           prefixes: Iterable[str] = ()) -> IdentifierRule:
-        """The rule of one language: its keywords, names not to shadow, and its generated code's own prefixes.
-
-        ``shadowed`` are the builtins a generated name must not hide; a name starting with one of ``prefixes`` could
-        collide with a name the generated code makes itself.
-        """
-        return cls(MappingProxyType(dict.fromkeys(keywords, language)),
-                   MappingProxyType(dict.fromkeys(shadowed, language)),
-                   prefixes=MappingProxyType(dict.fromkeys(prefixes, language)))
-
-    def __or__(self, other: IdentifierRule) -> IdentifierRule:
-        """A rule that refuses whatever either rule refuses (the first one's pattern)."""
-        return IdentifierRule(MappingProxyType({**other.keywords, **self.keywords}),
-                              MappingProxyType({**other.shadowed, **self.shadowed}), self.pattern,
-                              MappingProxyType({**other.prefixes, **self.prefixes}))
-
-    def check(self, name: object, what: str, reserved: Mapping[str, str] | None = None) -> str:
-        """Return ``name`` if it may be an identifier of the generated code, else raise :class:`CodegenError`.
-
-        ``reserved`` maps names the generated module uses itself to the reason (the error says which).
-        """
-        if not isinstance(name, str) or not self.pattern.match(name):
-            raise CodegenError(f"{what} {name!r} is not an ASCII identifier (letters, digits, underscore)")
-        if name in self.keywords:
-            raise CodegenError(f"{what} {name!r} is a {self.keywords[name]} keyword")
-        if name in self.shadowed:
-            raise CodegenError(f"{what} {name!r} would shadow the {self.shadowed[name]} builtin of that name")
-        for prefix, language in self.prefixes.items():
-            if name.startswith(prefix):
-                raise CodegenError(f"{what} {name!r} starts with {prefix!r}, which the generated {language} keeps for "
-                                   "its own names")
-        if reserved is not None and name in reserved:
-            raise CodegenError(f"{what} {name!r} clashes with {reserved[name]} in the generated module")
-        return name
-
-
-PYTHON_IDENTIFIERS = IdentifierRule.of("Python", (*keyword.kwlist, *keyword.softkwlist), dir(builtins))
-"""Python's rule: ASCII identifiers, no keyword or soft keyword, no builtin (a parameter ``len`` would shadow it)."""
 
 Renderer = Callable[["ModuleDescription", "Backend"], Mapping[str, str]]
 """Turns a module description into the target's files: ``{relative file name: text}``, the primary file first."""
@@ -196,6 +196,9 @@ class Backend:
     language : str
         The language of the files it writes: ``"Python"`` (a module with the API of the python and numpy targets),
         ``"Python/JAX"`` (pure functions of one configuration), ``"C"`` or ``"C++"`` (files to compile).
+    runtime : str
+        The numeric runtime its files carry, a file of ``templates/runtime/`` (:mod:`symjac.codegen.runtime`):
+        ``"python.py"``, ``"numpy.py"``, ``"c99.h"``, ``"eigen.hpp"``; empty for none.
     """
 
     name: str
@@ -213,6 +216,7 @@ class Backend:
     batched: bool = True
     exports: tuple[str, ...] = ()
     language: str = "Python"
+    runtime: str = ""
 
     @property
     def suffix(self) -> str:
@@ -254,8 +258,13 @@ class ModuleDescription:
     equivalent Python call) and ``command_note`` what else the reader needs to know to run it (the folder a relative
     path is relative to, which robot ``robot`` is), or nothing. ``joints`` are the entries of ``q`` (name, type):
     the joint variables, or for a coupled robot its independent coordinates, and then ``coupling`` holds each other
-    joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``chain`` is the robot's cached derivation,
-    for backends that need more of it (the c target's joint angles).
+    joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``coordinate_symbols`` and
+    ``parameter_symbols`` are the SymPy symbols of the entries of ``q`` and of the parameters (in the order of
+    ``joints`` and ``parameters``): what the lowered assignments read, which a printer names. Nothing here refers
+    to the robot's derivation (no ``Chain``): a backend prints from this data alone. ``derived`` are the functions
+    computed by the runtime from others (manipulability, determinant, gradient), ``listing`` every public function
+    with its line for the module docstring, in order, ``checks`` the self-test's checks in order and
+    ``request_lines`` each requested Jacobian's name with what it is (frame, point, rows), for headers.
     """
 
     target: str
@@ -275,12 +284,34 @@ class ModuleDescription:
     command_note: str = ""
     rates: tuple[str, ...] = ()
     coupling: tuple[str, ...] = ()
-    chain: Chain | None = field(default=None, compare=False, repr=False)
+    derived: tuple[DerivedFunction, ...] = ()
+    listing: tuple[tuple[str, str], ...] = ()
+    checks: tuple[Check, ...] = ()
+    request_lines: tuple[tuple[str, str], ...] = ()
+    coordinate_symbols: tuple[sp.Symbol, ...] = ()
+    parameter_symbols: tuple[sp.Symbol, ...] = ()
+
+    @property
+    def symbols(self) -> tuple[sp.Symbol, ...]:
+        """The symbols that keep their own names in every function: the coordinates, then the parameters."""
+        return (*self.coordinate_symbols, *self.parameter_symbols)
 
     @property
     def acceleration(self) -> bool:
         """Whether the module has the acceleration-level functions (Hessian, bias acceleration, gradient)."""
         return any(info.hessian for info in self.jacobians)
+
+    @property
+    def check_words(self) -> str:
+        """What the self-test checks, for its docstring: the words of each routine of ``checks``, once each."""
+        routines = list(dict.fromkeys(check.routine for check in self.checks))
+        routines.sort(key=lambda routine: list(CHECK_WORDS).index(routine))
+        return "; ".join(CHECK_WORDS[routine] for routine in routines)
+
+    @property
+    def coupled_words(self) -> str:
+        """What the functions compute for a coupled robot (empty for another)."""
+        return COUPLED_WORDS if self.coupling else ""
 
     @property
     def q_words(self) -> str:

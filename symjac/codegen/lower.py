@@ -308,12 +308,17 @@ def lowered_torques(chain: Chain, J: LoweredFunction, rows: tuple[int, ...]) -> 
 
 
 class SymbolNames:
-    """Printed names for a function's symbols: validated robot names, fresh names for everything generated."""
+    """Printed names for a function's symbols: validated robot names, fresh names for everything generated.
 
-    def __init__(self, robot: Robot, taken: Iterable[str]):
+    ``symbols`` keep their own names (the coordinates and parameters of a module description, already validated);
+    a :class:`~symjac.model.robot.Robot` stands for its coordinates and parameters.
+    """
+
+    def __init__(self, symbols: Robot | Iterable[sp.Symbol], taken: Iterable[str]):
         self.taken = set(taken)
         self.mapping: dict[sp.Symbol, str] = {}
-        for symbol in (*robot.q, *robot.parameter_symbols):
+        own = (*symbols.q, *symbols.parameter_symbols) if isinstance(symbols, Robot) else tuple(symbols)
+        for symbol in own:
             self.mapping[symbol] = symbol.name
             self.taken.add(symbol.name)
 
@@ -329,9 +334,13 @@ class SymbolNames:
         return name
 
 
-def symbol_names(robot: Robot, lowered: LoweredFunction, taken: Iterable[str]) -> SymbolNames:
-    """Names for ``lowered``: ``s3``/``c3`` for joint 3's sine and cosine, ``f_x``.. for the wrench, ``x0``.."""
-    names = SymbolNames(robot, taken)
+def symbol_names(symbols: Robot | Iterable[sp.Symbol], lowered: LoweredFunction, taken: Iterable[str]
+                 ) -> SymbolNames:
+    """Names for ``lowered``: ``s3``/``c3`` for joint 3's sine and cosine, ``f_x``.. for the wrench, ``x0``..
+
+    ``symbols`` keep their names (:attr:`ModuleDescription.symbols <symjac.codegen.description.ModuleDescription>`).
+    """
+    names = SymbolNames(symbols, taken)
     for sine, cosine, _ in lowered.angles:  # _s3, _c3: joint 3's (its angle may be written in the coordinates)
         names.fresh(sine, sine.name.removeprefix("_"))
         names.fresh(cosine, cosine.name.removeprefix("_"))

@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import itertools
-import json
 import os
-import shlex
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,46 +14,38 @@ import sympy as sp
 from symjac._version import __version__
 from symjac.codegen.backends import backend
 from symjac.codegen.coupled import (
-    coordinate_bias_acceleration,
-    coordinate_forward_kinematics,
-    coordinate_hessian,
-    coordinate_jacobian,
-    coordinate_kinematics,
-    coordinate_torques,
     coupling_lines,
 )
 from symjac.codegen.description import (
-    Argument,
     FunctionDescription,
-    FunctionKind,
-    FunctionSpec,
-    IdentifierRule,
     JacobianInfo,
     ModuleDescription,
 )
-from symjac.codegen.lower import LoweredFunction, angle_expansion, lower_function
+from symjac.codegen.functions import (
+    defined_names,
+    derived_functions,
+    function_descriptions,
+    listing,
+    request_lines,
+    scalar_descriptions,
+    self_checks,
+)
 from symjac.codegen.printers import float_literal
+from symjac.codegen.provenance import names_relative_file, robot_loader
 from symjac.codegen.request import (
-    RESERVED,
     STRATEGIES,
     JacobianRequest,
     Strategy,
-    check_rows,
-    frame_text,
-    function_labels,
-    point_text,
-    point_words,
     python_call,
     requests_from,
     validate_robot,
 )
-from symjac.errors import CodegenError, SymjacError
+from symjac.errors import CodegenError
 from symjac.files import write_files, write_text
 from symjac.kinematics.chain import Chain, Frame, as_chain
-from symjac.kinematics.jacobian import ROW_NAMES, Point
+from symjac.kinematics.jacobian import Point
 from symjac.kinematics.propagation import joint_rate_symbols
-from symjac.model.io import catalog, load_robot
-from symjac.model.robot import WRENCH_NAMES, Robot
+from symjac.model.robot import Robot
 
 __all__ = [
     "STRATEGIES",
@@ -94,10 +84,18 @@ class ModuleRequest:
     name: str | None = None
 
 
-def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args: Any, **options: Any
-             ) -> ModuleDescription:
-    """The language-neutral description of the module :func:`generate` renders (same arguments, or a request)."""
-    request = robot if isinstance(robot, ModuleRequest) else ModuleRequest(robot, target, *args, **options)
+def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
+    """The language-neutral description of the module a :class:`ModuleRequest` asks for (what :func:`generate` renders).
+
+    The old form ``describe(robot, target, ...)`` (the arguments of :func:`generate`) still works but is deprecated:
+    it warns with a :class:`DeprecationWarning`; build ``ModuleRequest(robot, target, ...)`` instead.
+    """
+    if not isinstance(request, ModuleRequest):
+        warnings.warn("describe(robot, target, ...) is deprecated; pass a ModuleRequest(robot, target, ...)",
+                      DeprecationWarning, stacklevel=2)
+        request = ModuleRequest(request, *args, **options)
+    elif args or options:
+        raise CodegenError("describe takes a ModuleRequest alone; put the options in the request")
     spec = backend(request.target)
     if request.strategy not in STRATEGIES:
         raise CodegenError(f"unknown strategy {request.strategy!r}; choose one of {', '.join(STRATEGIES)}")
@@ -113,97 +111,23 @@ def describe(robot: Robot | Chain | ModuleRequest, target: str = "python", *args
     return module_header(request, chain, requests, functions, infos)
 
 
-def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool
-                          ) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
-    """Forward kinematics, then per Jacobian request its Jacobian, torques, kinematics (and acceleration functions)."""
-    model = chain.robot
-    q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
-    coupled = ", in the coordinates (J_q = J C)" if model.coupling is not None else ""
-    rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
-    functions: list[FunctionDescription] = []
-
-    def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:
-        functions.append(FunctionDescription(FunctionSpec(name, kind, summary, (q_argument, *arguments)), lowered))
-
-    add(coordinate_forward_kinematics(chain, strategy), "forward_kinematics", "forward_kinematics",
-        "The pose of the tool frame in frame {0}")
-    infos: list[JacobianInfo] = []
-    for request, label in zip(requests, function_labels(model, requests), strict=True):
-        point_name, point = point_text(model, request.point)
-        selected = check_rows(request.rows)
-        names = {kind: f"{kind}{label}" for kind in ("jacobian", "joint_torques", "manipulability",
-                                                      "jacobian_determinant", "_kinematics", "hessian",
-                                                      "bias_acceleration", "manipulability_gradient")}
-        J = coordinate_jacobian(chain, request.frame, point, selected, strategy)
-        where, at = frame_text(request.frame), point_words(point_name)
-        add(J, names["jacobian"], "jacobian", f"The basic Jacobian [v; omega] at the {at}, in frame {where}{coupled}")
-        add(coordinate_torques(chain, request.frame, point, selected, strategy), names["joint_torques"],
-            "joint_torques", f"Joint torques tau = {'C^T ' if coupled else ''}J^T F holding a wrench F at the {at}, "
-            f"F in frame {where}",
-            Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected), "Wrench (force, moment) at the point"))
-        add(coordinate_kinematics(chain, request.frame, point), names["_kinematics"], "kinematics",
-            "Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)")
-        if acceleration:
-            add(coordinate_hessian(chain, request.frame, point, selected, strategy), names["hessian"], "hessian",
-                f"The kinematic Hessian H[i, j, m] = dJ[i, j]/dq_m of ``{names['jacobian']}``")
-            add(coordinate_bias_acceleration(chain, request.frame, point, selected, strategy),
-                names["bias_acceleration"], "bias_acceleration",
-                f"The bias acceleration Jdot qdot of ``{names['jacobian']}`` (the acceleration at zero qddot)",
-                Argument("qdot", rates, "Coordinate rates" if coupled else "Joint rates"))
-        infos.append(JacobianInfo(
-            jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
-            determinant=names["jacobian_determinant"] if len(selected) == model.n_coordinates else None,
-            kinematics=names["_kinematics"], frame=where, point=point_name,
-            point_values=tuple(float_literal(v.subs(model.defaults)) for v in point),  # type: ignore[arg-type]
-            rows=selected, row_names=tuple(ROW_NAMES[r] for r in selected),
-            wrench_names=tuple(WRENCH_NAMES[r] for r in selected),
-            **({"hessian": names["hessian"], "bias_acceleration": names["bias_acceleration"],
-                "manipulability_gradient": names["manipulability_gradient"]} if acceleration else {}),
-        ))
-    return functions, infos
-
-
-def _defined_names(functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> set[str]:
-    """Every function name the module defines: the lowered ones and those computed from a Jacobian."""
-    defined = {f.name for f in functions} | {i.manipulability for i in infos}
-    defined |= {i.determinant for i in infos if i.determinant}
-    return defined | {i.manipulability_gradient for i in infos if i.manipulability_gradient}
-
-
-def scalar_descriptions(chain: Chain, scalars: Mapping[str, sp.Expr], functions: Sequence[FunctionDescription],
-                        infos: Sequence[JacobianInfo], identifiers: IdentifierRule) -> list[FunctionDescription]:
-    """The extra scalar functions of the joint variables and parameters, names checked against everything else."""
-    model = chain.robot
-    defined = _defined_names(functions, infos)
-    q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
-    found: list[FunctionDescription] = []
-    for scalar_name, expr in scalars.items():
-        identifiers.check(scalar_name, "scalar function name", {**RESERVED, **{n: "a function" for n in defined}})
-        if scalar_name.startswith("_") or scalar_name in {p.name for p in model.parameters}:
-            raise CodegenError(f"scalar function name {scalar_name!r} is private or a parameter name")
-        lowered = lower_function(angle_expansion(chain), [sp.sympify(expr)], (), (("q", model.q),),
-                                 model.parameter_symbols, "given expression")
-        found.append(FunctionDescription(FunctionSpec(scalar_name, "scalar", f"The scalar function {scalar_name}",
-                                                      (q_argument,)), lowered))
-        defined.add(scalar_name)
-    return found
-
-
 def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[JacobianRequest],
                   functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> ModuleDescription:
     """The module around its functions: robot facts, exported names and the command that regenerates it."""
     model = chain.robot
     spec = backend(request.target)
     exports = ({"PARAMETERS", "JOINTS", "ROBOT", "selftest", *spec.exports}
-               | {f.name for f in functions if not f.name.startswith("_")} | _defined_names((), infos))
+               | {f.name for f in functions if not f.name.startswith("_")} | defined_names((), infos))
     command, shell = request.command, request.command is not None
     if command is None:
-        loader, command_note = _robot_loader(request.robot if isinstance(request.robot, Robot) else model)
+        loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
                               request.acceleration, request.name)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
-        command_note = "in the folder it was run in" if _names_relative_file(source, command) else ""
+        command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
+    coupled, n = model.coupling is not None, model.n_coordinates
+    derived = derived_functions(infos, n, coupled)
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
@@ -214,52 +138,11 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
-        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (), chain=chain,
+        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (),
+        coordinate_symbols=tuple(model.q), parameter_symbols=tuple(model.parameter_symbols),
+        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled), checks=self_checks(infos),
+        request_lines=request_lines(infos),
     )
-
-
-def _q_words(robot: Robot) -> str:
-    """What the entries of ``q`` are: the joint values, or a coupled robot's independent coordinates."""
-    return "Joint values" if robot.coupling is None else "Independent coordinates"
-
-
-def _robot_loader(robot: Robot) -> tuple[str, str]:
-    """How the header's Python call gets ``robot`` back, and a note when that needs saying.
-
-    A catalog robot loads by name, a robot from a file by the file's path as it was given (the note says from which
-    folder when it is relative) as long as loading it again gives the same robot; anything else (a mapping, a URDF
-    that needed ``tip_link``) is written ``robot`` and the note says which robot that is.
-    """
-    candidates = [robot.name] if robot.name in catalog() else []
-    candidates += [robot.source] if robot.source not in ("<mapping>", "<string>") else []
-    for candidate in candidates:
-        try:
-            same = load_robot(candidate) == robot
-        except SymjacError:
-            continue
-        if same:
-            path = Path(candidate)
-            relative = candidate not in catalog() and not path.is_absolute() and path.is_file()
-            return f"symjac.load_robot({_string(candidate)})", "in the folder it was run in" if relative else ""
-    origin = "a mapping" if robot.source in ("<mapping>", "<string>") else robot.source
-    return "robot", f"robot: the Robot given to symjac.generate, from {origin}"
-
-
-def _string(text: str) -> str:
-    """A Python string literal for ``text`` in double quotes, control characters escaped (JSON's are Python's)."""
-    return json.dumps(text)
-
-
-def _names_relative_file(source: str, command: str) -> bool:
-    """Whether the command line refers to the robot file, or writes its output, through a relative path."""
-    try:
-        words = shlex.split(command)
-    except ValueError:
-        return False
-    outputs = [after for before, after in itertools.pairwise(words) if before in ("-o", "--output")]
-    outputs += [word.split("=", 1)[1] for word in words if word.startswith("--output=")]
-    paths = [source] if Path(source).is_file() and source in words else []
-    return any(not Path(path).is_absolute() and path != "-" for path in paths + outputs)
 
 
 def _sorted_exports(names: Iterable[str]) -> list[str]:

@@ -17,6 +17,7 @@ from typing import Any
 import sympy as sp
 from sympy.printing.precedence import PRECEDENCE
 
+from symjac.codegen.names import PYTHON_IDENTIFIERS
 from symjac.errors import CodegenError
 from symjac.symbolic.dag import distinct_nodes
 
@@ -47,8 +48,6 @@ def check_identifier(name: Any, what: str, reserved: Mapping[str, str] | None = 
     ...
     symjac.errors.CodegenError: parameter name 'lambda' is a Python keyword
     """
-    from symjac.codegen.description import PYTHON_IDENTIFIERS  # description imports lower, which imports this
-
     return PYTHON_IDENTIFIERS.check(name, what, reserved)
 
 

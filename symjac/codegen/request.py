@@ -12,7 +12,7 @@ from typing import Literal, get_args
 
 import sympy as sp
 
-from symjac.codegen.description import PYTHON_IDENTIFIERS, IdentifierRule
+from symjac.codegen.names import PYTHON_IDENTIFIERS, RESERVED, IdentifierRule
 from symjac.codegen.printers import check_expression, float_literal
 from symjac.errors import ArgumentError, CodegenError
 from symjac.kinematics.chain import Chain, Frame
@@ -44,26 +44,6 @@ STRATEGIES: tuple[str, ...] = get_args(Strategy)
 
 strategy_of = one_of(STRATEGIES, "strategy")
 """The :func:`~symjac.kinematics.memo.memoized` normaliser of a lowering strategy: one of :data:`STRATEGIES`."""
-
-# Names every generated module defines or imports for itself, with the reason a parameter may not take them.
-RESERVED: Mapping[str, str] = {
-    **{name: "an argument of the generated functions" for name in ("q", "qdot", "out", "wrench", "samples",
-                                                                    "seed", "tolerance", "threads")},
-    **{name: "an import of the generated module" for name in ("annotations", "np", "sympy", "math", "os", "sys",
-                                                               "cos", "sin", "sqrt", "pi", "random", "threading",
-                                                               "importlib", "sysconfig", "hashlib", "shutil",
-                                                               "subprocess", "tempfile", "Path", "Sequence",
-                                                               "ArrayLike", "MappingProxyType", "Any")},
-    **{name: "a constant of the generated module" for name in ("PARAMETERS", "JOINTS", "ROBOT", "CONVENTION",
-                                                                "SYMJAC_VERSION", "JACOBIANS", "BACKEND", "THREADS",
-                                                                "BUILD_ERROR", "DOF")},
-    **{name: "a function of the generated module" for name in ("selftest", "forward_kinematics", "jacobian",
-                                                                "joint_torques", "manipulability",
-                                                                "jacobian_determinant", "hessian",
-                                                                "bias_acceleration", "manipulability_gradient",
-                                                                "kinematics")},
-}
-
 
 @dataclass(frozen=True)
 class JacobianRequest:

@@ -14,7 +14,6 @@ import sympy as sp
 
 from symjac.codegen.lower import LoweredFunction, SymbolNames
 from symjac.errors import CodegenError
-from symjac.model.robot import Robot
 
 __all__ = [
     "LINE_WIDTH",
@@ -176,13 +175,14 @@ def unpack(names: Sequence[str], value: str, indent: str) -> list[str]:
     return lines
 
 
-def input_lines(robot: Robot, lowered: LoweredFunction, names: SymbolNames, indent: str) -> list[str]:
-    """Unpack the argument rows (and the parameters) into the generated local names."""
+def input_lines(parameters: Sequence[sp.Symbol], lowered: LoweredFunction, names: SymbolNames, indent: str
+                ) -> list[str]:
+    """Unpack the argument rows (and the ``parameters``, the module's parameter symbols) into the local names."""
     lines: list[str] = []
     for argument, symbols in lowered.inputs:
         lines += unpack(entry_names(lowered, names, symbols), argument, indent)
-    if robot.parameters:
-        lines += unpack(entry_names(lowered, names, robot.parameter_symbols), "parameters", indent)
+    if parameters:
+        lines += unpack(entry_names(lowered, names, parameters), "parameters", indent)
     return lines
 
 

@@ -16,6 +16,7 @@ import sympy as sp
 
 from symjac.codegen.backends.c.printer import CPrinter, RealPrinter
 from symjac.codegen.description import FunctionDescription, ModuleDescription
+from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction, symbol_names
 from symjac.codegen.source_layout import comment_lines, wrap_statement
 
@@ -27,6 +28,7 @@ __all__ = [
     "block_comment",
     "c_function",
     "c_statements",
+    "call_statement",
     "comment",
     "declaration",
     "header_comments",
@@ -58,8 +60,6 @@ _LOCALS = frozenset(("q", "p", "params", "F", "qdot", "T", "J", "tau", "H", "out
                      "S", "C"))
 """Names the generated functions use themselves: a temporary never takes one."""
 
-_OUTPUT = {"forward_kinematics": "T", "jacobian": "J", "joint_torques": "tau", "kinematics": "out", "hessian": "H",
-           "bias_acceleration": "out", "scalar": ""}
 _INPUT = {"q": "q", "wrench": "F", "qdot": "qdot"}
 
 
@@ -81,6 +81,7 @@ class CFunction:
     op_count: int
     trig_count: int
     origin: str
+    layout: str = ""  # how a flat three-dimensional output is indexed (the kinds table's layout)
 
     @property
     def body_name(self) -> str:
@@ -177,6 +178,31 @@ def declaration(head: str, arguments: list[str], width: int = 119) -> tuple[str,
     return (*lines, current)
 
 
+def call_statement(head: str, function: str, arguments: list[object], width: int = 120) -> tuple[str, ...]:
+    """``head function(arguments);`` on one line, or broken after commas, continued four spaces further in.
+
+    Examples
+    --------
+    >>> call_statement("    n += ", "f", [1, "q"])
+    ('    n += f(1, q);',)
+    >>> call_statement("  ", "f", ["alpha", "beta", "gamma"], width=18)
+    ('  f(alpha, beta,', '      gamma);')
+    """
+    texts = [str(argument) for argument in arguments]
+    line = f"{head}{function}({', '.join(texts)});"
+    if len(line) <= width:
+        return (line,)
+    indent = " " * (len(head) - len(head.lstrip()) + 4)
+    lines, current = [], f"{head}{function}("
+    for k, text in enumerate(texts):
+        piece = text + (", " if k < len(texts) - 1 else ");")
+        if len(current) + len(piece.rstrip()) > width:
+            lines.append(current.rstrip())
+            current = indent
+        current += piece
+    return (*lines, current)
+
+
 def comment(text: str) -> str:
     r"""``text`` made safe inside a C block comment: no comment delimiters, trigraphs or line breaks survive.
 
@@ -243,10 +269,8 @@ def c_statements(lowered: LoweredFunction, mapping: Mapping[sp.Symbol, str], pri
 
 def c_function(description: ModuleDescription, function: FunctionDescription, dialect: Dialect) -> CFunction:
     """Print one function: sines and cosines of the angles it uses, the temporaries, then each output entry."""
-    chain = description.chain
-    assert chain is not None
-    robot, lowered = chain.robot, function.lowered
-    names = symbol_names(robot, lowered, dialect.reserved | _LOCALS)
+    lowered = function.lowered
+    names = symbol_names(description.symbols, lowered, dialect.reserved | _LOCALS)
     mapping = dict(names.mapping)
     inputs = []
     for argument, symbols in lowered.inputs:
@@ -254,9 +278,10 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
             mapping[symbol] = f"{_INPUT[argument]}[{k}]"
     for spec_argument in function.spec.arguments[1:]:
         inputs.append((_INPUT[spec_argument.name], len(spec_argument.entries), comment(spec_argument.description)))
-    for k, symbol in enumerate(robot.parameter_symbols):
+    for k, symbol in enumerate(description.parameter_symbols):
         mapping[symbol] = dialect.parameter(k, symbol.name)
-    output = _OUTPUT[function.kind]
+    kind = kind_spec(function.kind)
+    output = kind.output
     statements = c_statements(lowered, mapping, dialect.printer(mapping), "    ", "real",
                               lambda k: dialect.element(output, lowered.shape, k) if output else None,
                               dialect.angle_array)
@@ -265,6 +290,7 @@ def c_function(description: ModuleDescription, function: FunctionDescription, di
     static = function.name.startswith("_")
     name = f"{description.robot}{'' if static else '_'}{function.name}"
     return CFunction(name=name, base=function.name.lstrip("_"), kind=function.kind,
+                     layout=kind.layout.format(shape=lowered.shape) if kind.layout else "",
                      summary=comment(function.spec.summary), static=static,
                      inputs=tuple(inputs), output=output, size=size, shape=lowered.shape, body=tuple(body),
                      angles=statements.angle_values, op_count=lowered.op_count, trig_count=lowered.trig_count,

@@ -13,9 +13,11 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
-from symjac.codegen.description import Backend, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
-from symjac.codegen.request import RESERVED
+from symjac.codegen.names import RESERVED
+from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import (
     LINE_WIDTH,
     check_layout,
@@ -24,8 +26,6 @@ from symjac.codegen.source_layout import (
     tuple_literal,
     wrap_statement,
 )
-from symjac.errors import CodegenError
-from symjac.kinematics.chain import Chain
 from symjac.resources import render_template
 
 __all__ = [
@@ -61,6 +61,8 @@ class GeneratedFunction:
     output_lines: tuple[str, ...] = ()
     constant: tuple[bool, ...] = ()
     uses: tuple[str, ...] = ()
+    returns: str = ""
+    selftest_only: bool = False
 
     @property
     def kernel_name(self) -> str:
@@ -117,11 +119,12 @@ def generated_function(lowered: LoweredFunction, spec: FunctionSpec, body: Seque
         name=spec.name, kind=spec.kind, summary=spec.summary, arguments=spec.arguments, shape=lowered.shape,
         op_count=lowered.op_count, trig_count=lowered.trig_count, origin=lowered.origin, body=tuple(body),
         outputs=tuple(outputs), output_lines=tuple(output_lines), constant=constant, uses=tuple(sorted(used)),
+        returns=spec.returns, selftest_only=kind_spec(spec.kind).selftest_only,
     )
 
 
-Emitter = Callable[[Chain, LoweredFunction, FunctionSpec, frozenset[str]], GeneratedFunction]
-"""Print one lowered function for a target: ``emit(chain, lowered, spec, taken_names)``."""
+Emitter = Callable[[ModuleDescription, FunctionDescription, frozenset[str]], GeneratedFunction]
+"""Print one function of a module for a target: ``emit(description, function, taken_names)``."""
 
 Extras = Callable[[ModuleDescription, frozenset[str]], Mapping[str, str]]
 """Module-level text a target needs besides its functions (the C target's kernel source and extension name)."""
@@ -144,6 +147,7 @@ class PythonModule:
     functions: tuple[GeneratedFunction, ...]
     imports: tuple[str, ...]
     extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    runtime: str = ""  # the runtime's text, copied into the module at its end
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__"):
@@ -165,6 +169,28 @@ class PythonModule:
     def rate_names_lines(self) -> tuple[str, ...]:
         """``_RATE_NAMES = ("thetadot1", "ddot2")``: the joint rate names as Python source lines."""
         return tuple(tuple_lines("_RATE_NAMES = ", (f'"{name}"' for name in self.description.rates)))
+
+    @property
+    def check_lines(self) -> tuple[str, ...]:
+        """The self-test's checks as the entries of a tuple: ``("jacobian", (jacobian, ...), (0, 1)),`` each.
+
+        ``module.checks`` laid out for the runtime's ``_selftest_error``: routine, functions, rows; one line per check
+        if it fits, else one line per part.
+        """
+        lines: list[str] = []
+        for check in self.description.checks:
+            parts = [f'"{check.routine}"', tuple_literal(check.functions),
+                     tuple_literal(str(row) for row in check.rows) if check.rows else "()"]
+            single = f"    ({', '.join(parts)}),"
+            if len(single) <= LINE_WIDTH:
+                lines.append(single)
+                continue
+            lines += ["    (", f"        {parts[0]},"]
+            for items in (check.functions, tuple(str(row) for row in check.rows)):
+                part = tuple_lines("        ", items) if items else ["        ()"]
+                lines += [*part[:-1], part[-1] + ","]
+            lines.append("    ),")
+        return tuple(lines)
 
     @property
     def joints_lines(self) -> tuple[str, ...]:
@@ -194,17 +220,15 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
     always = tuple(imports)
 
     def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
-        chain = description.chain
-        if chain is None:
-            raise CodegenError("internal error: the module description carries no chain")
         taken = frozenset(RESERVED) | set(description.parameter_names)
-        functions = tuple(emit(chain, f.lowered, f.spec, taken) for f in description.functions)
+        functions = tuple(emit(description, f, taken) for f in description.functions)
         module = PythonModule(
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,
             imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always))),
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
+            runtime=runtime_source(backend.runtime) if backend.runtime else "",
         )
         name = backend.files[0].format(robot=description.robot)
         return check_layout({name: render_template(backend.template, module=module)})

@@ -53,10 +53,8 @@ def c_sources(description: ModuleDescription, taken: frozenset[str]) -> Mapping[
     names, do not constrain them).
     """
     del taken
-    if description.chain is None:
-        raise CodegenError("internal error: the module description carries no chain")
     dialect = dataclasses.replace(C_DIALECT, reserved=C_KEYWORDS | _MATH)
-    functions = tuple(c_function(description, f, dialect) for f in description.functions if f.kind != "kinematics")
+    functions = tuple(c_function(description, f, dialect) for f in description.functions if not f.selftest_only)
     data = {
         "module": description,
         "functions": functions,
@@ -65,10 +63,11 @@ def c_sources(description: ModuleDescription, taken: frozenset[str]) -> Mapping[
         "block_comment": block_comment,
         "batch_call": batch_call,
     }
-    # The name carries a hash of the source so that a changed module never loads a stale cached extension.
-    body = render_template(KERNELS_TEMPLATE, extension="MODULE_NAME", **data)
+    # The name carries a hash of the source so that a changed module never loads a stale cached extension; it is
+    # defined in the source's first line, so the source is rendered once and hashed without it.
+    body = render_template(KERNELS_TEMPLATE, **data)
     module = f"_symjac_{description.robot}_{hashlib.sha256(body.encode()).hexdigest()[:16]}"
-    source = render_template(KERNELS_TEMPLATE, extension=module, **data)
+    source = f"#define SJ_EXTENSION {module}\n{body}"
     if '"""' in source or "\\" in source:
         raise CodegenError("internal error: the C source cannot be embedded in a Python raw string")
     return {"c_source": source, "c_module": module}
@@ -91,4 +90,5 @@ BACKEND = Backend(
     render=python_module_renderer(numpy_function, extras=c_sources),
     dependencies=("numpy",),
     exports=("BACKEND",),
+    runtime="numpy.py",
 )

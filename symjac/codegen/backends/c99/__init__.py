@@ -12,14 +12,23 @@ each public function computes the sines and cosines of the angles it uses and pa
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 
-from symjac.codegen.backends._c_family import C_DIALECT, block_comment, c_function, declaration, header_comments
+from symjac.codegen.backends._c_family import (
+    C_DIALECT,
+    block_comment,
+    c_function,
+    call_statement,
+    comment,
+    declaration,
+    header_comments,
+)
 from symjac.codegen.backends.c import C_KEYWORDS
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
+from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
-from symjac.errors import CodegenError
 from symjac.resources import render_template
 
 __all__ = ["BACKEND", "C99_KEYWORDS", "IDENTIFIERS", "LIBRARY_NAMES", "render"]
@@ -45,8 +54,6 @@ a robot ``sj_body`` would name its Jacobian like the Jacobian's body)."""
 
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header and the source file: ``{"<robot>.h": ..., "<robot>.c": ...}``."""
-    if description.chain is None:
-        raise CodegenError("internal error: the module description carries no chain")
     dialect = dataclasses.replace(C_DIALECT, reserved=C99_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES)
     functions = tuple(c_function(description, f, dialect) for f in description.functions)
     data = {
@@ -57,6 +64,11 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "defaults": tuple(float_literal(value) for _, value in description.parameters),
         "dimension": max([6, description.n_coordinates]),
         "declaration": declaration,
+        "wrap_call": call_statement,
+        "comment": comment,
+        "size": math.prod,
+        "c_names": lambda names: [f"{description.robot}{'' if name.startswith('_') else '_'}{name}" for name in names],
+        "runtime": runtime_source(backend.runtime).rstrip("\n"),
         "block_comment": block_comment,
         **header_comments(description),
     }
@@ -80,4 +92,5 @@ BACKEND = Backend(
     dependencies=(),
     batched=False,
     language="C",
+    runtime="c99.h",
 )

@@ -10,15 +10,21 @@ from __future__ import annotations
 
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.casadi.printer import CasadiPrinter
-from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec, IdentifierRule
-from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.description import (
+    PYTHON_IDENTIFIERS,
+    Backend,
+    FunctionDescription,
+    IdentifierRule,
+    ModuleDescription,
+)
+from symjac.codegen.kinds import KINDS
+from symjac.codegen.lower import symbol_names
 from symjac.codegen.source_layout import angle_lines, entry_names, temporary_lines, unpack, wrap_statement
-from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "casadi_function", "entry"]
 
-_OUTPUT = {"forward_kinematics": "T", "jacobian": "J", "joint_torques": "tau", "kinematics": "out", "hessian": "H",
-           "bias_acceleration": "out", "scalar": "value"}
+_OUTPUT = {name: spec.output or "value" for name, spec in KINDS.items() if not spec.derived}
+"""Each lowered kind's output name in its builder (the kinds table's C-family name; ``value`` for a scalar)."""
 
 IDENTIFIERS = PYTHON_IDENTIFIERS | IdentifierRule.of(
     "CasADi", ("jac", "hess", "null"), ("ca", "casadi", "p", "q", "wrench", "qdot", *_OUTPUT.values()))
@@ -39,22 +45,22 @@ def entry(shape: tuple[int, ...], k: int) -> str:
     return f"[{k}]"
 
 
-def casadi_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+def casadi_function(description: ModuleDescription, function: FunctionDescription, taken: frozenset[str]
                     ) -> GeneratedFunction:
     """The builder's body: symbols, unpacking, sines and cosines, temporaries, then each non-zero entry."""
+    lowered, spec = function.lowered, function.spec
     indent = "    "
-    robot = chain.robot
-    names = symbol_names(robot, lowered, taken | {"ca", "casadi", "p", *_OUTPUT.values()})
+    names = symbol_names(description.symbols, lowered, taken | {"ca", "casadi", "p", *_OUTPUT.values()})
     printer = CasadiPrinter(names.mapping)
     body: list[str] = []
     for argument, symbols in lowered.inputs:
         body.append(f'{indent}{argument} = ca.SX.sym("{argument}", {len(symbols)})')
-    body.append(f'{indent}p = ca.SX.sym("p", {len(robot.parameters)})')
+    body.append(f'{indent}p = ca.SX.sym("p", {len(description.parameter_symbols)})')
     for argument, symbols in lowered.inputs:
         body += unpack(entry_names(lowered, names, symbols), f"ca.vertsplit({argument})", indent)
-    if robot.parameters:
+    if description.parameter_symbols:
         used = lowered.used_symbols
-        parameter_names = [s.name if s in used else f"_{s.name}" for s in robot.parameter_symbols]
+        parameter_names = [s.name if s in used else f"_{s.name}" for s in description.parameter_symbols]
         body += unpack(parameter_names, "ca.vertsplit(p)", indent)
     body += angle_lines(lowered, names, printer, indent, "ca.")
     body += temporary_lines(lowered, names, printer, indent)
@@ -90,4 +96,5 @@ BACKEND = Backend(
     dependencies=("casadi",),
     batched=False,
     language="Python/CasADi",
+    runtime="casadi.py",
 )

@@ -18,8 +18,8 @@ from symjac.codegen.backends.c99 import C99_KEYWORDS, LIBRARY_NAMES
 from symjac.codegen.backends.cpp.printer import CppPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.printers import float_literal
+from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
-from symjac.errors import CodegenError
 from symjac.resources import render_template
 
 __all__ = ["BACKEND", "CPP_KEYWORDS", "IDENTIFIERS", "cpp_type", "render"]
@@ -69,8 +69,6 @@ DIALECT = Dialect(CPP_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES, CppPrinter, la
 
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header: ``{"<robot>.hpp": ...}``."""
-    if description.chain is None:
-        raise CodegenError("internal error: the module description carries no chain")
     functions = tuple(c_function(description, f, DIALECT) for f in description.functions if not f.name.startswith("_"))
     data = {
         "module": description,
@@ -79,6 +77,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "defaults": tuple(float_literal(value) for _, value in description.parameters),
         "line_comment": line_comment,
         "cpp_type": cpp_type,
+        "runtime": runtime_source(backend.runtime).rstrip("\n"),
         **header_comments(description),
     }
     name = backend.files[0].format(robot=description.robot)
@@ -99,4 +98,5 @@ BACKEND = Backend(
     render=render,
     batched=False,
     language="C++",
+    runtime="eigen.hpp",
 )

@@ -12,10 +12,15 @@ from collections.abc import Sequence
 
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.jax.printer import JaxPrinter
-from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec, IdentifierRule
-from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.description import (
+    PYTHON_IDENTIFIERS,
+    Backend,
+    FunctionDescription,
+    IdentifierRule,
+    ModuleDescription,
+)
+from symjac.codegen.lower import symbol_names
 from symjac.codegen.source_layout import LINE_WIDTH, angle_lines, entry_names, temporary_lines, unpack, wrap_statement
-from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "jax_function"]
 
@@ -23,11 +28,12 @@ IDENTIFIERS = PYTHON_IDENTIFIERS | IdentifierRule.of("JAX", (), ("jnp", "jax"))
 """Python's rule, and not the module's own import."""
 
 
-def jax_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+def jax_function(description: ModuleDescription, function: FunctionDescription, taken: frozenset[str]
                  ) -> GeneratedFunction:
     """The body: unpack each argument, sines and cosines, temporaries, then the entries stacked row by row."""
+    lowered, spec = function.lowered, function.spec
     indent = "    "
-    names = symbol_names(chain.robot, lowered, taken | {"jnp", "jax"})
+    names = symbol_names(description.symbols, lowered, taken | {"jnp", "jax"})
     printer = JaxPrinter(names.mapping)
     body: list[str] = []
     for argument, symbols in lowered.inputs:
@@ -85,4 +91,5 @@ BACKEND = Backend(
     dependencies=("jax",),
     batched=False,
     language="Python/JAX",
+    runtime="jax.py",
 )

@@ -4,21 +4,21 @@ from __future__ import annotations
 
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.lambdify.printer import SymPyPrinter
-from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec
-from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, ModuleDescription
+from symjac.codegen.lower import symbol_names
 from symjac.codegen.source_layout import angle_lines, input_lines, temporary_lines, wrap_statement
-from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "sympy_function"]
 
 
-def sympy_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+def sympy_function(description: ModuleDescription, function: FunctionDescription, taken: frozenset[str]
                    ) -> GeneratedFunction:
     """Statements that rebuild the CSE'd expressions in SymPy, returning the list of entries."""
+    lowered, spec = function.lowered, function.spec
     indent = "    "
-    names = symbol_names(chain.robot, lowered, taken)
+    names = symbol_names(description.symbols, lowered, taken)
     printer = SymPyPrinter(names.mapping)
-    body = input_lines(chain.robot, lowered, names, indent)
+    body = input_lines(description.parameter_symbols, lowered, names, indent)
     body += angle_lines(lowered, names, printer, indent, "sympy.")
     body += temporary_lines(lowered, names, printer, indent)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
@@ -43,4 +43,5 @@ BACKEND = Backend(
     nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs.",
     render=python_module_renderer(sympy_function),
     dependencies=("numpy", "sympy"),
+    runtime="numpy.py",
 )

@@ -4,21 +4,21 @@ from __future__ import annotations
 
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.numpy.printer import NumPyPrinter
-from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec
-from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, ModuleDescription
+from symjac.codegen.lower import symbol_names
 from symjac.codegen.source_layout import angle_lines, indices, input_lines, temporary_lines, wrap_statement
-from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "numpy_function"]
 
 
-def numpy_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+def numpy_function(description: ModuleDescription, function: FunctionDescription, taken: frozenset[str]
                    ) -> GeneratedFunction:
     """The block kernel: inputs are rows ``(size, m)``, ``out`` is ``shape + (m,)``; every write is contiguous."""
+    lowered, spec = function.lowered, function.spec
     indent = "    "
-    names = symbol_names(chain.robot, lowered, taken)
+    names = symbol_names(description.symbols, lowered, taken)
     printer = NumPyPrinter(names.mapping)
-    body = input_lines(chain.robot, lowered, names, indent)
+    body = input_lines(description.parameter_symbols, lowered, names, indent)
     body += angle_lines(lowered, names, printer, indent, "np.", pair="_sincos")  # one half-angle tangent for both
     body += temporary_lines(lowered, names, printer, indent)
     outputs = tuple(printer.doprint(e) for e in lowered.outputs)
@@ -44,4 +44,5 @@ BACKEND = Backend(
                "RuntimeWarning).",
     render=python_module_renderer(numpy_function),
     dependencies=("numpy",),
+    runtime="numpy.py",
 )

@@ -6,8 +6,8 @@ from collections.abc import Sequence
 
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.python.printer import PythonPrinter
-from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionSpec
-from symjac.codegen.lower import LoweredFunction, symbol_names
+from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, ModuleDescription
+from symjac.codegen.lower import symbol_names
 from symjac.codegen.source_layout import (
     LINE_WIDTH,
     angle_lines,
@@ -17,16 +17,16 @@ from symjac.codegen.source_layout import (
     unpack,
     wrap_statement,
 )
-from symjac.kinematics.chain import Chain
 
 __all__ = ["BACKEND", "python_function"]
 
 
-def python_function(chain: Chain, lowered: LoweredFunction, spec: FunctionSpec, taken: frozenset[str]
+def python_function(description: ModuleDescription, function: FunctionDescription, taken: frozenset[str]
                     ) -> GeneratedFunction:
     """The function body: unpack each argument (a wrong length is a ValueError), sines, temporaries, ``return``."""
+    lowered, spec = function.lowered, function.spec
     indent = "    "
-    names = symbol_names(chain.robot, lowered, taken)
+    names = symbol_names(description.symbols, lowered, taken)
     printer = PythonPrinter(names.mapping)
     body: list[str] = []
     for argument, symbols in lowered.inputs:
@@ -81,4 +81,5 @@ BACKEND = Backend(
                "ValueError from math.sin).",
     render=python_module_renderer(python_function, imports=("pi", "sqrt")),  # the self-test uses them always
     batched=False,
+    runtime="python.py",
 )

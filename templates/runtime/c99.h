@@ -1,0 +1,350 @@
+/* The numeric runtime of the c99 target: linear algebra and the self-test driver, C99 with the standard library.
+ *
+ * Every generated c99 source carries the part of this file below the runtime mark, unchanged (so that it compiles
+ * with the C standard library alone); before it, the source defines the type `real` and SJ_DIM, the largest side of
+ * any matrix, and includes <tgmath.h> (sqrt and fabs of the type real). Matrices are row-major arrays. Every
+ * function is static inline: a module that does not call one gets no warning and no code for it.
+ * Tested on its own: tests/test_codegen_runtime.py compiles it with a small driver and compares with numpy.linalg.
+ */
+#include <stddef.h>
+#include <tgmath.h>
+
+/* ---- runtime: everything below is copied into every generated module of the target ---- */
+
+/* A function of one configuration writing its output: (q, params, out), or with an input between (F, qdot). */
+typedef void (*sj_map)(const real *q, const real *params, real *out);
+typedef void (*sj_map_with)(const real *q, const real *params, const real *input, real *out);
+typedef real (*sj_scalar)(const real *q, const real *params);
+
+/* Determinant of the n x n row-major matrix a (overwritten): Gaussian elimination with partial pivoting. */
+static inline real sj_lu_determinant(real *a, int n)
+{
+    real result = 1;
+    for (int k = 0; k < n; k++) {
+        int pivot = k;
+        for (int r = k + 1; r < n; r++) {
+            if (fabs(a[r * n + k]) > fabs(a[pivot * n + k])) {
+                pivot = r;
+            }
+        }
+        if (a[pivot * n + k] == 0) {
+            return 0;
+        }
+        if (pivot != k) {
+            for (int c = 0; c < n; c++) {
+                const real swap = a[k * n + c];
+                a[k * n + c] = a[pivot * n + c];
+                a[pivot * n + c] = swap;
+            }
+            result = -result;
+        }
+        result *= a[k * n + k];
+        for (int r = k + 1; r < n; r++) {
+            const real factor = a[r * n + k] / a[k * n + k];
+            for (int c = k + 1; c < n; c++) {
+                a[r * n + c] -= factor * a[k * n + c];
+            }
+        }
+    }
+    return result;
+}
+
+/* det J of a square rows x cols Jacobian J (overwritten; cols == rows): the routine of the determinant kind. */
+static inline real sj_determinant(real *J, int rows, int cols)
+{
+    (void)cols;
+    return sj_lu_determinant(J, rows);
+}
+
+/* The Gram matrix of the shorter side of the rows x cols matrix J: J J^T (wide) or J^T J (tall); its side. */
+static inline int sj_gram(const real *J, int rows, int cols, real *g)
+{
+    const int wide = rows <= cols;
+    const int small = wide ? rows : cols, large = wide ? cols : rows;
+    for (int r = 0; r < small; r++) {
+        for (int c = 0; c < small; c++) {
+            real sum = 0;
+            for (int k = 0; k < large; k++) {
+                sum += wide ? J[r * cols + k] * J[c * cols + k] : J[k * cols + r] * J[k * cols + c];
+            }
+            g[r * small + c] = sum;
+        }
+    }
+    return small;
+}
+
+/* w = |det J| for a square J, else sqrt(det(G)) with G the Gram matrix of the shorter side. */
+static inline real sj_manipulability(const real *J, int rows, int cols)
+{
+    real g[SJ_DIM * SJ_DIM];
+    if (rows == cols) {
+        for (int k = 0; k < rows * cols; k++) {
+            g[k] = J[k];
+        }
+        return fabs(sj_lu_determinant(g, rows));
+    }
+    const real d = sj_lu_determinant(g, sj_gram(J, rows, cols, g));
+    return d > 0 ? sqrt(d) : 0;
+}
+
+/* Gauss-Jordan with partial pivoting on [g | x], g n x n and x n x m (both overwritten): x becomes g^-1 x. */
+static inline void sj_solve(real *g, real *x, int n, int m)
+{
+    for (int k = 0; k < n; k++) {
+        int pivot = k;
+        for (int r = k + 1; r < n; r++) {
+            if (fabs(g[r * n + k]) > fabs(g[pivot * n + k])) {
+                pivot = r;
+            }
+        }
+        for (int c = 0; c < n; c++) {
+            const real swap = g[k * n + c];
+            g[k * n + c] = g[pivot * n + c];
+            g[pivot * n + c] = swap;
+        }
+        for (int c = 0; c < m; c++) {
+            const real swap = x[k * m + c];
+            x[k * m + c] = x[pivot * m + c];
+            x[pivot * m + c] = swap;
+        }
+        const real diagonal = g[k * n + k];
+        for (int c = 0; c < n; c++) {
+            g[k * n + c] /= diagonal;
+        }
+        for (int c = 0; c < m; c++) {
+            x[k * m + c] /= diagonal;
+        }
+        for (int r = 0; r < n; r++) {
+            if (r == k) {
+                continue;
+            }
+            const real factor = g[r * n + k];
+            for (int c = 0; c < n; c++) {
+                g[r * n + c] -= factor * g[k * n + c];
+            }
+            for (int c = 0; c < m; c++) {
+                x[r * m + c] -= factor * x[k * m + c];
+            }
+        }
+    }
+}
+
+/* dw/dq_m = w trace(J^+ H_m), H_m[i][j] = H[(i * cols + j) * cols + m]; J^+ through one solve with the Gram matrix
+ * G: J^+ = (G^-1 J)^T for a wide J, G^-1 J^T for a tall one. Zero where w = 0 (a kink, not a gradient). */
+static inline void sj_manipulability_gradient(const real *J, const real *H, int rows, int cols, real *gradient)
+{
+    real g[SJ_DIM * SJ_DIM], a[SJ_DIM * SJ_DIM], x[SJ_DIM * SJ_DIM];
+    const int wide = rows <= cols;
+    const int small = sj_gram(J, rows, cols, g), large = wide ? cols : rows;
+    for (int k = 0; k < small * small; k++) {
+        a[k] = g[k];
+    }
+    const real d = sj_lu_determinant(a, small);
+    const real w = d > 0 ? sqrt(d) : 0;
+    for (int m = 0; m < cols; m++) {
+        gradient[m] = 0;
+    }
+    if (w == 0) {
+        return;
+    }
+    for (int i = 0; i < small; i++) {
+        for (int j = 0; j < large; j++) {
+            x[i * large + j] = wide ? J[i * cols + j] : J[j * cols + i];
+        }
+    }
+    sj_solve(g, x, small, large);
+    for (int m = 0; m < cols; m++) {
+        real trace = 0;
+        for (int i = 0; i < rows; i++) {
+            for (int j = 0; j < cols; j++) {
+                const real pseudo = wide ? x[i * large + j] : x[j * large + i]; /* J^+[j][i] */
+                trace += pseudo * H[(i * cols + j) * cols + m];
+            }
+        }
+        gradient[m] = w * trace;
+    }
+}
+
+/* x with M x = b for a symmetric positive definite n x n M (a mass matrix): M = L L^T, L y = b, L^T x = y.
+ * L[i][i] = sqrt(M[i][i] - sum_k<i L[i][k]^2), L[r][i] = (M[r][i] - sum_k<i L[r][k] L[i][k]) / L[i][i].
+ * Returns 1, or 0 (x untouched) when a pivot is not positive: M is not positive definite. */
+static inline int sj_cholesky_solve(const real *M, const real *b, int n, real *x)
+{
+    real L[SJ_DIM * SJ_DIM], y[SJ_DIM];
+    for (int i = 0; i < n; i++) {
+        real pivot = M[i * n + i];
+        for (int k = 0; k < i; k++) {
+            pivot -= L[i * n + k] * L[i * n + k];
+        }
+        if (!(pivot > 0)) {
+            return 0;
+        }
+        L[i * n + i] = sqrt(pivot);
+        for (int r = i + 1; r < n; r++) {
+            real sum = M[r * n + i];
+            for (int k = 0; k < i; k++) {
+                sum -= L[r * n + k] * L[i * n + k];
+            }
+            L[r * n + i] = sum / L[i * n + i];
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        real sum = b[i];
+        for (int k = 0; k < i; k++) {
+            sum -= L[i * n + k] * y[k];
+        }
+        y[i] = sum / L[i * n + i];
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        real sum = y[i];
+        for (int k = i + 1; k < n; k++) {
+            sum -= L[k * n + i] * x[k];
+        }
+        x[i] = sum / L[i * n + i];
+    }
+    return 1;
+}
+
+/* |a - b| within tolerance relative to 1 + |b|: 0 when it is, else 1 (a count of failures). */
+static inline int sj_differs(real a, real b, real tolerance)
+{
+    return !(fabs(a - b) <= tolerance * (1 + fabs(b)));
+}
+
+/* Self-test configuration `sample`: q[k] = 1.4 sin(0.7 (sample + 1)(k + 1) + 0.3 k), spread and reproducible. */
+static inline void sj_sample(int sample, int n, real *q)
+{
+    for (int k = 0; k < n; k++) {
+        q[k] = (real)1.4 * sin((real)0.7 * (real)((sample + 1) * (k + 1)) + (real)0.3 * (real)k);
+    }
+}
+
+/* Every check takes (n, size, rows, its functions, q, h, tolerance) and returns its count of failures. */
+
+/* The forward kinematics is a rigid transform: R^T R = I and the last row is (0, 0, 0, 1). */
+static inline int sj_check_pose(int n, int size, const int *rows, sj_map forward_kinematics, const real *q, real h,
+                                real tolerance)
+{
+    real T[16];
+    int failures = 0;
+    (void)n;
+    (void)size;
+    (void)rows;
+    (void)h;
+    forward_kinematics(q, NULL, T);
+    for (int r = 0; r < 3; r++) {
+        for (int c = 0; c < 3; c++) {
+            real dot = 0;
+            for (int k = 0; k < 3; k++) {
+                dot += T[k * 4 + r] * T[k * 4 + c];
+            }
+            failures += sj_differs(dot, r == c ? 1 : 0, tolerance);
+        }
+    }
+    for (int c = 0; c < 4; c++) {
+        failures += sj_differs(T[12 + c], c == 3 ? 1 : 0, tolerance);
+    }
+    return failures;
+}
+
+/* A Jacobian (rows `rows` of [v; omega], size of them, n columns) against central differences of its kinematics
+ * (point position, ^0_nR and ^0_kR: 21 values; omega from dR R^T), turned into frame {k}; its torques against
+ * J^T F. */
+static inline int sj_check_jacobian(int n, int size, const int *rows, sj_map jacobian, sj_map_with torques,
+                                    sj_map kinematics, const real *q, real h, real tolerance)
+{
+    real J[6 * SJ_DIM], at[21], plus[21], minus[21], step[SJ_DIM], F[6], tau[SJ_DIM];
+    int failures = 0;
+    jacobian(q, NULL, J);
+    kinematics(q, NULL, at);
+    for (int m = 0; m < n; m++) {
+        real twist[6];
+        for (int k = 0; k < n; k++) {
+            step[k] = q[k];
+        }
+        step[m] = q[m] + h;
+        kinematics(step, NULL, plus);
+        step[m] = q[m] - h;
+        kinematics(step, NULL, minus);
+        for (int i = 0; i < 3; i++) {
+            /* v in {0}, then omega in {0} from W = dR R^T: omega = (W[2][1], W[0][2], W[1][0]) */
+            const int a = (i + 2) % 3, b = (i + 1) % 3;
+            real w = 0;
+            for (int c = 0; c < 3; c++) {
+                w += (plus[3 + a * 3 + c] - minus[3 + a * 3 + c]) / (2 * h) * at[3 + b * 3 + c];
+            }
+            twist[i] = (plus[i] - minus[i]) / (2 * h);
+            twist[3 + i] = w;
+        }
+        for (int k = 0; k < size; k++) {
+            /* the row in frame {k}: (R_0k^T v)[i] or (R_0k^T omega)[i] */
+            const int base = rows[k] < 3 ? 0 : 3, i = rows[k] % 3;
+            real expected = 0;
+            for (int r = 0; r < 3; r++) {
+                expected += at[12 + r * 3 + i] * twist[base + r];
+            }
+            failures += sj_differs(J[k * n + m], expected, tolerance);
+        }
+    }
+    for (int k = 0; k < size; k++) {
+        F[k] = (real)0.3 + (real)0.2 * (real)k;
+    }
+    torques(q, NULL, F, tau);
+    for (int m = 0; m < n; m++) {
+        real expected = 0;
+        for (int k = 0; k < size; k++) {
+            expected += J[k * n + m] * F[k];
+        }
+        failures += sj_differs(tau[m], expected, tolerance);
+    }
+    return failures;
+}
+
+/* The Hessian, the manipulability gradient and the bias acceleration Jdot qdot of a Jacobian (size x n) against
+ * central differences of the Jacobian and of the manipulability. */
+static inline int sj_check_acceleration(int n, int size, const int *rows, sj_map jacobian, sj_map hessian,
+                                        sj_map_with bias, sj_scalar manipulability, sj_map manipulability_gradient,
+                                        const real *q, real h, real tolerance)
+{
+    real H[6 * SJ_DIM * SJ_DIM], Jplus[6 * SJ_DIM], Jminus[6 * SJ_DIM], qdot[SJ_DIM], out[6], step[SJ_DIM];
+    real gradient[SJ_DIM];
+    int failures = 0;
+    (void)rows;
+    hessian(q, NULL, H);
+    manipulability_gradient(q, NULL, gradient);
+    for (int m = 0; m < n; m++) {
+        for (int k = 0; k < n; k++) {
+            step[k] = q[k];
+        }
+        step[m] = q[m] + h;
+        jacobian(step, NULL, Jplus);
+        const real above = manipulability(step, NULL);
+        step[m] = q[m] - h;
+        jacobian(step, NULL, Jminus);
+        const real below = manipulability(step, NULL);
+        for (int i = 0; i < size * n; i++) {
+            failures += sj_differs(H[i * n + m], (Jplus[i] - Jminus[i]) / (2 * h), tolerance);
+        }
+        failures += sj_differs(gradient[m], (above - below) / (2 * h), tolerance);
+    }
+    for (int k = 0; k < n; k++) {
+        qdot[k] = (real)0.7 - (real)0.3 * (real)k;
+    }
+    bias(q, NULL, qdot, out);
+    for (int k = 0; k < n; k++) {
+        step[k] = q[k] + h * qdot[k];
+    }
+    jacobian(step, NULL, Jplus);
+    for (int k = 0; k < n; k++) {
+        step[k] = q[k] - h * qdot[k];
+    }
+    jacobian(step, NULL, Jminus);
+    for (int i = 0; i < size; i++) {
+        real expected = 0;
+        for (int k = 0; k < n; k++) {
+            expected += (Jplus[i * n + k] - Jminus[i * n + k]) / (2 * h) * qdot[k];
+        }
+        failures += sj_differs(out[i], expected, tolerance);
+    }
+    return failures;
+}

@@ -1,0 +1,97 @@
+"""The numeric runtime of the casadi target: manipulability, its gradient, solves and the self-test, in CasADi SX.
+
+Every generated module of the "casadi" target carries the part of this file below the runtime mark, unchanged, so
+that it imports with CasADi alone; the part above (this docstring and the imports) is the module's own. The
+routines build graphs (SX) from graphs: ``Function.generate()`` sees them as any other node. Tested on its own:
+``tests/test_codegen_runtime.py`` imports this file.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import casadi as ca
+
+# ---- runtime: everything below is copied into every generated module of the target ----
+
+
+def _selftest_error(checks: Sequence[tuple[str, tuple[ca.Function, ...], tuple[int, ...]]], n: int,
+                    defaults: Sequence[float], samples: int) -> float:
+    """The largest error of the self-test's ``checks``, relative to 1 + |entry|, at the default parameters.
+
+    Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
+    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or
+    ``"acceleration"`` (Jacobian, Hessian, bias acceleration, ...: against central differences of the Jacobian;
+    CasADi differentiates the manipulability itself).
+    """
+    step = 1e-6
+    p = ca.DM(defaults)
+    worst = 0.0
+
+    def error(actual: ca.DM, expected: ca.DM) -> float:
+        return float(ca.mmax(ca.fabs(actual - expected) / (1.0 + ca.fabs(expected))))
+
+    for sample in range(samples):
+        q = ca.DM([1.3 * math.sin(0.9 * (sample + 1) * (k + 1)) for k in range(n)])
+        unit = ca.DM.eye(n)
+        qdot = ca.DM([0.8 - 0.3 * k for k in range(n)])
+        for routine, functions, rows in checks:
+            if routine == "pose":
+                rotation = functions[0](q, p)[:3, :3]
+                worst = max(worst, error(ca.mtimes(rotation.T, rotation), ca.DM.eye(3)))
+            elif routine == "jacobian":
+                jacobian_function, torque_function, kinematics = functions
+                at = kinematics(q, p)
+                columns = []
+                for m in range(n):
+                    change = (kinematics(q + step * unit[:, m], p) - kinematics(q - step * unit[:, m], p)) / (2 * step)
+                    W = ca.mtimes(ca.reshape(change[3:12], 3, 3).T, ca.reshape(at[3:12], 3, 3))  # dR R^T = [omega]x
+                    frame = ca.reshape(at[12:21], 3, 3)  # column-major reshape of row-major entries: R^T
+                    omega = ca.vertcat(W[2, 1], W[0, 2], W[1, 0])
+                    twist = ca.vertcat(ca.mtimes(frame, change[:3]), ca.mtimes(frame, omega))
+                    columns.append(ca.vertcat(*[twist[row] for row in rows]))
+                J = jacobian_function(q, p)
+                worst = max(worst, error(J, ca.horzcat(*columns)))
+                wrench = ca.DM([0.3 + 0.2 * k for k in range(len(rows))])
+                worst = max(worst, error(torque_function(q, wrench, p), ca.mtimes(J.T, wrench)))
+            else:
+                jacobian_function, hessian_function, bias_function = functions[:3]
+                H = hessian_function(q, p)
+                for m in range(n):
+                    change = (jacobian_function(q + step * unit[:, m], p) - jacobian_function(q - step * unit[:, m], p))
+                    worst = max(worst, error(H[:, m * n:(m + 1) * n], change / (2 * step)))
+                change = (jacobian_function(q + step * qdot, p) - jacobian_function(q - step * qdot, p)) / (2 * step)
+                worst = max(worst, error(bias_function(q, qdot, p), ca.mtimes(change, qdot)))
+    return worst
+
+
+def _determinant(J: ca.SX, q: ca.SX | None = None) -> ca.SX:
+    """The determinant of a square Jacobian (CasADi's expansion); ``q``, the variables, is not needed."""
+    return ca.det(J)
+
+
+def _manipulability(J: ca.SX, q: ca.SX | None = None) -> ca.SX:
+    """The manipulability: |det J| for a square J, else sqrt(det G), G = J J^T (wide) or J^T J (tall).
+
+    ``q``, the variables, is not needed (every routine here takes its sources' results, then the variables).
+    """
+    rows, columns = J.shape
+    if rows == columns:
+        return ca.fabs(ca.det(J))
+    return ca.sqrt(ca.fmax(ca.det(ca.mtimes(J, J.T) if rows < columns else ca.mtimes(J.T, J)), 0.0))
+
+
+def _manipulability_gradient(J: ca.SX, H: ca.SX, q: ca.SX) -> ca.SX:
+    """Dw/dq by CasADi's own differentiation of the manipulability of J(q); zero where w = 0 (a kink there).
+
+    ``H`` (the Hessian) is not needed: CasADi differentiates the graph of w itself.
+    """
+    w = _manipulability(J)
+    return ca.if_else(w > 0, ca.gradient(w, q), ca.SX.zeros(q.numel(), 1))
+
+
+def _cholesky_solve(M: ca.SX, b: ca.SX) -> ca.SX:
+    """The solution x of M x = b, M symmetric positive definite: M = R^T R (``ca.chol``), R^T y = b, R x = y."""
+    R = ca.chol(M)
+    return ca.solve(R, ca.solve(R.T, b))

@@ -1,0 +1,96 @@
+// The numeric runtime of the cpp target: manipulability, its gradient, Cholesky solves, on Eigen 3.4, any scalar.
+//
+// Every generated cpp header carries the part of this file below the runtime mark, unchanged, inside its own
+// namespace (symjac::<robot>::runtime), so that two generated headers can be included together and each still
+// needs only Eigen. Every routine is a template on the scalar type and the fixed sizes; a decision on the shape
+// (square, wide or tall) is made at compile time. Tested on its own: tests/test_codegen_runtime.py compiles it.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include <Eigen/Dense>
+
+namespace symjac_runtime_test {
+
+// ---- runtime: everything below is copied into every generated module of the target ----
+namespace runtime {
+
+// The determinant of a square matrix (Eigen's: LU with partial pivoting for sizes above 4, cofactors below).
+template <class Scalar, int N>
+Scalar determinant(const Eigen::Matrix<Scalar, N, N>& J)
+{
+    return J.determinant();
+}
+
+// The manipulability w: |det J| for a square J, else sqrt(det G), G = J J^T (wide) or J^T J (tall); 0 if det G <= 0.
+template <class Scalar, int Rows, int Cols>
+Scalar manipulability(const Eigen::Matrix<Scalar, Rows, Cols>& J)
+{
+    using std::abs;
+    using std::sqrt;
+    if constexpr (Rows == Cols) {
+        return abs(J.determinant());
+    } else {
+        Scalar d;
+        if constexpr (Rows < Cols) {
+            d = (J * J.transpose()).determinant();
+        } else {
+            d = (J.transpose() * J).determinant();
+        }
+        return d > Scalar(0) ? Scalar(sqrt(d)) : Scalar(0);
+    }
+}
+
+// dw/dq_m = w trace(J^+ dJ/dq_m), H[m] = dJ/dq_m, J^+ through one solve with the Gram matrix G: J^+ = (G^-1 J)^T
+// for a wide J (G = J J^T), G^-1 J^T for a tall one (G = J^T J); zero where w = 0 (a kink, not a gradient).
+template <class Scalar, int Rows, int Cols, std::size_t Slices>
+Eigen::Matrix<Scalar, Cols, 1> manipulability_gradient(const Eigen::Matrix<Scalar, Rows, Cols>& J,
+                                                       const std::array<Eigen::Matrix<Scalar, Rows, Cols>, Slices>& H)
+{
+    static_assert(Slices == static_cast<std::size_t>(Cols), "one slice of H per column of J");
+    using std::sqrt;
+    Eigen::Matrix<Scalar, Cols, 1> gradient = Eigen::Matrix<Scalar, Cols, 1>::Zero();
+    if constexpr (Rows <= Cols) {
+        const Eigen::Matrix<Scalar, Rows, Rows> G = J * J.transpose();
+        const Scalar d = G.determinant();
+        if (!(d > Scalar(0))) {
+            return gradient;
+        }
+        const Scalar w = sqrt(d);
+        const Eigen::Matrix<Scalar, Rows, Cols> X = G.partialPivLu().solve(J);  // J^+ = X^T
+        for (int m = 0; m < Cols; m++) {
+            gradient(m) = w * X.cwiseProduct(H[m]).sum();
+        }
+    } else {
+        const Eigen::Matrix<Scalar, Cols, Cols> G = J.transpose() * J;
+        const Scalar d = G.determinant();
+        if (!(d > Scalar(0))) {
+            return gradient;
+        }
+        const Scalar w = sqrt(d);
+        const Eigen::Matrix<Scalar, Cols, Rows> X = G.partialPivLu().solve(J.transpose());  // J^+ = X
+        for (int m = 0; m < Cols; m++) {
+            gradient(m) = w * X.transpose().cwiseProduct(H[m]).sum();
+        }
+    }
+    return gradient;
+}
+
+// x with M x = b for a symmetric positive definite M (a mass matrix): M = L L^T (Eigen's LLT), then two triangular
+// solves; ok is false when M is not positive definite (x is then meaningless).
+template <class Scalar, int N>
+Eigen::Matrix<Scalar, N, 1> cholesky_solve(const Eigen::Matrix<Scalar, N, N>& M, const Eigen::Matrix<Scalar, N, 1>& b,
+                                           bool* ok = nullptr)
+{
+    const Eigen::LLT<Eigen::Matrix<Scalar, N, N>> factor(M);
+    if (ok != nullptr) {
+        *ok = factor.info() == Eigen::Success;
+    }
+    return factor.solve(b);
+}
+
+}  // namespace runtime
+// ---- end of runtime ----
+}  // namespace symjac_runtime_test

@@ -1,0 +1,101 @@
+"""The numeric runtime of the jax target: manipulability, its gradient, solves and the self-test, in jax.numpy.
+
+Every generated module of the "jax" target carries the part of this file below the runtime mark, unchanged, so that
+it imports with JAX alone; the part above (this docstring and the imports) is the module's own. Every routine is a
+pure function of arrays of one configuration (shape decisions are static), so ``jit``, ``vmap`` and ``grad``
+compose with it. Tested on its own: ``tests/test_codegen_runtime.py`` imports this file.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import jax.numpy as jnp
+from jax import Array
+from jax.typing import ArrayLike
+
+# ---- runtime: everything below is copied into every generated module of the target ----
+
+
+def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Array], ...], tuple[int, ...]]], n: int,
+                    samples: int, step: float) -> float:
+    """The largest error of the self-test's ``checks``, relative to 1 + |entry|, at ``samples`` configurations.
+
+    Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
+    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or
+    ``"acceleration"`` (Jacobian, Hessian, bias acceleration, manipulability, gradient: against central
+    differences).
+    """
+    worst = 0.0
+
+    def error(actual: ArrayLike, expected: ArrayLike) -> float:
+        return float(jnp.max(jnp.abs(jnp.asarray(actual) - expected) / (1.0 + jnp.abs(jnp.asarray(expected)))))
+
+    def central(function: Callable[[Array], Array], q: Array, direction: Array) -> Array:
+        return (function(q + step * direction) - function(q - step * direction)) / (2.0 * step)
+
+    for sample in range(samples):
+        q = 1.3 * jnp.sin(0.9 * (sample + 1) * jnp.arange(1.0, n + 1.0))
+        unit = jnp.eye(n, dtype=q.dtype)
+        qdot = jnp.linspace(0.8, -0.6, n)
+        for routine, functions, rows in checks:
+            if routine == "pose":
+                rotation = functions[0](q)[:3, :3]
+                worst = max(worst, error(rotation.T @ rotation, jnp.eye(3)))
+            elif routine == "jacobian":
+                jacobian_function, torque_function, kinematics = functions
+                at = kinematics(q)
+                columns = []
+                for m in range(q.shape[0]):
+                    change = central(kinematics, q, unit[m])
+                    W = change[3:12].reshape(3, 3) @ at[3:12].reshape(3, 3).T  # dR R^T = [omega]x
+                    twist = jnp.concatenate([change[:3], jnp.stack([W[2, 1], W[0, 2], W[1, 0]])])
+                    frame = at[12:21].reshape(3, 3)
+                    columns.append(jnp.concatenate([frame.T @ twist[:3], frame.T @ twist[3:]])[jnp.asarray(rows)])
+                J = jacobian_function(q)
+                worst = max(worst, error(J, jnp.stack(columns, axis=1)))
+                wrench = jnp.linspace(-0.7, 0.9, len(rows))
+                worst = max(worst, error(torque_function(q, wrench), J.T @ wrench))
+            else:
+                jacobian_function, hessian_function, bias_function, manipulability_function, gradient_function = (
+                    functions)
+                H = hessian_function(q)
+                for m in range(q.shape[0]):
+                    worst = max(worst, error(H[:, :, m], central(jacobian_function, q, unit[m])))
+                    worst = max(worst, error(gradient_function(q)[m], central(manipulability_function, q, unit[m])))
+                worst = max(worst, error(bias_function(q, qdot), central(jacobian_function, q, qdot) @ qdot))
+    return worst
+
+
+def _determinant(J: Array) -> Array:
+    """The determinant of a square Jacobian (``jnp.linalg.det``: LU with partial pivoting)."""
+    return jnp.linalg.det(J)
+
+
+def _manipulability(J: Array) -> Array:
+    """The manipulability: |det J| for a square J, else sqrt(det G), G = J J^T (wide) or J^T J (tall)."""
+    rows, columns = J.shape
+    if rows == columns:
+        return jnp.abs(jnp.linalg.det(J))
+    return jnp.sqrt(jnp.maximum(jnp.linalg.det(J @ J.T if rows < columns else J.T @ J), 0.0))
+
+
+def _manipulability_gradient(J: Array, H: Array) -> Array:
+    """Dw/dq_m = w trace(J^+ H[:, :, m]), J^+ from one solve with the Gram matrix of the shorter side; 0 where w = 0."""
+    rows, columns = J.shape
+    if rows <= columns:
+        G = J @ J.T
+        w = jnp.sqrt(jnp.maximum(jnp.linalg.det(G), 0.0))
+        trace = jnp.einsum("ij,ijm->m", jnp.linalg.solve(G, J), H)  # J^+ = (G^-1 J)^T
+    else:
+        G = J.T @ J
+        w = jnp.sqrt(jnp.maximum(jnp.linalg.det(G), 0.0))
+        trace = jnp.einsum("ji,ijm->m", jnp.linalg.solve(G, J.T), H)  # J^+ = G^-1 J^T
+    return jnp.where(w > 0.0, w * trace, 0.0)
+
+
+def _cholesky_solve(M: Array, b: Array) -> Array:
+    """The solution x of M x = b, M symmetric positive definite: M = L L^T, then L y = b and L^T x = y (NaN if not)."""
+    L = jnp.linalg.cholesky(M)
+    y = jnp.linalg.solve(L, b)
+    return jnp.linalg.solve(L.T, y)

@@ -1,0 +1,228 @@
+"""The numeric runtime of the plain-Python target: linear algebra and the self-test, standard library only.
+
+Every generated module of the "python" target carries the part of this file below the runtime mark, unchanged, so
+that it imports without symjac installed; the part above (this docstring and the imports) is the module's own.
+Tested on its own: ``tests/test_codegen_runtime.py`` imports this file and checks it against ``numpy.linalg``.
+
+Matrices are sequences of rows; every routine is a plain loop over floats.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable, Sequence, Sized
+from math import pi, sqrt
+from typing import Any
+
+# ---- runtime: everything below is copied into every generated module of the target ----
+
+
+def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Any], ...], tuple[int, ...]]],
+                    revolute: Sequence[bool], samples: int, seed: int) -> float:
+    """The largest error of the self-test's ``checks`` at ``samples`` random configurations (seeded).
+
+    Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
+    torques, kinematics: the Jacobian against central differences of the kinematics, the torques against J^T F)
+    or ``"acceleration"`` (Jacobian, Hessian, bias acceleration, manipulability, gradient: against central
+    differences). Angles are drawn in (-pi, pi), prismatic joints in (-1, 1).
+    """
+    generator = random.Random(seed)
+    worst = 0.0
+    for _ in range(samples):
+        q = [generator.uniform(-pi, pi) if flag else generator.uniform(-1.0, 1.0) for flag in revolute]
+        qdot: list[float] = []
+        for routine, functions, rows in checks:
+            if routine == "pose":
+                worst = max(worst, _pose_error(functions[0], q))
+            elif routine == "jacobian":
+                worst = max(worst, _jacobian_error(*functions, rows, q, generator))
+            else:
+                qdot = qdot or [generator.uniform(-1.0, 1.0) for _ in q]  # drawn once per configuration
+                worst = max(worst, _acceleration_error(*functions, q, qdot))
+    return worst
+
+
+def _pose_error(forward_kinematics: Callable[..., Sequence[Sequence[float]]], q: Sequence[float]) -> float:
+    """Largest entry of R^T R - I of the pose at ``q``."""
+    pose = forward_kinematics(q)
+    worst = 0.0
+    for r in range(3):
+        for c in range(3):
+            dot = sum(pose[k][r] * pose[k][c] for k in range(3))
+            worst = max(worst, abs(dot - (1.0 if r == c else 0.0)))
+    return worst
+
+
+def _jacobian_error(jacobian_function: Callable[..., Sequence[Sequence[float]]],
+                    torque_function: Callable[..., Sequence[float]], kinematics: Callable[..., Sequence[float]],
+                    rows: Sequence[int], q: Sequence[float], generator: random.Random) -> float:
+    """Largest relative error of a Jacobian (central differences of its kinematics) and its torques (J^T F)."""
+    worst = 0.0
+    expected = _finite_difference_jacobian(kinematics, q)
+    actual = jacobian_function(q)
+    for k, row in enumerate(rows):
+        for i in range(len(q)):
+            worst = max(worst, abs(actual[k][i] - expected[row][i]) / (1.0 + abs(expected[row][i])))
+    wrench = [generator.uniform(-1.0, 1.0) for _ in rows]
+    torques = torque_function(q, wrench)
+    for i in range(len(q)):
+        expected_torque = sum(actual[k][i] * wrench[k] for k in range(len(rows)))
+        worst = max(worst, abs(torques[i] - expected_torque) / (1.0 + abs(expected_torque)))
+    return worst
+
+
+def _acceleration_error(
+    jacobian_function: Callable[..., Sequence[Sequence[float]]],
+    hessian_function: Callable[..., Sequence[Sequence[Sequence[float]]]],
+    bias_function: Callable[..., Sequence[float]],
+    manipulability_function: Callable[..., float],
+    gradient_function: Callable[..., Sequence[float]],
+    q: Sequence[float],
+    qdot: Sequence[float],
+    step: float = 1e-6,
+) -> float:
+    """Largest relative error of the Hessian, Jdot qdot and the manipulability gradient against central differences.
+
+    Hessian slice m: (J(q + h e_m) - J(q - h e_m)) / 2h; Jdot qdot: (J(q + h qdot) - J(q - h qdot)) / 2h @ qdot;
+    gradient entry m: (w(q + h e_m) - w(q - h e_m)) / 2h.
+    """
+    H = hessian_function(q)
+    gradient = gradient_function(q)
+    worst = 0.0
+    for m in range(len(q)):
+        plus, minus = list(q), list(q)
+        plus[m] += step
+        minus[m] -= step
+        for i, (above, below) in enumerate(zip(jacobian_function(plus), jacobian_function(minus), strict=True)):
+            for j in range(len(q)):
+                expected = (above[j] - below[j]) / (2.0 * step)
+                worst = max(worst, abs(H[i][j][m] - expected) / (1.0 + abs(expected)))
+        slope = (manipulability_function(plus) - manipulability_function(minus)) / (2.0 * step)
+        worst = max(worst, abs(gradient[m] - slope) / (1.0 + abs(slope)))
+    forward = jacobian_function([x + step * v for x, v in zip(q, qdot, strict=True)])
+    backward = jacobian_function([x - step * v for x, v in zip(q, qdot, strict=True)])
+    for value, above, below in zip(bias_function(q, qdot), forward, backward, strict=True):
+        expected = sum((a - b) / (2.0 * step) * v for a, b, v in zip(above, below, qdot, strict=True))
+        worst = max(worst, abs(value - expected) / (1.0 + abs(expected)))
+    return worst
+
+
+def _finite_difference_jacobian(kinematics: Callable[..., Sequence[float]], q: Sequence[float],
+                                step: float = 1e-6) -> list[list[float]]:
+    """The 6 x n Jacobian [v; omega] in frame {k} by central differences of (point, ^0_nR) with ^0_kR."""
+    values = kinematics(q)
+    R_0_n, R_0_k = values[3:12], values[12:21]
+    columns = []
+    for i in range(len(q)):
+        plus, minus = list(q), list(q)
+        plus[i] += step
+        minus[i] -= step
+        above, below = kinematics(plus), kinematics(minus)
+        d = [(a - b) / (2.0 * step) for a, b in zip(above, below, strict=True)]
+        # (dR/dq_i) R^T is the skew matrix of the angular velocity column, both in frame {0}
+        W = [[sum(d[3 + 3 * r + m] * R_0_n[3 * c + m] for m in range(3)) for c in range(3)] for r in range(3)]
+        v = d[0:3]
+        w = [(W[2][1] - W[1][2]) / 2.0, (W[0][2] - W[2][0]) / 2.0, (W[1][0] - W[0][1]) / 2.0]
+        # into frame {k}: x_k = (^0_kR)^T x_0
+        columns.append([sum(R_0_k[3 * m + r] * x[m] for m in range(3)) for x in (v, w) for r in range(3)])
+    return [[column[k] for column in columns] for k in range(6)]
+
+
+def _determinant(matrix: Sequence[Sequence[float]]) -> float:
+    """Determinant by Gaussian elimination with partial pivoting: the product of the pivots, signed by the swaps."""
+    a = [list(row) for row in matrix]
+    size = len(a)
+    result = 1.0
+    for k in range(size):
+        pivot = max(range(k, size), key=lambda r: abs(a[r][k]))
+        if a[pivot][k] == 0.0:
+            return 0.0
+        if pivot != k:
+            a[k], a[pivot] = a[pivot], a[k]
+            result = -result
+        result *= a[k][k]
+        for r in range(k + 1, size):
+            factor = a[r][k] / a[k][k]
+            for c in range(k + 1, size):
+                a[r][c] -= factor * a[k][c]
+    return result
+
+
+def _manipulability(J: Sequence[Sequence[float]]) -> float:
+    """The manipulability: |det J| for a square J, else sqrt(det G), G the Gram matrix J J^T (wide) or J^T J (tall)."""
+    rows, columns = len(J), len(J[0])
+    if rows == columns:
+        return abs(_determinant(J))
+    small = min(rows, columns)
+    # the Gram matrix of the shorter side: J J^T (wide J) or J^T J (tall J)
+    gram = [[sum(_entry(J, r, k, rows < columns) * _entry(J, c, k, rows < columns) for k in range(max(rows, columns)))
+             for c in range(small)] for r in range(small)]
+    return sqrt(max(_determinant(gram), 0.0))
+
+
+def _entry(J: Sequence[Sequence[float]], i: int, k: int, by_row: bool) -> float:
+    return J[i][k] if by_row else J[k][i]
+
+
+def _manipulability_gradient(J: Sequence[Sequence[float]],
+                             H: Sequence[Sequence[Sequence[float]]]) -> tuple[float, ...]:
+    """The gradient w trace(J^+ H_m) for every m, J^+ from one solve with the Gram matrix; zero where w = 0."""
+    rows, columns = len(J), len(J[0])
+    wide = rows <= columns
+    small, large = min(rows, columns), max(rows, columns)
+    gram = [[sum(_entry(J, r, k, wide) * _entry(J, c, k, wide) for k in range(large)) for c in range(small)]
+            for r in range(small)]
+    w = sqrt(max(_determinant(gram), 0.0))
+    if w == 0.0:
+        return (0.0,) * columns
+    # the pseudo-inverse: J^T (J J^T)^-1 = ((J J^T)^-1 J)^T for a wide J, (J^T J)^-1 J^T for a tall one
+    if wide:
+        solved = _solve(gram, J)
+        inverse = [[solved[i][j] for i in range(rows)] for j in range(columns)]
+    else:
+        inverse = _solve(gram, [[J[k][j] for k in range(rows)] for j in range(columns)])
+    return tuple(w * sum(inverse[j][i] * H[i][j][m] for i in range(rows) for j in range(columns))
+                 for m in range(columns))
+
+
+def _solve(matrix: Sequence[Sequence[float]], right: Sequence[Sequence[float]]) -> list[list[float]]:
+    """X with matrix @ X = right, by Gauss-Jordan elimination with partial pivoting (matrix not singular)."""
+    a = [[*row, *extra] for row, extra in zip(matrix, right, strict=True)]
+    size = len(a)
+    for k in range(size):
+        pivot = max(range(k, size), key=lambda r: abs(a[r][k]))
+        a[k], a[pivot] = a[pivot], a[k]
+        for r in range(size):
+            if r != k:
+                factor = a[r][k] / a[k][k]
+                a[r] = [x - factor * y for x, y in zip(a[r], a[k], strict=True)]
+    return [[x / a[k][k] for x in a[k][size:]] for k in range(size)]
+
+
+def _cholesky_solve(matrix: Sequence[Sequence[float]], right: Sequence[float]) -> list[float]:
+    """The solution x of M x = b, M symmetric positive definite (a mass matrix): M = L L^T, two triangular solves.
+
+    L[i][i] = sqrt(M[i][i] - sum_k<i L[i][k]^2), L[r][i] = (M[r][i] - sum_k<i L[r][k] L[i][k]) / L[i][i]; then
+    L y = b forwards and L^T x = y backwards. Raises ValueError if M is not positive definite (a pivot <= 0).
+    """
+    size = len(matrix)
+    L = [[0.0] * size for _ in range(size)]
+    for i in range(size):
+        pivot = matrix[i][i] - sum(L[i][k] * L[i][k] for k in range(i))
+        if not pivot > 0.0:
+            raise ValueError(f"the matrix is not positive definite (pivot {i} is {pivot!r})")
+        L[i][i] = sqrt(pivot)
+        for r in range(i + 1, size):
+            L[r][i] = (matrix[r][i] - sum(L[r][k] * L[i][k] for k in range(i))) / L[i][i]
+    y = [0.0] * size
+    for i in range(size):
+        y[i] = (right[i] - sum(L[i][k] * y[k] for k in range(i))) / L[i][i]
+    x = [0.0] * size
+    for i in reversed(range(size)):
+        x[i] = (y[i] - sum(L[k][i] * x[k] for k in range(i + 1, size))) / L[i][i]
+    return x
+
+
+def _length_error(name: str, value: object, length: int) -> str:
+    got = f"{len(value)} values" if isinstance(value, Sized) else type(value).__name__
+    return f"{name} must be a sequence of {length} numbers, got {got}"

@@ -24,8 +24,8 @@ STAGES: list[tuple[str, ...]] = [
     ("kinematics",),
     ("analysis",),
     ("printing", "drawing"),
-    ("report", "codegen", "teaching", "sweeps"),
     ("quantities",),
+    ("report", "codegen", "teaching", "sweeps"),
     ("cli",),
 ]
 

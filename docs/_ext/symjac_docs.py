@@ -50,13 +50,13 @@ STAGES: list[tuple[str, str, str]] = [
     ("printing", "Printing", "LaTeX and plain text in textbook shorthand (s1, c12, s23)."),
     ("drawing", "Drawing the arm", "The arm in 3-D with its frames, ellipsoids and singular directions "
      "(extra ``draw``)."),
+    ("quantities", "Quantities", "Each derived quantity as one spec: its derivation, coupling law, document, "
+     "command and codegen kind (the seam new quantities plug into)."),
     ("codegen", "Code generation",
      "Numeric modules from the derived expressions: Python, NumPy, lambdify, a C extension, C99, C++/Eigen, JAX and "
      "CasADi."),
     ("report", "Report", "The derivation as one HTML page (extra ``report``)."),
     ("sweeps", "Design sweeps", "Singular and dexterity measures over parameter grids, on dask (extra ``sweep``)."),
-    ("quantities", "Quantities", "Each derived quantity as one spec: its derivation, coupling law, document, "
-     "command and codegen kind (the seam new quantities plug into)."),
     ("errors", "Errors and version", "Every error symjac raises derives from :class:`symjac.SymjacError`; each says "
      "what was wrong and where."),
 ]

@@ -27,21 +27,25 @@ from symjac.codegen.acceleration import lowered_bias_acceleration, lowered_hessi
 from symjac.codegen.lower import (
     LoweredFunction,
     angle_expansion,
+    lower_function,
     lowered_forward_kinematics,
     lowered_jacobian,
     lowered_kinematics,
     lowered_torques,
 )
 from symjac.codegen.request import rows_of, strategy_of
+from symjac.errors import CodegenError
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.coupling import coupling_matrix
 from symjac.kinematics.jacobian import point_vector
 from symjac.kinematics.memo import frame_of, memoized
 from symjac.kinematics.propagation import joint_rate_symbols
+from symjac.quantities.spec import LawName, entry_point
 
 __all__ = [
     "coordinate_angles",
     "coordinate_bias_acceleration",
+    "coordinate_derivation",
     "coordinate_forward_kinematics",
     "coordinate_hessian",
     "coordinate_jacobian",
@@ -207,3 +211,42 @@ def coordinate_bias_acceleration(chain: Chain, frame: Frame, point: tuple[sp.Exp
     if chain.robot.coupling is None:
         return bias
     return _in_coordinates(chain, bias, (len(rows),), None, ", qdot via C")
+
+
+@memoized()
+def coordinate_derivation(chain: Chain, derivation: str, law: LawName, where: tuple[object, ...] = (),
+                          rows: tuple[int, ...] = ()) -> LoweredFunction:
+    r"""A quantity's own derivation, lowered: the generic lowering of a quantity that names none (a plug-in).
+
+    ``derivation`` (``"module:function"``) is called with the chain of the joints, and with ``where`` = (frame,
+    point) as ``frame=``, ``point=`` for a per-request quantity; it returns a matrix or a scalar in the joint
+    variables. ``rows`` (if any) selects its rows. A one-column matrix becomes a vector. For a coupled robot the
+    result moves to the coordinates by ``law``: ``rates`` (:math:`\vartheta(q)` substituted), ``columns`` (times C)
+    or ``transposed`` (:math:`C^T v`).
+    """
+    joints = chain.joint_chain
+    derive = entry_point(derivation)
+    value = derive(joints) if not where else derive(joints, frame=where[0], point=where[1])
+    if isinstance(value, sp.MatrixBase):
+        matrix = sp.Matrix(value)
+        if rows:
+            matrix = matrix.extract(list(rows), list(range(matrix.cols)))
+        shape: tuple[int, ...] = (matrix.rows,) if matrix.cols == 1 else (matrix.rows, matrix.cols)
+        entries = list(matrix)
+    elif isinstance(value, sp.Expr | int | float):
+        shape, entries = (), [sp.sympify(value)]
+    else:
+        raise CodegenError(f"{derivation} returned a {type(value).__name__}; code generation takes a matrix or a "
+                           "scalar (or give the quantity a lowering of its own)")
+    model = joints.robot
+    lowered = lower_function(angle_expansion(joints), entries, shape, (("q", model.q),), model.parameter_symbols,
+                             f"the quantity's derivation {derivation}")
+    if chain.robot.coupling is None or law == "rates":
+        return lowered if chain.robot.coupling is None else _in_coordinates(chain, lowered, shape, None, "")
+    C = coupling_matrix(chain)
+    if law == "columns" and len(shape) == 2:
+        return _in_coordinates(chain, lowered, (shape[0], C.cols), _columns(C, shape[0]), ", times C")
+    if law == "transposed" and len(shape) == 1:
+        return _in_coordinates(chain, lowered, (C.cols,), _transposed(C), ", times C^T")
+    raise CodegenError(f"{derivation}: the {law} coupling law does not apply to a result of shape {shape}; give the "
+                       "quantity a lowering of its own")

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Literal
 
 import sympy as sp
 
@@ -33,9 +32,10 @@ __all__ = [
     "Renderer",
 ]
 
-FunctionKind = Literal["forward_kinematics", "jacobian", "joint_torques", "scalar", "kinematics", "hessian",
-                       "bias_acceleration", "manipulability", "jacobian_determinant", "manipulability_gradient"]
-"""The kinds of :data:`~symjac.codegen.kinds.KINDS` (its table says what each returns and how it is laid out)."""
+FunctionKind = str
+"""A kind of :data:`~symjac.codegen.kinds.KINDS` (its table says what each returns and how it is laid out): the
+quantities' kinds (``"forward_kinematics"``, ``"jacobian"``, ...) and code generation's own (``"kinematics"``,
+``"scalar"``, ``"jacobian_determinant"``, ``"manipulability_gradient"``)."""
 
 
 @dataclass(frozen=True)
@@ -231,7 +231,12 @@ class Backend:
 
 @dataclass(frozen=True)
 class JacobianInfo:
-    """Names and meaning of the functions generated for one Jacobian request."""
+    """Names and meaning of the functions generated for one Jacobian request.
+
+    ``functions`` holds every function of the request, (kind, name, shape), lowered ones in module order then the
+    derived ones: what a new quantity's per-request function is found by. The named fields are the functions the
+    self-test's checks and headers name.
+    """
 
     jacobian: str
     joint_torques: str
@@ -247,6 +252,7 @@ class JacobianInfo:
     hessian: str | None = None
     bias_acceleration: str | None = None
     manipulability_gradient: str | None = None
+    functions: tuple[tuple[str, str, tuple[int, ...]], ...] = ()
 
 
 @dataclass(frozen=True)

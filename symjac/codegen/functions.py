@@ -1,36 +1,31 @@
 """The functions of a generated module, as language-neutral descriptions: named, documented from the kinds table.
 
-Forward kinematics, then per Jacobian request its Jacobian, torques and kinematics (and with ``acceleration`` its
-Hessian and bias acceleration), each lowered (:mod:`~symjac.codegen.lower`, coupled robots through
+The module-scoped kinds (forward kinematics), then per Jacobian request its kinds in the order of
+:func:`~symjac.codegen.kinds.generated_kinds` (the Jacobian, torques, the self-test's kinematics; with
+``acceleration`` the Hessian and bias acceleration), each lowered by its kind's lowering (coupled robots through
 :mod:`~symjac.codegen.coupled`); the functions derived from those by the runtime (manipulability, determinant,
-gradient); the module docstring's list of functions. What each kind returns and how it is documented comes from
-:data:`~symjac.codegen.kinds.KINDS`: this is the one place that fills it in.
+gradient); the module docstring's list of functions. Which kinds exist, what each returns and how it is documented
+comes from :data:`~symjac.codegen.kinds.KINDS`, made from the quantities' specs: this is the one place that fills
+it in, and a new quantity needs no line here.
 """
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Mapping, Sequence
 
 import sympy as sp
 
-from symjac.codegen.coupled import (
-    coordinate_bias_acceleration,
-    coordinate_forward_kinematics,
-    coordinate_hessian,
-    coordinate_jacobian,
-    coordinate_kinematics,
-    coordinate_torques,
-)
+from symjac.codegen.coupled import coordinate_derivation
 from symjac.codegen.description import (
     Argument,
     Check,
     DerivedFunction,
     FunctionDescription,
-    FunctionKind,
     FunctionSpec,
     JacobianInfo,
 )
-from symjac.codegen.kinds import kind_spec
+from symjac.codegen.kinds import KINDS, SCALAR, KindSpec, generated_kinds, kind_spec, quantity_of
 from symjac.codegen.lower import LoweredFunction, angle_expansion, lower_function
 from symjac.codegen.names import RESERVED, IdentifierRule
 from symjac.codegen.printers import float_literal
@@ -44,100 +39,119 @@ from symjac.codegen.request import (
     point_words,
 )
 from symjac.errors import CodegenError
-from symjac.kinematics.chain import Chain
+from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import WRENCH_NAMES, Robot
+from symjac.quantities.spec import entry_point
 
 __all__ = [
     "defined_names",
     "derived_functions",
     "function_descriptions",
     "listing",
+    "lowered",
     "request_lines",
     "scalar_descriptions",
     "self_checks",
 ]
 
 
+def lowered(kind: KindSpec, chain: Chain, strategy: Strategy, frame: Frame | None = None,
+            point: tuple[sp.Expr, ...] = (), rows: tuple[int, ...] = ()) -> LoweredFunction:
+    """A function of ``kind`` lowered: by its spec's lowering, or (none named) its quantity's derivation.
+
+    The lowering is called with the chain and those of ``frame``, ``point``, ``rows`` and ``strategy`` its
+    signature names (a module-scoped kind is offered the strategy only).
+    """
+    if not kind.lowering:
+        quantity = quantity_of(kind.name)
+        if quantity is None:
+            raise CodegenError(f"internal error: function kind {kind.name!r} has no lowering and is no quantity")
+        where = () if kind.scope == "module" else (frame, point)
+        return coordinate_derivation(chain, quantity.derivation, quantity.coupling, where,
+                                     rows if kind.task_rows else ())
+    lowering = entry_point(kind.lowering)
+    offered: dict[str, object] = {"strategy": strategy}
+    if kind.scope == "request":
+        offered |= {"frame": frame, "point": point, "rows": rows}
+    taken = inspect.signature(lowering).parameters
+    return lowering(chain, **{name: value for name, value in offered.items() if name in taken})  # type: ignore[no-any-return]
+
+
 def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool
                           ) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
-    """Forward kinematics, then per Jacobian request its Jacobian, torques, kinematics (and acceleration functions)."""
+    """The module-scoped functions, then per Jacobian request its functions (:func:`generated_kinds` order)."""
     model = chain.robot
     q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
-    coupled = ", in the coordinates (J_q = J C)" if model.coupling is not None else ""
+    coupled = model.coupling is not None
     rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
     functions: list[FunctionDescription] = []
 
-    def add(lowered: LoweredFunction, name: str, kind: FunctionKind, summary: str, *arguments: Argument) -> None:
-        returns = kind_spec(kind).returns_text(bool(coupled), shape=lowered.shape)
-        functions.append(FunctionDescription(FunctionSpec(name, kind, summary, (q_argument, *arguments), returns),
-                                             lowered))
+    def add(function: LoweredFunction, name: str, kind: KindSpec, selected: tuple[int, ...],
+            **fields: object) -> None:
+        inputs = {"wrench": Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected),
+                                     "Wrench (force, moment) at the point"),
+                  "qdot": Argument("qdot", rates, "Coordinate rates" if coupled else "Joint rates")}
+        returns = kind.returns_text(coupled, shape=function.shape)
+        spec = FunctionSpec(name, kind.name, kind.summary_text(coupled, **fields),
+                            (q_argument, *(inputs[i] for i in kind.inputs)), returns)
+        functions.append(FunctionDescription(spec, function))
 
-    add(coordinate_forward_kinematics(chain, strategy), "forward_kinematics", "forward_kinematics",
-        "The pose of the tool frame in frame {0}")
+    for kind in generated_kinds("module", acceleration):
+        add(lowered(kind, chain, strategy), kind.base, kind, ())
     infos: list[JacobianInfo] = []
+    n = model.n_coordinates
     for request, label in zip(requests, function_labels(model, requests), strict=True):
         point_name, point = point_text(model, request.point)
         selected = check_rows(request.rows)
-        names = {kind: f"{kind}{label}" for kind in ("jacobian", "joint_torques", "manipulability",
-                                                      "jacobian_determinant", "_kinematics", "hessian",
-                                                      "bias_acceleration", "manipulability_gradient")}
-        J = coordinate_jacobian(chain, request.frame, point, selected, strategy)
-        where, at = frame_text(request.frame), point_words(point_name)
-        add(J, names["jacobian"], "jacobian", f"The basic Jacobian [v; omega] at the {at}, in frame {where}{coupled}")
-        add(coordinate_torques(chain, request.frame, point, selected, strategy), names["joint_torques"],
-            "joint_torques", f"Joint torques tau = {'C^T ' if coupled else ''}J^T F holding a wrench F at the {at}, "
-            f"F in frame {where}",
-            Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected), "Wrench (force, moment) at the point"))
-        add(coordinate_kinematics(chain, request.frame, point), names["_kinematics"], "kinematics",
-            "Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)")
-        if acceleration:
-            add(coordinate_hessian(chain, request.frame, point, selected, strategy), names["hessian"], "hessian",
-                f"The kinematic Hessian H[i, j, m] = dJ[i, j]/dq_m of ``{names['jacobian']}``")
-            add(coordinate_bias_acceleration(chain, request.frame, point, selected, strategy),
-                names["bias_acceleration"], "bias_acceleration",
-                f"The bias acceleration Jdot qdot of ``{names['jacobian']}`` (the acceleration at zero qddot)",
-                Argument("qdot", rates, "Coordinate rates" if coupled else "Joint rates"))
+        kinds = [kind for kind in generated_kinds("request", acceleration)
+                 if not (kind.square_only and len(selected) != n)]
+        names = {kind.name: f"{kind.base}{label}" for kind in kinds}
+        fields = {**dict.fromkeys(KINDS, ""), **names, "frame": frame_text(request.frame),
+                  "at": point_words(point_name)}
+        records: list[tuple[str, str, tuple[int, ...]]] = []
+        for kind in kinds:
+            if kind.derived:
+                records.append((kind.name, names[kind.name], (n,) if kind.per_coordinate else ()))
+                continue
+            function = lowered(kind, chain, strategy, request.frame, point, selected)
+            add(function, names[kind.name], kind, selected, **fields)
+            records.append((kind.name, names[kind.name], function.shape))
         infos.append(JacobianInfo(
             jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
-            determinant=names["jacobian_determinant"] if len(selected) == model.n_coordinates else None,
-            kinematics=names["_kinematics"], frame=where, point=point_name,
+            determinant=names.get("jacobian_determinant"), kinematics=names["kinematics"],
+            frame=frame_text(request.frame), point=point_name,
             point_values=tuple(float_literal(v.subs(model.defaults)) for v in point),  # type: ignore[arg-type]
             rows=selected, row_names=tuple(ROW_NAMES[r] for r in selected),
             wrench_names=tuple(WRENCH_NAMES[r] for r in selected),
-            **({"hessian": names["hessian"], "bias_acceleration": names["bias_acceleration"],
-                "manipulability_gradient": names["manipulability_gradient"]} if acceleration else {}),
+            hessian=names.get("hessian"), bias_acceleration=names.get("bias_acceleration"),
+            manipulability_gradient=names.get("manipulability_gradient"), functions=tuple(records),
         ))
     return functions, infos
 
 
 def derived_functions(infos: Sequence[JacobianInfo], n: int, coupled: bool) -> list[DerivedFunction]:
-    """Per Jacobian: its manipulability, its determinant (square only), its manipulability gradient (acceleration).
+    """Per Jacobian request, its derived functions (manipulability, determinant, gradient), in kinds-table order.
 
     Each is computed at run time by the runtime routine of its kind (:data:`~symjac.codegen.kinds.KINDS`) from the
-    results of its sources: the Jacobian, and the Hessian for the gradient.
+    results of its sources, the request's functions of the kinds it names: the Jacobian, and the Hessian for the
+    gradient.
     """
     found: list[DerivedFunction] = []
     for info in infos:
-        fields = {"jacobian": info.jacobian, "hessian": info.hessian or "", "manipulability": info.manipulability}
-        Source = tuple[str, FunctionKind, tuple[int, ...]]
-        jacobian: Source = (info.jacobian, "jacobian", (len(info.rows), n))
-        hessian: Source = (info.hessian or "", "hessian", (len(info.rows), n, n))
-        wanted: list[tuple[str | None, FunctionKind, tuple[Source, ...], tuple[int, ...]]] = [
-            (info.manipulability, "manipulability", (jacobian,), ()),
-            (info.determinant, "jacobian_determinant", (jacobian,), ()),
-            (info.manipulability_gradient, "manipulability_gradient", (jacobian, hessian), (n,)),
-        ]
-        for name, kind, sources, shape in wanted:
-            if name is None:
+        names = {kind: name for kind, name, _ in info.functions}
+        shapes = {kind: shape for kind, _, shape in info.functions}
+        fields = {**dict.fromkeys(KINDS, ""), **names}
+        for kind_name, name, shape in info.functions:
+            spec = kind_spec(kind_name)
+            if not spec.derived:
                 continue
-            spec = kind_spec(kind)
             found.append(DerivedFunction(
-                name=name, kind=kind, summary=spec.summary.format(**fields), details=spec.details.format(**fields),
-                returns=spec.returns_text(coupled, shape=shape), sources=tuple(s[0] for s in sources),
-                source_kinds=tuple(s[1] for s in sources), source_shapes=tuple(s[2] for s in sources),
-                routine=spec.routine, shape=shape))
+                name=name, kind=kind_name, summary=spec.summary.format(**fields),
+                details=spec.details.format(**fields), returns=spec.returns_text(coupled, shape=shape),
+                sources=tuple(names[s] for s in spec.sources), source_kinds=spec.sources,
+                source_shapes=tuple(shapes[s] for s in spec.sources), routine=spec.routine, shape=shape))
     return found
 
 
@@ -145,28 +159,30 @@ def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedF
             infos: Sequence[JacobianInfo], n: int, coupled: bool) -> tuple[tuple[str, str], ...]:
     """Every public function with its line for the module docstring, in the order of the docstring.
 
-    Forward kinematics, each Jacobian's family, the scalars; the lines from
-    :attr:`~symjac.codegen.kinds.KindSpec.listing`.
+    The module-scoped functions; each request's, its velocity level (lowered, then derived) before its acceleration
+    level; the scalars. The lines are :attr:`~symjac.quantities.spec.Generated.listing`.
     """
-    kinds: dict[str, str] = {f.name: f.kind for f in functions}
-    kinds |= {d.name: d.kind for d in derived}
     entries: list[tuple[str, str]] = []
+    unit = "coordinate" if coupled else "joint"
 
-    def add(name: str | None, **fields: object) -> None:
-        if name is not None:
-            text = kind_spec(kinds[name]).listing
-            entries.append((name, text.format(unit="coordinate" if coupled else "joint", **fields)))
+    def add(name: str, kind: KindSpec, **fields: object) -> None:
+        if kind.listing and not name.startswith("_"):
+            entries.append((name, kind.listing.format(unit=unit, **fields)))
 
-    add("forward_kinematics")
+    requested = {name for info in infos for _, name, _ in info.functions}
+    for function in functions:
+        if function.name not in requested and function.kind != "scalar":
+            add(function.name, kind_spec(function.kind), shape=str(function.shape))
     for info in infos:
         fields = {"frame": info.frame, "point": info.point, "rows": ", ".join(info.row_names),
-                  "wrench": ", ".join(info.wrench_names), "shape": f"({len(info.rows)}, {n}, {n})"}
-        for name in (info.jacobian, info.joint_torques, info.manipulability, info.determinant, info.hessian,
-                     info.bias_acceleration, info.manipulability_gradient):
-            add(name, **fields)
+                  "wrench": ", ".join(info.wrench_names)}
+        records = sorted(info.functions, key=lambda record: (kind_spec(record[0]).acceleration,
+                                                             kind_spec(record[0]).derived))
+        for kind, name, shape in records:
+            add(name, kind_spec(kind), shape=str(shape), **fields)
     for function in functions:
         if function.kind == "scalar":  # the scalars follow the Jacobians' families
-            add(function.name)
+            add(function.name, kind_spec("scalar"))
     return tuple(entries)
 
 
@@ -188,9 +204,7 @@ def request_lines(infos: Sequence[JacobianInfo]) -> tuple[tuple[str, str], ...]:
 
 def defined_names(functions: Sequence[FunctionDescription], infos: Sequence[JacobianInfo]) -> set[str]:
     """Every function name the module defines: the lowered ones and those computed from a Jacobian."""
-    defined = {f.name for f in functions} | {i.manipulability for i in infos}
-    defined |= {i.determinant for i in infos if i.determinant}
-    return defined | {i.manipulability_gradient for i in infos if i.manipulability_gradient}
+    return {f.name for f in functions} | {name for info in infos for _, name, _ in info.functions}
 
 
 def scalar_descriptions(chain: Chain, scalars: Mapping[str, sp.Expr], functions: Sequence[FunctionDescription],
@@ -206,7 +220,7 @@ def scalar_descriptions(chain: Chain, scalars: Mapping[str, sp.Expr], functions:
             raise CodegenError(f"scalar function name {scalar_name!r} is private or a parameter name")
         lowered = lower_function(angle_expansion(chain), [sp.sympify(expr)], (), (("q", model.q),),
                                  model.parameter_symbols, "given expression")
-        returns = kind_spec("scalar").returns_text(model.coupling is not None, shape=())
+        returns = SCALAR.returns_text(model.coupling is not None, shape=())
         found.append(FunctionDescription(FunctionSpec(scalar_name, "scalar", f"The scalar function {scalar_name}",
                                                       (q_argument,), returns), lowered))
         defined.add(scalar_name)

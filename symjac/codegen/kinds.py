@@ -1,109 +1,89 @@
 """The table of function kinds: what each kind of generated function returns, how it is documented and computed.
 
-Every generated function has a kind. The kind decides, in this one place, what the templates would otherwise decide
-by branching on its name: the words that document its result, the line that lists it in the module docstring, the
-name of its output buffer in the C family, the flat index layout of a three-dimensional output, whether it exists
-only for the self-test, and, for a kind *derived* from others (the manipulability from a Jacobian, its gradient
-from the Jacobian and the Hessian), which runtime routine computes it from which functions. A later quantity spec
-(mass matrix, inverse dynamics) adds a row here; the templates iterate over function descriptions and never name a
-kind.
+Every generated function has a kind, a :class:`~symjac.quantities.spec.Generated` record. The kind decides, in this
+one place, what the templates would otherwise decide by branching on its name: where its functions sit in a module
+(once per module or once per Jacobian request; with ``acceleration`` only), their arguments, the words that document
+their result, the line that lists them in the module docstring, the name of their output buffer in the C family, the
+flat index layout of a three-dimensional output, whether they exist only for the self-test, and either their lowering
+or, for a kind *derived* from others (the manipulability from a Jacobian, its gradient from the Jacobian and the
+Hessian), which runtime routine computes it from which functions.
 
-Texts are language-neutral and may use these fields: ``{unit}`` ("joint" or "coordinate"), ``{shape}``,
-``{frame}``, ``{point}``, ``{rows}``, ``{wrench}`` and the names of the functions of the same Jacobian
-(``{jacobian}``, ``{hessian}``, ``{manipulability}``).
+:data:`KINDS` holds every quantity's kind (:data:`symjac.quantities.QUANTITIES`, in registry order), then code
+generation's own, which are no quantity: the kinematics the self-test differentiates, scalar functions, the Jacobian's
+determinant and the manipulability gradient. A new quantity brings its kind in its spec; nothing here changes, and
+the templates iterate over function descriptions and never name a kind.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
 from types import MappingProxyType
 
 from symjac.errors import CodegenError
+from symjac.quantities import QUANTITIES, Quantity
+from symjac.quantities.spec import Generated, Scope
 
-__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "KINDS", "KindSpec", "kind_spec"]
+__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "KINDS", "SCALAR", "KindSpec", "generated_kinds", "kind_spec", "quantity_of"]
+
+KindSpec = Generated
+"""One kind of generated function (the quantities' :class:`~symjac.quantities.spec.Generated`, under its older name)."""
+
+SCALAR = Generated("scalar", "The value of the expression.", "A scalar function of the joint values.",
+                   scope="module")
+"""The kind of the extra scalar functions a module is asked for (``scalars=``): no quantity, no lowering of its own."""
+
+_OWN = (
+    Generated("kinematics", "Point position, ^0_nR and ^0_kR, row by row.", output="out", selftest_only=True,
+              function="_kinematics",
+              summary="Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)",
+              lowering="symjac.codegen.coupled:coordinate_kinematics"),
+    SCALAR,
+    Generated("jacobian_determinant", "det J, LU with partial pivoting.", "det J of that (square) Jacobian.",
+              output="det", routine="determinant", sources=("jacobian",), square_only=True,
+              summary="Determinant of the square Jacobian ``{jacobian}``"),
+    Generated("manipulability_gradient", "One derivative per {unit}.",
+              "The gradient of its manipulability w with respect to q: dw/dq_m = w trace(J^+ H[:, :, m]).",
+              output="gradient", routine="manipulability_gradient", sources=("jacobian", "hessian"),
+              per_coordinate=True, acceleration=True,
+              summary="Gradient of ``{manipulability}``: dw/dq_m = w trace(J^+ H[:, :, m])",
+              details="J^+ is the pseudo-inverse through the Gram matrix of the shorter side (J J^T, or J^T J for a "
+                      "tall Jacobian), H the Hessian ``{hessian}``. Where w = 0 (a singular configuration) w has a "
+                      "kink, not a gradient, and the result is zero there (zero lies in its subdifferential)."),
+)
 
 
-@dataclass(frozen=True)
-class KindSpec:
-    """One kind of generated function.
+def _table() -> Mapping[str, Generated]:
+    kinds: dict[str, Generated] = {}
+    for kind in (*(q.codegen for q in QUANTITIES.values() if q.codegen is not None), *_OWN):
+        if kind.name in kinds:
+            raise CodegenError(f"internal error: two function kinds are called {kind.name!r}")
+        kinds[kind.name] = kind
+    return MappingProxyType(kinds)
 
-    Parameters
-    ----------
-    name : str
-        The kind (``"jacobian"``); also the base of its functions' names.
-    returns : str
-        What the result is, for a docstring's Returns section (fields allowed, see the module docstring).
-    listing : str
-        The line under the function's name in the module docstring's list of functions ("" for none).
-    output : str
-        The C family's name of its output buffer (``"J"``; a scalar is returned, and the name is that of its
-        CasADi output), or empty.
-    returns_coupled : str
-        ``returns`` for a coupled robot, when it differs.
-    layout : str
-        How a flat (C) output of three dimensions is indexed, with ``{shape[1]}``, ``{shape[2]}`` (else "").
-    selftest_only : bool
-        The function exists for the self-test only (private, no compiled kernel).
-    routine : str
-        For a derived kind: the runtime routine that computes it from the results of its sources
-        (``manipulability``: Python ``_manipulability``, C ``sj_manipulability``, C++ ``runtime::manipulability``).
-    summary, details : str
-        A derived kind's docstring summary line and further paragraph (a lowered kind's summary is made with it).
+
+KINDS: Mapping[str, Generated] = _table()
+"""Every kind of generated function, by name: the quantities' in registry order, then code generation's own."""
+
+_QUANTITY_OF = MappingProxyType({q.codegen.name: q for q in QUANTITIES.values() if q.codegen is not None})
+
+
+def quantity_of(kind: str) -> Quantity | None:
+    """The quantity whose kind ``kind`` is (its derivation and coupling law), or None for one of codegen's own."""
+    return _QUANTITY_OF.get(kind)
+
+
+def generated_kinds(scope: Scope, acceleration: bool) -> tuple[Generated, ...]:
+    """The kinds a module generates once per module or once per request, in the order it defines their functions.
+
+    Lowered kinds first, in :data:`KINDS` order with those needing ``acceleration`` last (after the self-test's
+    kinematics): within a request, the velocity level, then the acceleration level. Then the derived kinds, in
+    :data:`KINDS` order. Scalar functions are asked for by name and are not among them.
     """
-
-    name: str
-    returns: str
-    listing: str = ""
-    output: str = ""
-    returns_coupled: str = ""
-    layout: str = ""
-    selftest_only: bool = False
-    routine: str = ""
-    summary: str = ""
-    details: str = ""
-
-    @property
-    def derived(self) -> bool:
-        """Whether functions of this kind are computed by a runtime routine from other functions."""
-        return bool(self.routine)
-
-    def returns_text(self, coupled: bool, **fields: object) -> str:
-        """The Returns sentence, its fields filled (``unit`` from ``coupled``)."""
-        text = self.returns_coupled if coupled and self.returns_coupled else self.returns
-        return text.format(unit="coordinate" if coupled else "joint", **fields)
-
-
-KINDS: Mapping[str, KindSpec] = MappingProxyType({spec.name: spec for spec in (
-    KindSpec("forward_kinematics", "The homogeneous transform [[R, p], [0, 0, 0, 1]], row by row.",
-             "The 4 x 4 pose of the tool frame in frame {{0}}.", output="T"),
-    KindSpec("jacobian", "Rows as listed in the module docstring; column i belongs to {unit} i.",
-             "The Jacobian in frame {frame} at point {point}, rows {rows}.", output="J"),
-    KindSpec("joint_torques", "One torque (force, for a prismatic joint) per joint.",
-             "Joint torques tau = J^T F of that Jacobian, F = ({wrench}).", output="tau",
-             returns_coupled="One generalised force per coordinate, C^T J^T F."),
-    KindSpec("kinematics", "Point position, ^0_nR and ^0_kR, row by row.", output="out", selftest_only=True),
-    KindSpec("hessian", "``H[i, j, m]`` is the derivative of row i, column j of the Jacobian with respect to {unit} m.",
-             "Its kinematic Hessian: H[i, j, m] = dJ[i, j]/dq_m, shape {shape}.", output="H",
-             layout="H[(i * {shape[1]} + j) * {shape[2]} + m] = dJ[i][j]/dq_m"),
-    KindSpec("bias_acceleration", "The rows of Jdot qdot: the acceleration [dv/dt; domega/dt] at zero {unit} "
-             "acceleration.", "Its bias acceleration Jdot qdot, from q and the {unit} rates qdot.", output="out"),
-    KindSpec("scalar", "The value of the expression.", "A scalar function of the joint values."),
-    KindSpec("manipulability", "Zero exactly at a singular configuration (up to rounding).",
-             "sqrt(det(J J^T)) of that Jacobian.", output="w", routine="manipulability",
-             summary="Manipulability of ``{jacobian}``: |det J| when square, else sqrt(det(J J^T)) or "
-                     "sqrt(det(J^T J))"),
-    KindSpec("jacobian_determinant", "det J, LU with partial pivoting.", "det J of that (square) Jacobian.",
-             output="det", routine="determinant", summary="Determinant of the square Jacobian ``{jacobian}``"),
-    KindSpec("manipulability_gradient", "One derivative per {unit}.",
-             "The gradient of its manipulability w with respect to q: dw/dq_m = w trace(J^+ H[:, :, m]).",
-             output="gradient", routine="manipulability_gradient",
-             summary="Gradient of ``{manipulability}``: dw/dq_m = w trace(J^+ H[:, :, m])",
-             details="J^+ is the pseudo-inverse through the Gram matrix of the shorter side (J J^T, or J^T J for a "
-                     "tall Jacobian), H the Hessian ``{hessian}``. Where w = 0 (a singular configuration) w has a "
-                     "kink, not a gradient, and the result is zero there (zero lies in its subdifferential)."),
-)})
-"""Every kind of generated function, by name: lowered kinds first, then the derived ones."""
+    wanted = [kind for kind in KINDS.values() if kind.scope == scope and kind is not SCALAR
+              and (acceleration or not kind.acceleration)]
+    lowered = [kind for kind in wanted if not kind.derived]
+    lowered.sort(key=lambda kind: 2 if kind.acceleration else 1 if kind.selftest_only else 0)
+    return (*lowered, *(kind for kind in wanted if kind.derived))
 
 
 CHECK_WORDS: Mapping[str, str] = MappingProxyType({

@@ -117,7 +117,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     model = chain.robot
     spec = backend(request.target)
     exports = ({"PARAMETERS", "JOINTS", "ROBOT", "selftest", *spec.exports}
-               | {f.name for f in functions if not f.name.startswith("_")} | defined_names((), infos))
+               | {name for name in defined_names(functions, infos) if not name.startswith("_")})
     command, shell = request.command, request.command is not None
     if command is None:
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)

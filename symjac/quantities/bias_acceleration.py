@@ -10,7 +10,7 @@ import argparse
 from typing import TYPE_CHECKING
 
 from symjac.errors import ArgumentError
-from symjac.quantities.spec import Quantity, Request
+from symjac.quantities.spec import Generated, Quantity, Request
 
 if TYPE_CHECKING:
     from symjac.printing.document import Document
@@ -59,7 +59,11 @@ QUANTITY = Quantity(
     derivation="symjac.kinematics.acceleration:bias_acceleration",
     coupling="rates",
     document="symjac.printing.results:derivative_document",
-    kind="bias_acceleration",
+    codegen=Generated(
+        "bias_acceleration", "The rows of Jdot qdot: the acceleration [dv/dt; domega/dt] at zero {unit} acceleration.",
+        listing="Its bias acceleration Jdot qdot, from q and the {unit} rates qdot.",
+        summary="The bias acceleration Jdot qdot of ``{jacobian}`` (the acceleration at zero qddot)", output="out",
+        acceleration=True, inputs=("qdot",), lowering="symjac.codegen.coupled:coordinate_bias_acceleration"),
     command="jacobian",
     flag="derivative",
     options=options,

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from symjac.quantities.spec import Quantity, Request
+from symjac.quantities.spec import Generated, Quantity, Request
 
 if TYPE_CHECKING:
     from symjac.kinematics.chain import Frame
@@ -36,7 +36,10 @@ QUANTITY = Quantity(
     derivation="symjac.kinematics.chain:forward_kinematics",
     coupling="rates",
     document="symjac.printing.results:forward_kinematics_document",
-    kind="forward_kinematics",
+    codegen=Generated(
+        "forward_kinematics", "The homogeneous transform [[R, p], [0, 0, 0, 1]], row by row.",
+        listing="The 4 x 4 pose of the tool frame in frame {{0}}.", summary="The pose of the tool frame in frame {{0}}",
+        output="T", scope="module", lowering="symjac.codegen.coupled:coordinate_forward_kinematics"),
     command="fk",
     options=lambda sub: None,  # the common options only
     handler=command,

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from symjac.quantities.options import frame_and_point_options
-from symjac.quantities.spec import Quantity, Request
+from symjac.quantities.spec import Generated, Quantity, Request
 
 if TYPE_CHECKING:
     from symjac.printing.document import Document
@@ -32,7 +32,12 @@ QUANTITY = Quantity(
     derivation="symjac.kinematics.acceleration:hessian",
     coupling="congruent",
     document="symjac.printing.results:hessian_document",
-    kind="hessian",
+    codegen=Generated(
+        "hessian", "``H[i, j, m]`` is the derivative of row i, column j of the Jacobian with respect to {unit} m.",
+        listing="Its kinematic Hessian: H[i, j, m] = dJ[i, j]/dq_m, shape {shape}.",
+        summary="The kinematic Hessian H[i, j, m] = dJ[i, j]/dq_m of ``{jacobian}``", output="H",
+        layout="H[(i * {shape[1]} + j) * {shape[2]} + m] = dJ[i][j]/dq_m", acceleration=True,
+        lowering="symjac.codegen.coupled:coordinate_hessian"),
     command="hessian",
     options=frame_and_point_options,
     handler=command,

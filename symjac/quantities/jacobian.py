@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from symjac.errors import ArgumentError
 from symjac.quantities.options import LazyChoices, frame_and_point_options
-from symjac.quantities.spec import Quantity, Request
+from symjac.quantities.spec import Generated, Quantity, Request
 
 if TYPE_CHECKING:
     from symjac.kinematics.chain import Frame
@@ -111,7 +111,12 @@ QUANTITY = Quantity(
     derivation="symjac.kinematics.jacobian:jacobian",
     coupling="columns",
     document="symjac.printing.results:jacobian_document",
-    kind="jacobian",
+    codegen=Generated(
+        "jacobian", "Rows as listed in the module docstring; column i belongs to {unit} i.",
+        listing="The Jacobian in frame {frame} at point {point}, rows {rows}.",
+        summary="The basic Jacobian [v; omega] at the {at}, in frame {frame}",
+        summary_coupled="The basic Jacobian [v; omega] at the {at}, in frame {frame}, in the coordinates (J_q = J C)",
+        output="J", lowering="symjac.codegen.coupled:coordinate_jacobian"),
     command="jacobian",
     options=options,
     handler=command,

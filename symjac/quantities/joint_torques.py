@@ -6,7 +6,7 @@ import argparse
 from typing import TYPE_CHECKING
 
 from symjac.quantities.options import frame_and_point_options
-from symjac.quantities.spec import Quantity, Request
+from symjac.quantities.spec import Generated, Quantity, Request
 
 if TYPE_CHECKING:
     from symjac.printing.document import Document
@@ -45,7 +45,13 @@ QUANTITY = Quantity(
     derivation="symjac.kinematics.statics:joint_torques",
     coupling="transposed",
     document="symjac.printing.results:torques_document",
-    kind="joint_torques",
+    codegen=Generated(
+        "joint_torques", "One torque (force, for a prismatic joint) per joint.",
+        listing="Joint torques tau = J^T F of that Jacobian, F = ({wrench}).",
+        summary="Joint torques tau = J^T F holding a wrench F at the {at}, F in frame {frame}",
+        summary_coupled="Joint torques tau = C^T J^T F holding a wrench F at the {at}, F in frame {frame}",
+        returns_coupled="One generalised force per coordinate, C^T J^T F.", output="tau", inputs=("wrench",),
+        lowering="symjac.codegen.coupled:coordinate_torques"),
     command="torques",
     options=options,
     handler=command,

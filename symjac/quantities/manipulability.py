@@ -6,7 +6,7 @@ Computed from the Jacobian in the coordinates, it follows the Jacobian's couplin
 
 from __future__ import annotations
 
-from symjac.quantities.spec import Quantity
+from symjac.quantities.spec import Generated, Quantity
 
 __all__ = ["QUANTITY"]
 
@@ -15,5 +15,8 @@ QUANTITY = Quantity(
     summary="Yoshikawa's manipulability sqrt(det(J J^T)) and its gradient at a configuration",
     derivation="symjac.analysis.manipulability:manipulability_gradient",
     coupling="columns",
-    kind="manipulability",
+    codegen=Generated(
+        "manipulability", "Zero exactly at a singular configuration (up to rounding).",
+        listing="sqrt(det(J J^T)) of that Jacobian.", output="w", routine="manipulability", sources=("jacobian",),
+        summary="Manipulability of ``{jacobian}``: |det J| when square, else sqrt(det(J J^T)) or sqrt(det(J^T J))"),
 )

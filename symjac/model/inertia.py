@@ -18,11 +18,11 @@ parameters take their defaults; an entry left purely symbolic cannot be checked 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
-import numpy as np
 import sympy as sp
 
 from symjac.model.expressions import exact_number, expression_text
@@ -180,17 +180,17 @@ def inertial_problem(inertial: Inertial, defaults: Mapping[sp.Symbol, sp.Expr] |
 
     mass = number(inertial.mass)
     if mass is not None:
-        if not np.isfinite(mass):
+        if not math.isfinite(mass):
             return f"the mass {inertial.mass} is not a finite number"
         if mass < 0:
             return f"the mass {inertial.mass} is negative"
     for axis, c in zip("xyz", inertial.com, strict=True):
         value = number(c)
-        if value is not None and not np.isfinite(value):
+        if value is not None and not math.isfinite(value):
             return f"the centre of mass {axis} = {c} is not a finite number"
     values = [[number(inertial.inertia[i, j]) for j in range(3)] for i in range(3)]
     flat = [v for row in values for v in row if v is not None]
-    if any(not np.isfinite(v) for v in flat):
+    if any(not math.isfinite(v) for v in flat):
         return "the inertia tensor has an entry that is not a finite number"
     scale = max((abs(v) for v in flat), default=0.0)
     tolerance = _RELATIVE_TOLERANCE * max(scale, 1e-300)
@@ -203,6 +203,8 @@ def inertial_problem(inertial: Inertial, defaults: Mapping[sp.Symbol, sp.Expr] |
             return f"the inertia tensor is not symmetric (I[{i + 1},{j + 1}] = {a}, I[{j + 1},{i + 1}] = {b})"
     if not physical or any(v is None for row in values for v in row):
         return None  # not asked, or symbolic entries: nothing more can be checked
+    import numpy as np  # only for numeric tensors: loading a robot without inertial data needs no NumPy
+
     moments = np.linalg.eigvalsh(np.array(values, dtype=float))
     if moments[0] < -tolerance:
         return f"the inertia tensor is not positive semi-definite (principal moment {moments[0]:.6g})"

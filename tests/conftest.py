@@ -4,15 +4,24 @@ Symbolic examples vary a lot in cost (a chain whose every twist is 0.3 rad is fa
 random draw can double the suite's time, and a failure's shrinking can run for minutes. The default profile is
 derandomized: reproducible examples and times. ``HYPOTHESIS_PROFILE=explore`` draws new random examples (run it
 locally now and then; it found the regressions tested in test_urdf, test_codegen and test_representations).
+
+OpenBLAS gets one thread per process. Two worker processes on two cores already keep every core busy, and a BLAS
+that starts its own threads for 4 x 4 matrices then waits on them: SciPy's ``expm`` of a 4 x 4 took 20 ms instead of
+7 us on the loaded development machine. The variables must be set before NumPy or SciPy is first imported, so they
+are set here, at the top of the first conftest (the worker processes inherit them).
 """
 
 from __future__ import annotations
 
-import json
 import os
 
-import pytest
-from hypothesis import settings
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+import json  # noqa: E402 (the thread counts above come before any import that could load a BLAS)
+
+import pytest  # noqa: E402
+from hypothesis import settings  # noqa: E402
 
 settings.register_profile("symjac", derandomize=True, deadline=None, print_blob=True)
 settings.register_profile("explore", derandomize=False, deadline=None, print_blob=True)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import sympy as sp
@@ -234,9 +235,23 @@ def evaluate(matrix: sp.MatrixBase, robot: Robot, q: np.ndarray, extra: dict | N
     """Numeric value of a symbolic matrix at joint values ``q`` and the parameters' defaults."""
     values = {**{s: float(v) for s, v in robot.defaults.items()}, **dict(zip(robot.q, map(float, q), strict=True))}
     values.update(extra or {})
-    symbols = sorted(values, key=str)
-    function = sp.lambdify(symbols, matrix, modules="numpy")
-    return np.array(function(*[values[s] for s in symbols]), dtype=float)
+    symbols = tuple(sorted(values, key=str))
+    return np.array(_compiled(matrix, symbols)(*[values[s] for s in symbols]), dtype=float)
+
+
+_COMPILED: dict[tuple, Callable[..., Any]] = {}
+"""Lambdified matrices by (matrix, arguments): a test evaluates one matrix at several configurations."""
+
+
+def _compiled(matrix: sp.MatrixBase, symbols: tuple[sp.Symbol, ...]) -> Callable[..., Any]:
+    """``sympy.lambdify(symbols, matrix)``, compiled once per matrix and argument list."""
+    key = (sp.ImmutableMatrix(matrix) if isinstance(matrix, sp.MatrixBase) else sp.sympify(matrix), symbols)
+    function = _COMPILED.get(key)
+    if function is None:
+        if len(_COMPILED) > 256:
+            _COMPILED.clear()
+        function = _COMPILED[key] = sp.lambdify(symbols, matrix, modules="numpy")
+    return function
 
 
 def random_configuration(robot: Robot, rng: np.random.Generator) -> np.ndarray:

@@ -60,15 +60,20 @@ PYTHON_TARGETS = tuple(name for name, spec in BACKENDS.items() if spec.language 
 """Targets that write a Python module (the checks that import the generated module run over these)."""
 
 
-def marked(cases: Iterable[Any]) -> list[Any]:
+def marked(cases: Iterable[Any], keep: Iterable[str] = ()) -> list[Any]:
     """``cases`` for ``pytest.mark.parametrize``: a case naming a built-in robot outside :data:`LIGHT_ROBOTS` is
     slow, one naming a compiled target is external (a case is a value, a tuple of values or a ``pytest.param``; its
-    ids stay what pytest would have made)."""
+    ids stay what pytest would have made).
+
+    ``keep`` names robots that stay in the fast loop for this one check, where its subject needs an arm outside the
+    allow-list (a redundant arm for the redundancy checks); say why where it is used.
+    """
+    heavy = HEAVY_ROBOTS - frozenset(keep)
     result = []
     for case in cases:
         given = isinstance(case, _ParameterSet)  # a pytest.param: its values, marks and id are kept
         values = case.values if given else case if isinstance(case, tuple) else (case,)
-        marks = [mark for mark, names in ((pytest.mark.slow, HEAVY_ROBOTS), (pytest.mark.external, COMPILED_TARGETS))
+        marks = [mark for mark, names in ((pytest.mark.slow, heavy), (pytest.mark.external, COMPILED_TARGETS))
                  if any(isinstance(value, str) and value in names for value in values)]
         if given and marks:
             case = pytest.param(*values, marks=(*case.marks, *marks), id=case.id)

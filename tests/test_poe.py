@@ -328,6 +328,7 @@ def test_every_catalog_robot_converts_to_poe_and_back_to_a_table(name):
         assert np.allclose(world_to_tool(other, q), world_to_tool(robot, q), atol=1e-12)
 
 
+@pytest.mark.slow  # long screws; the fast loop converts right-angle tables and the catalog's
 @settings(deadline=None, max_examples=8, suppress_health_check=[HealthCheck.too_slow])
 @given(robot=robots(max_joints=3))
 def test_dh_tables_with_generic_angles_convert_to_poe(robot):

@@ -28,6 +28,35 @@ settings.register_profile("explore", derandomize=False, deadline=None, print_blo
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "symjac"))
 
 
+# --- the order in which files reach the workers -----------------------------------------------------------------
+
+LONGEST_FIRST = (
+    # the whole suite's longest files (fresh virtual environments, pdflatex, the notebooks, mypy, the site, the
+    # compiled targets, hypothesis over random chains)
+    "test_packaging.py", "test_latex_compile.py", "test_notebooks.py", "test_quality.py", "test_docs.py",
+    "test_properties.py", "test_codegen_c99.py", "test_codegen_cpp.py", "test_jacobian_numeric.py",
+    # the fast loop's longest, measured (tests/marks.py, docs/testing.md)
+    "test_acceleration.py", "test_codegen_jax.py", "test_codegen.py", "test_representations.py", "test_errata.py",
+    "test_report.py", "test_codegen_acceleration.py", "test_redundant.py", "test_readme.py", "test_coordinates.py",
+)
+"""Files that run longest, longest first. ``--dist loadfile`` hands whole files to the workers in collection order,
+so a long file collected last keeps one worker busy while the other idles; starting the longest first (the
+longest-processing-time rule) lets both finish together. A file not listed keeps its place after these."""
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Keep the collection order below: pytest-xdist (3.8 and later) otherwise hands out files by their number of
+    tests, most first, which puts the long files with few tests (the installs, the notebooks, mypy) last."""
+    if hasattr(config.option, "loadscopereorder"):
+        config.option.loadscopereorder = False
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Move the tests of :data:`LONGEST_FIRST` to the front, file by file; within a file the order is unchanged."""
+    rank = {name: index for index, name in enumerate(LONGEST_FIRST)}
+    items.sort(key=lambda item: rank.get(item.path.name, len(rank)) if item.path.parent.name == "tests" else len(rank))
+
+
 # A two-joint arm whose flange carries two fingers: two leaves, so a URDF command must be told --tip-link.
 GRIPPER_URDF = """<?xml version="1.0"?>
 <robot name="gripper_arm">

@@ -1,8 +1,8 @@
 """An independent numeric reference: forward kinematics in plain NumPy and finite-difference Jacobians.
 
 Nothing here uses symjac's transforms, chain or simplification: only the robot's data (DH rows, base, tool), turned
-into floats. The Jacobian comes from central differences of this forward kinematics; the angular part from
-:math:`\\hat\\omega \\approx (R(q + h e_i) - R(q - h e_i)) R(q)^T / 2h`.
+into floats, once per robot object. The Jacobian comes from central differences of this forward kinematics; the
+angular part from :math:`\\hat\\omega \\approx (R(q + h e_i) - R(q - h e_i)) R(q)^T / 2h`.
 """
 
 from __future__ import annotations
@@ -178,7 +178,7 @@ def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
     q = joint_values(robot, q)
     numbers = _numbers(robot)
     base, tool = numbers.base, numbers.tool
-    poses = [np.eye(4), base]
+    poses = [np.eye(4), base.copy()]  # a copy: a caller may change what it gets, never the cached numbers
     if robot.convention == "poe":
         # frames {0}..{n}, then the tool: e^[S1]q1 ... e^[Sn]qn M with M = G_n times the tool transform
         screw_frames = [base @ pose for pose in _screw_frames(numbers.links, q)]

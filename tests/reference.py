@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
+from sympy.printing.numpy import NumPyPrinter
 
 from symjac import Robot
 from symjac.model.robot import JointType
@@ -250,7 +251,10 @@ def _compiled(matrix: sp.MatrixBase, symbols: tuple[sp.Symbol, ...]) -> Callable
     if function is None:
         if len(_COMPILED) > 256:
             _COMPILED.clear()
-        function = _COMPILED[key] = sp.lambdify(symbols, matrix, modules="numpy")
+        # terms printed in the order SymPy holds them: sorting every sum for print took half of lambdify's time
+        printer = NumPyPrinter({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True,
+                                "user_functions": {}, "order": "none"})
+        function = _COMPILED[key] = sp.lambdify(symbols, matrix, modules="numpy", printer=printer)
     return function
 
 

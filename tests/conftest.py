@@ -4,19 +4,57 @@ Symbolic examples vary a lot in cost (a chain whose every twist is 0.3 rad is fa
 random draw can double the suite's time, and a failure's shrinking can run for minutes. The default profile is
 derandomized: reproducible examples and times. ``HYPOTHESIS_PROFILE=explore`` draws new random examples (run it
 locally now and then; it found the regressions tested in test_urdf, test_codegen and test_representations).
+
+OpenBLAS gets one thread per process. Two worker processes on two cores already keep every core busy, and a BLAS
+that starts its own threads for 4 x 4 matrices then waits on them: SciPy's ``expm`` of a 4 x 4 took 20 ms instead of
+7 us on the loaded development machine. The variables must be set before NumPy or SciPy is first imported, so they
+are set here, at the top of the first conftest (the worker processes inherit them).
 """
 
 from __future__ import annotations
 
-import json
 import os
 
-import pytest
-from hypothesis import settings
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+import json  # noqa: E402 (the thread counts above come before any import that could load a BLAS)
+
+import pytest  # noqa: E402
+from hypothesis import settings  # noqa: E402
 
 settings.register_profile("symjac", derandomize=True, deadline=None, print_blob=True)
 settings.register_profile("explore", derandomize=False, deadline=None, print_blob=True)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "symjac"))
+
+
+# --- the order in which files reach the workers -----------------------------------------------------------------
+
+LONGEST_FIRST = (
+    # the whole suite's longest files (fresh virtual environments, pdflatex, the notebooks, mypy, the site, the
+    # compiled targets, hypothesis over random chains)
+    "test_packaging.py", "test_latex_compile.py", "test_notebooks.py", "test_quality.py", "test_docs.py",
+    "test_properties.py", "test_codegen_c99.py", "test_codegen_cpp.py", "test_jacobian_numeric.py",
+    # the fast loop's longest, measured (tests/marks.py, docs/testing.md)
+    "test_acceleration.py", "test_codegen_jax.py", "test_codegen.py", "test_representations.py", "test_errata.py",
+    "test_report.py", "test_codegen_acceleration.py", "test_redundant.py", "test_readme.py", "test_coordinates.py",
+)
+"""Files that run longest, longest first. ``--dist loadfile`` hands whole files to the workers in collection order,
+so a long file collected last keeps one worker busy while the other idles; starting the longest first (the
+longest-processing-time rule) lets both finish together. A file not listed keeps its place after these."""
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Keep the collection order below: pytest-xdist (3.8 and later) otherwise hands out files by their number of
+    tests, most first, which puts the long files with few tests (the installs, the notebooks, mypy) last."""
+    if hasattr(config.option, "loadscopereorder"):
+        config.option.loadscopereorder = False
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Move the tests of :data:`LONGEST_FIRST` to the front, file by file; within a file the order is unchanged."""
+    rank = {name: index for index, name in enumerate(LONGEST_FIRST)}
+    items.sort(key=lambda item: rank.get(item.path.name, len(rank)) if item.path.parent.name == "tests" else len(rank))
 
 
 # A two-joint arm whose flange carries two fingers: two leaves, so a URDF command must be told --tip-link.

@@ -1,14 +1,19 @@
 """An independent numeric reference: forward kinematics in plain NumPy and finite-difference Jacobians.
 
 Nothing here uses symjac's transforms, chain or simplification: only the robot's data (DH rows, base, tool), turned
-into floats. The Jacobian comes from central differences of this forward kinematics; the angular part from
-:math:`\\hat\\omega \\approx (R(q + h e_i) - R(q - h e_i)) R(q)^T / 2h`.
+into floats, once per robot object. The Jacobian comes from central differences of this forward kinematics; the
+angular part from :math:`\\hat\\omega \\approx (R(q + h e_i) - R(q - h e_i)) R(q)^T / 2h`.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
 import numpy as np
 import sympy as sp
+from sympy.printing.numpy import NumPyPrinter
 
 from symjac import Robot
 from symjac.model.robot import JointType
@@ -16,6 +21,11 @@ from symjac.model.robot import JointType
 
 def _float(expr: sp.Expr, robot: Robot) -> float:
     return float(sp.sympify(expr).subs(robot.defaults))
+
+
+def _matrix(transform, robot: Robot) -> np.ndarray:
+    """A fixed transform's 4 x 4 matrix as floats (the identity for none)."""
+    return np.eye(4) if transform is None else np.array(transform.matrix.subs(robot.defaults), dtype=float)
 
 
 def _rot_x(angle: float) -> np.ndarray:
@@ -63,19 +73,27 @@ def _alignment(axis: np.ndarray) -> np.ndarray:
     return A
 
 
-def _general_link(robot: Robot, joint, previous, value: float) -> np.ndarray:
+def _general_numbers(robot: Robot) -> list[tuple[np.ndarray, np.ndarray, float, float, bool, np.ndarray]]:
+    """Per joint of a general-convention robot, as floats: origin, unit axis, theta and d offsets, whether revolute,
+    and the alignment of the joint before it (the identity for the first)."""
+    rows, before = [], np.eye(4)
+    for joint in robot.joints:
+        given = joint.placement.origin
+        origin = np.eye(4) if given is None else np.array(given.matrix.subs(robot.defaults), dtype=float)
+        axis = np.array([_float(c, robot) for c in (joint.placement.axis or (0, 0, 1))])
+        rows.append((origin, axis, _float(joint.theta, robot), _float(joint.d, robot), joint.is_revolute, before))
+        before = _alignment(axis)
+    return rows
+
+
+def _general_link(row: tuple, value: float) -> np.ndarray:
     """Pose of frame {i} in frame {i-1} for a general joint, from origin, axis and Rodrigues (no alignment tricks)."""
-    given = joint.placement.origin
-    origin = np.eye(4) if given is None else np.array(given.matrix.subs(robot.defaults), dtype=float)
-    axis = np.array([_float(c, robot) for c in (joint.placement.axis or (0, 0, 1))])
-    theta, d = _float(joint.theta, robot), _float(joint.d, robot)
-    if joint.is_revolute:
+    origin, axis, theta, d, revolute, before = row
+    if revolute:
         theta += value
     else:
         d += value
     motion = _rot_axis(axis, theta) @ _trans(*(d * axis / np.linalg.norm(axis)))
-    before = np.eye(4) if previous is None else _alignment(
-        np.array([_float(c, robot) for c in (previous.placement.axis or (0, 0, 1))]))
     return np.linalg.inv(before) @ origin @ motion @ _alignment(axis)
 
 
@@ -99,54 +117,79 @@ def _screw_points(robot: Robot) -> list[tuple[np.ndarray, np.ndarray, np.ndarray
     return rows
 
 
-def _screw_frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
+def _screw_frames(rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]], q: np.ndarray) -> list[np.ndarray]:
     """Frames {0}..{n} of a PoE robot: e^[S1]q1 ... e^[Si]qi G_i, the exponentials by SciPy's expm."""
     from scipy.linalg import expm
 
     poses, product = [np.eye(4)], np.eye(4)
-    for (screw, point, axis), value in zip(_screw_points(robot), q, strict=True):
+    for (screw, point, axis), value in zip(rows, q, strict=True):
         product = product @ expm(_screw_matrix(screw) * value)
         poses.append(product @ _trans(*point) @ _alignment(axis))
     return poses
 
 
-def _screw_home(robot: Robot, q: np.ndarray) -> np.ndarray:
-    """The tool of a PoE robot: e^[S1]q1 ... e^[Sn]qn M, with M = G_n times the tool transform."""
-    from scipy.linalg import expm
+@dataclass(frozen=True)
+class _Numbers:
+    """A robot's data as floats, read once: base and tool, the links by convention, the coupling as a function."""
 
-    product = np.eye(4)
-    for (screw, _, _), value in zip(_screw_points(robot), q, strict=True):
-        product = product @ expm(_screw_matrix(screw) * value)
-    _, point, axis = _screw_points(robot)[-1]
-    tool = np.array(robot.tool.matrix.subs(robot.defaults), dtype=float)
-    return product @ _trans(*point) @ _alignment(axis) @ tool
+    base: np.ndarray
+    tool: np.ndarray
+    links: list
+    joint_values: Callable[..., list] | None
+
+
+_NUMBERS: dict[int, tuple[Robot, _Numbers]] = {}
+"""By ``id(robot)``, the robot held with its numbers so that its id cannot be reused while the entry lives."""
+
+
+def _numbers(robot: Robot) -> _Numbers:
+    """The robot's data as floats, substituted once per robot object: the finite differences call :func:`frames`
+    2n + 2 times per Jacobian, and SymPy substitution there cost seconds per robot."""
+    entry = _NUMBERS.get(id(robot))
+    if entry is not None and entry[0] is robot:
+        return entry[1]
+    if robot.convention == "poe":
+        links = _screw_points(robot)
+    elif robot.convention == "general":
+        links = _general_numbers(robot)
+    else:
+        links = [(_float(joint.placement.alpha, robot), _float(joint.placement.a, robot), _float(joint.theta, robot),
+                  _float(joint.d, robot), joint.is_revolute) for joint in robot.joints]
+    coupling = None
+    if robot.coupling is not None:
+        # the coupling's law theta(q) from the robot's data, parameters at their defaults, compiled to NumPy once
+        laws = [sp.sympify(v).xreplace(robot.defaults) for v in robot.joint_values]
+        coupling = sp.lambdify(robot.coordinates, laws, modules="numpy")
+    numbers = _Numbers(_matrix(robot.base, robot), _matrix(robot.tool, robot), links, coupling)
+    if len(_NUMBERS) > 512:  # hypothesis draws many robots; keep the cache small
+        _NUMBERS.clear()
+    _NUMBERS[id(robot)] = (robot, numbers)
+    return numbers
 
 
 def joint_values(robot: Robot, q: np.ndarray) -> np.ndarray:
     """The joint variables theta(q) at the coordinates ``q`` (``q`` itself without a coupling or if joint values)."""
     if robot.coupling is None or len(q) == robot.n_joints:
         return np.asarray(q, dtype=float)
-    values = {**robot.defaults, **dict(zip(robot.coordinates, (float(v) for v in q), strict=True))}
-    return np.array([float(v.xreplace(values)) for v in robot.joint_values])
+    return np.array(_numbers(robot).joint_values(*(float(v) for v in q)), dtype=float)
 
 
 def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
     """World poses of frame positions world, 0, 1, ..., n, tool (n + 3 matrices) at the coordinates ``q``."""
     q = joint_values(robot, q)
-    base = np.array(robot.base.matrix.subs(robot.defaults), dtype=float) if robot.base else np.eye(4)
-    tool = np.array(robot.tool.matrix.subs(robot.defaults), dtype=float) if robot.tool else np.eye(4)
-    poses = [np.eye(4), base]
-    previous = None
+    numbers = _numbers(robot)
+    base, tool = numbers.base, numbers.tool
+    poses = [np.eye(4), base.copy()]  # a copy: a caller may change what it gets, never the cached numbers
     if robot.convention == "poe":
-        return [np.eye(4), *(base @ pose for pose in _screw_frames(robot, q)), base @ _screw_home(robot, q)]
-    for joint, value in zip(robot.joints, q, strict=True):
+        # frames {0}..{n}, then the tool: e^[S1]q1 ... e^[Sn]qn M with M = G_n times the tool transform
+        screw_frames = [base @ pose for pose in _screw_frames(numbers.links, q)]
+        return [np.eye(4), *screw_frames, screw_frames[-1] @ tool]
+    for row, value in zip(numbers.links, q, strict=True):
         if robot.convention == "general":
-            poses.append(poses[-1] @ _general_link(robot, joint, previous, value))
-            previous = joint
+            poses.append(poses[-1] @ _general_link(row, value))
             continue
-        alpha, a = _float(joint.placement.alpha, robot), _float(joint.placement.a, robot)
-        theta, d = _float(joint.theta, robot), _float(joint.d, robot)
-        if joint.is_revolute:
+        alpha, a, theta, d, revolute = row
+        if revolute:
             theta += value
         else:
             d += value
@@ -193,9 +236,26 @@ def evaluate(matrix: sp.MatrixBase, robot: Robot, q: np.ndarray, extra: dict | N
     """Numeric value of a symbolic matrix at joint values ``q`` and the parameters' defaults."""
     values = {**{s: float(v) for s, v in robot.defaults.items()}, **dict(zip(robot.q, map(float, q), strict=True))}
     values.update(extra or {})
-    symbols = sorted(values, key=str)
-    function = sp.lambdify(symbols, matrix, modules="numpy")
-    return np.array(function(*[values[s] for s in symbols]), dtype=float)
+    symbols = tuple(sorted(values, key=str))
+    return np.array(_compiled(matrix, symbols)(*[values[s] for s in symbols]), dtype=float)
+
+
+_COMPILED: dict[tuple, Callable[..., Any]] = {}
+"""Lambdified matrices by (matrix, arguments): a test evaluates one matrix at several configurations."""
+
+
+def _compiled(matrix: sp.MatrixBase, symbols: tuple[sp.Symbol, ...]) -> Callable[..., Any]:
+    """``sympy.lambdify(symbols, matrix)``, compiled once per matrix and argument list."""
+    key = (sp.ImmutableMatrix(matrix) if isinstance(matrix, sp.MatrixBase) else sp.sympify(matrix), symbols)
+    function = _COMPILED.get(key)
+    if function is None:
+        if len(_COMPILED) > 256:
+            _COMPILED.clear()
+        # terms printed in the order SymPy holds them: sorting every sum for print took half of lambdify's time
+        printer = NumPyPrinter({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True,
+                                "user_functions": {}, "order": "none"})
+        function = _COMPILED[key] = sp.lambdify(symbols, matrix, modules="numpy", printer=printer)
+    return function
 
 
 def random_configuration(robot: Robot, rng: np.random.Generator) -> np.ndarray:

@@ -149,7 +149,7 @@ def test_hessian_and_jacobian_derivative_match_central_differences(name, frame, 
 FIXED = [case for case in CASES if case[1] in (0, "world")]
 
 
-@pytest.mark.parametrize(("name", "frame", "point"), FIXED, ids=_ids(FIXED))
+@pytest.mark.parametrize(("name", "frame", "point"), marked(FIXED), ids=_ids(FIXED))
 def test_fixed_frame_linear_hessian_rows_are_symmetric_exactly(name, frame, point):
     n = _robot(name).n_coordinates
     H = hessian(_robot(name), frame, point, simplify=False)
@@ -183,7 +183,7 @@ def _reference_motion(robot, q, qd, qdd):
     return omegas[0], alpha, v, a
 
 
-@pytest.mark.parametrize("name", ROBOTS)
+@pytest.mark.parametrize("name", marked(ROBOTS))
 def test_every_propagation_step_matches_differences_of_the_forward_kinematics(name):
     robot = _robot(name)
     q, qd, qdd = _state(robot, seed=11)
@@ -235,7 +235,7 @@ def test_moving_frame_derivative_is_the_rotated_fixed_one_minus_the_frame_spin(n
     assert _close(_numeric_derivatives(name, frame, point)(q, qd, qdd)[1], expected)
 
 
-@pytest.mark.parametrize("name", ["puma560", "ur5", "stanford"])
+@pytest.mark.parametrize("name", marked(["puma560", "ur5", "stanford"]))
 def test_wrist_frame_derivative_gives_pinocchio_local_spatial_acceleration(name):
     robot = _robot(name)
     n = robot.n_coordinates

@@ -6,6 +6,7 @@ import json
 
 import pytest
 import sympy as sp
+from marks import marked
 
 from symjac.cli.main import main
 from symjac.model.io import catalog, load_robot, robot_to_toml
@@ -392,7 +393,7 @@ def test_help(capsys):
 # --- propagation steps and torques ----------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("robot", ["stanford", "puma560"])
+@pytest.mark.parametrize("robot", marked(["stanford", "puma560"]))
 def test_velocity_propagation_steps_print_every_frame_then_the_jacobian(cli, robot):
     lines = cli.ok("jacobian", robot, "--method", "velocity_propagation", "--steps").splitlines()
     n = load_robot(robot).n_coordinates

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from marks import marked
 
 from symjac.kinematics.chain import chain_of
 from symjac.kinematics.numeric import numeric_at, numeric_jacobian
@@ -22,7 +23,7 @@ def numeric(robot, strings, q, rates=None):
     return numeric_at(robot, matrix, list(q))
 
 
-@pytest.mark.parametrize(("name", "frame"), [("planar3r", "0"), ("stanford", "0"), ("stanford", "3")])
+@pytest.mark.parametrize(("name", "frame"), marked([("planar3r", "0"), ("stanford", "0"), ("stanford", "3")]))
 def test_derivative_json_matches_differences_of_the_jacobian(cli, name, frame):
     robot = load_robot(name)
     data = cli.json("jacobian", name, "--derivative", "--frame", frame)

@@ -244,7 +244,7 @@ def test_random_chains_pass_their_selftest_and_targets_agree(robot):
 GOLDEN_CASES = [("planar2r", target) for target in PYTHON_TARGETS] + [("puma560", "python"), ("puma560", "numpy")]
 
 
-@pytest.mark.parametrize(("name", "target"), GOLDEN_CASES)
+@pytest.mark.parametrize(("name", "target"), marked(GOLDEN_CASES))
 def test_golden_files(name, target):
     text = generate(load_robot(name), target)
     path = GOLDEN / f"{name}_{target}{BACKENDS[target].suffix}.golden"

@@ -10,7 +10,7 @@ import re
 from pathlib import Path
 
 import pytest
-from marks import PYTHON_TARGETS
+from marks import PYTHON_TARGETS, marked
 
 from symjac import load_robot, robot_from_mapping
 from symjac.codegen import (
@@ -131,7 +131,7 @@ _SLIDES = {"name": "slides", "convention": "standard",
            "joints": [{"type": "prismatic", "alpha": "-pi/2"}, {"type": "prismatic", "alpha": "pi/2"}]}
 
 
-@pytest.mark.parametrize("name", ["planar2r", "puma560", "scara", "palletizer", "slides"])
+@pytest.mark.parametrize("name", marked(["planar2r", "puma560", "scara", "palletizer", "slides"]))
 def test_the_c_extension_holds_the_c99_targets_function_bodies(name):
     """One template prints the function bodies of both C targets: the extension holds the c99 file's, byte for byte
     (all but the self-test's kinematics, which the c module computes in NumPy); a robot without revolute joints has

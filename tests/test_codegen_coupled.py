@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
-from marks import PYTHON_TARGETS
+from marks import PYTHON_TARGETS, marked
 from test_coordinates import ROBOTS
 
 from symjac import forward_kinematics, jacobian, joint_rate_symbols, load_robot
@@ -110,7 +110,7 @@ def _call(module: types.ModuleType, function: str, *arguments: np.ndarray) -> np
 CASES = [(name, target) for name in sorted(ROBOTS) for target in PYTHON_TARGETS]
 
 
-@pytest.mark.parametrize(("name", "target"), CASES)
+@pytest.mark.parametrize(("name", "target"), marked(CASES))
 def test_module_matches_the_symbolic_results_in_the_coordinates(workspace, name, target):
     robot = _robot(name)
     module = _module(workspace, name, target)
@@ -140,7 +140,7 @@ def test_module_matches_the_symbolic_results_in_the_coordinates(workspace, name,
                                            abs(np.linalg.det(J)), atol=1e-10)
 
 
-@pytest.mark.parametrize(("name", "target"), CASES)
+@pytest.mark.parametrize(("name", "target"), marked(CASES))
 def test_jacobian_is_a_central_difference_of_the_generated_forward_kinematics(workspace, name, target):
     """Frame {0} at the wrist: dx/dq and omega from R(q + h) R(q - h)^T, all in the coordinates."""
     robot = _robot(name)
@@ -224,7 +224,7 @@ def test_c_kernels_compile_with_every_warning_an_error(workspace, tmp_path, name
 
 
 
-@pytest.mark.parametrize("target", PYTHON_TARGETS)
+@pytest.mark.parametrize("target", marked(PYTHON_TARGETS))
 def test_renamed_coordinates_give_the_same_numbers_as_the_joint_variables(target):
     """theta_i = q_i (the identity coupling, other names) goes through the coupled route and changes only names."""
     robot = load_robot("scara")

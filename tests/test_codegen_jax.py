@@ -58,7 +58,7 @@ def test_every_function_agrees_with_the_python_target(tmp_path, name):
     assert module.selftest() < 1e-6
 
 
-@pytest.mark.parametrize("name", ["planar3r", "stanford", "palletizer", pytest.param("ur5", marks=pytest.mark.slow)])
+@pytest.mark.parametrize("name", marked(["planar3r", "stanford", "palletizer", "ur5"]))
 def test_jacfwd_of_the_forward_kinematics_is_the_jacobian(tmp_path, name):
     robot = load_robot(name)
     point = "tool" if robot.tool is not None else "wrist"  # where forward_kinematics ends

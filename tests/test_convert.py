@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
+from marks import marked
 from reference import frames, random_configuration
 from strategies import SPECIAL_RPY, general_robots, robots
 
@@ -49,7 +50,7 @@ DH_CATALOG = [name for name in sorted(catalog())
               if load_robot(name).convention in (Convention.STANDARD, Convention.MODIFIED)]
 
 
-@pytest.mark.parametrize("name", DH_CATALOG)
+@pytest.mark.parametrize("name", marked(DH_CATALOG))
 def test_catalog_round_trip_is_exact(name):
     robot = load_robot(name)
     there, back = round_trip(robot)

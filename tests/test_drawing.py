@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from marks import marked
 
 pytest.importorskip("matplotlib")
 
@@ -45,7 +46,7 @@ def _tool_point(robot) -> np.ndarray | None:
     return np.array(robot.tool.matrix.subs(robot.defaults), dtype=float)[:3, 3]
 
 
-@pytest.mark.parametrize("name", ROBOTS)
+@pytest.mark.parametrize("name", marked(ROBOTS))
 def test_the_artists_hold_the_forward_kinematics(name):
     robot = load_robot(name)
     rng = np.random.default_rng(11)
@@ -79,7 +80,8 @@ def test_the_artists_hold_the_forward_kinematics(name):
                        for T in candidates), (name, joint)
 
 
-@pytest.mark.parametrize("name", ["planar3r", "puma560", "stanford", "panda", "ur5_poe", "palletizer", "ur5.urdf"])
+@pytest.mark.parametrize("name", marked(["planar3r", "puma560", "stanford", "panda", "ur5_poe", "palletizer",
+                                          "ur5.urdf"]))
 def test_the_ellipsoids_axes_are_the_singular_vectors_times_the_singular_values(name):
     robot = load_robot(name)
     rng = np.random.default_rng(5)

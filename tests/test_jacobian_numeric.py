@@ -34,7 +34,7 @@ def _points(robot):
     return points
 
 
-@pytest.mark.parametrize("name", ROBOTS)
+@pytest.mark.parametrize("name", marked(ROBOTS))
 def test_forward_kinematics_matches_numpy_reference(name):
     robot = load_robot(name)
     rng = np.random.default_rng(7)
@@ -65,7 +65,7 @@ def test_jacobian_matches_finite_differences_in_every_frame_and_point(name):
                                            err_msg=f"{name} frame {frame} point {label}")
 
 
-@pytest.mark.parametrize("name", ROBOTS)
+@pytest.mark.parametrize("name", marked(ROBOTS))
 @pytest.mark.parametrize("frame", [0, "mid", "last", "tool"])
 def test_methods_agree_symbolically(name, frame):
     robot = load_robot(name)

@@ -12,6 +12,7 @@ import itertools
 import numpy as np
 import pytest
 import sympy as sp
+from marks import marked
 from reference import random_configuration
 
 from symjac import catalog, load_robot, urdf_catalog
@@ -71,7 +72,7 @@ CASES = [(name, None, 0) for name in [*catalog(), *urdf_catalog()]] + [
 ]
 
 
-@pytest.mark.parametrize(("name", "rows", "frame"), CASES, ids=lambda value: str(value))
+@pytest.mark.parametrize(("name", "rows", "frame"), marked(CASES), ids=lambda value: str(value))
 def test_numeric_gradient_against_central_differences(robots, name, rows, frame):
     robot = robots[name]
     point = "tool" if robot.tool is not None else "wrist"
@@ -116,7 +117,7 @@ def test_gradient_ascent_increases_manipulability(robots):
 SQUARE = [("puma560", None), ("stanford", None), ("planar2r", "v_x,v_y"), ("scara", None), ("articulated3r", None)]
 
 
-@pytest.mark.parametrize(("name", "rows"), SQUARE)
+@pytest.mark.parametrize(("name", "rows"), marked(SQUARE))
 def test_closed_form_times_w_is_the_numeric_gradient(robots, name, rows):
     robot = robots[name]
     result = log_det_gradient(robot, rows)

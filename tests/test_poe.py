@@ -18,6 +18,7 @@ import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from marks import marked
 from reference import evaluate, finite_difference_jacobian, frames, random_configuration
 from scipy.linalg import expm
 from strategies import robots
@@ -176,7 +177,7 @@ def test_screw_exponential_in_closed_form_matches_expm():
         screw_exponential([0, 0, 1], t)
 
 
-@pytest.mark.parametrize("name", ["ur5_poe", "puma560", "stanford", "scara", "panda.urdf"])
+@pytest.mark.parametrize("name", marked(["ur5_poe", "puma560", "stanford", "scara", "panda.urdf"]))
 def test_space_and_body_jacobians_against_the_twists_of_the_reference(name):
     robot = load_robot(name)
     J_s, J_b = space_jacobian(robot), body_jacobian(robot)
@@ -315,7 +316,7 @@ def test_dh_to_poe_to_numbers_equals_dh_to_numbers(robot):
                        numeric_jacobian(robot, q, frame="world", point=point), atol=1e-12)
 
 
-@pytest.mark.parametrize("name", [*sorted(catalog()), "panda.urdf", "ur5.urdf"])
+@pytest.mark.parametrize("name", marked([*sorted(catalog()), "panda.urdf", "ur5.urdf"]))
 def test_every_catalog_robot_converts_to_poe_and_back_to_a_table(name):
     robot = load_robot(name)
     poe = convert(robot, "poe")
@@ -327,6 +328,7 @@ def test_every_catalog_robot_converts_to_poe_and_back_to_a_table(name):
         assert np.allclose(world_to_tool(other, q), world_to_tool(robot, q), atol=1e-12)
 
 
+@pytest.mark.slow  # long screws; the fast loop converts right-angle tables and the catalog's
 @settings(deadline=None, max_examples=8, suppress_health_check=[HealthCheck.too_slow])
 @given(robot=robots(max_joints=3))
 def test_dh_tables_with_generic_angles_convert_to_poe(robot):

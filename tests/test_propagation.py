@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from marks import marked
 from reference import evaluate, finite_difference_jacobian, random_configuration
 
 from symjac import (
@@ -92,7 +93,7 @@ def test_method_frames_of_the_seed_002_table():
 # --- propagation steps against finite differences -------------------------------------------------------------
 
 
-@pytest.mark.parametrize("name", sorted(catalog()))
+@pytest.mark.parametrize("name", marked(sorted(catalog())))
 def test_every_velocity_step_matches_finite_differences_of_its_frame(name):
     """Each intermediate {}^k(omega_k), {}^kv_k is the Jacobian of frame k's origin, expressed in k."""
     robot = load_robot(name)
@@ -145,7 +146,7 @@ def test_force_propagation_at_the_tool_frame_is_the_tool_jacobian_transposed():
 # --- statics ------------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("name", ["stanford", "puma560", "ur5", "panda"])
+@pytest.mark.parametrize("name", marked(["stanford", "puma560", "ur5", "panda"]))
 def test_virtual_work_against_finite_differences(name):
     """tau . dq = F . dx, with tau from force propagation and dx from an independent numeric forward kinematics."""
     robot = load_robot(name)

@@ -7,6 +7,7 @@ import itertools
 import numpy as np
 import pytest
 import sympy as sp
+from marks import marked
 from reference import finite_difference_jacobian, random_configuration
 
 from symjac import damped_least_squares, inverse_rates, load_robot, rates_along_path
@@ -28,7 +29,7 @@ def test_seed_002_theta1_rate_blows_up_at_the_shoulder_singularity():
                        AngleBasis.of([sp.Symbol("theta1", real=True), t2, t3]))
 
 
-@pytest.mark.parametrize("name", ["planar2r", "planar3r", "articulated3r"])
+@pytest.mark.parametrize("name", marked(["planar2r", "planar3r", "articulated3r"]))
 def test_closed_form_rates_reproduce_the_commanded_velocity(name):
     robot = load_robot(name)
     rates = inverse_rates(robot)

@@ -9,6 +9,7 @@ import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from marks import marked
 
 from symjac import load_robot, robot_from_mapping, singularities
 from symjac.analysis.singularity.sets import condition_samples
@@ -83,7 +84,7 @@ def test_the_final_form_check_can_fail():
     assert not _pythagorean_sums(d3 * s[4] ** 2 + c[4])
 
 
-@pytest.mark.parametrize("name", ["panda", "iiwa7"])
+@pytest.mark.parametrize("name", marked(["panda", "iiwa7"], keep=["iiwa7"]))  # the fast loop's redundant arm
 def test_no_minor_factor_is_a_product_or_keeps_a_pythagorean_sum(name):
     for minor in singularities(load_robot(name)).minors:
         for factor, _ in minor.factors:
@@ -91,6 +92,7 @@ def test_no_minor_factor_is_a_product_or_keeps_a_pythagorean_sum(name):
             assert not _pythagorean_sums(factor), factor
 
 
+@pytest.mark.slow  # the Panda's analysis; the fast loop checks the minors' final form on the iiwa
 def test_panda_minors_split_where_they_factor():
     report = singularities(load_robot("panda"))
     minors = {next(k for k in range(7) if k not in m.columns) + 1: m for m in report.minors}
@@ -171,7 +173,7 @@ def _scan(robot, report, starts=12, seed=1):
     return found
 
 
-@pytest.mark.parametrize("name", ["iiwa7", "panda"])
+@pytest.mark.parametrize("name", marked(["iiwa7", "panda"], keep=["iiwa7"]))
 def test_reported_sets_are_singular_and_no_singular_point_lies_outside_them(name):
     robot = load_robot(name)
     report = singularities(robot)
@@ -187,6 +189,7 @@ REDUNDANT_JOINTS = st.fixed_dictionaries({
     "a": st.sampled_from([0, 0, 0.3, "L"]), "d": st.sampled_from([0, 0, 0.25, "L"]), "theta": st.just(0)})
 
 
+@pytest.mark.slow  # four whole 7-joint analyses; the fast loop keeps the iiwa's sets
 @settings(max_examples=4, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(convention=st.sampled_from(["standard", "modified"]),
        joints=st.lists(REDUNDANT_JOINTS, min_size=7, max_size=7))

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from hypothesis import HealthCheck, given, settings
+from marks import marked
 from reference import finite_difference_jacobian, frames, random_configuration
 from strategies import robots
 
@@ -81,7 +82,7 @@ def test_existence_condition_fails_for_a_short_arm():
     assert shoulder.exists_for_defaults is False
 
 
-@pytest.mark.parametrize("name", SQUARE)
+@pytest.mark.parametrize("name", marked(SQUARE))
 def test_determinant_equals_the_numeric_determinant_of_the_finite_difference_jacobian(name):
     robot = load_robot(name)
     _assert_matches_finite_differences(robot, determinant(robot), seed=7, count=3)
@@ -97,7 +98,7 @@ def _assert_matches_finite_differences(robot, det, seed, count):
         assert _value(det.expression, robot, q) == pytest.approx(np.linalg.det(J), rel=1e-5, abs=1e-7)
 
 
-@pytest.mark.parametrize("name", ["planar3r", "articulated3r", "scara", "puma560"])
+@pytest.mark.parametrize("name", marked(["planar3r", "articulated3r", "scara", "puma560"]))
 def test_determinant_does_not_depend_on_the_frame(name):
     robot = load_robot(name)
     chosen = determinant(robot)
@@ -118,7 +119,7 @@ def test_a_planar_subset_is_refused_in_a_frame_that_mixes_rows():
         determinant(robot, rows=(0, 1, 5), frame=2)
 
 
-@pytest.mark.parametrize("name", SQUARE)
+@pytest.mark.parametrize("name", marked(SQUARE))
 def test_rank_drops_on_every_reported_solution_and_not_elsewhere(name):
     robot = load_robot(name)
     report = singularities(robot)

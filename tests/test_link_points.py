@@ -15,6 +15,7 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from marks import marked
 from reference import frame_index, frames, random_configuration
 from strategies import robots
 
@@ -91,7 +92,7 @@ def _check_link_jacobians(robot, link: int, point, frame, q: np.ndarray, simplif
         assert not simplify or first == J, f"{method} differs from {METHODS[0]}: link {link}, frame {frame}"
 
 
-@pytest.mark.parametrize("name", CATALOG)
+@pytest.mark.parametrize("name", marked(CATALOG))
 def test_every_method_matches_finite_differences_on_every_link(name):
     robot = _robot(name)
     rng = np.random.default_rng(sum(map(ord, name)))
@@ -102,7 +103,7 @@ def test_every_method_matches_finite_differences_on_every_link(name):
             _check_link_jacobians(robot, link, point, frame, q)
 
 
-@pytest.mark.parametrize("name", ["planar3r", "stanford", "palletizer"])
+@pytest.mark.parametrize("name", marked(["planar3r", "stanford", "palletizer"]))
 def test_acceleration_level_of_a_link_point_matches_finite_differences(name):
     robot = _robot(name)
     rng = np.random.default_rng(3)
@@ -127,7 +128,7 @@ def test_acceleration_level_of_a_link_point_matches_finite_differences(name):
                 np.testing.assert_allclose(_numeric(robot, bias)(q, qd)[:, 0], Jdot @ qd, atol=1e-6)
 
 
-@pytest.mark.parametrize("name", ["scara", "palletizer"])
+@pytest.mark.parametrize("name", marked(["scara", "palletizer"]))
 def test_acceleration_propagation_to_a_link_point_gives_the_bias(name):
     robot = _robot(name)
     rng = np.random.default_rng(5)

@@ -54,7 +54,7 @@ def _spread(c: Sequence[sp.Expr], mass: sp.Expr) -> sp.ImmutableMatrix:
 class Inertial:
     r"""The inertial data of one link, in its frame {i}.
 
-    Attributes
+    Parameters
     ----------
     mass : sympy.Expr
         :math:`m`.

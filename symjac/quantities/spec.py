@@ -158,9 +158,9 @@ class Request(Protocol):
         ...
 
 
-Handler = Callable[[Request], "Document"]
+QuantityHandler = Callable[[Request], "Document"]
 """A quantity's command-line handler: the request in, the document to render out."""
-Options = Callable[[argparse.ArgumentParser], None]
+QuantityOptions = Callable[[argparse.ArgumentParser], None]
 """A quantity's argparse hook: adds its own options to its command's parser (the common ones are there already)."""
 
 
@@ -178,7 +178,7 @@ class Generated:
     ``listing`` also ``{frame}``, ``{point}``, ``{at}`` (words for the point), ``{rows}``, ``{wrench}`` and the
     names of the request's other functions by kind (``{jacobian}``, ``{hessian}``, ``{manipulability}``).
 
-    Attributes
+    Parameters
     ----------
     name : str
         The kind (``"jacobian"``): the key of the table, and the base of its functions' names (a per-request
@@ -288,7 +288,7 @@ class Generated:
 class Quantity:
     r"""One derived quantity: what it is, how it is derived, coupled, printed, asked for and generated.
 
-    Attributes
+    Parameters
     ----------
     name : str
         Its name in :data:`symjac.quantities.QUANTITIES` (``"jacobian"``).
@@ -309,9 +309,9 @@ class Quantity:
     flag : str or None
         Within a shared command, the option (its ``dest``) that selects this quantity; None for the command's
         own quantity, which prints when no flag is given.
-    options : Options or None
+    options : QuantityOptions or None
         Adds the quantity's options to its command's parser (``--frame``, ``--method``, its ``flag``).
-    handler : Handler or None
+    handler : QuantityHandler or None
         Turns a :class:`Request` into the document to print.
     """
 
@@ -323,8 +323,8 @@ class Quantity:
     codegen: Generated | None = None
     command: str | None = None
     flag: str | None = None
-    options: Options | None = None
-    handler: Handler | None = None
+    options: QuantityOptions | None = None
+    handler: QuantityHandler | None = None
 
     def __post_init__(self) -> None:
         where = f"quantity {self.name!r}"

@@ -37,7 +37,7 @@ HEAD_BYTES = 65_536
 class Reader:
     """One robot file format.
 
-    Attributes
+    Parameters
     ----------
     name : str
         How messages name the format (``"URDF"``, ``"TOML robot file"``).

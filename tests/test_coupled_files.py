@@ -28,7 +28,8 @@ from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.coordinates import Coupling
 from symjac.model.io import robot_from_toml, robot_to_toml
 from symjac.model.robot_file import robot_to_mapping
-from symjac.printing.json import metadata, show_data
+from symjac.printing.json import document_data, metadata
+from symjac.printing.results import transforms_document
 from symjac.printing.tables import parameter_table_latex, parameter_table_text
 from symjac.report.content import parameter_table_html
 
@@ -203,7 +204,7 @@ def test_tables_show_the_coupled_joint_and_what_it_equals(palletizer):
 
 
 def test_json_names_the_coordinates_and_the_coupling(palletizer):
-    data = json.loads(json.dumps(show_data(palletizer, {})))
+    data = json.loads(json.dumps(document_data(transforms_document(palletizer, []))))
     assert data["joint_variables"] == ["theta1", "theta2", "theta3", "theta5"]
     assert data["coupling"] == {"theta4": "-theta2 - theta3"}
     assert data["parameter_table"][3][-1] == "theta4 = -theta2 - theta3"

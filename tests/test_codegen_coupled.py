@@ -115,7 +115,7 @@ def test_module_matches_the_symbolic_results_in_the_coordinates(workspace, name,
     robot = _robot(name)
     module = _module(workspace, name, target)
     defaults = [float(robot.defaults[p]) for p in robot.parameter_symbols]
-    assert tuple(c.name for c in robot.q) == module.JOINTS
+    assert tuple(c.name for c in robot.q) == module.COORDINATES
     assert module.selftest() < 1e-6
     for index, suffix in enumerate(["", f"_2_p1_r{''.join(map(str, _requests(name)[1].rows))}"]):
         reference = _reference(name, index)
@@ -236,7 +236,7 @@ def test_renamed_coordinates_give_the_same_numbers_as_the_joint_variables(target
         exec(compile(generate(model, target, acceleration=True), f"{model.name}.py", "exec"), namespace.__dict__)
         modules.append(namespace)
     plain, coupled = modules
-    assert coupled.JOINTS == ("q1", "q2", "q3", "q4") and coupled.selftest() < 1e-6
+    assert coupled.COORDINATES == coupled.JOINTS == ("q1", "q2", "q3", "q4") and coupled.selftest() < 1e-6
     x, rates = [0.3, -0.4, 0.05, 0.7], [0.2, -0.1, 0.3, 0.5]
     for function, arguments in (("forward_kinematics", (x,)), ("jacobian", (x,)), ("joint_torques", (x, WRENCH)),
                                 ("hessian", (x,)), ("bias_acceleration", (x, rates))):

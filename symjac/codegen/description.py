@@ -262,11 +262,11 @@ class ModuleDescription:
     ``parameters`` are (name, default) with the default a float; ``functions`` hold their lowered assignments as
     SymPy data; ``command`` is how to regenerate the module (the command line typed when ``shell_command``, else the
     equivalent Python call) and ``command_note`` what else the reader needs to know to run it (the folder a relative
-    path is relative to, which robot ``robot`` is), or nothing. ``joints`` are the entries of ``q`` (name, type):
+    path is relative to, which robot ``robot`` is), or nothing. ``coordinates`` are the entries of ``q`` (name, type):
     the joint variables, or for a coupled robot its independent coordinates, and then ``coupling`` holds each other
     joint variable as an equation in them (``theta4 = -theta2 - theta3``). ``coordinate_symbols`` and
     ``parameter_symbols`` are the SymPy symbols of the entries of ``q`` and of the parameters (in the order of
-    ``joints`` and ``parameters``): what the lowered assignments read, which a printer names. Nothing here refers
+    ``coordinates`` and ``parameters``): what the lowered assignments read, which a printer names. Nothing here refers
     to the robot's derivation (no ``Chain``): a backend prints from this data alone. ``derived`` are the functions
     computed by the runtime from others (manipulability, determinant, gradient), ``listing`` every public function
     with its line for the module docstring, in order, ``checks`` the self-test's checks in order and
@@ -279,7 +279,7 @@ class ModuleDescription:
     convention: str
     n_joints: int
     n_coordinates: int
-    joints: tuple[tuple[str, str], ...]
+    coordinates: tuple[tuple[str, str], ...]
     parameters: tuple[tuple[str, float], ...]
     functions: tuple[FunctionDescription, ...]
     jacobians: tuple[JacobianInfo, ...]
@@ -330,11 +330,11 @@ class ModuleDescription:
         return tuple(name for name, _ in self.parameters)
 
     @property
-    def joint_names(self) -> tuple[str, ...]:
-        """Joint variable names, in chain order."""
-        return tuple(name for name, _ in self.joints)
+    def coordinate_names(self) -> tuple[str, ...]:
+        """The names of the entries of ``q``: the joint variables, or a coupled robot's coordinates, in order."""
+        return tuple(name for name, _ in self.coordinates)
 
     @property
     def revolute(self) -> tuple[bool, ...]:
-        """Whether each joint is revolute."""
-        return tuple(kind == "revolute" for _, kind in self.joints)
+        """Whether each coordinate is an angle (revolute)."""
+        return tuple(kind == "revolute" for _, kind in self.coordinates)

@@ -116,7 +116,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     """The module around its functions: robot facts, exported names and the command that regenerates it."""
     model = chain.robot
     spec = backend(request.target)
-    exports = ({"PARAMETERS", "JOINTS", "ROBOT", "selftest", *spec.exports}
+    exports = ({"PARAMETERS", "COORDINATES", "JOINTS", "ROBOT", "selftest", *spec.exports}
                | {name for name in defined_names(functions, infos) if not name.startswith("_")})
     command, shell = request.command, request.command is not None
     if command is None:
@@ -132,7 +132,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
         n_joints=model.n_joints, n_coordinates=model.n_coordinates,
-        joints=tuple((c.name, kind.value) for c, kind in zip(model.q, model.coordinate_types, strict=True)),
+        coordinates=tuple((c.name, kind.value) for c, kind in zip(model.q, model.coordinate_types, strict=True)),
         coupling=coupling_lines(chain),
         parameters=tuple((p.name, float(float_literal(p.default))) for p in model.parameters),
         functions=tuple(functions), jacobians=tuple(infos),

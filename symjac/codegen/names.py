@@ -92,7 +92,7 @@ RESERVED: Mapping[str, str] = MappingProxyType({
                                                                "importlib", "sysconfig", "hashlib", "shutil",
                                                                "subprocess", "tempfile", "Path", "Sequence",
                                                                "ArrayLike", "MappingProxyType", "Any")},
-    **{name: "a constant of the generated module" for name in ("PARAMETERS", "JOINTS", "ROBOT", "CONVENTION",
+    **{name: "a constant of the generated module" for name in ("PARAMETERS", "COORDINATES", "JOINTS", "ROBOT", "CONVENTION",
                                                                 "SYMJAC_VERSION", "JACOBIANS", "BACKEND", "THREADS",
                                                                 "BUILD_ERROR", "DOF")},
     **{name: "a function of the generated module" for name in ("selftest", "forward_kinematics", "jacobian",

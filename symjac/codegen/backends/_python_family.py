@@ -193,9 +193,10 @@ class PythonModule:
         return tuple(lines)
 
     @property
-    def joints_lines(self) -> tuple[str, ...]:
-        """``JOINTS = ("theta1", "theta2")`` as Python source lines."""
-        return tuple(tuple_lines("JOINTS = ", (f'"{name}"' for name in self.description.joint_names)))
+    def coordinates_lines(self) -> tuple[str, ...]:
+        """``COORDINATES = ("theta1", "theta2")`` as Python source lines, then ``JOINTS``, its older name."""
+        names = tuple_lines("COORDINATES = ", (f'"{name}"' for name in self.description.coordinate_names))
+        return (*names, "JOINTS = COORDINATES  # the older name of the same tuple")
 
     @property
     def revolute_lines(self) -> tuple[str, ...]:

@@ -71,7 +71,9 @@ def link_of(chain: Chain, link: int | None) -> int:
         number = operator.index(link)
     except TypeError:
         number = None
-    if number is None or isinstance(link, bool) or not 0 <= number <= n:
+    if number is None or isinstance(link, bool):
+        raise ArgumentError(f"link must be a whole number 0..{n}, got {link!r}")
+    if not 0 <= number <= n:
         raise ArgumentError(f"link {link!r} does not exist for {chain.robot.name}: use 0..{n} (0 the base, link k "
                             f"moved by joint k, {n} the last link)")
     return number
@@ -86,6 +88,9 @@ def link_point(chain: Chain, point: Point | None, link: int) -> tuple[sp.Expr, s
     n = chain.n_joints
     if point is None:
         return (sp.S.Zero,) * 3
+    if isinstance(point, str) and point not in ("wrist", "tool") and link != n:
+        raise FrameError(f"unknown point {point!r}: give its three coordinates in frame {{{link}}}, or none for the "
+                         f"origin of {{{link}}}")
     if isinstance(point, str) and point in ("wrist", "tool") and link != n:
         what = "the origin of frame {n}" if point == "wrist" else "the tool frame's origin"
         raise FrameError(f"point {point!r} is {what}, fixed in the last link ({n}), not in link {link}: give the "

@@ -224,9 +224,10 @@ class Robot:
     Inertial data: ``inertials[i - 1]`` is link *i*'s :class:`~symjac.model.inertia.Inertial` (mass, centre of mass
     and tensor about it, in frame {i}), or None where it is unknown; without it (the default ``()``) every link's is
     None. Each must be well formed with the parameters' defaults (a mass that is not negative, finite values, a
-    symmetric tensor: :func:`~symjac.model.inertia.inertial_problem` with ``physical=False``); robot files also
-    refuse a tensor no rigid body can have, which the URDF reader reads with an
-    :class:`~symjac.errors.InertialWarning`.
+    symmetric tensor: :func:`~symjac.model.inertia.inertial_problem` with ``physical=False``); robot files and
+    URDF files keep a tensor no rigid body can have with an :class:`~symjac.errors.InertialWarning`. Note the
+    numbering: ``inertials[k - 1]`` belongs to the body that ``link=k`` of a Jacobian or
+    :func:`~symjac.kinematics.points.point_position` names (``link=0`` is the base, which has no entry).
     """
 
     name: str

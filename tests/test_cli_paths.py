@@ -176,7 +176,7 @@ def test_help_names_all_three_kinds_of_robot(capsys):
         with pytest.raises(SystemExit):
             main([command, "--help"])
         text = " ".join(capsys.readouterr().out.split())
-        assert "a TOML file or a URDF file" in text and "--tip-link" in text and "--base-link" in text, command
+        assert "a robot file (TOML robot file, URDF" in text and "--tip-link" in text and "--base-link" in text, command
 
 
 # --- 3. every failure is one line -----------------------------------------------------------------------------------

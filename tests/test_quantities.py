@@ -128,3 +128,13 @@ def test_the_registry_loads_no_sympy():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=120,
                             env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}, cwd=ROOT)
     assert result.stdout.split() == ["True", "False"]
+
+
+@pytest.mark.parametrize(("extra", "named"), [(["--frame", "2"], "--frame"),
+                                              (["--frame", "2", "--derivative"], "--frame or --derivative")])
+def test_a_screw_jacobian_refuses_the_options_it_ignores_in_one_line(capsys, extra, named):
+    from symjac.cli.main import main
+
+    assert main(["jacobian", "planar2r", "--kind", "space", *extra]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"symjac: error: --kind space does not take {named}: ")

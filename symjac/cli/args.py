@@ -34,15 +34,17 @@ __all__ = [
     "refuse_ignored_options",
 ]
 
-ROBOT_HELP = "a built-in robot name (see 'symjac robots'), a TOML file or a URDF file"
+ROBOT_HELP = ("a built-in robot name (see 'symjac robots') or a robot file ({formats}; the format is read from its "
+              "content)")
 
 
 def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     """The ``ROBOT`` argument and the options that choose the chain of a tree format (URDF)."""
-    from symjac.model.readers import tree_formats  # the registry only: no reader is imported
+    from symjac.model.readers import readers, tree_formats  # the registry only: no reader is imported
 
     formats = tree_formats()
-    parser.add_argument("robot", metavar="ROBOT", help=ROBOT_HELP)
+    parser.add_argument("robot", metavar="ROBOT",
+                        help=ROBOT_HELP.format(formats=", ".join(reader.name for reader in readers())))
     parser.add_argument("--base-link", default=None, metavar="LINK",
                         help=f"{formats} files only: first link of the chain (default: the root link)")
     parser.add_argument("--tip-link", default=None, metavar="LINK",

@@ -254,7 +254,8 @@ COMMANDS: dict[str, tuple[Handler, str, Options]] = {
     "sweep": (sweep_command, "dexterity metrics over a grid of designs and joint samples (on dask)", sweep_options),
     "report": (_report, "write the whole derivation as one self-contained HTML page", robot_options),
     "convert": (_convert, "print the robot as a TOML robot file, converted to another convention", convert_options),
-    "show": (_show, "show the DH table and the link transforms", result_options),
+    "show": (_show, "show the parameter table (DH, screw axes, origins and axes) and the link transforms",
+             result_options),
     **quantity_commands(),  # fk, jacobian, hessian, torques, ...: one per quantity spec (symjac.quantities)
     "singularities": (_singularities, "factor det J, solve every factor and explain what the arm loses there",
                       result_options),

@@ -70,8 +70,8 @@ def screw_jacobian(request: Request) -> Document:
                                        ("--representation", args.representation is not None),
                                        ("--derivative", args.derivative), ("--steps", args.steps)) if given]
     if others:
-        raise ArgumentError(f"--kind {args.kind} takes neither {' nor '.join(others)}: J_s is in the space frame "
-                            f"{{0}}, J_b in the tool frame")
+        raise ArgumentError(f"--kind {args.kind} does not take {' or '.join(others)}: it prints J_s (space frame "
+                            f"{{0}}) or J_b (tool frame) as they are, at their own points")
     derive = space_jacobian if args.kind == "space" else body_jacobian
     J = request.progress(f"{args.kind} Jacobian of {robot.name}", lambda: derive(robot))
     return screw_jacobian_document(robot, J, args.kind, request.digits)

@@ -226,3 +226,18 @@ def test_a_pretty_caption_writes_an_equation_as_one_line_not_as_sympy_source(cli
     text = cli.ok("jacobian", "planar3r", "--representation", "rpy", "--format", "pretty")
     caption = next(line for line in text.splitlines() if line.startswith("Representation singularity"))
     assert "Eq(" not in caption and "θ = -pi/2 or θ = pi/2" in caption
+
+
+def test_a_function_of_a_long_fraction_breaks_across_lines():
+    # a singular condition of the Panda is theta6 - asin(N / D) with N and D of dozens of terms: a \left( ... \right)
+    # pair cannot break, so the argument goes in unpaired delimiters that can, and every line fits the page
+    from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, tex_width
+
+    a, b, c = sp.symbols("a b c")
+    long_sum = sum(a**k * b * sp.cos(c * k) for k in range(1, 30))
+    value = sp.Symbol("theta6") - sp.asin(long_sum / (1 + long_sum.subs(a, c)))
+    display = fit_equation("F_{2}", value)
+    text = " \\\\\n".join(part for part in (display.main, *display.lines, *display.where) if part)
+    assert r"\operatorname{asin}\Bigl(\bigl(" in text and r"\big/ \bigl(" in text and text.count(r"\Bigr)") == 1
+    lines = text.split(" \\\\\n")
+    assert len(lines) > 3 and all(tex_width(line) <= TEXT_WIDTH for line in lines), [tex_width(x) for x in lines]

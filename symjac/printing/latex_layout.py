@@ -172,13 +172,35 @@ class _BreakingPrinter(TextbookLatexPrinter):
                 for factor in factors:
                     chunks += self._grouped(factor, limit) if factor.is_Add else [self.doprint(factor)]
                 return _glue(chunks)
+        if isinstance(expr, sp.Function) and len(expr.args) == 1 and r"{\left(" in tex and tex.endswith(r"\right)}"):
+            return self._applied(expr, tex[:tex.index(r"{\left(")], limit)
         return [tex]
+
+    def _applied(self, expr: sp.Function, head: str, limit: float) -> list[str]:
+        r"""A function of one argument too long for a line, as pieces that break at the argument's signs.
+
+        ``asin(N / D)`` becomes ``\operatorname{asin}\Bigl(\bigl(N\bigr) \big/ \bigl(D\bigr)\Bigr)``: unpaired
+        delimiters may end one line and open the next, where ``\left``/``\right`` must close on the line they open.
+        """
+        numerator, denominator = sp.fraction(expr.args[0])
+        chunks = self.pieces(numerator, limit)
+        if denominator != 1:
+            chunks = [*_wrapped(chunks, r"\bigl(", r"\bigr)"),
+                      *_wrapped(self.pieces(denominator, limit), r"\big/ \bigl(", r"\bigr)")]
+        return _glue(_wrapped(chunks, head + r"\Bigl(", r"\Bigr)"))
 
     def _grouped(self, expr: sp.Expr, limit: float) -> list[str]:
         inner = self.pieces(expr, limit)
         if len(inner) == 1:
             return [rf"\left({inner[0]}\right)" if expr.is_Add else inner[0]]
         return _glue([r"\bigl(" + inner[0], *inner[1:-1], inner[-1] + r"\bigr)"])
+
+
+def _wrapped(chunks: list[str], left: str, right: str) -> list[str]:
+    """``chunks`` with ``left`` before the first and ``right`` after the last."""
+    if len(chunks) == 1:
+        return [left + chunks[0] + right]
+    return [left + chunks[0], *chunks[1:-1], chunks[-1] + right]
 
 
 def _glue(chunks: list[str]) -> list[str]:

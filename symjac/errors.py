@@ -18,6 +18,7 @@ __all__ = [
     "RobotFileError",
     "SymjacError",
     "UnknownRobotError",
+    "warn",
 ]
 
 
@@ -87,6 +88,19 @@ class InertialWarning(UserWarning):
     A tensor that is not positive semi-definite or whose principal moments break the triangle inequality: CAD exports
     round into these often, and a URDF file is still read (its kinematics does not depend on them).
     """
+
+
+def warn(message: str, category: type[Warning]) -> None:
+    """Warn about the caller's input, pointing at the first frame outside symjac (the user's line, not ours)."""
+    import sys
+    import warnings
+    from pathlib import Path
+
+    package = str(Path(__file__).resolve().parent)
+    frame, level = sys._getframe(1), 2  # stacklevel 2 is the frame that called this function
+    while frame is not None and str(Path(frame.f_code.co_filename).resolve()).startswith(package):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 class ResultTooLargeError(SymjacError, ArithmeticError):

@@ -313,6 +313,9 @@ def test_data_no_body_can_have_is_kept_with_a_warning_naming_the_link(inertial: 
             "joints": [ROW, {**ROW, "inertial": inertial}]}
     with pytest.warns(InertialWarning, match=rf"^arm\.toml, .*{message}.*\(kept as given\)$"):
         robot = robot_from_mapping(data, source="arm.toml")
+    with pytest.warns(InertialWarning) as caught:
+        robot_from_mapping(data, source="arm.toml")
+    assert caught[0].filename == __file__  # the warning points at the caller's line, not into symjac
     assert robot.inertials[1] is not None and robot.inertials[1].mass == 1
 
 

@@ -369,3 +369,10 @@ def test_urdf_inertials_agree_with_the_general_robot_file_frames():
     text = robot_to_toml(robot)
     assert "com = [0.01, 0.02, 0.15]" in text
     assert robot_from_toml(text) == robot
+
+
+def test_a_toml_file_with_a_byte_order_mark_reads(tmp_path):
+    plain, marked = tmp_path / "plain.toml", tmp_path / "marked.toml"
+    plain.write_text(TOML, encoding="utf-8")
+    marked.write_bytes(b"\xef\xbb\xbf" + TOML.encode("utf-8"))  # as some editors save UTF-8
+    assert load_robot(marked) == load_robot(plain)

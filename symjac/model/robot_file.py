@@ -15,13 +15,12 @@ another's), so there are no cycles to resolve; it is written in radians and leng
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import sympy as sp
 
-from symjac.errors import ExpressionError, InertialWarning, RobotFileError
+from symjac.errors import ExpressionError, InertialWarning, RobotFileError, warn
 from symjac.model.conventions import PLUGINS, convention_named, file_inertials, plugin, with_file_inertials
 from symjac.model.conventions.base import transform_fields
 from symjac.model.coordinates import Coupling
@@ -196,7 +195,7 @@ def _inertial(table: Mapping[str, Any], number: int, value: Any, defaults: Mappi
         raise problem(reason, "inertial")
     reason = inertial_problem(inertial, defaults)
     if reason is not None:  # kept, as URDF's are: a converted CAD export must read back (kinematics does not need it)
-        warnings.warn(f"{problem(reason, 'inertial').args[0]} (kept as given)", InertialWarning, stacklevel=2)
+        warn(f"{problem(reason, 'inertial').args[0]} (kept as given)", InertialWarning)
     return inertial
 
 

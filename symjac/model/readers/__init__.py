@@ -185,7 +185,7 @@ def _is_toml(head: bytes) -> bool:
 def _read_toml(content: bytes, source: str, *, base_link: str | None = None, tip_link: str | None = None) -> Robot:
     robot_from_toml: Any = import_module("symjac.model.io").robot_from_toml  # io imports this module: late
     try:
-        text = content.decode("utf-8")
+        text = content.decode("utf-8-sig")  # a byte-order mark, as some editors write, is no TOML
     except UnicodeDecodeError as error:
         raise RobotFileError(f"cannot read file: {error}", source=source) from None
     return robot_from_toml(text, source=source)  # type: ignore[no-any-return]

@@ -29,14 +29,13 @@ Every problem raises :class:`~symjac.errors.RobotFileError` naming the source an
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
 
 import sympy as sp
 
-from symjac.errors import InertialWarning, RobotFileError
+from symjac.errors import InertialWarning, RobotFileError, warn
 from symjac.model.conventions.general import GeneralPlacement
 from symjac.model.coordinates import Coupling
 from symjac.model.expressions import exact_number, is_valid_name
@@ -388,7 +387,7 @@ def _link_inertial(joint: TreeJoint, links: dict[str, TreeLink], joints: dict[st
                 raise _fail(source, problem, f"link {name} inertial")
             problem = inertial_problem(own)
             if problem is not None:  # CAD exports round into these: read the file, say so (pinocchio reads it too)
-                warnings.warn(f"{source}, link {name}: {problem} (kept as given)", InertialWarning, stacklevel=2)
+                warn(f"{source}, link {name}: {problem} (kept as given)", InertialWarning)
             parts.append(own.expressed_in(T_i_X))
         stack += [(child.child, T_i_X * sp.Matrix(child.origin.matrix))
                   for child in children.get(name, []) if child.type is TreeJointType.FIXED]

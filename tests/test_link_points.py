@@ -234,3 +234,45 @@ def test_random_chains_hessian_of_a_link_point(robot, data):
         step = np.zeros(n)
         step[m] = H
         np.testing.assert_allclose(H_numeric[:, :, m], (J(q + step) - J(q - step)) / (2 * H), atol=1e-5)
+
+
+# --- the command line: --link ---------------------------------------------------------------------------------------
+
+
+def _json(capsys, *argv: str) -> dict:
+    import json
+
+    from symjac.cli.main import main
+
+    assert main([*argv, "--format", "json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+@pytest.mark.parametrize(("command", "derive"), [
+    ("jacobian", lambda r, p: jacobian(r, 0, p, link=2)),
+    ("torques", lambda r, p: joint_torques(r, frame=0, point=p, link=2)),
+])
+def test_the_command_line_prints_what_python_derives_for_a_link_point(capsys, command, derive):
+    robot = _robot("planar3r")
+    data = _json(capsys, command, "planar3r", "--link", "2", "--point", "0.1,0.2,0")
+    expected = derive(robot, (sp.Rational(1, 10), sp.Rational(1, 5), 0))
+    key = "entries" if command == "jacobian" else "torques"
+    entries = data[key] if command == "jacobian" else [[entry] for entry in data[key]]
+    assert data["link"] == 2 and sp.Matrix(entries).applyfunc(sp.sympify) == sp.Matrix(expected).applyfunc(
+        lambda e: sp.sympify(str(e)))
+
+
+def test_the_command_line_link_defaults_to_the_origin_and_says_where(capsys):
+    from symjac.cli.main import main
+
+    assert main(["jacobian", "planar3r", "--link", "1", "--format", "pretty"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("Basic Jacobian at the origin of frame {1} (fixed in link 1), differentiation")
+    hessian_data = _json(capsys, "hessian", "planar3r", "--link", "1")
+    assert hessian_data["link"] == 1 and all(entry == "0" for row in hessian_data["entries"] for col in row
+                                             for entry in col[1:])  # joints 2, 3 move nothing of link 1
+    for argv, message in ((["--representation", "zyz"], "--link does not apply with --representation"),
+                          (["--point", "tool"], "fixed in the last link")):
+        assert main(["jacobian", "planar3r", "--link", "1", *argv]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and message in err, err

@@ -50,9 +50,15 @@ class CommandRequest:
         """``--frame``, parsed."""
         return parse_frame(self.args.frame)
 
-    def point(self) -> Point:
-        """``--point``, parsed."""
+    def point(self) -> Point | None:
+        """``--point``, parsed; with ``--link`` the option's default (``wrist``) is the origin of that link's frame."""
+        if self.link() is not None and self.args.point == "wrist":
+            return None
         return parse_point(self.args.point, self.robot)
+
+    def link(self) -> int | None:
+        """``--link``, or None (the option is not given, or the command has none)."""
+        return getattr(self.args, "link", None)  # type: ignore[no-any-return]
 
     def values(self, text: str, length: int, option: str, *, parameters: bool = True) -> list[sp.Expr]:
         """``length`` comma-separated values of ``option``."""

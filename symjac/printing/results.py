@@ -120,15 +120,25 @@ def _jacobian_name(frame: Frame) -> Prescripted:
 
 
 def jacobian_document(robot: Robot, J: sp.MatrixBase, frame: Frame, point: str, method: str,
-                      propagation: Propagation | None = None, digits: int | None = None) -> Document:
-    """``symjac jacobian``: the basic Jacobian in ``frame`` at ``point`` (``--steps``: the propagation first)."""
+                      propagation: Propagation | None = None, digits: int | None = None, *,
+                      link: int | None = None) -> Document:
+    """``symjac jacobian``: the basic Jacobian in ``frame`` at ``point`` (``--steps``: the propagation first).
+
+    ``link``: the point is fixed in that link (``--link``), ``point`` its coordinates in its frame.
+    """
     steps = _steps(robot, propagation, digits)
     equation = Equation(f"{{}}^{{{frame_tex(frame)}}}J", f"J in frame {frame}", shown(robot, J, digits),
                         _jacobian_name(frame), JsonKey("entries", latex="latex"))
-    blocks = [Block((), (step,)) for step in steps] + [Block((prose.jacobian_caption(point, method),), (equation,))]
+    blocks = [Block((), (step,)) for step in steps]
+    blocks.append(Block((prose.jacobian_caption(point, method, link),), (equation,)))
     return Document(prose.title(robot, "jacobian", frame), robot.name, tuple(blocks),
-                    facts={"frame": frame, "point": point, "method": method, "shape": list(J.shape),
+                    facts={"frame": frame, "point": point, **_link(link), "method": method, "shape": list(J.shape),
                            **_columns(robot)}, model=robot)
+
+
+def _link(link: int | None) -> dict[str, int]:
+    """The ``link`` fact of a result at a point fixed in a link (``--link``), or none."""
+    return {} if link is None else {"link": link}
 
 
 def screw_jacobian_document(robot: Robot, J: sp.MatrixBase, kind: str, digits: int | None = None) -> Document:
@@ -179,7 +189,7 @@ def _representation_singularity(singularity: Any) -> str:
 
 def derivative_document(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, frame: Frame, point: str,
                         moving: bool, rates: Sequence[sp.Symbol], propagation: Propagation | None = None,
-                        digits: int | None = None) -> Document:
+                        digits: int | None = None, *, link: int | None = None) -> Document:
     r"""``symjac jacobian --derivative``: :math:`\dot J` and the bias acceleration :math:`\dot J \dot q`.
 
     ``moving``: ``frame`` turns with the joints, so its rotation is differentiated too (the caption says so).
@@ -191,15 +201,15 @@ def derivative_document(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, 
                              shown(robot, bias, digits),
                              key=JsonKey("bias_acceleration", latex="bias_latex", flat=True))
     blocks = (*(Block((), (step,)) for step in steps),
-              Block((prose.derivative_caption(point, moving),), (Jdot_equation,)),
+              Block((prose.derivative_caption(point, moving, link),), (Jdot_equation,)),
               Block(prose.BIAS_ACCELERATION, (bias_equation,)))
     return Document(prose.title(robot, "derivative", frame), robot.name, blocks,
-                    facts={"frame": frame, "point": point, "rates": [str(r) for r in rates],
+                    facts={"frame": frame, "point": point, **_link(link), "rates": [str(r) for r in rates],
                            "shape": list(Jdot.shape), **_columns(robot)}, model=robot)
 
 
 def hessian_document(robot: Robot, slices: Sequence[sp.MatrixBase], frame: Frame, point: str,
-                     digits: int | None = None) -> Document:
+                     digits: int | None = None, *, link: int | None = None) -> Document:
     r"""``symjac hessian``: one slice :math:`\partial J / \partial q_k` per joint."""
     equations = [Equation(rf"\frac{{\partial\,{{}}^{{{frame_tex(frame)}}}J}}{{\partial {sp.latex(q)}}}", f"dJ/d{q}",
                           shown(robot, H_k, digits),
@@ -208,13 +218,13 @@ def hessian_document(robot: Robot, slices: Sequence[sp.MatrixBase], frame: Frame
     blocks = tuple(Block((prose.hessian_caption(k),), (equation,)) for k, equation in enumerate(equations))
     n = robot.n_coordinates
     return Document(prose.title(robot, "hessian", frame), robot.name, blocks,
-                    facts={"frame": frame, "point": point, "shape": [6, n, n],
+                    facts={"frame": frame, "point": point, **_link(link), "shape": [6, n, n],
                            "layout": "entries[i][j][k] = d J[i][j] / d q[k]", **_columns(robot)}, model=robot)
 
 
 def torques_document(robot: Robot, tau: sp.MatrixBase, frame: Frame, point: str, wrench: str | None,
                      q: str | None, wrench_names: Sequence[sp.Symbol], digits: int | None = None,
-                     evaluated_digits: int | None = None) -> Document:
+                     evaluated_digits: int | None = None, *, link: int | None = None) -> Document:
     r"""``symjac torques``: :math:`\tau = J^T F` for the wrench given as text (``None``: the symbolic one).
 
     ``evaluated_digits``: the torques are numbers (at a configuration ``q``), shown as decimals of that many digits.
@@ -223,9 +233,10 @@ def torques_document(robot: Robot, tau: sp.MatrixBase, frame: Frame, point: str,
     if evaluated_digits is not None:
         tau = rounded(tau, evaluated_digits)
     equation = Equation(r"\tau", "tau", tau, key=JsonKey("torques", latex="latex", flat=True))
-    return Document(prose.title(robot, "torques"), robot.name, (Block((prose.torques_caption(frame, point),),
+    return Document(prose.title(robot, "torques"), robot.name, (Block((prose.torques_caption(frame, point, link),),
                                                                       (equation,)),),
-                    facts={"frame": frame, "point": point, "wrench": wrench or [str(s) for s in wrench_names],
+                    facts={"frame": frame, "point": point, **_link(link),
+                           "wrench": wrench or [str(s) for s in wrench_names],
                            "q": q}, model=robot)
 
 

@@ -28,12 +28,12 @@ def command(request: Request) -> Document:
     """``symjac jacobian --derivative``: dJ/dt and Jdot qdot in the frame, at the point."""
     from symjac.kinematics.acceleration import bias_acceleration, carried_joints, jacobian_derivative
     from symjac.kinematics.acceleration_propagation import acceleration_propagation
-    from symjac.kinematics.jacobian import point_vector
     from symjac.kinematics.propagation import joint_rate_symbols
     from symjac.printing.results import derivative_document
+    from symjac.quantities.jacobian import propagation_tip
 
     args, robot = request.args, request.robot
-    frame, point = request.frame(), request.point()
+    frame, point, link = request.frame(), request.point(), request.link()
     if args.kind != "geometric":  # the screw Jacobians refuse --derivative, naming it
         from symjac.quantities.jacobian import screw_jacobian
 
@@ -43,14 +43,14 @@ def command(request: Request) -> Document:
                             "Jacobian)")
     propagation = None
     if args.steps:
-        tip = None if point == "tool" else point_vector(robot, point)
+        tip = propagation_tip(robot, point)
         propagation = request.progress(f"acceleration propagation of {robot.name}",
-                                       lambda: acceleration_propagation(robot, tip))
+                                       lambda: acceleration_propagation(robot, tip, link=link))
     Jdot = request.progress(f"Jacobian derivative of {robot.name} in frame {frame}",
-                            lambda: jacobian_derivative(robot, frame=frame, point=point))
-    bias = bias_acceleration(robot, frame=frame, point=point)
+                            lambda: jacobian_derivative(robot, frame=frame, point=point, link=link))
+    bias = bias_acceleration(robot, frame=frame, point=point, link=link)
     return derivative_document(robot, Jdot, bias, frame, args.point, bool(carried_joints(robot, frame)),
-                               joint_rate_symbols(robot), propagation, request.digits)
+                               joint_rate_symbols(robot), propagation, request.digits, link=link)
 
 
 QUANTITY = Quantity(

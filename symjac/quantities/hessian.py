@@ -19,11 +19,11 @@ def command(request: Request) -> Document:
     from symjac.printing.results import hessian_document
 
     robot = request.robot
-    frame, point = request.frame(), request.point()
+    frame, point, link = request.frame(), request.point(), request.link()
     H = request.progress(f"Hessian of {robot.name} in frame {frame}",
-                         lambda: hessian(robot, frame=frame, point=point))
+                         lambda: hessian(robot, frame=frame, point=point, link=link))
     slices = [hessian_slice(H, k) for k in range(len(robot.q))]
-    return hessian_document(robot, slices, frame, request.args.point, request.digits)
+    return hessian_document(robot, slices, frame, request.args.point, request.digits, link=link)
 
 
 QUANTITY = Quantity(

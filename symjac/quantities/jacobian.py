@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from symjac.kinematics.jacobian import Point
     from symjac.printing.document import Document
 
-__all__ = ["QUANTITY", "command", "options", "propagation", "representation", "screw_jacobian"]
+__all__ = ["QUANTITY", "command", "options", "propagation", "propagation_tip", "representation", "screw_jacobian"]
 
 
 def options(sub: argparse.ArgumentParser) -> None:
@@ -49,15 +49,18 @@ def command(request: Request) -> Document:
     from symjac.printing.results import jacobian_document
 
     args, robot = request.args, request.robot
-    frame, point = request.frame(), request.point()
+    frame, point, link = request.frame(), request.point(), request.link()
     if args.kind != "geometric":
         return screw_jacobian(request)
     if args.representation is not None:
+        if link is not None:
+            raise ArgumentError("--link does not apply with --representation (the representation is of the end "
+                                "frame's orientation)")
         return representation(request, frame, point)
     steps = propagation(request, point) if args.steps else None
     J = request.progress(f"Jacobian of {robot.name} in frame {frame}",
-                         lambda: jacobian(robot, frame=frame, point=point, method=args.method))
-    return jacobian_document(robot, J, frame, args.point, args.method, steps, request.digits)
+                         lambda: jacobian(robot, frame=frame, point=point, method=args.method, link=link))
+    return jacobian_document(robot, J, frame, args.point, args.method, steps, request.digits, link=link)
 
 
 def screw_jacobian(request: Request) -> Document:
@@ -67,6 +70,7 @@ def screw_jacobian(request: Request) -> Document:
 
     args, robot = request.args, request.robot
     others = [flag for flag, given in (("--frame", args.frame != "0"), ("--point", args.point != "wrist"),
+                                       ("--link", request.link() is not None),
                                        ("--representation", args.representation is not None),
                                        ("--derivative", args.derivative), ("--steps", args.steps)) if given]
     if others:
@@ -89,20 +93,28 @@ def representation(request: Request, frame: Frame, point: Point) -> Document:
     return representation_document(robot, result, args.point, args.representation, position, request.digits)
 
 
-def propagation(request: Request, point: Point) -> Any:
+def propagation(request: Request, point: Point | None) -> Any:
     """The velocity or force propagation whose steps ``--steps`` prints."""
-    from symjac.kinematics.jacobian import point_vector
     from symjac.kinematics.propagation import force_propagation, velocity_propagation
 
-    args, robot = request.args, request.robot
-    tip = None if point == "tool" else point_vector(robot, point)
+    args, robot, link = request.args, request.robot, request.link()
+    tip = propagation_tip(robot, point)
     derive: dict[str, Callable[[], Any]] = {
-        "velocity_propagation": lambda: velocity_propagation(robot, tip),
-        "force_propagation": lambda: force_propagation(robot, tip),
+        "velocity_propagation": lambda: velocity_propagation(robot, tip, link=link),
+        "force_propagation": lambda: force_propagation(robot, tip, link=link),
     }
     if args.method not in derive:
         raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
     return request.progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
+
+
+def propagation_tip(robot: Any, point: Point | None) -> Any:
+    """The point a propagation ends at: None for the tool, else coordinates (the origin for ``point=None``)."""
+    from symjac.kinematics.jacobian import point_vector
+
+    if point == "tool":
+        return None
+    return point_vector(robot, "wrist" if point is None else point)
 
 
 QUANTITY = Quantity(

@@ -29,14 +29,14 @@ def command(request: Request) -> Document:
     from symjac.printing.results import torques_document
 
     args, robot = request.args, request.robot
-    frame, point = request.frame(), request.point()
+    frame, point, link = request.frame(), request.point(), request.link()
     wrench = None if args.wrench is None else request.values(args.wrench, 6, "--wrench")
     q = None if args.q is None else request.values(args.q, robot.n_coordinates, "--q", parameters=False)
     tau = request.progress(f"joint torques of {robot.name}",
-                           lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q))
+                           lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q, link=link))
     evaluated = None if q is None else args.digits or DIGITS  # at a configuration: numbers, shown as decimals
     return torques_document(robot, tau, frame, args.point, args.wrench, args.q, wrench_symbols(), request.digits,
-                            evaluated)
+                            evaluated, link=link)
 
 
 QUANTITY = Quantity(

@@ -45,3 +45,6 @@ def frame_and_point_options(sub: argparse.ArgumentParser) -> None:
     """``--frame`` and ``--point``, as every quantity at a point of the arm takes them."""
     sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
     sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
+    sub.add_argument("--link", type=int, default=None, metavar="K",
+                     help="a point fixed in link K (0 the base .. n): --point is then x,y,z in frame {K} (default its "
+                          "origin)")

@@ -145,8 +145,15 @@ class Request(Protocol):
         """``--frame``, parsed."""
         ...
 
-    def point(self) -> Point:
-        """``--point``, parsed (``wrist``, ``tool`` or three coordinates in frame {n})."""
+    def point(self) -> Point | None:
+        """``--point``, parsed: ``wrist``, ``tool`` or three coordinates in frame {n}.
+
+        With ``--link k`` the coordinates are in frame {k}, and the default ``wrist`` gives None: the origin of {k}.
+        """
+        ...
+
+    def link(self) -> int | None:
+        """``--link``: the link the point is fixed in (None: the last link, as without the option)."""
         ...
 
     def values(self, text: str, length: int, option: str, *, parameters: bool = True) -> list[sp.Expr]:

@@ -16,6 +16,7 @@ __all__ = [
     "fixed_transform_caption",
     "hessian_caption",
     "jacobian_caption",
+    "point_phrase",
     "representation_caption",
     "title",
     "torques_caption",
@@ -53,9 +54,27 @@ def fixed_transform_caption(source: object, target: object) -> tuple[str, ...]:
     return ("Fixed base transform",) if source == "world" else ()
 
 
-def jacobian_caption(point: str, method: str) -> str:
+def point_phrase(point: str, link: int | None = None) -> str:
+    """``the wrist point``, or for a point fixed in link k (``--link``) ``the point (x,y,z) of frame {k} (link k)``.
+
+    With a link, ``point`` ``"wrist"`` (the option's default) stands for the origin of frame {k}.
+
+    Examples
+    --------
+    >>> point_phrase("wrist"), point_phrase("wrist", 2)
+    ('the wrist point', 'the origin of frame {2} (fixed in link 2)')
+    >>> point_phrase("0.1,0,0", 2)
+    'the point (0.1,0,0) of frame {2} (fixed in link 2)'
+    """
+    if link is None:
+        return f"the {point} point"
+    where = f"the origin of frame {{{link}}}" if point == "wrist" else f"the point ({point}) of frame {{{link}}}"
+    return f"{where} (fixed in link {link})"
+
+
+def jacobian_caption(point: str, method: str, link: int | None = None) -> str:
     """``Basic Jacobian at the wrist point, differentiation``."""
-    return f"Basic Jacobian at the {point} point, {method.replace('_', ' ')}"
+    return f"Basic Jacobian at {point_phrase(point, link)}, {method.replace('_', ' ')}"
 
 
 SCREW_JACOBIAN_CAPTIONS = {
@@ -76,10 +95,10 @@ def representation_caption(point: str) -> tuple[str]:
     return (f"Representation Jacobian at the {point} point",)
 
 
-def derivative_caption(point: str, moving: bool) -> str:
+def derivative_caption(point: str, moving: bool, link: int | None = None) -> str:
     r"""The caption of :math:`\dot J`; ``moving`` when the frame turns with the joints."""
     turning = " (in a moving frame: its rotation is differentiated too)" if moving else ""
-    return f"Time derivative of the basic Jacobian at the {point} point{turning}"
+    return f"Time derivative of the basic Jacobian at {point_phrase(point, link)}{turning}"
 
 
 def hessian_caption(joint: int) -> str:
@@ -87,6 +106,6 @@ def hessian_caption(joint: int) -> str:
     return f"Derivative of the Jacobian with respect to joint {joint + 1}"
 
 
-def torques_caption(frame: object, point: str) -> str:
+def torques_caption(frame: object, point: str, link: int | None = None) -> str:
     """``Joint torques for a wrench in frame 0 at the wrist point``."""
-    return f"Joint torques for a wrench in frame {frame} at the {point} point"
+    return f"Joint torques for a wrench in frame {frame} at {point_phrase(point, link)}"

@@ -4,6 +4,7 @@
 // namespace (symjac::<robot>::runtime), so that two generated headers can be included together and each still
 // needs only Eigen. Every routine is a template on the scalar type and the fixed sizes; a decision on the shape
 // (square, wide or tall) is made at compile time. Tested on its own: tests/test_codegen_runtime.py compiles it.
+// A header carries only the sections it uses; the acceleration section is empty: the header has no self-test.
 #pragma once
 
 #include <array>
@@ -98,6 +99,8 @@ Eigen::Matrix<Scalar, N, 1> cholesky_solve(const Eigen::Matrix<Scalar, N, N>& M,
     }
     return factor.solve(b);
 }
+
+// ---- runtime section: acceleration ----
 
 // ---- runtime section: core ----
 

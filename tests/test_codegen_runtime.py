@@ -2,8 +2,8 @@
 
 Each runtime file is imported (Python) or compiled (C) by itself and checked against ``numpy.linalg``: determinants
 (with pivoting and exact zeros), the Gauss-Jordan and Cholesky solves, the manipulability of square, wide and tall
-Jacobians and its gradient against central differences. Every generated module of a family carries its runtime's
-text unchanged, and no template holds an elimination loop.
+Jacobians and its gradient against central differences. Every generated module of a family carries the sections
+of its runtime it uses unchanged, and no template holds an elimination loop.
 """
 
 from __future__ import annotations
@@ -117,9 +117,10 @@ def test_each_runtime_has_its_mark_and_imports_nothing_of_symjac():
 
 @pytest.mark.parametrize("target", [t for t, b in BACKENDS.items() if b.runtime])
 def test_every_generated_module_carries_its_runtime_unchanged(target):
-    files = render_files(describe(ModuleRequest(load_robot("planar2r"), target, acceleration=True)))
-    text = "\n".join(files.values())
-    assert runtime_source(BACKENDS[target].runtime) in text
+    description = describe(ModuleRequest(load_robot("planar2r"), target, acceleration=True))
+    text = "\n".join(render_files(description).values())
+    own = {"sincos"} if target in ("numpy", "c") else set()  # their printers' angle lines call _sincos
+    assert runtime_source(BACKENDS[target].runtime, description.runtime_sections | own) in text
 
 
 def test_no_template_holds_an_elimination_loop():

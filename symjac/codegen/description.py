@@ -308,6 +308,15 @@ class ModuleDescription:
         return any(info.hessian for info in self.jacobians)
 
     @property
+    def runtime_sections(self) -> frozenset[str]:
+        """The runtime sections the module uses: its derived functions' routines and its self-test's checks.
+
+        :func:`~symjac.codegen.runtime.runtime_source` adds the sections they need and the core (which holds the
+        pose and Jacobian checks): what the backends copy into the module.
+        """
+        return frozenset(d.routine for d in self.derived) | frozenset(check.routine for check in self.checks)
+
+    @property
     def check_words(self) -> str:
         """What the self-test checks, for its docstring: the words of each routine of ``checks``, once each."""
         routines = list(dict.fromkeys(check.routine for check in self.checks))

@@ -3,7 +3,8 @@
  * Every generated c99 source carries the part of this file below the runtime mark, unchanged (so that it compiles
  * with the C standard library alone); before it, the source defines the type `real` and SJ_DIM, the largest side of
  * any matrix, and includes <tgmath.h> (sqrt and fabs of the type real). Matrices are row-major arrays. Every
- * function is static inline: a module that does not call one gets no warning and no code for it.
+ * function is static inline, and a module carries only the sections it uses (the core: the self-test's driver
+ * helpers and its pose and Jacobian checks; another section when a routine or check of the module needs it).
  * Tested on its own: tests/test_codegen_runtime.py compiles it with a small driver and compares with numpy.linalg.
  */
 #include <stddef.h>
@@ -14,7 +15,8 @@
 /* A function of one configuration writing its output: (q, params, out), or with an input between (F, qdot). */
 typedef void (*sj_map)(const real *q, const real *params, real *out);
 typedef void (*sj_map_with)(const real *q, const real *params, const real *input, real *out);
-typedef real (*sj_scalar)(const real *q, const real *params);
+
+/* ---- runtime section: lu_determinant ---- */
 
 /* Determinant of the n x n row-major matrix a (overwritten): Gaussian elimination with partial pivoting. */
 static inline real sj_lu_determinant(real *a, int n)
@@ -49,12 +51,16 @@ static inline real sj_lu_determinant(real *a, int n)
     return result;
 }
 
+/* ---- runtime section: determinant; needs: lu_determinant ---- */
+
 /* det J of a square rows x cols Jacobian J (overwritten; cols == rows): the routine of the determinant kind. */
 static inline real sj_determinant(real *J, int rows, int cols)
 {
     (void)cols;
     return sj_lu_determinant(J, rows);
 }
+
+/* ---- runtime section: gram ---- */
 
 /* The Gram matrix of the shorter side of the rows x cols matrix J: J J^T (wide) or J^T J (tall); its side. */
 static inline int sj_gram(const real *J, int rows, int cols, real *g)
@@ -73,6 +79,8 @@ static inline int sj_gram(const real *J, int rows, int cols, real *g)
     return small;
 }
 
+/* ---- runtime section: manipulability; needs: lu_determinant, gram ---- */
+
 /* w = |det J| for a square J, else sqrt(det(G)) with G the Gram matrix of the shorter side. */
 static inline real sj_manipulability(const real *J, int rows, int cols)
 {
@@ -86,6 +94,8 @@ static inline real sj_manipulability(const real *J, int rows, int cols)
     const real d = sj_lu_determinant(g, sj_gram(J, rows, cols, g));
     return d > 0 ? sqrt(d) : 0;
 }
+
+/* ---- runtime section: solve ---- */
 
 /* Gauss-Jordan with partial pivoting on [g | x], g n x n and x n x m (both overwritten): x becomes g^-1 x. */
 static inline void sj_solve(real *g, real *x, int n, int m)
@@ -129,6 +139,8 @@ static inline void sj_solve(real *g, real *x, int n, int m)
     }
 }
 
+/* ---- runtime section: manipulability_gradient; needs: gram, lu_determinant, solve ---- */
+
 /* dw/dq_m = w trace(J^+ H_m), H_m[i][j] = H[(i * cols + j) * cols + m]; J^+ through one solve with the Gram matrix
  * G: J^+ = (G^-1 J)^T for a wide J, G^-1 J^T for a tall one. Zero where w = 0 (a kink, not a gradient). */
 static inline void sj_manipulability_gradient(const real *J, const real *H, int rows, int cols, real *gradient)
@@ -164,6 +176,8 @@ static inline void sj_manipulability_gradient(const real *J, const real *H, int 
         gradient[m] = w * trace;
     }
 }
+
+/* ---- runtime section: cholesky_solve ---- */
 
 /* x with M x = b for a symmetric positive definite n x n M (a mass matrix): M = L L^T, L y = b, L^T x = y.
  * L[i][i] = sqrt(M[i][i] - sum_k<i L[i][k]^2), L[r][i] = (M[r][i] - sum_k<i L[r][k] L[i][k]) / L[i][i].
@@ -204,6 +218,8 @@ static inline int sj_cholesky_solve(const real *M, const real *b, int n, real *x
     }
     return 1;
 }
+
+/* ---- runtime section: core ---- */
 
 /* |a - b| within tolerance relative to 1 + |b|: 0 when it is, else 1 (a count of failures). */
 static inline int sj_differs(real a, real b, real tolerance)
@@ -299,6 +315,11 @@ static inline int sj_check_jacobian(int n, int size, const int *rows, sj_map jac
     }
     return failures;
 }
+
+/* ---- runtime section: acceleration ---- */
+
+/* A scalar function of one configuration (the manipulability the acceleration check differentiates). */
+typedef real (*sj_scalar)(const real *q, const real *params);
 
 /* The Hessian, the manipulability gradient and the bias acceleration Jdot qdot of a Jacobian (size x n) against
  * central differences of the Jacobian and of the manipulability. */

@@ -21,17 +21,14 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[ca.Function, ...], tuple[i
     """The largest error of the self-test's ``checks``, relative to 1 + |entry|, at the default parameters.
 
     Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
-    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or
-    ``"acceleration"`` (Jacobian, Hessian, bias acceleration, ...: against central differences of the Jacobian;
-    CasADi differentiates the manipulability itself).
+    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or the check of
+    a runtime section, ``_<routine>_error(functions, q, qdot, p)``, found by name (a module carries only the
+    sections it uses).
     """
     step = 1e-6
     p = ca.DM(defaults)
     worst = 0.0
-
-    def error(actual: ca.DM, expected: ca.DM) -> float:
-        return float(ca.mmax(ca.fabs(actual - expected) / (1.0 + ca.fabs(expected))))
-
+    error = _relative_error
     for sample in range(samples):
         q = ca.DM([1.3 * math.sin(0.9 * (sample + 1) * (k + 1)) for k in range(n)])
         unit = ca.DM.eye(n)
@@ -56,19 +53,47 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[ca.Function, ...], tuple[i
                 wrench = ca.DM([0.3 + 0.2 * k for k in range(len(rows))])
                 worst = max(worst, error(torque_function(q, wrench, p), ca.mtimes(J.T, wrench)))
             else:
-                jacobian_function, hessian_function, bias_function = functions[:3]
-                H = hessian_function(q, p)
-                for m in range(n):
-                    change = (jacobian_function(q + step * unit[:, m], p) - jacobian_function(q - step * unit[:, m], p))
-                    worst = max(worst, error(H[:, m * n:(m + 1) * n], change / (2 * step)))
-                change = (jacobian_function(q + step * qdot, p) - jacobian_function(q - step * qdot, p)) / (2 * step)
-                worst = max(worst, error(bias_function(q, qdot, p), ca.mtimes(change, qdot)))
+                worst = max(worst, globals()[f"_{routine}_error"](functions, q, qdot, p))
     return worst
+
+
+def _relative_error(actual: ca.DM, expected: ca.DM) -> float:
+    """The largest |actual - expected| / (1 + |expected|)."""
+    return float(ca.mmax(ca.fabs(actual - expected) / (1.0 + ca.fabs(expected))))
+
+
+# ---- runtime section: acceleration ----
+
+
+def _acceleration_error(functions: Sequence[ca.Function], q: ca.DM, qdot: ca.DM, p: ca.DM) -> float:
+    """Largest error of the Hessian and Jdot qdot against central differences of the Jacobian.
+
+    ``functions`` start with the Jacobian, Hessian and bias acceleration (CasADi differentiates the manipulability
+    itself).
+    """
+    error = _relative_error
+    step = 1e-6
+    n = q.numel()
+    unit = ca.DM.eye(n)
+    jacobian_function, hessian_function, bias_function = functions[:3]
+    H = hessian_function(q, p)
+    worst = 0.0
+    for m in range(n):
+        change = (jacobian_function(q + step * unit[:, m], p) - jacobian_function(q - step * unit[:, m], p))
+        worst = max(worst, error(H[:, m * n:(m + 1) * n], change / (2 * step)))
+    change = (jacobian_function(q + step * qdot, p) - jacobian_function(q - step * qdot, p)) / (2 * step)
+    return max(worst, error(bias_function(q, qdot, p), ca.mtimes(change, qdot)))
+
+
+# ---- runtime section: determinant ----
 
 
 def _determinant(J: ca.SX, q: ca.SX | None = None) -> ca.SX:
     """The determinant of a square Jacobian (CasADi's expansion); ``q``, the variables, is not needed."""
     return ca.det(J)
+
+
+# ---- runtime section: manipulability ----
 
 
 def _manipulability(J: ca.SX, q: ca.SX | None = None) -> ca.SX:
@@ -82,6 +107,9 @@ def _manipulability(J: ca.SX, q: ca.SX | None = None) -> ca.SX:
     return ca.sqrt(ca.fmax(ca.det(ca.mtimes(J, J.T) if rows < columns else ca.mtimes(J.T, J)), 0.0))
 
 
+# ---- runtime section: manipulability_gradient; needs: manipulability ----
+
+
 def _manipulability_gradient(J: ca.SX, H: ca.SX, q: ca.SX) -> ca.SX:
     """Dw/dq by CasADi's own differentiation of the manipulability of J(q); zero where w = 0 (a kink there).
 
@@ -89,6 +117,9 @@ def _manipulability_gradient(J: ca.SX, H: ca.SX, q: ca.SX) -> ca.SX:
     """
     w = _manipulability(J)
     return ca.if_else(w > 0, ca.gradient(w, q), ca.SX.zeros(q.numel(), 1))
+
+
+# ---- runtime section: cholesky_solve ----
 
 
 def _cholesky_solve(M: ca.SX, b: ca.SX) -> ca.SX:

@@ -4,6 +4,7 @@
 // namespace (symjac::<robot>::runtime), so that two generated headers can be included together and each still
 // needs only Eigen. Every routine is a template on the scalar type and the fixed sizes; a decision on the shape
 // (square, wide or tall) is made at compile time. Tested on its own: tests/test_codegen_runtime.py compiles it.
+// A header carries only the sections it uses; the acceleration section is empty: the header has no self-test.
 #pragma once
 
 #include <array>
@@ -17,12 +18,16 @@ namespace symjac_runtime_test {
 // ---- runtime: everything below is copied into every generated module of the target ----
 namespace runtime {
 
+// ---- runtime section: determinant ----
+
 // The determinant of a square matrix (Eigen's: LU with partial pivoting for sizes above 4, cofactors below).
 template <class Scalar, int N>
 Scalar determinant(const Eigen::Matrix<Scalar, N, N>& J)
 {
     return J.determinant();
 }
+
+// ---- runtime section: manipulability ----
 
 // The manipulability w: |det J| for a square J, else sqrt(det G), G = J J^T (wide) or J^T J (tall); 0 if det G <= 0.
 template <class Scalar, int Rows, int Cols>
@@ -42,6 +47,8 @@ Scalar manipulability(const Eigen::Matrix<Scalar, Rows, Cols>& J)
         return d > Scalar(0) ? Scalar(sqrt(d)) : Scalar(0);
     }
 }
+
+// ---- runtime section: manipulability_gradient ----
 
 // dw/dq_m = w trace(J^+ dJ/dq_m), H[m] = dJ/dq_m, J^+ through one solve with the Gram matrix G: J^+ = (G^-1 J)^T
 // for a wide J (G = J J^T), G^-1 J^T for a tall one (G = J^T J); zero where w = 0 (a kink, not a gradient).
@@ -78,6 +85,8 @@ Eigen::Matrix<Scalar, Cols, 1> manipulability_gradient(const Eigen::Matrix<Scala
     return gradient;
 }
 
+// ---- runtime section: cholesky_solve ----
+
 // x with M x = b for a symmetric positive definite M (a mass matrix): M = L L^T (Eigen's LLT), then two triangular
 // solves; ok is false when M is not positive definite (x is then meaningless).
 template <class Scalar, int N>
@@ -90,6 +99,10 @@ Eigen::Matrix<Scalar, N, 1> cholesky_solve(const Eigen::Matrix<Scalar, N, N>& M,
     }
     return factor.solve(b);
 }
+
+// ---- runtime section: acceleration ----
+
+// ---- runtime section: core ----
 
 }  // namespace runtime
 // ---- end of runtime ----

@@ -22,9 +22,9 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Array], ...]
     """The largest error of the self-test's ``checks``, relative to 1 + |entry|, at ``samples`` configurations.
 
     Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
-    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or
-    ``"acceleration"`` (Jacobian, Hessian, bias acceleration, manipulability, gradient: against central
-    differences).
+    torques, kinematics: against central differences of the kinematics, the torques against J^T F) or the check of
+    a runtime section, ``_<routine>_error(functions, q, qdot, error, central)``, found by name (a module carries
+    only the sections it uses).
     """
     worst = 0.0
 
@@ -57,19 +57,40 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Array], ...]
                 wrench = jnp.linspace(-0.7, 0.9, len(rows))
                 worst = max(worst, error(torque_function(q, wrench), J.T @ wrench))
             else:
-                jacobian_function, hessian_function, bias_function, manipulability_function, gradient_function = (
-                    functions)
-                H = hessian_function(q)
-                for m in range(q.shape[0]):
-                    worst = max(worst, error(H[:, :, m], central(jacobian_function, q, unit[m])))
-                    worst = max(worst, error(gradient_function(q)[m], central(manipulability_function, q, unit[m])))
-                worst = max(worst, error(bias_function(q, qdot), central(jacobian_function, q, qdot) @ qdot))
+                worst = max(worst, globals()[f"_{routine}_error"](functions, q, qdot, error, central))
     return worst
+
+
+# ---- runtime section: acceleration ----
+
+
+def _acceleration_error(functions: Sequence[Callable[..., Array]], q: Array, qdot: Array,
+                        error: Callable[[ArrayLike, ArrayLike], float],
+                        central: Callable[[Callable[[Array], Array], Array, Array], Array]) -> float:
+    """Largest error of the Hessian, the manipulability gradient and Jdot qdot against central differences.
+
+    ``functions`` are the Jacobian, Hessian, bias acceleration, manipulability and gradient; ``error`` and
+    ``central`` the self-test's relative error and central difference.
+    """
+    jacobian_function, hessian_function, bias_function, manipulability_function, gradient_function = functions
+    unit = jnp.eye(q.shape[0], dtype=q.dtype)
+    H = hessian_function(q)
+    worst = 0.0
+    for m in range(q.shape[0]):
+        worst = max(worst, error(H[:, :, m], central(jacobian_function, q, unit[m])))
+        worst = max(worst, error(gradient_function(q)[m], central(manipulability_function, q, unit[m])))
+    return max(worst, error(bias_function(q, qdot), central(jacobian_function, q, qdot) @ qdot))
+
+
+# ---- runtime section: determinant ----
 
 
 def _determinant(J: Array) -> Array:
     """The determinant of a square Jacobian (``jnp.linalg.det``: LU with partial pivoting)."""
     return jnp.linalg.det(J)
+
+
+# ---- runtime section: manipulability ----
 
 
 def _manipulability(J: Array) -> Array:
@@ -78,6 +99,9 @@ def _manipulability(J: Array) -> Array:
     if rows == columns:
         return jnp.abs(jnp.linalg.det(J))
     return jnp.sqrt(jnp.maximum(jnp.linalg.det(J @ J.T if rows < columns else J.T @ J), 0.0))
+
+
+# ---- runtime section: manipulability_gradient ----
 
 
 def _manipulability_gradient(J: Array, H: Array) -> Array:
@@ -92,6 +116,9 @@ def _manipulability_gradient(J: Array, H: Array) -> Array:
         w = jnp.sqrt(jnp.maximum(jnp.linalg.det(G), 0.0))
         trace = jnp.einsum("ji,ijm->m", jnp.linalg.solve(G, J.T), H)  # J^+ = G^-1 J^T
     return jnp.where(w > 0.0, w * trace, 0.0)
+
+
+# ---- runtime section: cholesky_solve ----
 
 
 def _cholesky_solve(M: Array, b: Array) -> Array:

@@ -23,8 +23,8 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., np.ndarray],
 
     Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
     torques, kinematics: the Jacobian against central differences of the kinematics, batched against
-    one-configuration calls, the torques against J^T F) or ``"acceleration"`` (Jacobian, Hessian, bias
-    acceleration, manipulability, gradient: against central differences).
+    one-configuration calls, the torques against J^T F) or the check of a runtime section,
+    ``_<routine>_error(*functions, q, qdot)``, found by name (a module carries only the sections it uses).
     """
     generator = np.random.default_rng(seed)
     angles = generator.uniform(-np.pi, np.pi, (samples, len(revolute)))
@@ -40,7 +40,7 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., np.ndarray],
         else:
             if qdot is None:  # drawn once, after every Jacobian's wrench
                 qdot = generator.uniform(-1.0, 1.0, (samples, len(revolute)))
-            worst = max(worst, _acceleration_error(*functions, q, qdot))
+            worst = max(worst, globals()[f"_{routine}_error"](*functions, q, qdot))
     return worst
 
 
@@ -57,6 +57,9 @@ def _jacobian_error(jacobian_function: Callable[..., np.ndarray], torque_functio
     expected_torques = np.einsum("...ki,...k->...i", actual, wrench)
     error = np.abs(torque_function(q, wrench) - expected_torques) / (1.0 + np.abs(expected_torques))
     return max(worst, float(error.max(initial=0.0)))
+
+
+# ---- runtime section: acceleration ----
 
 
 def _acceleration_error(
@@ -93,6 +96,9 @@ def _acceleration_error(
     return max(worst, error(hessian_function(q[0]), H[0]))
 
 
+# ---- runtime section: core ----
+
+
 def _finite_difference_jacobian(kinematics: Callable[..., np.ndarray], q: np.ndarray,
                                 step: float = 1e-6) -> np.ndarray:
     """The 6 x n Jacobian [v; omega] in frame {k} by central differences of (point, ^0_nR), rotated by ^0_kR."""
@@ -113,9 +119,15 @@ def _finite_difference_jacobian(kinematics: Callable[..., np.ndarray], q: np.nda
     return np.stack(columns, axis=-1)
 
 
+# ---- runtime section: determinant ----
+
+
 def _determinant(J: np.ndarray) -> np.ndarray:
     """The determinant of square Jacobians (``numpy.linalg.det``: LU with partial pivoting)."""
     return np.linalg.det(J)
+
+
+# ---- runtime section: manipulability ----
 
 
 def _manipulability(J: np.ndarray) -> np.ndarray:
@@ -125,6 +137,9 @@ def _manipulability(J: np.ndarray) -> np.ndarray:
         return np.abs(np.linalg.det(J))
     gram = J @ np.swapaxes(J, -1, -2) if rows < columns else np.swapaxes(J, -1, -2) @ J
     return np.sqrt(np.maximum(np.linalg.det(gram), 0.0))
+
+
+# ---- runtime section: manipulability_gradient ----
 
 
 def _manipulability_gradient(J: np.ndarray, H: np.ndarray) -> np.ndarray:
@@ -141,6 +156,9 @@ def _manipulability_gradient(J: np.ndarray, H: np.ndarray) -> np.ndarray:
     return w[..., None] * np.einsum("...ji,...ijm->...m", inverse, H)
 
 
+# ---- runtime section: cholesky_solve ----
+
+
 def _cholesky_solve(M: np.ndarray, b: np.ndarray) -> np.ndarray:
     """The solution x of M x = b, M symmetric positive definite (mass matrices), shapes (..., n, n) and (..., n).
 
@@ -149,6 +167,9 @@ def _cholesky_solve(M: np.ndarray, b: np.ndarray) -> np.ndarray:
     L = np.linalg.cholesky(M)
     y = np.linalg.solve(L, np.asarray(b, dtype=float)[..., None])
     return np.linalg.solve(np.swapaxes(L, -1, -2), y)[..., 0]
+
+
+# ---- runtime section: sincos ----
 
 
 def _sincos(angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -161,6 +182,9 @@ def _sincos(angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     t2 = t * t
     scale = 1.0 / (1.0 + t2)
     return (2.0 * scale) * t, (1.0 - t2) * scale
+
+
+# ---- runtime section: core ----
 
 
 def _as_batch(value: ArrayLike, length: int, name: str) -> np.ndarray:

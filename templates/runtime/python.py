@@ -23,8 +23,8 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Any], ...], 
 
     Each check is (routine, functions, rows): ``"pose"`` (forward kinematics: R^T R = I), ``"jacobian"`` (Jacobian,
     torques, kinematics: the Jacobian against central differences of the kinematics, the torques against J^T F)
-    or ``"acceleration"`` (Jacobian, Hessian, bias acceleration, manipulability, gradient: against central
-    differences). Angles are drawn in (-pi, pi), prismatic joints in (-1, 1).
+    or the check of a runtime section, ``_<routine>_error(*functions, q, qdot)``, found by name (a module carries
+    only the sections it uses). Angles are drawn in (-pi, pi), prismatic joints in (-1, 1).
     """
     generator = random.Random(seed)
     worst = 0.0
@@ -38,7 +38,7 @@ def _selftest_error(checks: Sequence[tuple[str, tuple[Callable[..., Any], ...], 
                 worst = max(worst, _jacobian_error(*functions, rows, q, generator))
             else:
                 qdot = qdot or [generator.uniform(-1.0, 1.0) for _ in q]  # drawn once per configuration
-                worst = max(worst, _acceleration_error(*functions, q, qdot))
+                worst = max(worst, globals()[f"_{routine}_error"](*functions, q, qdot))
     return worst
 
 
@@ -69,6 +69,9 @@ def _jacobian_error(jacobian_function: Callable[..., Sequence[Sequence[float]]],
         expected_torque = sum(actual[k][i] * wrench[k] for k in range(len(rows)))
         worst = max(worst, abs(torques[i] - expected_torque) / (1.0 + abs(expected_torque)))
     return worst
+
+
+# ---- runtime section: acceleration ----
 
 
 def _acceleration_error(
@@ -107,6 +110,9 @@ def _acceleration_error(
     return worst
 
 
+# ---- runtime section: core ----
+
+
 def _finite_difference_jacobian(kinematics: Callable[..., Sequence[float]], q: Sequence[float],
                                 step: float = 1e-6) -> list[list[float]]:
     """The 6 x n Jacobian [v; omega] in frame {k} by central differences of (point, ^0_nR) with ^0_kR."""
@@ -126,6 +132,9 @@ def _finite_difference_jacobian(kinematics: Callable[..., Sequence[float]], q: S
         # into frame {k}: x_k = (^0_kR)^T x_0
         columns.append([sum(R_0_k[3 * m + r] * x[m] for m in range(3)) for x in (v, w) for r in range(3)])
     return [[column[k] for column in columns] for k in range(6)]
+
+
+# ---- runtime section: determinant ----
 
 
 def _determinant(matrix: Sequence[Sequence[float]]) -> float:
@@ -148,6 +157,9 @@ def _determinant(matrix: Sequence[Sequence[float]]) -> float:
     return result
 
 
+# ---- runtime section: manipulability; needs: determinant, gram ----
+
+
 def _manipulability(J: Sequence[Sequence[float]]) -> float:
     """The manipulability: |det J| for a square J, else sqrt(det G), G the Gram matrix J J^T (wide) or J^T J (tall)."""
     rows, columns = len(J), len(J[0])
@@ -160,8 +172,14 @@ def _manipulability(J: Sequence[Sequence[float]]) -> float:
     return sqrt(max(_determinant(gram), 0.0))
 
 
+# ---- runtime section: gram ----
+
+
 def _entry(J: Sequence[Sequence[float]], i: int, k: int, by_row: bool) -> float:
     return J[i][k] if by_row else J[k][i]
+
+
+# ---- runtime section: manipulability_gradient; needs: determinant, gram, solve ----
 
 
 def _manipulability_gradient(J: Sequence[Sequence[float]],
@@ -185,6 +203,9 @@ def _manipulability_gradient(J: Sequence[Sequence[float]],
                  for m in range(columns))
 
 
+# ---- runtime section: solve ----
+
+
 def _solve(matrix: Sequence[Sequence[float]], right: Sequence[Sequence[float]]) -> list[list[float]]:
     """X with matrix @ X = right, by Gauss-Jordan elimination with partial pivoting (matrix not singular)."""
     a = [[*row, *extra] for row, extra in zip(matrix, right, strict=True)]
@@ -197,6 +218,9 @@ def _solve(matrix: Sequence[Sequence[float]], right: Sequence[Sequence[float]]) 
                 factor = a[r][k] / a[k][k]
                 a[r] = [x - factor * y for x, y in zip(a[r], a[k], strict=True)]
     return [[x / a[k][k] for x in a[k][size:]] for k in range(size)]
+
+
+# ---- runtime section: cholesky_solve ----
 
 
 def _cholesky_solve(matrix: Sequence[Sequence[float]], right: Sequence[float]) -> list[float]:
@@ -221,6 +245,9 @@ def _cholesky_solve(matrix: Sequence[Sequence[float]], right: Sequence[float]) -
     for i in reversed(range(size)):
         x[i] = (y[i] - sum(L[k][i] * x[k] for k in range(i + 1, size))) / L[i][i]
     return x
+
+
+# ---- runtime section: core ----
 
 
 def _length_error(name: str, value: object, length: int) -> str:

@@ -211,14 +211,17 @@ class PythonModule:
                                     + ")"))
 
 
-def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = ()
-                           ) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
+def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),
+                           sections: Iterable[str] = ()) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
     """The ``render`` of a Python-family backend: print each function with ``emit``, fill ``backend.template``.
 
     ``extras`` builds module-level text from every function (templates read ``module.extras.<key>``); ``imports``
-    are names the module imports whatever its expressions use (the python target's ``pi`` and ``sqrt``).
+    are names the module imports whatever its expressions use (the python target's ``pi`` and ``sqrt``);
+    ``sections`` are runtime sections the emitted functions call (the numpy emitter's ``sincos``), carried besides
+    those the description uses (:attr:`~symjac.codegen.description.ModuleDescription.runtime_sections`).
     """
     always = tuple(imports)
+    own = frozenset(sections)
 
     def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
         taken = frozenset(RESERVED) | set(description.parameter_names)
@@ -229,7 +232,7 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
             imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always))),
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
-            runtime=runtime_source(backend.runtime) if backend.runtime else "",
+            runtime=runtime_source(backend.runtime, description.runtime_sections | own) if backend.runtime else "",
         )
         name = backend.files[0].format(robot=description.robot)
         return check_layout({name: render_template(backend.template, module=module)})

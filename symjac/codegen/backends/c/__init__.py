@@ -87,7 +87,7 @@ BACKEND = Backend(
                 "the Python headers are present (``BACKEND`` is \"c\" or \"numpy\", ``BUILD_ERROR`` says why not).\n"
                 "The extension is cached in $SYMJAC_CACHE_DIR or ~/.cache/symjac.",
     nan_policy="Wrong shapes raise ValueError; NaN and infinite angles give NaN outputs (no warning from C).",
-    render=python_module_renderer(numpy_function, extras=c_sources),
+    render=python_module_renderer(numpy_function, extras=c_sources, sections=("sincos",)),  # NumPy's angle lines
     dependencies=("numpy",),
     exports=("BACKEND",),
     runtime="numpy.py",

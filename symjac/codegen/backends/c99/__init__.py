@@ -68,7 +68,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "comment": comment,
         "size": math.prod,
         "c_names": lambda names: [f"{description.robot}{'' if name.startswith('_') else '_'}{name}" for name in names],
-        "runtime": runtime_source(backend.runtime).rstrip("\n"),
+        "runtime": runtime_source(backend.runtime, description.runtime_sections).rstrip("\n"),
         "block_comment": block_comment,
         **header_comments(description),
     }

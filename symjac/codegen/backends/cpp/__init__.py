@@ -77,7 +77,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "defaults": tuple(float_literal(value) for _, value in description.parameters),
         "line_comment": line_comment,
         "cpp_type": cpp_type,
-        "runtime": runtime_source(backend.runtime).rstrip("\n"),
+        "runtime": runtime_source(backend.runtime, description.runtime_sections).rstrip("\n"),
         **header_comments(description),
     }
     name = backend.files[0].format(robot=description.robot)

@@ -90,17 +90,18 @@ class InertialWarning(UserWarning):
     """
 
 
-def warn(message: str, category: type[Warning]) -> None:
-    """Warn about the caller's input, pointing at the first frame outside symjac (the user's line, not ours)."""
+def warn(warning: Warning) -> None:
+    """Issue ``warning`` about the caller's input, pointing at the first frame outside symjac (the user's line)."""
     import sys
     import warnings
     from pathlib import Path
 
     package = str(Path(__file__).resolve().parent)
-    frame, level = sys._getframe(1), 2  # stacklevel 2 is the frame that called this function
-    while frame is not None and str(Path(frame.f_code.co_filename).resolve()).startswith(package):
+    frame = sys._getframe(1)
+    level = 2  # stacklevel 2 is the frame that called this function
+    while frame.f_back is not None and str(Path(frame.f_code.co_filename).resolve()).startswith(package):
         frame, level = frame.f_back, level + 1
-    warnings.warn(message, category, stacklevel=level)
+    warnings.warn(warning, stacklevel=level)
 
 
 class ResultTooLargeError(SymjacError, ArithmeticError):

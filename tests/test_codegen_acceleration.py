@@ -247,3 +247,16 @@ def test_frames_carried_by_every_joint_and_long_names():
         dict(zip(joint_rate_symbols(robot), map(sp.Float, qdot), strict=True))), q).ravel()[[0, 1, 5]]
     np.testing.assert_allclose(namespace["bias_acceleration_tool_tool_r015"](q, qdot), expected, atol=1e-12)
     assert "k_bias_acceleration_tool_tool_r015(" in generate(robot, "c", jacobians=requests, acceleration=True)
+
+
+@pytest.mark.parametrize("target", ["python", "numpy"])
+def test_the_self_test_passes_by_default_with_a_sample_near_a_singularity(tmp_path, target):
+    # the palletizer's first default sample has theta3 ~ -6.5e-4 (w ~ 1.5e-3): a central difference of w itself
+    # there is off by 1e-6 from rounding alone (the square root divides det's rounding by w); w^2 is not
+    path = tmp_path / f"pallet_{target}.py"
+    write_module(path, generate(load_robot("palletizer"), target, acceleration=True))
+    spec = importlib.util.spec_from_file_location(f"pallet_{target}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module.selftest() < 1e-6

@@ -195,7 +195,7 @@ def _inertial(table: Mapping[str, Any], number: int, value: Any, defaults: Mappi
         raise problem(reason, "inertial")
     reason = inertial_problem(inertial, defaults)
     if reason is not None:  # kept, as URDF's are: a converted CAD export must read back (kinematics does not need it)
-        warn(f"{problem(reason, 'inertial').args[0]} (kept as given)", InertialWarning)
+        warn(InertialWarning(f"{problem(reason, 'inertial').args[0]} (kept as given)"))
     return inertial
 
 

@@ -56,7 +56,7 @@ def command(request: Request) -> Document:
         if link is not None:
             raise ArgumentError("--link does not apply with --representation (the representation is of the end "
                                 "frame's orientation)")
-        return representation(request, frame, point)
+        return representation(request, frame, "wrist" if point is None else point)
     steps = propagation(request, point) if args.steps else None
     J = request.progress(f"Jacobian of {robot.name} in frame {frame}",
                          lambda: jacobian(robot, frame=frame, point=point, method=args.method, link=link))

@@ -322,7 +322,8 @@ static inline int sj_check_jacobian(int n, int size, const int *rows, sj_map jac
 typedef real (*sj_scalar)(const real *q, const real *params);
 
 /* The Hessian, the manipulability gradient and the bias acceleration Jdot qdot of a Jacobian (size x n) against
- * central differences of the Jacobian and of the manipulability. */
+ * central differences of the Jacobian and of w^2 = det(J J^T) (2 w dw/dq_m: the square root in w would amplify the
+ * rounding of det near a singularity). */
 static inline int sj_check_acceleration(int n, int size, const int *rows, sj_map jacobian, sj_map hessian,
                                         sj_map_with bias, sj_scalar manipulability, sj_map manipulability_gradient,
                                         const real *q, real h, real tolerance)
@@ -333,6 +334,7 @@ static inline int sj_check_acceleration(int n, int size, const int *rows, sj_map
     (void)rows;
     hessian(q, NULL, H);
     manipulability_gradient(q, NULL, gradient);
+    const real w = manipulability(q, NULL);
     for (int m = 0; m < n; m++) {
         for (int k = 0; k < n; k++) {
             step[k] = q[k];
@@ -346,7 +348,7 @@ static inline int sj_check_acceleration(int n, int size, const int *rows, sj_map
         for (int i = 0; i < size * n; i++) {
             failures += sj_differs(H[i * n + m], (Jplus[i] - Jminus[i]) / (2 * h), tolerance);
         }
-        failures += sj_differs(gradient[m], (above - below) / (2 * h), tolerance);
+        failures += sj_differs(2 * w * gradient[m], (above * above - below * below) / (2 * h), tolerance);
     }
     for (int k = 0; k < n; k++) {
         qdot[k] = (real)0.7 - (real)0.3 * (real)k;

@@ -75,10 +75,15 @@ def _acceleration_error(functions: Sequence[Callable[..., Array]], q: Array, qdo
     jacobian_function, hessian_function, bias_function, manipulability_function, gradient_function = functions
     unit = jnp.eye(q.shape[0], dtype=q.dtype)
     H = hessian_function(q)
+    w = manipulability_function(q)
+
+    def squared(x: Array) -> Array:  # w^2 = det(J J^T): no square root to amplify rounding near a singularity
+        return manipulability_function(x) ** 2
+
     worst = 0.0
     for m in range(q.shape[0]):
         worst = max(worst, error(H[:, :, m], central(jacobian_function, q, unit[m])))
-        worst = max(worst, error(gradient_function(q)[m], central(manipulability_function, q, unit[m])))
+        worst = max(worst, error(2 * w * gradient_function(q)[m], central(squared, q, unit[m])))
     return max(worst, error(bias_function(q, qdot), central(jacobian_function, q, qdot) @ qdot))
 
 

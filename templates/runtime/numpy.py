@@ -75,21 +75,23 @@ def _acceleration_error(
     """Largest relative error of the Hessian, Jdot qdot and the manipulability gradient against central differences.
 
     Hessian slice m: (J(q + h e_m) - J(q - h e_m)) / 2h; Jdot qdot: (J(q + h qdot) - J(q - h qdot)) / 2h @ qdot;
-    gradient entry m: (w(q + h e_m) - w(q - h e_m)) / 2h.
+    gradient entry m through w^2 = det(J J^T): 2 w dw/dq_m against (w(q + h e_m)^2 - w(q - h e_m)^2) / 2h (the square
+    root in w would amplify the rounding of det near a singularity).
     """
     def error(actual: np.ndarray, expected: np.ndarray) -> float:
         return float((np.abs(actual - expected) / (1.0 + np.abs(expected))).max(initial=0.0))
 
     H = hessian_function(q)
     gradient = gradient_function(q)
+    w = manipulability_function(q)
     worst = 0.0
     for m in range(q.shape[-1]):
         delta = np.zeros(q.shape[-1])
         delta[m] = step
         slice_m = (jacobian_function(q + delta) - jacobian_function(q - delta)) / (2 * step)
         worst = max(worst, error(H[..., m], slice_m))
-        slope = (manipulability_function(q + delta) - manipulability_function(q - delta)) / (2 * step)
-        worst = max(worst, error(gradient[..., m], slope))
+        slope = (manipulability_function(q + delta) ** 2 - manipulability_function(q - delta) ** 2) / (2 * step)
+        worst = max(worst, error(2 * w * gradient[..., m], slope))
     Jdot = (jacobian_function(q + step * qdot) - jacobian_function(q - step * qdot)) / (2 * step)
     worst = max(worst, error(bias_function(q, qdot), np.einsum("...ij,...j->...i", Jdot, qdot)))
     worst = max(worst, error(bias_function(q[0], qdot[0]), bias_function(q, qdot)[0]))

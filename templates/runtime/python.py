@@ -87,10 +87,13 @@ def _acceleration_error(
     """Largest relative error of the Hessian, Jdot qdot and the manipulability gradient against central differences.
 
     Hessian slice m: (J(q + h e_m) - J(q - h e_m)) / 2h; Jdot qdot: (J(q + h qdot) - J(q - h qdot)) / 2h @ qdot;
-    gradient entry m: (w(q + h e_m) - w(q - h e_m)) / 2h.
+    gradient entry m through w^2 = det(J J^T): 2 w dw/dq_m against (w(q + h e_m)^2 - w(q - h e_m)^2) / 2h (near a
+    singularity the square root in w turns the rounding of det into an error of w divided by w, which a central
+    difference divides by h again).
     """
     H = hessian_function(q)
     gradient = gradient_function(q)
+    w = manipulability_function(q)
     worst = 0.0
     for m in range(len(q)):
         plus, minus = list(q), list(q)
@@ -100,8 +103,8 @@ def _acceleration_error(
             for j in range(len(q)):
                 expected = (above[j] - below[j]) / (2.0 * step)
                 worst = max(worst, abs(H[i][j][m] - expected) / (1.0 + abs(expected)))
-        slope = (manipulability_function(plus) - manipulability_function(minus)) / (2.0 * step)
-        worst = max(worst, abs(gradient[m] - slope) / (1.0 + abs(slope)))
+        slope = (manipulability_function(plus) ** 2 - manipulability_function(minus) ** 2) / (2.0 * step)
+        worst = max(worst, abs(2.0 * w * gradient[m] - slope) / (1.0 + abs(slope)))
     forward = jacobian_function([x + step * v for x, v in zip(q, qdot, strict=True)])
     backward = jacobian_function([x - step * v for x, v in zip(q, qdot, strict=True)])
     for value, above, below in zip(bias_function(q, qdot), forward, backward, strict=True):

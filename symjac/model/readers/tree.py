@@ -387,7 +387,7 @@ def _link_inertial(joint: TreeJoint, links: dict[str, TreeLink], joints: dict[st
                 raise _fail(source, problem, f"link {name} inertial")
             problem = inertial_problem(own)
             if problem is not None:  # CAD exports round into these: read the file, say so (pinocchio reads it too)
-                warn(f"{source}, link {name}: {problem} (kept as given)", InertialWarning)
+                warn(InertialWarning(f"{source}, link {name}: {problem} (kept as given)"))
             parts.append(own.expressed_in(T_i_X))
         stack += [(child.child, T_i_X * sp.Matrix(child.origin.matrix))
                   for child in children.get(name, []) if child.type is TreeJointType.FIXED]

@@ -1,8 +1,10 @@
 r"""The printed formulas of the course notes, as data: where each one is, what it says, and what it should say.
 
 The data file ``formulas.toml`` beside this module holds one ``[[formula]]`` table per printed matrix, vector or
-equation of the three seed documents that symjac can derive. Entries are transcribed in textbook shorthand, which
-the whitelisted expression parser reads (nothing in the file is executed):
+equation that symjac can derive in the three course texts: the chapter "The Jacobian", the lecture slides "Jacobian:
+implications and applications" and the notes "Jacobians: velocities and static forces" (each entry names its
+section). Entries are transcribed in textbook shorthand, which the whitelisted expression parser reads (nothing in
+the file is executed):
 
 * ``s1``, ``c23``, ``s123``: the sine or cosine of a sum of joint angles of the formula's robot
   (:math:`\sin\theta_1`, :math:`\cos(\theta_2 + \theta_3)`);

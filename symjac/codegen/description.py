@@ -110,7 +110,7 @@ class DerivedFunction:
 
     ``sources`` name those functions, in the order the routine takes their results (all called with ``q`` and the
     parameters), ``source_kinds`` and ``source_shapes`` say what they return; ``routine`` is the routine's base
-    name (:attr:`~symjac.codegen.kinds.KindSpec.routine`), which each target prefixes with its runtime's
+    name (:attr:`~symjac.quantities.spec.Generated.routine`), which each target prefixes with its runtime's
     (``_manipulability``, ``sj_manipulability``, ``runtime::manipulability``).
     ``shape`` is the result's (``()``: a scalar), ``summary``, ``details`` and ``returns`` its documentation.
     """

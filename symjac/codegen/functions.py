@@ -25,7 +25,7 @@ from symjac.codegen.description import (
     FunctionSpec,
     JacobianInfo,
 )
-from symjac.codegen.kinds import KINDS, SCALAR, KindSpec, generated_kinds, kind_spec, quantity_of
+from symjac.codegen.kinds import KINDS, SCALAR, generated_kinds, kind_spec, quantity_of
 from symjac.codegen.lower import LoweredFunction, angle_expansion, lower_function
 from symjac.codegen.names import RESERVED, IdentifierRule
 from symjac.codegen.printers import float_literal
@@ -43,7 +43,7 @@ from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import WRENCH_NAMES, Robot
-from symjac.quantities.spec import entry_point
+from symjac.quantities.spec import Generated, entry_point
 
 __all__ = [
     "defined_names",
@@ -57,7 +57,7 @@ __all__ = [
 ]
 
 
-def lowered(kind: KindSpec, chain: Chain, strategy: Strategy, frame: Frame | None = None,
+def lowered(kind: Generated, chain: Chain, strategy: Strategy, frame: Frame | None = None,
             point: tuple[sp.Expr, ...] = (), rows: tuple[int, ...] = ()) -> LoweredFunction:
     """A function of ``kind`` lowered: by its spec's lowering, or (none named) its quantity's derivation.
 
@@ -88,7 +88,7 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
     rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
     functions: list[FunctionDescription] = []
 
-    def add(function: LoweredFunction, name: str, kind: KindSpec, selected: tuple[int, ...],
+    def add(function: LoweredFunction, name: str, kind: Generated, selected: tuple[int, ...],
             **fields: object) -> None:
         inputs = {"wrench": Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected),
                                      "Wrench (force, moment) at the point"),
@@ -165,7 +165,7 @@ def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedF
     entries: list[tuple[str, str]] = []
     unit = "coordinate" if coupled else "joint"
 
-    def add(name: str, kind: KindSpec, **fields: object) -> None:
+    def add(name: str, kind: Generated, **fields: object) -> None:
         if kind.listing and not name.startswith("_"):
             entries.append((name, kind.listing.format(unit=unit, **fields)))
 

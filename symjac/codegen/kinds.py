@@ -23,10 +23,7 @@ from symjac.errors import CodegenError
 from symjac.quantities import QUANTITIES, Quantity
 from symjac.quantities.spec import Generated, Scope
 
-__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "KINDS", "SCALAR", "KindSpec", "generated_kinds", "kind_spec", "quantity_of"]
-
-KindSpec = Generated
-"""One kind of generated function (the quantities' :class:`~symjac.quantities.spec.Generated`, under its older name)."""
+__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "KINDS", "SCALAR", "generated_kinds", "kind_spec", "quantity_of"]
 
 SCALAR = Generated("scalar", "The value of the expression.", "A scalar function of the joint values.",
                    scope="module")
@@ -101,8 +98,8 @@ COUPLED_WORDS = ("Every function takes q in these coordinates and computes theta
 """What the functions of a coupled robot's module compute, for its docstring."""
 
 
-def kind_spec(kind: str) -> KindSpec:
-    """The :class:`KindSpec` of ``kind``; :class:`~symjac.errors.CodegenError` naming the kinds if unknown."""
+def kind_spec(kind: str) -> Generated:
+    """The :class:`~symjac.quantities.spec.Generated` record of ``kind`` (an unknown kind: CodegenError)."""
     try:
         return KINDS[kind]
     except KeyError:

@@ -59,6 +59,7 @@ from symjac.kinematics.memo import frame_of, memoized, one_of
 from symjac.kinematics.points import Point, link_of, link_point
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
+from symjac.symbolic.nested import presented_matrix
 from symjac.symbolic.simplify import simplify_matrix
 
 DerivativeMethod = Literal["hessian", "differentiation"]
@@ -177,7 +178,7 @@ def _spin(chain: Chain, frame: Frame, joint: int) -> sp.Matrix:
     return sp.Matrix(chain.simplified_transform(frame, chain.axis_frame(joint))[:3, 2])
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix,
+@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=presented_matrix,
           coupling="columns", layout="frame")
 def jacobian_derivative(
     chain: Chain,
@@ -237,7 +238,7 @@ def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...],
     return sp.ImmutableMatrix(6, n, lambda i, j: sum(H[i, j, m] * rates[m] for m in range(n)))
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=sp.Matrix,
+@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=presented_matrix,
           coupling="rates", layout="frame")
 def bias_acceleration(
     chain: Chain,

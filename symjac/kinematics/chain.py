@@ -19,11 +19,13 @@ import sympy as sp
 
 from symjac.errors import FrameError
 from symjac.kinematics.coupling import COUPLING_LAWS, in_coordinates
+from symjac.kinematics.generic import is_generic, numeric_steps
 from symjac.model.conventions import joint_forms
 from symjac.model.conventions.base import JointForm
 from symjac.model.robot import Robot
 from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.nested import named, presented
 from symjac.symbolic.simplify import simplify_product
 from symjac.symbolic.transforms import Composition, Motion, compose, homogeneous, inverse_motions
 
@@ -72,8 +74,10 @@ class Chain:
     [L1*sin(theta1) + L2*sin(theta1 + theta2)]])
     """
 
-    def __init__(self, robot: Robot):
+    def __init__(self, robot: Robot, *, nested: bool | None = None):
         self.robot = robot
+        self.nested = is_generic(self._forms) if nested is None else nested
+        """Whether results are built nested (:mod:`symjac.kinematics.generic`): by default, for generic geometry."""
         self._transforms: dict[tuple[int, int], sp.ImmutableMatrix] = {}
         self._compositions: dict[tuple[int, int], Composition] = {}
         self._simplified: dict[tuple[int, int], sp.ImmutableMatrix] = {}
@@ -138,7 +142,7 @@ class Chain:
         steps: list[tuple[Motion | sp.Matrix, ...]] = [(robot.base.matrix,) if robot.base else ()]
         steps += [form.motions for form in self._forms]
         steps.append((robot.tool.matrix,) if robot.tool else ())
-        return steps
+        return [numeric_steps(step) for step in steps] if self.nested else steps
 
     # --- transforms ---------------------------------------------------------------------------------------
 
@@ -147,6 +151,8 @@ class Chain:
         key = (self.position(source), self.position(target))
         if key not in self._transforms:
             rotation_matrix, position = self._composition(*key).result()
+            if self.nested:  # the pending joint rotation, multiplied in just now
+                rotation_matrix = rotation_matrix.applyfunc(named)
             self._transforms[key] = sp.ImmutableMatrix(homogeneous(rotation_matrix, position))
         return self._transforms[key]
 
@@ -166,6 +172,8 @@ class Chain:
             reached += direction
             step = self._steps[reached] if direction == 1 else inverse_motions(self._steps[reached + 1])
             composition = composition.then(step)
+            if self.nested:  # every entry named: the next link multiplies names, so no expression ever grows
+                composition = composition.named(named)
             self._compositions[(start, reached)] = composition
         return composition
 
@@ -394,7 +402,7 @@ def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | 
     """
     chain = as_chain(robot)
     T = chain.simplified_transform(source, chain.n_joints if target is None else target)
-    return in_coordinates(chain, sp.Matrix(T))
+    return presented(in_coordinates(chain, sp.Matrix(T)))
 
 
 forward_kinematics.coupling_law = COUPLING_LAWS["rates"]  # type: ignore[attr-defined]  # applied above, as memoized

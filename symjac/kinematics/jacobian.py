@@ -60,6 +60,7 @@ from symjac.kinematics.propagation import force_propagation, velocity_propagatio
 from symjac.model.robot import VELOCITY_NAMES
 from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.nested import Intermediate, presented_matrix
 from symjac.symbolic.simplify import simplify_matrix, simplify_product
 from symjac.symbolic.transforms import block_rotation, point_shift
 
@@ -119,7 +120,7 @@ def check_row_indices(rows: Sequence[int]) -> tuple[int, ...]:
     return values
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(METHODS), fresh=sp.Matrix,
+@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(METHODS), fresh=presented_matrix,
           coupling="columns", layout="frame")
 def jacobian(
     chain: Chain,
@@ -221,6 +222,8 @@ class _Derivative:
 
     def depends(self, expr: sp.Expr) -> bool:
         """Whether ``expr`` contains the variable (memoized per node, unlike ``free_symbols``)."""
+        if isinstance(expr, Intermediate):
+            return self.variable in expr.free_symbols
         if expr.is_Atom:
             return expr == self.variable
         if expr not in self._depends:
@@ -232,8 +235,10 @@ class _Derivative:
             return sp.S.Zero
         if expr in self._memo:
             return self._memo[expr]
-        if expr.is_Atom:
-            result: sp.Expr = sp.S.One
+        if isinstance(expr, Intermediate):  # its derivative is an intermediate too, kept in it
+            result: sp.Expr = expr.diff(self.variable)
+        elif expr.is_Atom:
+            result = sp.S.One
         elif isinstance(expr, sp.Add):
             result = sp.Add(*[self(arg) for arg in expr.args])
         elif isinstance(expr, sp.Mul):
@@ -266,7 +271,7 @@ def _cross_product(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...], link:
         if not joint.is_revolute:
             J[:3, i] = z_a
             continue
-        if _turns(chain, k, link) <= _turns(chain, a, link):  # p_P is no longer in {k}: read all in {k}
+        if chain.nested or _turns(chain, k, link) <= _turns(chain, a, link):  # p_P is no longer in {k}: read all in {k}
             J[:3, i] = z_a.cross(p_kP - T_k_a[:3, 3])
         else:  # p_aP is shorter in {a}, where z_a = [0, 0, 1]: take the cross product there, then rotate
             T_a_l = chain.transform(a, link)

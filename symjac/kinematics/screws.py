@@ -29,6 +29,7 @@ from symjac.kinematics.memo import memoized
 from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose, space_screws
 from symjac.model.ends import end_point, last_frame
 from symjac.model.robot import Robot
+from symjac.symbolic.nested import presented_matrix
 from symjac.symbolic.simplify import simplify_matrix
 from symjac.symbolic.transforms import homogeneous, skew
 
@@ -91,7 +92,7 @@ def exponential_product(robot: Robot | Chain) -> sp.Matrix:
     return in_coordinates(chain, product * home_pose(model))
 
 
-@memoized(fresh=sp.Matrix, coupling="columns", layout=0)
+@memoized(fresh=presented_matrix, coupling="columns", layout=0)
 def space_jacobian(chain: Chain, *, simplify: bool = True) -> sp.Matrix:
     r"""The space Jacobian :math:`J_s(\theta)`, 6 x n, rows :math:`(\omega, v)` in frame {0} (see the module).
 

@@ -22,6 +22,7 @@ This module exploits the structure instead:
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Sequence
 
 import sympy as sp
@@ -29,6 +30,7 @@ from sympy.polys.rings import PolyElement
 
 from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.nested import has_intermediates, named
 from symjac.symbolic.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, product_image
 
 __all__ = ["is_identity", "printed_ops", "simplify_expr", "simplify_matrix", "simplify_product", "trig_normal_form"]
@@ -85,6 +87,8 @@ def simplify_matrix(
     With several bases, each entry is written in every one of them and the form with the fewest operations is
     kept (the first basis wins ties). All entries written in one basis share one polynomial ring.
     """
+    if has_intermediates(matrix):  # nested (generic geometry): no textbook form to find
+        return sp.Matrix(matrix)
     bases = [basis] if isinstance(basis, AngleBasis) else list(basis)
     image, polys = image_of(list(matrix), bases[0])
     return _laid_out(image, polys, (matrix.rows, matrix.cols), bases[1:], nested)
@@ -105,6 +109,8 @@ def simplify_product(
     >>> simplify_product([R, R], AngleBasis.of([t]))[1, 0]
     2*sin(theta1)*cos(theta1)
     """
+    if any(has_intermediates(factor) for factor in factors):  # nested: multiplied as they are, each product named
+        return functools.reduce(lambda a, b: (sp.Matrix(a) * sp.Matrix(b)).applyfunc(named), factors)
     bases = [basis] if isinstance(basis, AngleBasis) else list(basis)
     image, polys, shape = product_image(factors, bases[0])
     return _laid_out(image, polys, shape, bases[1:], nested)

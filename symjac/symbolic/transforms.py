@@ -9,7 +9,7 @@ compact :math:`c_{23}` instead of :math:`c_2 c_3 - s_2 s_3`.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -274,6 +274,10 @@ class Composition:
                 unit[_AXIS_INDEX[motion.axis]] = motion.value
                 position = position + rotation_matrix * unit
         return Composition(rotation_matrix, position, pending)
+
+    def named(self, name: Callable[[sp.Expr], sp.Expr]) -> Composition:
+        """The same product with ``name`` applied to every entry of its rotation and position (nested chains)."""
+        return Composition(self.rotation.applyfunc(name), self.position.applyfunc(name), self.pending)
 
     def result(self) -> tuple[sp.Matrix, sp.Matrix]:
         """:math:`(R, p)` of the product so far."""

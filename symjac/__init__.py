@@ -115,6 +115,7 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.errors import ExpressionError as ExpressionError
     from symjac.errors import FrameError as FrameError
     from symjac.errors import InertialWarning as InertialWarning
+    from symjac.errors import NoClosedFormError as NoClosedFormError
     from symjac.errors import RepresentationError as RepresentationError
     from symjac.errors import ResultTooLargeError as ResultTooLargeError
     from symjac.errors import RobotFileError as RobotFileError
@@ -177,6 +178,8 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.printing import pretty as pretty
     from symjac.sweeps.run import sweep as sweep
     from symjac.symbolic.angles import AngleBasis as AngleBasis
+    from symjac.symbolic.nested import Intermediate as Intermediate
+    from symjac.symbolic.nested import NestedMatrix as NestedMatrix
     from symjac.symbolic.simplify import is_identity as is_identity
     from symjac.symbolic.simplify import simplify_expr as simplify_expr
     from symjac.symbolic.simplify import simplify_matrix as simplify_matrix

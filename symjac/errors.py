@@ -118,3 +118,20 @@ class ResultTooLargeError(SymjacError, ArithmeticError):
             "narrow the request: fewer joints; a frame in the middle of the chain, where each half stays short (for a "
             "Jacobian: --frame K --method cross_product); or numeric code (`symjac codegen`; simplify=False in "
             "Python), which shares subexpressions instead")
+
+
+class NoClosedFormError(SymjacError, ArithmeticError):
+    """A closed-form analysis was asked of a result built nested (generic geometry, see :mod:`symjac.symbolic.nested`).
+
+    Determinants, singular factors and trigonometric identities need the expressions written out; for generic
+    geometry (calibrated twists, identified screw axes) those have no textbook form and grow exponentially with the
+    chain, so symjac says so instead of working for hours.
+    """
+
+    def __init__(self, what: str = "this analysis"):
+        super().__init__(
+            f"{what} needs closed forms, and this robot's geometry is generic (constant rotations between its joint "
+            "axes that are not multiples of pi/2), so its results are built nested, frame by frame, with named "
+            "intermediate values; evaluate it numerically instead (symjac.evaluate_at, `symjac codegen`), or give "
+            "the angles exactly (pi/2, or a parameter) where the design has them")
+

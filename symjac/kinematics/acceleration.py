@@ -59,7 +59,7 @@ from symjac.kinematics.memo import frame_of, memoized, one_of
 from symjac.kinematics.points import Point, link_of, link_point
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.model.robot import Robot
-from symjac.symbolic.nested import presented_matrix
+from symjac.symbolic.nested import presented, presented_matrix
 from symjac.symbolic.simplify import simplify_matrix
 
 DerivativeMethod = Literal["hessian", "differentiation"]
@@ -83,7 +83,7 @@ def carried_joints(robot: Robot | Chain, frame: Frame) -> tuple[int, ...]:
     return tuple(range(1, min(max(chain.position(frame), 0), chain.n_joints) + 1))
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, coupling="congruent", layout="frame")
+@memoized(frame=frame_of, link=link_of, point=link_point, coupling="congruent", layout="frame", fresh=presented)
 def hessian(
     chain: Chain, frame: Frame = 0, point: Point | None = None, *, simplify: bool = True, link: int | None = None
 ) -> sp.ImmutableDenseNDimArray:

@@ -14,13 +14,14 @@ from dataclasses import dataclass, replace
 import sympy as sp
 
 from symjac.errors import ConversionError
-from symjac.kinematics.chain import chain_of
+from symjac.kinematics.chain import Chain, chain_of
 from symjac.model.conventions import carried_inertials, plugin
 from symjac.model.conventions.dh import DHPlacement
 from symjac.model.conventions.standard import modified_from_standard, standard_from_modified
 from symjac.model.ends import last_frame
 from symjac.model.expressions import snap_angle
 from symjac.model.robot import Convention, Joint, Robot, fixed_transform_from_matrix
+from symjac.symbolic.nested import inline, substitute
 from symjac.symbolic.transforms import homogeneous, inverse_transform
 
 __all__ = ["ConversionError", "DHExtraction", "axes_at_home", "convert", "converted",
@@ -79,11 +80,22 @@ def axes_at_home(robot: Robot) -> tuple[list[sp.Matrix], sp.Matrix]:
 
     A joint's axis frame has its z-axis along the axis and its origin on it; without a tool, frame {n} stands in.
     """
-    chain = chain_of(robot.uncoupled)
+    chain = _exact_chain(robot.uncoupled)
     zero = dict.fromkeys(robot.joint_variables, sp.S.Zero)
-    frames = [sp.Matrix(chain.transform(0, chain.axis_frame(joint.index))).xreplace(zero) for joint in robot.joints]
-    home = sp.Matrix(chain.transform(0, last_frame(robot))).xreplace(zero)
+    frames = [_at(chain.transform(0, chain.axis_frame(joint.index)), zero) for joint in robot.joints]
+    home = _at(chain.transform(0, last_frame(robot)), zero)
     return frames, home
+
+
+def _exact_chain(robot: Robot) -> Chain:
+    """The robot's chain, exact even for generic geometry: a converted file keeps the numbers the source gave."""
+    chain = chain_of(robot)
+    return chain if not chain.nested else Chain(robot, nested=False)
+
+
+def _at(transform: sp.MatrixBase, values: dict[sp.Symbol, sp.Expr]) -> sp.Matrix:
+    """A transform of the chain with ``values`` substituted, written out (a nested chain's intermediates too)."""
+    return sp.Matrix(transform.rows, transform.cols, inline(substitute(list(transform), values)))
 
 
 @dataclass(frozen=True)
@@ -144,13 +156,13 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
     """
     if plugin(robot.convention).to_modified(robot) is not None:
         raise ConversionError(f"{robot.name} is already a DH table ({robot.convention.value})")
-    chain = chain_of(robot)
+    chain = _exact_chain(robot)
     zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.joint_variables}
     if substitute_defaults:
         zero.update(robot.defaults)
 
     def at_zero(frame: int) -> sp.Matrix:
-        return sp.Matrix(chain.transform(0, frame)).xreplace(zero).applyfunc(_exact)
+        return _at(chain.transform(0, frame), zero).applyfunc(_exact)
 
     # frames[i] is the frame on joint axis i (its z-axis), frames[0] the chain's frame {0}, last the chain's {n}
     frames = [at_zero(0), *(at_zero(chain.axis_frame(i)) for i in range(1, robot.n_joints + 1))]

@@ -60,7 +60,7 @@ from symjac.kinematics.propagation import force_propagation, velocity_propagatio
 from symjac.model.robot import VELOCITY_NAMES
 from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
-from symjac.symbolic.nested import Intermediate, presented_matrix
+from symjac.symbolic.nested import Intermediate, derivative, presented_matrix
 from symjac.symbolic.simplify import simplify_matrix, simplify_product
 from symjac.symbolic.transforms import block_rotation, point_shift
 
@@ -236,7 +236,7 @@ class _Derivative:
         if expr in self._memo:
             return self._memo[expr]
         if isinstance(expr, Intermediate):  # its derivative is an intermediate too, kept in it
-            result: sp.Expr = expr.diff(self.variable)
+            result: sp.Expr = derivative(expr, self.variable)
         elif expr.is_Atom:
             result = sp.S.One
         elif isinstance(expr, sp.Add):

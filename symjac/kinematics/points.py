@@ -22,6 +22,7 @@ from symjac.errors import ArgumentError, FrameError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.coupling import in_coordinates
 from symjac.model.robot import Robot
+from symjac.symbolic.nested import presented
 from symjac.symbolic.simplify import simplify_matrix
 
 Point = Literal["wrist", "tool"] | Sequence[sp.Expr | float | int]
@@ -128,4 +129,4 @@ def point_position(robot: Robot | Chain, point: Point | None = None, link: int |
     k = link_of(chain, link)
     p = sp.Matrix(link_point(chain, point, k))
     T = chain.simplified_transform(frame, k)
-    return in_coordinates(chain, simplify_matrix(T[:3, :3] * p + T[:3, 3], chain.angle_bases(frame)))
+    return presented(in_coordinates(chain, simplify_matrix(T[:3, :3] * p + T[:3, 3], chain.angle_bases(frame))))

@@ -29,7 +29,7 @@ from symjac.kinematics.memo import memoized
 from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose, space_screws
 from symjac.model.ends import end_point, last_frame
 from symjac.model.robot import Robot
-from symjac.symbolic.nested import presented_matrix
+from symjac.symbolic.nested import presented, presented_matrix
 from symjac.symbolic.simplify import simplify_matrix
 from symjac.symbolic.transforms import homogeneous, skew
 
@@ -125,4 +125,4 @@ def body_jacobian(robot: Robot | Chain, *, simplify: bool = True) -> sp.Matrix:
     """
     chain = as_chain(robot)
     J = jacobian(chain, last_frame(chain), end_point(chain), simplify=simplify)
-    return sp.Matrix(J)[_SWAP, :]
+    return presented(sp.Matrix(J)[_SWAP, :])  # type: ignore[no-any-return]

@@ -28,6 +28,7 @@ __all__ = [
     "Intermediate",
     "NestedMatrix",
     "definitions",
+    "derivative",
     "has_intermediates",
     "inline",
     "named",
@@ -45,6 +46,9 @@ thousands (the nested form: a few hundred short definitions).
 """
 
 
+_FACTS = (lambda kb, orig, a0: (kb, orig, tuple(sorted(a0.items()))))(*sp.Symbol._canonical_assumptions(real=True))
+
+
 class Intermediate(sp.Dummy):  # type: ignore[misc]
     r"""A name for one subexpression of a nested result: a real symbol that carries its ``definition``.
 
@@ -53,18 +57,31 @@ class Intermediate(sp.Dummy):  # type: ignore[misc]
     intermediate (and kept), so their cost grows with the number of intermediates, not with the written-out size.
     """
 
-    __slots__ = ("_derivatives", "_free", "definition")
+    __slots__ = ("_derivatives", "_free", "_tree", "_uses", "definition")
 
     definition: sp.Expr
     _free: frozenset[sp.Symbol]
     _derivatives: dict[sp.Symbol, sp.Expr]
+    _uses: tuple[Intermediate, ...]
+    """The intermediates the definition holds directly."""
+    _tree: int
+    """Nodes of the definition written out as a tree."""
 
     def __new__(cls, definition: sp.Expr) -> Intermediate:
         """A new intermediate for ``definition`` (never shared with an equal one: identity is cheap to compare)."""
-        obj = super().__new__(cls, "w", real=True)
+        # Symbol's own constructor deduces the assumptions of every new symbol from scratch (and so does copying
+        # them). They are the same for every intermediate, and so is every fact SymPy later derives from them, so all
+        # intermediates share one deduced set (_FACTS)
+        obj = sp.Expr.__new__(cls)
+        obj.name = "w"
+        obj._assumptions = _FACTS[0]
+        obj._assumptions_orig, obj._assumptions0 = _FACTS[1], _FACTS[2]
+        obj.dummy_index = sp.Dummy._base_dummy_index + sp.Dummy._count
+        sp.Dummy._count += 1
         obj.definition = definition
         obj._free = frozenset(definition.free_symbols)
         obj._derivatives = {}
+        obj._uses, obj._tree = _uses_and_size(definition)
         return obj  # type: ignore[no-any-return]
 
     def __reduce__(self) -> tuple[Any, tuple[sp.Expr]]:
@@ -82,11 +99,7 @@ class Intermediate(sp.Dummy):  # type: ignore[misc]
         return result
 
     def _eval_derivative(self, s: sp.Basic) -> sp.Expr:
-        if s not in self._free:
-            return sp.S.Zero
-        if s not in self._derivatives:
-            self._derivatives[s] = named(self.definition.diff(s))
-        return self._derivatives[s]
+        return derivative(self, s)
 
     def _eval_subs(self, old: sp.Basic, new: sp.Basic) -> sp.Expr | None:
         # the definition's own ``subs`` reaches the intermediates it holds through SymPy's cache of ``_subs``, so a
@@ -102,8 +115,49 @@ class Intermediate(sp.Dummy):  # type: ignore[misc]
             return self, False
         return substitute([self], rule)[0], True
 
+    def xreplace(self, rule: Mapping[sp.Basic, sp.Basic], hack2: bool = False) -> sp.Basic:
+        """``rule`` applied inside the definition (SymPy's atoms would only look at themselves)."""
+        return self._xreplace(rule)[0]
+
     def _eval_evalf(self, prec: int) -> sp.Expr | None:
         return None if self._free else inline([self])[0].evalf(prec)
+
+
+def derivative(expr: sp.Expr, variable: sp.Basic) -> sp.Expr:
+    r""":math:`\partial e / \partial x` through intermediates: each one's derivative is an intermediate, derived once.
+
+    The intermediates ``expr`` uses are differentiated in evaluation order (so the chain rule never recurses deeper
+    than one definition, even for a 40-joint chain), each keeping its derivative; then ``expr`` itself.
+    """
+    for w in _intermediates([expr]):
+        if variable in w._free and variable not in w._derivatives:
+            w._derivatives[variable] = named(_local_derivative(w.definition, variable))
+    return _local_derivative(sp.sympify(expr), variable)
+
+
+def _local_derivative(expr: sp.Expr, s: sp.Basic) -> sp.Expr:
+    """The derivative of one (small) definition, intermediates in it already differentiated."""
+    if isinstance(expr, Intermediate):
+        return expr._derivatives[s] if s in expr._free else sp.S.Zero
+    if expr == s:
+        return sp.S.One
+    if expr.is_Atom or s not in expr.free_symbols:
+        return sp.S.Zero
+    if isinstance(expr, sp.Add):
+        return sp.Add(*[d for d in (_local_derivative(arg, s) for arg in expr.args) if d != 0])
+    if isinstance(expr, sp.Mul):
+        args = list(expr.args)
+        terms = [(i, _local_derivative(arg, s)) for i, arg in enumerate(args)]
+        return sp.Add(*[sp.Mul(*args[:i], d, *args[i + 1:]) for i, d in terms if d != 0])
+    if isinstance(expr, sp.sin):
+        return sp.cos(expr.args[0]) * _local_derivative(expr.args[0], s)
+    if isinstance(expr, sp.cos):
+        return -sp.sin(expr.args[0]) * _local_derivative(expr.args[0], s)
+    if isinstance(expr, sp.Pow) and not expr.exp.free_symbols:
+        return expr.exp * expr.base ** (expr.exp - 1) * _local_derivative(expr.base, s)
+    if not any(isinstance(node, Intermediate) for node in distinct_nodes([expr])):
+        return expr.diff(s)
+    raise NotImplementedError(f"no derivative rule for {type(expr).__name__} around intermediate values")
 
 
 def _is_small(expr: sp.Expr) -> bool:
@@ -121,24 +175,38 @@ def named(expr: sp.Expr) -> sp.Expr:
     return Intermediate(expr)
 
 
+def _uses_and_size(expr: sp.Basic) -> tuple[tuple[Intermediate, ...], int]:
+    """The intermediates ``expr`` holds directly, and its size written out as a tree."""
+    sizes: dict[int, int] = {}
+    uses: dict[Intermediate, None] = {}
+    for node in distinct_nodes([expr]):
+        if isinstance(node, Intermediate):
+            uses[node] = None
+            sizes[id(node)] = node._tree
+        else:
+            sizes[id(node)] = 1 + sum(sizes[id(arg)] for arg in node.args)
+    return tuple(uses), sizes[id(expr)]
+
+
 def _intermediates(roots: Iterable[sp.Basic]) -> list[Intermediate]:
     """The intermediates ``roots`` use, directly or through definitions, each after the ones its definition uses."""
     order: list[Intermediate] = []
     placed: set[Intermediate] = set()
-    stack: list[tuple[sp.Basic, bool]] = [(root, False) for root in reversed(list(roots))]
+    stack: list[tuple[Intermediate, bool]] = []
+    for root in reversed(list(roots)):
+        uses = (root,) if isinstance(root, Intermediate) else _uses_and_size(root)[0]
+        stack.extend((w, False) for w in reversed(uses))
     while stack:
-        node, ready = stack.pop()
+        w, ready = stack.pop()
         if ready:
-            placed.add(node)  # type: ignore[arg-type]
-            order.append(node)  # type: ignore[arg-type]
+            if w not in placed:
+                placed.add(w)
+                order.append(w)
             continue
-        if isinstance(node, Intermediate):
-            if node in placed:
-                continue
-            stack.append((node, True))
-            node = node.definition
-        inner = [n for n in distinct_nodes([node]) if isinstance(n, Intermediate) and n not in placed]
-        stack.extend((n, False) for n in reversed(inner))
+        if w in placed:
+            continue
+        stack.append((w, True))
+        stack.extend((u, False) for u in reversed(w._uses) if u not in placed)
     return order
 
 
@@ -148,8 +216,10 @@ def has_intermediates(value: Any) -> bool:
 
 
 def _entries(value: Any) -> list[sp.Basic]:
-    if isinstance(value, sp.MatrixBase | sp.NDimArray):
-        return list(value)  # type: ignore[arg-type]
+    if isinstance(value, sp.MatrixBase):
+        return list(value)
+    if isinstance(value, sp.NDimArray):
+        return list(sp.flatten(value.tolist()))
     if isinstance(value, Sequence):
         return [e for item in value for e in _entries(item)]
     return [sp.sympify(value)]
@@ -168,7 +238,7 @@ def inline(exprs: Sequence[sp.Expr]) -> list[sp.Expr]:
     """
     values: dict[sp.Basic, sp.Basic] = {}
     for w in _intermediates(exprs):
-        values[w] = sp.Basic.xreplace(w.definition, {u: values[u] for u in _direct(w.definition)})
+        values[w] = sp.Basic.xreplace(w.definition, {u: values[u] for u in w._uses})
     return [sp.Basic.xreplace(sp.sympify(e), {u: values[u] for u in _direct(e)}) for e in exprs]
 
 
@@ -179,32 +249,18 @@ def substitute(exprs: Sequence[sp.Expr], rule: Mapping[sp.Basic, sp.Basic]) -> l
     """
     values: dict[sp.Basic, sp.Basic] = {}
     for w in _intermediates(exprs):
-        local = {**rule, **{u: values[u] for u in _direct(w.definition)}}
+        local = {**rule, **{u: values[u] for u in w._uses}}
         values[w] = named(sp.Basic.xreplace(w.definition, local))
     return [sp.Basic.xreplace(sp.sympify(e), {**rule, **{u: values[u] for u in _direct(e)}}) for e in exprs]
 
 
-def _direct(expr: sp.Basic) -> list[Intermediate]:
-    return [n for n in distinct_nodes([expr]) if isinstance(n, Intermediate)]
+def _direct(expr: sp.Basic) -> tuple[Intermediate, ...]:
+    return (expr,) if isinstance(expr, Intermediate) else _uses_and_size(expr)[0]
 
 
 def tree_size(value: Any) -> int:
     """Nodes of ``value`` written out as trees (intermediates by their definitions), counted without writing it."""
-    roots = _entries(value)
-    sizes: dict[int, int] = {}
-    for w in _intermediates(roots):
-        sizes[id(w)] = _size(w.definition, sizes)
-    return sum(_size(root, sizes) for root in roots)
-
-
-def _size(expr: sp.Basic, sizes: dict[int, int]) -> int:
-    local: dict[int, int] = {}
-    for node in distinct_nodes([expr]):
-        if isinstance(node, Intermediate):
-            local[id(node)] = sizes[id(node)]
-        else:
-            local[id(node)] = 1 + sum(local[id(arg)] for arg in node.args)
-    return local[id(expr)]
+    return sum(_uses_and_size(root)[1] for root in _entries(value))
 
 
 class NestedMatrix(sp.ImmutableDenseMatrix):  # type: ignore[misc]
@@ -219,6 +275,18 @@ class NestedMatrix(sp.ImmutableDenseMatrix):  # type: ignore[misc]
     def definitions(self) -> tuple[tuple[Intermediate, sp.Expr], ...]:
         """Each intermediate the entries use and its definition, in evaluation order."""
         return definitions(self)
+
+    def xreplace(self, rule: Mapping[sp.Basic, sp.Basic]) -> sp.MatrixBase:  # type: ignore[override]
+        """``rule`` applied inside every definition once (shared by all entries), then :func:`presented`."""
+        return presented(sp.ImmutableMatrix(self.rows, self.cols, substitute(list(self), rule)))
+
+    def subs(self, *args: Any, **kwargs: Any) -> sp.MatrixBase:  # type: ignore[override]
+        """Symbols replaced as :meth:`xreplace` does (numbers for every symbol give a matrix of numbers)."""
+        pairs = dict(args[0]) if len(args) == 1 and isinstance(args[0], Mapping) else \
+            dict(args[0]) if len(args) == 1 else {args[0]: args[1]} if len(args) == 2 else None
+        if pairs is not None and not kwargs and all(isinstance(sp.sympify(k), sp.Symbol) for k in pairs):
+            return self.xreplace({sp.sympify(k): sp.sympify(v) for k, v in pairs.items()})
+        return super().subs(*args, **kwargs)  # type: ignore[no-any-return]
 
     def inlined(self) -> sp.ImmutableMatrix:
         """The same matrix written out: entries as shared graphs, which may be exponentially large as trees."""

@@ -21,8 +21,9 @@ import sympy as sp
 from sympy.polys.domains import QQ
 from sympy.polys.rings import PolyElement, ring
 
-from symjac.errors import ResultTooLargeError
+from symjac.errors import NoClosedFormError, ResultTooLargeError
 from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.nested import Intermediate
 from symjac.symbolic.size import current_term_limit
 
 __all__ = ["TrigImage", "expanded_expr", "image_of", "nested_expr", "product_image", "reduce_image"]
@@ -125,6 +126,8 @@ def _collect_atoms(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[list[sp
         seen[id(expr)] = expr
         if expr.is_Rational:
             return
+        if isinstance(expr, Intermediate):  # a nested result: its written-out form has no normal form worth having
+            raise NoClosedFormError("a closed form (normal form, determinant, singular set)")
         if isinstance(expr, sp.Add | sp.Mul):
             for arg in expr.args:
                 visit(arg)

@@ -17,7 +17,7 @@ from typing import Any, Literal, NamedTuple, TypeVar
 
 import sympy as sp
 
-from symjac.errors import FrameError
+from symjac.errors import FrameError, ResultTooLargeError
 from symjac.kinematics.coupling import COUPLING_LAWS, in_coordinates
 from symjac.kinematics.generic import is_generic, numeric_steps
 from symjac.model.conventions import joint_forms
@@ -27,6 +27,7 @@ from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.nested import named, presented
 from symjac.symbolic.simplify import simplify_product
+from symjac.symbolic.size import limit_lowered
 from symjac.symbolic.transforms import Composition, Motion, compose, homogeneous, inverse_motions
 
 Frame = int | Literal["world", "tool"]
@@ -101,6 +102,11 @@ class Chain:
     def n_joints(self) -> int:
         """Number of joints; the chain's frames are 0..n_joints."""
         return self.robot.n_joints
+
+    @cached_property
+    def nested_twin(self) -> Chain:
+        """The same robot's chain built nested: public results too large to write out come from it instead."""
+        return self if self.nested else Chain(self.robot, nested=True)
 
     @cached_property
     def joint_chain(self) -> Chain:
@@ -401,7 +407,13 @@ def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | 
     L1*cos(theta1) + L2*cos(theta1 + theta2) + L3*cos(theta1 + theta2 + theta3)
     """
     chain = as_chain(robot)
-    T = chain.simplified_transform(source, chain.n_joints if target is None else target)
+    target = chain.n_joints if target is None else target
+    try:
+        T = chain.simplified_transform(source, target)
+    except ResultTooLargeError:  # too large written out: nested instead
+        if chain.nested or limit_lowered():
+            raise
+        T = chain.nested_twin.simplified_transform(source, target)
     return presented(in_coordinates(chain, sp.Matrix(T)))
 
 

@@ -36,10 +36,11 @@ import inspect
 from collections.abc import Callable, Collection
 from typing import Any, Concatenate, ParamSpec, TypeVar
 
-from symjac.errors import ArgumentError
+from symjac.errors import ArgumentError, ResultTooLargeError
 from symjac.kinematics.chain import Chain, Frame, MemoKey, as_chain
 from symjac.kinematics.coupling import CouplingLaw, LawName, coupling_law
 from symjac.model.robot import Robot
+from symjac.symbolic.size import limit_lowered
 
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -117,7 +118,16 @@ def memoized(
 
         @functools.wraps(function)
         def wrapper(*args: Any, **kwargs: Any) -> R:
-            value = kept(*args, **kwargs)
+            try:
+                value = kept(*args, **kwargs)
+            except ResultTooLargeError:
+                # written out, the result would be too large: the same quantity from the robot's nested chain
+                bound = public.bind(*args, **kwargs)
+                chain = as_chain(bound.arguments["robot"])
+                if chain.nested or limit_lowered() or not bound.arguments.get("simplify", True):
+                    raise
+                bound.arguments["robot"] = chain.nested_twin
+                value = kept(*bound.args, **bound.kwargs)
             return value if fresh is None else fresh(value)
 
         wrapper.__signature__ = public  # type: ignore[attr-defined]

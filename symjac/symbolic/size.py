@@ -10,7 +10,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 
-__all__ = ["TERM_LIMIT", "current_term_limit", "term_limit"]
+__all__ = ["TERM_LIMIT", "current_term_limit", "limit_lowered", "term_limit"]
 
 TERM_LIMIT = 200_000
 """The most terms the normal forms of one result may have together (and any intermediate on its own).
@@ -44,3 +44,9 @@ def current_term_limit() -> int:
     """The term limit in force here: :data:`TERM_LIMIT`, or a lower one set by :func:`term_limit`."""
     budget = _budget.get()
     return TERM_LIMIT if budget is None else min(budget, TERM_LIMIT)
+
+
+def limit_lowered() -> bool:
+    """Whether a :func:`term_limit` block is in force here (code generation trying a compact form within a budget)."""
+    return _budget.get() is not None
+

@@ -21,6 +21,7 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ExpressionError, InertialWarning, RobotFileError, warn
+from symjac.model.bounds import size_problem
 from symjac.model.conventions import PLUGINS, convention_named, file_inertials, plugin, with_file_inertials
 from symjac.model.conventions.base import transform_fields
 from symjac.model.coordinates import Coupling
@@ -260,7 +261,7 @@ class _JointReader:
     def number(self, key: str, *, angle: bool = False) -> sp.Expr:
         """The value under ``key`` (0 if absent), checked finite."""
         expr = self.value(self.table.get(key, 0), key, angle=angle)
-        _require_finite(expr, self.defaults, lambda message: self.fail(message, key))
+        _require_finite(expr, self.defaults, lambda message: self.fail(message, key), angle)
         return expr
 
     def transform(self, keys: Sequence[str], field: str) -> FixedTransform:
@@ -301,10 +302,15 @@ def _parameters(raw: Any, reserved: Mapping[str, str], fail: Any) -> tuple[Param
     return tuple(parameters)
 
 
-def _require_finite(expr: sp.Expr, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> None:
+def _require_finite(expr: sp.Expr, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any,
+                    angle: bool | None = None) -> None:
+    """Refuse ``expr`` unless finite with the defaults, and (an angle or a length) no larger than any robot's."""
     number = expr.subs(defaults)
     if not number.is_number or not _is_finite(number):
         raise fail(f"value {expr} is not a finite number once parameters take their defaults")
+    problem = None if angle is None else size_problem(float(number), angle=angle)
+    if problem is not None:
+        raise fail(f"{expression_text(expr)} = {problem}" if expr.free_symbols else problem)
 
 
 def _is_finite(number: sp.Expr) -> bool:
@@ -344,8 +350,9 @@ def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol
         matrix = sp.ImmutableMatrix([[value(entry, f"{key}.matrix") for entry in row] for row in rows])
         if list(matrix[3, :]) != [0, 0, 0, 1]:
             raise fail("the last row of 'matrix' must be [0, 0, 0, 1]", field=f"{key}.matrix")
-        for entry in matrix:
-            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.matrix"))
+        for index, entry in enumerate(matrix):  # the translation column holds lengths
+            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.matrix"),
+                            False if index % 4 == 3 else None)
         rotation = matrix[:3, :3].subs(defaults).evalf()
         error = (rotation.T * rotation - sp.eye(3)).norm()
         if not error < 1e-9 or not abs(rotation.det() - 1) < 1e-9:
@@ -358,7 +365,7 @@ def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol
             raise fail(f"'{name}' must be a list of 3 numbers or expressions", field=f"{key}.{name}")
         x, y, z = (value(entry, f"{key}.{name}", None, scale) for entry in entries)
         for entry in (x, y, z):
-            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"))
+            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"), name == "rpy")
         return x, y, z
 
     return FixedTransform(xyz=vector("xyz", sp.S.One), rpy=vector("rpy", angle_scale))

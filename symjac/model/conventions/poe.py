@@ -21,7 +21,6 @@ frame {n} like every tool, is :math:`G_n^{-1} M`. Frame {0} is the space frame {
 
 from __future__ import annotations
 
-import random
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, TypeAlias
@@ -29,8 +28,10 @@ from typing import Any, TypeAlias
 import sympy as sp
 
 from symjac.errors import RobotFileError
+from symjac.model.bounds import size_problem
 from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields, transform_fields
 from symjac.model.conventions.general import GENERAL, GeneralPlacement
+from symjac.model.conventions.rounding import short, unit, zero_pitch
 from symjac.model.expressions import exact_number, expression_text
 from symjac.model.robot import (
     Convention,
@@ -40,8 +41,8 @@ from symjac.model.robot import (
     Placement,
     Robot,
     fixed_transform_from_matrix,
-    unit_vector,
 )
+from symjac.symbolic.nested import has_intermediates, inline
 from symjac.symbolic.transforms import adjoint, alignment, compose, homogeneous, inverse_transform
 
 __all__ = ["PLUGIN", "POE", "PRODUCT_OF_EXPONENTIALS", "ProductOfExponentials", "ScrewPlacement", "as_general",
@@ -53,12 +54,12 @@ PRODUCT_OF_EXPONENTIALS = Convention.register("poe")
 """The convention's value, ``Convention("poe")``."""
 
 _ZERO: Vector = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
+_LONG_NUMBER = 60
+"""Characters beyond which a radical number (sqrt of a 13-digit integer) is written to double precision."""
+_TEXTBOOK_CHARS = 12
+"""The longest exact form of a measured number (``-sqrt(3)/2``, ``3*pi/4``) taken for it; longer: the decimal."""
 _TRANSCENDENTAL_OPS = 6
 """How many operations a number made of sines and cosines of generic angles may keep exactly (``cos(3/10)`` is 1)."""
-_SIMPLIFY_OPS = 40
-"""The longest expression of parameters (in operations) that validation simplifies exactly."""
-_UNIT_TOLERANCE = 1e-6
-"""How far from 1 a numeric axis length may be (files give 6-digit decimals); the axis is then normalised exactly."""
 
 
 @dataclass(frozen=True)
@@ -107,6 +108,14 @@ def _tidy(expr: sp.Expr) -> sp.Expr:
     return sp.radsimp(sp.expand(expr))
 
 
+def _settled(expr: sp.Expr) -> sp.Expr:
+    """:func:`_tidy`, and a number that stays a long radical (a calibrated file's) to double precision."""
+    expr = _tidy(expr)
+    if expr.is_number and not expr.is_Rational and expr.has(sp.Pow) and len(str(expr)) > _LONG_NUMBER:
+        return exact_number(float(expr))
+    return expr
+
+
 def _vector(values: Sequence[sp.Expr]) -> Vector:
     x, y, z = (_tidy(sp.sympify(e)) for e in values)
     return x, y, z
@@ -143,7 +152,7 @@ def _frame_matrix(point: Vector, direction: Vector) -> sp.Matrix:
 def _tool(joints: Sequence[Joint], home: sp.MatrixBase) -> FixedTransform:
     r"""The tool relative to frame {n}: :math:`G_n^{-1} M`."""
     point, direction = _home_frames(joints)[-1]
-    matrix = (inverse_transform(_frame_matrix(point, direction)) * sp.Matrix(home)).applyfunc(_tidy)
+    matrix = (inverse_transform(_frame_matrix(point, direction)) * sp.Matrix(home)).applyfunc(_settled)
     return FixedTransform(given_matrix=sp.ImmutableMatrix(matrix))
 
 
@@ -151,7 +160,7 @@ def home_pose(robot: Robot) -> sp.Matrix:
     r"""The home pose :math:`M` of the tool frame in {s}: :math:`G_n` times the tool transform."""
     point, direction = _home_frames(robot.joints)[-1]
     tool = robot.tool.matrix if robot.tool is not None else sp.eye(4)
-    return (_frame_matrix(point, direction) * sp.Matrix(tool)).applyfunc(_tidy)
+    return (_frame_matrix(point, direction) * sp.Matrix(tool)).applyfunc(_settled)
 
 
 def as_general(robot: Robot) -> Robot:
@@ -168,45 +177,6 @@ def as_general(robot: Robot) -> Robot:
         joints.append(replace(joint, placement=GeneralPlacement(origin, axis)))
         previous = point
     return replace(robot, convention=Convention.GENERAL, joints=tuple(joints))
-
-
-def _is_zero(expr: sp.Expr) -> bool:
-    """Whether ``expr`` is zero: identically when it holds parameters, to 1e-6 when it is a number (6-digit files).
-
-    An expression of parameters is simplified when it is short; a longer one (which simplification could take
-    minutes over) is taken to be zero when it vanishes to 1e-12 at five random values of its parameters.
-    """
-    if not expr.free_symbols:
-        return abs(float(expr)) <= _UNIT_TOLERANCE
-    if sp.count_ops(expr) <= _SIMPLIFY_OPS:
-        return bool(sp.simplify(expr) == 0)
-    symbols = sorted(expr.free_symbols, key=str)
-    function = sp.lambdify(symbols, expr, modules="math")
-    draw = random.Random(0)
-    samples = [[draw.uniform(-2.0, 2.0) for _ in symbols] for _ in range(5)]
-    try:
-        return all(abs(complex(function(*sample))) < 1e-12 for sample in samples)
-    except (ArithmeticError, ValueError):
-        return False
-
-
-def _unit(vector: Vector, what: str, field: str, reader: JointReader) -> Vector:
-    r"""``vector`` checked to have unit length (exactly when it holds parameters) and returned exact."""
-    square = sum(e**2 for e in vector)
-    if any(e.free_symbols for e in vector):
-        if not _is_zero(square - 1):
-            raise reader.fail(f"{what} must have unit length, and |{list(vector)}|^2 = {sp.simplify(square)} is not "
-                              f"identically 1", field)
-        return vector
-    length = float(sp.sqrt(square))
-    if abs(length - 1) > _UNIT_TOLERANCE:
-        raise reader.fail(f"{what} must have unit length, got {list(vector)} of length {length:.6g}", field)
-    if square == 1:
-        return vector
-    exact = unit_vector(vector)
-    if abs(length - 1) < 1e-14 and any(len(str(expression_text(e))) > 40 for e in exact):
-        return vector  # a unit vector written to double precision (a conversion's): exact normalising only bloats it
-    return exact
 
 
 class ProductOfExponentials(NoRobotFields):
@@ -248,41 +218,45 @@ class ProductOfExponentials(NoRobotFields):
             if not isinstance(entries, Sequence) or isinstance(entries, str) or len(entries) != length:
                 raise reader.fail(f"'{key}' must be a list of {length} numbers or expressions, got {entries!r}", key)
             values = tuple(reader.value(entry, key) for entry in entries)
-            for value in values:
-                if not reader.is_finite(value.subs(reader.defaults)):
+            for index, value in enumerate(values):
+                number = value.subs(reader.defaults)
+                if not reader.is_finite(number):
                     raise reader.fail(f"'{key}' entry {value} is not a finite number once parameters take their "
                                       f"defaults", key)
+                lengths = key == "point" or (key == "screw" and index >= 3)  # v = -w x q is a length too
+                problem = size_problem(float(number), angle=False) if lengths else None
+                if problem is not None:
+                    raise reader.fail(f"'{key}' entry {short(value)} = {problem}", key)
             return values
 
         point: Vector | None = None
         if "screw" in table:
             screw = vector("screw", 6)
             omega, v = _vector(screw[:3]), _vector(screw[3:])
+            written: tuple[Vector, Vector, Vector | None] = (omega, v, None)
             if revolute:
-                omega = _unit(omega, "a revolute screw's w", "screw", reader)
-                pitch = _tidy(sum(a * b for a, b in zip(omega, v, strict=True)))
-                if not _is_zero(pitch):
-                    raise reader.fail(f"a revolute screw has v perpendicular to w (zero pitch), got w.v = {pitch}",
-                                      "screw")
-                if pitch != 0:  # a 6-digit file's rounding: the part of v along w is dropped, as the chain drops it
-                    v = _vector([b - pitch * a for a, b in zip(omega, v, strict=True)])
+                omega = unit(omega, "a revolute screw's w", "screw", reader)
+                v = _vector(zero_pitch(omega, v, reader))
             else:
                 if omega != _ZERO:
                     raise reader.fail(f"a prismatic joint's screw has w = 0 (it translates along v), got w = "
                                       f"{list(omega)}", "screw")
-                v = _unit(v, "a prismatic screw's v", "screw", reader)
+                v = unit(v, "a prismatic screw's v", "screw", reader)
         elif "axis" in table:
-            axis = _unit(_vector(vector("axis", 3)), "'axis'", "axis", reader)
+            given_axis = _vector(vector("axis", 3))
+            axis = unit(given_axis, "'axis'", "axis", reader)
             if revolute:
                 if "point" not in table:
                     raise reader.fail("a revolute 'axis' needs a 'point' on it (or give the 'screw')", "point")
                 point = _vector(vector("point", 3))
                 omega, v = axis, _vector(sp.Matrix(point).cross(sp.Matrix(axis)))  # v = -w x q
+                written = (given_axis, v, point)
             else:
                 if "point" in table:
                     raise reader.fail("a prismatic joint has no 'point': its 'axis' is the direction it slides in",
                                       "point")
                 omega, v = _ZERO, axis
+                written = (_ZERO, given_axis, None)
         else:
             raise reader.fail("give the joint's 'screw' (w then v, 6 entries) or its 'axis' (and a 'point' on it)",
                               "screw")
@@ -290,10 +264,12 @@ class ProductOfExponentials(NoRobotFields):
         if not isinstance(name, str):
             raise reader.fail("'name' must be a string", "name")
         home, given_home = reader.settings["home"], reader.settings["given_home"]
+        # written back as the file gave it: a 6-digit axis stays 6 digits, not its normalised double
+        given = written if written != (omega, v, point) else None
         if reader.settings["body"]:
-            given = (omega, v, point)
-            return ScrewPlacement(*self._to_space(omega, v, point, home), True, given, given_home), name
-        return ScrewPlacement(omega, v, point, home=given_home), name
+            return ScrewPlacement(*self._to_space(omega, v, point, home), True, given or (omega, v, point),
+                                  given_home), name
+        return ScrewPlacement(omega, v, point, given=given, home=given_home), name
 
     @staticmethod
     def _to_space(omega: Vector, v: Vector, point: Vector | None, home: sp.MatrixBase
@@ -363,6 +339,8 @@ class ProductOfExponentials(NoRobotFields):
         by their screw; joint variables, limits, names, parameters and the base are kept.
         """
         frames, pose = axes()
+        zero = dict.fromkeys(robot.joint_variables, sp.S.Zero)  # inside the intermediates too
+        frames, pose = [_inlined(frame).xreplace(zero) for frame in frames], _inlined(pose).xreplace(zero)
         home = sp.Matrix(pose).applyfunc(_exact)
         simple = all(e.is_Rational or (e.has(sp.pi) and not e.has(sp.sin, sp.cos)) for e in home[:3, :3])
         given = fixed_transform_from_matrix(home) if simple else FixedTransform(given_matrix=sp.ImmutableMatrix(home))
@@ -383,13 +361,30 @@ class ProductOfExponentials(NoRobotFields):
         return as_general(robot) if target is Convention.GENERAL else None
 
 
+def _textbook(number: sp.Float) -> sp.Expr:
+    """A float as the short exact number it rounds (1/2, sqrt(3)/2, pi/4), else its shortest decimal, exactly.
+
+    ``nsimplify`` alone finds an "exact" form for any float (``2**(93/197)*3**(717/985)*...``): only short ones
+    are textbook numbers.
+    """
+    guess = sp.nsimplify(number, [sp.pi], tolerance=1e-12)
+    if len(str(guess)) <= _TEXTBOOK_CHARS and not any(p.exp.is_Rational and p.exp.q > 2 for p in guess.atoms(sp.Pow)):
+        return guess
+    return exact_number(float(number))
+
+
+def _inlined(matrix: sp.MatrixBase) -> sp.Matrix:
+    """A pose at home of a nested chain (generic geometry) written out: numbers, or expressions of parameters."""
+    return sp.Matrix(matrix.rows, matrix.cols, inline(list(matrix))) if has_intermediates(matrix) else matrix
+
+
 def _exact(expr: sp.Expr) -> sp.Expr:
     """An entry of a transform at home, as simple as exact algebra makes it, and short enough for a robot file.
 
     An entry that stays a long combination of sines and cosines of generic angles (DH twists and offsets like 0.3
     rad) is written with its coefficients to double precision: kept exact, they make every later product grow.
     """
-    expr = sp.nsimplify(expr, [sp.pi]) if expr.has(sp.Float) else expr
+    expr = expr.xreplace({f: _textbook(f) for f in expr.atoms(sp.Float)})
     if not expr.has(sp.sin, sp.cos):
         return _tidy(expr)
     expr = sp.trigsimp(expr) if sp.count_ops(expr) <= 40 else expr

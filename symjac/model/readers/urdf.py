@@ -37,6 +37,7 @@ from pathlib import Path
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
+from symjac.model.bounds import size_problem
 from symjac.model.expressions import exact_number, snap_angle
 from symjac.model.readers.tree import (
     JointLimits,
@@ -198,8 +199,10 @@ def _origin(element: ET.Element | None, source: str, where: str) -> FixedTransfo
     """``<origin xyz rpy>`` (the identity without one), its angles snapped and bounded."""
     xyz = _vector(element.get("xyz") if element is not None else None, source, where)
     rpy = [snap_angle(v) for v in _vector(element.get("rpy") if element is not None else None, source, where)]
-    if any(abs(v) > MAX_URDF_ANGLE for v in rpy):  # SymPy cannot reduce sin(1e308) when fixed joints merge
-        raise _fail(source, f"an rpy angle is larger than {MAX_URDF_ANGLE:.0e} rad in size", where)
+    for values, angle, name in ((xyz, False, "xyz"), (rpy, True, "rpy")):  # and sin(1e308) would not reduce
+        problem = next((p for p in (size_problem(float(v), angle=angle) for v in values) if p is not None), None)
+        if problem is not None:
+            raise _fail(source, f"{name}: {problem}", where)
     return FixedTransform(xyz=tuple(xyz), rpy=tuple(rpy))  # type: ignore[arg-type]
 
 

@@ -17,6 +17,7 @@ from sympy.printing.numpy import NumPyPrinter
 
 from symjac import Robot
 from symjac.model.robot import JointType
+from symjac.symbolic.nested import definitions
 
 
 def _float(expr: sp.Expr, robot: Robot) -> float:
@@ -244,6 +245,11 @@ _COMPILED: dict[tuple, Callable[..., Any]] = {}
 """Lambdified matrices by (matrix, arguments): a test evaluates one matrix at several configurations."""
 
 
+def _nested_only(expr: Any) -> tuple[list[tuple[sp.Symbol, sp.Expr]], Any]:
+    """Intermediates of a nested result as assignments; nothing else is CSE'd (as before nested results)."""
+    return list(definitions(expr)), expr
+
+
 def _compiled(matrix: sp.MatrixBase, symbols: tuple[sp.Symbol, ...]) -> Callable[..., Any]:
     """``sympy.lambdify(symbols, matrix)``, compiled once per matrix and argument list."""
     key = (sp.ImmutableMatrix(matrix) if isinstance(matrix, sp.MatrixBase) else sp.sympify(matrix), symbols)
@@ -254,7 +260,8 @@ def _compiled(matrix: sp.MatrixBase, symbols: tuple[sp.Symbol, ...]) -> Callable
         # terms printed in the order SymPy holds them: sorting every sum for print took half of lambdify's time
         printer = NumPyPrinter({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": True,
                                 "user_functions": {}, "order": "none"})
-        function = _COMPILED[key] = sp.lambdify(symbols, matrix, modules="numpy", printer=printer)
+        function = _COMPILED[key] = sp.lambdify(symbols, matrix, modules="numpy", printer=printer,
+                                                cse=_nested_only)
     return function
 
 

@@ -35,6 +35,7 @@ from symjac.kinematics.coupling import coordinate_bases, in_coordinates
 from symjac.kinematics.propagation import joint_rate_symbols
 from symjac.printing.steps import propagation_steps
 from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.nested import lambdify_cse
 from symjac.symbolic.simplify import is_identity
 from symjac.symbolic.trigpoly import image_of
 
@@ -69,7 +70,7 @@ def _compile(robot, matrices: list[sp.MatrixBase]):
     stacked = sp.Matrix.vstack(*[sp.Matrix(m).reshape(m.rows * m.cols, 1) for m in matrices])
     stacked = stacked.xreplace(robot.defaults)
     args = [list(robot.q), list(joint_rate_symbols(robot)), list(joint_accelerations(robot))]
-    function = sp.lambdify(args, stacked, modules="numpy", cse=True)
+    function = sp.lambdify(args, stacked, modules="numpy", cse=lambdify_cse)  # nested results (generic twists)
     ends = np.cumsum([rows * cols for rows, cols in shapes])
 
     def evaluate(q, qd, qdd) -> list[np.ndarray]:

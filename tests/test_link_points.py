@@ -31,6 +31,7 @@ from symjac.kinematics.points import point_position
 from symjac.kinematics.propagation import force_propagation, joint_rate_symbols, velocity_propagation
 from symjac.kinematics.screws import space_jacobian
 from symjac.kinematics.statics import joint_torques
+from symjac.symbolic.nested import lambdify_cse
 
 CATALOG = ["planar3r", "articulated3r", "scara", "stanford", "palletizer", "ur5_poe"]
 H = 1e-6
@@ -44,7 +45,7 @@ def _robot(name: str):
 def _numeric(robot, matrix: sp.MatrixBase):
     """A function of the coordinates q (and their rates) for a symbolic matrix, parameters at their defaults."""
     expr = sp.Matrix(matrix).xreplace(robot.defaults)
-    function = sp.lambdify([list(robot.q), list(joint_rate_symbols(robot))], expr, modules="numpy", cse=True)
+    function = sp.lambdify([list(robot.q), list(joint_rate_symbols(robot))], expr, modules="numpy", cse=lambdify_cse)
     return lambda q, qd=None: np.asarray(function(q, np.zeros(len(q)) if qd is None else qd), dtype=float)
 
 

@@ -31,6 +31,7 @@ __all__ = [
     "derivative",
     "has_intermediates",
     "inline",
+    "lambdify_cse",
     "named",
     "presented",
     "presented_matrix",
@@ -312,6 +313,18 @@ def presented(value: Any, limit: int = INLINE_LIMIT) -> Any:
     if isinstance(value, sp.MatrixBase):
         return NestedMatrix(value)
     return value
+
+
+def lambdify_cse(expr: Any) -> tuple[list[tuple[sp.Symbol, sp.Expr]], Any]:
+    """A ``cse`` for :func:`sympy.lambdify`: the intermediates ``expr`` uses become its assignments, in order.
+
+    ``sympy.lambdify(q, J, cse=lambdify_cse)`` compiles a nested result in time linear in its definitions (printing
+    it written out would take exponential time); an ``expr`` without intermediates gets SymPy's own ``cse``.
+    """
+    pairs = definitions(expr)
+    if not pairs:
+        return sp.cse(expr, list=False)  # type: ignore[no-any-return]
+    return [(w, d) for w, d in pairs], expr
 
 
 def presented_matrix(value: sp.MatrixBase) -> sp.Matrix:

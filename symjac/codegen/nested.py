@@ -113,8 +113,11 @@ def grouped(temporaries: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[
     result: Temporaries = []
 
     def normal(inner: sp.Expr) -> tuple[int, sp.Expr]:
-        first = min(inner.args, key=sp.default_sort_key)
-        return (-1, -inner) if first.as_coeff_Mul()[0] < 0 else (1, inner)
+        # the first term in SymPy's structural order of the terms without their signs (Basic.compare: cheap, and
+        # independent of hashing); default_sort_key took seconds on a long chain
+        terms = [term.as_coeff_Mul() for term in inner.args]
+        first = min(terms, key=lambda pair: _Structural(pair[1]))
+        return (-1, -inner) if first[0] < 0 else (1, inner)
 
     def regroup(expr: sp.Expr) -> sp.Expr:
         if not isinstance(expr, sp.Add):
@@ -151,3 +154,15 @@ def grouped(temporaries: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[
         renaming[symbol] = next(fresh)
         renamed.append((renaming[symbol], value.xreplace(renaming)))
     return renamed, [e.xreplace(renaming) for e in reduced]
+
+
+class _Structural:
+    """An expression ordered by :meth:`sympy.Basic.compare` (a total order on structure, as ``sorted`` wants)."""
+
+    __slots__ = ("expr",)
+
+    def __init__(self, expr: sp.Basic):
+        self.expr = expr
+
+    def __lt__(self, other: _Structural) -> bool:
+        return bool(self.expr.compare(other.expr) < 0)

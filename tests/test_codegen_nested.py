@@ -143,6 +143,7 @@ print(hashlib.sha256(generate(ARMS[sys.argv[2]](), "numpy", acceleration=True).e
 """
 
 
+@pytest.mark.slow  # a second interpreter imports SymPy and derives again
 def test_generation_is_byte_identical_in_a_fresh_process_with_another_hash_seed():
     expected = hashlib.sha256(generate(poe_arm(), "numpy", acceleration=True).encode()).hexdigest()
     env = {**os.environ, "PYTHONHASHSEED": "7", "PYTHONPATH": os.pathsep.join([str(REPO), *sys.path])}

@@ -15,6 +15,9 @@ are graphs whose trees grow exponentially with the chain. So the definitions go 
 3. **CSE of what remains** (:func:`symjac.codegen.cse.eliminate_common` with ``definitions``): the definitions and
    the outputs go through ``sympy.cse`` together (each is small), and everything is numbered ``x0, x1, ...`` in
    evaluation order.
+4. **Numbers grouped** (:func:`grouped`): SymPy distributes a number over a sum, so a generic rotation's
+   :math:`c_\alpha (c_\theta y - s_\theta x)` arrives as two products; the terms that share a number are grouped
+   under it again, each group one temporary (a calibrated 6R arm's Jacobian: 348 operations before, 308 after).
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ from symjac.symbolic.angles import AngleExpansion
 from symjac.symbolic.dag import distinct_nodes
 from symjac.symbolic.nested import Intermediate, definitions, named
 
-__all__ = ["expanded_nested", "has_nested", "placeheld"]
+__all__ = ["expanded_nested", "grouped", "has_nested", "placeheld"]
 
 Temporaries = list[tuple[sp.Symbol, sp.Expr]]
 

@@ -14,6 +14,7 @@ from collections.abc import Iterable, Sequence
 import sympy as sp
 
 from symjac.codegen.lower import Inputs, LoweredFunction, angle_expansion, lowered_jacobian
+from symjac.codegen.nested import expanded_nested, has_nested, placeheld
 from symjac.codegen.request import frame_text, rows_of, strategy_of
 from symjac.kinematics.acceleration import carried_joints
 from symjac.kinematics.chain import Chain, Frame
@@ -42,6 +43,7 @@ class _Program:
         self.expansion = angle_expansion(chain)
         self.temporaries: list[tuple[sp.Symbol, sp.Expr]] = list(J.temporaries)
         self._fresh = sp.numbered_symbols("_acc_a", real=True)
+        self._fresh_nested = sp.numbered_symbols("_acc_w", real=True)
         self.entries = tuple(self.value(e) for e in J.outputs)
 
     def value(self, expr: sp.Expr) -> sp.Expr:
@@ -51,6 +53,15 @@ class _Program:
         symbol = next(self._fresh)
         self.temporaries.append((symbol, expr))
         return symbol
+
+    def expanded(self, exprs: Iterable[sp.Expr]) -> list[sp.Expr]:
+        """``exprs`` angle-expanded; the intermediates of a nested result become temporaries first (placeholders)."""
+        flat = self.expansion.expand_all(list(exprs))
+        if not has_nested(flat):
+            return flat
+        definitions, flat = placeheld(expanded_nested(self.expansion, flat), self._fresh_nested)
+        self.temporaries += definitions
+        return flat
 
     def vector(self, exprs: Iterable[sp.Expr]) -> Vector:
         a, b, c = (self.value(e) for e in exprs)
@@ -174,7 +185,7 @@ def _bias_in(chain: Chain, frame: Frame, via: Frame, point: tuple[sp.Expr, ...],
         linear = _add(linear, _cross(velocity, K))
         angular = _add(angular, _cross(W[n], K))
     if via != frame:
-        R = chain.rotation(frame, via).applyfunc(program.expansion.expand)
+        R = sp.Matrix(3, 3, program.expanded(chain.rotation(frame, via)))
         linear, angular = (_rotate(R, program.vector(linear)), _rotate(R, program.vector(angular)))
     values = [*linear, *angular]
     where = "" if via == frame else f" in frame {{{via}}}, rotated into {frame_text(frame)}"

@@ -118,7 +118,7 @@ def _in_coordinates(chain: Chain, lowered: LoweredFunction, shape: tuple[int, ..
     body = [*first, *kept]
     op_count = sum(int(sp.count_ops(e)) for _, e in body) + sum(int(sp.count_ops(e)) for e in outputs)
     return LoweredFunction(inputs, angles, tuple(body), tuple(outputs),
-                           tuple(sp.sympify(e).xreplace(values) for e in expanded), shape, op_count,
+                           tuple(sp.Basic.xreplace(sp.sympify(e), values) for e in expanded), shape, op_count,
                            f"{lowered.origin}{note}")
 
 

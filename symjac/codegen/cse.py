@@ -27,21 +27,37 @@ SMALL = 4  # a shared subexpression of fewer tree nodes (-s1, L*c2) is left inli
 Temporaries = list[tuple[sp.Symbol, sp.Expr]]
 
 
-def eliminate_common(exprs: Sequence[sp.Expr]) -> tuple[Temporaries, list[sp.Expr]]:
+def eliminate_common(exprs: Sequence[sp.Expr], definitions: Sequence[tuple[sp.Symbol, sp.Expr]] = ()
+                     ) -> tuple[Temporaries, list[sp.Expr]]:
     """Temporaries ``_x0, _x1, ...`` in evaluation order and ``exprs`` in terms of them (deterministic).
+
+    ``definitions`` are named values ``exprs`` use (symbols that are no argument, each defined after those its
+    definition uses, as :func:`symjac.codegen.nested.placeheld` gives them): they join the CSE as values of their
+    own and become temporaries too, renamed with the rest (one defined as another's value is dropped for it).
 
     Examples
     --------
     >>> x, y = sp.symbols("x y")
     >>> eliminate_common([sp.sin(x) * y, sp.sin(x) * y + 1])
     ([(_x0, y*sin(x))], [_x0, _x0 + 1])
+    >>> h = sp.Dummy("h")
+    >>> eliminate_common([h * y, h * y + 1], [(h, sp.sin(x) + 1)])
+    ([(_x0, sin(x) + 1), (_x1, _x0*y)], [_x1, _x1 + 1])
     """
     names = sp.numbered_symbols("_x", real=True)
-    sizes = _tree_sizes(exprs)
-    if sum(sizes[id(e)] for e in exprs) <= TREE_LIMIT:
+    given = list(definitions)
+    roots = [d for _, d in given] + list(exprs)
+    sizes = _tree_sizes(roots)
+    if not given and sum(sizes[id(e)] for e in exprs) <= TREE_LIMIT:
         found, reduced = sp.cse(list(exprs), symbols=names, order="canonical")
         return list(found), list(reduced)
-    definitions, named = _name_shared(exprs, sizes)
+    if sum(sizes[id(e)] for e in roots) <= TREE_LIMIT:
+        shared: Temporaries = []
+        named = roots
+    else:
+        shared, named = _name_shared(roots, sizes)
+    definitions = [*shared, *((h, d) for (h, _), d in zip(given, named[:len(given)], strict=True))]
+    named = named[len(given):]
     helpers = sp.numbered_symbols("_y", cls=sp.Dummy, real=True)
     replacements, reduced = sp.cse([d for _, d in definitions] + named, symbols=helpers, order="canonical")
     steps = dict(replacements) | {h: d for (h, _), d in zip(definitions, reduced[:len(definitions)], strict=True)}

@@ -13,6 +13,7 @@ __all__ = [
     "ExpressionError",
     "FrameError",
     "InertialWarning",
+    "NoClosedFormError",
     "RepresentationError",
     "ResultTooLargeError",
     "RobotFileError",

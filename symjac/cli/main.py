@@ -1,7 +1,8 @@
 """The ``symjac`` command: list robots, show DH tables and transforms, print forward kinematics and Jacobians.
 
 Results go to stdout (or ``-o FILE``, written only once complete: see :func:`symjac.files.write_text`; ``-o -`` is
-stdout); progress of slow steps goes to stderr when it is a terminal. Any failure after the arguments are parsed
+stdout); after two seconds, the stage a command has reached shows on one line of stderr when it is a terminal
+(:func:`symjac.cli.output.progress_line`), cleared when it ends. Any failure after the arguments are parsed
 prints one line and exits with status 2, Ctrl-C prints ``symjac: interrupted`` and exits with 130 (:func:`main`).
 Turning option text into API arguments lives in :mod:`symjac.cli.args`, output and error lines in
 :mod:`symjac.cli.output`, the documents in :mod:`symjac.printing.results`. The commands that print a derived quantity
@@ -35,10 +36,11 @@ from symjac.cli.options import (
     robot_options,
     sweep_options,
 )
-from symjac.cli.output import emit, one_line, progress, silence_stdout
+from symjac.cli.output import emit, one_line, progress, progress_line, silence_stdout
 from symjac.cli.quantities import quantity_commands
 from symjac.cli.sweeping import sweep_command
 from symjac.errors import SymjacError
+from symjac.progress import report as report_stage
 from symjac.quantities.bias_acceleration import command as derivative_command
 from symjac.quantities.jacobian import propagation, representation
 
@@ -83,9 +85,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _warning_line
-            refuse_ignored_options(args)
-            result = args.handler(args)
-            emit(result if isinstance(result, str) else _rendered(result, args), args.output)
+            with progress_line(args.command):  # cleared before the result, an error or "interrupted" is written
+                refuse_ignored_options(args)
+                result = args.handler(args)
+                report_stage("printing the result")  # the last stage derived is no longer what takes the time
+                text = result if isinstance(result, str) else _rendered(result, args)
+            emit(text, args.output)
     except KeyboardInterrupt:
         print("symjac: interrupted", file=sys.stderr)
         return 130

@@ -4,48 +4,149 @@ from __future__ import annotations
 
 import os
 import sys
+import threading
 import time
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from typing import Any, TextIO, TypeVar
 
 from symjac.errors import SymjacError
 from symjac.files import write_text
-from symjac.progress import reporting_to
+from symjac.progress import reporting_to, within
 
-__all__ = ["LARGE_CHAIN", "emit", "note_if_large", "one_line", "progress", "silence_stdout"]
+__all__ = ["LARGE_CHAIN", "PROGRESS_DELAY", "PROGRESS_INTERVAL", "emit", "note_if_large", "one_line", "progress",
+           "progress_line", "silence_stdout"]
+
+T = TypeVar("T")
 
 LARGE_CHAIN = 40
 """Joints above which the command line says, before it starts, that a symbolic result will take long."""
+PROGRESS_DELAY = 2.0
+"""Seconds a command runs before its progress line appears (and another line on stderr stays alone)."""
+PROGRESS_INTERVAL = 0.2
+"""Seconds between two rewrites of the progress line."""
 
 
-def progress(what: str, compute: Callable[[], Any]) -> Any:
-    """Run ``compute``, telling a human on a terminal what is happening and how long it took.
-
-    After the first second, the stage the derivation has reached (what :func:`symjac.progress.report` was last
-    told: a link, a joint, an angle basis) replaces the end of the line, at most a few times a second.
-    """
-    interactive = sys.stderr.isatty()
-    if not interactive:
+def progress(what: str, compute: Callable[[], T]) -> T:
+    """Run ``compute``, its stages shown on the progress line as ``"what, stage"`` (:func:`progress_line`)."""
+    with within(what):
         return compute()
-    head = f"deriving {what} ..."
-    print(head, end="", file=sys.stderr, flush=True)
-    start = time.perf_counter()
-    shown = [start]  # when the line was last rewritten
 
-    def show(stage: str) -> None:
-        now = time.perf_counter()
-        if now - start >= 1.0 and now - shown[0] >= 0.2:
-            shown[0] = now
-            print(f"\r{head} {now - start:.0f} s, {stage}\x1b[K", end="", file=sys.stderr, flush=True)
 
+@contextmanager
+def progress_line(command: str) -> Iterator[None]:
+    r"""While the block runs, show on a terminal's stderr the latest stage reported (:mod:`symjac.progress`).
+
+    The line appears only after :data:`PROGRESS_DELAY` seconds, so quick commands print nothing; a daemon thread then
+    rewrites it in place (``\r``) every :data:`PROGRESS_INTERVAL` seconds, with the time spent, so that a long SymPy
+    call between two reports still shows where it is. Anything else written to ``sys.stderr`` meanwhile (a warning,
+    a note, dask's progress bar) first clears the line, which then waits :data:`PROGRESS_DELAY` seconds before it
+    comes back; the line is cleared when the block ends, however it ends (an error, Ctrl-C). When stderr is not a
+    terminal nothing is installed and nothing is written; stdout is never touched.
+    """
+    stream = sys.stderr
     try:
-        with reporting_to(show):
-            result = compute()
-    except BaseException:
-        print(file=sys.stderr)  # end the progress line, so the error or "interrupted" starts its own
-        raise
-    print(f"\r{head} {time.perf_counter() - start:.2f} s\x1b[K", file=sys.stderr)
-    return result
+        interactive = stream.isatty()
+    except (AttributeError, OSError, ValueError):  # a closed or file-like stream without a terminal behind it
+        interactive = False
+    if not interactive:
+        yield
+        return
+    line = _ProgressLine(stream, f"symjac {command}")
+    thread = threading.Thread(target=line.run, name="symjac progress line", daemon=True)
+    sys.stderr = _Interleaved(line)  # type: ignore[assignment]  # a stream by duck typing
+    thread.start()
+    try:
+        with reporting_to(line.listen):
+            yield
+    finally:
+        line.stopped.set()
+        try:
+            thread.join()
+        finally:
+            sys.stderr = stream
+            line.clear()
+
+
+class _ProgressLine:
+    """The state of one progress line: the latest stage, whether the line is on screen, when it may show."""
+
+    def __init__(self, stream: TextIO, head: str):
+        self.stream, self.head, self.stage = stream, head, ""
+        self.start = time.monotonic()
+        self.hidden_until = self.start + PROGRESS_DELAY
+        self.shown = False
+        self.lock = threading.Lock()
+        self.stopped = threading.Event()
+
+    def listen(self, stage: str) -> None:
+        """The listener: keep the latest stage (the thread shows it; a report itself writes nothing)."""
+        self.stage = stage
+
+    def run(self) -> None:
+        """The thread: rewrite the line until stopped."""
+        while not self.stopped.wait(PROGRESS_INTERVAL):
+            with self.lock:
+                now = time.monotonic()
+                if now < self.hidden_until or self.stopped.is_set():
+                    continue
+                self._write(f"\r{self._text(now)}\x1b[K")
+                self.shown = True
+
+    def _text(self, now: float) -> str:
+        """The line: what runs, for how long, and the end of the stage (a line longer than the terminal would wrap)."""
+        text = f"{self.head}: {now - self.start:.0f} s"
+        room = _width(self.stream) - 1 - len(text) - len(", ")
+        stage = self.stage if len(self.stage) <= room else "..." + self.stage[len(self.stage) - room + 3:]
+        return f"{text}, {stage}" if stage and room > 3 else text
+
+    def clear(self) -> None:
+        """Take the line off the screen (the cursor back at its start), if it is there."""
+        with self.lock:
+            self._clear()
+
+    def _clear(self) -> None:
+        if self.shown:
+            self._write("\r\x1b[K")
+            self.shown = False
+
+    def other(self, text: str) -> int:
+        """Someone else's text for stderr: written after the line is cleared, then left alone for a while."""
+        with self.lock:
+            self._clear()
+            self.hidden_until = time.monotonic() + PROGRESS_DELAY
+            return self.stream.write(text)
+
+    def _write(self, text: str) -> None:
+        try:
+            self.stream.write(text)
+            self.stream.flush()
+        except (OSError, ValueError):  # stderr closed under us: progress is not worth an error
+            self.stopped.set()
+
+
+class _Interleaved:
+    """``sys.stderr`` while a progress line is up: every write clears the line first (:func:`progress_line`)."""
+
+    def __init__(self, line: _ProgressLine):
+        self._line = line
+
+    def write(self, text: str) -> int:
+        return self._line.other(text)
+
+    def writelines(self, lines: Iterable[str]) -> None:
+        self.write("".join(lines))
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._line.stream, name)
+
+
+def _width(stream: TextIO) -> int:
+    """Columns of the terminal behind ``stream`` (80 when it cannot say): a longer line would wrap, not rewrite."""
+    try:
+        return os.get_terminal_size(stream.fileno()).columns or 80
+    except (AttributeError, OSError, ValueError):
+        return 80
 
 
 def note_if_large(name: str, n_joints: int) -> None:

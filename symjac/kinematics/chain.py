@@ -34,16 +34,7 @@ Frame = int | Literal["world", "tool"]
 """A frame: ``"world"``, a number from ``0`` to ``n``, or ``"tool"``."""
 T = TypeVar("T")
 
-__all__ = [
-    "CHAINS_KEPT",
-    "Chain",
-    "Frame",
-    "MemoKey",
-    "as_chain",
-    "chain_of",
-    "clear_caches",
-    "forward_kinematics",
-]
+__all__ = ["CHAINS_KEPT", "Chain", "Frame", "MemoKey", "as_chain", "chain_of", "clear_caches", "forward_kinematics"]
 
 
 class MemoKey(NamedTuple):
@@ -176,6 +167,7 @@ class Chain:
         composition = self._compositions.get((start, reached), Composition())
         while reached != end:
             reached += direction
+            report(f"building frame {{{self.frame_name(reached)}}} of {self.n_joints}")
             step = self._steps[reached] if direction == 1 else inverse_motions(self._steps[reached + 1])
             composition = composition.then(step)
             if self.nested:  # every entry named: the next link multiplies names, so no expression ever grows

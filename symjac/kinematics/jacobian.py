@@ -148,7 +148,10 @@ def jacobian(
     method : "differentiation", "cross_product", "velocity_propagation" or "force_propagation"
         Derivation (see the module docstring); all give the same matrix.
     simplify : bool
-        Lay the result out in compact textbook form (default). ``False`` returns the raw structured products.
+        Lay the result out in compact textbook form (default). ``False`` returns the raw structured products. For
+        generic geometry (a nested chain, :mod:`symjac.kinematics.generic`) no textbook form exists: the default
+        result is then the cross-product form, whatever the method (all four give the same matrix), and ``False``
+        gives each method's own nested form.
     link : int, optional
         The link l the point is fixed in: 0 (the base) .. n (default, the last link, which carries the tool). The
         columns of joints l+1..n are zero.
@@ -176,6 +179,8 @@ def jacobian(
 
 def _derive(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], method: Method,
             simplify: bool, link: int) -> sp.ImmutableMatrix:
+    if simplify and chain.nested:  # no textbook form: the cheapest nested form, n + 1 frames and n cross products
+        return jacobian(chain, frame, point, "cross_product", simplify=False, link=link)
     if simplify and method != "cross_product":  # from the frame the method works in, link by link on normal forms
         source = 0 if method == "differentiation" else link
         raw = jacobian(chain, source, point, method, simplify=False, link=link)

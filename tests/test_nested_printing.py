@@ -23,7 +23,7 @@ from symjac.kinematics.acceleration import hessian
 from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.screws import body_jacobian
 from symjac.model.io import load_robot
-from symjac.printing.document import Block, Document, Equation, render
+from symjac.printing.document import Block, Document, Equation, blocks_as_pairs, render
 from symjac.printing.nested import named_document, spare_letter
 from symjac.printing.results import jacobian_document
 from symjac.report.content import block_html
@@ -223,3 +223,11 @@ def test_report_html_shows_where_lines(files):
     document = named_document(jacobian_document(robot, jacobian(robot), 0, "wrist", "differentiation"))
     html = "".join(block_html(block) for block in document.blocks)
     assert '<p class="note">where</p>' in html and "<msub><mi>w</mi><mi>1</mi></msub>" in html
+
+
+def test_notebook_pairs_name_the_intermediates(files):
+    robot = load_robot(files["generic6"])
+    document = jacobian_document(robot, jacobian(robot), 0, "wrist", "differentiation")
+    (_, tex), = blocks_as_pairs(document.blocks, "latex")
+    (_, text), = blocks_as_pairs(document.blocks, "pretty")
+    assert "w_{1} &= " in tex and "\nw₁ = " in text

@@ -346,5 +346,11 @@ def _bare_latex(block: Block, comments: bool) -> str:
 
 
 def blocks_as_pairs(blocks: Sequence[Block], style: Style) -> list[tuple[str, str]]:
-    """Blocks as (caption, math) string pairs in ``style``, for notebooks that lay them out themselves."""
+    """Blocks as (caption, math) string pairs in ``style``, for notebooks that lay them out themselves.
+
+    A nested result's intermediates are named and defined first (:func:`.nested.named_document`).
+    """
+    from symjac.printing.nested import named_document
+
+    blocks = named_document(Document("", "", tuple(blocks))).blocks
     return [(caption_text(block, style), math_text(block, style)) for block in blocks]

@@ -176,3 +176,50 @@ def test_a_matrix_wider_than_the_page_fails_unless_laid_out(tmp_path, monkeypatc
     unbroken = lambda lhs, rhs: Display(f"{lhs} = {document_module.latex(rhs)}")  # noqa: E731
     monkeypatch.setattr(latex_layout, "fit_equation", unbroken)  # the layout module, which render imports when used
     assert any("Overfull" in problem for problem in _render_and_compile(tmp_path, document))
+
+
+# --- generic geometry: nested results with "where" lines -------------------------------------------------------
+
+GENERIC6 = 'name = "generic6"\nconvention = "standard"\n' + "".join(
+    f'[[joints]]\ntype = "revolute"\na = {a}\nd = {d}\nalpha = {alpha}\n'
+    for a, d, alpha in [(0.05, 0.33, 1.5702), (0.44, 0.01, 0.003), (0.035, 0.0, 1.5712), (0.001, 0.42, -1.5699),
+                        (0.0, 0.002, 1.5705), (0.0, 0.08, 0.0)])
+"""A 6-joint arm with twists near, not at, pi/2: its results stay nested (intermediates w_k and their definitions)."""
+
+GENERIC_COMMANDS = {"fk": ["fk"], "jacobian": ["jacobian"], "frame3": ["jacobian", "--frame", "3"],
+                    "hessian": ["hessian"], "torques": ["torques"], "derivative": ["jacobian", "--derivative"]}
+
+
+@pytest.mark.parametrize("name", GENERIC_COMMANDS)
+def test_nested_results_compile_standalone_and_bare(tmp_path, capsys, name):
+    """The standalone document (where-lines in an ``align*``) and the bare lines (``gathered`` blocks) compile."""
+    robot = tmp_path / "generic6.toml"
+    robot.write_text(GENERIC6, encoding="utf-8")
+    command = GENERIC_COMMANDS[name]
+    standalone = tmp_path / "standalone.tex"
+    assert main([command[0], str(robot), *command[1:], "--standalone", "-o", str(standalone)]) == 0
+    assert r"w_{1} &= " in standalone.read_text(encoding="utf-8")
+    assert main([command[0], str(robot), *command[1:]]) == 0
+    bare = capsys.readouterr().out
+    assert r"\text{where } \begin{aligned}[t]" in bare
+    wrapped = tmp_path / "bare.tex"
+    displays = "\n".join(rf"\[ {unit} \]" for unit in _bare_units(bare))
+    wrapped.write_text("\\documentclass{article}\n\\usepackage{amsmath}\n\\usepackage[paperwidth=200cm, "
+                       "paperheight=200cm]{geometry}\n\\setcounter{MaxMatrixCols}{20}\n\\allowdisplaybreaks\n"
+                       f"\\begin{{document}}\n{displays}\n\\end{{document}}\n", encoding="utf-8")
+    assert compile_tex(standalone) == []
+    assert [p for p in compile_tex(wrapped) if not p.startswith("Overfull")] == []
+
+
+def _bare_units(text: str) -> list[str]:
+    """Bare LaTeX output as the units a reader pastes into a display: one line, or one ``gathered`` block."""
+    units: list[str] = []
+    inside = False
+    for line in text.splitlines():
+        if inside:
+            units[-1] += "\n" + line
+            inside = line != r"\end{gathered}"
+        else:
+            units.append(line)
+            inside = line == r"\begin{gathered}"
+    return units

@@ -29,7 +29,7 @@ from symjac.deprecation import renamed
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Frame
 from symjac.model.robot import Robot
-from symjac.printing.latex import LatexTooLargeError, escape_text, latex, latex_size_limit
+from symjac.printing.latex import LatexTooLargeError, TextbookLatexPrinter, escape_text, latex, latex_size_limit
 from symjac.printing.tables import parameter_table_latex, parameter_table_text
 
 # Each format imports its own printer when used: a LaTeX result loads no pretty printer, page layout or jinja2.
@@ -106,7 +106,8 @@ class Equation:
 
     ``rhs`` is one SymPy object, or a tuple of them printed side by side (a product :math:`E(x)\,J_0`). With empty
     names the right side prints alone (a solution ``theta2 = 0`` is already an equation). ``key`` says where it goes
-    in the JSON form (none: it is printed only).
+    in the JSON form (none: it is printed only). ``where``: the ``(w_k, definition)`` pairs of the intermediates the
+    right side is the first to use, printed after it (``where w_1 = ...``); :func:`.nested.named_document` fills it.
     """
 
     tex: str
@@ -114,6 +115,7 @@ class Equation:
     rhs: Any
     name: Prescripted | None = None
     key: JsonKey | None = None
+    where: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -247,10 +249,21 @@ def _one_line(expr: sp.Basic) -> str:
 
 
 def equation_latex(equation: Equation) -> str:
-    r"""One equation as a LaTeX line: ``{}^{0}J = \begin{bmatrix}...``."""
+    r"""One equation as a LaTeX line: ``{}^{0}J = \begin{bmatrix}...``.
+
+    An equation with "where" lines (:attr:`Equation.where`) is one ``gathered`` block: the equation, then
+    ``\text{where }`` and an ``aligned`` block of definitions, one per line.
+    """
     parts = equation.rhs if isinstance(equation.rhs, tuple) else (equation.rhs,)
     rhs = " ".join(latex(part) for part in parts)
-    return f"{equation.tex} = {rhs}" if equation.tex else rhs
+    text = f"{equation.tex} = {rhs}" if equation.tex else rhs
+    if not equation.where:
+        return text
+    printer = TextbookLatexPrinter()  # one printer: the definitions share their subexpressions
+    lines = (r", \\" + "\n").join(f"{printer.doprint(symbol)} &= {printer.doprint(value)}"
+                                   for symbol, value in equation.where)
+    return "\n".join([r"\begin{gathered}", rf"{text}, \\", r"\text{where } \begin{aligned}[t]", lines,
+                      r"\end{aligned}", r"\end{gathered}"])
 
 
 def equation_text(equation: Equation) -> str:
@@ -258,12 +271,17 @@ def equation_text(equation: Equation) -> str:
     from symjac.printing.pretty import pretty, pretty_side_by_side
 
     if isinstance(equation.rhs, tuple):
-        return f"{equation.text} =\n{pretty_side_by_side(*equation.rhs)}"
-    if not equation.text:
-        return pretty(equation.rhs)
-    if isinstance(equation.rhs, sp.MatrixBase):
-        return f"{equation.text} =\n{pretty(equation.rhs)}"
-    return pretty(sp.Eq(sp.Symbol(equation.text), equation.rhs, evaluate=False))
+        text = f"{equation.text} =\n{pretty_side_by_side(*equation.rhs)}"
+    elif not equation.text:
+        text = pretty(equation.rhs)
+    elif isinstance(equation.rhs, sp.MatrixBase):
+        text = f"{equation.text} =\n{pretty(equation.rhs)}"
+    else:
+        text = pretty(sp.Eq(sp.Symbol(equation.text), equation.rhs, evaluate=False))
+    if not equation.where:
+        return text
+    lines = [pretty(sp.Eq(symbol, value, evaluate=False)) for symbol, value in equation.where]
+    return "\n".join([text, "where", *lines])
 
 
 def math_text(block: Block, style: Style) -> str:
@@ -277,9 +295,16 @@ def math_text(block: Block, style: Style) -> str:
 
 
 def render(document: Document, fmt: str, standalone: bool = False) -> str:
-    """``document`` as text in ``fmt`` (one of :data:`FORMATS`); ``standalone`` makes LaTeX a whole document."""
+    """``document`` as text in ``fmt`` (one of :data:`FORMATS`); ``standalone`` makes LaTeX a whole document.
+
+    Intermediates of a nested result are named first (:func:`.nested.named_document`): ``w_1, w_2, ...`` in the
+    math, each defined once in "where" lines (in JSON, the ``definitions`` list).
+    """
     if fmt == "json":
         return json.dumps(document.json_data(), indent=2) + "\n"
+    from symjac.printing.nested import named_document
+
+    document = named_document(document)
     if fmt == "pretty":
         shown = []
         for block in document.blocks:
@@ -299,15 +324,18 @@ def render(document: Document, fmt: str, standalone: bool = False) -> str:
 
 def _fitted(block: Block) -> str:
     """The block's math laid out to fit the page (:mod:`.latex_layout`), ``""`` when it has none."""
-    from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width
+    from symjac.printing.latex_layout import TEXT_WIDTH, fit_equation, fit_side_by_side, tex_width, with_definitions
+
+    def fitted(m: Equation) -> str:
+        return with_definitions(fit_equation(m.tex, m.rhs), m.where).body()
 
     equations = [m for m in block.math if isinstance(m, Equation)]
     if len(block.math) == 1 and equations and not isinstance(equations[0].rhs, tuple):
-        return fit_equation(equations[0].tex, equations[0].rhs).body()
+        return fitted(equations[0])
     texts = [parameter_table_latex(m.robot) if isinstance(m, ParameterTable) else equation_latex(m) for m in block.math]
-    if all(tex_width(text) <= TEXT_WIDTH for text in texts):
+    if not any(m.where for m in equations) and all(tex_width(text) <= TEXT_WIDTH for text in texts):
         return fit_side_by_side(texts) if texts else ""
-    return "\n".join(fit_equation(m.tex, m.rhs).body() if isinstance(m, Equation) else rf"\[ {text} \]"
+    return "\n".join(fitted(m) if isinstance(m, Equation) else rf"\[ {text} \]"
                      for m, text in zip(block.math, texts, strict=True))
 
 
@@ -318,5 +346,11 @@ def _bare_latex(block: Block, comments: bool) -> str:
 
 
 def blocks_as_pairs(blocks: Sequence[Block], style: Style) -> list[tuple[str, str]]:
-    """Blocks as (caption, math) string pairs in ``style``, for notebooks that lay them out themselves."""
+    """Blocks as (caption, math) string pairs in ``style``, for notebooks that lay them out themselves.
+
+    A nested result's intermediates are named and defined first (:func:`.nested.named_document`).
+    """
+    from symjac.printing.nested import named_document
+
+    blocks = named_document(Document("", "", tuple(blocks))).blocks
     return [(caption_text(block, style), math_text(block, style)) for block in blocks]

@@ -112,7 +112,16 @@ def document_data(document: Document) -> dict[str, Any]:
     ``parameter_table`` (rows of strings; also under its old key ``dh_table``, deprecated), an equation with a key
     as its right side's SymPy strings (and its LaTeX line where the key asks).
     This is the only JSON builder of a result: what LaTeX and pretty text print is what JSON holds.
+
+    A nested result (generic geometry) is written in its intermediates' names (:func:`.nested.named_document`):
+    its entries hold ``w_1, w_2, ...`` and a last key ``definitions`` lists ``[name, expression]`` pairs in
+    evaluation order, each expression in terms of the joint variables, parameters and earlier names only, with
+    its numbers at full precision (substituting the definitions in order, then the entries, gives the result).
+    A result without intermediates has no ``definitions`` key.
     """
+    from symjac.printing.nested import all_definitions, named_document
+
+    document = named_document(document)
     data: dict[str, Any] = {} if document.model is None else metadata(document.model)
     data.update(document.facts)
     stacks: dict[str, list[sp.MatrixBase]] = {}
@@ -124,6 +133,9 @@ def document_data(document: Document) -> dict[str, Any]:
     for name, matrices in stacks.items():  # entries[i][j][k]: item k's [i, j]
         rows, cols = matrices[0].shape
         data[name] = [[[sp.sstr(m[i, j]) for m in matrices] for j in range(cols)] for i in range(rows)]
+    where = all_definitions(document)
+    if where:
+        data["definitions"] = [[str(symbol), sp.sstr(value)] for symbol, value in where]
     return data
 
 

@@ -17,7 +17,7 @@ from sympy.core.exprtools import decompose_power
 from sympy.printing.latex import LatexPrinter
 
 from symjac.errors import SymjacError
-from symjac.printing.shorthand import GREEK, file_decimal, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import GREEK, file_decimal, readable_float, shorthand_indices, textbook_factors
 
 __all__ = ["DIGITS", "LatexTooLargeError", "SortKeys", "TextbookLatexPrinter", "escape_text", "latex",
            "latex_size_limit", "ordered_terms", "rounded"]
@@ -97,6 +97,9 @@ class _DecimalLatexPrinter(LatexPrinter):
 
     def _print_Rational(self, expr: sp.Rational) -> str:
         return file_decimal(expr) or super()._print_Rational(expr)
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return str(super()._print_Float(readable_float(expr)))
 
     def _as_ordered_terms(self, expr: sp.Expr, order: str | None = None) -> list[sp.Expr]:
         if (order or self.order) in (None, "lex") and expr.is_Add:

@@ -20,7 +20,7 @@ import sympy as sp
 from symjac.printing.latex import TextbookLatexPrinter
 from symjac.printing.shorthand import file_decimal, textbook_factors
 
-__all__ = ["TEXT_WIDTH", "Display", "entry_namer", "fit_equation", "fit_side_by_side", "tex_width"]
+__all__ = ["TEXT_WIDTH", "Display", "entry_namer", "fit_equation", "fit_side_by_side", "tex_width", "with_definitions"]
 
 TEXT_WIDTH = 680.0
 """Points available for a display: a landscape US-letter page with 1.5 cm margins is 709 pt wide."""
@@ -303,6 +303,24 @@ def fit_equation(lhs: str, rhs: sp.Basic) -> Display:
     cells = r" \\ ".join(" & ".join(namer(i, j) if (i, j) in named else entries[i][j] for j in range(rhs.cols))
                          for i in range(rhs.rows))
     return Display(head + r"\begin{bmatrix}" + cells + r"\end{bmatrix}", (), where)
+
+
+def with_definitions(display: Display, definitions: Sequence[tuple[sp.Symbol, sp.Expr]]) -> Display:
+    r"""``display`` with ``name = value`` lines for ``definitions`` after its own "where" lines (a nested result's).
+
+    Each definition is broken over lines like a named entry (:func:`fit_equation`), so a long one fits the page.
+
+    Examples
+    --------
+    >>> w1, x = sp.Symbol("w_1"), sp.Symbol("x")
+    >>> with_definitions(Display("y = w_{1}"), [(w1, 2 * x)]).where
+    ('w_{1} &= 2 x',)
+    """
+    if not definitions:
+        return display
+    printer = _BreakingPrinter()
+    lines = tuple(_aligned(printer.doprint(symbol), value, printer) for symbol, value in definitions)
+    return Display(display.main, display.lines, (*display.where, *lines))
 
 
 def fit_side_by_side(texts: Sequence[str]) -> str:

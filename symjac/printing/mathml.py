@@ -16,7 +16,7 @@ import sympy as sp
 from sympy.printing.mathml import MathMLPresentationPrinter
 from sympy.printing.precedence import PRECEDENCE
 
-from symjac.printing.shorthand import GREEK, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import GREEK, readable_float, shorthand_indices, textbook_factors
 
 __all__ = ["TextbookMathMLPrinter", "core_elements", "math_element", "mathml_node"]
 
@@ -60,6 +60,9 @@ class TextbookMathMLPrinter(MathMLPresentationPrinter):
 
     def _print_cos(self, expr: sp.Function) -> Element:
         return self._shorthand("c", expr) or self._print_Function(expr)
+
+    def _print_Float(self, expr: sp.Float) -> Element:
+        return super()._print_Float(readable_float(expr))
 
     def _print_Pi(self, expr: sp.Expr) -> Element:
         return self._element("mi", "\u03c0")

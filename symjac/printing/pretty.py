@@ -8,7 +8,7 @@ import sympy as sp
 from sympy.printing.pretty.pretty import PrettyPrinter
 from sympy.printing.pretty.stringpict import prettyForm, stringPict
 
-from symjac.printing.shorthand import SUBSCRIPTS, file_decimal, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import SUBSCRIPTS, file_decimal, readable_float, shorthand_indices, textbook_factors
 
 __all__ = ["TextbookPrettyPrinter", "pretty", "pretty_side_by_side"]
 
@@ -34,6 +34,9 @@ class TextbookPrettyPrinter(PrettyPrinter):
     def _print_Rational(self, expr: sp.Rational) -> prettyForm:
         decimal = file_decimal(expr)
         return prettyForm(decimal) if decimal is not None else super()._print_Rational(expr)
+
+    def _print_Float(self, number: sp.Float) -> prettyForm:
+        return super()._print_Float(readable_float(number))
 
     def _print_Mul(self, product: sp.Mul) -> prettyForm:
         coefficient, rest = product.as_coeff_Mul()

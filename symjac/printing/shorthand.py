@@ -14,12 +14,15 @@ from typing import Any
 
 import sympy as sp
 
-__all__ = ["GREEK", "SUBSCRIPTS", "file_decimal", "shorthand_indices", "textbook_factors"]
+__all__ = ["FLOAT_DIGITS", "GREEK", "SUBSCRIPTS", "file_decimal", "readable_float", "shorthand_indices",
+           "textbook_factors"]
 
 _JOINT_ANGLE = re.compile(r"theta(\d+)\Z")
 _RATE = re.compile(r"(theta|d)d?dot\d+\Z")  # rates and accelerations
 GREEK = frozenset({"alpha", "beta", "gamma", "phi", "psi", "vartheta", "eta"})
 """Representation angles that get the shorthand too (:math:`s_{\beta}`)."""
+FLOAT_DIGITS = 6
+"""Significant digits of a full-precision float printed for people (LaTeX, pretty text, MathML); JSON keeps all."""
 SUBSCRIPTS = str.maketrans("0123456789,", "₀₁₂₃₄₅₆₇₈₉\u201a")  # U+201A, a low comma: c₈‚₉‚₁₀
 
 
@@ -106,3 +109,19 @@ def file_decimal(number: sp.Expr) -> str | None:
     if rest != 1:
         return None
     return format(Decimal(int(number.p)) / Decimal(int(number.q)), "f")
+
+
+def readable_float(number: sp.Float) -> sp.Float:
+    """``number`` rounded to :data:`FLOAT_DIGITS` significant digits if it carries a double's precision or more.
+
+    Generic geometry (a twist of 1.5702 rad, a calibrated screw axis) gives floats of 15 to 18 digits that nobody
+    reads; a number rounded on purpose to fewer digits (``--numeric --digits N``, N < 15) prints as it was rounded.
+
+    Examples
+    --------
+    >>> readable_float(sp.Float(0.64421768723769105, 18))
+    0.644218
+    >>> readable_float(sp.Float("0.12345678", 8))
+    0.12345678
+    """
+    return sp.Float(number, FLOAT_DIGITS) if number._prec >= 53 else number

@@ -126,7 +126,8 @@ def _name(name: Prescripted) -> Element:
 def block_html(block: Block) -> str:
     """A :class:`~symjac.printing.document.Block` (caption with inline math, then its equations) as HTML.
 
-    An equation's left side is its prescripted name (:math:`{}^{0}_{1}T`) when it has one, else its text.
+    An equation's left side is its prescripted name (:math:`{}^{0}_{1}T`) when it has one, else its text. The
+    "where" lines of a named nested result (:attr:`~symjac.printing.document.Equation.where`) follow it.
     """
     caption = f"<p>{caption_html(block.caption)}</p>\n" if block.caption else ""
     math = []
@@ -137,6 +138,9 @@ def block_html(block: Block) -> str:
             lhs = _name(item.name) if item.name else frame_symbol(item.text) if item.text else None
             rhs = item.rhs if not isinstance(item.rhs, tuple) else item.rhs[-1]
             math.append(equation_html(rhs, lhs))
+            if item.where:  # a nested result's intermediates (named by symjac.printing.nested.named_document)
+                math.append('<p class="note">where</p>')
+                math += [equation_html(value, mathml_node(symbol)) for symbol, value in item.where]
     return caption + "".join(math)
 
 

@@ -32,6 +32,7 @@ from symjac.model.ends import end_point, first_frame, last_frame
 from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Document
+from symjac.printing.nested import named_document
 from symjac.printing.results import (
     forward_kinematics_document,
     jacobian_document,
@@ -63,12 +64,13 @@ def _joint_name(robot: Robot, joint: int) -> str:
 
 
 def _html(document: Document) -> str:
-    return "".join(block_html(block) for block in document.blocks)
+    """The document's blocks as HTML, a nested result's intermediates named and defined (:func:`.named_document`)."""
+    return "".join(block_html(block) for block in named_document(document).blocks)
 
 
 def _dh_and_transforms(robot: Robot) -> tuple[Section, Section]:
     """The convention's table (DH parameters, screw axes, origins and axes) and the link transforms: ``symjac show``."""
-    table, *transforms = transforms_document(robot, link_transforms(robot)).blocks
+    table, *transforms = named_document(transforms_document(robot, link_transforms(robot))).blocks
     return (Section("dh", _table_heading(robot), block_html(table)),
             Section("transforms", "Link transforms", "".join(block_html(block) for block in transforms)))
 

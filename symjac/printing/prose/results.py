@@ -38,7 +38,8 @@ REPRESENTATION_COORDINATES = ("Representation coordinates",)
 RATE_MATRIX = ("Rate matrix, ", Inline(r"\dot{x} = E(x)\,[v;\ \omega]", "xdot = E(x) [v; omega]"))
 BIAS_ACCELERATION = ("Bias acceleration, the acceleration at zero joint acceleration",)
 LATEX_TOO_LONG = ("ask for less: a frame in the middle of the chain (--frame K), where the halves stay short; a few "
-                  "task rows (--rows, with singularities and codegen); or numeric code (symjac codegen)")
+                  "task rows (--rows, with singularities and codegen); no --steps; the same result as data "
+                  "(--format json, a nested result with its definitions); or numeric code (symjac codegen)")
 """What to ask for instead of a LaTeX result too long to read."""
 
 

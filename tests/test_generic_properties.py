@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from generic_arms import KINDS, Arm, derivative, generic_arms, point_jacobian, screw_jacobians
-from hypothesis import HealthCheck, Phase, event, given, reject, settings
+from hypothesis import HealthCheck, Phase, event, given, settings
 from hypothesis import strategies as st
 
 from symjac import (
@@ -53,12 +53,6 @@ def load(arm: Arm) -> tuple[Any, Chain]:
     robot = robot_from_toml(arm.text)
     chain = Chain(robot)
     assert chain.nested, f"a generic arm was not derived nested:\n{arm.text}"
-    try:
-        chain.parallel_groups  # noqa: B018 (where SymPy 1.14's factorint bug strikes, see the xfail test below)
-    except ValueError as error:
-        if "is not a prime factor of" not in str(error):
-            raise
-        reject()  # the known crash is pinned by test_generic_space_screws_do_not_crash_...; the others go on
     return robot, chain
 
 
@@ -224,12 +218,8 @@ screw = [0.9786246769927, -0.2041550689291, 0.0247880901147, -0.0537797295155, -
 """Two generic revolute screws in space form (joints 1 and 4 of a random 6R arm, 13 decimals)."""
 
 
-@pytest.mark.xfail(strict=True, raises=ValueError, reason=(
-    "SymPy 1.14.0 bug (sympy/sympy#28621, fixed by #28624): sqrt of a large integer raises 'ValueError: ... is "
-    "not a prime factor of ...' from factorint's cache. Chain.parallel_groups -> _twist_between -> _relation "
-    "composes the joints' exact alignments (square roots of long rationals) even for a nested chain; about 1 in 3 "
-    "random generic space-form PoE arms crash in forward_kinematics/jacobian"))
 def test_generic_space_screws_do_not_crash_the_exact_twist_between_joints():
+    """SymPy 1.14's sqrt of some long integers raises (sympy/sympy#28621): a nested chain takes no exact twist."""
     robot = robot_from_toml(CRASHING_POE)
     assert Chain(robot).nested
     T = forward_kinematics(robot, target="tool")

@@ -72,16 +72,7 @@ PUBLIC = {
     "body_jacobian": body_jacobian,
     "point_position": lambda robot: point_position(robot, "tool"),
 }
-WITHOUT_DEFINITIONS = {
-    "body_jacobian": "body_jacobian swaps the rows with sp.Matrix(J)[_SWAP, :], which turns the NestedMatrix that "
-                     "jacobian returns into a plain Matrix that still holds intermediates",
-    "point_position": "point_position returns a plain Matrix holding intermediates (tree size ~17 500 for a generic "
-                      "6R arm's tool point, above INLINE_LIMIT) instead of a NestedMatrix",
-}
-
-
-@pytest.mark.parametrize("name", [pytest.param(name, marks=pytest.mark.xfail(strict=True, reason=reason))
-                                  if (reason := WITHOUT_DEFINITIONS.get(name)) else name for name in PUBLIC])
+@pytest.mark.parametrize("name", list(PUBLIC))
 def test_results_that_keep_intermediates_carry_their_definitions(name):
     result = PUBLIC[name](generic_arm())
     assert not has_intermediates(result) or isinstance(result, NestedMatrix), type(result).__name__

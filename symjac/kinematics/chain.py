@@ -201,7 +201,12 @@ class Chain:
 
     @cached_property
     def parallel_groups(self) -> tuple[tuple[int, ...], ...]:
-        """Maximal runs of consecutive joints (1-based) whose axes are parallel or anti-parallel."""
+        """Maximal runs of consecutive joints (1-based) whose axes are parallel or anti-parallel.
+
+        A nested chain is never laid out in angle sums, so each of its joints is a group of its own.
+        """
+        if self.nested:
+            return tuple((i,) for i in range(1, self.n_joints + 1))
         groups: list[list[int]] = [[1]]
         for i in range(1, self.n_joints):
             twist = self._twist_between(i)

@@ -29,7 +29,7 @@ from symjac.kinematics.memo import memoized
 from symjac.model.conventions.poe import PRODUCT_OF_EXPONENTIALS, home_pose, space_screws
 from symjac.model.ends import end_point, last_frame
 from symjac.model.robot import Robot
-from symjac.symbolic.nested import presented, presented_matrix
+from symjac.symbolic.nested import named, presented, presented_matrix
 from symjac.symbolic.simplify import simplify_matrix
 from symjac.symbolic.transforms import homogeneous, skew
 
@@ -89,7 +89,9 @@ def exponential_product(robot: Robot | Chain) -> sp.Matrix:
     product = sp.eye(4)
     for screw, variable in zip(space_screws(model), model.joint_variables, strict=True):
         product = product * screw_exponential(screw, variable)
-    return in_coordinates(chain, product * home_pose(model))
+        if chain.nested:  # generic screws: each partial product named, as the chain does (floats, no growth)
+            product = product.evalf().applyfunc(named)
+    return presented(in_coordinates(chain, product * home_pose(model)))  # type: ignore[no-any-return]
 
 
 @memoized(fresh=presented_matrix, coupling="columns", layout=0)

@@ -16,7 +16,8 @@ symbols see through it, each intermediate done once. A result that holds interme
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections import OrderedDict
+from collections.abc import Container, Iterable, Mapping, Sequence
 from typing import Any
 
 import sympy as sp
@@ -103,10 +104,10 @@ class Intermediate(sp.Dummy):  # type: ignore[misc]
         return derivative(self, s)
 
     def _eval_subs(self, old: sp.Basic, new: sp.Basic) -> sp.Expr | None:
-        # the definition's own ``subs`` reaches the intermediates it holds through SymPy's cache of ``_subs``, so a
-        # shared intermediate is substituted once per (old, new)
         if not (getattr(old, "free_symbols", set()) & self._free):
             return self
+        if isinstance(old, sp.Symbol):  # bottom-up through the definitions, no recursion however long the chain
+            return _substituted(self, old, new)
         return named(self.definition.subs(old, new))
 
     def _xreplace(self, rule: Mapping[sp.Basic, sp.Basic]) -> tuple[sp.Basic, bool]:
@@ -189,8 +190,31 @@ def _uses_and_size(expr: sp.Basic) -> tuple[tuple[Intermediate, ...], int]:
     return tuple(uses), sizes[id(expr)]
 
 
-def _intermediates(roots: Iterable[sp.Basic]) -> list[Intermediate]:
-    """The intermediates ``roots`` use, directly or through definitions, each after the ones its definition uses."""
+_RECENT_SUBSTITUTIONS: OrderedDict[tuple[sp.Basic, sp.Basic], dict[Intermediate, sp.Expr]] = OrderedDict()
+"""Per recent ``(old, new)`` pair, what each intermediate became: ``Matrix.subs`` calls every entry on its own."""
+_KEPT_SUBSTITUTIONS = 8
+
+
+def _substituted(w: Intermediate, old: sp.Basic, new: sp.Basic) -> sp.Expr:
+    """``w`` with ``old`` replaced by ``new``, every intermediate below it once per pair (the last few pairs kept)."""
+    key = (old, new)
+    memo = _RECENT_SUBSTITUTIONS.get(key)
+    if memo is None:
+        memo = _RECENT_SUBSTITUTIONS[key] = {}
+        if len(_RECENT_SUBSTITUTIONS) > _KEPT_SUBSTITUTIONS:
+            _RECENT_SUBSTITUTIONS.popitem(last=False)
+    else:
+        _RECENT_SUBSTITUTIONS.move_to_end(key)
+    for u in _intermediates([w], known=memo):
+        memo[u] = named(sp.Basic.xreplace(u.definition, {old: new, **{v: memo[v] for v in u._uses}}))
+    return memo[w]
+
+
+def _intermediates(roots: Iterable[sp.Basic], known: Container[Intermediate] = frozenset()) -> list[Intermediate]:
+    """The intermediates ``roots`` use, directly or through definitions, each after the ones its definition uses.
+
+    Those in ``known`` are left out, and so is what only they use.
+    """
     order: list[Intermediate] = []
     placed: set[Intermediate] = set()
     stack: list[tuple[Intermediate, bool]] = []
@@ -204,10 +228,10 @@ def _intermediates(roots: Iterable[sp.Basic]) -> list[Intermediate]:
                 placed.add(w)
                 order.append(w)
             continue
-        if w in placed:
+        if w in placed or w in known:
             continue
         stack.append((w, True))
-        stack.extend((u, False) for u in reversed(w._uses) if u not in placed)
+        stack.extend((u, False) for u in reversed(w._uses) if u not in placed and u not in known)
     return order
 
 

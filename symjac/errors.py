@@ -129,10 +129,10 @@ class NoClosedFormError(SymjacError, ArithmeticError):
     chain, so symjac says so instead of working for hours.
     """
 
-    def __init__(self, what: str = "this analysis"):
+    def __init__(self, what: str = "closed forms (determinants, singular sets, identities)"):
         super().__init__(
-            f"{what} needs closed forms, and this robot's geometry is generic (constant rotations between its joint "
+            f"{what} are not available for this robot: its geometry is generic (constant rotations between joint "
             "axes that are not multiples of pi/2), so its results are built nested, frame by frame, with named "
-            "intermediate values; evaluate it numerically instead (symjac.evaluate_at, `symjac codegen`), or give "
-            "the angles exactly (pi/2, or a parameter) where the design has them")
+            "intermediate values; evaluate them numerically instead (symjac.numeric_jacobian, `symjac codegen`), "
+            "or write the angles exactly (pi/2, or a parameter) where the design has them")
 

@@ -16,16 +16,20 @@ from marks import marked
 
 from symjac import (
     Chain,
+    NoClosedFormError,
     body_jacobian,
     catalog,
+    determinant,
     forward_kinematics,
     jacobian,
     jacobian_derivative,
     load_robot,
     robot_from_toml,
+    robot_to_toml,
     space_jacobian,
     urdf_catalog,
 )
+from symjac.cli.main import main
 from symjac.kinematics.points import point_position
 from symjac.symbolic.nested import NestedMatrix, has_intermediates, substitute
 
@@ -76,3 +80,14 @@ PUBLIC = {
 def test_results_that_keep_intermediates_carry_their_definitions(name):
     result = PUBLIC[name](generic_arm())
     assert not has_intermediates(result) or isinstance(result, NestedMatrix), type(result).__name__
+
+
+def test_closed_form_analyses_of_a_generic_arm_are_refused_in_one_line(tmp_path, capsys):
+    robot = generic_arm()
+    with pytest.raises(NoClosedFormError, match="not available for this robot: its geometry is generic"):
+        determinant(robot)
+    path = tmp_path / "generic.toml"
+    path.write_text(robot_to_toml(robot), encoding="utf-8")
+    assert main(["singularities", str(path)]) == 2
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and "symjac codegen" in error[0]

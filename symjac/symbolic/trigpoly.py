@@ -127,7 +127,7 @@ def _collect_atoms(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[list[sp
         if expr.is_Rational:
             return
         if isinstance(expr, Intermediate):  # a nested result: its written-out form has no normal form worth having
-            raise NoClosedFormError("a closed form (normal form, determinant, singular set)")
+            raise NoClosedFormError()
         if isinstance(expr, sp.Add | sp.Mul):
             for arg in expr.args:
                 visit(arg)

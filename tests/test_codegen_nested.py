@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from compiled import load_module
 from reference import finite_difference_jacobian, frames
 
 from symjac import Chain, jacobian, robot_from_mapping
@@ -77,16 +78,6 @@ def coupled_arm():
 ARMS = {"dh": dh_arm, "poe": poe_arm, "coupled": coupled_arm}
 
 
-def _load(folder: Path, robot, target: str, **options):
-    path = folder / f"{robot.name}_{target}.py"
-    path.write_text(generate(robot, target, **options))
-    spec = importlib.util.spec_from_file_location(f"nested_{robot.name}_{target}_{id(path)}", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 def _configurations(robot, count: int = 5) -> list[np.ndarray]:
     rng = np.random.default_rng(3)
     return [rng.uniform(-np.pi, np.pi, robot.n_coordinates) for _ in range(count)]
@@ -103,7 +94,7 @@ def test_the_arms_are_derived_nested(arm):
 @pytest.mark.parametrize("arm", sorted(ARMS))
 def test_generated_modules_agree_with_a_numeric_chain_and_finite_differences(tmp_path, arm, target):
     robot = ARMS[arm]()
-    module = _load(tmp_path, robot, target, acceleration=True)
+    module = load_module(tmp_path, robot, target, acceleration=True)
     assert module.selftest() < 1e-6  # Jacobian, torques, Hessian, bias acceleration against differences
     n = robot.n_coordinates
     for q in _configurations(robot):
@@ -117,7 +108,7 @@ def test_generated_modules_agree_with_a_numeric_chain_and_finite_differences(tmp
 def test_the_python_target_equals_the_symbolic_nested_jacobian(tmp_path, arm):
     robot = ARMS[arm]()
     chain = Chain(robot)
-    module = _load(tmp_path, robot, "python")
+    module = load_module(tmp_path, robot, "python")
     J_symbolic = jacobian(chain, simplify=False)
     for q in _configurations(robot, 3):
         values = {**robot.defaults, **dict(zip(robot.q, q, strict=True))}
@@ -192,7 +183,7 @@ def test_the_c99_target_compiles_cleanly_and_agrees_with_the_python_target(tmp_p
     library = ctypes.CDLL(str(tmp_path / "libarm.so"))
     prefix = source.removesuffix(".c")
     assert getattr(library, f"{prefix}_selftest")() == 0
-    reference = _load(tmp_path, robot, "python", acceleration=True)
+    reference = load_module(tmp_path, robot, "python", acceleration=True)
     n = robot.n_coordinates
     pointer = ctypes.POINTER(ctypes.c_double)
     for q in _configurations(robot):

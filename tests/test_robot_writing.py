@@ -48,7 +48,10 @@ def degree_robot():
 
 
 def odd_robot():
-    """Things that stress the writer: thirds, tiny and huge numbers, powers, text that needs escaping."""
+    """Things that stress the writer: thirds, tiny and huge numbers, powers, text that needs escaping.
+
+    (Huge parameters stay out of lengths: a length past 1000 m is refused as a unit error.)
+    """
     data = {
         "name": "odd",
         "description": 'line one\nline two\ttab "quotes" \\ backslash, unicode θ₁ ✓, DEL \x7f, bell \x07',
@@ -56,7 +59,7 @@ def odd_robot():
         "parameters": {"L1": 1e-7, "L2": 1e22, "L3": -0.0, "big": 10**30, "third": 0.3333333333333333},
         "joints": [
             {"type": "revolute", "alpha": "1/3", "a": "L1**2/7", "d": "(L1 + L2)**-2", "theta": "-pi/7"},
-            {"type": "prismatic", "alpha": "pi/2", "a": "big/3", "d": "-third", "limits": ["1/3", "2/3"]},
+            {"type": "prismatic", "alpha": "pi/2", "a": "third/big", "d": "-third", "limits": ["1/3", "2/3"]},
             {"type": "revolute", "a": "0.5/(L1 + L2)", "d": "L3*(L1 + L2)*2", "theta": "-1/(pi + 1)"},
         ],
     }

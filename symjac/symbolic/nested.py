@@ -289,7 +289,7 @@ def tree_size(value: Any) -> int:
 
 
 class NestedMatrix(sp.ImmutableDenseMatrix):  # type: ignore[misc]
-    r"""An immutable matrix whose entries use :class:`Intermediate` values, each defined once (:attr:`definitions`).
+    r"""An immutable matrix whose entries use :class:`Intermediate` values, each defined once (its ``definitions``).
 
     It is what symjac returns where the written-out form would be too large to read or build: the Jacobian of a
     generic 6-joint arm (a few hundred definitions, against hundreds of thousands of terms written out). Entries

@@ -31,7 +31,7 @@ __all__ = ["ROUNDING", "is_zero", "short", "unit", "zero_pitch"]
 Vector: TypeAlias = tuple[sp.Expr, sp.Expr, sp.Expr]
 
 ROUNDING = 1e-5
-"""Relative error a file's numbers may carry: a unit length within it of 1, a pitch within it times 1 + |v|."""
+r"""Relative error a file's numbers may carry: a unit length within it of 1, a pitch within it times :math:`1 + |v|`."""
 _SIMPLIFY_OPS = 40
 """The longest expression of parameters (in operations) that validation simplifies exactly."""
 _SHORT_EXACT = 40

@@ -180,6 +180,7 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.symbolic.angles import AngleBasis as AngleBasis
     from symjac.symbolic.nested import Intermediate as Intermediate
     from symjac.symbolic.nested import NestedMatrix as NestedMatrix
+    from symjac.symbolic.nested import lambdify_cse as lambdify_cse
     from symjac.symbolic.simplify import is_identity as is_identity
     from symjac.symbolic.simplify import simplify_expr as simplify_expr
     from symjac.symbolic.simplify import simplify_matrix as simplify_matrix

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from symjac import robot_from_mapping
+from symjac import robot_from_mapping, robot_to_mapping
 from symjac.errors import RobotFileError
 
 HOME = {"matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 1], [0, 0, 0, 1]]}
@@ -17,11 +17,19 @@ def poe(screw, **joint):
 
 
 def test_a_six_digit_calibrated_screw_is_read_and_written_back_as_given():
-    from symjac import robot_to_mapping
-
     robot = robot_from_mapping(poe(SCREW))
     assert robot_to_mapping(robot)["joints"][0]["screw"] == SCREW
     assert "sqrt" not in str(robot.joints[0].placement.omega)
+
+
+def test_a_home_matrix_written_to_six_decimals_is_a_rotation_to_the_file_s_rounding():
+    home = {"matrix": [[-0.238138, -0.95533, -0.175031, 0.294132], [0.89799, -0.147918, -0.41441, 0.028422],
+                       [0.370008, -0.255862, 0.893101, 0.546713], [0, 0, 0, 1]]}
+    robot = robot_from_mapping({**poe(SCREW), "home": home})
+    assert robot_to_mapping(robot)["home"]["matrix"][0][:3] == [-0.238138, -0.95533, -0.175031]
+    coarse = {"matrix": [[0.7071, -0.7071, 0, 0], [0.7071, 0.7071, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}
+    with pytest.raises(RobotFileError, match=r"not a rotation \(\|R\^T R - I\| = 2\.\de-05, more than"):
+        robot_from_mapping({**poe(SCREW), "home": coarse})
 
 
 def test_a_real_pitch_is_refused_with_a_short_decimal():

@@ -156,6 +156,9 @@ def dh_from_general(robot: Robot, *, substitute_defaults: bool = False) -> DHExt
     """
     if plugin(robot.convention).to_modified(robot) is not None:
         raise ConversionError(f"{robot.name} is already a DH table ({robot.convention.value})")
+    if chain_of(robot).nested:  # exact geometry on generic axes does not reduce: refuse rather than work for minutes
+        raise ConversionError(f"{robot.name}: its geometry is generic (joint axes not turned by multiples of pi/2), "
+                              "and DH extraction is exact; keep it in its own convention (or as general joints)")
     chain = _exact_chain(robot)
     zero: dict[sp.Symbol, sp.Expr] = {q: sp.S.Zero for q in robot.joint_variables}
     if substitute_defaults:

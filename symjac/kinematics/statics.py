@@ -19,6 +19,7 @@ from symjac.kinematics.numeric import as_vector, evaluate_at
 from symjac.kinematics.points import Point
 from symjac.kinematics.propagation import linear_combination, wrench_symbols
 from symjac.model.robot import Robot
+from symjac.symbolic.nested import presented
 from symjac.symbolic.transforms import wrench_transform
 
 __all__ = ["joint_torques", "wrench_between"]
@@ -63,7 +64,7 @@ def joint_torques(
     F = sp.Matrix(wrench_symbols()) if wrench is None else as_vector(wrench, 6, "wrench")
     tau = linear_combination(jacobian(robot, frame=frame, point=point, link=link).T, F)
     if q is None:
-        return tau
+        return presented(tau)  # type: ignore[no-any-return]
     return evaluate_at(robot, tau, q)
 
 

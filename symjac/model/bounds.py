@@ -29,9 +29,9 @@ def size_problem(value: float, *, angle: bool) -> str | None:
     """Why ``value`` (in metres, or radians when ``angle``) is too large to be meant, or None when it is not."""
     if angle:
         if abs(value) > MAX_ANGLE:
-            return (f"{value:.4g} rad is larger than {MAX_ANGLE:.0f} rad in size: angles are in radians unless "
+            return (f"{value:.6g} rad is larger than {MAX_ANGLE:.0f} rad in size: angles are in radians unless "
                     f"the file says angle_unit = \"deg\"")
         return None
     if abs(value) > MAX_LENGTH:
-        return f"{value:.4g} m is larger than {MAX_LENGTH:.0f} m in size: lengths are in metres (is it in millimetres?)"
+        return f"{value:.6g} m is larger than {MAX_LENGTH:.0f} m in size: lengths are in metres (is it in millimetres?)"
     return None

@@ -75,7 +75,7 @@ class Intermediate(sp.Dummy):  # type: ignore[misc]
         # them). They are the same for every intermediate, and so is every fact SymPy later derives from them, so all
         # intermediates share one deduced set (_FACTS)
         obj = sp.Expr.__new__(cls)
-        obj.name = "w"
+        obj.name = f"w{sp.Dummy._count}"  # told apart when printed as SymPy prints it; symjac's printers renumber
         obj._assumptions = _FACTS[0]
         obj._assumptions_orig, obj._assumptions0 = _FACTS[1], _FACTS[2]
         obj.dummy_index = sp.Dummy._base_dummy_index + sp.Dummy._count
@@ -113,8 +113,8 @@ class Intermediate(sp.Dummy):  # type: ignore[misc]
     def _xreplace(self, rule: Mapping[sp.Basic, sp.Basic]) -> tuple[sp.Basic, bool]:
         if self in rule:
             return rule[self], True
-        if not any(key in self._free for key in rule):
-            return self, False
+        if not isinstance(rule, Mapping) or not any(key in self._free for key in rule):
+            return self, False  # (SymPy's own rewrites pass rules that are functions, not mappings)
         return substitute([self], rule)[0], True
 
     def xreplace(self, rule: Mapping[sp.Basic, sp.Basic], hack2: bool = False) -> sp.Basic:
@@ -335,7 +335,7 @@ def presented(value: Any, limit: int = INLINE_LIMIT) -> Any:
             return type(value)(flat, value.shape)
         return flat[0]
     if isinstance(value, sp.MatrixBase):
-        return NestedMatrix(value)
+        return NestedMatrix(sp.Matrix(value))  # (given an immutable matrix, the constructor returns it as it is)
     return value
 
 

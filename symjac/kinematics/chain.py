@@ -183,6 +183,8 @@ class Chain:
         (:class:`~symjac.errors.ResultTooLargeError`) instead of being built.
         """
         key = (self.position(source), self.position(target))
+        if self.nested:  # no textbook form: the nested product itself
+            return self.transform(source, target)
         if key not in self._simplified:
             start, end = key
             step = 1 if end >= start else -1

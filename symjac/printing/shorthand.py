@@ -123,5 +123,16 @@ def readable_float(number: sp.Float) -> sp.Float:
     0.644218
     >>> readable_float(sp.Float("0.12345678", 8))
     0.12345678
+
+    A number that would round to a whole number without being one keeps the digits that tell it apart
+    (a calibrated cosine, 0.99999982, is not 1):
+
+    >>> readable_float(sp.Float(0.99999982, 18))
+    0.9999998
     """
-    return sp.Float(number, FLOAT_DIGITS) if number._prec >= 53 else number
+    if number._prec < 53:
+        return number
+    value, digits = float(number), FLOAT_DIGITS
+    while float(f"{value:.{digits}g}").is_integer() and not value.is_integer() and digits < 15:
+        digits += 1  # 0.99999982 is not 1: as many digits as tell it apart
+    return sp.Float(f"{value:.{digits}g}", digits)

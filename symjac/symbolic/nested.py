@@ -163,7 +163,11 @@ def _local_derivative(expr: sp.Expr, s: sp.Basic) -> sp.Expr:
 
 
 def _is_small(expr: sp.Expr) -> bool:
-    """Whether naming ``expr`` saves nothing: an atom, or one operation on atoms (``-w3``, ``sin(theta1)``)."""
+    """Whether naming ``expr`` saves nothing: an atom, or one operation on atoms (``-w3``, ``sin(theta1)``).
+
+    A product such as ``0.43*sin(theta2)`` is named: then every entry of a generic link's transform is an
+    intermediate, which is how the simplifier tells nested input (:func:`has_intermediates`) from textbook input.
+    """
     return bool(expr.is_Atom) or (all(arg.is_Atom for arg in expr.args) and len(expr.args) <= 2)
 
 
@@ -318,15 +322,17 @@ class NestedMatrix(sp.ImmutableDenseMatrix):  # type: ignore[misc]
         return sp.ImmutableMatrix(self.rows, self.cols, inline(list(self)))
 
 
-def presented(value: Any, limit: int = INLINE_LIMIT) -> Any:
+def presented(value: Any, limit: int | None = None) -> Any:
     """A result as people get it: written out if it holds intermediates and stays within ``limit`` tree nodes.
+
+    ``limit`` defaults to :data:`INLINE_LIMIT` (read when called).
 
     A larger matrix becomes a :class:`NestedMatrix`; a larger array keeps its intermediates (its
     :func:`definitions` name them). A result without intermediates is returned as it is.
     """
     if not has_intermediates(value):
         return value
-    if tree_size(value) <= limit:
+    if tree_size(value) <= (INLINE_LIMIT if limit is None else limit):
         flat = inline(_entries(value))
         if isinstance(value, sp.MatrixBase):
             return type(value)(value.rows, value.cols, flat) if not isinstance(value, NestedMatrix) else \

@@ -32,6 +32,7 @@ from symjac.printing.json import document_data, metadata
 from symjac.printing.results import transforms_document
 from symjac.printing.tables import parameter_table_latex, parameter_table_text
 from symjac.report.content import parameter_table_html
+from symjac.symbolic.nested import lambdify_cse
 
 METHODS = ("differentiation", "cross_product", "velocity_propagation", "force_propagation")
 t1, t2, t3, t4, t5 = sp.symbols("theta1:6", real=True)
@@ -258,7 +259,7 @@ def test_random_coupled_chains_hessian_and_jdot_against_finite_differences(robot
     Jdot = jacobian_derivative(robot, frame=0, simplify=False)
     # one lambdified function (printing the expressions is what costs here), evaluated at several points
     function = sp.lambdify([*robot.q, *rates, *parameters], [J, *(hessian_slice(H, m) for m in range(n)), Jdot],
-                           modules="numpy", cse=True)
+                           modules="numpy", cse=lambdify_cse)  # nested results too (generic twists)
 
     def at(point):
         values = function(*point, *qdot, *parameters.values())

@@ -17,7 +17,7 @@ import sympy as sp
 
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
-from symjac.kinematics.jacobian import Point, jacobian, point_vector
+from symjac.kinematics.jacobian import Method, Point, jacobian, point_vector
 from symjac.kinematics.memo import frame_of, memoized
 from symjac.model.robot import Robot
 from symjac.symbolic.nested import lambdify_cse
@@ -105,6 +105,6 @@ def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0,
 @memoized(frame=frame_of, point=point_vector)
 def _compiled_jacobian(chain: Chain, frame: Frame, point: Point) -> Callable[..., Any]:
     """The raw Jacobian lambdified over q, parameters at their defaults."""
-    method = "cross_product" if chain.nested else "differentiation"  # nested: n + 1 frames, not n derivatives of each
+    method: Method = "cross_product" if chain.nested else "differentiation"  # nested: n + 1 frames, not n derivatives
     J = jacobian(chain, frame=frame, point=point, method=method, simplify=False).xreplace(chain.robot.defaults)
     return sp.lambdify([chain.robot.q], J, modules="numpy", cse=lambdify_cse)

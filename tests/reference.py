@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 import sympy as sp
+from generic_arms import rot_x, rot_z, trans
 from sympy.printing.numpy import NumPyPrinter
 
 from symjac import Robot
@@ -27,22 +28,6 @@ def _float(expr: sp.Expr, robot: Robot) -> float:
 def _matrix(transform, robot: Robot) -> np.ndarray:
     """A fixed transform's 4 x 4 matrix as floats (the identity for none)."""
     return np.eye(4) if transform is None else np.array(transform.matrix.subs(robot.defaults), dtype=float)
-
-
-def _rot_x(angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
-
-
-def _rot_z(angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
-
-
-def _trans(x: float, y: float, z: float) -> np.ndarray:
-    T = np.eye(4)
-    T[:3, 3] = (x, y, z)
-    return T
 
 
 def _rot_axis(axis: np.ndarray, angle: float) -> np.ndarray:
@@ -94,7 +79,7 @@ def _general_link(row: tuple, value: float) -> np.ndarray:
         theta += value
     else:
         d += value
-    motion = _rot_axis(axis, theta) @ _trans(*(d * axis / np.linalg.norm(axis)))
+    motion = _rot_axis(axis, theta) @ trans(*(d * axis / np.linalg.norm(axis)))
     return np.linalg.inv(before) @ origin @ motion @ _alignment(axis)
 
 
@@ -125,7 +110,7 @@ def _screw_frames(rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]], q: np.n
     poses, product = [np.eye(4)], np.eye(4)
     for (screw, point, axis), value in zip(rows, q, strict=True):
         product = product @ expm(_screw_matrix(screw) * value)
-        poses.append(product @ _trans(*point) @ _alignment(axis))
+        poses.append(product @ trans(*point) @ _alignment(axis))
     return poses
 
 
@@ -195,9 +180,9 @@ def frames(robot: Robot, q: np.ndarray) -> list[np.ndarray]:
         else:
             d += value
         if robot.convention == "standard":
-            link = _rot_z(theta) @ _trans(0, 0, d) @ _trans(a, 0, 0) @ _rot_x(alpha)
+            link = rot_z(theta) @ trans(0, 0, d) @ trans(a, 0, 0) @ rot_x(alpha)
         else:
-            link = _rot_x(alpha) @ _trans(a, 0, 0) @ _rot_z(theta) @ _trans(0, 0, d)
+            link = rot_x(alpha) @ trans(a, 0, 0) @ rot_z(theta) @ trans(0, 0, d)
         poses.append(poses[-1] @ link)
     poses.append(poses[-1] @ tool)
     return poses

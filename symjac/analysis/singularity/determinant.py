@@ -221,6 +221,9 @@ def _factored_determinant(
             coefficient *= _number(raw.LC) ** multiplicity
             continue
         factor = _layout(compact_expr(raw, image), bases)
+        if not factor.free_symbols:  # a constant such as sqrt(2) (a generator of the image): no parameter, no angle
+            coefficient *= factor ** multiplicity
+            continue
         if factor.could_extract_minus_sign():
             factor, coefficient = -factor, coefficient * (-1) ** multiplicity
         collected[factor] = collected.get(factor, 0) + multiplicity

@@ -1,0 +1,41 @@
+"""What symjac says is true for every arm: no constant reported as a parameter of a singular condition."""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from symjac import determinant, jacobian, robot_from_toml
+
+FORTY_FIVE = """
+name = "forty_five"
+convention = "poe"
+[parameters]
+L = 0.5
+[home]
+matrix = [[1, 0, 0, "2*L"], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+[[joints]]
+type = "revolute"
+axis = [0, 0, 1]
+point = [0, 0, 0]
+[[joints]]
+type = "revolute"
+axis = [0, "sqrt(2)/2", "sqrt(2)/2"]
+point = [0, 0, 0]
+[[joints]]
+type = "revolute"
+axis = [0, 1, 0]
+point = ["L", 0, 0]
+"""
+"""A 3R arm whose second axis is turned 45 degrees: sqrt(2) appears in its determinant as a number."""
+
+
+def test_a_constant_of_the_determinant_is_part_of_its_coefficient_not_a_parameter_factor():
+    robot = robot_from_toml(FORTY_FIVE)
+    det = determinant(robot)
+    assert all(factor.free_symbols for factor, _ in det.factors)  # sqrt(2) was reported as a "parameter" factor
+    J = jacobian(robot, frame=det.frame, point=det.point)
+    values = {**dict(zip(robot.q, (0.3, -0.7, 1.1), strict=True)), **robot.defaults}
+    rows = sp.Matrix([J.row(r) for r in det.rows])
+    expected = float(rows.xreplace(values).det())
+    assert np.isclose(float(det.expression.xreplace(values)), expected, rtol=1e-12)

@@ -237,15 +237,16 @@ def caption_text(block: Block, style: Style) -> str:
 def _one_line(expr: sp.Basic) -> str:
     """Unicode text of ``expr`` on one line.
 
-    A caption shows sqrt(2)/2, not a 2-D fraction, and θ = -pi/2 (each side of an equation printed on its own),
-    not Eq(theta, -pi/2).
+    A caption shows √2/2, not a 2-D fraction, and θ = -π/2 (each side of an equation printed on its own), not
+    Eq(theta, -pi/2): the pretty form when it fits one line, else mathematics written linearly
+    (:func:`~symjac.printing.pretty.one_line`), never Python syntax.
     """
-    from symjac.printing.pretty import pretty
+    from symjac.printing.pretty import one_line, pretty
 
     if isinstance(expr, sp.Equality):
         return f"{_one_line(expr.lhs)} = {_one_line(expr.rhs)}"
     text = pretty(expr)
-    return text if "\n" not in text else sp.sstr(expr)
+    return text if "\n" not in text else one_line(expr)
 
 
 def equation_latex(equation: Equation) -> str:

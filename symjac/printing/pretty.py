@@ -5,12 +5,14 @@ from __future__ import annotations
 from typing import Any
 
 import sympy as sp
+from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pretty.pretty import PrettyPrinter
 from sympy.printing.pretty.stringpict import prettyForm, stringPict
+from sympy.printing.str import StrPrinter
 
 from symjac.printing.shorthand import SUBSCRIPTS, file_decimal, readable_float, shorthand_indices, textbook_factors
 
-__all__ = ["TextbookPrettyPrinter", "pretty", "pretty_side_by_side"]
+__all__ = ["TextbookPrettyPrinter", "one_line", "pretty", "pretty_side_by_side"]
 
 
 class TextbookPrettyPrinter(PrettyPrinter):
@@ -68,3 +70,52 @@ def pretty_side_by_side(*exprs: Any) -> str:
     for form in forms[1:]:
         joined = prettyForm(*stringPict.next(joined, " ", form))
     return "\n".join(line.rstrip() for line in str(joined.render(wrap_line=False)).split("\n"))
+
+
+_SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+_RELATIONS = {">=": "≥", "<=": "≤", "!=": "≠", "==": "="}
+
+
+class _OneLinePrinter(StrPrinter):
+    """Mathematics on one line of Unicode: ``a₂ + √(a₃² + d₄²) ≥ a₁``, ``-√2/2``, never Python's ``**`` or ``*``."""
+
+    def _print_Symbol(self, expr: sp.Symbol) -> str:
+        return pretty(expr)
+
+    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        if expr.exp == sp.S.Half:
+            base = self._print(expr.base)
+            return "√" + (base if expr.base.is_Atom else f"({base})")
+        if expr.exp.is_Integer and 2 <= expr.exp <= 9:
+            return self.parenthesize(expr.base, PRECEDENCE["Pow"]) + str(expr.exp).translate(_SUPERSCRIPTS)
+        return str(super()._print_Pow(expr, rational))
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        text = str(super()._print_Mul(expr))
+        return text.replace("**", "\0").replace("*", "⋅").replace("\0", "**")
+
+    def _print_Relational(self, expr: sp.core.relational.Relational) -> str:
+        return f"{self._print(expr.lhs)} {_RELATIONS.get(expr.rel_op, expr.rel_op)} {self._print(expr.rhs)}"
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return str(super()._print_Float(readable_float(expr)))
+
+    def _print_sin(self, expr: sp.Function) -> str:
+        return pretty(expr) if shorthand_indices(expr.args[0]) is not None else str(self._print_Function(expr))
+
+    _print_cos = _print_sin
+
+
+def one_line(expr: Any) -> str:
+    """``expr`` as mathematics on one line of Unicode (for sentences), where :func:`pretty` would stack it.
+
+    Examples
+    --------
+    >>> a1, a2, a3, d4 = sp.symbols("a1 a2 a3 d4", positive=True)
+    >>> one_line(sp.Ge(a2 + sp.sqrt(a3**2 + d4**2), a1, evaluate=False))
+    'a₂ + √(a₃² + d₄²) ≥ a₁'
+    >>> one_line(-sp.sqrt(2) / 2)
+    '-√2/2'
+    """
+    return str(_OneLinePrinter().doprint(sp.sympify(expr)))
+

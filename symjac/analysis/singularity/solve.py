@@ -132,6 +132,29 @@ def _existence(form: _Linear, variables: frozenset[sp.Symbol]) -> sp.Expr | None
     return None
 
 
+def _square_roots(plus: sp.Expr, minus: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
+    r"""``(p, m)`` for ``p**2 >= m**2`` when both sides are squares of positive expressions, else the sides as given.
+
+    :math:`a_2^2 + 2 a_2 \sqrt{a_3^2 + d_4^2} + a_3^2 + d_4^2 \ge a_1^2` reads :math:`a_2 + \sqrt{a_3^2 + d_4^2} \ge
+    a_1` (positive lengths). A square :math:`(a + r)^2` is recognised from its cross term :math:`2 a r`, with
+    :math:`r` a square root the sum holds (or no root: :math:`(a + b)^2` from the term :math:`2ab`).
+    """
+    right = sp.sqrt(minus)
+    if isinstance(right, sp.Pow) and right.exp == sp.S.Half:  # not a perfect square
+        return plus, minus
+    for term in sp.Add.make_args(sp.expand(plus)):
+        coefficient, rest = term.as_coeff_Mul()
+        if coefficient != 2:
+            continue
+        factors = sp.Mul.make_args(rest)
+        if len(factors) != 2:
+            continue
+        candidate = factors[0] + factors[1]
+        if candidate.is_positive and sp.expand(candidate**2 - plus) == 0:
+            return candidate, right
+    return plus, minus
+
+
 def _nonnegative(expr: sp.Expr) -> sp.Expr:
     """``expr >= 0`` in its simplest form, assuming positive parameters (lengths); positive factors dropped."""
     positive = {s: sp.Symbol(s.name, positive=True) for s in expr.free_symbols}
@@ -147,6 +170,7 @@ def _nonnegative(expr: sp.Expr) -> sp.Expr:
         remaining = sp.expand(sp.sign(sign) * factors[0])
         plus = sp.Add(*[t for t in sp.Add.make_args(remaining) if not t.could_extract_minus_sign()])
         minus = -sp.Add(*[t for t in sp.Add.make_args(remaining) if t.could_extract_minus_sign()])
+        plus, minus = _square_roots(plus, minus)
         return sp.Ge(plus.xreplace(back), minus.xreplace(back), evaluate=False)
     return sp.Ge(value.xreplace(back), 0, evaluate=False)
 

@@ -16,6 +16,7 @@ from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.conventions import plugin
 from symjac.model.robot import Robot
 from symjac.printing.document import Inline
+from symjac.printing.pretty import one_line
 
 if TYPE_CHECKING:
     from symjac.analysis.representations import RepresentationSingularity
@@ -215,7 +216,7 @@ def existence_words(factor: SingularFactor) -> str:
     if factor.existence is None or factor.existence is sp.true:
         return ""
     verdict = {True: "holds", False: "does not hold", None: "unknown"}[factor.exists_for_defaults]
-    return (f"Exists only if {sp.sstr(factor.existence)} (assuming positive lengths; {verdict} for the default "
+    return (f"Exists only if {one_line(factor.existence)} (assuming positive lengths; {verdict} for the default "
             "parameters).")
 
 

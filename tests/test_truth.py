@@ -51,3 +51,9 @@ def test_an_existence_condition_is_simplified_and_printed_as_mathematics():
     assert condition == sp.Ge(a2 + sp.sqrt(a3**2 + d4**2), a1, evaluate=False)
     assert one_line(condition) == "a₂ + √(a₃² + d₄²) ≥ a₁"
     assert one_line(-sp.sqrt(2) / 2 * sp.Symbol("x")) == "-√2⋅x/2"
+
+
+def test_computed_numbers_in_sentences_read_as_numbers():
+    from symjac.printing.prose.singularities import readable_number
+
+    assert [readable_number(v) for v in (0.9999999, 0.0171, -0.70710678)] == ["1", "0.017", "-√2/2"]

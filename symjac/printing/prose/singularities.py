@@ -130,9 +130,9 @@ def readable_number(value: float) -> str:
     Examples
     --------
     >>> readable_number(0.7071067811865476), readable_number(-0.5), readable_number(0.55412)
-    ('sqrt(2)/2', '-1/2', '0.554')
+    ('√2/2', '-1/2', '0.554')
     """
-    return sp.sstr(readable_value(value))
+    return one_line(readable_value(value))
 
 
 def readable_value(value: float) -> sp.Expr:
@@ -143,6 +143,8 @@ def readable_value(value: float) -> sp.Expr:
     if abs(value) < 5e-4:
         return sp.S.Zero
     text = f"{value:.3f}".rstrip("0").rstrip(".")
+    if "." not in text:  # 0.9999999 is 1 to 3 decimals: the integer, not the float "1."
+        return sp.Integer(text)
     return sp.Float(text, len(text.lstrip("-").replace(".", "").lstrip("0")))  # as many digits as shown
 
 

@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
+import pytest
 import sympy as sp
 
 from symjac import determinant, jacobian, robot_from_toml
+from symjac.cli.main import main
 
 FORTY_FIVE = """
 name = "forty_five"
@@ -57,3 +61,11 @@ def test_computed_numbers_in_sentences_read_as_numbers():
     from symjac.printing.prose.singularities import readable_number
 
     assert [readable_number(v) for v in (0.9999999, 0.0171, -0.70710678)] == ["1", "0.017", "-√2/2"]
+
+
+@pytest.mark.slow
+def test_every_long_condition_of_a_redundant_arm_has_a_name_of_its_own(capsys):
+    assert main(["singularities", "panda", "--format", "pretty"]) == 0
+    definitions = re.findall(r"^(F[₀-₉]+) = (.*)$", capsys.readouterr().out, flags=re.MULTILINE)
+    names = [name for name, _ in definitions]
+    assert len(names) >= 3 and len(names) == len(set(names))  # F₂ named three expressions before

@@ -49,11 +49,16 @@ def _redundant_blocks(report: SingularityReport) -> list[Block]:
             caption = f"{prose.locked_words(locked)}: {prose.zero_minor_words(zeros[minor.columns])}."
         blocks.append(Block((caption,), (_det(minor.expression),)))
     blocks.append(Block((prose.sets_caption(report),)))
+    names, defined = prose.long_names(report.sets), set()  # each F_k displayed once, where it first appears
     for number, singular_set in enumerate(report.sets, start=1):
-        long = [Equation(sp.latex(prose.long_name(k)), str(prose.long_name(k)), c.expression)
-                for k, c in enumerate(singular_set.conditions) if prose.is_long(c.expression)]
+        long = []
+        for condition in singular_set.conditions:
+            name = names.get(condition.expression)
+            if name is not None and name not in defined:
+                defined.add(name)
+                long.append(Equation(sp.latex(name), str(name), condition.expression))
         solutions = [Equation("", "", s.equation) for s in singular_set.solutions if not prose.is_long(s.rhs)]
-        blocks.append(Block((f"Set {number}: ", *prose.set_parts(singular_set)), (*long, *solutions)))
+        blocks.append(Block((f"Set {number}: ", *prose.set_parts(singular_set, names)), (*long, *solutions)))
     return blocks
 
 

@@ -6,7 +6,7 @@ string enums by value.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 import sympy as sp
@@ -22,6 +22,7 @@ __all__ = [
     "is_long",
     "locked_words",
     "long_name",
+    "long_names",
     "set_parts",
     "set_reason",
     "sets_caption",
@@ -113,21 +114,36 @@ def long_name(number: int) -> sp.Symbol:
     return sp.Symbol(f"F_{number + 1}")
 
 
+def long_names(sets: Sequence[SingularSet]) -> dict[sp.Expr, sp.Symbol]:
+    """One name ``F_k`` per distinct long condition of a report's sets, numbered in order of first appearance.
+
+    A document names each condition once: the same condition in two sets keeps its name, two different ones never
+    share one.
+    """
+    names: dict[sp.Expr, sp.Symbol] = {}
+    for singular_set in sets:
+        for condition in singular_set.conditions:
+            if is_long(condition.expression) and condition.expression not in names:
+                names[condition.expression] = long_name(len(names))
+    return names
+
+
 def is_long(expr: sp.Basic) -> bool:
     """Whether ``expr`` is too long to stand inside a sentence (it would overrun a printed line)."""
     return len(sp.sstr(expr)) > LONG_INLINE
 
 
-def set_parts(singular_set: SingularSet) -> tuple[str | sp.Basic, ...]:
+def set_parts(singular_set: SingularSet, names: Mapping[sp.Expr, sp.Symbol] | None = None
+              ) -> tuple[str | sp.Basic, ...]:
     """One singular set as caption parts: its conditions, kind, reason, what is lost, its self-motions and limits.
 
-    A long condition is named ``F_k = 0`` (k its place) and displayed below as ``F_k = ...``; solutions too long for a
-    page are left to the JSON output.
+    A long condition is named ``F_k = 0`` (by ``names``, :func:`long_names` of the whole report; else k is its place
+    in the set) and displayed below as ``F_k = ...``; solutions too long for a page are left to the JSON output.
     """
     parts: list[str | sp.Basic] = []
     for number, condition in enumerate(singular_set.conditions):
-        shown = sp.Eq(long_name(number) if is_long(condition.expression) else condition.expression, 0,
-                      evaluate=False)
+        name = names[condition.expression] if names is not None and is_long(condition.expression) else long_name(number)
+        shown = sp.Eq(name if is_long(condition.expression) else condition.expression, 0, evaluate=False)
         parts += [" and "] * bool(number) + [shown]
     parts += [f" ({singular_set.kind}): {set_reason(singular_set)}."]
     if singular_set.lost_direction is not None:

@@ -69,3 +69,33 @@ def test_every_long_condition_of_a_redundant_arm_has_a_name_of_its_own(capsys):
     definitions = re.findall(r"^(F[₀-₉]+) = (.*)$", capsys.readouterr().out, flags=re.MULTILINE)
     names = [name for name, _ in definitions]
     assert len(names) >= 3 and len(names) == len(set(names))  # F₂ named three expressions before
+
+
+OFFSET_2R = """
+name = "offset2r"
+convention = "standard"
+[parameters]
+L1 = 0.5
+L2 = 0.4
+[[joints]]
+type = "revolute"
+a = "L1"
+[[joints]]
+type = "revolute"
+a = "L2"
+theta = "pi/2"
+"""
+"""A planar 2R whose second joint has a DH offset of pi/2: stretched out at theta2 = -pi/2 and pi/2."""
+
+
+def test_singular_configurations_are_solved_for_the_joint_variable_not_the_dh_angle():
+    from symjac import singularities
+
+    robot = robot_from_toml(OFFSET_2R)
+    (factor,) = [f for f in singularities(robot).factors if f.solutions]
+    theta2 = robot.q[1]
+    assert {s.lhs for s in factor.solutions} == {theta2}  # not theta2 + pi/2
+    assert {s.rhs for s in factor.solutions} == {-sp.pi / 2, sp.pi / 2}
+    for solution in factor.solutions:  # and they are singular: the 2 x 2 position Jacobian loses rank
+        J = jacobian(robot)[:2, :].xreplace({**robot.defaults, robot.q[0]: 0.3, theta2: solution.rhs})
+        assert abs(float(J.det())) < 1e-12

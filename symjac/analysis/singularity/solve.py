@@ -80,10 +80,26 @@ def _linear_forms(factor: sp.Expr, bases: Sequence[AngleBasis], nested: bool = T
 
 
 def _angle_equation(angle: sp.Expr, values: Sequence[sp.Expr]) -> tuple[Solution, ...]:
-    """``angle = value`` for each value, with ``-theta1 = v`` turned into ``theta1 = -v``."""
+    r"""``angle = value`` for each value, in the joint variable: ``-theta1 = v`` becomes ``theta1 = -v``.
+
+    An angle that is one joint variable and its constant DH offset is solved for the variable, the numeric values
+    brought into :math:`(-\pi, \pi]`: :math:`\theta_3 + \pi/2 = \pi/2` is :math:`\theta_3 = 0`.
+    """
+    offset, varying = angle.as_independent(*angle.free_symbols, as_Add=True)
+    if offset != 0 and (varying.is_Symbol or (-varying).is_Symbol):
+        angle, values = varying, [_principal(v - offset) for v in values]
     if angle.could_extract_minus_sign():
-        angle, values = -angle, [-v for v in values]
+        angle, values = -angle, [_principal(-v) if offset != 0 else -v for v in values]
     return tuple(dict.fromkeys(Solution(angle, _tidy_angle(v)) for v in values))  # acos(1) = -acos(1): one
+
+
+def _principal(value: sp.Expr) -> sp.Expr:
+    r"""A numeric angle brought into :math:`(-\pi, \pi]` (an expression of other joints is left as it is)."""
+    if not value.is_number:
+        return value
+    turns = sp.floor(((value + sp.pi) / (2 * sp.pi)).evalf())
+    value = sp.nsimplify(value - 2 * sp.pi * turns) if value.has(sp.Float) else value - 2 * sp.pi * turns
+    return sp.pi if value == -sp.pi else value
 
 
 def _tidy_angle(value: sp.Expr) -> sp.Expr:

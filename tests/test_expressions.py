@@ -544,3 +544,154 @@ def test_a_function_outside_the_grammar_or_a_root_of_a_negative_is_refused_in_wo
 @pytest.mark.parametrize("name", ["sin", "cos", "sqrt"])
 def test_the_function_names_are_not_parameter_names(name):
     assert "function" in name_problem(name)
+
+
+# ------------------------------------------------------------------------------------ atan and atan2 (issue 42)
+
+h, w = sp.symbols("h w", real=True)
+
+
+@pytest.mark.parametrize(("text", "expected", "written"), [
+    ("atan2(0.128, 0.024)", sp.atan(sp.Rational(16, 3)), "atan(16/3)"),  # SymPy's exact form for x > 0
+    ("atan2(0.128, -0.024)", sp.pi - sp.atan(sp.Rational(16, 3)), "pi - atan(16/3)"),
+    ("atan2(1, 1)", sp.pi / 4, "pi/4"), ("atan2(sqrt(3), 1)", sp.pi / 3, "pi/3"), ("atan2(-1, 0)", -sp.pi / 2, "-pi/2"),
+    ("atan(0.5)", sp.atan(sp.S.Half), "atan(1/2)"), ("atan(1)", sp.pi / 4, "pi/4"),
+    ("atan2(h, w)", sp.atan2(h, w), "atan2(h, w)"),
+    ("pi/2 - atan2(2*h, w + 0.1)", sp.pi / 2 - sp.atan2(2 * h, w + sp.Rational(1, 10)), None),
+])
+def test_atan_and_atan2_are_read_exactly_and_written_back(text, expected, written):
+    names = {"h": h, "w": w}
+    value = parse_expression(text, names)
+    assert value == expected
+    text_back = expression_text(value)
+    if written is not None:
+        assert text_back == written
+    assert parse_expression(str(text_back), names) == value
+
+
+def test_an_atan2_of_parameters_is_written_back_through_the_tree_writer_too():
+    value = sp.Rational(1, 2) / (sp.atan2(h, w) + sp.atan(h))  # sstr regroups 1/(2*(...)): the tree writer's turn
+    written = expression_text(value)
+    assert written == "((1/2)*(atan(h) + atan2(h, w))**(-1))"
+    assert parse_expression(written, {"h": h, "w": w}) == value
+
+
+@pytest.mark.parametrize("text", ["atan2(0, 0)", "atan2(0.0, -0)", "atan2(sin(pi), 0)", "atan2(L1 - L1, 0)"])
+def test_atan2_of_the_origin_is_refused(text):
+    with pytest.raises(ExpressionError, match=r"atan2\(0, 0\) has no value in .*: the point \(x, y\) must not be the"):
+        parse(text)
+
+
+@pytest.mark.parametrize(("text", "message"), [
+    ("atan2(1)", r"write atan2\(y, x\) .*atan2 takes 2 arguments"),
+    ("atan2(1, 2, 3)", r"write atan2\(y, x\) .*atan2 takes 2 arguments"),
+    ("atan2()", r"write atan2\(y, x\)"),
+    ("atan(1, 2)", r"with 2 arguments: write atan\(x\) \(atan takes 1 argument, by position\)"),
+    ("atan2(y=1, x=2)", r"by position"),
+    ("atan2(*L1)", r"write atan2\(y, x\)"),
+    ("atan(*L1)", r"write atan\(x\)"),
+    ("sin(L1, 2)", "function calls are"),
+])
+def test_a_wrong_number_of_arguments_is_refused_in_words(text, message):
+    with pytest.raises(ExpressionError, match=message):
+        parse(text)
+
+
+@pytest.mark.parametrize(("text", "what"), [
+    ("atan2(exp(1), 1)", "function calls are"), ("atan(log(2))", "function calls are"),
+    ("atan2(L1, tan(1))", "function calls are"), ("atan2(L1.real, 1)", "attributes"),
+    ("atan2(theta9, 1)", "unknown name"),
+    ("atan2('1', 1)", "strings are"), ("atan2((1, 2), 1)", "tuples"), ("atan(sqrt(-1))", "square root of a negative"),
+    ("atan2(1, 1/0)", "division by zero"), ("math.atan2(1, 1)", "function calls are"),
+    ("atan2.__call__(1, 1)", "function calls are"),
+])
+def test_calls_nested_in_atan2_are_held_to_the_same_whitelist(text, what):
+    with pytest.raises(ExpressionError, match=re.escape(what)):
+        parse(text)
+
+
+def test_the_refusal_lists_the_callable_functions_with_their_arguments():
+    with pytest.raises(ExpressionError, match=re.escape("sin(x), cos(x), sqrt(x), atan(x), atan2(y, x)")):
+        parse("exp(1)")
+
+
+def test_nested_whitelisted_calls_are_fine():
+    assert float(parse("atan2(sin(1), cos(1))")) == pytest.approx(1.0)
+    assert parse("atan(atan2(1, 1))") == sp.atan(sp.pi / 4)
+
+
+@pytest.mark.parametrize("name", ["atan", "atan2"])
+def test_atan_names_are_function_names(name):
+    assert "function" in name_problem(name)
+
+
+def test_atan2_prints_readably():
+    from symjac.printing.latex import latex
+    from symjac.printing.pretty import pretty
+
+    assert latex(sp.atan2(h, w)) == r"\operatorname{atan2}\left(h, w\right)"
+    assert "atan" in latex(sp.atan(sp.Rational(16, 3))) and r"\frac{16}{3}" in latex(sp.atan(sp.Rational(16, 3)))
+    assert pretty(sp.atan2(h, w)) == "atan2(h, w)"
+
+
+# --------------------------------------------------------------------------------------------- a robot file
+
+def _arm(offset: str, parameters: str = "") -> str:
+    return (f'name = "offset2r"\nconvention = "standard"\n[parameters]\nL1 = 0.5\nL2 = 0.4\n{parameters}\n'
+            f'[[joints]]\ntype = "revolute"\nalpha = 0\na = "L1"\nd = 0\ntheta = {offset}\n'
+            '[[joints]]\ntype = "revolute"\nalpha = 0\na = "L2"\nd = 0\ntheta = 0\n')
+
+
+def test_a_dh_offset_written_as_atan2_round_trips_and_gives_the_decimal_arms_jacobian():
+    import numpy as np
+
+    from symjac.codegen import generate
+    from symjac.kinematics.chain import Chain, forward_kinematics
+    from symjac.kinematics.jacobian import jacobian
+    from symjac.kinematics.numeric import numeric_jacobian
+    from symjac.model.io import robot_from_toml, robot_to_toml
+
+    robot = robot_from_toml(_arm('"atan2(0.128, 0.024)"'))
+    assert robot.joints[0].theta == sp.atan(sp.Rational(16, 3))
+    written = robot_to_toml(robot)
+    assert 'theta = "atan(16/3)"' in written
+    assert robot_from_toml(written) == robot  # what the writer writes reads back to the same robot
+    decimal = robot_from_toml(_arm(repr(math.atan2(0.128, 0.024))))
+    assert not Chain(robot).nested  # a joint's own offset keeps the textbook route (no generic rotation)
+
+    J = jacobian(robot)
+    assert J.has(sp.atan) and not J.has(sp.Float)
+    for q in ([0.3, -0.7], [1.2, 0.4], [-2.0, 2.5]):
+        np.testing.assert_allclose(numeric_jacobian(robot, q), numeric_jacobian(decimal, q), atol=1e-12)
+        # against central differences of the tip's position
+        point = forward_kinematics(robot)[:2, 3]
+        values = {**dict(zip((robot.joints[0].variable, robot.joints[1].variable), q, strict=True)),
+                  **{p.symbol: p.default for p in robot.parameters}}
+        columns = []
+        for i, variable in enumerate((robot.joints[0].variable, robot.joints[1].variable)):
+            step = 1e-6
+            plus, minus = dict(values), dict(values)
+            plus[variable], minus[variable] = q[i] + step, q[i] - step
+            columns.append((np.array(point.evalf(subs=plus), float) - np.array(point.evalf(subs=minus), float))
+                           .ravel() / (2 * step))
+        np.testing.assert_allclose(numeric_jacobian(robot, q)[:2], np.array(columns).T, atol=1e-7)
+
+    namespace: dict = {}
+    source = generate(robot)
+    assert "atan" not in source and "1.3854483767992019" in source  # a float literal, computed once
+    exec(compile(source, "offset2r_generated", "exec"), namespace)
+    np.testing.assert_allclose(np.array(namespace["jacobian"]([0.3, -0.7])), numeric_jacobian(decimal, [0.3, -0.7]),
+                               atol=1e-12)
+    assert "sympy.atan(sympy.Rational(16, 3))" in generate(robot, "lambdify")
+
+
+def test_an_atan2_of_parameters_at_the_origin_is_refused_naming_the_field():
+    from symjac.errors import RobotFileError
+    from symjac.model.io import robot_from_toml
+
+    robot = robot_from_toml(_arm('"atan2(h, w)"', "h = 0.128\nw = 0.024"))
+    assert robot_from_toml(_arm('"atan2(h, w)"', "h = 0.128\nw = 0.024")) == robot
+    with pytest.raises(RobotFileError, match=r"joint 1.*theta.*not a finite number"):
+        robot_from_toml(_arm('"atan2(h, w)"', "h = 0\nw = 0"))
+    with pytest.raises(RobotFileError, match=r"joint 1.*theta.*atan2\(0, 0\) has no value"):
+        robot_from_toml(_arm('"atan2(0, 0)"'))

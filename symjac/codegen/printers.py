@@ -115,6 +115,8 @@ class SymbolPrinting:
 
     def _print_Function(self, expr: sp.Function) -> str:
         if not isinstance(expr, ALLOWED_FUNCTIONS):
+            if expr.is_number:  # a constant such as a robot file's offset atan(16/3): its value, computed once here
+                return self._number(expr)
             raise CodegenError(f"function {type(expr).__name__} is not supported in generated code")
         argument = self._print(expr.args[0])  # type: ignore[attr-defined]
         self.used.add(type(expr).__name__)
@@ -122,6 +124,8 @@ class SymbolPrinting:
 
     _print_sin = _print_Function
     _print_cos = _print_Function
+    _print_atan = _print_Function  # SymPy's code printers would write atan(...) without importing it
+    _print_atan2 = _print_Function
 
     def _print_Mul(self, expr: sp.Mul) -> str:
         """``-0.5*x*y/(z*z)``: float coefficient first, then factors, then one parenthesised denominator."""

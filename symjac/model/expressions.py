@@ -5,9 +5,11 @@ with :func:`ast.parse` and the tree is walked node by node; only these nodes are
 
 * numbers (``int`` or decimal ``float`` literals, turned into exact SymPy rationals: ``0.4318 -> 2159/5000``),
 * names: the constant ``pi`` and the parameter names the file declares,
-* binary ``+ - * /`` and ``**`` with a small integer exponent, unary ``+`` and ``-``, parentheses.
+* binary ``+ - * /`` and ``**`` with a small integer exponent, unary ``+`` and ``-``, parentheses,
+* calls of the functions in :data:`FUNCTIONS`: ``sin(x)``, ``cos(x)``, ``sqrt(x)``, ``atan(x)`` and ``atan2(y, x)``
+  (an offset such as ``atan2(0.128, 0.024)`` stays exact: SymPy writes it ``atan(16/3)``).
 
-Anything else (calls, attributes, subscripts, strings, lambdas, ...) is rejected *before* any of it could run:
+Anything else (other calls, attributes, subscripts, strings, lambdas, ...) is rejected *before* any of it could run:
 the SymPy expression is built here, never by ``eval``, ``sympify`` or ``parse_expr`` on file text.
 """
 
@@ -144,9 +146,12 @@ def _parse(text: str, names: Mapping[str, sp.Symbol]) -> sp.Expr:
     return _build(tree.body, names, text)
 
 
-FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "sqrt": sp.sqrt}
-"""The functions a field may call, each of one argument: exact unit axes (``sqrt(2)/2``), the axes a DH table with a
-generic twist gives (``cos(3/10)``)."""
+FUNCTIONS = {"sin": sp.sin, "cos": sp.cos, "sqrt": sp.sqrt, "atan": sp.atan, "atan2": sp.atan2}
+"""The functions a field may call: exact unit axes (``sqrt(2)/2``), the axes a DH table with a generic twist gives
+(``cos(3/10)``), angles given by two lengths (``atan2(y, x)``, the angle of the point (x, y), and ``atan(t)``)."""
+
+_ARGUMENTS = {"atan2": ("y", "x")}
+"""The argument names of the functions that take more than one (every other function takes one)."""
 
 _BINARY = {
     ast.Add: lambda a, b: a + b,
@@ -191,14 +196,37 @@ def _build(node: ast.AST, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
         if bits * abs(int(power)) > MAX_POWER_BITS:
             raise ExpressionError(f"number too large in {text!r}")
         return _small_powers(base**power, text)
-    if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in FUNCTIONS
-            and len(node.args) == 1 and not node.keywords):
-        argument = _build(node.args[0], names, text)
-        if node.func.id == "sqrt" and (argument.is_extended_negative or argument.has(sp.zoo, sp.nan, sp.oo)):
-            raise ExpressionError(f"square root of a negative number in {text!r}")
-        return FUNCTIONS[node.func.id](argument)
+    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in FUNCTIONS:
+        return _call(node, node.func.id, names, text)
     raise ExpressionError(f"{_what(node)} not allowed in {text!r}: use numbers, names, + - * / **, pi and "
-                          f"{', '.join(FUNCTIONS)} of one argument")
+                          f"{_signatures()}")
+
+
+def _signatures() -> str:
+    """The callable functions as they are written: ``sin(x), cos(x), sqrt(x), atan(x), atan2(y, x)``."""
+    return ", ".join(f"{name}({', '.join(_ARGUMENTS.get(name, ('x',)))})" for name in FUNCTIONS)
+
+
+def _call(node: ast.Call, name: str, names: Mapping[str, sp.Symbol], text: str) -> sp.Expr:
+    r"""One call of a whitelisted function, with the number of arguments it takes and their domain checked.
+
+    :math:`\sqrt{x}` needs :math:`x \ge 0`; :math:`\operatorname{atan2}(y, x)`, the angle of the point
+    :math:`(x, y)`, needs :math:`(x, y) \ne (0, 0)`.
+    """
+    expected = _ARGUMENTS.get(name, ("x",))
+    if node.keywords or len(node.args) != len(expected) or any(isinstance(a, ast.Starred) for a in node.args):
+        given, count = len(node.args) + len(node.keywords), f"{len(expected)} argument{'s' * (len(expected) > 1)}"
+        raise ExpressionError(f"function calls are not allowed in {text!r} with {given} argument{'s' * (given != 1)}: "
+                              f"write {name}({', '.join(expected)}) ({name} takes {count}, by position)")
+    arguments = [_build(argument, names, text) for argument in node.args]
+    if name == "sqrt" and (arguments[0].is_extended_negative or arguments[0].has(sp.zoo, sp.nan, sp.oo)):
+        raise ExpressionError(f"square root of a negative number in {text!r}")
+    if name == "atan2" and all(argument.is_zero for argument in arguments):
+        raise ExpressionError(f"atan2(0, 0) has no value in {text!r}: the point (x, y) must not be the origin")
+    result = FUNCTIONS[name](*arguments)
+    if result.has(sp.nan, sp.zoo):
+        raise ExpressionError(f"{name} has no value in {text!r}")
+    return result
 
 
 _OPERATORS = {
@@ -280,8 +308,8 @@ def _tree_text(expr: sp.Expr) -> str:
         return root if expr.exp > 0 else f"(1/{root})"
     if expr.is_Pow:
         return f"{_tree_text(expr.base)}**({expr.exp})"
-    if isinstance(expr, sp.sin | sp.cos):
-        return f"{type(expr).__name__}({_tree_text(expr.args[0])})"
+    if isinstance(expr, sp.sin | sp.cos | sp.atan | sp.atan2):
+        return f"{type(expr).__name__}({', '.join(_tree_text(argument) for argument in expr.args)})"
     return sp.sstr(expr)  # pi and parameter symbols
 
 

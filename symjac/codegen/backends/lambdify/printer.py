@@ -47,12 +47,15 @@ class SymPyPrinter(StrPrinter):
         raise CodegenError(f"constant {expr} is not supported in generated code")
 
     def _print_Function(self, expr: sp.Function) -> str:
-        if not isinstance(expr, ALLOWED_FUNCTIONS):
+        constant = isinstance(expr, sp.atan | sp.atan2) and expr.is_number  # a robot file's offset: atan(16/3)
+        if not (isinstance(expr, ALLOWED_FUNCTIONS) or constant):
             raise CodegenError(f"function {type(expr).__name__} is not supported in generated code")
-        return f"sympy.{type(expr).__name__}({self._print(expr.args[0])})"
+        return f"sympy.{type(expr).__name__}({', '.join(self._print(argument) for argument in expr.args)})"
 
     _print_sin = _print_Function
     _print_cos = _print_Function
+    _print_atan = _print_Function
+    _print_atan2 = _print_Function
 
     def _print_Mul(self, expr: sp.Mul) -> str:
         coefficient, rest = expr.as_coeff_Mul()

@@ -99,3 +99,16 @@ def test_singular_configurations_are_solved_for_the_joint_variable_not_the_dh_an
     for solution in factor.solutions:  # and they are singular: the 2 x 2 position Jacobian loses rank
         J = jacobian(robot)[:2, :].xreplace({**robot.defaults, robot.q[0]: 0.3, theta2: solution.rhs})
         assert abs(float(J.det())) < 1e-12
+
+
+def test_explanations_state_the_configuration_their_numbers_were_read_at(capsys):
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "offset2r.toml"
+        path.write_text(OFFSET_2R, encoding="utf-8")
+        assert main(["singularities", str(path), "--format", "pretty"]) == 0
+    text = capsys.readouterr().out
+    where = re.search(r"There \(at θ₁ = (-?[\d.]+), θ₂ = (-?π/2)\) it cannot", text)
+    assert where is not None, text

@@ -100,6 +100,9 @@ class _OneLinePrinter(StrPrinter):
     def _print_Float(self, expr: sp.Float) -> str:
         return str(super()._print_Float(readable_float(expr)))
 
+    def _print_Pi(self, expr: sp.Expr) -> str:
+        return "π"
+
     def _print_sin(self, expr: sp.Function) -> str:
         return pretty(expr) if shorthand_indices(expr.args[0]) is not None else str(self._print_Function(expr))
 
@@ -114,8 +117,8 @@ def one_line(expr: Any) -> str:
     >>> a1, a2, a3, d4 = sp.symbols("a1 a2 a3 d4", positive=True)
     >>> one_line(sp.Ge(a2 + sp.sqrt(a3**2 + d4**2), a1, evaluate=False))
     'a₂ + √(a₃² + d₄²) ≥ a₁'
-    >>> one_line(-sp.sqrt(2) / 2)
-    '-√2/2'
+    >>> one_line(-sp.sqrt(2) / 2), one_line(-sp.pi / 2)
+    ('-√2/2', '-π/2')
     """
     return str(_OneLinePrinter().doprint(sp.sympify(expr)))
 

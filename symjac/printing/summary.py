@@ -32,7 +32,9 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
             if existence:
                 head += [" ", *existence]
             if factor.lost_direction is not None:
-                head += [f" There it {prose.lost_words(factor)}; ", *prose.self_motion_parts(factor), "."]
+                where = prose.sample_parts(factor.sample, report.variables)
+                head += [" There (", *where, ")" if where else "", f" it {prose.lost_words(factor)}; ",
+                         *prose.self_motion_parts(factor), "."]
             head.extend(prose.limit_parts(factor))
         blocks.append(Block(tuple(head), tuple(Equation("", "", s.equation) for s in factor.solutions)))
     return blocks

@@ -102,6 +102,7 @@ class SingularityReport:
     zero_minors: tuple[ZeroMinor, ...] = ()
     unsolved: tuple[sp.Expr, ...] = ()  # minor factors the set search could not use: the sets may be incomplete
     coordinates: tuple[str, ...] = ()  # a redundant arm's columns: "joint 3", or a coupled robot's "theta5"
+    variables: tuple[sp.Symbol, ...] = ()  # the coordinates' symbols, in the order of every sample configuration
 
     @property
     def frame(self) -> Frame:
@@ -159,13 +160,14 @@ def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tup
         sets = explain_sets(chain, minors, seed)
         unsolved = unsolved_factors(chain, [minor for minor in minors if minor.coefficient != 0])
         return SingularityReport(model.name, minors[0], (), redundant=True, minors=minors, sets=sets,
-                                 zero_minors=zeros, unsolved=unsolved, coordinates=_column_names(model))
+                                 zero_minors=zeros, unsolved=unsolved, coordinates=_column_names(model),
+                                 variables=tuple(model.q))
     det = determinant(chain, rows, frame, point, numeric=numeric)
     generator = random.Random(seed)
     generic = findings(chain, geometry_at(chain, [generator.uniform(-2.5, 2.5) for _ in model.q], point))
     known = {finding.key for finding in generic}
     explained = [_explain(chain, det, factor, multiplicity, known, generator) for factor, multiplicity in det.factors]
-    return SingularityReport(model.name, det, tuple(explained))
+    return SingularityReport(model.name, det, tuple(explained), variables=tuple(model.q))
 
 
 def _column_names(model: Robot) -> tuple[str, ...]:

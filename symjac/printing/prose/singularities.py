@@ -8,6 +8,8 @@ types only for checkers and compares their string enums by value, so printing a 
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import sympy as sp
@@ -48,6 +50,7 @@ __all__ = [
     "representation_words",
     "rows_caption",
     "rows_parts",
+    "sample_parts",
     "self_motion_parts",
     "self_motion_words",
     "table_caption",
@@ -211,6 +214,28 @@ def self_motion_parts(factor: SingularFactor | SingularSet) -> tuple[str | sp.Ba
     for number, (rate, joint) in enumerate(shown):
         parts += [", "] * bool(number) + [readable_value(rate), f" on {joint}"]
     return (*parts, " move nothing")
+
+
+def sample_parts(sample: Sequence[float] | None, variables: Sequence[sp.Symbol]) -> tuple[str | sp.Basic, ...]:
+    """Where the numbers of an explanation were read, as caption parts: ``at θ₁ = 0.3, θ₂ = π/2`` (``()`` if unknown).
+
+    The lost direction and the joint rates that move nothing are computed at this configuration of the singular
+    set (parameters at their defaults), so a reader can check them.
+    """
+    if sample is None or len(sample) != len(variables):
+        return ()
+    parts: list[str | sp.Basic] = ["at "]
+    for number, (variable, value) in enumerate(zip(variables, sample, strict=True)):
+        shown = _readable_angle(float(value)) if str(variable).startswith("theta") else None
+        shown = readable_value(float(value)) if shown is None else shown
+        parts += [", "] * bool(number) + [sp.Eq(variable, shown, evaluate=False)]
+    return tuple(parts)
+
+
+def _readable_angle(value: float) -> sp.Expr | None:
+    """A joint angle that is a simple multiple of pi (``-pi/2``, ``2*pi/3``), else ``None``."""
+    turns = sp.nsimplify(value / math.pi, tolerance=1e-9, rational=True)
+    return turns * sp.pi if turns.q <= 12 and abs(turns.p) <= 24 else None
 
 
 def existence_words(factor: SingularFactor) -> str:

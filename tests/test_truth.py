@@ -112,3 +112,17 @@ def test_explanations_state_the_configuration_their_numbers_were_read_at(capsys)
     text = capsys.readouterr().out
     where = re.search(r"There \(at θ₁ = (-?[\d.]+), θ₂ = (-?π/2)\) it cannot", text)
     assert where is not None, text
+
+
+def test_one_sentence_names_its_vectors_in_one_frame():
+    from symjac.analysis.singularity.directions import DirectionPart, LostDirection
+    from symjac.analysis.singularity.geometry import FrameAxis
+    from symjac.printing.prose.singularities import lost_words
+
+    class Set:  # what lost_words reads of a singular factor
+        lost_direction = LostDirection((1.0, 0, 0, 0, 0.6, 0.8), (0, 1, 2, 3, 4, 5), 3,
+                                       DirectionPart((1.0, 0.0, 0.0), FrameAxis(2, 0)),
+                                       DirectionPart((0.0, 0.6, 0.8), None))
+
+    words = lost_words(Set())  # x of frame {2} happens to be (1, 0, 0) in frame {3}; the angular half is only there
+    assert "frame {2}" not in words and "(1, 0, 0) in frame {3}" in words and "(0, 3/5, 4/5) in frame {3}" in words

@@ -151,19 +151,26 @@ def readable_value(value: float) -> sp.Expr:
     return sp.Float(text, len(text.lstrip("-").replace(".", "").lstrip("0")))  # as many digits as shown
 
 
-def _part_name(part: DirectionPart, frame: object) -> str:
-    """A named axis, or the unit vector's components (exact when simple, else rounded) in ``frame``."""
+def _part_name(part: DirectionPart, frame: object, named: bool = True) -> str:
+    """A named axis (if ``named``), or the unit vector's components (exact when simple, else rounded) in ``frame``."""
     import numpy as np
 
-    if part.axis is not None:
+    if part.axis is not None and named:
         return axis_name(part.axis)
     return f"({', '.join(readable_number(float(c)) for c in np.asarray(part.unit))}) in frame {{{frame}}}"
 
 
 def _direction(lost: LostDirection, words: tuple[str, str, str, str]) -> str:
-    """``words`` = (linear alone, angular alone, angular after a linear part, joiner)."""
-    linear = None if lost.linear is None else _part_name(lost.linear, lost.frame)
-    angular = None if lost.angular is None else _part_name(lost.angular, lost.frame)
+    """``words`` = (linear alone, angular alone, angular after a linear part, joiner).
+
+    Both halves are named in one frame: when a named axis belongs to another frame than the other half's vector (or
+    than the other named axis), both are written as vectors in the lost direction's frame.
+    """
+    parts = [part for part in (lost.linear, lost.angular) if part is not None]
+    frames = {part.axis.frame if part.axis is not None else lost.frame for part in parts}
+    named = len(frames) <= 1
+    linear = None if lost.linear is None else _part_name(lost.linear, lost.frame, named)
+    angular = None if lost.angular is None else _part_name(lost.angular, lost.frame, named)
     if linear and angular:
         return f"{words[0]} along {linear} {words[3]} {words[2]} about {angular}"
     if linear:

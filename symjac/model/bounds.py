@@ -33,7 +33,7 @@ True
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 __all__ = ["MAX_ANGLE", "MAX_LENGTH", "MAX_TURN", "MAX_URDF_LIMIT", "file_limits", "size_problem", "turn_problem",
@@ -83,9 +83,10 @@ def urdf_turn_problem(value: float, *, limit: bool = False) -> str | None:
     return None
 
 
-def file_limits(raw: Any, value: Callable[[Any], Any], defaults: Mapping[Any, Any], fail: Callable[[str], Exception],
-                *, turn: bool = False) -> tuple[Any, Any]:
+def file_limits(raw: Any, value: Any, defaults: Mapping[Any, Any], fail: Any, *, turn: bool = False) -> tuple[Any, Any]:
     """A robot file's ``limits = [lower, upper]``: parsed by ``value``, finite with the defaults, ``lower < upper``.
+
+    ``value(raw)`` parses one entry and ``fail(message)`` is the error to raise (naming the file, joint and field).
 
     With ``turn`` (a revolute joint in a file in radians) a limit beyond :data:`MAX_TURN` is refused as degrees.
     """

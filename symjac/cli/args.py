@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import re
+import sys
 from typing import TYPE_CHECKING
 
 from symjac.errors import ArgumentError, ExpressionError, FrameError, RobotFileError
@@ -25,6 +26,7 @@ __all__ = [
     "ROBOT_HELP",
     "LazyChoices",
     "add_robot_arguments",
+    "configuration_values",
     "load",
     "parse_configuration",
     "parse_frame",
@@ -146,7 +148,17 @@ def parse_values(text: str, length: int, option: str, robot: Robot, *, parameter
 
 
 def parse_configuration(text: str, robot: Robot, option: str = "--q") -> list[float]:
-    """A configuration ``q1,...,qn``: numbers or expressions with ``pi``; an angle may end in ``deg`` (``30deg``)."""
+    """A configuration ``q1,...,qn`` as floats in radians and metres (:func:`configuration_values`)."""
+    return [float(value) for value in configuration_values(text, robot, option)]
+
+
+def configuration_values(text: str, robot: Robot, option: str = "--q") -> list[sp.Expr]:
+    r"""A configuration ``q1,...,qn`` in radians and metres, exact; every command's ``--q`` reads it this way.
+
+    Each angle is ``30deg`` (degrees), ``0.5rad`` or an expression with ``pi`` (radians), or a plain number, read
+    in the robot file's ``angle_unit``: in a file with ``angle_unit = "deg"``, ``--q 0,30,45`` is degrees,
+    :math:`q = 30\,\pi/180`, and a one-line note on stderr says so. A prismatic coordinate is in metres.
+    """
     import sympy as sp
 
     from symjac.model.robot import JointType
@@ -155,18 +167,24 @@ def parse_configuration(text: str, robot: Robot, option: str = "--q") -> list[fl
     if len(parts) != robot.n_coordinates:
         raise ArgumentError(f"{option} needs {robot.n_coordinates} comma-separated values for {robot.name}, got "
                             f"{len(parts)} in {text!r}")
-    values = []
+    values, in_file_unit = [], []
     for index, (part, kind) in enumerate(zip(parts, robot.coordinate_types, strict=True)):
         number = part.strip()
-        degrees = number.endswith("deg")
-        if degrees and kind is not JointType.REVOLUTE:
+        unit = number[-3:] if number.endswith(("deg", "rad")) else None
+        if unit is not None and kind is not JointType.REVOLUTE:
             raise ArgumentError(f"{option}: {robot.q[index]} is a length (a prismatic joint), so {number!r} cannot "
-                                "be in degrees")
-        [value] = parse_values(number[:-3] if degrees else number, 1, option, robot, parameters=False)
-        value = value * sp.pi / 180 if degrees else value
+                                f"be in {'degrees' if unit == 'deg' else 'radians'}")
+        [value] = parse_values(number if unit is None else number[:-3], 1, option, robot, parameters=False)
+        if unit is None and kind is JointType.REVOLUTE and robot.angle_unit == "deg" and "pi" not in number:
+            unit = "deg"  # a plain number in a file that speaks degrees (0 is 0 in any unit: not noted)
+            in_file_unit += [number] if value != 0 else []
+        value = value * sp.pi / 180 if unit == "deg" else value
         if not value.is_number or not math.isfinite(float(value)):
             raise ArgumentError(f"{option}: {number!r} is not a finite number")
-        values.append(float(value))
+        values.append(value)
+    if in_file_unit:  # never silent: the same text means radians for a robot in radians
+        sys.stderr.write(f"symjac: note: {option} {', '.join(in_file_unit)} read in degrees, as {robot.name}'s file "
+                         "says angle_unit = \"deg\" (write 0.5rad or pi/6 for radians)\n")
     return values
 
 

@@ -72,7 +72,8 @@ def draw_options(sub: argparse.ArgumentParser, name: str) -> None:
     """``symjac draw``: configurations, view, ellipsoids, limits, frames, and a path to animate."""
     add_robot_arguments(sub)
     sub.add_argument("--q", action="append", metavar="Q",
-                     help="a configuration q1,...,qn in radians and metres, or degrees as 30deg (default: zero, or "
+                     help="a configuration q1,...,qn: 30deg, 0.5rad, expressions with pi, numbers in the robot file's "
+                          "angle unit (radians unless it says angle_unit = \"deg\"), metres (default: zero, or "
                           "mid-range where a joint's limits exclude zero); repeat it to draw configurations side by "
                           "side, or to give the waypoints of --path; write --q=-1,0 when it starts with a minus")
     sub.add_argument("--view", default=None, metavar="AZIMUTH,ELEVATION",

@@ -12,7 +12,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeVar
 
-from symjac.cli.args import load, parse_frame, parse_point, parse_values
+from symjac.cli.args import configuration_values, load, parse_frame, parse_point, parse_values
 from symjac.cli.options import result_options
 from symjac.cli.output import note_if_large, progress
 from symjac.quantities import QUANTITIES, Quantity
@@ -63,6 +63,10 @@ class CommandRequest:
     def values(self, text: str, length: int, option: str, *, parameters: bool = True) -> list[sp.Expr]:
         """``length`` comma-separated values of ``option``."""
         return parse_values(text, length, option, self.robot, parameters=parameters)
+
+    def configuration(self, text: str, option: str = "--q") -> list[sp.Expr]:
+        """A configuration, as every command's ``--q`` reads it (``30deg``, ``pi/4``, numbers in the file's unit)."""
+        return configuration_values(text, self.robot, option)
 
     def progress(self, what: str, compute: Callable[[], T]) -> T:
         """``compute()``, its progress shown on a terminal."""

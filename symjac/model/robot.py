@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
-from typing import ClassVar
+from typing import ClassVar, Literal
 
 import sympy as sp
 
@@ -228,6 +228,10 @@ class Robot:
     URDF files keep a tensor no rigid body can have with an :class:`~symjac.errors.InertialWarning`. Note the
     numbering: ``inertials[k - 1]`` belongs to the body that ``link=k`` of a Jacobian or
     :func:`~symjac.kinematics.points.point_position` names (``link=0`` is the base, which has no entry).
+
+    ``angle_unit`` is the unit the robot file wrote its angles in (``"deg"`` or ``"rad"``, the default): the model
+    itself is always in radians; the command line reads a plain ``--q`` number in this unit. Like ``source`` it is
+    where the robot came from, not what it is, so it takes no part in equality.
     """
 
     name: str
@@ -240,6 +244,7 @@ class Robot:
     source: str = field(default="<mapping>", compare=False)
     coupling: Coupling | None = None
     inertials: tuple[Inertial | None, ...] = ()
+    angle_unit: Literal["rad", "deg"] = field(default="rad", compare=False)
 
     def __post_init__(self) -> None:
         """Refuse bad parameter names, couplings and inertial data.

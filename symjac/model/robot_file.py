@@ -21,7 +21,7 @@ from typing import Any
 import sympy as sp
 
 from symjac.errors import ExpressionError, InertialWarning, RobotFileError, warn
-from symjac.model.bounds import size_problem
+from symjac.model.bounds import file_limits, size_problem
 from symjac.model.conventions import PLUGINS, convention_named, file_inertials, plugin, with_file_inertials
 from symjac.model.conventions.base import transform_fields
 from symjac.model.coordinates import Coupling
@@ -147,8 +147,9 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         limits = None
         if "limits" in joint_data:
             scale = angle_scale if kind is JointType.REVOLUTE else sp.S.One
-            limits = _limits(joint_data["limits"], lambda raw, s=scale, j=number: value(raw, "limits", j, s),
-                             defaults, lambda message, j=number: fail(message, joint=j, field="limits"))
+            limits = file_limits(joint_data["limits"], lambda raw, s=scale, j=number: value(raw, "limits", j, s),
+                                 defaults, lambda message, j=number: fail(message, joint=j, field="limits"),
+                                 turn=kind is JointType.REVOLUTE and unit == "rad")
         joints.append(Joint(index=number, type=kind, placement=placement, d=d, theta=theta, limits=limits,
                             name=joint_name))
         inertials.append(_inertial(joint_data, number, value, defaults, fail))
@@ -171,6 +172,7 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         tool=transforms.get("tool"),
         source=source,
         coupling=coupling,
+        angle_unit=unit,
     )
     return robot if all(i is None for i in inertials) else with_file_inertials(robot, inertials)
 
@@ -263,7 +265,8 @@ class _JointReader:
     def number(self, key: str, *, angle: bool = False) -> sp.Expr:
         """The value under ``key`` (0 if absent), checked finite."""
         expr = self.value(self.table.get(key, 0), key, angle=angle)
-        _require_finite(expr, self.defaults, lambda message: self.fail(message, key), angle)
+        _require_finite(expr, self.defaults, lambda message: self.fail(message, key), angle,
+                        turn=angle and self._angle_scale == 1)  # a file in radians: one turn at most
         return expr
 
     def transform(self, keys: Sequence[str], field: str) -> FixedTransform:
@@ -305,12 +308,15 @@ def _parameters(raw: Any, reserved: Mapping[str, str], fail: Any) -> tuple[Param
 
 
 def _require_finite(expr: sp.Expr, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any,
-                    angle: bool | None = None) -> None:
-    """Refuse ``expr`` unless finite with the defaults, and (an angle or a length) no larger than any robot's."""
+                    angle: bool | None = None, *, turn: bool = False) -> None:
+    """Refuse ``expr`` unless finite with the defaults, and (an angle or a length) no larger than any robot's.
+
+    With ``turn`` (an angle a file gives in radians) more than a turn is refused too: it is surely in degrees.
+    """
     number = expr.subs(defaults)
     if not number.is_number or not _is_finite(number):
         raise fail(f"value {expr} is not a finite number once parameters take their defaults")
-    problem = None if angle is None else size_problem(float(number), angle=angle)
+    problem = None if angle is None else size_problem(float(number), angle=angle, turn=turn)
     if problem is not None:
         raise fail(f"{expression_text(expr)} = {problem}" if expr.free_symbols else problem)
 
@@ -320,19 +326,6 @@ def _is_finite(number: sp.Expr) -> bool:
         return math.isfinite(float(number))
     except TypeError:  # complex infinity (1/L1 with L1 = 0) has no float
         return False
-
-
-def _limits(raw: Any, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any) -> tuple[sp.Expr, sp.Expr]:
-    if not isinstance(raw, Sequence) or isinstance(raw, str) or len(raw) != 2:
-        raise fail("'limits' must be a list [lower, upper]")
-    lower, upper = value(raw[0]), value(raw[1])
-    low_expr, high_expr = lower.subs(defaults), upper.subs(defaults)
-    if not (_is_finite(low_expr) and _is_finite(high_expr)):
-        raise fail(f"'limits' must be finite with lower < upper, got [{low_expr}, {high_expr}]")
-    low, high = float(low_expr), float(high_expr)
-    if low >= high:
-        raise fail(f"'limits' must be finite with lower < upper, got [{low}, {high}]")
-    return lower, upper
 
 
 def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any,
@@ -368,7 +361,8 @@ def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol
             raise fail(f"'{name}' must be a list of 3 numbers or expressions", field=f"{key}.{name}")
         x, y, z = (value(entry, f"{key}.{name}", None, scale) for entry in entries)
         for entry in (x, y, z):
-            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"), name == "rpy")
+            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"), name == "rpy",
+                            turn=name == "rpy" and angle_scale == 1)
         return x, y, z
 
     return FixedTransform(xyz=vector("xyz", sp.S.One), rpy=vector("rpy", angle_scale))

@@ -18,7 +18,8 @@ def options(sub: argparse.ArgumentParser) -> None:
     """``--frame``, ``--point``, the wrench and a configuration to evaluate at."""
     frame_and_point_options(sub)
     sub.add_argument("--wrench", help="fx,fy,fz,nx,ny,nz applied at the point, in the frame (default symbolic)")
-    sub.add_argument("--q", help="a configuration q1,...,qn (numbers or expressions with pi)")
+    sub.add_argument("--q", help="a configuration q1,...,qn: 30deg, 0.5rad, expressions with pi, or numbers in the "
+                                 "robot file's angle unit (radians unless it says angle_unit = \"deg\")")
 
 
 def command(request: Request) -> Document:
@@ -31,7 +32,7 @@ def command(request: Request) -> Document:
     args, robot = request.args, request.robot
     frame, point, link = request.frame(), request.point(), request.link()
     wrench = None if args.wrench is None else request.values(args.wrench, 6, "--wrench")
-    q = None if args.q is None else request.values(args.q, robot.n_coordinates, "--q", parameters=False)
+    q = None if args.q is None else request.configuration(args.q)
     tau = request.progress(f"joint torques of {robot.name}",
                            lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q, link=link))
     evaluated = None if q is None else args.digits or DIGITS  # at a configuration: numbers, shown as decimals

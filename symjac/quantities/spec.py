@@ -160,6 +160,10 @@ class Request(Protocol):
         """``length`` comma-separated values of ``option`` (numbers, ``pi``, with ``parameters`` their names)."""
         ...
 
+    def configuration(self, text: str, option: str = "--q") -> list[sp.Expr]:
+        """A configuration in radians and metres: ``30deg``, ``pi/4``, or numbers in the robot file's angle unit."""
+        ...
+
     def progress(self, what: str, compute: Callable[[], T]) -> T:
         """``compute()``, reported as ``deriving {what}`` on a terminal."""
         ...

@@ -5,8 +5,10 @@ What is read
     ``<inertia ixx ixy ixz iyy iyz izz>``); and every ``<joint name type>`` with its ``<parent link>``,
     ``<child link>``, ``<origin xyz rpy>``, ``<axis xyz>``, ``<limit lower upper velocity effort>`` and ``<mimic>``.
     Visual, collision, transmission and gazebo elements are ignored. Position limits with ``lower = upper = 0``
-    (URDF's default) mean "no limits"; any other pair must have ``lower < upper``. The chain between two links, fixed
-    joints, mimic joints and frames are the tree's (:mod:`symjac.model.readers.tree`).
+    (URDF's default) mean "no limits"; any other pair must have ``lower < upper``. URDF angles are radians: an
+    ``rpy`` entry of more than a turn, or a revolute limit of more than two turns, is refused as degrees
+    (:func:`symjac.model.bounds.urdf_turn_problem`). The chain between two links, fixed joints, mimic joints and
+    frames are the tree's (:mod:`symjac.model.readers.tree`).
 
 Mimic joints
     ``<mimic joint="J" multiplier="m" offset="o"/>`` on a moving joint (defaults 1 and 0): its position is
@@ -37,7 +39,7 @@ from pathlib import Path
 import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
-from symjac.model.bounds import size_problem
+from symjac.model.bounds import size_problem, urdf_turn_problem
 from symjac.model.expressions import exact_number, snap_angle
 from symjac.model.readers.tree import (
     JointLimits,
@@ -200,7 +202,9 @@ def _origin(element: ET.Element | None, source: str, where: str) -> FixedTransfo
     xyz = _vector(element.get("xyz") if element is not None else None, source, where)
     rpy = [snap_angle(v) for v in _vector(element.get("rpy") if element is not None else None, source, where)]
     for values, angle, name in ((xyz, False, "xyz"), (rpy, True, "rpy")):  # and sin(1e308) would not reduce
-        problem = next((p for p in (size_problem(float(v), angle=angle) for v in values) if p is not None), None)
+        problems = (size_problem(float(v), angle=angle) or (urdf_turn_problem(float(v)) if angle else None)
+                    for v in values)  # an angle of more than a turn is degrees written in a radian format
+        problem = next((p for p in problems if p is not None), None)
         if problem is not None:
             raise _fail(source, f"{name}: {problem}", where)
     return FixedTransform(xyz=tuple(xyz), rpy=tuple(rpy))  # type: ignore[arg-type]
@@ -238,6 +242,9 @@ def _limits(element: ET.Element | None, kind: TreeJointType, source: str, where:
         bounds = [_number(element.get(key, "0"), source, where) for key in ("lower", "upper")]
         if kind is TreeJointType.REVOLUTE:
             bounds = [snap_angle(b) for b in bounds]
+            problem = next((p for p in (urdf_turn_problem(float(b), limit=True) for b in bounds) if p), None)
+            if problem is not None:  # multi-turn wrists pass (bounds.MAX_URDF_LIMIT), limits in degrees do not
+                raise _fail(source, problem, where)
         if bounds[0] != 0 or bounds[1] != 0:  # lower = upper = 0 is the common "no limits given"
             lower, upper = bounds
     rates = [_number(element.get(key), source, where) if element.get(key) is not None else None  # type: ignore

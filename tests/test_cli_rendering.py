@@ -225,7 +225,7 @@ def test_a_matrix_too_long_for_the_terminal_stops_printing_early(monkeypatch):
 def test_a_pretty_caption_writes_an_equation_as_one_line_not_as_sympy_source(cli):
     text = cli.ok("jacobian", "planar3r", "--representation", "rpy", "--format", "pretty")
     caption = next(line for line in text.splitlines() if line.startswith("Representation singularity"))
-    assert "Eq(" not in caption and "θ = -pi/2 or θ = pi/2" in caption
+    assert "Eq(" not in caption and "θ = -π/2 or θ = π/2" in caption
 
 
 def test_a_function_of_a_long_fraction_breaks_across_lines():

@@ -39,11 +39,13 @@ def test_a_real_pitch_is_refused_with_a_short_decimal():
 
 
 @pytest.mark.parametrize(("convention", "joint", "field"), [
-    ("standard", {"a": 1e6}, "a"), ("modified", {"d": -2e3}, "d"), ("standard", {"alpha": 5000}, "alpha"),
-    ("general", {"xyz": [0, 1e6, 0]}, "origin.xyz"), ("general", {"rpy": [0, 0, 1e4]}, "origin.rpy")])
+    ("standard", {"a": 1e6}, "a"), ("modified", {"d": -2e3}, "d"), ("standard", {"alpha": 9e4}, "alpha"),
+    ("general", {"xyz": [0, 1e6, 0]}, "origin.xyz"), ("general", {"rpy": [0, 0, 1e6]}, "origin.rpy")])
 def test_sizes_no_robot_has_are_refused(convention, joint, field):
+    degrees = {"angle_unit": "deg"} if field in ("alpha", "origin.rpy") else {}  # else the one-turn rule speaks first
     with pytest.raises(RobotFileError, match=rf"joint 1, field '{field}': .*larger than 1000 (m|rad) in size"):
-        robot_from_mapping({"name": "r", "convention": convention, "joints": [{"type": "revolute", **joint}]})
+        robot_from_mapping({"name": "r", "convention": convention, **degrees,
+                            "joints": [{"type": "revolute", **joint}]})
 
 
 def test_a_screw_point_far_away_is_refused():

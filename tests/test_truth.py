@@ -46,12 +46,12 @@ def test_a_constant_of_the_determinant_is_part_of_its_coefficient_not_a_paramete
 
 
 def test_an_existence_condition_is_simplified_and_printed_as_mathematics():
-    from symjac.analysis.singularity.solve import _nonnegative
+    from symjac.analysis.singularity.solve import nonnegative_condition
     from symjac.printing.pretty import one_line
 
     a1, a2, a3, d4 = sp.symbols("a1 a2 a3 d4")
     slack = sp.expand((a2 + sp.sqrt(a3**2 + d4**2)) ** 2) - a1**2  # the IRB 2400's shoulder set
-    condition = _nonnegative(slack)
+    condition = nonnegative_condition(slack)
     assert condition == sp.Ge(a2 + sp.sqrt(a3**2 + d4**2), a1, evaluate=False)
     assert one_line(condition) == "a₂ + √(a₃² + d₄²) ≥ a₁"
     assert one_line(-sp.sqrt(2) / 2 * sp.Symbol("x")) == "-√2⋅x/2"

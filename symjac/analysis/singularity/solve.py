@@ -24,7 +24,7 @@ from symjac.model.robot import JointType, Robot
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, reduce_image
 
-__all__ = ["Solution", "branch_solutions", "solution_sample", "solve_factor"]
+__all__ = ["Solution", "branch_solutions", "nonnegative_condition", "solution_sample", "solve_factor"]
 
 
 @dataclass(frozen=True)
@@ -139,12 +139,12 @@ def _existence(form: _Linear, variables: frozenset[sp.Symbol]) -> sp.Expr | None
     if form.C == 0:
         return sp.true
     if not slack.free_symbols & variables:
-        return _nonnegative(slack)
+        return nonnegative_condition(slack)
     for linear in _linear_forms(slack, [form.image.basis]):
         if linear.A.free_symbols & variables or linear.B.free_symbols & variables or \
                 linear.C.free_symbols & variables:
             continue
-        return _nonnegative(linear.C + sp.sqrt(linear.A**2 + linear.B**2))
+        return nonnegative_condition(linear.C + sp.sqrt(linear.A**2 + linear.B**2))
     return None
 
 
@@ -171,7 +171,7 @@ def _square_roots(plus: sp.Expr, minus: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
     return plus, minus
 
 
-def _nonnegative(expr: sp.Expr) -> sp.Expr:
+def nonnegative_condition(expr: sp.Expr) -> sp.Expr:
     """``expr >= 0`` in its simplest form, assuming positive parameters (lengths); positive factors dropped."""
     positive = {s: sp.Symbol(s.name, positive=True) for s in expr.free_symbols}
     back = {v: k for k, v in positive.items()}

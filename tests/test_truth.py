@@ -7,6 +7,7 @@ import re
 import numpy as np
 import pytest
 import sympy as sp
+from robot_mappings import PLANAR
 
 from symjac import determinant, jacobian, robot_from_toml
 from symjac.cli.main import main
@@ -71,20 +72,7 @@ def test_every_long_condition_of_a_redundant_arm_has_a_name_of_its_own(capsys):
     assert len(names) >= 3 and len(names) == len(set(names))  # F₂ named three expressions before
 
 
-OFFSET_2R = """
-name = "offset2r"
-convention = "standard"
-[parameters]
-L1 = 0.5
-L2 = 0.4
-[[joints]]
-type = "revolute"
-a = "L1"
-[[joints]]
-type = "revolute"
-a = "L2"
-theta = "pi/2"
-"""
+OFFSET_2R = PLANAR.replace("limits = [-3, 3]", 'theta = "pi/2"')
 """A planar 2R whose second joint has a DH offset of pi/2: stretched out at theta2 = -pi/2 and pi/2."""
 
 

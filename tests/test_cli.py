@@ -472,8 +472,8 @@ def test_jacobian_with_a_representation_prints_e_and_its_own_singularities(capsy
 
 META = {"symjac", "robot", "convention", "joint_variables", "parameters"}
 JSON_KEYS = {
-    ("singularities", "articulated3r"): META | {"rows", "frame", "point", "redundant", "determinant", "minors",
-                                                "zero_minors", "sets", "factors"},
+    ("singularities", "articulated3r"): META | {"rows", "frame", "point", "redundant", "row_minors", "row_choice",
+                                                "determinant", "minors", "zero_minors", "sets", "factors"},
     ("jacobian", "planar2r"): META | {"frame", "point", "method", "shape", "rows", "columns", "entries", "latex"},
     ("show", "stanford"): META | {"parameter_table", "dh_table", "transforms"},
 }

@@ -18,7 +18,7 @@ from symjac.analysis.singularity.singularities import LostDirection, SelfMotion,
 from symjac.analysis.singularity.solve import solve_factor
 from symjac.analysis.spaces import jacobian_spaces, numeric_jacobian, symbolic_spaces, task_rows
 from symjac.cli.main import main
-from symjac.errors import ArgumentError, FrameError
+from symjac.errors import ArgumentError
 from symjac.printing import prose
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.simplify import is_identity
@@ -94,7 +94,8 @@ def _assert_matches_finite_differences(robot, det, seed, count):
     point = np.array([float(c.xreplace(robot.defaults)) for c in det.point])
     for _ in range(count):
         q = random_configuration(robot, rng)
-        J = finite_difference_jacobian(robot, q, frame=0, point=point)[list(det.rows), :]
+        frame = 0 if is_admissible_frame(robot, det.rows, det.frame) else det.frame  # closed rows: as in {0}
+        J = finite_difference_jacobian(robot, q, frame=frame, point=point)[list(det.rows), :]
         assert _value(det.expression, robot, q) == pytest.approx(np.linalg.det(J), rel=1e-5, abs=1e-7)
 
 
@@ -113,10 +114,12 @@ def test_determinant_does_not_depend_on_the_frame(name):
     assert frames_checked >= 2
 
 
-def test_a_planar_subset_is_refused_in_a_frame_that_mixes_rows():
+def test_rows_that_mix_in_a_frame_are_the_rows_of_that_frames_jacobian():
+    """Rows v_x, v_y, omega_z asked for in frame {2} of a spatial arm: the determinant of those rows of 2J."""
     robot = load_robot("articulated3r")
-    with pytest.raises(FrameError, match="mix"):
-        determinant(robot, rows=(0, 1, 5), frame=2)
+    det = determinant(robot, rows=(0, 1, 5), frame=2)
+    assert (det.rows, det.frame) == ((0, 1, 5), 2)
+    _assert_matches_finite_differences(robot, det, seed=5, count=2)
 
 
 @pytest.mark.parametrize("name", marked(SQUARE))

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import sympy as sp
 
 from symjac._version import __version__
+from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.model.robot import Robot
 from symjac.printing import prose
 from symjac.printing.document import Block, Document, Equation, JsonKey, ParameterTable, equation_latex
@@ -65,7 +66,12 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
     det = report.determinant
     return {
         "rows": list(det.row_names), "frame": det.frame, "point": [sp.sstr(c) for c in det.point],
-        "redundant": report.redundant, "determinant": determinant_data(det),
+        "redundant": report.redundant and not report.over_rows, "row_minors": report.over_rows,
+        "row_choice": None if report.choice is None else {
+            "criterion": report.choice.criterion, "exact": report.choice.exact, "frame": report.choice.frame,
+            "rows": [ROW_NAMES[r] for r in report.choice.rows],
+            "dropped": {ROW_NAMES[r]: None if a is None else ROW_NAMES[a] for r, a in report.choice.dropped}},
+        "determinant": determinant_data(det),
         "minors": [determinant_data(m) for m in report.minors],
         "zero_minors": [{"columns": [c + 1 for c in z.columns], "rank": z.rank,
                          "concurrent": [[j + 1 for j in group] for group in z.concurrent],

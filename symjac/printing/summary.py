@@ -23,7 +23,8 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
     r"""The report as captioned blocks: :math:`\det J` (or every minor of a redundant arm), then each factor."""
     if report.redundant:
         return _redundant_blocks(report)
-    blocks = [Block(prose.rows_parts(report), (_det(report.determinant.expression),))]
+    caption = prose.rows_parts(report) if report.choice is None else prose.choice_parts(report)
+    blocks = [Block(caption, (_det(report.determinant.expression),))]
     for factor in report.factors:
         head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): ",
                                       *prose.reason_parts(factor), "."]
@@ -42,6 +43,10 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
 
 def _redundant_blocks(report: SingularityReport) -> list[Block]:
     """Every minor (a zero one with its reason), then every singular set with its solutions."""
+    if report.over_rows:
+        blocks = [Block(prose.row_minors_caption(report))]
+        blocks += [Block(prose.row_minor_words(minor), (_det(minor.expression),)) for minor in report.minors]
+        return blocks + _set_blocks(report)
     blocks = [Block(prose.redundant_caption(report))]
     zeros = {zero.columns: zero for zero in report.zero_minors}
     for minor in report.minors:
@@ -50,7 +55,12 @@ def _redundant_blocks(report: SingularityReport) -> list[Block]:
         if minor.columns in zeros:
             caption = f"{prose.locked_words(locked)}: {prose.zero_minor_words(zeros[minor.columns])}."
         blocks.append(Block((caption,), (_det(minor.expression),)))
-    blocks.append(Block((prose.sets_caption(report),)))
+    return blocks + _set_blocks(report)
+
+
+def _set_blocks(report: SingularityReport) -> list[Block]:
+    """How the singular sets were found, then each set with its conditions and solutions."""
+    blocks = [Block((prose.sets_caption(report),))]
     names, defined = prose.long_names(report.sets), set()  # each F_k displayed once, where it first appears
     for number, singular_set in enumerate(report.sets, start=1):
         long = []

@@ -27,8 +27,9 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from symjac.analysis.singularity.rows import singular_rows
 from symjac.analysis.spaces import task_rows
-from symjac.errors import ArgumentError, FrameError
+from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame, as_chain
 from symjac.kinematics.jacobian import ROW_NAMES, Point, check_row_indices, jacobian, point_vector
 from symjac.kinematics.memo import memoized
@@ -39,7 +40,7 @@ from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.trigfactor import compact_expr, determinant_image, trig_factor_list
 from symjac.symbolic.trigpoly import image_of, reduce_image
 
-__all__ = ["Determinant", "determinant", "is_admissible_frame"]
+__all__ = ["Determinant", "default_rows", "determinant", "is_admissible_frame"]
 
 
 def is_admissible_frame(robot: Robot | Chain, rows: Sequence[int], frame: Frame) -> bool:
@@ -141,12 +142,28 @@ def _point(chain: Chain, point: Point | None) -> tuple[sp.Expr, sp.Expr, sp.Expr
     return point_vector(chain, end_point(chain) if point is None else point)
 
 
-def _rows(chain: Chain, rows: Sequence[int] | None, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:
-    return task_rows(chain, point) if rows is None else tuple(rows)
+def _rows(chain: Chain, rows: Sequence[int] | None) -> tuple[int, ...] | None:
+    return None if rows is None else tuple(rows)
 
 
 def _columns(chain: Chain, columns: Sequence[int] | None) -> tuple[int, ...]:
     return tuple(range(chain.robot.n_coordinates)) if columns is None else tuple(columns)
+
+
+def default_rows(robot: Robot | Chain, point: Point | None = None, frame: Frame | None = None
+                 ) -> tuple[tuple[int, ...], Frame | None]:
+    """The rows (and their frame) a determinant is taken of when none are given.
+
+    The exact choice of :func:`symjac.analysis.singularity.rows.singular_rows` when there is one (its determinant
+    vanishes exactly where the arm loses a motion), else :func:`task_rows` in frame {0}.
+    """
+    chain = as_chain(robot)
+    point_xyz = _point(chain, point)
+    choice = singular_rows(chain, point_xyz, None if frame is None else chain.frame_name(chain.position(frame)))
+    if choice.exact:  # rows closed under the rotation to its frame are those of {0}: the most compact frame then
+        closed = choice.frame is None or is_admissible_frame(chain, choice.rows, choice.frame)
+        return choice.rows, frame if closed else choice.frame
+    return task_rows(chain, point_xyz), frame
 
 
 @memoized(point=_point, rows=_rows, columns=_columns)
@@ -165,10 +182,13 @@ def determinant(
     ----------
     robot : Robot or Chain
     rows : sequence of int, optional
-        Task rows (0..5 for :math:`v_x .. \omega_z`); default :func:`task_rows`.
+        Rows (0..5 for :math:`v_x .. \omega_z`) of the Jacobian in ``frame``; default :func:`default_rows`, rows
+        whose determinant vanishes exactly where the arm loses a motion.
     frame : int, optional
-        Frame to compute in (the result does not depend on it); default: the admissible frame with the most
-        compact Jacobian.
+        The frame of the rows. Rows closed under rotation (all six, the three linear or angular rows, a planar set in
+        frames turned about z) give the same determinant in every such frame, reported as in frame {0}; by default
+        they are computed in the frame where the Jacobian is most compact. Other rows are those of that frame's
+        Jacobian.
     point : optional
         Reference point (see :func:`symjac.kinematics.jacobian`); default the tool point if the robot has a tool, else
         the wrist. It matters only when fewer than six rows are used.
@@ -185,6 +205,9 @@ def determinant(
     """
     # Factoring costs seconds on a six-joint arm and the singularity report, the rates and the CLI all ask for it:
     # the chain keeps it per request (@memoized, arguments normalised first).
+    if rows is None:
+        rows, frame = default_rows(chain, point, frame)
+        return determinant(chain, rows, frame, point, columns=columns, numeric=numeric)
     if len(rows) != len(columns) or not rows:  # type: ignore[arg-type]
         raise ArgumentError(f"a determinant needs as many rows as columns, got rows {rows} and columns {columns}")
     chosen = check_row_indices(rows)  # type: ignore[arg-type]
@@ -199,11 +222,10 @@ def _determinant(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point
     if frame is None:
         frame = _best_frame(chain, rows, point_xyz)
     frame = chain.frame_name(chain.position(frame))
-    if not is_admissible_frame(chain, rows, frame):
-        raise FrameError(f"rows {rows} mix with other rows when expressed in frame {frame}; use another frame")
+    sign = _frame_sign(chain, rows, frame) if is_admissible_frame(chain, rows, frame) else 1  # else: rows of {frame}
     J = _square_jacobian(chain, frame, point_xyz, rows, columns, numeric)
     coefficient, factors = _factored_determinant(J, chain.angle_basis(frame), chain.all_angle_bases())
-    return Determinant(coefficient * _frame_sign(chain, rows, frame), factors, rows, frame, point_xyz, columns)
+    return Determinant(coefficient * sign, factors, rows, frame, point_xyz, columns)
 
 
 def _factored_determinant(

@@ -163,12 +163,12 @@ def _motions(null_space: np.ndarray, names: tuple[str, ...]) -> tuple[SelfMotion
 
 
 def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant, known: Container[object],
-             seed: int) -> SingularSet:
+             seed: int, rows: Sequence[int]) -> SingularSet:
     limits = tuple(limit_status(chain, s) for c in conditions for s in c.solutions)
-    samples = condition_samples(chain, conditions, 8, seed)
+    samples = condition_samples(chain, conditions, 8, seed, project=tuple(rows) != minor.rows)
     if not len(samples):
         return SingularSet(conditions, tuple(chain.robot.q), Cause(SingularityKind.OTHER), False, limits=limits)
-    rows = list(minor.rows)
+    rows = list(rows)
 
     def spaces_at(q: np.ndarray) -> JacobianSpaces:
         J = numeric_jacobian(chain, q.tolist(), minor.frame, minor.point)[rows, :]
@@ -188,7 +188,7 @@ def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant
     names = () if chain.robot.coupling is None else tuple(str(v) for v in chain.robot.q)
     lost = None
     if singular.left_null_space.shape[1]:
-        lost = lost_direction(chain, minor.rows, minor.frame, sample, geometry,
+        lost = lost_direction(chain, tuple(rows), minor.frame, sample, geometry,
                               canonical(singular.left_null_space[:, 0]))
     extra = singular.null_space - regular.null_space @ (regular.null_space.T @ singular.null_space)
     motion = None
@@ -201,13 +201,19 @@ def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant
                        _motions(regular.null_space, names), limits)
 
 
-def explain_sets(chain: Chain, minors: Sequence[Determinant], seed: int = 0) -> tuple[SingularSet, ...]:
-    """Every component of the singular set of a redundant arm whose square minors are ``minors``, explained."""
+def explain_sets(chain: Chain, minors: Sequence[Determinant], seed: int = 0,
+                 rows: Sequence[int] | None = None) -> tuple[SingularSet, ...]:
+    """Every component of the singular set of an arm whose square minors are ``minors``, explained.
+
+    ``rows`` are the Jacobian rows the rank is read from: by default those of the minors (a redundant arm's minors
+    share their rows); a short arm's row minors pass all their rows.
+    """
     nonzero = [minor for minor in minors if minor.coefficient != 0]
     if not nonzero:
         return ()
     generator = random.Random(seed)
     generic = [generator.uniform(-2.5, 2.5) for _ in chain.robot.q]
     known = {finding.key for finding in findings(chain, geometry_at(chain, generic, nonzero[0].point))}
-    return tuple(_explain(chain, conditions, nonzero[0], known, seed)
-                 for conditions in singular_conditions(chain, nonzero, seed))
+    chosen = nonzero[0].rows if rows is None else tuple(rows)
+    return tuple(_explain(chain, conditions, nonzero[0], known, seed, chosen)
+                 for conditions in singular_conditions(chain, nonzero, seed, every_joint=rows is not None))

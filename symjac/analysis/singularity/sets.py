@@ -34,8 +34,9 @@ import numpy as np
 import sympy as sp
 
 from symjac.analysis.singularity.determinant import Determinant
-from symjac.analysis.singularity.solve import Solution, branch_solutions, solve_factor
+from symjac.analysis.singularity.solve import Solution, alternative_solutions, branch_solutions, solve_factor
 from symjac.kinematics.chain import Chain
+from symjac.model.robot import JointType
 
 __all__ = ["RELATIVE_ZERO", "Condition", "condition_samples", "singular_conditions", "unsolved_factors"]
 
@@ -44,6 +45,7 @@ RELATIVE_ZERO = 1e-7
 
 _SAMPLES = 12  # random points per conjunction (each condition's branch drawn at random for each)
 _MOST_CONDITIONS = 3  # conjunctions of up to this many conditions are tried
+_PROJECTION_STEPS = 25  # Gauss-Newton steps onto a conjunction the branch formulas cannot place
 _SOLVE_OPS = 40  # larger factors are solved for their last joint only, unlaid (solve_factor takes seconds on them)
 
 
@@ -85,10 +87,13 @@ def unsolved_factors(chain: Chain, minors: Sequence[Determinant]) -> tuple[sp.Ex
     return _conditions(chain, minors)[1]
 
 
-def _conditions(chain: Chain, minors: Sequence[Determinant]) -> tuple[list[Condition], tuple[sp.Expr, ...]]:
+def _conditions(chain: Chain, minors: Sequence[Determinant],
+                every_joint: bool = False) -> tuple[list[Condition], tuple[sp.Expr, ...]]:
     """Every joint factor of the minors solved, and each branch of a factor with several; equal sets merged.
 
-    Also the factors left out because no solution for one joint was found.
+    Also the factors left out because no solution for one joint was found. With ``every_joint``, a factor is also
+    solved for each other joint it can be solved for (one condition per joint), so that it can join a condition on
+    its best joint.
     """
     variables = set(chain.robot.q)
     skipped: list[sp.Expr] = []
@@ -102,14 +107,32 @@ def _conditions(chain: Chain, minors: Sequence[Determinant]) -> tuple[list[Condi
         if not solutions or any(_pick(s, chain.robot.q) is None for s in solutions):
             skipped.append(factor)
             continue
-        candidates = [Condition(factor, solutions, existence)]
-        if len(solutions) > 1:
-            candidates += [Condition(s.lhs - s.rhs, (s,), existence) for s in solutions]
-        for condition in candidates:
-            found.setdefault(condition.branches, condition)
+        readings = [(solutions, existence)]
+        if every_joint and sp.count_ops(factor) <= _SOLVE_OPS:
+            readings += _other_joints(chain, factor, solutions)
+        for solved, exists in readings:
+            candidates = [Condition(factor, solved, exists)]
+            if len(solved) > 1:
+                candidates += [Condition(s.lhs - s.rhs, (s,), exists) for s in solved]
+            for condition in candidates:
+                found.setdefault(condition.branches, condition)
     ordered = sorted(found.values(), key=lambda c: (len(c.expression.free_symbols & variables),
                                                     sp.count_ops(c.expression), sp.default_sort_key(c.expression)))
     return ordered, tuple(skipped)
+
+
+def _other_joints(chain: Chain, factor: sp.Expr, solutions: Sequence[Solution]
+                  ) -> list[tuple[tuple[Solution, ...], sp.Expr | None]]:
+    """The best solution of ``factor = 0`` for each joint other than that of ``solutions``."""
+    variables = chain.robot.q
+    taken = {_pick(s, variables) for s in solutions}
+    readings = []
+    for solved, existence in alternative_solutions(chain, factor):
+        joints = {_pick(s, variables) for s in solved}
+        if None not in joints and len(joints) == 1 and not joints & taken:
+            taken |= joints
+            readings.append((solved, existence))
+    return readings
 
 
 def _implies(small: Sequence[Condition], large: Sequence[Condition]) -> bool:
@@ -120,8 +143,10 @@ def _implies(small: Sequence[Condition], large: Sequence[Condition]) -> bool:
 class _Sampler:
     """Random points on conjunctions of conditions, and the minors' factors evaluated there, all as arrays."""
 
-    def __init__(self, chain: Chain, minors: Sequence[Determinant], seed: int) -> None:
+    def __init__(self, chain: Chain, minors: Sequence[Determinant], seed: int, project: bool = False) -> None:
         robot = chain.robot
+        self.project = project  # points the branch formulas cannot place are projected onto the conditions
+        self.angles = [kind is not JointType.PRISMATIC for kind in robot.coordinate_types]
         self.variables = list(robot.q)
         self.parameters = [p.symbol for p in robot.parameters]
         arguments = [*self.variables, *self.parameters]
@@ -180,7 +205,50 @@ class _Sampler:
                 branch, chosen_rows = self.branch(solutions[key]), np.array(chosen)
                 value = _evaluate(branch.value, q[chosen_rows], p[chosen_rows])
                 valid[chosen_rows] &= np.abs(_wrap(value - q[chosen_rows, branch.joint])) < 1e-9
+        if self.project:
+            for index, conjunction in enumerate(conjunctions):
+                failed = index * samples + np.flatnonzero(~valid[index * samples:(index + 1) * samples])
+                if len(failed):
+                    q[failed] = self.generator.uniform(-2.5, 2.5, (len(failed), q.shape[1]))
+                    valid[failed] = self.projected(conjunction, q, p, failed)
         return valid
+
+    def projected(self, conjunction: Sequence[Condition], q: np.ndarray, p: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        r"""Move ``q[rows]`` onto every condition of ``conjunction`` by Gauss-Newton steps; which rows arrived.
+
+        Each step solves :math:`G \Delta q = -g` in the least-squares, least-norm sense (:math:`G` the conditions'
+        gradients by central differences); a branch condition on an angle is measured modulo :math:`2\pi`. Used
+        where the branch formulas feed each other in a circle (:math:`c_{234} = 0` solved for :math:`\theta_4`
+        and a factor solved for :math:`\theta_2` in terms of :math:`\theta_4`).
+        """
+        functions = [(_compiled(c.expression, tuple(self.arguments)), self.wrapped(c)) for c in conjunction]
+        x, parameters = q[rows], p[rows]
+
+        def residuals(points: np.ndarray) -> np.ndarray:
+            values = [_evaluate(f, points, parameters) for f, _ in functions]
+            return np.stack([_wrap(v) if wrap else v for v, (_, wrap) in zip(values, functions, strict=True)], 1)
+
+        step = 1e-6
+        with np.errstate(all="ignore"):
+            for _ in range(_PROJECTION_STEPS):
+                g = np.nan_to_num(residuals(x), nan=0.0, posinf=0.0, neginf=0.0)
+                gradient = np.nan_to_num(np.stack([(residuals(x + step * e) - residuals(x - step * e)) / (2 * step)
+                                                   for e in np.eye(x.shape[1])], axis=2), nan=0.0, posinf=0.0,
+                                         neginf=0.0)
+                x = x - np.einsum("kji,ki->kj", np.linalg.pinv(gradient), g)
+                x = np.where(np.isfinite(x), x, 0.0)
+            scales = np.array([self.scale(c.expression) for c in conjunction])
+            arrived = np.all(np.abs(residuals(x)) <= RELATIVE_ZERO * scales, axis=1)
+        q[rows] = x
+        return arrived
+
+    def wrapped(self, condition: Condition) -> bool:
+        """Whether a condition is one branch ``angle - value`` of a factor (measured modulo 2 pi)."""
+        (solution, *others) = condition.solutions
+        if others or condition.expression != solution.lhs - solution.rhs:
+            return False
+        joint = _pick(solution, self.variables)
+        return joint is not None and self.angles[joint]
 
     def contained(self, inner: Sequence[Condition], outer: Sequence[Condition]) -> bool:
         """Whether random points on ``inner`` all satisfy every condition of ``outer``.
@@ -239,17 +307,19 @@ def _wrap(angle: np.ndarray) -> np.ndarray:
 
 def _median_size(function: object, q: np.ndarray, p: np.ndarray) -> float:
     sizes = np.abs(_evaluate(function, q, p))
-    return float(np.median(sizes[np.isfinite(sizes)])) or 1.0
+    finite = sizes[np.isfinite(sizes)]
+    return float(np.median(finite)) or 1.0 if finite.size else 1.0
 
 
-def singular_conditions(chain: Chain, minors: Sequence[Determinant],
-                        seed: int = 0) -> tuple[tuple[Condition, ...], ...]:
+def singular_conditions(chain: Chain, minors: Sequence[Determinant], seed: int = 0,
+                        every_joint: bool = False) -> tuple[tuple[Condition, ...], ...]:
     """The minimal conjunctions of conditions on which every minor in ``minors`` vanishes (see the module docstring).
 
     Minors that vanish identically are left out by the caller; ordered by number of conditions, then joints.
+    ``every_joint`` also tries each factor solved for its other joints (a short arm's few minors).
     """
-    sampler = _Sampler(chain, minors, seed)
-    conditions, _ = _conditions(chain, minors)
+    sampler = _Sampler(chain, minors, seed, project=every_joint)
+    conditions, _ = _conditions(chain, minors, every_joint)
     picks = {c.branches: {_pick(s, sampler.variables) for s in c.solutions} for c in conditions}
     kept: list[tuple[Condition, ...]] = []
     for size in range(1, _MOST_CONDITIONS + 1):  # size by size: a superset of a kept set is not even tried
@@ -284,9 +354,12 @@ def singular_conditions(chain: Chain, minors: Sequence[Determinant],
 
 
 def condition_samples(chain: Chain, conjunction: Sequence[Condition], count: int, seed: int = 0,
-                      defaults: bool = True) -> np.ndarray:
-    """Random configurations on a conjunction (parameters at their defaults); fewer rows where no value exists."""
-    sampler = _Sampler(chain, (), seed)
+                      defaults: bool = True, project: bool = False) -> np.ndarray:
+    """Random configurations on a conjunction (parameters at their defaults); fewer rows where no value exists.
+
+    ``project`` places the points the branch formulas cannot by projection (:meth:`_Sampler.projected`).
+    """
+    sampler = _Sampler(chain, (), seed, project)
     q, p = sampler.random_points(count, defaults=defaults)
     valid = sampler.place([tuple(conjunction)], q, p)
     return q[valid]

@@ -19,14 +19,15 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from symjac.analysis.singularity.determinant import Determinant, determinant
+from symjac.analysis.singularity.determinant import Determinant, default_rows, determinant
 from symjac.analysis.singularity.directions import DirectionPart, LostDirection, SelfMotion, canonical, lost_direction
 from symjac.analysis.singularity.geometry import Cause, SingularityKind, classify, findings, geometry_at
 from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status
 from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor, explain_sets, zero_minor
+from symjac.analysis.singularity.rows import RowChoice, singular_rows
 from symjac.analysis.singularity.sets import unsolved_factors
 from symjac.analysis.singularity.solve import Solution, solution_sample, solve_factor
-from symjac.analysis.spaces import jacobian_spaces, task_rows
+from symjac.analysis.spaces import jacobian_spaces
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, point_vector
 from symjac.kinematics.memo import memoized
@@ -103,6 +104,12 @@ class SingularityReport:
     unsolved: tuple[sp.Expr, ...] = ()  # minor factors the set search could not use: the sets may be incomplete
     coordinates: tuple[str, ...] = ()  # a redundant arm's columns: "joint 3", or a coupled robot's "theta5"
     variables: tuple[sp.Symbol, ...] = ()  # the coordinates' symbols, in the order of every sample configuration
+    choice: RowChoice | None = None  # how the rows of a short arm were chosen (None: given, or all six)
+
+    @property
+    def over_rows(self) -> bool:
+        """Whether the minors are those of a short arm's rows (all columns each), not of a redundant arm's columns."""
+        return self.choice is not None and not self.choice.exact
 
     @property
     def frame(self) -> Frame:
@@ -114,8 +121,8 @@ def _point(chain: Chain, point: Point | None) -> tuple[sp.Expr, sp.Expr, sp.Expr
     return point_vector(chain, end_point(chain) if point is None else point)
 
 
-def _rows(chain: Chain, rows: Sequence[int] | None, point: tuple[sp.Expr, ...]) -> tuple[int, ...]:
-    return task_rows(chain, point) if rows is None else tuple(rows)
+def _rows(chain: Chain, rows: Sequence[int] | None) -> tuple[int, ...] | None:
+    return None if rows is None else tuple(rows)
 
 
 @memoized(point=_point, rows=_rows)
@@ -149,6 +156,14 @@ def singularities(
 def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tuple[sp.Expr, sp.Expr, sp.Expr],
             numeric: bool, seed: int) -> SingularityReport:
     model = chain.robot
+    choice = None
+    if rows is None and model.n_coordinates < 6:
+        choice = singular_rows(chain, point, None if frame is None else chain.frame_name(chain.position(frame)))
+        if not choice.exact:
+            return _row_minors(chain, choice, point, numeric, seed)
+        rows, frame = default_rows(chain, point, frame)
+    elif rows is None:
+        rows = tuple(range(6))
     if model.n_coordinates > len(rows):
         n = model.n_coordinates
         kept = sorted(itertools.combinations(range(n), len(rows)),  # by the joints locked: joint 1 locked first
@@ -167,7 +182,20 @@ def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tup
     generic = findings(chain, geometry_at(chain, [generator.uniform(-2.5, 2.5) for _ in model.q], point))
     known = {finding.key for finding in generic}
     explained = [_explain(chain, det, factor, multiplicity, known, generator) for factor, multiplicity in det.factors]
-    return SingularityReport(model.name, det, tuple(explained), variables=tuple(model.q))
+    return SingularityReport(model.name, det, tuple(explained), variables=tuple(model.q), choice=choice)
+
+
+def _row_minors(chain: Chain, choice: RowChoice, point: tuple[sp.Expr, sp.Expr, sp.Expr], numeric: bool,
+                seed: int) -> SingularityReport:
+    r"""A short arm with no exact square rows: every :math:`n \times n` minor of its rows, and where all vanish."""
+    model = chain.robot
+    subsets = itertools.combinations(choice.rows, model.n_coordinates)
+    minors = [determinant(chain, subset, choice.frame, point, numeric=numeric) for subset in subsets]
+    nonzero = tuple(minor for minor in minors if minor.coefficient != 0)  # some exist: the rank is n somewhere
+    sets = explain_sets(chain, nonzero, seed, rows=choice.rows)
+    return SingularityReport(model.name, nonzero[0], (), redundant=True, minors=nonzero, sets=sets,
+                             unsolved=unsolved_factors(chain, nonzero), coordinates=_column_names(model),
+                             variables=tuple(model.q), choice=choice)
 
 
 def _column_names(model: Robot) -> tuple[str, ...]:

@@ -24,7 +24,8 @@ from symjac.model.robot import JointType, Robot
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, reduce_image
 
-__all__ = ["Solution", "branch_solutions", "nonnegative_condition", "solution_sample", "solve_factor"]
+__all__ = ["Solution", "alternative_solutions", "branch_solutions", "nonnegative_condition", "solution_sample",
+           "solve_factor"]
 
 
 @dataclass(frozen=True)
@@ -220,21 +221,44 @@ def solve_factor(
                                                 for a in factor.atoms(sp.Function)):
             a, b = polynomial.all_coeffs()
             return (Solution(d, sp.simplify(-b / a)),), sp.true
-    best: tuple[tuple[int, ...], tuple[Solution, ...], sp.Expr | None] | None = None
+    ranked = _ranked_solutions(chain, factor, prismatic)
+    if not ranked:
+        return (Solution(factor, sp.S.Zero),), None
+    return ranked[0]
+
+
+def alternative_solutions(robot: Robot | Chain, factor: sp.Expr
+                          ) -> tuple[tuple[tuple[Solution, ...], sp.Expr | None], ...]:
+    r"""Every closed-form solution of ``factor = 0`` found, best first (:func:`solve_factor` returns the first).
+
+    A factor such as :math:`a_2 c_2 + a_3 c_{23} + d_5 c_{234}` can be solved for several joints; a singular set
+    where it holds together with :math:`c_{234} = 0` needs it solved for another joint than :math:`\theta_4`.
+    """
+    chain = as_chain(robot)
+    present = factor.free_symbols & frozenset(chain.robot.q)
+    prismatic = [c for c, kind in zip(chain.robot.q, chain.robot.coordinate_types, strict=True)
+                 if kind is JointType.PRISMATIC and c in present]
+    return tuple(_ranked_solutions(chain, factor, prismatic)) if present else ()
+
+
+def _ranked_solutions(chain: Chain, factor: sp.Expr, prismatic: Sequence[sp.Symbol]
+                      ) -> list[tuple[tuple[Solution, ...], sp.Expr | None]]:
+    """The solutions of every reading of ``factor`` as linear in one angle's sine and cosine, best first."""
+    variables = frozenset(chain.robot.q)
+    scored: list[tuple[tuple[int, ...], int, tuple[Solution, ...], sp.Expr | None]] = []
     for form in _linear_forms(factor, chain.all_angle_bases()):
-        if any(expr.has(*prismatic) for expr in (form.A, form.B)) if prismatic else False:
+        if prismatic and any(expr.has(*prismatic) for expr in (form.A, form.B)):
             continue
         solutions = _solutions(form)
+        if any(s.rhs.free_symbols & s.lhs.free_symbols for s in solutions):
+            continue  # solved "for" a joint that is on both sides (another angle of the basis holds it): no solution
         existence = _existence(form, variables)
         others = sum(bool(e.free_symbols & variables) for e in (form.A, form.B, form.C))
         status = 0 if existence is sp.true else 1 if existence is not None else 2
         compound = len(solutions[0].lhs.free_symbols)  # solve for one joint angle rather than a sum when possible
         score = (status, compound, others, int(sum(sp.count_ops(s.rhs) for s in solutions)))
-        if best is None or score < best[0]:
-            best = (score, solutions, existence)
-    if best is None:
-        return (Solution(factor, sp.S.Zero),), None
-    return best[1], best[2]
+        scored.append((score, len(scored), solutions, existence))
+    return [(solutions, existence) for _, _, solutions, existence in sorted(scored, key=lambda item: item[:2])]
 
 
 def branch_solutions(robot: Robot | Chain, factor: sp.Expr) -> tuple[Solution, ...]:

@@ -51,6 +51,7 @@ from symjac.printing.prose.results import (
     title,
     torques_caption,
 )
+from symjac.printing.prose.rows import choice_parts, row_minor_words, row_minors_caption
 from symjac.printing.prose.singularities import (
     KIND_REASONS,
     axis_name,
@@ -92,6 +93,7 @@ __all__ = [
     "arm_home_caption",
     "arm_singular_parts",
     "axis_name",
+    "choice_parts",
     "curve_parts",
     "derivative_caption",
     "existence_parts",
@@ -125,6 +127,8 @@ __all__ = [
     "representation_caption",
     "representation_parts",
     "representation_words",
+    "row_minor_words",
+    "row_minors_caption",
     "rows_caption",
     "rows_parts",
     "sample_parts",

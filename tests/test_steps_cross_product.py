@@ -156,3 +156,18 @@ def test_standalone_steps_compile(name, method, tmp_path):
     assert main(["jacobian", name, "--method", method, "--steps", "--frame", "2", "--standalone", "-o",
                  str(path)]) == 0
     assert compile_tex(path) == []
+
+
+@pytest.mark.parametrize("method", [cross_product_steps, differentiation_steps])
+def test_a_coupled_robot_is_stepped_joint_by_joint(method):
+    """The palletizer's five joints get a step each; times C = d(theta)/dq they give the 6 x 4 Jacobian J_q."""
+    robot = load_robot("palletizer")
+    steps = method(robot)
+    assert len(steps.columns) == robot.n_joints == 5 and len(robot.q) == 4
+    values = sp.Matrix(robot.joint_values)
+    C = values.jacobian(sp.Matrix(robot.q))
+    J_q = jacobian(robot)
+    for q in _configurations(robot, 2):
+        joints = dict(zip(robot.joint_variables, _at(robot, values, q)[:, 0], strict=True))
+        J_joints = np.array(sp.Matrix(steps.jacobian()).xreplace({**robot.defaults, **joints}).evalf(), dtype=float)
+        assert np.allclose(J_joints @ np.array(C, dtype=float), _at(robot, J_q, q), atol=1e-9)

@@ -97,6 +97,8 @@ nb_execution_raise_on_error = True
 nb_execution_show_tb = True
 nb_ipywidgets_js: dict[str, dict[str, str]] = {}  # no widget scripts from a CDN: the site works offline (no kernel)
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
+# Markdown a notebook displays (the captions of a singularity report) is read as MyST, so its $...$ is typeset.
+nb_render_markdown_format = "myst"
 myst_heading_anchors = 3
 
 # --- the gallery: scripts in docs/examples, run at build time -----------------------------------------------------

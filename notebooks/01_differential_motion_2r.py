@@ -32,7 +32,7 @@ import sympy as sp
 from IPython.display import Math, display
 
 from symjac import forward_kinematics, jacobian, jacobian_of, latex, load_robot, numeric_jacobian
-from symjac.teaching.exercises import check
+from symjac.teaching.exercises import check, check_set
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)
@@ -127,6 +127,8 @@ display(Math(r"\det J = " + latex(det)))
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. Write down $\partial x / \partial \theta_2$ for this arm.
 # 2. At $\theta_1 = 0$, $\theta_2 = \pi/2$, which hand velocity $(v_x, v_y)$ do the joint rates $(1, 0)$ produce
@@ -144,5 +146,5 @@ check(answer_2, (J_f * sp.Matrix([1, 0])).subs({theta1: 0, theta2: sp.pi / 2}), 
 
 # %%
 answer_3 = ...  # your answer here
-assert answer_3 == set(sp.solveset(sp.sin(theta2), theta2, sp.Interval.Ropen(0, 2 * sp.pi)))
+check_set(answer_3, sp.solveset(sp.sin(theta2), theta2, sp.Interval.Ropen(0, 2 * sp.pi)))
 print("all answers correct")

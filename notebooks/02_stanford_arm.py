@@ -145,6 +145,8 @@ s2, c2 = sp.sin(robot.q[1]), sp.cos(robot.q[1])
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. Column 3 belongs to the prismatic joint $d_3$. Write it down (linear and angular part) in frame {0}.
 # 2. Write the linear part of column 1, $z_1 \times p_{16}$, in frame {0}.

@@ -138,6 +138,8 @@ fig.savefig(OUTPUT / "03_holding_torques.png", dpi=100)
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. For the planar 3R arm, what is $\tau_3$ when the tip (tool point) pushes with $f_y$ along $y$ of the tool
 #    frame? (Hint: only the last link's length matters.)
@@ -156,5 +158,5 @@ check(answer_2, propagation.velocities()[1][1], robot)
 # %%
 stretched = joint_torques(robot, wrench=[1, 0, 0, 0, 0, 0], frame=0, point="tool", q=[0, 0, 0])
 answer_3 = ...  # your answer here
-assert answer_3 == all(abs(float(t)) < 1e-12 for t in stretched)
+check(answer_3, all(abs(float(t)) < 1e-12 for t in stretched))
 print("all answers correct")

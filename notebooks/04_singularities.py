@@ -29,21 +29,21 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 import sympy as sp
-from IPython.display import Math, display
+from IPython.display import Markdown, Math, display
 
 from symjac import jacobian, latex, load_robot, numeric_jacobian, rates_along_path, singularities
 from symjac.analysis.spaces import jacobian_spaces, symbolic_spaces
 from symjac.printing import singularity_summary
-from symjac.teaching.exercises import check
+from symjac.teaching.exercises import check, check_set
 
 OUTPUT = Path(os.environ.get("SYMJAC_NOTEBOOK_OUTPUT", "figures"))
 OUTPUT.mkdir(parents=True, exist_ok=True)
 
 
 def show(report):
-    """Print a singularity report: each caption in words, each equation as LaTeX."""
+    """Show a singularity report: each caption as text with its math typeset, each equation as LaTeX."""
     for caption, equation in singularity_summary(report):
-        print(caption)
+        display(Markdown(caption))
         if equation:
             display(Math(equation))
 
@@ -145,9 +145,9 @@ show(singularities(load_robot("puma560")))
 #
 # A palletizer stacks boxes: it only needs the box's position and its heading about the vertical, four numbers.
 # The catalog `palletizer` has five revolute joints, but a parallelogram linkage ties the fourth to the second and
-# third, $	heta_4 = -(	heta_2 + 	heta_3)$, so the flange stays level whatever the shoulder and elbow do. Its robot
+# third, $\theta_4 = -(\theta_2 + \theta_3)$, so the flange stays level whatever the shoulder and elbow do. Its robot
 # file says so with `coupled = "-theta2 - theta3"` on joint 4, and symjac works in the four independent coordinates
-# $(	heta_1, 	heta_2, 	heta_3, 	heta_5)$: the Jacobian has four columns, $J_q = J(	heta(q))\,C$ with the
+# $(\theta_1, \theta_2, \theta_3, \theta_5)$: the Jacobian has four columns, $J_q = J(\theta(q))\,C$ with the
 # constant $C = \partial\theta/\partial q$.
 
 # %%
@@ -172,6 +172,8 @@ show(singularities(palletizer))
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. What is $\det J$ of the planar 2R arm? Give it as an expression in $L_1, L_2, \theta_2$.
 # 2. For which $\theta_5$ is the PUMA 560 in its wrist singularity (give the set in $[0, 2\pi)$)?
@@ -187,7 +189,7 @@ check(answer_1, report_2r.determinant.expression, planar)
 puma_report = singularities(load_robot("puma560"))
 (wrist,) = [f for f in puma_report.factors if f.kind == "wrist"]
 answer_2 = ...  # your answer here
-assert answer_2 == {s.rhs for s in wrist.solutions}
+check_set(answer_2, {s.rhs for s in wrist.solutions})
 
 # %%
 from symjac import robot_from_mapping, robot_to_mapping  # noqa: E402
@@ -197,6 +199,6 @@ data["parameters"] = {"L1": 1, "L2": 0.25, "L3": 0.5}
 short = singularities(robot_from_mapping(data))
 shoulder = next(f for f in short.factors if f.expression.has(arm.q[1]))
 answer_3 = ...  # your answer here
-assert answer_3 == shoulder.exists_for_defaults
+check(answer_3, shoulder.exists_for_defaults)
 print(shoulder.existence, "->", shoulder.exists_for_defaults)
 print("all answers correct")

@@ -135,6 +135,8 @@ print("angles from R at gimbal lock:", extract("zyz", R).round(6))
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. Where is the roll-pitch-yaw description singular? Give the factor that vanishes.
 # 2. Compute by hand the Z-Y-Z angles of $R_z(0.3)$ (a pure rotation about $z$), using the convention above.

@@ -116,6 +116,8 @@ fig.savefig(OUTPUT / "06_timings.png", dpi=100)
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. The generated modules take the robot's parameters as keyword arguments. What is entry (1, 1) of the
 #    Jacobian (row $v_x$, column $\theta_1$) at $q = 0$ when $d_3 = 0.2$? Compute it with the plain-Python module

@@ -220,6 +220,8 @@ print(f"w grew from {history[0, 0]:.2e} to {history[-1, 0]:.2e}; theta5 from {hi
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly
 # with what symjac derives (plain `sp.symbols("L2 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. Write the $x$ component of the planar 2R arm's bias acceleration $\dot J\dot q$ in frame {0} (use the rate
 #    symbols `joint_rate_symbols(planar)`).

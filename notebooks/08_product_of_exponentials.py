@@ -123,6 +123,8 @@ H1, L1 = sp.symbols("H1 L1")
 #
 # Replace each `...` with your answer, in any equivalent form, and run the cell: `check` compares it exactly with
 # what symjac derives (plain `sp.symbols("H1 theta1")` are fine). Worked answers: `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. Column 2 of $J_s$ is joint 2's screw axis after joint 1 has turned by $\theta_1$. Write it as a 6-vector
 #    $(\omega_2, v_2)$.

@@ -113,6 +113,8 @@ canvas.savefig(OUTPUT / "panda_sliders.png", dpi=90)
 #
 # Replace each `...` with your answer and run the cell; `check` compares numbers to $10^{-6}$. Worked answers:
 # `notebooks/solutions.py`.
+# A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
+# cell's `check(...)`.
 #
 # 1. The planar 2R arm (defaults $L_1 = 0.5$, $L_2 = 0.4$) at $\theta_2 = 0$: how long is the shortest in-plane
 #    semi-axis of its velocity ellipse?

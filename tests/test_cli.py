@@ -279,7 +279,7 @@ ERROR_CASES = {
     "point with empty coordinate": ["jacobian", "planar3r", "--point", "1,,0"],
     "point unparsable": ["jacobian", "planar3r", "--point", "1,2,("],
     "point named nowhere": ["jacobian", "planar3r", "--point", "elbow"],
-    "steps without a propagation method": ["jacobian", "planar3r", "--steps"],
+    "steps with a screw Jacobian": ["jacobian", "planar3r", "--steps", "--kind", "space"],
     "wrench with five entries": ["torques", "planar2r", "--wrench", "1,2,3,4,5"],
     "wrench with code": ["torques", "planar2r", "--wrench", "1,2,3,4,5,__import__('os')"],
     "configuration of the wrong length": ["torques", "planar2r", "--q", "0.1"],

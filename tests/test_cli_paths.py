@@ -263,7 +263,7 @@ def test_a_repeated_row_is_named(cli, command):
     (["jacobian", "planar2r", "--representation", "zyz", "--method", "velocity_propagation"],
      "--method velocity_propagation does not apply with --representation"),
     (["jacobian", "planar2r", "--representation", "zyz", "--steps"], "--steps does not apply with --representation"),
-    (["jacobian", "planar2r", "--steps"], "--steps needs --method velocity_propagation or --method force_propagation"),
+    (["jacobian", "planar2r", "--steps", "--kind", "body"], "--kind body does not take --steps"),
 ])
 def test_options_that_would_be_ignored_are_refused(cli, argv, message):
     assert cli.one_line_error(*argv).startswith(f"symjac: error: {message}")

@@ -83,6 +83,8 @@ COMMANDS: dict[str, list[str]] = {
     "velocity-steps": ["jacobian", "--method", "velocity_propagation", "--steps"],
     "force-steps": ["jacobian", "--method", "force_propagation", "--steps"],
     "force-steps-numeric": ["jacobian", "--method", "force_propagation", "--steps", "--numeric"],
+    "cross-product-steps": ["jacobian", "--method", "cross_product", "--steps", "--frame", "2"],
+    "differentiation-steps": ["jacobian", "--method", "differentiation", "--steps", "--frame", "2"],
     "torques": ["torques"],
     "singularities": ["singularities"],
     "zyz": ["jacobian", "--representation", "zyz"],

@@ -28,7 +28,7 @@ from symjac.printing.document import Block, Document, Equation, JsonKey, Paramet
 from symjac.printing.latex import rounded
 
 if TYPE_CHECKING:
-    from symjac.printing.steps import Propagation
+    from symjac.printing.steps import Propagation, Steps
 
 __all__ = [
     "Transform",
@@ -106,7 +106,7 @@ def forward_kinematics_document(robot: Robot, source: Frame, target: Frame, T: s
                     facts={"source": source, "target": target}, model=robot)
 
 
-def _steps(robot: Robot, propagation: Propagation | None, digits: int | None) -> list[Equation]:
+def _steps(robot: Robot, propagation: Steps | None, digits: int | None) -> list[Equation]:
     if propagation is None:
         return []
     from symjac.printing.steps import step_equations
@@ -120,7 +120,7 @@ def _jacobian_name(frame: Frame) -> Prescripted:
 
 
 def jacobian_document(robot: Robot, J: sp.MatrixBase, frame: Frame, point: str, method: str,
-                      propagation: Propagation | None = None, digits: int | None = None, *,
+                      propagation: Steps | None = None, digits: int | None = None, *,
                       link: int | None = None) -> Document:
     """``symjac jacobian``: the basic Jacobian in ``frame`` at ``point`` (``--steps``: the propagation first).
 

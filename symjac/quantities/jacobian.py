@@ -34,7 +34,9 @@ def options(sub: argparse.ArgumentParser) -> None:
                      help="geometric: the basic Jacobian [v; omega] (default); space or body: J_s or J_b of "
                           "screw theory, rows (omega; v) as in Lynch and Park (--frame and --point do not apply)")
     sub.add_argument("--steps", action="store_true",
-                     help="with a propagation method (or --derivative): print every propagation step first")
+                     help="print the method's steps first: per joint z_i, p_iP and the column z_i x p_iP "
+                          "(cross_product), the derivative of the point's position by each joint variable "
+                          "(differentiation), or every propagation step (a propagation method, or --derivative)")
     sub.add_argument("--representation", choices=LazyChoices(representations, "REPRESENTATIONS"), default=None,
                      metavar="NAME", help="print the representation Jacobian J_x = E(x) J_0 for these "
                                           "orientation coordinates: %(choices)s")
@@ -94,18 +96,19 @@ def representation(request: Request, frame: Frame, point: Point) -> Document:
 
 
 def propagation(request: Request, point: Point | None) -> Any:
-    """The velocity or force propagation whose steps ``--steps`` prints."""
+    """The derivation whose steps ``--steps`` prints: a propagation, or the columns of the other two methods."""
+    from symjac.kinematics.column_steps import cross_product_steps, differentiation_steps
     from symjac.kinematics.propagation import force_propagation, velocity_propagation
 
-    args, robot, link = request.args, request.robot, request.link()
+    args, robot, link, frame = request.args, request.robot, request.link(), request.frame()
     tip = propagation_tip(robot, point)
     derive: dict[str, Callable[[], Any]] = {
         "velocity_propagation": lambda: velocity_propagation(robot, tip, link=link),
         "force_propagation": lambda: force_propagation(robot, tip, link=link),
+        "cross_product": lambda: cross_product_steps(robot, frame, point, link=link),
+        "differentiation": lambda: differentiation_steps(robot, frame, point, link=link),
     }
-    if args.method not in derive:
-        raise ArgumentError("--steps needs --method velocity_propagation or --method force_propagation")
-    return request.progress(f"{args.method.replace('_', ' ')} of {robot.name}", derive[args.method])
+    return request.progress(f"{args.method.replace('_', ' ')} steps of {robot.name}", derive[args.method])
 
 
 def propagation_tip(robot: Any, point: Point | None) -> Any:

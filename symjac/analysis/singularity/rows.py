@@ -39,6 +39,7 @@ from symjac.errors import ArgumentError
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.memo import memoized
+from symjac.symbolic.nested import lambdify_cse
 
 __all__ = ["Criterion", "RowChoice", "singular_rows"]
 
@@ -137,7 +138,7 @@ class _Evaluator:
 
     def numeric(self, frame: Frame) -> list[np.ndarray]:
         if frame not in self._numeric:
-            function = sp.lambdify(self.arguments, self.symbolic(frame), modules="numpy")
+            function = sp.lambdify(self.arguments, self.symbolic(frame), modules="numpy", cse=lambdify_cse)
             self._numeric[frame] = [np.asarray(function(*values), dtype=float) for values in self.points]
         return self._numeric[frame]
 

@@ -300,6 +300,8 @@ def solution_sample(robot: Robot | Chain, solution: Solution, generator: random.
         pick = max(solved, key=lambda v: variables.index(v))
         rhs = solution.rhs.xreplace({**{v: values[v] for v in variables if v != pick}, **robot.defaults})
         rest = (target - pick).xreplace({v: values[v] for v in variables if v != pick})
+        if rest.has(pick):
+            return None  # an implicit surface (the factor itself = 0): not solved for one joint
         value = sp.N(rhs - rest)
         if value.is_real and value.is_finite:
             values[pick] = value

@@ -25,16 +25,16 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
         return _redundant_blocks(report)
     blocks = [Block(prose.rows_parts(report), (_det(report.determinant.expression),))]
     for factor in report.factors:
-        head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind}): ",
-                                      *prose.reason_parts(factor), "."]
+        where = prose.sample_parts(factor.sample, report.variables) if factor.solutions else ()
+        head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind})", *([", "] if where else []),
+                                      *where, ": ", *prose.reason_parts(factor), "."]
         if factor.solutions:
             existence = prose.existence_parts(factor)
             if existence:
                 head += [" ", *existence]
-            if factor.lost_direction is not None:
-                where = prose.sample_parts(factor.sample, report.variables)
-                head += [" There (", *where, ")" if where else "", f" it {prose.lost_words(factor)}; ",
-                         *prose.self_motion_parts(factor), "."]
+            lost, motion = prose.lost_words(factor), prose.self_motion_parts(factor)
+            if lost or motion:
+                head += [" There it ", lost or "loses rank", "; " if lost and motion else "", *motion, "."]
             head.extend(prose.limit_parts(factor))
         blocks.append(Block(tuple(head), tuple(Equation("", "", s.equation) for s in factor.solutions)))
     return blocks

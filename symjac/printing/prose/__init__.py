@@ -52,8 +52,8 @@ from symjac.printing.prose.results import (
     torques_caption,
 )
 from symjac.printing.prose.singularities import (
-    KIND_REASONS,
     axis_name,
+    evidence_clauses,
     existence_parts,
     existence_words,
     finding_sentence,
@@ -80,7 +80,6 @@ __all__ = [
     "ARM_INTRO",
     "BIAS_ACCELERATION",
     "HOME_POSE",
-    "KIND_REASONS",
     "LATEX_TOO_LONG",
     "LONG_INLINE",
     "METHODS_HEADING",
@@ -92,6 +91,7 @@ __all__ = [
     "arm_home_caption",
     "arm_singular_parts",
     "axis_name",
+    "evidence_clauses",
     "curve_parts",
     "derivative_caption",
     "existence_parts",

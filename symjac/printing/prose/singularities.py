@@ -22,6 +22,7 @@ from symjac.printing.pretty import one_line
 
 if TYPE_CHECKING:
     from symjac.analysis.representations import RepresentationSingularity
+    from symjac.analysis.singularity.evidence import Evidence
     from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark
     from symjac.analysis.singularity.redundant import SingularSet
     from symjac.analysis.singularity.singularities import (
@@ -32,8 +33,8 @@ if TYPE_CHECKING:
     )
 
 __all__ = [
-    "KIND_REASONS",
     "axis_name",
+    "evidence_clauses",
     "existence_parts",
     "existence_words",
     "finding_sentence",
@@ -55,16 +56,6 @@ __all__ = [
     "self_motion_words",
     "table_caption",
 ]
-
-KIND_REASONS = {
-    "wrist": "two wrist rotations do the same thing, so one orientation direction is lost",
-    "shoulder": "rotating joint 1 no longer moves it sideways, so a direction is lost inside the "
-                              "workspace",
-    "elbow": "the arm is stretched out or folded back, on the boundary of its reach, and cannot move "
-                           "along that line",
-}
-"""What each textbook kind of singularity (a :class:`~symjac.analysis.singularity.geometry.SingularityKind`, a string
-enum) means for the arm."""
 
 _AXIS_NAMES = ("x", "y", "z")
 
@@ -94,14 +85,62 @@ def finding_sentence(finding: Finding) -> str:
     return f"{name} lies in the plane of the parallel axes of joints {joints[0]} and {joints[1]}"
 
 
-def _cause_words(cause: Cause) -> str:
-    if cause.kind in KIND_REASONS and cause.findings:
-        return f"{finding_sentence(cause.findings[0])}: {KIND_REASONS[cause.kind]}"
+def _listed(words: Sequence[str]) -> str:
+    return words[0] if len(words) == 1 else f"{', '.join(words[:-1])} and {words[-1]}"
+
+
+def _joints_named(facts: Evidence, coordinates: Sequence[int]) -> str:
+    """``joint 2``, ``joints 1 and 3``, or a coupled robot's coordinates ``theta2 and theta3``."""
+    if facts.coupled:
+        return _listed([facts.names[c] for c in coordinates])
+    return f"joint{'s' if len(coordinates) > 1 else ''} {_listed([str(c + 1) for c in coordinates])}"
+
+
+def evidence_clauses(facts: Evidence | None, cause: Cause | None = None) -> tuple[str, ...]:
+    """What the numbers at the sample support, one clause each (``()`` without evidence).
+
+    Only facts :class:`~symjac.analysis.singularity.evidence.Evidence` holds are stated: joints whose linear column
+    vanished there (and not generically), pairs of analysed columns that became parallel, and for a shoulder
+    singularity the speed at which each of its joints still moves the reference point; failing these, for a
+    square Jacobian, the joints whose columns are dependent (the support of the null motion).
+    """
+    if facts is None:
+        return ()
+    clauses: list[str] = []
+    if facts.stopped:
+        verb = "moves" if len(facts.stopped) == 1 else "move"
+        clauses.append(f"{_joints_named(facts, facts.stopped)} no longer {verb} the reference point (its linear "
+                       f"column is zero there)")
+    clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (the two joints now do the same thing)"
+                for pair in facts.parallel]
+    if cause is not None and cause.kind == "shoulder" and cause.findings:
+        still = [c for c in cause.findings[0].joints if c in facts.moving and c not in facts.stopped and facts.revolute[c]]
+        if still:
+            verb = "moves" if len(still) == 1 else "move"
+            speeds = _listed([readable_number(facts.speed(c)) for c in still])
+            clauses.append(f"{_joints_named(facts, still)} still {verb} the reference point, at {speeds} m/rad")
+    if not clauses and facts.dependent and len(facts.rows) == len(facts.columns):
+        clauses.append(f"the columns of {_joints_named(facts, facts.dependent)} are dependent")
+    return tuple(clauses)
+
+
+def _cause_words(cause: Cause, facts: Evidence | None = None) -> str:
+    clauses = evidence_clauses(facts, cause)
+    if cause.kind in ("wrist", "shoulder", "elbow") and cause.findings:
+        finding = cause.findings[0]
+        said = [finding_sentence(finding)]
+        if cause.kind == "elbow" and finding.landmark is not None and finding.landmark.kind != "joint axis":
+            said[0] += " (the arm is stretched out or folded back)"
+        return "; ".join([*said, *clauses])
     if cause.wrist_joints:
-        return f"the factor depends only on the wrist joints {', '.join(str(j + 1) for j in cause.wrist_joints)}"
-    if cause.findings:
-        return "; ".join(sorted(finding_sentence(finding) for finding in cause.findings))
-    return "no aligned axes found; see the lost direction and the self-motion"
+        said = [f"the factor depends only on the wrist joints {', '.join(str(j + 1) for j in cause.wrist_joints)}"]
+    elif cause.findings:
+        said = ["; ".join(sorted(finding_sentence(finding) for finding in cause.findings))]
+    elif clauses:
+        return "; ".join(clauses)
+    else:
+        return "no aligned axes found; see the lost direction and the self-motion"
+    return "; ".join([*said, *clauses])
 
 
 def reason(factor: SingularFactor) -> str:
@@ -109,7 +148,7 @@ def reason(factor: SingularFactor) -> str:
     if factor.kind == "parameter":
         return (f"{factor.expression} depends on parameters only: a design with {factor.expression} = 0 would be "
                 "singular everywhere; the default parameters are not")
-    return _cause_words(factor.cause)
+    return _cause_words(factor.cause, factor.evidence)
 
 
 def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
@@ -118,7 +157,7 @@ def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
         return (factor.expression, " depends on parameters only: a design with ",
                 sp.Eq(factor.expression, 0, evaluate=False), " would be singular everywhere; the default parameters "
                 "are not")
-    return (_cause_words(factor.cause),)
+    return (_cause_words(factor.cause, factor.evidence),)
 
 
 def axis_name(axis: FrameAxis) -> str:
@@ -181,8 +220,8 @@ def _direction(lost: LostDirection, words: tuple[str, str, str, str]) -> str:
 def lost_words(factor: SingularFactor | SingularSet) -> str:
     """What the arm cannot do on the singular set, and the wrench it holds for free there (``""`` if unknown)."""
     lost = factor.lost_direction
-    if lost is None:
-        return ""
+    if lost is None or (factor.evidence is not None and not factor.evidence.lost_checked):
+        return ""  # stated only when u^T J = 0 was checked at the sample
     if lost.radial and lost.angular is None:  # the line says it exactly; the sample vector only illustrates it
         line = "the line from the origin of frame {0} to the point"
         return (f"cannot translate radially, along {line}, and it holds a force along that line with zero joint "
@@ -197,8 +236,8 @@ def lost_words(factor: SingularFactor | SingularSet) -> str:
 def _self_motion_rates(factor: SingularFactor | SingularSet) -> list[tuple[float, str]]:
     """The nonzero rates of the motion that moves nothing, with what they drive (``joint 2``, or ``theta5``)."""
     motion = factor.self_motion
-    if motion is None:
-        return []
+    if motion is None or (factor.evidence is not None and not factor.evidence.motion_checked):
+        return []  # stated only when J qdot = 0 was checked at the sample
     return [(rate, motion.names[i] if motion.names else f"joint {motion.columns[i] + 1}")
             for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
 

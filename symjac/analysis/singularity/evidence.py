@@ -78,18 +78,17 @@ class Evidence:
 
     @property
     def tolerance(self) -> float:
-        """The absolute tolerance :math:`\\epsilon` below which a column or residual counts as zero."""
+        r"""The absolute tolerance :math:`\epsilon` below which a column or residual counts as zero."""
         return ZERO * self.scale
 
     @property
     def lost_checked(self) -> bool:
-        """Whether the lost direction is one: :math:`\\lVert u^T J\\rVert \\le \\epsilon` for a unit :math:`u`."""
+        r"""Whether the stated lost direction is one: :math:`\lVert u^T J\rVert \le \epsilon` (a unit :math:`u`)."""
         return len(self.lost) > 0 and self.lost_residual <= ZERO
 
     @property
     def motion_checked(self) -> bool:
-        """Whether the null motion moves nothing: :math:`\\lVert J \\dot q\\rVert \\le \\epsilon` for a unit
-        :math:`\\dot q`."""
+        r"""Whether the stated null motion moves nothing: :math:`\lVert J \dot q\rVert \le \epsilon` (a unit one)."""
         return len(self.null_motion) > 0 and self.motion_residual <= ZERO
 
     def speed(self, coordinate: int) -> float:

@@ -11,7 +11,14 @@ from typing import TYPE_CHECKING
 
 import sympy as sp
 
-from symjac.printing.prose.singularities import finding_sentence, limit_parts, lost_words, self_motion_parts
+from symjac.printing.prose.singularities import (
+    evidence_clauses,
+    finding_sentence,
+    limit_parts,
+    lost_words,
+    sample_parts,
+    self_motion_parts,
+)
 
 if TYPE_CHECKING:
     from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor
@@ -77,6 +84,8 @@ def set_reason(singular_set: SingularSet) -> str:
     if not singular_set.exists_for_defaults:
         words = (words + "; " if words else "") + "no configuration of it exists for the default parameters"
     text = f"{words} ({evidence})" if words and evidence else words or evidence
+    clauses = evidence_clauses(singular_set.evidence)
+    text = "; ".join([text, *clauses] if text else clauses)
     return text or "no aligned axes found; see the lost direction and the self-motion"
 
 
@@ -145,9 +154,11 @@ def set_parts(singular_set: SingularSet, names: Mapping[sp.Expr, sp.Symbol] | No
         name = names[condition.expression] if names is not None and is_long(condition.expression) else long_name(number)
         shown = sp.Eq(name if is_long(condition.expression) else condition.expression, 0, evaluate=False)
         parts += [" and "] * bool(number) + [shown]
-    parts += [f" ({singular_set.kind}): {set_reason(singular_set)}."]
-    if singular_set.lost_direction is not None:
-        parts += [f" There the arm {lost_words(singular_set)}; {_motion_count(singular_set)}"]
+    where = sample_parts(singular_set.sample, singular_set.variables)
+    parts += [f" ({singular_set.kind})", *([", "] if where else []), *where, f": {set_reason(singular_set)}."]
+    lost = lost_words(singular_set)
+    if lost:
+        parts += [f" There the arm {lost}; {_motion_count(singular_set)}"]
         motion = self_motion_parts(singular_set)
         parts += ["; the new one: ", *motion, "."] if motion else ["."]
     if any(is_long(solution.rhs) for solution in singular_set.solutions):

@@ -111,10 +111,11 @@ def evidence_clauses(facts: Evidence | None, cause: Cause | None = None) -> tupl
         verb = "moves" if len(facts.stopped) == 1 else "move"
         clauses.append(f"{_joints_named(facts, facts.stopped)} no longer {verb} the reference point (its linear "
                        f"column is zero there)")
-    clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (the two joints now do the same thing)"
-                for pair in facts.parallel]
+    clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (one joint's motion is now a multiple of "
+                "the other's)" for pair in facts.parallel]
     if cause is not None and cause.kind == "shoulder" and cause.findings:
-        still = [c for c in cause.findings[0].joints if c in facts.moving and c not in facts.stopped and facts.revolute[c]]
+        still = [c for c in cause.findings[0].joints
+                 if c in facts.moving and c not in facts.stopped and facts.revolute[c]]
         if still:
             verb = "moves" if len(still) == 1 else "move"
             speeds = _listed([readable_number(facts.speed(c)) for c in still])
@@ -225,7 +226,7 @@ def lost_words(factor: SingularFactor | SingularSet) -> str:
     if lost.radial and lost.angular is None:  # the line says it exactly; the sample vector only illustrates it
         line = "the line from the origin of frame {0} to the point"
         return (f"cannot translate radially, along {line}, and it holds a force along that line with zero joint "
-                f"torque (at one such configuration: along {_part_name(lost.linear, lost.frame)})"
+                f"torque (here: along {_part_name(lost.linear, lost.frame)})"
                 if lost.linear is not None else "")
     radial = " (radially: along the line from the origin of frame {0} to the point)" if lost.radial else ""
     motion = _direction(lost, ("translate", "rotate", "rotating", "while"))

@@ -7,6 +7,10 @@ is evaluated and compared with the same Jacobian at a generic configuration :mat
   of column :math:`k` on all three linear rows; metres per radian for a revolute joint);
 * the joints that *no longer move the point*: :math:`\lVert J_{v,k}(q_s) \rVert \le \epsilon` while
   :math:`\lVert J_{v,k}(q_g) \rVert > \epsilon`;
+* the same two facts for every landmark point of the geometry
+  (:func:`~symjac.analysis.singularity.geometry.geometry_at`: the reference point, a wrist centre): a revolute joint
+  :math:`k` moves a point :math:`p` beyond it in the chain at :math:`\lVert z_k \times (p - o_k)\rVert`
+  (:class:`PointSpeeds`);
 * the joints whose analysed columns became *parallel*: :math:`\sigma_2([J_i\ J_j]) \le \epsilon` at :math:`q_s`, not
   at :math:`q_g` (two joints that now do the same thing);
 * the joints whose columns became *dependent*: the support of the null space of :math:`J(q_s)`;
@@ -27,18 +31,35 @@ from dataclasses import dataclass, replace
 from itertools import combinations
 
 import numpy as np
+import sympy as sp
 
+from symjac.analysis.singularity.geometry import Geometry, Landmark, geometry_at
 from symjac.kinematics.chain import Chain, Frame
-from symjac.kinematics.jacobian import Point
 from symjac.kinematics.numeric import numeric_jacobian
 
-__all__ = ["MOVING", "ZERO", "Evidence", "evidence_at"]
+__all__ = ["MOVING", "ZERO", "Evidence", "PointSpeeds", "evidence_at"]
 
 ZERO = 1e-6
 """Relative to the largest singular value of the analysed Jacobian: below this a column (or residual) is zero."""
 
 MOVING = 1e-3
 """Relative to the same: above this a joint still moves the point."""
+
+
+@dataclass(frozen=True)
+class PointSpeeds:
+    r"""How fast each revolute joint moves one landmark point at the sample, per radian.
+
+    ``speeds[k]`` is :math:`\lVert z_k \times (p - o_k)\rVert` for joint ``k`` (0-based) when the joint lies before
+    the point in the chain, ``0.0`` for a joint after it, ``nan`` for a prismatic joint. ``stopped`` are the revolute
+    joints that move the point generically but not at the sample, ``moving`` those that move it faster than
+    :data:`MOVING` times the Jacobian's size.
+    """
+
+    landmark: Landmark
+    speeds: tuple[float, ...]
+    stopped: tuple[int, ...]
+    moving: tuple[int, ...]
 
 
 @dataclass(frozen=True)
@@ -52,7 +73,8 @@ class Evidence:
     largest singular value. ``speeds[k]`` is the speed of the point per unit rate of coordinate ``columns[k]``.
     Joint lists (``stopped``, ``parallel``, ``dependent``, ``moving``) hold 0-based coordinates. ``lost`` is the
     lost direction :math:`u` on ``rows`` and ``null_motion`` a motion :math:`\dot q` on ``columns`` (empty when the
-    Jacobian has full rank there); ``lost_residual`` and ``motion_residual`` are :math:`\lVert u^T J\rVert` and
+    Jacobian has full rank there); ``points`` the speeds of every landmark point (none for a coupled robot, whose
+    columns are not joints); ``lost_residual`` and ``motion_residual`` are :math:`\lVert u^T J\rVert` and
     :math:`\lVert J\dot q\rVert` divided by ``scale``.
     """
 
@@ -71,6 +93,7 @@ class Evidence:
     moving: tuple[int, ...]
     parallel: tuple[tuple[int, int], ...]
     dependent: tuple[int, ...]
+    points: tuple[PointSpeeds, ...] = ()
     lost: tuple[float, ...] = ()
     lost_residual: float = 0.0
     null_motion: tuple[float, ...] = ()
@@ -91,6 +114,10 @@ class Evidence:
         r"""Whether the stated null motion moves nothing: :math:`\lVert J \dot q\rVert \le \epsilon` (a unit one)."""
         return len(self.null_motion) > 0 and self.motion_residual <= ZERO
 
+    def point(self, landmark: Landmark) -> PointSpeeds | None:
+        """The speeds of ``landmark`` (``None`` when it was not examined)."""
+        return next((p for p in self.points if p.landmark == landmark), None)
+
     def speed(self, coordinate: int) -> float:
         """The speed of the point per unit rate of ``coordinate`` (0-based, one of ``columns``)."""
         return self.speeds[self.columns.index(coordinate)]
@@ -98,6 +125,29 @@ class Evidence:
 
 def _linear_norms(full: np.ndarray, columns: Sequence[int]) -> np.ndarray:
     return np.linalg.norm(full[:3, list(columns)], axis=0)
+
+
+def _moved_by(landmark: Landmark, joint: int) -> bool:
+    """Whether 0-based ``joint`` lies before ``landmark`` in the chain (frame {f}'s origin moves with joints 1..f)."""
+    return landmark.kind != "frame origin" or not isinstance(landmark.index, int) or joint < landmark.index
+
+
+def _point_speeds(chain: Chain, here: Geometry, generic: Geometry, scale: float) -> tuple[PointSpeeds, ...]:
+    revolute = [joint.is_revolute for joint in chain.robot.joints]
+    before = dict(generic.points)
+
+    def speeds(landmark: Landmark, p: np.ndarray, geometry: Geometry) -> list[float]:
+        return [float("nan") if not revolute[k] else float(np.linalg.norm(np.cross(z, p - o)))
+                if _moved_by(landmark, k) else 0.0 for k, (o, z) in enumerate(geometry.axes)]
+
+    found = []
+    for landmark, p in here.points:
+        now = speeds(landmark, p, here)
+        then = speeds(landmark, before[landmark], generic) if landmark in before else [0.0] * len(now)
+        stopped = tuple(k for k, (s, g) in enumerate(zip(now, then, strict=True)) if s <= ZERO * scale < g)
+        moving = tuple(k for k, s in enumerate(now) if s > MOVING * scale)
+        found.append(PointSpeeds(landmark, tuple(now), stopped, moving))
+    return tuple(found)
 
 
 def _parallel_pairs(J: np.ndarray, columns: Sequence[int], tolerance: float) -> set[tuple[int, int]]:
@@ -111,7 +161,8 @@ def _parallel_pairs(J: np.ndarray, columns: Sequence[int], tolerance: float) -> 
     return pairs
 
 
-def evidence_at(chain: Chain, rows: Sequence[int], frame: Frame, point: Point, columns: Sequence[int],
+def evidence_at(chain: Chain, rows: Sequence[int], frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr],
+                columns: Sequence[int],
                 sample: Sequence[float], lost: Sequence[float] | None = None, motion: Sequence[float] | None = None,
                 seed: int = 1729) -> Evidence:
     r"""The facts at ``sample`` for the Jacobian on ``rows`` x ``columns`` in ``frame`` at ``point`` (see the module).
@@ -124,7 +175,8 @@ def evidence_at(chain: Chain, rows: Sequence[int], frame: Frame, point: Point, c
     rows, columns = tuple(rows), tuple(columns)
     full = numeric_jacobian(chain, list(sample), frame, point)
     draw = random.Random(seed)
-    generic_full = numeric_jacobian(chain, [draw.uniform(-2.5, 2.5) for _ in model.q], frame, point)
+    anywhere = [draw.uniform(-2.5, 2.5) for _ in model.q]
+    generic_full = numeric_jacobian(chain, anywhere, frame, point)
     J, generic = full[list(rows), :][:, list(columns)], generic_full[list(rows), :][:, list(columns)]
     U, sigma, Vt = np.linalg.svd(J)
     scale = float(sigma[0]) if sigma.size and sigma[0] > 0 else 1.0
@@ -138,10 +190,12 @@ def evidence_at(chain: Chain, rows: Sequence[int], frame: Frame, point: Point, c
     null = Vt[rank:].T  # columns: a basis of the null space
     dependent = tuple(c for k, c in enumerate(columns) if null.size and np.abs(null[k]).max() > 1e-6)
     names = tuple(str(v) for v in model.q)
+    points = () if model.coupling is not None else _point_speeds(chain, geometry_at(chain, sample, point),
+                                                                 geometry_at(chain, anywhere, point), scale)
     revolute = tuple(kind == "revolute" for kind in model.coordinate_types)
     facts = Evidence(tuple(float(x) for x in sample), names, revolute, model.coupling is not None, rows, frame, columns,
                      tuple(tuple(float(x) for x in row) for row in J), scale, rank,
-                     tuple(float(s) for s in speeds), stopped, moving, parallel, dependent)
+                     tuple(float(s) for s in speeds), stopped, moving, parallel, dependent, points)
     if lost is None and motion is None and rank == min(J.shape):
         return facts
     u = np.asarray(lost, dtype=float) if lost is not None else U[:, rank] if rank < J.shape[0] else np.zeros(0)

@@ -114,15 +114,30 @@ def evidence_clauses(facts: Evidence | None, cause: Cause | None = None) -> tupl
     clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (one joint's motion is now a multiple of "
                 "the other's)" for pair in facts.parallel]
     if cause is not None and cause.kind == "shoulder" and cause.findings:
-        still = [c for c in cause.findings[0].joints
-                 if c in facts.moving and c not in facts.stopped and facts.revolute[c]]
-        if still:
-            verb = "moves" if len(still) == 1 else "move"
-            speeds = _listed([readable_number(facts.speed(c)) for c in still])
-            clauses.append(f"{_joints_named(facts, still)} still {verb} the reference point, at {speeds} m/rad")
+        clauses += _landmark_clauses(facts, cause.findings[0])
     if not clauses and facts.dependent and len(facts.rows) == len(facts.columns):
         clauses.append(f"the columns of {_joints_named(facts, facts.dependent)} are dependent")
     return tuple(clauses)
+
+
+def _landmark_clauses(facts: Evidence, finding: Finding) -> list[str]:
+    """How the finding's joints move its landmark (the reference point, a wrist centre) at the sample, if known."""
+    from symjac.analysis.singularity.geometry import Landmark
+
+    landmark = finding.landmark or Landmark("reference point")
+    speeds = facts.point(landmark)
+    if speeds is None:
+        return []
+    name, clauses = landmark_name(landmark), []
+    stopped = [k for k in finding.joints if k in speeds.stopped and k not in facts.stopped]
+    if stopped and landmark.kind != "reference point":  # the reference point's stopped joints are said already
+        clauses.append(f"{_joints_named(facts, stopped)} no longer {'moves' if len(stopped) == 1 else 'move'} {name}")
+    still = [k for k in finding.joints if k in speeds.moving and facts.revolute[k]]
+    if still:
+        rates = _listed([f"{speeds.speeds[k]:.3g}" for k in still])
+        clauses.append(f"{_joints_named(facts, still)} still {'moves' if len(still) == 1 else 'move'} {name}, at "
+                       f"{rates} m/rad")
+    return clauses
 
 
 def _cause_words(cause: Cause, facts: Evidence | None = None) -> str:

@@ -32,6 +32,7 @@ __all__ = [
     "evidence_data",
     "matrix_strings",
     "metadata",
+    "sample_data",
     "set_data",
     "show_data",
     "singularity_data",

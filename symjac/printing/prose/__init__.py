@@ -6,6 +6,7 @@ analysis, so printing a Jacobian loads none.
 """
 
 from symjac.deprecation import renamed
+from symjac.printing.prose.evidence import evidence_clauses, landmark_name
 from symjac.printing.prose.redundant import (
     LONG_INLINE,
     is_long,
@@ -53,11 +54,9 @@ from symjac.printing.prose.results import (
 )
 from symjac.printing.prose.singularities import (
     axis_name,
-    evidence_clauses,
     existence_parts,
     existence_words,
     finding_sentence,
-    landmark_name,
     limit_parts,
     limit_text,
     lost_words,

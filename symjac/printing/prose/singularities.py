@@ -19,11 +19,12 @@ from symjac.model.conventions import plugin
 from symjac.model.robot import Robot
 from symjac.printing.document import Inline
 from symjac.printing.pretty import one_line
+from symjac.printing.prose.evidence import evidence_clauses, landmark_name
 
 if TYPE_CHECKING:
     from symjac.analysis.representations import RepresentationSingularity
     from symjac.analysis.singularity.evidence import Evidence
-    from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark
+    from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis
     from symjac.analysis.singularity.redundant import SingularSet
     from symjac.analysis.singularity.singularities import (
         DirectionPart,
@@ -34,11 +35,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "axis_name",
-    "evidence_clauses",
     "existence_parts",
     "existence_words",
     "finding_sentence",
-    "landmark_name",
     "limit_parts",
     "limit_text",
     "lost_words",
@@ -60,15 +59,6 @@ __all__ = [
 _AXIS_NAMES = ("x", "y", "z")
 
 
-def landmark_name(landmark: Landmark) -> str:
-    """``the reference point``, ``the origin of frame {4}``, ``the axis of joint 3``."""
-    if landmark.kind == "frame origin":
-        return f"the origin of frame {{{landmark.index}}}"
-    if landmark.kind == "joint axis":
-        return f"the axis of joint {int(landmark.index or 0) + 1}"
-    return "the reference point"
-
-
 def finding_sentence(finding: Finding) -> str:
     """A geometric fact in words: ``the axes of joints 4 and 6 are collinear``."""
     from symjac.analysis.singularity.geometry import Relation
@@ -83,61 +73,6 @@ def finding_sentence(finding: Finding) -> str:
     if finding.relation is Relation.IN_SHOULDER_PLANE:
         return f"{name} lies in the plane through the axis of joint 1 parallel to the axis of joint 2"
     return f"{name} lies in the plane of the parallel axes of joints {joints[0]} and {joints[1]}"
-
-
-def _listed(words: Sequence[str]) -> str:
-    return words[0] if len(words) == 1 else f"{', '.join(words[:-1])} and {words[-1]}"
-
-
-def _joints_named(facts: Evidence, coordinates: Sequence[int]) -> str:
-    """``joint 2``, ``joints 1 and 3``, or a coupled robot's coordinates ``theta2 and theta3``."""
-    if facts.coupled:
-        return _listed([facts.names[c] for c in coordinates])
-    return f"joint{'s' if len(coordinates) > 1 else ''} {_listed([str(c + 1) for c in coordinates])}"
-
-
-def evidence_clauses(facts: Evidence | None, cause: Cause | None = None) -> tuple[str, ...]:
-    """What the numbers at the sample support, one clause each (``()`` without evidence).
-
-    Only facts :class:`~symjac.analysis.singularity.evidence.Evidence` holds are stated: joints whose linear column
-    vanished there (and not generically), pairs of analysed columns that became parallel, and for a shoulder
-    singularity the speed at which each of its joints still moves the reference point; failing these, for a
-    square Jacobian, the joints whose columns are dependent (the support of the null motion).
-    """
-    if facts is None:
-        return ()
-    clauses: list[str] = []
-    if facts.stopped:
-        verb = "moves" if len(facts.stopped) == 1 else "move"
-        clauses.append(f"{_joints_named(facts, facts.stopped)} no longer {verb} the reference point (its linear "
-                       f"column is zero there)")
-    clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (one joint's motion is now a multiple of "
-                "the other's)" for pair in facts.parallel]
-    if cause is not None and cause.kind == "shoulder" and cause.findings:
-        clauses += _landmark_clauses(facts, cause.findings[0])
-    if not clauses and facts.dependent and len(facts.rows) == len(facts.columns):
-        clauses.append(f"the columns of {_joints_named(facts, facts.dependent)} are dependent")
-    return tuple(clauses)
-
-
-def _landmark_clauses(facts: Evidence, finding: Finding) -> list[str]:
-    """How the finding's joints move its landmark (the reference point, a wrist centre) at the sample, if known."""
-    from symjac.analysis.singularity.geometry import Landmark
-
-    landmark = finding.landmark or Landmark("reference point")
-    speeds = facts.point(landmark)
-    if speeds is None:
-        return []
-    name, clauses = landmark_name(landmark), []
-    stopped = [k for k in finding.joints if k in speeds.stopped and k not in facts.stopped]
-    if stopped and landmark.kind != "reference point":  # the reference point's stopped joints are said already
-        clauses.append(f"{_joints_named(facts, stopped)} no longer {'moves' if len(stopped) == 1 else 'move'} {name}")
-    still = [k for k in finding.joints if k in speeds.moving and facts.revolute[k]]
-    if still:
-        rates = _listed([f"{speeds.speeds[k]:.3g}" for k in still])
-        clauses.append(f"{_joints_named(facts, still)} still {'moves' if len(still) == 1 else 'move'} {name}, at "
-                       f"{rates} m/rad")
-    return clauses
 
 
 def _cause_words(cause: Cause, facts: Evidence | None = None) -> str:

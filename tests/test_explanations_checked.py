@@ -175,6 +175,25 @@ def test_every_explanation_holds_at_its_stated_sample(name):
             assert all(independent[k] > 1e-3 * scale for k in point.moving)
 
 
+@pytest.mark.parametrize("name", ["spherical_rrp", "cylindrical_rpp", "tool3r", "stanford"])
+def test_a_joint_said_to_stop_on_the_whole_set_stops_at_other_points_of_it(name):
+    robot, report = report_of(name)
+    rng = np.random.default_rng(7)
+    proven = [f for f in report.factors if f.evidence is not None and f.evidence.stopped_on_set]
+    assert proven
+    for factor in proven:
+        values = dict(zip(report.variables, factor.sample, strict=True))
+        (solution,) = [s for s in factor.solutions
+                       if abs(values[s.lhs] - float(s.rhs.subs(robot.defaults).subs(values))) < 1e-9
+                       or abs(np.sin(values[s.lhs] - float(s.rhs.subs(robot.defaults).subs(values)))) < 1e-9][:1]
+        for _ in range(3):
+            q = {v: values[v] + rng.uniform(-0.5, 0.5) for v in report.variables}
+            q[solution.lhs] = float(solution.rhs.subs(robot.defaults).subs(q))
+            full = reference_jacobian(robot, report, [q[v] for v in report.variables])
+            for c in factor.evidence.stopped_on_set:
+                assert np.linalg.norm(full[:3, c]) <= 1e-6 * np.linalg.norm(full, 2), (name, factor.expression, c)
+
+
 def _joints(text: str) -> list[int]:
     return [int(number) - 1 for number in re.findall(r"\d+", text)]
 

@@ -11,6 +11,8 @@ is evaluated and compared with the same Jacobian at a generic configuration :mat
   (:func:`~symjac.analysis.singularity.geometry.geometry_at`: the reference point, a wrist centre): a revolute joint
   :math:`k` moves a point :math:`p` beyond it in the chain at :math:`\lVert z_k \times (p - o_k)\rVert`
   (:class:`PointSpeeds`);
+* of those, the ones that stop on the whole set: the linear column, with the solution :math:`q_i = f(\ldots)` the
+  sample was drawn from substituted, simplifies to zero symbolically (parameters kept symbolic);
 * the joints whose analysed columns became *parallel*: :math:`\sigma_2([J_i\ J_j]) \le \epsilon` at :math:`q_s`, not
   at :math:`q_g` (two joints that now do the same thing);
 * the joints whose columns became *dependent*: the support of the null space of :math:`J(q_s)`;
@@ -35,6 +37,7 @@ import sympy as sp
 
 from symjac.analysis.singularity.geometry import Geometry, Landmark, geometry_at
 from symjac.kinematics.chain import Chain, Frame
+from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.numeric import numeric_jacobian
 
 __all__ = ["MOVING", "ZERO", "Evidence", "PointSpeeds", "evidence_at"]
@@ -71,7 +74,8 @@ class Evidence:
     whether each coordinate is an angle; ``coupled`` whether the coordinates differ from the joints (a coupling).
     ``jacobian`` is :math:`J(q_s)` on ``rows`` x ``columns`` and ``scale`` its
     largest singular value. ``speeds[k]`` is the speed of the point per unit rate of coordinate ``columns[k]``.
-    Joint lists (``stopped``, ``parallel``, ``dependent``, ``moving``) hold 0-based coordinates. ``lost`` is the
+    Joint lists (``stopped``, ``parallel``, ``dependent``, ``moving``) hold 0-based coordinates; ``stopped_on_set``
+    the stopped ones proven symbolically to stop everywhere on the set. ``lost`` is the
     lost direction :math:`u` on ``rows`` and ``null_motion`` a motion :math:`\dot q` on ``columns`` (empty when the
     Jacobian has full rank there); ``points`` the speeds of every landmark point (none for a coupled robot, whose
     columns are not joints); ``lost_residual`` and ``motion_residual`` are :math:`\lVert u^T J\rVert` and
@@ -93,6 +97,7 @@ class Evidence:
     moving: tuple[int, ...]
     parallel: tuple[tuple[int, int], ...]
     dependent: tuple[int, ...]
+    stopped_on_set: tuple[int, ...] = ()
     points: tuple[PointSpeeds, ...] = ()
     lost: tuple[float, ...] = ()
     lost_residual: float = 0.0
@@ -150,6 +155,24 @@ def _point_speeds(chain: Chain, here: Geometry, generic: Geometry, scale: float)
     return tuple(found)
 
 
+_SYMBOLIC_OPS = 600
+"""Operations beyond which a substituted column is not simplified (the claim then stays numeric, at the sample)."""
+
+
+def _stopped_on_set(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr], stopped: Sequence[int],
+                    solution: tuple[sp.Expr, sp.Expr] | None) -> tuple[int, ...]:
+    r"""The ``stopped`` columns whose linear part :math:`J_{v,k}` is zero with ``lhs = rhs`` substituted."""
+    if solution is None or not stopped:
+        return ()
+    J = jacobian(chain, frame=frame, point=point)
+    proven = []
+    for c in stopped:
+        entries = [entry.subs(*solution) for entry in J[:3, c]]
+        if all(sp.count_ops(e) <= _SYMBOLIC_OPS and sp.simplify(e) == 0 for e in entries):
+            proven.append(c)
+    return tuple(proven)
+
+
 def _parallel_pairs(J: np.ndarray, columns: Sequence[int], tolerance: float) -> set[tuple[int, int]]:
     pairs = set()
     norms = np.linalg.norm(J, axis=0)
@@ -164,11 +187,12 @@ def _parallel_pairs(J: np.ndarray, columns: Sequence[int], tolerance: float) -> 
 def evidence_at(chain: Chain, rows: Sequence[int], frame: Frame, point: tuple[sp.Expr, sp.Expr, sp.Expr],
                 columns: Sequence[int],
                 sample: Sequence[float], lost: Sequence[float] | None = None, motion: Sequence[float] | None = None,
-                seed: int = 1729) -> Evidence:
+                solution: tuple[sp.Expr, sp.Expr] | None = None, seed: int = 1729) -> Evidence:
     r"""The facts at ``sample`` for the Jacobian on ``rows`` x ``columns`` in ``frame`` at ``point`` (see the module).
 
     ``lost`` (on ``rows``) and ``motion`` (on ``columns``) are the lost direction and null motion an explanation
-    states; their residuals are checked here (without them, singular vectors of :math:`J(q_s)` are used). The generic
+    states; their residuals are checked here (without them, singular vectors of :math:`J(q_s)` are used).
+    ``solution`` (``lhs``, ``rhs``) is the family of the set the sample lies on, for the symbolic check. The generic
     configuration :math:`q_g` is drawn uniformly from :math:`[-2.5, 2.5]` per coordinate with ``seed``.
     """
     model = chain.robot
@@ -195,7 +219,8 @@ def evidence_at(chain: Chain, rows: Sequence[int], frame: Frame, point: tuple[sp
     revolute = tuple(kind == "revolute" for kind in model.coordinate_types)
     facts = Evidence(tuple(float(x) for x in sample), names, revolute, model.coupling is not None, rows, frame, columns,
                      tuple(tuple(float(x) for x in row) for row in J), scale, rank,
-                     tuple(float(s) for s in speeds), stopped, moving, parallel, dependent, points)
+                     tuple(float(s) for s in speeds), stopped, moving, parallel, dependent,
+                     _stopped_on_set(chain, frame, point, stopped, solution), points)
     if lost is None and motion is None and rank == min(J.shape):
         return facts
     u = np.asarray(lost, dtype=float) if lost is not None else U[:, rank] if rank < J.shape[0] else np.zeros(0)

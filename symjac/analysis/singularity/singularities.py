@@ -210,6 +210,7 @@ def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int,
         names = () if chain.robot.coupling is None else tuple(str(chain.robot.q[c]) for c in det.columns)
         motion = SelfMotion(tuple(float(x) for x in canonical(spaces.null_space[:, 0])), det.columns, names)
     facts = evidence_at(chain, det.rows, det.frame, det.point, det.columns, sample,
-                        None if lost is None else lost.vector, None if motion is None else motion.rates)
+                        None if lost is None else lost.vector, None if motion is None else motion.rates,
+                        (solution.lhs, solution.rhs))
     return SingularFactor(factor, multiplicity, solutions, existence, holds, cause, tuple(sample), lost, motion,
                           limits, facts)

@@ -49,10 +49,13 @@ def evidence_clauses(facts: Evidence | None, cause: Cause | None = None) -> tupl
     if facts is None:
         return ()
     clauses: list[str] = []
-    if facts.stopped:
-        verb = "moves" if len(facts.stopped) == 1 else "move"
-        clauses.append(f"{_joints_named(facts, facts.stopped)} no longer {verb} the reference point (its linear "
-                       f"column is zero there)")
+    everywhere = [c for c in facts.stopped if c in facts.stopped_on_set]
+    there = [c for c in facts.stopped if c not in facts.stopped_on_set]
+    for joints, why in ((everywhere, "anywhere on the set (its linear column vanishes there identically)"),
+                        (there, "(its linear column is zero at this configuration)")):
+        if joints:
+            verb = "moves" if len(joints) == 1 else "move"
+            clauses.append(f"{_joints_named(facts, joints)} no longer {verb} the reference point {why}")
     clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (one joint's motion is now a multiple of "
                 "the other's)" for pair in facts.parallel]
     if cause is not None and cause.kind == "shoulder" and cause.findings:

@@ -24,6 +24,7 @@ from reference import finite_difference_jacobian, frame_index, frames
 
 from symjac import load_robot, robot_from_toml, singularities
 from symjac.printing import prose
+from symjac.printing.document import Inline
 from symjac.printing.json import singularity_data
 from symjac.printing.pretty import one_line
 from symjac.printing.summary import singularity_summary
@@ -297,11 +298,29 @@ def test_the_sample_is_stated_in_every_format(name):
         values = dict(zip(map(str, report.variables), factor.sample, strict=True))
         assert data["factors"][number]["sample"] == values
         assert json.loads(json.dumps(data))["factors"][number]["sample"] == values
-        shown = "".join(one_line(part) if not isinstance(part, str) else part
+        shown = "".join(part if isinstance(part, str) else part.text if isinstance(part, Inline) else one_line(part)
                         for part in prose.sample_parts(factor.sample, report.variables))
         assert shown.startswith("at ") and shown in pretty[number]
         first = sp.latex(report.variables[0])
         assert f", at ${first} = " in latex[number]
+
+
+def test_a_degree_file_states_its_sample_in_degrees(tmp_path, capsys):
+    from symjac.cli.main import main
+
+    path = tmp_path / "tx90.toml"
+    path.write_text(ARMS["tx90"], encoding="utf-8")
+    assert main(["singularities", str(path), "--format", "pretty"]) == 0
+    text = capsys.readouterr().out
+    _, report = report_of("tx90")
+    for factor in report.factors:
+        if factor.sample is None:
+            continue
+        caption = next(line for line in text.splitlines() if line.startswith("Factor ") and f"({factor.kind})" in line)
+        stated = [float(x) for x in re.findall(r"θ\S+ = (-?[\d.]+)°", caption.split(":")[0])]
+        assert np.allclose(np.radians(stated), factor.sample, atol=np.radians(5e-4) + 1e-12)
+    assert main(["singularities", str(path), "--format", "latex"]) == 0
+    assert r"\theta_{5} = 0^{\circ}$" in capsys.readouterr().out
 
 
 def test_a_redundant_arms_sets_state_their_sample(capsys):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Sequence
+from math import isnan
 from typing import TYPE_CHECKING, Any
 
 import sympy as sp
@@ -103,9 +104,10 @@ def evidence_data(facts: Evidence | None, clauses: Sequence[str] = ()) -> dict[s
     r"""The facts checked at the sample (joints 1-based): what the words ``clauses`` state, and the numbers behind them.
 
     ``speeds`` maps each column's coordinate to the speed of the reference point per unit rate; ``stopped`` the
-    joints that no longer move it, ``parallel`` the pairs whose columns became parallel, ``dependent`` the support of
-    the null motion; ``lost_residual`` and ``motion_residual`` are :math:`\lVert u^T J\rVert / \sigma_1` and
-    :math:`\lVert J \dot q\rVert / \sigma_1`.
+    joints that no longer move it (``stopped_on_set``: proven on the whole set), ``parallel`` the pairs whose columns
+    became parallel, ``dependent`` the support of the null motion; ``points`` the speeds of each landmark point
+    (``null`` for a prismatic joint); ``lost_residual`` and ``motion_residual`` are
+    :math:`\lVert u^T J\rVert / \sigma_1` and :math:`\lVert J \dot q\rVert / \sigma_1`.
     """
     if facts is None:
         return None
@@ -113,8 +115,12 @@ def evidence_data(facts: Evidence | None, clauses: Sequence[str] = ()) -> dict[s
         "rows": [ROW_NAMES[r] for r in facts.rows], "frame": facts.frame, "columns": [c + 1 for c in facts.columns],
         "rank": facts.rank, "scale": facts.scale, "tolerance": facts.tolerance,
         "speeds": {facts.names[c]: speed for c, speed in zip(facts.columns, facts.speeds, strict=True)},
-        "stopped": [c + 1 for c in facts.stopped], "moving": [c + 1 for c in facts.moving],
+        "stopped": [c + 1 for c in facts.stopped], "stopped_on_set": [c + 1 for c in facts.stopped_on_set],
+        "moving": [c + 1 for c in facts.moving],
         "parallel": [[i + 1, j + 1] for i, j in facts.parallel], "dependent": [c + 1 for c in facts.dependent],
+        "points": [{"point": prose.landmark_name(p.landmark),
+                    "speeds": {facts.names[k]: None if isnan(v) else v for k, v in enumerate(p.speeds)},
+                    "stopped": [k + 1 for k in p.stopped], "moving": [k + 1 for k in p.moving]} for p in facts.points],
         "lost_residual": facts.lost_residual, "motion_residual": facts.motion_residual, "clauses": list(clauses),
     }
 

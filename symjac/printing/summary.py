@@ -19,13 +19,17 @@ def _det(value: sp.Expr) -> Equation:
     return Equation(r"\det J", "det J", value)
 
 
-def singularity_blocks(report: SingularityReport) -> list[Block]:
-    r"""The report as captioned blocks: :math:`\det J` (or every minor of a redundant arm), then each factor."""
+def singularity_blocks(report: SingularityReport, degrees: bool = False) -> list[Block]:
+    r"""The report as captioned blocks: :math:`\det J` (or every minor of a redundant arm), then each factor.
+
+    Each explanation starts with the configuration its numbers were read at, its angles in degrees with
+    ``degrees`` (a robot file that says ``angle_unit = "deg"``).
+    """
     if report.redundant:
-        return _redundant_blocks(report)
+        return _redundant_blocks(report, degrees)
     blocks = [Block(prose.rows_parts(report), (_det(report.determinant.expression),))]
     for factor in report.factors:
-        where = prose.sample_parts(factor.sample, report.variables) if factor.solutions else ()
+        where = prose.sample_parts(factor.sample, report.variables, degrees) if factor.solutions else ()
         head: list[str | sp.Basic] = ["Factor ", factor.expression, f" ({factor.kind})", *([", "] if where else []),
                                       *where, ": ", *prose.reason_parts(factor), "."]
         if factor.solutions:
@@ -40,7 +44,7 @@ def singularity_blocks(report: SingularityReport) -> list[Block]:
     return blocks
 
 
-def _redundant_blocks(report: SingularityReport) -> list[Block]:
+def _redundant_blocks(report: SingularityReport, degrees: bool) -> list[Block]:
     """Every minor (a zero one with its reason), then every singular set with its solutions."""
     blocks = [Block(prose.redundant_caption(report))]
     zeros = {zero.columns: zero for zero in report.zero_minors}
@@ -60,7 +64,7 @@ def _redundant_blocks(report: SingularityReport) -> list[Block]:
                 defined.add(name)
                 long.append(Equation(sp.latex(name), str(name), condition.expression))
         solutions = [Equation("", "", s.equation) for s in singular_set.solutions if not prose.is_long(s.rhs)]
-        blocks.append(Block((f"Set {number}: ", *prose.set_parts(singular_set, names)), (*long, *solutions)))
+        blocks.append(Block((f"Set {number}: ", *prose.set_parts(singular_set, names, degrees)), (*long, *solutions)))
     return blocks
 
 

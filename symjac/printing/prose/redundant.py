@@ -142,19 +142,20 @@ def is_long(expr: sp.Basic) -> bool:
     return len(sp.sstr(expr)) > LONG_INLINE
 
 
-def set_parts(singular_set: SingularSet, names: Mapping[sp.Expr, sp.Symbol] | None = None
+def set_parts(singular_set: SingularSet, names: Mapping[sp.Expr, sp.Symbol] | None = None, degrees: bool = False
               ) -> tuple[str | sp.Basic, ...]:
     """One singular set as caption parts: its conditions, kind, reason, what is lost, its self-motions and limits.
 
     A long condition is named ``F_k = 0`` (by ``names``, :func:`long_names` of the whole report; else k is its place
     in the set) and displayed below as ``F_k = ...``; solutions too long for a page are left to the JSON output.
+    ``degrees`` writes the sample's angles in degrees (:func:`~symjac.printing.prose.singularities.sample_parts`).
     """
     parts: list[str | sp.Basic] = []
     for number, condition in enumerate(singular_set.conditions):
         name = names[condition.expression] if names is not None and is_long(condition.expression) else long_name(number)
         shown = sp.Eq(name if is_long(condition.expression) else condition.expression, 0, evaluate=False)
         parts += [" and "] * bool(number) + [shown]
-    where = sample_parts(singular_set.sample, singular_set.variables)
+    where = sample_parts(singular_set.sample, singular_set.variables, degrees)
     parts += [f" ({singular_set.kind})", *([", "] if where else []), *where, f": {set_reason(singular_set)}."]
     lost = lost_words(singular_set)
     if lost:

@@ -213,17 +213,24 @@ def self_motion_parts(factor: SingularFactor | SingularSet) -> tuple[str | sp.Ba
     return (*parts, " move nothing")
 
 
-def sample_parts(sample: Sequence[float] | None, variables: Sequence[sp.Symbol]) -> tuple[str | sp.Basic, ...]:
+def sample_parts(sample: Sequence[float] | None, variables: Sequence[sp.Symbol], degrees: bool = False
+                 ) -> tuple[str | sp.Basic | Inline, ...]:
     """Where the numbers of an explanation were read, as caption parts: ``at θ₁ = 0.3, θ₂ = π/2`` (``()`` if unknown).
 
     The lost direction and the joint rates that move nothing are computed at this configuration of the singular
-    set (parameters at their defaults), so a reader can check them.
+    set (parameters at their defaults), so a reader can check them. With ``degrees`` (a robot file in degrees) the
+    angles are written in degrees, ``θ₂ = 90°``, as the reader would type them.
     """
     if sample is None or len(sample) != len(variables):
         return ()
-    parts: list[str | sp.Basic] = ["at "]
+    parts: list[str | sp.Basic | Inline] = ["at "]
     for number, (variable, value) in enumerate(zip(variables, sample, strict=True)):
-        shown = _readable_angle(float(value)) if str(variable).startswith("theta") else None
+        angle = str(variable).startswith("theta")
+        if angle and degrees:  # one piece of math: the degree sign is a superscript in LaTeX
+            equation = sp.Eq(variable, readable_value(math.degrees(float(value))), evaluate=False)
+            parts += [", "] * bool(number) + [Inline(f"{sp.latex(equation)}^{{\\circ}}", f"{one_line(equation)}°")]
+            continue
+        shown = _readable_angle(float(value)) if angle else None
         shown = readable_value(float(value)) if shown is None else shown
         parts += [", "] * bool(number) + [sp.Eq(variable, shown, evaluate=False)]
     return tuple(parts)

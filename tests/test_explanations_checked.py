@@ -343,5 +343,7 @@ def test_the_html_report_states_the_sample():
     section = page[page.index('id="singularities"'):page.index('id="arm"')]
     (elbow,) = [f for f in report.factors if f.sample is not None]
     assert "(elbow), at <math>" in section
+    arm = page[page.index('id="arm"'):]
+    assert "(elbow), at <math>" in arm[arm.index("Singular where"):]  # the drawn arm's caption: the same sample
     for value in elbow.sample:
         assert prose.readable_number(abs(value)).replace("-", "") in section

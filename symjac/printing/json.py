@@ -94,7 +94,10 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
 
 
 def sample_data(sample: Sequence[float] | None, variables: Sequence[sp.Symbol]) -> dict[str, float] | None:
-    """The configuration an explanation's numbers were read at: ``{"theta1": 1.419, ...}`` (``None`` if none)."""
+    """The configuration an explanation's numbers were read at: ``{"theta1": 1.419, ...}`` (``None`` if none).
+
+    Values are in radians and metres, as all JSON data, whatever the robot file's ``angle_unit``.
+    """
     if sample is None:
         return None
     return {str(v): float(x) for v, x in zip(variables, sample, strict=True)}

@@ -68,7 +68,7 @@ _SET_REASONS = {  # by SingularityKind, a string enum
     "elbow": "the arm is stretched out or folded back at {joints}",
     "shoulder": "a shoulder singularity, set by {joints} alone",
     "wrist": "a wrist singularity, set by {joints} alone",
-    "alignment": "axes line up in more than one group of joints at once",
+    "alignment": "axes line up, set by {joints}",
     "other": "",
 }
 

@@ -38,7 +38,7 @@ def singularity_blocks(report: SingularityReport, degrees: bool = False) -> list
                 head += [" ", *existence]
             lost, motion = prose.lost_words(factor), prose.self_motion_parts(factor)
             if lost or motion:
-                head += [" There it ", lost or "loses rank", "; " if lost and motion else "", *motion, "."]
+                head += [" There it ", lost or "loses rank", "; " if motion else "", *motion, "."]
             head.extend(prose.limit_parts(factor))
         blocks.append(Block(tuple(head), tuple(Equation("", "", s.equation) for s in factor.solutions)))
     return blocks

@@ -56,7 +56,7 @@ def evidence_clauses(facts: Evidence | None, cause: Cause | None = None) -> tupl
         if joints:
             verb = "moves" if len(joints) == 1 else "move"
             clauses.append(f"{_joints_named(facts, joints)} no longer {verb} the reference point {why}")
-    clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (one joint's motion is now a multiple of "
+    clauses += [f"the columns of {_joints_named(facts, pair)} are parallel (one's motion is now a multiple of "
                 "the other's)" for pair in facts.parallel]
     if cause is not None and cause.kind == "shoulder" and cause.findings:
         clauses += _landmark_clauses(facts, cause.findings[0])

@@ -15,7 +15,8 @@ is evaluated and compared with the same Jacobian at a generic configuration :mat
   sample was drawn from substituted, simplifies to zero symbolically (parameters kept symbolic);
 * the joints whose analysed columns became *parallel*: :math:`\sigma_2([J_i\ J_j]) \le \epsilon` at :math:`q_s`, not
   at :math:`q_g` (two joints that now do the same thing);
-* the joints whose columns became *dependent*: the support of the null space of :math:`J(q_s)`;
+* the joints whose columns became *dependent*: the support of the null space of :math:`J(q_s)` (a column lies in
+  the span of the others exactly when some :math:`\dot q` with :math:`J \dot q = 0` uses it);
 * the lost direction :math:`u` (a left singular vector of :math:`J(q_s)` for a zero singular value) and a null
   motion :math:`\dot q` (a right one), with their residuals :math:`\lVert u^T J \rVert` and
   :math:`\lVert J \dot q \rVert`.

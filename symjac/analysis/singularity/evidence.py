@@ -166,9 +166,14 @@ def _stopped_on_set(chain: Chain, frame: Frame, point: tuple[sp.Expr, sp.Expr, s
     if solution is None or not stopped:
         return ()
     J = jacobian(chain, frame=frame, point=point)
+    draw = random.Random(len(stopped))
     proven = []
     for c in stopped:
         entries = [entry.subs(*solution) for entry in J[:3, c]]
+        symbols = sorted(set().union(*(e.free_symbols for e in entries)), key=str)
+        trial = {symbol: draw.uniform(0.2, 1.3) for symbol in symbols}  # a quick refutation before simplifying
+        if any(abs(complex(e.evalf(subs=trial))) > 1e-9 for e in entries):
+            continue
         if all(sp.count_ops(e) <= _SYMBOLIC_OPS and sp.simplify(e) == 0 for e in entries):
             proven.append(c)
     return tuple(proven)

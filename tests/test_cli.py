@@ -489,7 +489,7 @@ def test_json_output_round_trips_with_the_same_keys(cli, command, robot):
         assert set(data["determinant"]) == {"expression", "coefficient", "factors", "columns"}
         for factor in data["factors"]:
             assert set(factor) == {"expression", "multiplicity", "kind", "reason", "solutions", "existence",
-                                   "exists_for_defaults", "sample", "lost_direction", "lost", "self_motion",
+                                   "exists_for_defaults", "sample", "evidence", "lost_direction", "lost", "self_motion",
                                    "self_motion_words", "solution_limits", "reachable_within_limits",
                                    "limits_words"}
         kinds = {factor["kind"] for factor in data["factors"]}

@@ -8,6 +8,8 @@ has its own (:func:`singularity_data`).
 from __future__ import annotations
 
 import warnings
+from collections.abc import Sequence
+from math import isnan
 from typing import TYPE_CHECKING, Any
 
 import sympy as sp
@@ -21,14 +23,17 @@ from symjac.printing.tables import parameter_rows
 
 if TYPE_CHECKING:  # the analyses' types only: printing a Jacobian's JSON does not load them
     from symjac.analysis.singularity.determinant import Determinant
+    from symjac.analysis.singularity.evidence import Evidence
     from symjac.analysis.singularity.redundant import SingularSet
     from symjac.analysis.singularity.singularities import SingularityReport
 
 __all__ = [
     "determinant_data",
     "document_data",
+    "evidence_data",
     "matrix_strings",
     "metadata",
+    "sample_data",
     "set_data",
     "show_data",
     "singularity_data",
@@ -81,7 +86,8 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
             "expression": sp.sstr(f.expression), "multiplicity": f.multiplicity, "kind": str(f.kind),
             "reason": prose.reason(f), "solutions": [sp.sstr(s.equation) for s in f.solutions],
             "existence": None if f.existence is None else sp.sstr(f.existence),
-            "exists_for_defaults": f.exists_for_defaults, "sample": f.sample,
+            "exists_for_defaults": f.exists_for_defaults, "sample": sample_data(f.sample, report.variables),
+            "evidence": evidence_data(f.evidence, prose.evidence_clauses(f.evidence, f.cause)),
             "lost_direction": None if f.lost_direction is None else f.lost_direction.vector,
             "lost": prose.lost_words(f),
             "self_motion": None if f.self_motion is None else f.self_motion.rates,
@@ -92,6 +98,41 @@ def singularity_data(report: SingularityReport) -> dict[str, Any]:
     }
 
 
+def sample_data(sample: Sequence[float] | None, variables: Sequence[sp.Symbol]) -> dict[str, float] | None:
+    """The configuration an explanation's numbers were read at: ``{"theta1": 1.419, ...}`` (``None`` if none).
+
+    Values are in radians and metres, as all JSON data, whatever the robot file's ``angle_unit``.
+    """
+    if sample is None:
+        return None
+    return {str(v): float(x) for v, x in zip(variables, sample, strict=True)}
+
+
+def evidence_data(facts: Evidence | None, clauses: Sequence[str] = ()) -> dict[str, Any] | None:
+    r"""The facts checked at the sample (joints 1-based): what the words ``clauses`` state, and the numbers behind them.
+
+    ``speeds`` maps each column's coordinate to the speed of the reference point per unit rate; ``stopped`` the
+    joints that no longer move it (``stopped_on_set``: proven on the whole set), ``parallel`` the pairs whose columns
+    became parallel, ``dependent`` the support of the null motion; ``points`` the speeds of each landmark point
+    (``null`` for a prismatic joint); ``lost_residual`` and ``motion_residual`` are
+    :math:`\lVert u^T J\rVert / \sigma_1` and :math:`\lVert J \dot q\rVert / \sigma_1`.
+    """
+    if facts is None:
+        return None
+    return {
+        "rows": [ROW_NAMES[r] for r in facts.rows], "frame": facts.frame, "columns": [c + 1 for c in facts.columns],
+        "rank": facts.rank, "scale": facts.scale, "tolerance": facts.tolerance,
+        "speeds": {facts.names[c]: speed for c, speed in zip(facts.columns, facts.speeds, strict=True)},
+        "stopped": [c + 1 for c in facts.stopped], "stopped_on_set": [c + 1 for c in facts.stopped_on_set],
+        "moving": [c + 1 for c in facts.moving],
+        "parallel": [[i + 1, j + 1] for i, j in facts.parallel], "dependent": [c + 1 for c in facts.dependent],
+        "points": [{"point": prose.landmark_name(p.landmark),
+                    "speeds": {facts.names[k]: None if isnan(v) else v for k, v in enumerate(p.speeds)},
+                    "stopped": [k + 1 for k in p.stopped], "moving": [k + 1 for k in p.moving]} for p in facts.points],
+        "lost_residual": facts.lost_residual, "motion_residual": facts.motion_residual, "clauses": list(clauses),
+    }
+
+
 def set_data(singular_set: SingularSet) -> dict[str, Any]:
     """One singular set of a redundant arm: ``EXPR = 0`` conditions, solutions per condition, kind, explanation."""
     return {
@@ -99,7 +140,9 @@ def set_data(singular_set: SingularSet) -> dict[str, Any]:
         "solutions": [[f"{sp.sstr(s.lhs)} = {sp.sstr(s.rhs)}" for s in c.solutions] for c in singular_set.conditions],
         "kind": str(singular_set.kind), "explanation": prose.set_reason(singular_set),
         "existence": None if singular_set.existence is None else sp.sstr(singular_set.existence),
-        "exists_for_defaults": singular_set.exists_for_defaults, "sample": singular_set.sample,
+        "exists_for_defaults": singular_set.exists_for_defaults,
+        "sample": sample_data(singular_set.sample, singular_set.variables),
+        "evidence": evidence_data(singular_set.evidence, prose.evidence_clauses(singular_set.evidence)),
         "lost_direction": None if singular_set.lost_direction is None else singular_set.lost_direction.vector,
         "lost": prose.lost_words(singular_set),
         "self_motion": None if singular_set.self_motion is None else singular_set.self_motion.rates,

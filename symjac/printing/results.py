@@ -252,6 +252,6 @@ def singularities_document(robot: Robot, report: Any) -> Document:
 
         return {**json_form.metadata(robot), **json_form.singularity_data(report)}
 
-    return Document(prose.title(robot, "singularities"), robot.name, tuple(singularity_blocks(report)), data,
-                    comments=True)
+    blocks = singularity_blocks(report, robot.angle_unit == "deg")  # a degree file's sample in degrees
+    return Document(prose.title(robot, "singularities"), robot.name, tuple(blocks), data, comments=True)
 

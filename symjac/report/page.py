@@ -156,7 +156,7 @@ def _arm_section(robot: Robot, report: SingularityReport) -> Section:
         if arrow is None or factor.sample is None:
             continue
         direction, shown = arrow
-        configuration = ", ".join(f"{v:.3g}" for v in factor.sample)
+        configuration = prose.sample_parts(factor.sample, robot.q, robot.angle_unit == "deg")
         where = factor.expression if isinstance(factor, SingularFactor) else sp.And(
             *[sp.Eq(condition.expression, 0) for condition in factor.conditions])
         caption = caption_html(prose.arm_singular_parts(where, str(factor.kind), configuration, shown))

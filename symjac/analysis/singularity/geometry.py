@@ -48,7 +48,7 @@ class SingularityKind(StrEnum):
     WRIST = "wrist"
     SHOULDER = "shoulder"
     ELBOW = "elbow"
-    ALIGNMENT = "alignment"  # a redundant arm's axes line up in more than one group of joints
+    ALIGNMENT = "alignment"  # a redundant arm's axes line up, set by joints of neither group alone
     PARAMETER = "parameter"  # vanishes only for a special design, never by moving the arm
     OTHER = "other"
 

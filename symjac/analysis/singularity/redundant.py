@@ -26,6 +26,7 @@ import sympy as sp
 
 from symjac.analysis.singularity.determinant import Determinant
 from symjac.analysis.singularity.directions import LostDirection, SelfMotion, canonical, lost_direction
+from symjac.analysis.singularity.evidence import Evidence, evidence_at
 from symjac.analysis.singularity.geometry import (
     Cause,
     Finding,
@@ -71,7 +72,8 @@ class SingularSet:
     the set (parameters at their defaults; ``None`` when it exists only for other parameter values). ``null_space``
     is a basis of the self-motions there, ``regular_null_space`` one at a regular configuration near it;
     ``self_motion`` is the self-motion that appears on the set (the part of the null space there orthogonal to the
-    one nearby). ``limits`` holds one status per solution, in the order of :attr:`solutions`.
+    one nearby). ``limits`` holds one status per solution, in the order of :attr:`solutions`. ``evidence`` holds the
+    facts checked at the sample that the words may state (:func:`symjac.analysis.singularity.evidence.evidence_at`).
     """
 
     conditions: tuple[Condition, ...]
@@ -84,6 +86,7 @@ class SingularSet:
     null_space: tuple[SelfMotion, ...] = ()
     regular_null_space: tuple[SelfMotion, ...] = ()
     limits: tuple[LimitStatus, ...] = ()
+    evidence: Evidence | None = None
 
     @property
     def kind(self) -> SingularityKind:
@@ -196,9 +199,11 @@ def _explain(chain: Chain, conditions: tuple[Condition, ...], minor: Determinant
         u, sigma, _ = np.linalg.svd(extra, full_matrices=False)
         if sigma[0] > 1e-6:
             motion = _motions(u[:, :1], names)[0]
+    facts = evidence_at(chain, tuple(rows), minor.frame, minor.point, range(chain.robot.n_coordinates), sample,
+                        None if lost is None else lost.vector, None if motion is None else motion.rates)
     return SingularSet(conditions, tuple(chain.robot.q), _cause(chain, conditions, new), True,
                        tuple(float(x) for x in sample), lost, motion, _motions(singular.null_space, names),
-                       _motions(regular.null_space, names), limits)
+                       _motions(regular.null_space, names), limits, facts)
 
 
 def explain_sets(chain: Chain, minors: Sequence[Determinant], seed: int = 0,

@@ -21,6 +21,7 @@ import sympy as sp
 
 from symjac.analysis.singularity.determinant import Determinant, default_rows, determinant
 from symjac.analysis.singularity.directions import DirectionPart, LostDirection, SelfMotion, canonical, lost_direction
+from symjac.analysis.singularity.evidence import Evidence, evidence_at
 from symjac.analysis.singularity.geometry import Cause, SingularityKind, classify, findings, geometry_at
 from symjac.analysis.singularity.joint_limits import LimitStatus, limit_status
 from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor, explain_sets, zero_minor
@@ -37,6 +38,7 @@ from symjac.model.robot import Robot
 
 __all__ = [
     "DirectionPart",
+    "Evidence",
     "LimitStatus",
     "LostDirection",
     "SelfMotion",
@@ -56,7 +58,8 @@ class SingularFactor:
     ``cause`` holds the :class:`~symjac.analysis.singularity.geometry.SingularityKind` and its evidence. ``sample`` is a
     configuration on the singular set (parameters at their defaults); ``lost_direction`` what the arm cannot do
     there, ``self_motion`` a joint motion that moves nothing. ``limits`` says, for each solution, whether it lies
-    inside the joint limits (:func:`symjac.analysis.singularity.joint_limits.limit_status`).
+    inside the joint limits (:func:`symjac.analysis.singularity.joint_limits.limit_status`). ``evidence`` holds
+    the facts checked at the sample that the words may state (:func:`symjac.analysis.singularity.evidence.evidence_at`).
     """
 
     expression: sp.Expr
@@ -69,6 +72,7 @@ class SingularFactor:
     lost_direction: LostDirection | None = None
     self_motion: SelfMotion | None = None
     limits: tuple[LimitStatus, ...] = ()
+    evidence: Evidence | None = None
 
     @property
     def reachable(self) -> bool | None:
@@ -233,5 +237,8 @@ def _explain(chain: Chain, det: Determinant, factor: sp.Expr, multiplicity: int,
     if spaces.null_space.shape[1]:
         names = () if chain.robot.coupling is None else tuple(str(chain.robot.q[c]) for c in det.columns)
         motion = SelfMotion(tuple(float(x) for x in canonical(spaces.null_space[:, 0])), det.columns, names)
+    facts = evidence_at(chain, det.rows, det.frame, det.point, det.columns, sample,
+                        None if lost is None else lost.vector, None if motion is None else motion.rates,
+                        (solution.lhs, solution.rhs))
     return SingularFactor(factor, multiplicity, solutions, existence, holds, cause, tuple(sample), lost, motion,
-                          limits)
+                          limits, facts)

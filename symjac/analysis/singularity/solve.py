@@ -299,7 +299,7 @@ def solution_sample(robot: Robot | Chain, solution: Solution, generator: random.
             return None
         pick = max(solved, key=lambda v: variables.index(v))
         rhs = solution.rhs.xreplace({**{v: values[v] for v in variables if v != pick}, **robot.defaults})
-        rest = (target - pick).xreplace({v: values[v] for v in variables if v != pick})
+        rest = (target - pick).xreplace({**{v: values[v] for v in variables if v != pick}, **robot.defaults})
         if rest.has(pick):
             return None  # an implicit surface (the factor itself = 0): not solved for one joint
         value = sp.N(rhs - rest)

@@ -6,6 +6,7 @@ analysis, so printing a Jacobian loads none.
 """
 
 from symjac.deprecation import renamed
+from symjac.printing.prose.evidence import evidence_clauses, landmark_name
 from symjac.printing.prose.redundant import (
     LONG_INLINE,
     is_long,
@@ -53,12 +54,10 @@ from symjac.printing.prose.results import (
 )
 from symjac.printing.prose.rows import choice_parts, row_minor_words, row_minors_caption
 from symjac.printing.prose.singularities import (
-    KIND_REASONS,
     axis_name,
     existence_parts,
     existence_words,
     finding_sentence,
-    landmark_name,
     limit_parts,
     limit_text,
     lost_words,
@@ -81,7 +80,6 @@ __all__ = [
     "ARM_INTRO",
     "BIAS_ACCELERATION",
     "HOME_POSE",
-    "KIND_REASONS",
     "LATEX_TOO_LONG",
     "LONG_INLINE",
     "METHODS_HEADING",
@@ -96,6 +94,7 @@ __all__ = [
     "choice_parts",
     "curve_parts",
     "derivative_caption",
+    "evidence_clauses",
     "existence_parts",
     "existence_words",
     "finding_sentence",

@@ -11,7 +11,14 @@ from typing import TYPE_CHECKING
 
 import sympy as sp
 
-from symjac.printing.prose.singularities import finding_sentence, limit_parts, lost_words, self_motion_parts
+from symjac.printing.prose.singularities import (
+    evidence_clauses,
+    finding_sentence,
+    limit_parts,
+    lost_words,
+    sample_parts,
+    self_motion_parts,
+)
 
 if TYPE_CHECKING:
     from symjac.analysis.singularity.redundant import SingularSet, ZeroMinor
@@ -61,7 +68,7 @@ _SET_REASONS = {  # by SingularityKind, a string enum
     "elbow": "the arm is stretched out or folded back at {joints}",
     "shoulder": "a shoulder singularity, set by {joints} alone",
     "wrist": "a wrist singularity, set by {joints} alone",
-    "alignment": "axes line up in more than one group of joints at once",
+    "alignment": "axes line up, set by {joints}",
     "other": "",
 }
 
@@ -77,6 +84,8 @@ def set_reason(singular_set: SingularSet) -> str:
     if not singular_set.exists_for_defaults:
         words = (words + "; " if words else "") + "no configuration of it exists for the default parameters"
     text = f"{words} ({evidence})" if words and evidence else words or evidence
+    clauses = evidence_clauses(singular_set.evidence)
+    text = "; ".join([text, *clauses] if text else clauses)
     return text or "no aligned axes found; see the lost direction and the self-motion"
 
 
@@ -133,21 +142,24 @@ def is_long(expr: sp.Basic) -> bool:
     return len(sp.sstr(expr)) > LONG_INLINE
 
 
-def set_parts(singular_set: SingularSet, names: Mapping[sp.Expr, sp.Symbol] | None = None
+def set_parts(singular_set: SingularSet, names: Mapping[sp.Expr, sp.Symbol] | None = None, degrees: bool = False
               ) -> tuple[str | sp.Basic, ...]:
     """One singular set as caption parts: its conditions, kind, reason, what is lost, its self-motions and limits.
 
     A long condition is named ``F_k = 0`` (by ``names``, :func:`long_names` of the whole report; else k is its place
     in the set) and displayed below as ``F_k = ...``; solutions too long for a page are left to the JSON output.
+    ``degrees`` writes the sample's angles in degrees (:func:`~symjac.printing.prose.singularities.sample_parts`).
     """
     parts: list[str | sp.Basic] = []
     for number, condition in enumerate(singular_set.conditions):
         name = names[condition.expression] if names is not None and is_long(condition.expression) else long_name(number)
         shown = sp.Eq(name if is_long(condition.expression) else condition.expression, 0, evaluate=False)
         parts += [" and "] * bool(number) + [shown]
-    parts += [f" ({singular_set.kind}): {set_reason(singular_set)}."]
-    if singular_set.lost_direction is not None:
-        parts += [f" There the arm {lost_words(singular_set)}; {_motion_count(singular_set)}"]
+    where = sample_parts(singular_set.sample, singular_set.variables, degrees)
+    parts += [f" ({singular_set.kind})", *([", "] if where else []), *where, f": {set_reason(singular_set)}."]
+    lost = lost_words(singular_set)
+    if lost:
+        parts += [f" There the arm {lost}; {_motion_count(singular_set)}"]
         motion = self_motion_parts(singular_set)
         parts += ["; the new one: ", *motion, "."] if motion else ["."]
     if any(is_long(solution.rhs) for solution in singular_set.solutions):

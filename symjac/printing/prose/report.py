@@ -48,11 +48,13 @@ def arm_home_caption(configuration: str) -> str:
     return f"Home: q = ({configuration})."
 
 
-def arm_singular_parts(factor: sp.Expr, kind: str, configuration: str, shown: str) -> tuple[Any, ...]:
+def arm_singular_parts(factor: sp.Expr, kind: str, configuration: Sequence[Any], shown: str) -> tuple[Any, ...]:
     """The caption of the arm at a singular configuration, with the lost direction as a red arrow at the tool.
 
-    ``shown`` says what the arrow is: ``linear`` (a direction the tool point cannot move in), ``angular`` (an axis
-    the tool cannot turn about), or ``mixed`` (the translation part of a lost twist, lost only with its rotation).
+    ``configuration`` is the sample as caption parts (:func:`~symjac.printing.prose.singularities.sample_parts`, the
+    same numbers as the explanation's). ``shown`` says what the arrow is: ``linear`` (a direction the tool point
+    cannot move in), ``angular`` (an axis the tool cannot turn about), or ``mixed`` (the translation part of a lost
+    twist, lost only with its rotation).
     """
     arrow = {"linear": "the direction the tool point cannot move in",
              "angular": "the axis the tool cannot turn about",
@@ -60,7 +62,7 @@ def arm_singular_parts(factor: sp.Expr, kind: str, configuration: str, shown: st
                        "the lost direction says, though it can move this way alone")}[shown]
     # a redundant arm's set comes as its conditions (an And, or one equation)
     where = (factor,) if isinstance(factor, sp.And | sp.core.relational.Relational) else (factor, " = 0")
-    return ("Singular where ", *where, f" ({kind}), at q = ({configuration}). The red arrow is {arrow}.")
+    return ("Singular where ", *where, f" ({kind}), ", *configuration, f". The red arrow is {arrow}.")
 
 
 def point_words(robot: Robot, point: Sequence[sp.Expr]) -> str:

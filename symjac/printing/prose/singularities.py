@@ -19,10 +19,12 @@ from symjac.model.conventions import plugin
 from symjac.model.robot import Robot
 from symjac.printing.document import Inline
 from symjac.printing.pretty import one_line
+from symjac.printing.prose.evidence import evidence_clauses, landmark_name
 
 if TYPE_CHECKING:
     from symjac.analysis.representations import RepresentationSingularity
-    from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis, Landmark
+    from symjac.analysis.singularity.evidence import Evidence
+    from symjac.analysis.singularity.geometry import Cause, Finding, FrameAxis
     from symjac.analysis.singularity.redundant import SingularSet
     from symjac.analysis.singularity.singularities import (
         DirectionPart,
@@ -32,12 +34,10 @@ if TYPE_CHECKING:
     )
 
 __all__ = [
-    "KIND_REASONS",
     "axis_name",
     "existence_parts",
     "existence_words",
     "finding_sentence",
-    "landmark_name",
     "limit_parts",
     "limit_text",
     "lost_words",
@@ -56,26 +56,7 @@ __all__ = [
     "table_caption",
 ]
 
-KIND_REASONS = {
-    "wrist": "two wrist rotations do the same thing, so one orientation direction is lost",
-    "shoulder": "rotating joint 1 no longer moves it sideways, so a direction is lost inside the "
-                              "workspace",
-    "elbow": "the arm is stretched out or folded back, on the boundary of its reach, and cannot move "
-                           "along that line",
-}
-"""What each textbook kind of singularity (a :class:`~symjac.analysis.singularity.geometry.SingularityKind`, a string
-enum) means for the arm."""
-
 _AXIS_NAMES = ("x", "y", "z")
-
-
-def landmark_name(landmark: Landmark) -> str:
-    """``the reference point``, ``the origin of frame {4}``, ``the axis of joint 3``."""
-    if landmark.kind == "frame origin":
-        return f"the origin of frame {{{landmark.index}}}"
-    if landmark.kind == "joint axis":
-        return f"the axis of joint {int(landmark.index or 0) + 1}"
-    return "the reference point"
 
 
 def finding_sentence(finding: Finding) -> str:
@@ -94,14 +75,23 @@ def finding_sentence(finding: Finding) -> str:
     return f"{name} lies in the plane of the parallel axes of joints {joints[0]} and {joints[1]}"
 
 
-def _cause_words(cause: Cause) -> str:
-    if cause.kind in KIND_REASONS and cause.findings:
-        return f"{finding_sentence(cause.findings[0])}: {KIND_REASONS[cause.kind]}"
+def _cause_words(cause: Cause, facts: Evidence | None = None) -> str:
+    clauses = evidence_clauses(facts, cause)
+    if cause.kind in ("wrist", "shoulder", "elbow") and cause.findings:
+        finding = cause.findings[0]
+        said = [finding_sentence(finding)]
+        if cause.kind == "elbow" and finding.landmark is not None and finding.landmark.kind != "joint axis":
+            said[0] += " (the arm is stretched out or folded back)"
+        return "; ".join([*said, *clauses])
     if cause.wrist_joints:
-        return f"the factor depends only on the wrist joints {', '.join(str(j + 1) for j in cause.wrist_joints)}"
-    if cause.findings:
-        return "; ".join(sorted(finding_sentence(finding) for finding in cause.findings))
-    return "no aligned axes found; see the lost direction and the self-motion"
+        said = [f"the factor depends only on the wrist joints {', '.join(str(j + 1) for j in cause.wrist_joints)}"]
+    elif cause.findings:
+        said = ["; ".join(sorted(finding_sentence(finding) for finding in cause.findings))]
+    elif clauses:
+        return "; ".join(clauses)
+    else:
+        return "no aligned axes found; see the lost direction and the self-motion"
+    return "; ".join([*said, *clauses])
 
 
 def reason(factor: SingularFactor) -> str:
@@ -109,7 +99,7 @@ def reason(factor: SingularFactor) -> str:
     if factor.kind == "parameter":
         return (f"{factor.expression} depends on parameters only: a design with {factor.expression} = 0 would be "
                 "singular everywhere; the default parameters are not")
-    return _cause_words(factor.cause)
+    return _cause_words(factor.cause, factor.evidence)
 
 
 def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
@@ -118,7 +108,7 @@ def reason_parts(factor: SingularFactor) -> tuple[str | sp.Basic, ...]:
         return (factor.expression, " depends on parameters only: a design with ",
                 sp.Eq(factor.expression, 0, evaluate=False), " would be singular everywhere; the default parameters "
                 "are not")
-    return (_cause_words(factor.cause),)
+    return (_cause_words(factor.cause, factor.evidence),)
 
 
 def axis_name(axis: FrameAxis) -> str:
@@ -181,12 +171,12 @@ def _direction(lost: LostDirection, words: tuple[str, str, str, str]) -> str:
 def lost_words(factor: SingularFactor | SingularSet) -> str:
     """What the arm cannot do on the singular set, and the wrench it holds for free there (``""`` if unknown)."""
     lost = factor.lost_direction
-    if lost is None:
-        return ""
+    if lost is None or (factor.evidence is not None and not factor.evidence.lost_checked):
+        return ""  # stated only when u^T J = 0 was checked at the sample
     if lost.radial and lost.angular is None:  # the line says it exactly; the sample vector only illustrates it
         line = "the line from the origin of frame {0} to the point"
         return (f"cannot translate radially, along {line}, and it holds a force along that line with zero joint "
-                f"torque (at one such configuration: along {_part_name(lost.linear, lost.frame)})"
+                f"torque (here: along {_part_name(lost.linear, lost.frame)})"
                 if lost.linear is not None else "")
     radial = " (radially: along the line from the origin of frame {0} to the point)" if lost.radial else ""
     motion = _direction(lost, ("translate", "rotate", "rotating", "while"))
@@ -197,8 +187,8 @@ def lost_words(factor: SingularFactor | SingularSet) -> str:
 def _self_motion_rates(factor: SingularFactor | SingularSet) -> list[tuple[float, str]]:
     """The nonzero rates of the motion that moves nothing, with what they drive (``joint 2``, or ``theta5``)."""
     motion = factor.self_motion
-    if motion is None:
-        return []
+    if motion is None or (factor.evidence is not None and not factor.evidence.motion_checked):
+        return []  # stated only when J qdot = 0 was checked at the sample
     return [(rate, motion.names[i] if motion.names else f"joint {motion.columns[i] + 1}")
             for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
 
@@ -223,17 +213,24 @@ def self_motion_parts(factor: SingularFactor | SingularSet) -> tuple[str | sp.Ba
     return (*parts, " move nothing")
 
 
-def sample_parts(sample: Sequence[float] | None, variables: Sequence[sp.Symbol]) -> tuple[str | sp.Basic, ...]:
+def sample_parts(sample: Sequence[float] | None, variables: Sequence[sp.Symbol], degrees: bool = False
+                 ) -> tuple[str | sp.Basic | Inline, ...]:
     """Where the numbers of an explanation were read, as caption parts: ``at θ₁ = 0.3, θ₂ = π/2`` (``()`` if unknown).
 
     The lost direction and the joint rates that move nothing are computed at this configuration of the singular
-    set (parameters at their defaults), so a reader can check them.
+    set (parameters at their defaults), so a reader can check them. With ``degrees`` (a robot file in degrees) the
+    angles are written in degrees, ``θ₂ = 90°``, as the reader would type them.
     """
     if sample is None or len(sample) != len(variables):
         return ()
-    parts: list[str | sp.Basic] = ["at "]
+    parts: list[str | sp.Basic | Inline] = ["at "]
     for number, (variable, value) in enumerate(zip(variables, sample, strict=True)):
-        shown = _readable_angle(float(value)) if str(variable).startswith("theta") else None
+        angle = str(variable).startswith("theta")
+        if angle and degrees:  # one piece of math: the degree sign is a superscript in LaTeX
+            equation = sp.Eq(variable, readable_value(math.degrees(float(value))), evaluate=False)
+            parts += [", "] * bool(number) + [Inline(f"{sp.latex(equation)}^{{\\circ}}", f"{one_line(equation)}°")]
+            continue
+        shown = _readable_angle(float(value)) if angle else None
         shown = readable_value(float(value)) if shown is None else shown
         parts += [", "] * bool(number) + [sp.Eq(variable, shown, evaluate=False)]
     return tuple(parts)

@@ -10,16 +10,32 @@ from sympy.printing.pretty.pretty import PrettyPrinter
 from sympy.printing.pretty.stringpict import prettyForm, stringPict
 from sympy.printing.str import StrPrinter
 
-from symjac.printing.shorthand import SUBSCRIPTS, file_decimal, readable_float, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import (
+    SUBSCRIPTS,
+    file_decimal,
+    readable_float,
+    shorthand_indices,
+    textbook_factors,
+    textbook_form,
+)
 
 __all__ = ["TextbookPrettyPrinter", "one_line", "pretty", "pretty_side_by_side"]
 
 
 class TextbookPrettyPrinter(PrettyPrinter):
-    """Unicode pretty printing with ``s₁, c₂₃`` shorthand."""
+    """Unicode pretty printing with ``s₁, c₂₃, c₂₋₄`` shorthand (of :func:`.textbook_form`, as the LaTeX printer)."""
 
     def __init__(self, settings: dict[str, Any] | None = None):
         super().__init__({"use_unicode": True, "wrap_line": False, **(settings or {})})
+        self._forms: dict[sp.Basic, sp.Basic] = {}
+
+    def doprint(self, expr: Any) -> str:
+        """The text of ``expr`` in :func:`.textbook_form`."""
+        return str(super().doprint(textbook_form(expr, self._forms)))
+
+    def textbook(self, expr: Any) -> prettyForm:
+        """The form of ``expr`` in :func:`.textbook_form` (to place beside others)."""
+        return self._print(textbook_form(expr, self._forms))
 
     def _shorthand(self, letter: str, expr: sp.Function) -> prettyForm | None:
         indices = shorthand_indices(expr.args[0])
@@ -65,7 +81,7 @@ def pretty(expr: Any, **settings: Any) -> str:
 def pretty_side_by_side(*exprs: Any) -> str:
     r"""Several expressions or matrices printed next to each other (a product such as :math:`E(x)\,J_0`)."""
     printer = TextbookPrettyPrinter()
-    forms = [printer._print(expr) for expr in exprs]
+    forms = [printer.textbook(expr) for expr in exprs]
     joined = forms[0]
     for form in forms[1:]:
         joined = prettyForm(*stringPict.next(joined, " ", form))
@@ -78,6 +94,9 @@ _RELATIONS = {">=": "≥", "<=": "≤", "!=": "≠", "==": "="}
 
 class _OneLinePrinter(StrPrinter):
     """Mathematics on one line of Unicode: ``a₂ + √(a₃² + d₄²) ≥ a₁``, ``-√2/2``, never Python's ``**`` or ``*``."""
+
+    def doprint(self, expr: Any) -> str:
+        return str(super().doprint(textbook_form(expr)))
 
     def _print_Symbol(self, expr: sp.Symbol) -> str:
         return pretty(expr)

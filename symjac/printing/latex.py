@@ -169,6 +169,11 @@ class TextbookLatexPrinter(_DecimalLatexPrinter):
         if file_decimal(abs(expr.as_coeff_Mul()[0])) is not None:
             return super()._print_Mul(expr)
         ordered = textbook_factors(expr, self._sort_keys)
+        number = expr.as_coeff_Mul()[0]
+        if ordered is None and isinstance(number, sp.Rational) and not number.is_Integer \
+                and textbook_factors(expr * number.q, self._sort_keys) is not None:
+            numerator = self._print((-expr if number < 0 else expr) * number.q)  # c_2 (c_3 - 1) / 2
+            return ("- " if number < 0 else "") + rf"\frac{{{numerator}}}{{{number.q}}}"
         if ordered is None:
             return super()._print_Mul(expr)
         coefficient, factors = ordered

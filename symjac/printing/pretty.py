@@ -64,6 +64,11 @@ class TextbookPrettyPrinter(PrettyPrinter):
             form = prettyForm.__mul__(prettyForm(decimal), prettyForm(*body.parens()) if rest.is_Add else body)
             return prettyForm(*form.left("-")) if coefficient < 0 else form
         ordered = textbook_factors(product)
+        if ordered is None and isinstance(coefficient, sp.Rational) and not coefficient.is_Integer \
+                and textbook_factors(product * coefficient.q) is not None:  # c₂⋅(c₃ - 1) over 2
+            numerator = self._print((-product if coefficient < 0 else product) * coefficient.q)
+            form = prettyForm.__truediv__(numerator, self._print(sp.Integer(coefficient.q)))
+            return prettyForm(*form.left("-"), binding=prettyForm.NEG) if coefficient < 0 else form
         if ordered is None:
             return super()._print_Mul(product)
         coefficient, factors = ordered

@@ -15,7 +15,15 @@ import re
 import pytest
 import sympy as sp
 
-from symjac import body_jacobian, force_propagation, forward_kinematics, jacobian, load_robot, robot_from_toml
+from symjac import (
+    body_jacobian,
+    force_propagation,
+    forward_kinematics,
+    jacobian,
+    load_robot,
+    representation_jacobian,
+    robot_from_toml,
+)
 from symjac.printing import latex, pretty, propagation_steps, step_equations
 from symjac.printing.pretty import one_line
 from symjac.printing.shorthand import shorthand_indices, textbook_form
@@ -264,6 +272,13 @@ def test_a_45_degree_offset_prints_collected():
     assert one_line(sp.cos(t2 - t6) * L) == "L⋅c₂₋₆"
     body = body_jacobian(robot("poe45"))  # before: L_2 (c_3/2 - 1/2), halves inside the parentheses
     assert r"\left(\frac" not in latex(body) and "(c₃ - 1)" in pretty(body)
+
+
+def test_representation_angles_print_in_shorthand_in_every_format():
+    rates = representation_jacobian(load_robot("planar3r"), "zyz").E
+    assert rates.atoms(sp.sin) and not FULL_TRIG.search(pretty(rates)) and not FULL_TRIG.search(latex(rates))
+    alpha, beta = sp.symbols("alpha beta", real=True)
+    assert one_line(sp.cos(alpha) / sp.sin(beta)) == "c_\N{GREEK SMALL LETTER ALPHA}/s_β"
 
 
 @pytest.mark.parametrize("argument, indices", [

@@ -7,10 +7,12 @@ from typing import Any
 import sympy as sp
 from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pretty.pretty import PrettyPrinter
+from sympy.printing.pretty.pretty_symbology import pretty_symbol
 from sympy.printing.pretty.stringpict import prettyForm, stringPict
 from sympy.printing.str import StrPrinter
 
 from symjac.printing.shorthand import (
+    GREEK,
     SUBSCRIPTS,
     file_decimal,
     readable_float,
@@ -40,7 +42,10 @@ class TextbookPrettyPrinter(PrettyPrinter):
     def _shorthand(self, letter: str, expr: sp.Function) -> prettyForm | None:
         indices = shorthand_indices(expr.args[0])
         if indices is None:
-            return None
+            argument = expr.args[0]
+            if not (isinstance(argument, sp.Symbol) and argument.name in GREEK):
+                return None
+            return prettyForm(f"{letter}_{pretty_symbol(argument.name)}")  # s_β, as LaTeX's s_{\beta}
         return prettyForm(letter + indices.translate(SUBSCRIPTS))
 
     def _print_sin(self, expr: sp.Function) -> prettyForm:
@@ -128,7 +133,9 @@ class _OneLinePrinter(StrPrinter):
         return "π"
 
     def _print_sin(self, expr: sp.Function) -> str:
-        return pretty(expr) if shorthand_indices(expr.args[0]) is not None else str(self._print_Function(expr))
+        argument = expr.args[0]
+        greek = isinstance(argument, sp.Symbol) and argument.name in GREEK
+        return pretty(expr) if greek or shorthand_indices(argument) is not None else str(self._print_Function(expr))
 
     _print_cos = _print_sin
 

@@ -292,7 +292,7 @@ def test_shorthand_indices(argument, indices):
 def test_the_rewriting_is_an_identity():
     t1, t2, t3, a = sp.symbols("theta1 theta2 theta3 a", real=True)
     exprs = [sp.sin(t1 - t2 + sp.pi / 4) * a, sp.cos(t3 + sp.pi / 6) ** 2, a * (sp.cos(t1) / 3 - sp.Rational(2, 3)),
-             sp.cos(t2 + sp.Float(0.3)) - sp.sin(t1 + t2 + 1)]
+             sp.cos(t2 + sp.Float(0.3)) - sp.sin(t1 + t2 + 1), sp.sin(sp.pi / 3 - t2) * a, sp.sin(sp.pi / 4 - t2)]
     for expr in exprs:
         assert_same(textbook_form(expr), expr)
         functions = [f for f in textbook_form(expr).atoms(sp.sin, sp.cos) if f.free_symbols]  # sin(1) is a number

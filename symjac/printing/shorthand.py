@@ -133,8 +133,8 @@ def _expanded_offset(function: sp.Expr) -> sp.Expr:
     """``sin(A + k)``/``cos(A + k)`` by the angle-sum formula when ``A`` is shorthand and ``k`` a nonzero number."""
     numbers, angles = sp.sift(sp.Add.make_args(function.args[0]), lambda term: term.is_number, binary=True)
     angle = sp.Add(*angles)
-    if not numbers or not angles or shorthand_indices(angle) is None:
-        return function
+    if not numbers or not angles or (shorthand_indices(angle) is None and shorthand_indices(-angle) is None):
+        return function  # pi/4 - theta2 expands too: sin(-theta2) is -s_2
     offset = sp.Add(*numbers)
     if isinstance(function, sp.sin):
         expanded = sp.cos(offset) * sp.sin(angle) + sp.sin(offset) * sp.cos(angle)
@@ -145,7 +145,7 @@ def _expanded_offset(function: sp.Expr) -> sp.Expr:
 
 def _fraction_out(product: sp.Expr) -> sp.Expr:
     """A product whose sums give up their common fraction: ``L (c/2 - 1/2) -> L (c - 1) / 2``."""
-    if not isinstance(product, sp.Mul):
+    if not isinstance(product, sp.Mul) or not product.is_commutative:
         return product
     content, factors = sp.S.One, []
     for factor in product.args:

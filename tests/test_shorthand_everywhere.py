@@ -269,6 +269,8 @@ def test_a_45_degree_offset_prints_collected():
     t2, t6, L = sp.symbols("theta2 theta6 L", real=True)
     assert latex(sp.sin(t2 + sp.pi / 4)) == r"\frac{\sqrt{2} \left(s_{2} + c_{2}\right)}{2}"
     assert latex(sp.sqrt(2) * (sp.sin(t6) / 2 + sp.cos(t6) / 2)) == r"\frac{\sqrt{2} \left(s_{6} + c_{6}\right)}{2}"
+    assert latex(sp.sin(t6) / 2 + sp.cos(t6) / 2) == r"\frac{s_{6} + c_{6}}{2}"  # a whole entry too
+    assert latex(sp.sin(t6) / 2 + sp.cos(t6) / 3) == r"\frac{s_{6}}{2} + \frac{c_{6}}{3}"  # no common fraction
     assert one_line(sp.cos(t2 - t6) * L) == "L⋅c₂₋₆"
     body = body_jacobian(robot("poe45"))  # before: L_2 (c_3/2 - 1/2), halves inside the parentheses
     assert r"\left(\frac" not in latex(body) and "(c₃ - 1)" in pretty(body)

@@ -109,7 +109,9 @@ def textbook_form(expr: Any, memo: dict[sp.Basic, sp.Basic] | None = None) -> An
         return expr.applyfunc(lambda entry: textbook_form(entry, memo))
     if not isinstance(expr, sp.Basic) or isinstance(expr, sp.Atom):
         return expr
-    return _rewrite(expr, memo)
+    result = _rewrite(expr, memo)
+    part, rest = _common_fraction(result) if isinstance(result, sp.Add) else (sp.S.One, result)
+    return result if part == 1 else sp.Mul(part, rest, evaluate=False)  # (s_6 + c_6)/2, kept from distributing
 
 
 def _rewrite(expr: sp.Basic, memo: dict[sp.Basic, sp.Basic]) -> sp.Basic:
@@ -149,17 +151,21 @@ def _fraction_out(product: sp.Expr) -> sp.Expr:
         return product
     content, factors = sp.S.One, []
     for factor in product.args:
-        if factor.is_Add:
-            part, factor = factor.primitive()
-            if part.q != 1:
-                content *= part
-            else:
-                factor = part * factor
+        part, factor = _common_fraction(factor) if factor.is_Add else (sp.S.One, factor)
+        content *= part
         factors.append(factor)
     if content == 1:
         return product
     rebuilt = sp.Mul(content, *factors)
     return rebuilt if rebuilt.is_Mul else product  # a number times one sum distributes again: left as it was
+
+
+def _common_fraction(total: sp.Add) -> tuple[sp.Expr, sp.Expr]:
+    """``(1/q, q * total)`` if each term is ``±1/q`` times the rest (``c/2 - 1/2``), else ``(1, total)``."""
+    part, rest = total.primitive()
+    if part.q == 1 or any(abs(term.as_coeff_Mul()[0]) != 1 for term in sp.Add.make_args(rest)):
+        return sp.S.One, total
+    return part, rest
 
 
 def textbook_factors(product: sp.Expr, sort_key: Callable[[sp.Basic], Any] = sp.default_sort_key

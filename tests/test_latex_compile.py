@@ -13,6 +13,7 @@ missing); without it locally, these tests are skipped and say why.
 
 from __future__ import annotations
 
+import json
 import multiprocessing
 import re
 import shutil
@@ -179,6 +180,53 @@ def test_a_matrix_wider_than_the_page_fails_unless_laid_out(tmp_path, monkeypatc
     unbroken = lambda lhs, rhs: Display(f"{lhs} = {document_module.latex(rhs)}")  # noqa: E731
     monkeypatch.setattr(latex_layout, "fit_equation", unbroken)  # the layout module, which render imports when used
     assert any("Overfull" in problem for problem in _render_and_compile(tmp_path, document))
+
+
+# --- a line fits whatever the form of its expression -------------------------------------------------------------
+# The Panda's singular condition theta6 - asin(N / D) (sets 4 and 5 of its singularities document) once printed as
+# two lines 142 pt too wide: its breaking depended on the layout recognizing a function of a fraction. The TeX side
+# is the same on every machine (amsmath and geometry from texlive-latex-base, no optional package, Computer Modern);
+# what a line breaks at must not depend on the form either. Hidden in an UnevaluatedExpr the condition prints alike
+# but shows the layout no structure: the text fallback (latex_layout.break_tex) alone has to break it.
+
+
+def _panda_condition(tmp_path: Path) -> sp.Expr:
+    path = tmp_path / "panda.json"
+    assert main(["singularities", "panda", "--format", "json", "-o", str(path)]) == 0
+    conditions = [c for s in json.loads(path.read_text(encoding="utf-8"))["sets"] for c in s["conditions"]]
+    condition = max((c for c in conditions if "asin" in c), key=len).removesuffix(" = 0")
+    names = {n: sp.Symbol(n, real=True) for n in re.findall(r"[A-Za-z_]\w*", condition)
+             if n not in ("asin", "sin", "cos", "pi")}
+    return sp.sympify(condition, locals=names)
+
+
+def test_a_long_condition_fits_when_the_layout_cannot_see_its_form(tmp_path, monkeypatch):
+    condition = _panda_condition(tmp_path)
+    hidden = sp.UnevaluatedExpr(condition)
+    document = Document("panda", "F", (Block(("The condition, then the same with its form hidden:",),
+                                             (Equation("F_{4}", "F_4", condition), Equation("F_{4}", "F_4", hidden),
+                                              Equation("G", "G", 2 * sp.asin(condition - sp.Symbol("theta6"))))),))
+    text = render(document, "latex", standalone=True)
+    assert text.count(r"\big/") >= 3 and r"{\left(" not in text.split(r"\section*")[1]
+    assert _render_and_compile(tmp_path, document) == []
+    monkeypatch.setattr(latex_layout, "break_tex", lambda tex, first=0.0, rest=0.0: [tex])  # without the fallback
+    problems = _render_and_compile(tmp_path, document)
+    assert problems and all("Overfull" in problem for problem in problems), problems
+
+
+def test_a_long_equation_among_short_ones_is_split(tmp_path, monkeypatch):
+    condition = _panda_condition(tmp_path)
+    texts = [r"\theta_{5} = \pi", "F_{5} = " + document_module.latex(sp.UnevaluatedExpr(condition))]
+    body = latex_layout.fit_side_by_side(texts)
+    assert r"\begin{split}" in body
+    path = tmp_path / "gather.tex"
+    page = "\\documentclass{article}\n\\usepackage{amsmath}\n\\usepackage[margin=1.5cm, landscape]{geometry}\n"
+    path.write_text(f"{page}\\begin{{document}}\n{body}\n\\end{{document}}\n", encoding="utf-8")
+    assert compile_tex(path) == []
+    monkeypatch.setattr(latex_layout, "break_tex", lambda tex, first=0.0, rest=0.0: [tex])  # without the fallback
+    path.write_text(f"{page}\\begin{{document}}\n{latex_layout.fit_side_by_side(texts)}\n\\end{{document}}\n",
+                    encoding="utf-8")
+    assert any("Overfull" in problem for problem in compile_tex(path))
 
 
 # --- generic geometry: nested results with "where" lines -------------------------------------------------------

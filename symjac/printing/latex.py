@@ -17,7 +17,14 @@ from sympy.core.exprtools import decompose_power
 from sympy.printing.latex import LatexPrinter
 
 from symjac.errors import SymjacError
-from symjac.printing.shorthand import GREEK, file_decimal, readable_float, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import (
+    GREEK,
+    file_decimal,
+    readable_float,
+    shorthand_indices,
+    textbook_factors,
+    textbook_form,
+)
 
 __all__ = ["DIGITS", "LatexTooLargeError", "SortKeys", "TextbookLatexPrinter", "escape_text", "latex",
            "latex_size_limit", "ordered_terms", "rounded"]
@@ -117,11 +124,20 @@ class _DecimalLatexPrinter(LatexPrinter):
 
 
 class TextbookLatexPrinter(_DecimalLatexPrinter):
-    """LaTeX with :math:`s_{ij}, c_{ij}` shorthand and ``bmatrix`` matrices."""
+    """LaTeX with :math:`s_{ij}, c_{ij}, c_{2-4}` shorthand and ``bmatrix`` matrices.
+
+    What it prints is first put in :func:`.textbook_form` (offsets expanded, fractions taken out of sums), so every
+    sine and cosine of joint variables is shorthand.
+    """
 
     def __init__(self, settings: dict[str, Any] | None = None):
         super().__init__({"mat_str": "bmatrix", "mat_delim": "", **(settings or {})})
         self._plain: _DecimalLatexPrinter | None = None
+        self._forms: dict[sp.Basic, sp.Basic] = {}
+
+    def doprint(self, expr: Any) -> str:
+        """The text of ``expr`` in :func:`.textbook_form`."""
+        return super().doprint(textbook_form(expr, self._forms))
 
     def _shorthand(self, letter: str, expr: sp.Function, exp: str | None) -> str | None:
         indices = shorthand_indices(expr.args[0])
@@ -153,6 +169,11 @@ class TextbookLatexPrinter(_DecimalLatexPrinter):
         if file_decimal(abs(expr.as_coeff_Mul()[0])) is not None:
             return super()._print_Mul(expr)
         ordered = textbook_factors(expr, self._sort_keys)
+        number = expr.as_coeff_Mul()[0]
+        if ordered is None and isinstance(number, sp.Rational) and not number.is_Integer \
+                and textbook_factors(expr * number.q, self._sort_keys) is not None:
+            numerator = self._print((-expr if number < 0 else expr) * number.q)  # c_2 (c_3 - 1) / 2
+            return ("- " if number < 0 else "") + rf"\frac{{{numerator}}}{{{number.q}}}"
         if ordered is None:
             return super()._print_Mul(expr)
         coefficient, factors = ordered

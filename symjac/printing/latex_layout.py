@@ -9,6 +9,7 @@ whose entries are all too long is listed component by component. Widths are esti
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 from collections.abc import Callable, Sequence
@@ -20,7 +21,8 @@ import sympy as sp
 from symjac.printing.latex import TextbookLatexPrinter
 from symjac.printing.shorthand import file_decimal, textbook_factors
 
-__all__ = ["TEXT_WIDTH", "Display", "entry_namer", "fit_equation", "fit_side_by_side", "tex_width", "with_definitions"]
+__all__ = ["TEXT_WIDTH", "Display", "break_tex", "entry_namer", "fit_equation", "fit_side_by_side", "tex_width",
+           "with_definitions"]
 
 TEXT_WIDTH = 680.0
 """Points available for a display: a landscape US-letter page with 1.5 cm margins is 709 pt wide."""
@@ -170,7 +172,7 @@ class _BreakingPrinter(TextbookLatexPrinter):
                 head = ("- " if coefficient < 0 else "") + (str(abs(coefficient)) if abs(coefficient) != 1 else "")
                 chunks = [head.strip()] if head.strip() else []
                 for factor in factors:
-                    chunks += self._grouped(factor, limit) if factor.is_Add else [self.doprint(factor)]
+                    chunks += self._grouped(factor, limit) if factor.is_Add else self.pieces(factor, limit)
                 return _glue(chunks)
         if isinstance(expr, sp.Function) and len(expr.args) == 1 and r"{\left(" in tex and tex.endswith(r"\right)}"):
             return self._applied(expr, tex[:tex.index(r"{\left(")], limit)
@@ -215,7 +217,7 @@ def _glue(chunks: list[str]) -> list[str]:
 
 
 def _lines(expr: sp.Expr, first: float, printer: _BreakingPrinter) -> list[str]:
-    """``expr`` as lines: the first at most ``first`` points wide, the others :data:`_LINE`."""
+    """``expr`` as lines: the first at most ``first`` points wide, the others :data:`_LINE` (else :func:`break_tex`)."""
     lines: list[str] = []
     current, room = "", first
     for chunk in printer.pieces(expr, _LINE * 0.9):
@@ -223,7 +225,83 @@ def _lines(expr: sp.Expr, first: float, printer: _BreakingPrinter) -> list[str]:
             lines.append(current)
             current, room = "", _LINE
         current = f"{current} {chunk}".strip()
-    return [*lines, current]
+    fitted: list[str] = []  # a piece the structure gave no break in is broken as text: the page never overflows
+    for line in [*lines, current]:
+        room = first if not fitted else _LINE
+        fitted += break_tex(line, room, _LINE) if _wider_than(line, room) else [line]
+    return fitted
+
+
+def break_tex(tex: str, first: float = TEXT_WIDTH, rest: float = _LINE) -> list[str]:
+    r"""LaTeX math ``tex`` as lines at most ``first`` (then ``rest``) points wide, broken before a ``+`` or ``-``.
+
+    The fallback of the layout, on text alone: ``\left( ... \right)`` pairs become ``\bigl( ... \bigr)`` (which may
+    end one line and open the next), a fraction wider than half a line ``\bigl(N\bigr) \big/ \bigl(D\bigr)``, the
+    braces around a function's argument (``\operatorname{asin}{\left(...\right)}``) are dropped, and the text is
+    broken before any binary sign outside braces and outside any other ``\left``/``\right`` pair.
+
+    Examples
+    --------
+    >>> lines = break_tex(r"a \left(" + " + ".join(f"x_{{{i}}}" for i in range(60)) + r"\right)", 300.0, 300.0)
+    >>> lines[0][:12], lines[1][:2], len(lines) > 2 and all(tex_width(line) <= 300.0 for line in lines)
+    ('a \\bigl(x_{0', '+ ', True)
+    """
+    tokens = _unbracketed(_TOKEN.findall(tex))
+    breaks, depth, previous = [0], 0, "="
+    for index, token in enumerate(tokens):
+        if token in ("+", "-") and depth == 0 and previous not in _NO_BREAK_AFTER:
+            breaks.append(index)
+        depth += {"{": 1, "}": -1, "\\left": 1, "\\right": -1}.get(token, 0)
+        previous = token if token.strip() else previous
+    lines: list[str] = []
+    start, room = 0, first
+    for before, after in itertools.pairwise([*breaks, len(tokens)]):
+        if before > start and _width(tokens[start:after], 1.0, room) > room:
+            lines.append("".join(tokens[start:before]).strip())
+            start, room = before, rest
+    return [line for line in [*lines, "".join(tokens[start:]).strip()] if line]
+
+
+_NO_BREAK_AFTER = frozenset({"(", "[", "{", "+", "-", "=", "&", "^", "_", ",", "\\bigl", "\\Bigl", "\\left"})
+_FUNCTIONS = frozenset(rf"\{name}" for name in ("sin", "cos", "tan", "cot", "sec", "csc", "log", "ln", "exp", "arcsin",
+                                                  "arccos", "arctan"))
+
+
+def _slashed(tokens: list[str], wide: float) -> list[str]:
+    r"""Tokens with each ``\frac{N}{D}`` wider than ``wide`` written ``\bigl(N\bigr) \big/ \bigl(D\bigr)``."""
+    out: list[str] = []
+    index = 0
+    while index < len(tokens):
+        numerator, after = _group(tokens, index + 1) if tokens[index] == "\\frac" else ([], index)
+        denominator, end = _group(tokens, after) if numerator else ([], index)
+        if numerator and max(_width(numerator, 1.0), _width(denominator, 1.0)) > wide:
+            out += [r"\bigl", "(", *_slashed(numerator, wide), r"\bigr", ")", " ", r"\big/", " ", r"\bigl", "(",
+                    *_slashed(denominator, wide), r"\bigr", ")"]
+            index = end
+        else:
+            out.append(tokens[index])
+            index += 1
+    return out
+
+
+def _unbracketed(tokens: list[str]) -> list[str]:
+    r"""``\left(``/``\right)`` as ``\bigl(``/``\bigr)``, wide fractions slashed, ``\sin{\bigl(x\bigr)}`` unbraced."""
+    big = {("\\left", "("): "\\bigl", ("\\right", ")"): "\\bigr"}
+    out = _slashed([big.get((t, n), t) for t, n in zip(tokens, [*tokens[1:], ""], strict=True)], _LINE / 2)
+    opened: list[int] = []
+    matching: dict[int, int] = {}
+    for index, token in enumerate(out):
+        if token == "{":
+            opened.append(index)
+        elif token == "}" and opened:
+            start = matching[index] = opened.pop()
+            name = out[start - 1] if start else ""
+            if name == "}" and start - 1 in matching and out[matching[start - 1] - 1] == "\\operatorname":
+                name = "\\operatorname"
+            if name in _FUNCTIONS | {"\\operatorname"} and out[start + 1:start + 3] == ["\\bigl", "("] \
+                    and out[index - 2:index] == ["\\bigr", ")"]:
+                out[start] = out[index] = ""
+    return [token for token in out if token]
 
 
 def _aligned(name: str, expr: sp.Expr, printer: _BreakingPrinter) -> str:
@@ -324,8 +402,14 @@ def with_definitions(display: Display, definitions: Sequence[tuple[sp.Symbol, sp
 
 
 def fit_side_by_side(texts: Sequence[str]) -> str:
-    r"""Short equations on one line joined by ``,\quad``, or one per line of a ``gather*`` when they do not fit."""
+    r"""Short equations on one line joined by ``,\quad``, or one per line of a ``gather*`` when they do not fit.
+
+    An equation wider than the page is a ``split`` of lines broken by :func:`break_tex`.
+    """
     if sum(tex_width(t) for t in texts) + 25.0 * (len(texts) - 1) <= TEXT_WIDTH:
         joined = r",\quad ".join(texts)
         return rf"\[ {joined} \]"
-    return "\\begin{gather*}\n" + " \\\\\n".join(texts) + "\n\\end{gather*}"
+    rows = [text if not _wider_than(text, TEXT_WIDTH) else "\\begin{split}" + " \\\\\n&\\quad ".join(
+        break_tex(text.replace(" = ", " &= ", 1) if " = " in text else "&" + text, TEXT_WIDTH - 20.0)) + "\\end{split}"
+        for text in texts]
+    return "\\begin{gather*}\n" + " \\\\\n".join(rows) + "\n\\end{gather*}"

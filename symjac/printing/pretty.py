@@ -7,24 +7,45 @@ from typing import Any
 import sympy as sp
 from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pretty.pretty import PrettyPrinter
+from sympy.printing.pretty.pretty_symbology import pretty_symbol
 from sympy.printing.pretty.stringpict import prettyForm, stringPict
 from sympy.printing.str import StrPrinter
 
-from symjac.printing.shorthand import SUBSCRIPTS, file_decimal, readable_float, shorthand_indices, textbook_factors
+from symjac.printing.shorthand import (
+    GREEK,
+    SUBSCRIPTS,
+    file_decimal,
+    readable_float,
+    shorthand_indices,
+    textbook_factors,
+    textbook_form,
+)
 
 __all__ = ["TextbookPrettyPrinter", "one_line", "pretty", "pretty_side_by_side"]
 
 
 class TextbookPrettyPrinter(PrettyPrinter):
-    """Unicode pretty printing with ``s₁, c₂₃`` shorthand."""
+    """Unicode pretty printing with ``s₁, c₂₃, c₂₋₄`` shorthand (of :func:`.textbook_form`, as the LaTeX printer)."""
 
     def __init__(self, settings: dict[str, Any] | None = None):
         super().__init__({"use_unicode": True, "wrap_line": False, **(settings or {})})
+        self._forms: dict[sp.Basic, sp.Basic] = {}
+
+    def doprint(self, expr: Any) -> str:
+        """The text of ``expr`` in :func:`.textbook_form`."""
+        return str(super().doprint(textbook_form(expr, self._forms)))
+
+    def textbook(self, expr: Any) -> prettyForm:
+        """The form of ``expr`` in :func:`.textbook_form` (to place beside others)."""
+        return self._print(textbook_form(expr, self._forms))
 
     def _shorthand(self, letter: str, expr: sp.Function) -> prettyForm | None:
         indices = shorthand_indices(expr.args[0])
         if indices is None:
-            return None
+            argument = expr.args[0]
+            if not (isinstance(argument, sp.Symbol) and argument.name in GREEK):
+                return None
+            return prettyForm(f"{letter}_{pretty_symbol(argument.name)}")  # s_β, as LaTeX's s_{\beta}
         return prettyForm(letter + indices.translate(SUBSCRIPTS))
 
     def _print_sin(self, expr: sp.Function) -> prettyForm:
@@ -48,6 +69,11 @@ class TextbookPrettyPrinter(PrettyPrinter):
             form = prettyForm.__mul__(prettyForm(decimal), prettyForm(*body.parens()) if rest.is_Add else body)
             return prettyForm(*form.left("-")) if coefficient < 0 else form
         ordered = textbook_factors(product)
+        if ordered is None and isinstance(coefficient, sp.Rational) and not coefficient.is_Integer \
+                and textbook_factors(product * coefficient.q) is not None:  # c₂⋅(c₃ - 1) over 2
+            numerator = self._print((-product if coefficient < 0 else product) * coefficient.q)
+            form = prettyForm.__truediv__(numerator, self._print(sp.Integer(coefficient.q)))
+            return prettyForm(*form.left("-"), binding=prettyForm.NEG) if coefficient < 0 else form
         if ordered is None:
             return super()._print_Mul(product)
         coefficient, factors = ordered
@@ -65,7 +91,7 @@ def pretty(expr: Any, **settings: Any) -> str:
 def pretty_side_by_side(*exprs: Any) -> str:
     r"""Several expressions or matrices printed next to each other (a product such as :math:`E(x)\,J_0`)."""
     printer = TextbookPrettyPrinter()
-    forms = [printer._print(expr) for expr in exprs]
+    forms = [printer.textbook(expr) for expr in exprs]
     joined = forms[0]
     for form in forms[1:]:
         joined = prettyForm(*stringPict.next(joined, " ", form))
@@ -78,6 +104,9 @@ _RELATIONS = {">=": "≥", "<=": "≤", "!=": "≠", "==": "="}
 
 class _OneLinePrinter(StrPrinter):
     """Mathematics on one line of Unicode: ``a₂ + √(a₃² + d₄²) ≥ a₁``, ``-√2/2``, never Python's ``**`` or ``*``."""
+
+    def doprint(self, expr: Any) -> str:
+        return str(super().doprint(textbook_form(expr)))
 
     def _print_Symbol(self, expr: sp.Symbol) -> str:
         return pretty(expr)
@@ -104,7 +133,9 @@ class _OneLinePrinter(StrPrinter):
         return "π"
 
     def _print_sin(self, expr: sp.Function) -> str:
-        return pretty(expr) if shorthand_indices(expr.args[0]) is not None else str(self._print_Function(expr))
+        argument = expr.args[0]
+        greek = isinstance(argument, sp.Symbol) and argument.name in GREEK
+        return pretty(expr) if greek or shorthand_indices(argument) is not None else str(self._print_Function(expr))
 
     _print_cos = _print_sin
 

@@ -24,7 +24,7 @@ from scipy.optimize import minimize
 from strategies import robots
 from truth_arms import ARMS
 
-from symjac import NoClosedFormError, load_robot, robot_from_toml, singularities
+from symjac import NoClosedFormError, load_robot, robot_from_toml, robot_to_mapping, singularities
 from symjac.analysis.singularity.sets import Condition, condition_samples
 from symjac.analysis.singularity.solve import solution_sample
 from symjac.errors import ArgumentError
@@ -202,6 +202,8 @@ def test_no_rank_loss_of_a_long_arm_lies_outside_the_reported_sets(name):
 @given(robots(max_joints=4))  # five-joint chains with row minors take up to 12 s each: the named arms cover them
 def test_every_reported_set_of_a_random_short_chain_is_singular(robot):
     assume(robot.n_coordinates < 6)
+    # a twist of 0.3 rad puts floats into every minor (slow and dirty, as the design notes measured): exact twists
+    assume(not any(isinstance(row.get("alpha", 0), float) for row in robot_to_mapping(robot)["joints"]))
     try:
         report = singularities(robot)
     except (ArgumentError, NoClosedFormError):

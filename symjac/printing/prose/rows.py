@@ -62,7 +62,7 @@ def _why(report: SingularityReport) -> list[str | Inline]:
             parts.append(")")
         parts.append(", so this determinant vanishes exactly there.")
     else:
-        parts.append("; these rows are all of it.")
+        parts.append("; these are its three linear rows.")
     return parts
 
 

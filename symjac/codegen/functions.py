@@ -201,7 +201,8 @@ def self_checks(infos: Sequence[JacobianInfo]) -> tuple[Check, ...]:
 
 def request_lines(infos: Sequence[JacobianInfo]) -> tuple[tuple[str, str], ...]:
     """Each requested Jacobian's name and what it is, for the header of every file: frame, point and rows."""
-    return tuple((info.jacobian, f"frame {info.frame}, at {info.point}, rows {', '.join(info.row_names)}.")
+    return tuple((info.jacobian, f"frame {info.frame}, at {info.point}, "
+                  + ("all six rows [v; omega]." if len(info.rows) == 6 else f"rows {', '.join(info.row_names)}."))
                  for info in infos)
 
 

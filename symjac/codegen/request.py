@@ -163,7 +163,7 @@ def point_words(text: str, n: int) -> str:
     if text == "tool":
         return "the tool point"
     if text == "wrist_centre":
-        return "the wrist centre (where the last three joint axes meet)"
+        return "the wrist centre"
     return f"the point {text} of frame {{{n}}}"
 
 

@@ -54,8 +54,8 @@ def test_python_defaults_agree(name):
         q = random_configuration(robot, rng)
         np.testing.assert_allclose(evaluate(J, robot, q), _differences(lambda x: evaluate(T, robot, x), q),
                                    atol=1e-7)
-    assert J == jacobian(robot, point=end_point(robot))
-    assert T == forward_kinematics(robot, 0, last_frame(robot))
+    assert jacobian(robot, point=end_point(robot)) == J
+    assert forward_kinematics(robot, 0, last_frame(robot)) == T
 
 
 def test_flange_and_wrist_name_the_origin_of_frame_n():

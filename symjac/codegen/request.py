@@ -145,7 +145,7 @@ def point_text(robot: Robot, point: Point | None) -> tuple[str, tuple[sp.Expr, s
     if isinstance(point, str):
         return point, coordinates
     text = "(" + ", ".join(str(value) for value in coordinates) + ")"
-    if len(text) > 48:  # keep comment and docstring lines short: the numbers at the default parameters
+    if len(text) > 32:  # keep comment and docstring lines short: the numbers at the default parameters
         text = "(" + ", ".join(f"{float(value.subs(robot.defaults)):.6g}" for value in coordinates) + ")"
     return text, coordinates
 

@@ -134,7 +134,7 @@ QUANTITY = Quantity(
         "jacobian", "Rows as listed in the module docstring; column i belongs to {unit} i.",
         listing="The Jacobian in frame {frame} at {at}, rows {rows}.",
         summary="The basic Jacobian [v; omega] at {at}, in frame {frame}",
-        summary_coupled="The basic Jacobian [v; omega] at {at}, in frame {frame}, in the coordinates (J_q = J C)",
+        summary_coupled="The Jacobian J_q = J C [v; omega] in the coordinates, at {at}, in frame {frame}",
         output="J", lowering="symjac.codegen.coupled:coordinate_jacobian"),
     command="jacobian",
     options=options,

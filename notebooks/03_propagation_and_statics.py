@@ -61,10 +61,11 @@ for line in propagation_steps(propagation):
 
 # %% [markdown]
 # The last step is linear in the joint rates; its coefficient matrix is the Jacobian in the last frame, ${}^3J$.
-# It agrees exactly with differentiation (re-expressed in frame {3}).
+# It agrees exactly with differentiation (re-expressed in frame {3}) at the same point, the origin of {3}: the
+# flange (`jacobian(robot)` alone is at the end of the chain, planar3r's tool point).
 
 # %%
-check(propagation.jacobian, jacobian(robot, frame=3), robot)
+check(propagation.jacobian, jacobian(robot, frame=3, point="flange"), robot)
 
 # %% [markdown]
 # ## Force propagation
@@ -76,7 +77,7 @@ check(propagation.jacobian, jacobian(robot, frame=3), robot)
 forces = force_propagation(robot)
 for line in propagation_steps(forces)[-3:]:
     display(Math(line))
-check(forces.jacobian, jacobian(robot, frame=3), robot)
+check(forces.jacobian, jacobian(robot, frame=3, point="flange"), robot)
 
 # %% [markdown]
 # ## $\tau = J^T F$ by virtual work

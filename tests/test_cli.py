@@ -476,7 +476,8 @@ META = {"symjac", "robot", "convention", "joint_variables", "parameters"}
 JSON_KEYS = {
     ("singularities", "articulated3r"): META | {"rows", "frame", "point", "redundant", "determinant", "minors",
                                                 "zero_minors", "sets", "factors"},
-    ("jacobian", "planar2r"): META | {"frame", "point", "method", "shape", "rows", "columns", "entries", "latex"},
+    ("jacobian", "planar2r"): META | {"frame", "point", "at", "method", "shape", "rows", "columns", "entries",
+                                      "latex"},
     ("show", "stanford"): META | {"parameter_table", "dh_table", "transforms"},
 }
 

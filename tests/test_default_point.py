@@ -227,4 +227,7 @@ def test_captions_and_headers_say_which_point(cli):
     centre = generate(load_robot("puma560"), "numpy", jacobians=[JacobianRequest(0, "wrist_centre")])
     assert "at the wrist centre" in centre
     document = json.loads(cli.ok("jacobian", "puma560", "--point", "wrist_centre", "--format", "json"))
-    assert document["point"] == "wrist_centre"
+    assert document["point"] == "wrist_centre" and document["at"].startswith("the wrist centre")
+    assert cli.json("fk", "planar3r")["at"] == "the tool point" == cli.json("jacobian", "planar3r")["at"]
+    flange = "the origin of frame {2} (flange)"
+    assert cli.json("fk", "planar2r")["at"] == flange == cli.json("jacobian", "planar2r")["at"]

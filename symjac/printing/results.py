@@ -103,8 +103,10 @@ def forward_kinematics_document(robot: Robot, source: Frame, target: Frame, T: s
     """``symjac fk``: the pose of ``target`` relative to ``source``."""
     equation = transform_equation(source, target, shown(robot, T, digits), JsonKey("entries", latex="latex"))
     caption = prose.forward_kinematics_caption(source, target, robot.n_joints)
+    at = prose.point_phrase("tool" if target == "tool" else "flange", n=robot.n_joints) if target in (
+        "tool", robot.n_joints) else None
     return Document(prose.title(robot, "fk"), robot.name, (Block((caption,), (equation,)),),
-                    facts={"source": source, "target": target}, model=robot)
+                    facts={"source": source, "target": target, **({"at": at} if at else {})}, model=robot)
 
 
 def _steps(robot: Robot, propagation: Propagation | None, digits: int | None) -> list[Equation]:
@@ -133,7 +135,8 @@ def jacobian_document(robot: Robot, J: sp.MatrixBase, frame: Frame, point: str, 
     blocks = [Block((), (step,)) for step in steps]
     blocks.append(Block((prose.jacobian_caption(point, method, link, robot.n_joints),), (equation,)))
     return Document(prose.title(robot, "jacobian", frame), robot.name, tuple(blocks),
-                    facts={"frame": frame, "point": point, **_link(link), "method": method, "shape": list(J.shape),
+                    facts={"frame": frame, "point": point, "at": prose.point_phrase(point, link, robot.n_joints),
+                           **_link(link), "method": method, "shape": list(J.shape),
                            **_columns(robot)}, model=robot)
 
 

@@ -107,7 +107,7 @@ def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0,
 
 
 @memoized(frame=frame_of, point=point_vector)
-def _compiled_jacobian(chain: Chain, frame: Frame, point: Point) -> Callable[..., Any]:
+def _compiled_jacobian(chain: Chain, frame: Frame, point: Point | None) -> Callable[..., Any]:
     """The raw Jacobian lambdified over q, parameters at their defaults."""
     method: Method = "cross_product" if chain.nested else "differentiation"  # nested: n + 1 frames, not n derivatives
     J = jacobian(chain, frame=frame, point=point, method=method, simplify=False).xreplace(chain.robot.defaults)

@@ -114,7 +114,7 @@ display(Math(r"{}^3F = " + latex(W) + r"\,{}^TF"))
 # %%
 f_y = sp.Symbol("f_y", real=True)
 tip = joint_torques(robot, wrench=[0, f_y, 0, 0, 0, 0], frame="tool", point="tool")
-wrist = joint_torques(robot, wrench=list(W * sp.Matrix([0, f_y, 0, 0, 0, 0])), frame=3)
+wrist = joint_torques(robot, wrench=list(W * sp.Matrix([0, f_y, 0, 0, 0, 0])), frame=3, point="flange")
 check(tip, wrist, robot)
 display(Math(r"\tau = " + latex(tip)))
 

@@ -74,9 +74,10 @@ def test_force_propagation_reproduces_the_transposed_jacobian():
     for name in ("planar3r", "stanford", "puma560"):
         robot = load_robot(name)
         propagation = force_propagation(robot)
-        assert sp.Matrix(propagation.torques) == jacobian(robot, frame=robot.n_joints, point="flange").T
+        J_n = jacobian(robot, frame=robot.n_joints, point="flange")  # the propagation ends at the origin of {n}
+        assert sp.Matrix(propagation.torques) == J_n.T
         tau = propagation.joint_torques()
-        assert _identical(tau, jacobian(robot, frame=robot.n_joints, point="flange").T * sp.Matrix(wrench_symbols()), robot)
+        assert _identical(tau, J_n.T * sp.Matrix(wrench_symbols()), robot)
 
 
 def test_method_frames_of_the_seed_002_table():

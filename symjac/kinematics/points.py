@@ -199,7 +199,7 @@ def wrist_centre(robot: Robot | Chain) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     for joint in joints[-3:]:
         T = chain.transform(0, chain.axis_frame(joint.index)).xreplace(zero)
         axes.append((R_n_0 * (T[:3, 3] - p_0_n), R_n_0 * T[:3, 2]))
-    first, second = _meeting(model.name, *axes[:2]), _meeting(model.name, *axes[1:])
+    first, second = _meeting(*axes[:2]), _meeting(*axes[1:])
     if first is None or second is None or not all(_vanishes(a - b) for a, b in zip(first, second, strict=True)):
         raise FrameError(f"{model.name} has no wrist centre: its last three joint axes do not meet in one point (use "
                          f"'flange', 'tool' or three coordinates in frame {{{n}}})")
@@ -207,7 +207,7 @@ def wrist_centre(robot: Robot | Chain) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     return x, y, z
 
 
-def _meeting(name: str, a: tuple[sp.Matrix, sp.Matrix], b: tuple[sp.Matrix, sp.Matrix]) -> tuple[sp.Expr, ...] | None:
+def _meeting(a: tuple[sp.Matrix, sp.Matrix], b: tuple[sp.Matrix, sp.Matrix]) -> tuple[sp.Expr, ...] | None:
     """Where the lines ``a`` and ``b`` (origin, direction) meet, simplified; None when parallel or skew."""
     (o_a, z_a), (o_b, z_b) = a, b
     normal = z_a.cross(z_b)

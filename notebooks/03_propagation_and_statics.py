@@ -61,10 +61,11 @@ for line in propagation_steps(propagation):
 
 # %% [markdown]
 # The last step is linear in the joint rates; its coefficient matrix is the Jacobian in the last frame, ${}^3J$.
-# It agrees exactly with differentiation (re-expressed in frame {3}).
+# It agrees exactly with differentiation (re-expressed in frame {3}) at the same point, the origin of {3}: the
+# flange (`jacobian(robot)` alone is at the end of the chain, planar3r's tool point).
 
 # %%
-check(propagation.jacobian, jacobian(robot, frame=3), robot)
+check(propagation.jacobian, jacobian(robot, frame=3, point="flange"), robot)
 
 # %% [markdown]
 # ## Force propagation
@@ -76,7 +77,7 @@ check(propagation.jacobian, jacobian(robot, frame=3), robot)
 forces = force_propagation(robot)
 for line in propagation_steps(forces)[-3:]:
     display(Math(line))
-check(forces.jacobian, jacobian(robot, frame=3), robot)
+check(forces.jacobian, jacobian(robot, frame=3, point="flange"), robot)
 
 # %% [markdown]
 # ## $\tau = J^T F$ by virtual work
@@ -113,7 +114,7 @@ display(Math(r"{}^3F = " + latex(W) + r"\,{}^TF"))
 # %%
 f_y = sp.Symbol("f_y", real=True)
 tip = joint_torques(robot, wrench=[0, f_y, 0, 0, 0, 0], frame="tool", point="tool")
-wrist = joint_torques(robot, wrench=list(W * sp.Matrix([0, f_y, 0, 0, 0, 0])), frame=3)
+wrist = joint_torques(robot, wrench=list(W * sp.Matrix([0, f_y, 0, 0, 0, 0])), frame=3, point="flange")
 check(tip, wrist, robot)
 display(Math(r"\tau = " + latex(tip)))
 

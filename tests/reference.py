@@ -193,6 +193,11 @@ def frame_index(robot: Robot, frame: int | str) -> int:
     return 0 if frame == "world" else robot.n_joints + 2 if frame == "tool" else int(frame) + 1
 
 
+def end_of_chain(robot: Robot) -> np.ndarray | None:
+    """The default point's coordinates in frame {n}: the tool transform's translation, or None (the origin of {n})."""
+    return None if robot.tool is None else _matrix(robot.tool, robot)[:3, 3]
+
+
 def finite_difference_jacobian(
     robot: Robot, q: np.ndarray, frame: int | str = 0, point: np.ndarray | None = None, h: float = 1e-6
 ) -> np.ndarray:

@@ -63,9 +63,10 @@ def test_jacobian_in_the_tool_frame(cli):
 
 
 def test_jacobian_tool_point_differs_from_wrist_point(cli):
-    wrist = cli.latex_line("jacobian", "planar3r")
+    wrist = cli.latex_line("jacobian", "planar3r", "--point", "flange")
     tool = cli.latex_line("jacobian", "planar3r", "--point", "tool")
-    assert wrist != tool
+    assert cli.latex_line("jacobian", "planar3r") == tool  # the default: the end of the chain
+    assert cli.latex_line("jacobian", "planar3r", "--point", "wrist") == wrist != tool
     assert "L_{3}" in tool
     assert "L_{3}" not in wrist
 
@@ -183,7 +184,8 @@ def test_fk_puma560(cli, fmt):
         assert data["entries"][3] == ["0", "0", "0", "1"]
         assert data["latex"].startswith(r"{}^{0}_{6}T = " + BMATRIX)  # named as the Jacobian's is
     elif fmt == "pretty":
-        assert out.startswith("T_0_6 =\n")
+        assert out.startswith("Pose of frame {6} in frame {0}: the end of the chain, its origin the flange")
+        assert "\nT_0_6 =\n" in out
         assert "c₂₃" in out
     else:
         lines = out.splitlines()
@@ -451,8 +453,8 @@ def test_torques_numeric_with_a_wrench_and_a_configuration(cli):
 
 def test_torques_in_another_frame_and_point(cli):
     tool = cli.latex_line("torques", "planar3r", "--frame", "tool", "--point", "tool")
-    wrist = cli.latex_line("torques", "planar3r", "--frame", "tool")
-    assert tool != wrist
+    wrist = cli.latex_line("torques", "planar3r", "--frame", "tool", "--point", "flange")
+    assert tool != wrist and cli.latex_line("torques", "planar3r", "--frame", "tool") == tool  # default: the end
     assert "L_{3}" in tool and "L_{3}" not in wrist
 
 
@@ -474,7 +476,8 @@ META = {"symjac", "robot", "convention", "joint_variables", "parameters"}
 JSON_KEYS = {
     ("singularities", "articulated3r"): META | {"rows", "frame", "point", "redundant", "row_minors", "row_choice",
                                                 "determinant", "minors", "zero_minors", "sets", "factors"},
-    ("jacobian", "planar2r"): META | {"frame", "point", "method", "shape", "rows", "columns", "entries", "latex"},
+    ("jacobian", "planar2r"): META | {"frame", "point", "at", "method", "shape", "rows", "columns", "entries",
+                                      "latex"},
     ("show", "stanford"): META | {"parameter_table", "dh_table", "transforms"},
 }
 

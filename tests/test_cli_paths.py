@@ -21,7 +21,7 @@ FK_PLANAR2R = ["fk", "planar2r", "--format", "pretty"]
 def expected(cli, capsys: pytest.CaptureFixture[str]) -> str:
     """What ``symjac fk planar2r --format pretty`` prints on stdout."""
     status, out, _ = cli.run(*FK_PLANAR2R)
-    assert status == 0 and out.startswith("T_0_2 =")
+    assert status == 0 and out.startswith("Pose of frame {2} in frame {0}") and "\nT_0_2 =\n" in out
     return out
 
 

@@ -63,12 +63,12 @@ def test_first_jacobian_keeps_its_name_when_a_frame_is_added():
     frame_1 = _namespace(generate(robot, "python", frames=1))
     q, qdot = [0.3, -1.1], [0.5, 0.7]
     assert two["jacobian"](q, L1=0.45) == alone["jacobian"](q, L1=0.45)  # the README's call keeps working
-    assert two["jacobian_1_wrist"](q) == frame_1["jacobian"](q)
-    assert two["jacobian"](q) != two["jacobian_1_wrist"](q)
+    assert two["jacobian_1_flange"](q) == frame_1["jacobian"](q)  # planar2r has no tool: its end is the flange
+    assert two["jacobian"](q) != two["jacobian_1_flange"](q)
     for kind in ("hessian", "bias_acceleration", "manipulability_gradient", "joint_torques", "manipulability"):
-        assert kind in two["__all__"] and f"{kind}_1_wrist" in two["__all__"], kind
+        assert kind in two["__all__"] and f"{kind}_1_flange" in two["__all__"], kind
     assert two["bias_acceleration"](q, qdot) == alone["bias_acceleration"](q, qdot)
-    assert "jacobian_0_wrist" not in two
+    assert "jacobian_0_flange" not in two
 
 
 def test_other_requests_are_named_by_frame_point_and_rows():
@@ -76,7 +76,7 @@ def test_other_requests_are_named_by_frame_point_and_rows():
     requests = [JacobianRequest("tool", "wrist", (0, 1)), JacobianRequest(0), JacobianRequest(0, (1, 0, 0)),
                 JacobianRequest(1, "wrist", (0, 1))]
     names = _namespace(generate(robot, "python", jacobians=requests))["__all__"]
-    assert {"jacobian", "jacobian_0_wrist", "jacobian_0_p1", "jacobian_1_wrist_r01"} <= set(names)
+    assert {"jacobian", "jacobian_0_flange", "jacobian_0_p1", "jacobian_1_wrist_r01"} <= set(names)
     assert "jacobian_tool_wrist_r01" not in names
     with pytest.raises(ValueError, match="requested twice"):
         generate(robot, "python", jacobians=[JacobianRequest(0), JacobianRequest(1), JacobianRequest(0)])

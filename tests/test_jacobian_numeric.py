@@ -96,11 +96,11 @@ def test_cross_product_in_frame_zero_from_position_differences():
 def test_frame_change_and_point_shift_helpers_agree_with_direct_derivation():
     robot = load_robot("planar3r")
     chain = chain_of(robot)
-    J_0 = jacobian(robot, simplify=False)
+    J_0 = jacobian(robot, point="flange", simplify=False)  # planar3r has a tool: the default point is its own
     J_1 = change_frame(J_0, chain.rotation(1, 0))
     from symjac.symbolic.simplify import simplify_matrix
 
-    assert simplify_matrix(J_1, chain.angle_bases(1)) == jacobian(robot, frame=1)
+    assert simplify_matrix(J_1, chain.angle_bases(1)) == jacobian(robot, frame=1, point="flange")
     p_we = chain.rotation(0, 3) * robot.tool.matrix[:3, 3]
     J_e = shift_point(J_0, list(p_we))
     assert simplify_matrix(J_e, chain.angle_bases(0)) == jacobian(robot, point="tool")

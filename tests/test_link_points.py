@@ -154,13 +154,15 @@ def test_columns_after_the_link_are_zero_and_the_base_does_not_move():
     assert jacobian(robot, "tool", link=0) == sp.zeros(6, robot.n_joints)
 
 
-def test_defaults_are_the_wrist_of_the_last_link_and_share_one_cache_entry():
-    chain = Chain(_robot("planar3r"))
+def test_defaults_share_one_cache_entry_the_end_without_a_link_the_origin_with_one():
+    chain = Chain(_robot("planar3r"))  # it has a tool: the end of the chain is the tool point, not the flange
     n = chain.n_joints
     J = jacobian(chain, 1, "wrist", link=n)
     kept = len(chain._memo)
-    assert jacobian(chain, 1) == J == jacobian(chain, 1, (0, 0, 0), link=np.int64(n))
-    assert len(chain._memo) == kept  # link None and n, point None and "wrist": one key
+    assert jacobian(chain, 1, link=n) == J == jacobian(chain, 1, (0, 0, 0), link=np.int64(n))
+    assert jacobian(chain, 1, "flange") == J
+    assert len(chain._memo) == kept  # link None and n, point "flange", "wrist" and (0, 0, 0) with link n: one key
+    assert jacobian(chain, 1) == jacobian(chain, 1, "tool") != J
     assert jacobian(chain, 1, link=n - 1) != J and len(chain._memo) > kept  # the link is part of the key
 
 

@@ -19,7 +19,7 @@ import sympy as sp
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from marks import marked
-from reference import evaluate, finite_difference_jacobian, frames, random_configuration
+from reference import end_of_chain, evaluate, finite_difference_jacobian, frames, random_configuration
 from scipy.linalg import expm
 from strategies import robots
 
@@ -278,7 +278,7 @@ def test_random_screw_chains_in_space_and_body_form(data):
     space, body = reference_jacobians(data, q)
     assert np.allclose(numbers(space_jacobian(robot, simplify=False), robot, q), space, atol=1e-6)
     assert np.allclose(numbers(body_jacobian(robot, simplify=False), robot, q), body, atol=1e-6)
-    expected = finite_difference_jacobian(robot, q, frame=0)
+    expected = finite_difference_jacobian(robot, q, frame=0, point=end_of_chain(robot))  # the home pose's origin
     assert np.allclose(numeric_jacobian(robot, q), expected, atol=1e-6)
 
 
@@ -440,7 +440,7 @@ def test_generated_code_of_a_poe_robot_matches_the_reference(tmp_path):
     exec(compile(generate(robot, "numpy"), "ur5_poe.py", "exec"), namespace)  # our own generated module
     for _ in range(3):
         q = random_configuration(robot, RNG)
-        expected = finite_difference_jacobian(robot, q)
+        expected = finite_difference_jacobian(robot, q, point=end_of_chain(robot))  # the tool point, by default
         assert np.allclose(namespace["jacobian"](q), expected, atol=1e-6)
 
 

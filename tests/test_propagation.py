@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import sympy as sp
 from marks import marked
-from reference import evaluate, finite_difference_jacobian, random_configuration
+from reference import end_of_chain, evaluate, finite_difference_jacobian, random_configuration
 
 from symjac import (
     catalog,
@@ -74,9 +74,10 @@ def test_force_propagation_reproduces_the_transposed_jacobian():
     for name in ("planar3r", "stanford", "puma560"):
         robot = load_robot(name)
         propagation = force_propagation(robot)
-        assert sp.Matrix(propagation.torques) == jacobian(robot, frame=robot.n_joints).T
+        J_n = jacobian(robot, frame=robot.n_joints, point="flange")  # the propagation ends at the origin of {n}
+        assert sp.Matrix(propagation.torques) == J_n.T
         tau = propagation.joint_torques()
-        assert _identical(tau, jacobian(robot, frame=robot.n_joints).T * sp.Matrix(wrench_symbols()), robot)
+        assert _identical(tau, J_n.T * sp.Matrix(wrench_symbols()), robot)
 
 
 def test_method_frames_of_the_seed_002_table():
@@ -155,7 +156,7 @@ def test_virtual_work_against_finite_differences(name):
     F = rng.normal(size=6)
     tau = np.array(joint_torques(robot, wrench=list(F), frame=robot.n_joints, q=list(q)), dtype=float).ravel()
     dq = rng.normal(size=robot.n_coordinates)
-    dx = finite_difference_jacobian(robot, q, frame=robot.n_joints) @ dq
+    dx = finite_difference_jacobian(robot, q, frame=robot.n_joints, point=end_of_chain(robot)) @ dq  # the default
     assert tau @ dq == pytest.approx(F @ dx, rel=1e-6, abs=1e-9)
 
 
@@ -182,7 +183,7 @@ def test_force_torque_sensor_reading_moved_to_the_tool_tip_needs_the_same_torque
     F_tool = list(wrench_transform(T_T_S) * F_S)
     F_wrist = list(wrench_transform(T_n_S) * F_S)
     at_tool = joint_torques(robot, wrench=F_tool, frame="tool", point="tool", q=q)
-    at_wrist = joint_torques(robot, wrench=F_wrist, frame=robot.n_joints, q=q)
+    at_wrist = joint_torques(robot, wrench=F_wrist, frame=robot.n_joints, point="flange", q=q)
     np.testing.assert_allclose(np.array(at_tool, dtype=float), np.array(at_wrist, dtype=float), atol=1e-10)
 
 
@@ -190,7 +191,7 @@ def test_twist_maps_between_wrist_and_tool_tip_both_ways():
     robot = load_robot("planar3r")
     chain = chain_of(robot)
     n = robot.n_coordinates
-    J_wrist_n = jacobian(robot, frame=n)
+    J_wrist_n = jacobian(robot, frame=n, point="flange")
     J_tool_T = jacobian(robot, frame="tool", point="tool")
     assert _identical(twist_transform(chain.transform(n, "tool")) * J_tool_T, J_wrist_n, robot)
     assert _identical(twist_transform(chain.transform("tool", n)) * J_wrist_n, J_tool_T, robot)

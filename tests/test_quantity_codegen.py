@@ -63,7 +63,7 @@ def test_every_request_records_its_functions_by_kind():
     assert kinds == ["jacobian", "joint_torques", "kinematics", "hessian", "bias_acceleration", "manipulability",
                      "manipulability_gradient"]  # 6 x 4: not square, no determinant
     names = dict((kind, name) for kind, name, _ in info.functions)
-    assert names["jacobian"] == info.jacobian == "jacobian_2_wrist" and names["kinematics"] == info.kinematics
+    assert names["jacobian"] == info.jacobian == "jacobian_2_flange" and names["kinematics"] == info.kinematics
     shapes = {kind: shape for kind, _, shape in info.functions}
     assert shapes["hessian"] == (6, 4, 4) and shapes["manipulability_gradient"] == (4,)
 

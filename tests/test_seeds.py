@@ -57,8 +57,9 @@ def test_planar_3r_at_wrist_and_end_effector():
         [L1 * c1 + L2 * c12 + L3 * c123, L2 * c12 + L3 * c123, L3 * c123],
         zero, zero, zero, [1, 1, 1],
     ])
-    assert_identical(jacobian(robot), J_W)
+    assert_identical(jacobian(robot, point="flange"), J_W)
     assert_identical(jacobian(robot, point="tool"), J_E)
+    assert_identical(jacobian(robot), J_E)  # the default: the end of the chain, planar3r's tool point
     # (4.121): the point-shift term -p_WE^ J_w
     assert_identical(J_E[:3, :] - J_W[:3, :], sp.Matrix([[-L3 * s123] * 3, [L3 * c123] * 3, zero]))
 

@@ -112,15 +112,21 @@ def parse_frame(text: str) -> Frame:
         raise FrameError(f"--frame must be a frame number, 'world' or 'tool', got {text!r}") from None
 
 
-def parse_point(text: str, robot: Robot) -> str | tuple[sp.Expr, ...]:
-    """``--point``: ``wrist``, ``tool``, or three coordinates ``x,y,z`` in frame {n} (parameter names allowed)."""
+def parse_point(text: str | None, robot: Robot) -> str | tuple[sp.Expr, ...] | None:
+    """``--point``: a named point, or three coordinates ``x,y,z`` in frame {n} (parameter names allowed).
+
+    The names are ``tool``, ``flange`` (or ``wrist``) and ``wrist_centre``; not given (None) it stays None, the end
+    of the chain.
+    """
+    from symjac.kinematics.points import POINT_NAMES
     from symjac.model.expressions import parse_expression
 
-    if text in ("wrist", "tool"):
+    if text is None or text in POINT_NAMES:
         return text
     parts = text.split(",")
     if len(parts) != 3:
-        raise FrameError(f"--point must be 'wrist', 'tool' or three coordinates x,y,z, got {text!r}")
+        raise FrameError(f"--point must be {', '.join(map(repr, POINT_NAMES))} or three coordinates x,y,z, got "
+                         f"{text!r}")
     try:
         return tuple(parse_expression(part.strip(), _parameters(robot)) for part in parts)
     except ExpressionError as error:

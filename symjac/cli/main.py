@@ -225,7 +225,7 @@ def _codegen(args: argparse.Namespace) -> str:
 
     robot = load(args)
     frames = [parse_frame(text) for text in (args.frame or ["0"])]
-    points = [parse_point(text, robot) for text in (args.point or ["wrist"])]
+    points = [parse_point(text, robot) for text in (args.point or [None])]
     rows = None if args.rows is None else parse_rows(args.rows)
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
     request = ModuleRequest(robot, args.target, jacobians=requests, strategy=args.strategy,

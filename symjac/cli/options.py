@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 
 from symjac.cli.args import add_robot_arguments
+from symjac.quantities.options import POINT_HELP
 
 __all__ = [
     "codegen_options",
@@ -44,7 +45,7 @@ def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--frame", action="append", default=None, metavar="K",
                      help="frame to express the Jacobian in: 0..n, world or tool (repeatable; default 0)")
     sub.add_argument("--point", action="append", default=None, metavar="P",
-                     help="wrist, tool, or x,y,z in frame {n} (repeatable; default wrist)")
+                     help=f"repeatable: {POINT_HELP}; forward_kinematics always ends at the end of the chain")
     sub.add_argument("--rows", default=None,
                      help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z (default all)")
     sub.add_argument("--strategy", choices=STRATEGIES, default="fastest",
@@ -106,7 +107,7 @@ def sweep_options(sub: argparse.ArgumentParser, name: str) -> None:
                      help="gci, gci_frobenius, manipulability, sigma_min, near_singular, workspace_volume "
                           "(default gci,manipulability,sigma_min,near_singular)")
     sub.add_argument("--frame", default="0", help="the Jacobian's frame (default 0)")
-    sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
+    sub.add_argument("--point", default=None, help=POINT_HELP)
     sub.add_argument("--rows", default=None, help="task rows from v_x,v_y,v_z,omega_x,omega_y,omega_z (default all)")
     sub.add_argument("--seed", type=int, default=0, help="seed of the Sobol scrambling (default 0)")
     sub.add_argument("--scheduler", default=None, metavar="NAME|tcp://HOST:PORT",
@@ -131,8 +132,7 @@ def result_options(sub: argparse.ArgumentParser, name: str) -> None:
                          help=f"with --numeric (or torques --q): significant digits printed (default {DIGITS})")
     if name == "singularities":
         sub.add_argument("--frame", default=None, help="frame to analyse in (default: the most compact one)")
-        sub.add_argument("--point", default=None, help="wrist, tool, or x,y,z in frame {n} (default: tool if "
-                                                        "the robot has one, else wrist)")
+        sub.add_argument("--point", default=None, help=POINT_HELP)
         sub.add_argument("--rows", default=None,
                          help="task rows, comma-separated from v_x,v_y,v_z,omega_x,omega_y,omega_z "
                               "(default: chosen automatically)")

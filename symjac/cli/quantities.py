@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, TypeVar
 from symjac.cli.args import configuration_values, load, parse_frame, parse_point, parse_values
 from symjac.cli.options import result_options
 from symjac.cli.output import note_if_large, progress
+from symjac.model.ends import end_point
 from symjac.quantities import QUANTITIES, Quantity
 
 if TYPE_CHECKING:
@@ -51,10 +52,16 @@ class CommandRequest:
         return parse_frame(self.args.frame)
 
     def point(self) -> Point | None:
-        """``--point``, parsed; with ``--link`` the option's default (``wrist``) is the origin of that link's frame."""
-        if self.link() is not None and self.args.point == "wrist":
+        """``--point``, parsed; not given, None: the end of the chain, or with ``--link`` the origin of that link."""
+        if self.args.point is None:
             return None
         return parse_point(self.args.point, self.robot)
+
+    def point_name(self) -> str:
+        """``--point`` as typed, else ``origin`` with ``--link``, else the end of the chain's name."""
+        if self.args.point is not None:
+            return self.args.point  # type: ignore[no-any-return]
+        return "origin" if self.link() is not None else end_point(self.robot)
 
     def link(self) -> int | None:
         """``--link``, or None (the option is not given, or the command has none)."""

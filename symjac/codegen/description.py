@@ -245,6 +245,7 @@ class JacobianInfo:
     kinematics: str
     frame: str
     point: str
+    """Which point, in words after "at": ``the tool point``, ``the origin of frame {6} (flange)``, ..."""
     point_values: tuple[str, str, str]
     rows: tuple[int, ...]
     row_names: tuple[str, ...]

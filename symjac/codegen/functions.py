@@ -33,6 +33,7 @@ from symjac.codegen.request import (
     JacobianRequest,
     Strategy,
     check_rows,
+    end_words,
     frame_text,
     function_labels,
     point_text,
@@ -99,7 +100,7 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
         functions.append(FunctionDescription(spec, function))
 
     for kind in generated_kinds("module", acceleration):
-        add(lowered(kind, chain, strategy), kind.base, kind, ())
+        add(lowered(kind, chain, strategy), kind.base, kind, (), end=end_words(model))
     infos: list[JacobianInfo] = []
     n = model.n_coordinates
     for request, label in zip(requests, function_labels(model, requests), strict=True):
@@ -108,8 +109,8 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
         kinds = [kind for kind in generated_kinds("request", acceleration)
                  if not (kind.square_only and len(selected) != n)]
         names = {kind.name: f"{kind.base}{label}" for kind in kinds}
-        fields = {**dict.fromkeys(KINDS, ""), **names, "frame": frame_text(request.frame),
-                  "at": point_words(point_name)}
+        at = point_words(point_name, model.n_joints)
+        fields = {**dict.fromkeys(KINDS, ""), **names, "frame": frame_text(request.frame), "at": at}
         records: list[tuple[str, str, tuple[int, ...]]] = []
         for kind in kinds:
             if kind.derived:
@@ -121,7 +122,7 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
         infos.append(JacobianInfo(
             jacobian=names["jacobian"], joint_torques=names["joint_torques"], manipulability=names["manipulability"],
             determinant=names.get("jacobian_determinant"), kinematics=names["kinematics"],
-            frame=frame_text(request.frame), point=point_name,
+            frame=frame_text(request.frame), point=at,
             point_values=tuple(float_literal(v.subs(model.defaults)) for v in point),  # type: ignore[arg-type]
             rows=selected, row_names=tuple(ROW_NAMES[r] for r in selected),
             wrench_names=tuple(WRENCH_NAMES[r] for r in selected),
@@ -156,11 +157,13 @@ def derived_functions(infos: Sequence[JacobianInfo], n: int, coupled: bool) -> l
 
 
 def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedFunction],
-            infos: Sequence[JacobianInfo], n: int, coupled: bool) -> tuple[tuple[str, str], ...]:
+            infos: Sequence[JacobianInfo], n: int, coupled: bool, end: str = "the tool frame"
+            ) -> tuple[tuple[str, str], ...]:
     """Every public function with its line for the module docstring, in the order of the docstring.
 
     The module-scoped functions; each request's, its velocity level (lowered, then derived) before its acceleration
-    level; the scalars. The lines are :attr:`~symjac.quantities.spec.Generated.listing`.
+    level; the scalars. The lines are :attr:`~symjac.quantities.spec.Generated.listing`; ``end`` is the frame the
+    forward kinematics ends at (:func:`~symjac.codegen.request.end_words`).
     """
     entries: list[tuple[str, str]] = []
     unit = "coordinate" if coupled else "joint"
@@ -172,9 +175,9 @@ def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedF
     requested = {name for info in infos for _, name, _ in info.functions}
     for function in functions:
         if function.name not in requested and function.kind != "scalar":
-            add(function.name, kind_spec(function.kind), shape=str(function.shape))
+            add(function.name, kind_spec(function.kind), shape=str(function.shape), end=end)
     for info in infos:
-        fields = {"frame": info.frame, "point": info.point, "rows": ", ".join(info.row_names),
+        fields = {"frame": info.frame, "point": info.point, "at": info.point, "rows": ", ".join(info.row_names),
                   "wrench": ", ".join(info.wrench_names)}
         records = sorted(info.functions, key=lambda record: (kind_spec(record[0]).acceleration,
                                                              kind_spec(record[0]).derived))
@@ -198,7 +201,8 @@ def self_checks(infos: Sequence[JacobianInfo]) -> tuple[Check, ...]:
 
 def request_lines(infos: Sequence[JacobianInfo]) -> tuple[tuple[str, str], ...]:
     """Each requested Jacobian's name and what it is, for the header of every file: frame, point and rows."""
-    return tuple((info.jacobian, f"frame {info.frame}, point {info.point}, rows {', '.join(info.row_names)}.")
+    return tuple((info.jacobian, f"frame {info.frame}, at {info.point}, "
+                  + ("all six rows [v; omega]." if len(info.rows) == 6 else f"rows {', '.join(info.row_names)}."))
                  for info in infos)
 
 

@@ -36,6 +36,7 @@ from symjac.codegen.request import (
     STRATEGIES,
     JacobianRequest,
     Strategy,
+    end_words,
     python_call,
     requests_from,
     validate_robot,
@@ -74,7 +75,7 @@ class ModuleRequest:
     robot: Robot | Chain
     target: str = "python"
     frames: Sequence[Frame] | Frame = (0,)
-    points: Sequence[Point] | Point = ("wrist",)
+    points: Sequence[Point | None] | Point | None = (None,)
     rows: Sequence[int] | None = None
     jacobians: Sequence[JacobianRequest] | None = None
     scalars: Mapping[str, sp.Expr] | None = None
@@ -140,7 +141,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
         rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (),
         coordinate_symbols=tuple(model.q), parameter_symbols=tuple(model.parameter_symbols),
-        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled), checks=self_checks(infos),
+        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
+        checks=self_checks(infos),
         request_lines=request_lines(infos),
     )
 
@@ -161,7 +163,7 @@ def generate(
     robot: Robot | Chain,
     target: str = "python",
     frames: Sequence[Frame] | Frame = (0,),
-    points: Sequence[Point] | Point = ("wrist",),
+    points: Sequence[Point | None] | Point | None = (None,),
     *,
     rows: Sequence[int] | None = None,
     jacobians: Sequence[JacobianRequest] | None = None,
@@ -183,7 +185,9 @@ def generate(
     frames : frame or sequence of frames
         Frames the Jacobians are expressed in (default {0}); every frame is combined with every point.
     points : point or sequence of points
-        ``"wrist"`` (default), ``"tool"`` or three coordinates in frame {n}.
+        ``"tool"``, ``"flange"`` (or ``"wrist"``, the origin of {n}), ``"wrist_centre"`` or three coordinates in
+        frame {n}; default (``None``) the end of the chain, the origin of the frame ``forward_kinematics`` ends at
+        (the tool point when the robot has a tool, else the flange).
     rows : sequence of int, optional
         Task rows of the Jacobians (0..5 = v_x .. omega_z); default all six.
     jacobians : sequence of JacobianRequest, optional
@@ -218,7 +222,7 @@ def generate(
         ``jacobian`` (with ``joint_torques``, ``manipulability``, ``jacobian_determinant`` and, with
         ``acceleration``, ``hessian``, ``bias_acceleration``, ``manipulability_gradient``); every other one adds
         the suffix ``_<frame>_<point>`` and, with ``rows``, ``_r<rows>``: ``jacobian_3_tool``, ``jacobian_0_p1``
-        (``p1``, ``p2``: explicit points in the order given), ``hessian_0_wrist_r012``.
+        (``p1``, ``p2``: explicit points in the order given), ``hessian_0_flange_r012``.
 
     Raises
     ------

@@ -18,6 +18,7 @@ from symjac.errors import ArgumentError, CodegenError
 from symjac.kinematics.chain import Chain, Frame
 from symjac.kinematics.jacobian import Point, check_row_indices, point_vector
 from symjac.kinematics.memo import one_of
+from symjac.model.ends import end_point
 from symjac.model.robot import Robot
 
 __all__ = [
@@ -26,6 +27,7 @@ __all__ = [
     "JacobianRequest",
     "Strategy",
     "check_rows",
+    "end_words",
     "frame_text",
     "function_labels",
     "point_text",
@@ -53,15 +55,17 @@ class JacobianRequest:
     ----------
     frame : int or "world" or "tool"
         Frame {k} the Jacobian is expressed in.
-    point : "wrist", "tool" or three coordinates in frame {n}
-        Where the linear velocity is taken (see :func:`symjac.kinematics.jacobian`).
+    point : "tool", "flange", "wrist", "wrist_centre" or three coordinates in frame {n}, optional
+        Where the linear velocity is taken (see :func:`symjac.kinematics.jacobian`). Default: the end of the chain,
+        the origin of the frame the module's ``forward_kinematics`` ends at (the tool point when the robot has a
+        tool, else the flange, the origin of {n}).
     rows : tuple of int, optional
         Task rows to keep, from 0..5 = v_x, v_y, v_z, omega_x, omega_y, omega_z (default all six). With as many rows
         as joints the Jacobian is square and the module gets a ``jacobian_determinant`` function.
     """
 
     frame: Frame = 0
-    point: Point = "wrist"
+    point: Point | None = None
     rows: tuple[int, ...] | None = None
 
 
@@ -83,7 +87,8 @@ def validate_robot(robot: Robot, identifiers: IdentifierRule = PYTHON_IDENTIFIER
 
 
 def requests_from(
-    chain: Chain, frames: Sequence[Frame] | Frame, points: Sequence[Point] | Point, rows: Sequence[int] | None,
+    chain: Chain, frames: Sequence[Frame] | Frame, points: Sequence[Point | None] | Point | None,
+    rows: Sequence[int] | None,
     jacobians: Sequence[JacobianRequest] | None,
 ) -> list[JacobianRequest]:
     """The requests of a call: ``jacobians`` as given, else every frame with every point; frames checked."""
@@ -93,8 +98,9 @@ def requests_from(
             raise CodegenError("jacobians must be a sequence of JacobianRequest")
     else:
         frame_list = [frames] if isinstance(frames, int | str) else list(frames)
-        point_list: list[Point] = ([points] if isinstance(points, str) or _is_coordinates(points)  # type: ignore[list-item]
-                                   else list(points))  # type: ignore[arg-type]
+        point_list: list[Point | None] = (
+            [points] if points is None or isinstance(points, str) or _is_coordinates(points)  # type: ignore[list-item]
+            else list(points))  # type: ignore[arg-type]
         requests = [JacobianRequest(f, p, None if rows is None else tuple(rows)) for f in frame_list
                     for p in point_list]
     for request in requests:
@@ -122,8 +128,12 @@ def rows_of(chain: Chain, rows: Sequence[int] | None) -> tuple[int, ...]:
     return check_rows(rows)
 
 
-def point_text(robot: Robot, point: Point) -> tuple[str, tuple[sp.Expr, sp.Expr, sp.Expr]]:
-    """A short text for the point (for comments and docstrings) and its validated coordinates in frame {n}."""
+def point_text(robot: Robot, point: Point | None) -> tuple[str, tuple[sp.Expr, sp.Expr, sp.Expr]]:
+    """A short text for the point (its name, or its coordinates) and its validated coordinates in frame {n}.
+
+    ``None`` is the end of the chain, named as :func:`~symjac.model.ends.end_point` names it.
+    """
+    point = end_point(robot) if point is None else point
     coordinates = point_vector(robot, point)
     allowed = set(robot.parameter_symbols)
     for value in coordinates:
@@ -135,18 +145,31 @@ def point_text(robot: Robot, point: Point) -> tuple[str, tuple[sp.Expr, sp.Expr,
     if isinstance(point, str):
         return point, coordinates
     text = "(" + ", ".join(str(value) for value in coordinates) + ")"
-    if len(text) > 48:  # keep comment and docstring lines short: the numbers at the default parameters
+    if len(text) > 32:  # keep comment and docstring lines short: the numbers at the default parameters
         text = "(" + ", ".join(f"{float(value.subs(robot.defaults)):.6g}" for value in coordinates) + ")"
     return text, coordinates
 
 
-def point_words(text: str) -> str:
-    """``"wrist"``, ``"tool point"`` or ``"point (x, y, z)"`` for a docstring sentence."""
-    if text == "wrist":
-        return "wrist"
+def point_words(text: str, n: int) -> str:
+    """Which point :func:`point_text`'s ``text`` is, for a docstring sentence after "at" (``n`` the last frame).
+
+    Examples
+    --------
+    >>> point_words("tool", 6), point_words("flange", 6), point_words("(0, 0, 1)", 2)
+    ('the tool point', 'the origin of frame {6} (flange)', 'the point (0, 0, 1) of frame {2}')
+    """
+    if text in ("flange", "wrist"):
+        return f"the origin of frame {{{n}}} (flange)"
     if text == "tool":
-        return "tool point"
-    return f"point {text}"
+        return "the tool point"
+    if text == "wrist_centre":
+        return "the wrist centre"
+    return f"the point {text} of frame {{{n}}}"
+
+
+def end_words(robot: Robot) -> str:
+    """The frame generated forward kinematics ends at: ``the tool frame``, or ``frame {n} (its origin the flange)``."""
+    return "the tool frame" if robot.tool is not None else f"frame {{{robot.n_joints}}} (its origin the flange)"
 
 
 def frame_text(frame: Frame) -> str:
@@ -170,15 +193,15 @@ def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[s
     Examples
     --------
     >>> from symjac import load_robot
-    >>> function_labels(load_robot("planar2r"), [JacobianRequest(0), JacobianRequest("tool", "wrist", (0, 1))])
-    ['', '_tool_wrist_r01']
+    >>> function_labels(load_robot("planar2r"), [JacobianRequest(0), JacobianRequest("tool", "flange", (0, 1))])
+    ['', '_tool_flange_r01']
     """
     labels = []
     custom: dict[tuple[sp.Expr, ...], str] = {}
     for request in requests:
         frame = str(request.frame)
-        if isinstance(request.point, str):
-            point = request.point
+        if request.point is None or isinstance(request.point, str):
+            point = end_point(robot) if request.point is None else request.point
         else:
             point = custom.setdefault(point_vector(robot, request.point), f"p{len(custom) + 1}")
         rows = "" if request.rows is None else "_r" + "".join(str(r) for r in request.rows)
@@ -204,7 +227,7 @@ def python_call(
     >>> robot = load_robot("planar2r")
     >>> python_call(robot, "numpy", [JacobianRequest(0), JacobianRequest("tool", (1, 0, 0), (0, 1))], {}, "raw",
     ...             'symjac.load_robot("planar2r")')
-    'symjac.generate(symjac.load_robot("planar2r"), "numpy", jacobians=[symjac.JacobianRequest(0, "wrist"), symjac.JacobianRequest("tool", (1, 0, 0), (0, 1))], strategy="raw")'
+    'symjac.generate(symjac.load_robot("planar2r"), "numpy", jacobians=[symjac.JacobianRequest(0), symjac.JacobianRequest("tool", (1, 0, 0), (0, 1))], strategy="raw")'
     """  # noqa: E501  # a doctest's expected output cannot be wrapped
     items = [_request_text(robot, request) for request in requests]
     parts = [loader, f'"{target}"', f"jacobians=[{', '.join(items)}]"]
@@ -221,9 +244,13 @@ def python_call(
 
 def _request_text(robot: Robot, request: JacobianRequest) -> str:
     frame = f'"{request.frame}"' if isinstance(request.frame, str) else str(request.frame)
-    if isinstance(request.point, str):
+    if request.point is None:
+        point = "None"
+    elif isinstance(request.point, str):
         point = f'"{request.point}"'
     else:
         point = "(" + ", ".join(str(v) for v in point_vector(robot, request.point)) + ")"
+    if request.point is None and request.rows is None:
+        return f"symjac.JacobianRequest({frame})"
     rows = "" if request.rows is None else f", {tuple(request.rows)}"
     return f"symjac.JacobianRequest({frame}, {point}{rows})"

@@ -83,7 +83,7 @@ def carried_joints(robot: Robot | Chain, frame: Frame) -> tuple[int, ...]:
     return tuple(range(1, min(max(chain.position(frame), 0), chain.n_joints) + 1))
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, coupling="congruent", layout="frame", fresh=presented)
+@memoized(frame=frame_of, point=link_point, link=link_of, coupling="congruent", layout="frame", fresh=presented)
 def hessian(
     chain: Chain, frame: Frame = 0, point: Point | None = None, *, simplify: bool = True, link: int | None = None
 ) -> sp.ImmutableDenseNDimArray:
@@ -178,7 +178,7 @@ def _spin(chain: Chain, frame: Frame, joint: int) -> sp.Matrix:
     return sp.Matrix(chain.simplified_transform(frame, chain.axis_frame(joint))[:3, 2])
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=presented_matrix,
+@memoized(frame=frame_of, point=link_point, link=link_of, method=one_of(DERIVATIVE_METHODS), fresh=presented_matrix,
           coupling="columns", layout="frame")
 def jacobian_derivative(
     chain: Chain,
@@ -238,7 +238,7 @@ def _jacobian_derivative(chain: Chain, frame: Frame, point: tuple[sp.Expr, ...],
     return sp.ImmutableMatrix(6, n, lambda i, j: sum(H[i, j, m] * rates[m] for m in range(n)))
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(DERIVATIVE_METHODS), fresh=presented_matrix,
+@memoized(frame=frame_of, point=link_point, link=link_of, method=one_of(DERIVATIVE_METHODS), fresh=presented_matrix,
           coupling="rates", layout="frame")
 def bias_acceleration(
     chain: Chain,

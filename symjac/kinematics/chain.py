@@ -22,6 +22,7 @@ from symjac.kinematics.coupling import COUPLING_LAWS, in_coordinates
 from symjac.kinematics.generic import is_generic, numeric_steps
 from symjac.model.conventions import joint_forms
 from symjac.model.conventions.base import JointForm
+from symjac.model.ends import last_frame
 from symjac.model.robot import Robot
 from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
@@ -397,16 +398,16 @@ def clear_caches() -> None:
 
 
 def forward_kinematics(robot: Robot | Chain, source: Frame = 0, target: Frame | None = None) -> sp.Matrix:
-    r"""The pose :math:`{}^{\text{source}}_{\text{target}}T` compact, in the coordinates (default :math:`{}^0_nT`).
+    r"""The pose :math:`{}^{\text{source}}_{\text{target}}T` compact, in the coordinates; default {0} to the end.
 
-    Examples
-    --------
+    The end (:func:`~symjac.model.ends.last_frame`, the tool frame, else {n}) is where Jacobians and code default.
+
     >>> from symjac import load_robot
-    >>> forward_kinematics(load_robot("planar3r"), target="tool")[0, 3]
+    >>> forward_kinematics(load_robot("planar3r"))[0, 3]  # planar3r has a tool: L3 beyond frame {3}
     L1*cos(theta1) + L2*cos(theta1 + theta2) + L3*cos(theta1 + theta2 + theta3)
     """
     chain = as_chain(robot)
-    target = chain.n_joints if target is None else target
+    target = last_frame(chain) if target is None else target
     try:
         T = chain.simplified_transform(source, target)
     except ResultTooLargeError:  # too large written out: nested instead

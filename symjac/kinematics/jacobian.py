@@ -120,7 +120,7 @@ def check_row_indices(rows: Sequence[int]) -> tuple[int, ...]:
     return values
 
 
-@memoized(frame=frame_of, link=link_of, point=link_point, method=one_of(METHODS), fresh=presented_matrix,
+@memoized(frame=frame_of, point=link_point, link=link_of, method=one_of(METHODS), fresh=presented_matrix,
           coupling="columns", layout="frame")
 def jacobian(
     chain: Chain,
@@ -141,10 +141,13 @@ def jacobian(
     robot : Robot or Chain
     frame : int or "world" or "tool"
         Frame {k} the Jacobian is expressed in (default {0}).
-    point : "wrist", "tool" or sequence of 3, optional
-        Where the linear velocity is taken: a point given by its coordinates in frame {l} of its ``link`` (default
-        the origin of {l}: the wrist, the origin of frame {n}, for the last link), or by name on the last link:
-        ``"wrist"`` or ``"tool"``, the origin of the tool frame.
+    point : "tool", "flange", "wrist", "wrist_centre" or sequence of 3, optional
+        Where the linear velocity is taken. Default: the end of the chain, the point forward kinematics and generated
+        code end at (the tool point when the robot has a tool, else the flange, the origin of frame {n}); with a
+        ``link``, the origin of {l}. Coordinates are given in frame {l} of the ``link`` ({n} without one). The
+        names belong to the last link: ``"tool"`` (the origin of the tool frame), ``"flange"`` (the origin of {n},
+        also called ``"wrist"``) and ``"wrist_centre"`` (where the last three axes meet,
+        :func:`~symjac.kinematics.points.wrist_centre`).
     method : "differentiation", "cross_product", "velocity_propagation" or "force_propagation"
         Derivation (see the module docstring); all give the same matrix.
     simplify : bool

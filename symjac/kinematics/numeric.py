@@ -86,8 +86,12 @@ def numeric_at(robot: Robot | Chain, expr: sp.MatrixBase, q: Sequence[float | sp
     return np.array(evaluate_at(robot, expr, q), dtype=float)
 
 
-def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0, point: Point = "wrist") -> np.ndarray:
+def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0, point: Point | None = None
+                     ) -> np.ndarray:
     """The 6 x n_coordinates basic Jacobian at configuration ``q`` as floats (parameters at their defaults).
+
+    The point is as for :func:`~symjac.kinematics.jacobian.jacobian`: default the end of the chain (the tool point
+    when the robot has a tool, else the flange, the origin of {n}).
 
     The first call per frame and point compiles the raw Jacobian with :func:`sympy.lambdify` (kept in the chain);
     later calls cost microseconds.
@@ -103,7 +107,7 @@ def numeric_jacobian(robot: Robot | Chain, q: Sequence[float], frame: Frame = 0,
 
 
 @memoized(frame=frame_of, point=point_vector)
-def _compiled_jacobian(chain: Chain, frame: Frame, point: Point) -> Callable[..., Any]:
+def _compiled_jacobian(chain: Chain, frame: Frame, point: Point | None) -> Callable[..., Any]:
     """The raw Jacobian lambdified over q, parameters at their defaults."""
     method: Method = "cross_product" if chain.nested else "differentiation"  # nested: n + 1 frames, not n derivatives
     J = jacobian(chain, frame=frame, point=point, method=method, simplify=False).xreplace(chain.robot.defaults)

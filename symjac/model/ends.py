@@ -1,16 +1,17 @@
 """The two ends of a whole arm, chosen in one place for every result, printer and generated module.
 
-A whole-arm result (forward kinematics, the report's pose, a Jacobian whose point is not given) runs from the *world*
-frame when the robot has a base transform, else from frame {0}, to the *tool* frame when it has a tool transform,
-else to the last joint frame {n}. Its default point is the origin of that last frame: ``"tool"`` or ``"wrist"`` (the
-origin of {n}).
+A whole-arm result (forward kinematics, the report's pose, a Jacobian whose point is not given, generated code) runs
+from the *world* frame when the robot has a base transform, else from frame {0}, to the *tool* frame when it has a
+tool transform (a URDF's tip link beyond the last joint), else to the last joint frame {n}. Its default point is the
+origin of that last frame, the end of the chain: ``"tool"``, or ``"flange"`` (the origin of {n}; ``"wrist"`` is the
+same point under its older name). Forward kinematics, the Jacobian and generated code all take this one default.
 
 Examples
 --------
 >>> from symjac import load_robot
 >>> robot = load_robot("planar2r")
 >>> first_frame(robot), last_frame(robot), end_point(robot)
-(0, 2, 'wrist')
+(0, 2, 'flange')
 """
 
 from __future__ import annotations
@@ -44,6 +45,9 @@ def last_frame(robot: object) -> Literal["tool"] | int:
     return "tool" if model.tool is not None else model.n_joints
 
 
-def end_point(robot: object) -> Literal["tool", "wrist"]:
-    """The default point of a whole-arm result: the tool point with a tool transform, else the origin of {n}."""
-    return "tool" if _model(robot).tool is not None else "wrist"
+def end_point(robot: object) -> Literal["tool", "flange"]:
+    """The default point of a whole-arm result, the origin of :func:`last_frame`: the tool point, else the flange.
+
+    The flange is the origin of frame {n} (``"wrist"`` names it too, for compatibility).
+    """
+    return "tool" if _model(robot).tool is not None else "flange"

@@ -102,8 +102,11 @@ def forward_kinematics_document(robot: Robot, source: Frame, target: Frame, T: s
                                 digits: int | None = None) -> Document:
     """``symjac fk``: the pose of ``target`` relative to ``source``."""
     equation = transform_equation(source, target, shown(robot, T, digits), JsonKey("entries", latex="latex"))
-    return Document(prose.title(robot, "fk"), robot.name, (Block((), (equation,)),),
-                    facts={"source": source, "target": target}, model=robot)
+    caption = prose.forward_kinematics_caption(source, target, robot.n_joints)
+    at = prose.point_phrase("tool" if target == "tool" else "flange", n=robot.n_joints) if target in (
+        "tool", robot.n_joints) else None
+    return Document(prose.title(robot, "fk"), robot.name, (Block((caption,), (equation,)),),
+                    facts={"source": source, "target": target, **({"at": at} if at else {})}, model=robot)
 
 
 def _steps(robot: Robot, propagation: Steps | None, digits: int | None) -> list[Equation]:
@@ -130,9 +133,10 @@ def jacobian_document(robot: Robot, J: sp.MatrixBase, frame: Frame, point: str, 
     equation = Equation(f"{{}}^{{{frame_tex(frame)}}}J", f"J in frame {frame}", shown(robot, J, digits),
                         _jacobian_name(frame), JsonKey("entries", latex="latex"))
     blocks = [Block((), (step,)) for step in steps]
-    blocks.append(Block((prose.jacobian_caption(point, method, link),), (equation,)))
+    blocks.append(Block((prose.jacobian_caption(point, method, link, robot.n_joints),), (equation,)))
     return Document(prose.title(robot, "jacobian", frame), robot.name, tuple(blocks),
-                    facts={"frame": frame, "point": point, **_link(link), "method": method, "shape": list(J.shape),
+                    facts={"frame": frame, "point": point, "at": prose.point_phrase(point, link, robot.n_joints),
+                           **_link(link), "method": method, "shape": list(J.shape),
                            **_columns(robot)}, model=robot)
 
 
@@ -168,7 +172,7 @@ def representation_document(robot: Robot, result: Any, point: str, orientation: 
     blocks = [Block(prose.REPRESENTATION_COORDINATES, (Equation("x", "x", sp.Matrix(result.coordinates),
                                                                 key=JsonKey("coordinates", flat=True)),)),
               Block(prose.RATE_MATRIX, (Equation("E(x)", "E(x)", result.E, key=JsonKey("E")),)),
-              Block(prose.representation_caption(point),
+              Block(prose.representation_caption(point, robot.n_joints),
                     (Equation(rf"J_x = E(x)\,{{}}^{{{frame_tex(result.frame)}}}J", f"J_x = E(x) J_{result.frame}",
                               J_x),))]
     blocks += [Block(prose.representation_parts(s)) for s in result.singularities]
@@ -201,7 +205,7 @@ def derivative_document(robot: Robot, Jdot: sp.MatrixBase, bias: sp.MatrixBase, 
                              shown(robot, bias, digits),
                              key=JsonKey("bias_acceleration", latex="bias_latex", flat=True))
     blocks = (*(Block((), (step,)) for step in steps),
-              Block((prose.derivative_caption(point, moving, link),), (Jdot_equation,)),
+              Block((prose.derivative_caption(point, moving, link, robot.n_joints),), (Jdot_equation,)),
               Block(prose.BIAS_ACCELERATION, (bias_equation,)))
     return Document(prose.title(robot, "derivative", frame), robot.name, blocks,
                     facts={"frame": frame, "point": point, **_link(link), "rates": [str(r) for r in rates],
@@ -215,7 +219,8 @@ def hessian_document(robot: Robot, slices: Sequence[sp.MatrixBase], frame: Frame
                           shown(robot, H_k, digits),
                           key=JsonKey("slices", latex="slices_latex", item=str(q), stacked="entries"))
                  for q, H_k in zip(robot.q, slices, strict=True)]
-    blocks = tuple(Block((prose.hessian_caption(k),), (equation,)) for k, equation in enumerate(equations))
+    at = prose.point_phrase(point, link, robot.n_joints)
+    blocks = tuple(Block((prose.hessian_caption(k, at),), (equation,)) for k, equation in enumerate(equations))
     n = robot.n_coordinates
     return Document(prose.title(robot, "hessian", frame), robot.name, blocks,
                     facts={"frame": frame, "point": point, **_link(link), "shape": [6, n, n],
@@ -233,8 +238,8 @@ def torques_document(robot: Robot, tau: sp.MatrixBase, frame: Frame, point: str,
     if evaluated_digits is not None:
         tau = rounded(tau, evaluated_digits)
     equation = Equation(r"\tau", "tau", tau, key=JsonKey("torques", latex="latex", flat=True))
-    return Document(prose.title(robot, "torques"), robot.name, (Block((prose.torques_caption(frame, point, link),),
-                                                                      (equation,)),),
+    caption = prose.torques_caption(frame, point, link, robot.n_joints)
+    return Document(prose.title(robot, "torques"), robot.name, (Block((caption,), (equation,)),),
                     facts={"frame": frame, "point": point, **_link(link),
                            "wrench": wrench or [str(s) for s in wrench_names],
                            "q": q}, model=robot)

@@ -43,13 +43,13 @@ def command(request: Request) -> Document:
                             "Jacobian)")
     propagation = None
     if args.steps:
-        tip = propagation_tip(robot, point)
+        tip = propagation_tip(robot, point, link)
         propagation = request.progress(f"acceleration propagation of {robot.name}",
                                        lambda: acceleration_propagation(robot, tip, link=link))
     Jdot = request.progress(f"Jacobian derivative of {robot.name} in frame {frame}",
                             lambda: jacobian_derivative(robot, frame=frame, point=point, link=link))
     bias = bias_acceleration(robot, frame=frame, point=point, link=link)
-    return derivative_document(robot, Jdot, bias, frame, args.point, bool(carried_joints(robot, frame)),
+    return derivative_document(robot, Jdot, bias, frame, request.point_name(), bool(carried_joints(robot, frame)),
                                joint_rate_symbols(robot), propagation, request.digits, link=link)
 
 

@@ -1,7 +1,9 @@
-r"""Forward kinematics: the pose :math:`{}^{0}_{n}T` of the end of the chain (``symjac fk``).
+r"""Forward kinematics: the pose of the end of the chain (``symjac fk``).
 
 The pose runs from the world frame when the robot has a base transform (else frame {0}) to the tool frame when it
-has a tool (else the last joint frame {n}): the whole arm, as generated code computes it.
+has a tool (else the last joint frame {n}): the whole arm (:mod:`symjac.model.ends`). Generated code computes it from
+frame {0}, to the same end; the origin of that end is the default point of the Jacobian, in Python, on the command
+line and in generated code.
 """
 
 from __future__ import annotations
@@ -38,7 +40,8 @@ QUANTITY = Quantity(
     document="symjac.printing.results:forward_kinematics_document",
     codegen=Generated(
         "forward_kinematics", "The homogeneous transform [[R, p], [0, 0, 0, 1]], row by row.",
-        listing="The 4 x 4 pose of the tool frame in frame {{0}}.", summary="The pose of the tool frame in frame {{0}}",
+        listing="The 4 x 4 pose of {end} in frame {{0}}, the end of the chain.",
+        summary="The pose of {end} in frame {{0}}, the end of the chain",
         output="T", scope="module", lowering="symjac.codegen.coupled:coordinate_forward_kinematics"),
     command="fk",
     options=lambda sub: None,  # the common options only

@@ -23,7 +23,7 @@ def command(request: Request) -> Document:
     H = request.progress(f"Hessian of {robot.name} in frame {frame}",
                          lambda: hessian(robot, frame=frame, point=point, link=link))
     slices = [hessian_slice(H, k) for k in range(len(robot.q))]
-    return hessian_document(robot, slices, frame, request.args.point, request.digits, link=link)
+    return hessian_document(robot, slices, frame, request.point_name(), request.digits, link=link)
 
 
 QUANTITY = Quantity(

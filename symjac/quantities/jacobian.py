@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from symjac.errors import ArgumentError
+from symjac.model.ends import end_point
 from symjac.quantities.options import LazyChoices, frame_and_point_options
 from symjac.quantities.spec import Generated, Quantity, Request
 
@@ -58,11 +59,11 @@ def command(request: Request) -> Document:
         if link is not None:
             raise ArgumentError("--link does not apply with --representation (the representation is of the end "
                                 "frame's orientation)")
-        return representation(request, frame, "wrist" if point is None else point)
+        return representation(request, frame, end_point(robot) if point is None else point)
     steps = propagation(request, point) if args.steps else None
     J = request.progress(f"Jacobian of {robot.name} in frame {frame}",
                          lambda: jacobian(robot, frame=frame, point=point, method=args.method, link=link))
-    return jacobian_document(robot, J, frame, args.point, args.method, steps, request.digits, link=link)
+    return jacobian_document(robot, J, frame, request.point_name(), args.method, steps, request.digits, link=link)
 
 
 def screw_jacobian(request: Request) -> Document:
@@ -71,7 +72,7 @@ def screw_jacobian(request: Request) -> Document:
     from symjac.printing.results import screw_jacobian_document
 
     args, robot = request.args, request.robot
-    others = [flag for flag, given in (("--frame", args.frame != "0"), ("--point", args.point != "wrist"),
+    others = [flag for flag, given in (("--frame", args.frame != "0"), ("--point", args.point is not None),
                                        ("--link", request.link() is not None),
                                        ("--representation", args.representation is not None),
                                        ("--derivative", args.derivative), ("--steps", args.steps)) if given]
@@ -92,7 +93,8 @@ def representation(request: Request, frame: Frame, point: Point) -> Document:
     position = args.position or "cartesian"
     result = request.progress(f"{args.representation} representation Jacobian of {robot.name}",
                               lambda: representation_jacobian(robot, args.representation, position, point, frame))
-    return representation_document(robot, result, args.point, args.representation, position, request.digits)
+    return representation_document(robot, result, request.point_name(), args.representation, position,
+                                   request.digits)
 
 
 def propagation(request: Request, point: Point | None) -> Any:
@@ -101,7 +103,7 @@ def propagation(request: Request, point: Point | None) -> Any:
     from symjac.kinematics.propagation import force_propagation, velocity_propagation
 
     args, robot, link, frame = request.args, request.robot, request.link(), request.frame()
-    tip = propagation_tip(robot, point)
+    tip = propagation_tip(robot, point, link)
     derive: dict[str, Callable[[], Any]] = {
         "velocity_propagation": lambda: velocity_propagation(robot, tip, link=link),
         "force_propagation": lambda: force_propagation(robot, tip, link=link),
@@ -111,13 +113,18 @@ def propagation(request: Request, point: Point | None) -> Any:
     return request.progress(f"{args.method.replace('_', ' ')} steps of {robot.name}", derive[args.method])
 
 
-def propagation_tip(robot: Any, point: Point | None) -> Any:
-    """The point a propagation ends at: None for the tool, else coordinates (the origin for ``point=None``)."""
+def propagation_tip(robot: Any, point: Point | None, link: int | None = None) -> Any:
+    """The point a propagation ends at: None for the tool frame, else coordinates.
+
+    No point: the end of the chain (:func:`~symjac.model.ends.end_point`), or with a ``link`` the origin of its frame.
+    """
     from symjac.kinematics.jacobian import point_vector
 
-    if point == "tool":
+    if point is None and link is not None:
+        return point_vector(robot, "flange")  # (0, 0, 0): the origin of the link's frame
+    if (end_point(robot) if point is None else point) == "tool":
         return None
-    return point_vector(robot, "wrist" if point is None else point)
+    return point_vector(robot, point)
 
 
 QUANTITY = Quantity(
@@ -128,9 +135,9 @@ QUANTITY = Quantity(
     document="symjac.printing.results:jacobian_document",
     codegen=Generated(
         "jacobian", "Rows as listed in the module docstring; column i belongs to {unit} i.",
-        listing="The Jacobian in frame {frame} at point {point}, rows {rows}.",
-        summary="The basic Jacobian [v; omega] at the {at}, in frame {frame}",
-        summary_coupled="The basic Jacobian [v; omega] at the {at}, in frame {frame}, in the coordinates (J_q = J C)",
+        listing="The Jacobian in frame {frame} at {at}, rows {rows}.",
+        summary="The basic Jacobian [v; omega] at {at}, in frame {frame}",
+        summary_coupled="The Jacobian J_q = J C [v; omega] in the coordinates, at {at}, in frame {frame}",
         output="J", lowering="symjac.codegen.coupled:coordinate_jacobian"),
     command="jacobian",
     options=options,

@@ -36,8 +36,8 @@ def command(request: Request) -> Document:
     tau = request.progress(f"joint torques of {robot.name}",
                            lambda: joint_torques(robot, wrench=wrench, frame=frame, point=point, q=q, link=link))
     evaluated = None if q is None else args.digits or DIGITS  # at a configuration: numbers, shown as decimals
-    return torques_document(robot, tau, frame, args.point, args.wrench, args.q, wrench_symbols(), request.digits,
-                            evaluated, link=link)
+    return torques_document(robot, tau, frame, request.point_name(), args.wrench, args.q, wrench_symbols(),
+                            request.digits, evaluated, link=link)
 
 
 QUANTITY = Quantity(
@@ -49,8 +49,8 @@ QUANTITY = Quantity(
     codegen=Generated(
         "joint_torques", "One torque (force, for a prismatic joint) per joint.",
         listing="Joint torques tau = J^T F of that Jacobian, F = ({wrench}).",
-        summary="Joint torques tau = J^T F holding a wrench F at the {at}, F in frame {frame}",
-        summary_coupled="Joint torques tau = C^T J^T F holding a wrench F at the {at}, F in frame {frame}",
+        summary="Joint torques tau = J^T F holding a wrench F at {at}, F in frame {frame}",
+        summary_coupled="Joint torques tau = C^T J^T F holding a wrench F at {at}, F in frame {frame}",
         returns_coupled="One generalised force per coordinate, C^T J^T F.", output="tau", inputs=("wrench",),
         lowering="symjac.codegen.coupled:coordinate_torques"),
     command="torques",

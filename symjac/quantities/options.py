@@ -7,7 +7,12 @@ from collections.abc import Iterator, Sequence
 from importlib import import_module
 from typing import overload
 
-__all__ = ["LazyChoices", "frame_and_point_options"]
+__all__ = ["POINT_HELP", "LazyChoices", "frame_and_point_options"]
+
+POINT_HELP = ("tool, flange (the origin of frame {n}; also called wrist), wrist_centre (where the last three axes "
+              "meet), or x,y,z in frame {n} (default: the end of the chain, as fk: the tool point if the robot has a "
+              "tool, else the flange)")
+"""The help of every ``--point`` option: the named points and the one default."""
 
 
 class LazyChoices(Sequence[str]):
@@ -44,7 +49,7 @@ class LazyChoices(Sequence[str]):
 def frame_and_point_options(sub: argparse.ArgumentParser) -> None:
     """``--frame`` and ``--point``, as every quantity at a point of the arm takes them."""
     sub.add_argument("--frame", default="0", help="frame to express it in: 0..n, world or tool (default 0)")
-    sub.add_argument("--point", default="wrist", help="wrist, tool, or x,y,z in frame {n} (default wrist)")
+    sub.add_argument("--point", default=None, help=POINT_HELP)
     sub.add_argument("--link", type=int, default=None, metavar="K",
                      help="a point fixed in link K (0 the base .. n): --point is then x,y,z in frame {K} (default its "
                           "origin)")

@@ -146,9 +146,17 @@ class Request(Protocol):
         ...
 
     def point(self) -> Point | None:
-        """``--point``, parsed: ``wrist``, ``tool`` or three coordinates in frame {n}.
+        """``--point``, parsed: a name (``tool``, ``flange``, ``wrist``, ``wrist_centre``) or three coordinates.
 
-        With ``--link k`` the coordinates are in frame {k}, and the default ``wrist`` gives None: the origin of {k}.
+        Not given: None, the end of the chain (the tool point, else the flange), or with ``--link k`` the origin of
+        {k}. With ``--link k`` the coordinates are in frame {k}, else in frame {n}.
+        """
+        ...
+
+    def point_name(self) -> str:
+        """The point as the documents name it: ``--point`` as typed, else the name of the end of the chain.
+
+        With ``--link k`` and no ``--point``: ``origin`` (the origin of {k}).
         """
         ...
 
@@ -185,9 +193,11 @@ class Generated:
     names one.
 
     Texts are language-neutral ``str.format`` templates (a literal brace doubled). ``returns`` and ``listing`` may
-    use ``{unit}`` ("joint" or "coordinate") and ``{shape}``; a per-request kind's ``summary``, ``details`` and
-    ``listing`` also ``{frame}``, ``{point}``, ``{at}`` (words for the point), ``{rows}``, ``{wrench}`` and the
-    names of the request's other functions by kind (``{jacobian}``, ``{hessian}``, ``{manipulability}``).
+    use ``{unit}`` ("joint" or "coordinate") and ``{shape}``; a module kind's ``summary`` and ``listing`` also
+    ``{end}`` (the frame the chain ends at: "the tool frame" or "frame {6} (its origin the flange)"); a per-request
+    kind's ``summary``, ``details`` and ``listing`` also ``{frame}``, ``{point}`` and ``{at}`` (both words for the
+    point: "the tool point", "the origin of frame {6} (flange)"), ``{rows}``, ``{wrench}`` and the names of the
+    request's other functions by kind (``{jacobian}``, ``{hessian}``, ``{manipulability}``).
 
     Parameters
     ----------

@@ -30,6 +30,7 @@ from symjac.codegen import JacobianRequest, generate
 from symjac.drawing.geometry import arm_pose
 from symjac.errors import ArgumentError, SymjacError
 from symjac.kinematics.chain import Frame
+from symjac.model.ends import end_point
 from symjac.model.robot import Robot
 from symjac.sweeps.metrics import HISTOGRAM_EDGES, METRICS, Tally
 from symjac.sweeps.sampling import JointSampler, Sampling, joint_ranges, parameter_grid
@@ -80,7 +81,7 @@ def _merged(tallies: Sequence[Tally]) -> Tally:
 
 def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence[float]], *,
           samples: int = 100_000, metrics: Sequence[str] = DEFAULT_METRICS, frame: Frame = 0,
-          point: Any = "wrist", rows: Sequence[int] | None = None, sampling: Sampling = "sobol",
+          point: Any = None, rows: Sequence[int] | None = None, sampling: Sampling = "sobol",
           ranges: Mapping[str, tuple[float, float]] | None = None, chunk: int = 65_536, near: float = 0.01,
           voxel: float | None = None, seed: int = 0, scheduler: str | None = None, client: Any = None) -> Any:
     r"""Dexterity metrics of every design of a parameter grid, over joint samples, as a labelled array.
@@ -97,7 +98,8 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
         From :data:`~symjac.sweeps.metrics.METRICS` (see :mod:`symjac.sweeps.metrics` for their definitions; the
         condition number of ``gci`` is in the 2-norm, that of ``gci_frobenius`` the normalised Frobenius one).
     frame, point, rows
-        The Jacobian analysed, as for :func:`symjac.jacobian` (rows: task rows, default all six).
+        The Jacobian analysed, as for :func:`symjac.jacobian` (point: default the end of the chain, the tool point
+        if the robot has one, else the flange; rows: task rows, default all six).
     sampling : "sobol" or "grid"
         Scrambled Sobol points (in independently scrambled blocks of 2**16, seeded by ``seed`` and the block) or a
         regular grid of cell centres.
@@ -167,7 +169,8 @@ def sweep(robot: Robot, params: Mapping[str, tuple[float, float, int] | Sequence
     tallies = _run(source, designs, sampler, bounds, (near, size, points, sigma), scheduler, client)
     return _dataset(robot, grid, [t.values(metrics, square, size) for t in tallies],
                     {"symjac": __version__, "samples": sampler.total, "sampling": sampling, "seed": seed,
-                     "metrics": ",".join(metrics), "frame": str(frame), "point": str(point),
+                     "metrics": ",".join(metrics), "frame": str(frame),
+                     "point": str(end_point(robot) if point is None else point),
                      "rows": ",".join(map(str, task_rows)), "near": near, "voxel": size, "chunk": chunk,
                      "ranges": "; ".join(f"{name} {low:.17g}..{high:.17g}" for name, (low, high)
                                          in zip(map(str, robot.q), sampler.ranges, strict=True))})

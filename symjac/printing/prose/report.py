@@ -66,10 +66,10 @@ def arm_singular_parts(factor: sp.Expr, kind: str, configuration: Sequence[Any],
 
 
 def point_words(robot: Robot, point: Sequence[sp.Expr]) -> str:
-    """The point a report's Jacobian moves: the tool point, the wrist point, or a reference point."""
+    """The point a report's Jacobian moves: the tool point, the flange (the origin of {n}), or a reference point."""
     if robot.tool is not None:
         return "the tool point"
-    return f"the wrist point (the origin of frame {{{robot.n_joints}}})" if not any(point) else "the reference point"
+    return f"the origin of frame {{{robot.n_joints}}} (flange)" if not any(point) else "the reference point"
 
 
 def forward_kinematics_intro(source: object, target: object) -> str:

@@ -69,7 +69,7 @@ def _point_shift(f: Formula, frame: Any = 0, part: str = "p") -> sp.Matrix:
         return p
     if part == "p_hat":
         return skew(p)
-    return -skew(p) * jacobian(robot, frame=frame)[3:, :]
+    return -skew(p) * jacobian(robot, frame=frame, point="flange")[3:, :]
 
 
 def _point_velocity(f: Formula, target: Any = None, part: str = "v") -> sp.Matrix:
@@ -81,7 +81,7 @@ def _point_velocity(f: Formula, target: Any = None, part: str = "v") -> sp.Matri
     robot = robot_of(f)
     rates = sp.Matrix(joint_rate_symbols(robot))
     if part == "omega":
-        return jacobian(robot, frame=0)[3:, :] * rates
+        return jacobian(robot, frame=0, point="flange")[3:, :] * rates
     chain = chain_of(robot)
     p = sp.Matrix(chain.simplified_transform(0, chain.n_joints if target is None else target))[:3, 3]
     return p.jacobian(sp.Matrix(robot.q)) * rates
@@ -124,15 +124,16 @@ def _frame_change(f: Formula, variant: str) -> float:
     r"""Eq. (4.98): :math:`{}^BJ = \mathrm{diag}({}^B_AR, {}^B_AR)\,{}^AJ` (A = {0}, B = {3})."""
     robot = robot_of(f)
     R = chain_of(robot).rotation(3, 0)
-    return _residual(_at(robot, jacobian(robot, frame=3)), _at(robot, _diag(R) * jacobian(robot, frame=0)))
+    J_3, J_0 = jacobian(robot, frame=3, point="flange"), jacobian(robot, frame=0, point="flange")
+    return _residual(_at(robot, J_3), _at(robot, _diag(R) * J_0))
 
 
 def _determinant_frame_change(f: Formula, variant: str) -> float:
     r"""Eq. (4.106): :math:`\det[{}^BJ] = \det[\mathrm{diag}({}^B_AR, {}^B_AR)]\,\det[{}^AJ]` (A = {0}, B = {3})."""
     robot = robot_of(f)
     R = _at(robot, chain_of(robot).rotation(3, 0))
-    left = _at(robot, jacobian(robot, frame=3)).det()
-    right = _diag(R).det() * _at(robot, jacobian(robot, frame=0)).det()
+    left = _at(robot, jacobian(robot, frame=3, point="flange")).det()
+    right = _diag(R).det() * _at(robot, jacobian(robot, frame=0, point="flange")).det()
     return _residual(sp.Matrix([left]), sp.Matrix([right]))
 
 
@@ -140,7 +141,8 @@ def _shift_parts(robot: Robot) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix]:
     """Wrist Jacobian, end-point Jacobian (frame {0}) and :math:`{}^0p_{WE}`, at the example configuration."""
     chain = chain_of(robot)
     p = sp.Matrix(chain.transform(0, "tool"))[:3, 3] - sp.Matrix(chain.transform(0, chain.n_joints))[:3, 3]
-    return (_at(robot, jacobian(robot, frame=0)), _at(robot, jacobian(robot, frame=0, point="tool")), _at(robot, p))
+    J_n, J_e = jacobian(robot, frame=0, point="flange"), jacobian(robot, frame=0, point="tool")
+    return _at(robot, J_n), _at(robot, J_e), _at(robot, p)
 
 
 def _point_shift_velocity(f: Formula, variant: str) -> float:
@@ -210,7 +212,8 @@ def _angular_velocity_recursion(f: Formula, variant: str) -> float:
     r"""Eq. (4.131): :math:`{}^{i+1}\omega_{i+1} = {}^{i+1}_iR\,{}^i\omega_i + \dot\theta_{i+1}\,{}^{i+1}z_{i+1}`."""
     robot = robot_of(f)
     omega, _ = _velocity_recursion(robot, True)
-    J = _at(robot, jacobian(robot, frame=robot.n_joints)) * _at(robot, sp.Matrix(joint_rate_symbols(robot)))
+    J = _at(robot, jacobian(robot, frame=robot.n_joints, point="flange")) * _at(robot,
+                                                                               sp.Matrix(joint_rate_symbols(robot)))
     return _residual(omega, J[3:, :])
 
 
@@ -222,7 +225,8 @@ def _linear_velocity_recursion(f: Formula, variant: str) -> float:
     """
     robot = robot_of(f)
     _, v = _velocity_recursion(robot, variant == "corrected")
-    J = _at(robot, jacobian(robot, frame=robot.n_joints)) * _at(robot, sp.Matrix(joint_rate_symbols(robot)))
+    J = _at(robot, jacobian(robot, frame=robot.n_joints, point="flange")) * _at(robot,
+                                                                               sp.Matrix(joint_rate_symbols(robot)))
     return _residual(v, J[:3, :])
 
 
@@ -231,7 +235,7 @@ def _torques_jacobian_transpose(f: Formula, variant: str) -> float:
     robot = robot_of(f)
     wrench = _at(robot, sp.Matrix(wrench_symbols()))
     tau = _at(robot, force_propagation(robot).joint_torques())
-    return _residual(tau, _at(robot, jacobian(robot, frame=robot.n_joints)).T * wrench)
+    return _residual(tau, _at(robot, jacobian(robot, frame=robot.n_joints, point="flange")).T * wrench)
 
 
 def _virtual_work(f: Formula, variant: str) -> float:
@@ -240,7 +244,7 @@ def _virtual_work(f: Formula, variant: str) -> float:
     wrench = _at(robot, sp.Matrix(wrench_symbols()))
     tau = _at(robot, force_propagation(robot).joint_torques())
     dq = sp.Matrix([sp.Rational(k + 2, 7) for k in range(robot.n_coordinates)])
-    work = (tau.T * dq)[0] - (wrench.T * _at(robot, jacobian(robot, frame=robot.n_joints)) * dq)[0]
+    work = (tau.T * dq)[0] - (wrench.T * _at(robot, jacobian(robot, frame=robot.n_joints, point="flange")) * dq)[0]
     return _residual(sp.Matrix([work]), sp.Matrix([0]))
 
 
@@ -259,7 +263,7 @@ def _explicit_form(f: Formula, variant: str) -> float:
         R = sp.Matrix(chain.rotation(0, i))
         linear = R * (Z_hat * sp.Matrix(T)[:3, 3] if joint.is_revolute else Z)
         columns.append(sp.Matrix.vstack(linear, R * Z if joint.is_revolute else sp.zeros(3, 1)))
-    return _residual(_at(robot, sp.Matrix.hstack(*columns)), _at(robot, jacobian(robot, frame=0)))
+    return _residual(_at(robot, sp.Matrix.hstack(*columns)), _at(robot, jacobian(robot, frame=0, point="flange")))
 
 
 def _differentiation_form(f: Formula, variant: str) -> float:
@@ -270,7 +274,7 @@ def _differentiation_form(f: Formula, variant: str) -> float:
     angular = [sp.Matrix(chain.rotation(0, i))[:, 2] if j.is_revolute else sp.zeros(3, 1)
                for i, j in enumerate(robot.joints, start=1)]
     J = sp.Matrix.vstack(x_p.jacobian(sp.Matrix(robot.q)), sp.Matrix.hstack(*angular))
-    return _residual(_at(robot, J), _at(robot, jacobian(robot, frame=0)))
+    return _residual(_at(robot, J), _at(robot, jacobian(robot, frame=0, point="flange")))
 
 
 def _stanford_explicit(f: Formula, variant: str) -> float:
@@ -287,7 +291,7 @@ def _stanford_explicit(f: Formula, variant: str) -> float:
     top = [z[1].cross(o[3] - o[1]), z[2].cross(o[3] - o[2]), z[3], zero, zero, zero]
     bottom = [z[1], z[2], zero, z[4], z[5], z[6]]
     J = sp.Matrix.vstack(sp.Matrix.hstack(*top), sp.Matrix.hstack(*bottom))
-    return _residual(_at(robot, J), _at(robot, jacobian(robot, frame=0)))
+    return _residual(_at(robot, J), _at(robot, jacobian(robot, frame=0, point="flange")))
 
 
 def _p_in_from_base(f: Formula, variant: str) -> float:
@@ -340,7 +344,7 @@ def _stanford_differentiation(f: Formula, variant: str) -> float:
     top = x_p.jacobian(sp.Matrix(robot.q[:3])).row_join(sp.zeros(3, 3))
     z = [sp.Matrix(chain.rotation(0, i))[:, 2] for i in range(robot.n_joints + 1)]
     bottom = sp.Matrix.hstack(z[1], z[2], sp.zeros(3, 1), z[4], z[5], z[6])
-    return _residual(_at(robot, sp.Matrix.vstack(top, bottom)), _at(robot, jacobian(robot, frame=0)))
+    return _residual(_at(robot, sp.Matrix.vstack(top, bottom)), _at(robot, jacobian(robot, frame=0, point="flange")))
 
 
 def _singular_displacement(f: Formula, variant: str) -> float:
@@ -352,7 +356,7 @@ def _singular_displacement(f: Formula, variant: str) -> float:
     robot = robot_of(f)
     values = _example(robot)
     l1, l2 = (f.names["l1"], f.names["l2"])
-    singular = jacobian(robot, frame=1)[:2, :].subs(robot.q[1], 0)
+    singular = jacobian(robot, frame=1, point="flange")[:2, :].subs(robot.q[1], 0)
     dq = sp.Matrix([sp.Rational(2, 7), sp.Rational(-3, 7)])
     printed = sp.Matrix([0, (l1 + l2) * dq[0] + l2 * dq[1]])
     return _residual(sp.Matrix((singular * dq).subs(values)).evalf(), sp.Matrix(printed.subs(values)).evalf())
@@ -377,7 +381,7 @@ def _linear_jacobian_columns(f: Formula, variant: str) -> float:
     right = sp.Matrix.hstack(*columns)
     if variant == "printed":
         right = right * sp.Matrix(joint_rate_symbols(robot))
-    J_v = jacobian(robot, frame=0)[:3, :]
+    J_v = jacobian(robot, frame=0, point="flange")[:3, :]
     if right.shape != J_v.shape:
         return 1.0  # as printed the right side is v = J_v q-dot, a 3-vector: it cannot equal the 3 x n matrix J_v
     return _residual(_at(robot, right), _at(robot, J_v))

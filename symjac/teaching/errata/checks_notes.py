@@ -125,7 +125,7 @@ def _rotation_limit(f: Formula, variant: str) -> float:
         exact = values_at(robot, [0] * robot.n_coordinates)
         exact = {symbol: value for symbol, value in exact.items() if symbol not in times}
         path = sp.Matrix(chain_of(robot).transform(0, robot.n_joints)[:3, 3]).xreplace(times).xreplace(exact)
-        J = jacobian(robot, frame=0)[:3, :].xreplace(times).xreplace(exact).subs(t, t0)
+        J = jacobian(robot, frame=0, point="flange")[:3, :].xreplace(times).xreplace(exact).subs(t, t0)
         rate = J * sp.Matrix([k + 1 for k in range(robot.n_coordinates)])
     quotient = (path.subs(t, t0 + h) - path.subs(t, t0)) / h
     point = sp.oo if variant == "printed" else 0

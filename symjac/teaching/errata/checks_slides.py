@@ -152,7 +152,7 @@ def _frame_change(f: Formula, variant: str) -> float:
     elif method == "force":
         J_N = force_propagation(robot).jacobian
     else:
-        J_N = jacobian(robot, frame=n)
+        J_N = jacobian(robot, frame=n, point="flange")
     J_N = numbers(evaluate_at(robot, J_N, q_example(robot)))
     R = frame_transform(robot, 0, n)[:3, :3]
     block = np.block([[R, np.zeros((3, 3))], [np.zeros((3, 3)), R]])
@@ -182,7 +182,7 @@ def _statics_jt(f: Formula, variant: str) -> float:
     """
     robot = robot_of(f)
     F = np.array(WRENCH_EXAMPLE)
-    tau = numbers(joint_torques(robot, list(F), q=q_example(robot)))[:, 0]
+    tau = numbers(joint_torques(robot, list(F), point="flange", q=q_example(robot)))[:, 0]
     J = jacobian_at(robot, frame=0)
     form = f.args["form"]
     if form == "tau_JT":
@@ -286,7 +286,7 @@ def _rank_nullity(f: Formula, variant: str) -> float:
     """
     worst = 0.0
     for robot, q in ((load_robot("planar2r"), [0.4, 0.0]), (load_robot("panda"), list(Q_EXAMPLE))):
-        J = numbers(evaluate_at(robot, jacobian(robot, frame=0), q))
+        J = numbers(evaluate_at(robot, jacobian(robot, frame=0, point="flange"), q))
         J = J[[0, 1], :] if robot.n_coordinates == 2 else J
         spaces = jacobian_spaces(J)
         worst = max(worst, abs(spaces.rank + spaces.null_space.shape[1] - robot.n_coordinates))

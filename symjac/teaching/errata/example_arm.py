@@ -85,6 +85,8 @@ def frame_transform(robot: Robot, source: Any, target: Any) -> np.ndarray:
 
 def jacobian_at(robot: Robot, **kwargs: Any) -> np.ndarray:
     """The Jacobian from symjac (arguments as for :func:`symjac.kinematics.jacobian`) at the example configuration."""
+    if "point" not in kwargs and kwargs.get("link") is None:
+        kwargs["point"] = "flange"  # the course's wrist point, the origin of {n}
     return numbers(evaluate_at(robot, jacobian(robot, **kwargs), q_example(robot)))
 
 

@@ -231,3 +231,17 @@ def test_captions_and_headers_say_which_point(cli):
     assert cli.json("fk", "planar3r")["at"] == "the tool point" == cli.json("jacobian", "planar3r")["at"]
     flange = "the origin of frame {2} (flange)"
     assert cli.json("fk", "planar2r")["at"] == flange == cli.json("jacobian", "planar2r")["at"]
+
+
+@pytest.mark.parametrize("name", ["planar3r", "puma560"])  # with a tool, and without
+def test_the_propagations_end_where_the_jacobian_does_by_default(name):
+    """velocity_propagation(robot).jacobian and the force propagation's torques are J at the end of the chain."""
+    from symjac.kinematics.propagation import force_propagation, velocity_propagation
+
+    robot = load_robot(name)
+    last = "tool" if robot.tool is not None else robot.n_joints
+    q = np.random.default_rng(2).uniform(-2, 2, robot.n_coordinates)
+    values = {**dict(zip(robot.q, q, strict=True)), **robot.defaults}
+    expected = np.array(jacobian(robot, frame=last).xreplace(values), dtype=float)
+    for J in (velocity_propagation(robot).jacobian, sp.Matrix(force_propagation(robot).torques).T):
+        assert np.allclose(np.array(sp.Matrix(J).xreplace(values), dtype=float), expected, atol=1e-12)

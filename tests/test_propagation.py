@@ -33,6 +33,9 @@ L1, L2, L3 = sp.symbols("L1 L2 L3", real=True)
 t1, t2, t3 = sp.symbols("theta1 theta2 theta3", real=True)
 s1, c1, s12, c12 = sp.sin(t1), sp.cos(t1), sp.sin(t1 + t2), sp.cos(t1 + t2)
 
+FLANGE = (0, 0, 0)
+"""The origin of frame {n}, where the course notes' propagations end (the default is the end of the chain)."""
+
 
 def _identical(left: sp.MatrixBase, right: sp.MatrixBase, robot) -> bool:
     basis = AngleBasis.of(robot.q)
@@ -47,7 +50,7 @@ def test_planar_3r_velocity_propagation_reproduces_seed_000_4_136_to_4_141():
     chain = chain_of(robot)
     rates = sp.Matrix(joint_rate_symbols(robot))
     td1, td2, td3 = rates
-    steps = {frame: (omega, v) for frame, omega, v in velocity_propagation(robot).velocities()}
+    steps = {frame: (omega, v) for frame, omega, v in velocity_propagation(robot, FLANGE).velocities()}
     v_P2 = chain.rotation(0, 2) * steps[2][1]
     assert _identical(v_P2, sp.Matrix([-L1 * s1, L1 * c1, 0]) * td1, robot)  # (4.136)
     v_P3 = chain.rotation(0, 3) * steps[3][1]
@@ -56,7 +59,7 @@ def test_planar_3r_velocity_propagation_reproduces_seed_000_4_136_to_4_141():
     omega_3 = chain.rotation(0, 3) * steps[3][0]
     assert _identical(omega_3, sp.Matrix([0, 0, td1 + td2 + td3]), robot)  # (4.139)
     J_v = sp.Matrix([[-(L1 * s1 + L2 * s12), -L2 * s12, 0], [L1 * c1 + L2 * c12, L2 * c12, 0], [0, 0, 0]])
-    assert _identical(chain.rotation(0, 3) * sp.Matrix(velocity_propagation(robot).jacobian[:3, :]), J_v, robot)
+    assert _identical(chain.rotation(0, 3) * sp.Matrix(velocity_propagation(robot, FLANGE).jacobian[:3, :]), J_v, robot)
 
 
 def test_stretched_out_2r_arm_holds_a_radial_force_with_zero_torque():
@@ -73,7 +76,7 @@ def test_stretched_out_2r_arm_holds_a_radial_force_with_zero_torque():
 def test_force_propagation_reproduces_the_transposed_jacobian():
     for name in ("planar3r", "stanford", "puma560"):
         robot = load_robot(name)
-        propagation = force_propagation(robot)
+        propagation = force_propagation(robot, FLANGE)
         J_n = jacobian(robot, frame=robot.n_joints, point="flange")  # the propagation ends at the origin of {n}
         assert sp.Matrix(propagation.torques) == J_n.T
         tau = propagation.joint_torques()
@@ -85,10 +88,10 @@ def test_method_frames_of_the_seed_002_table():
     robot = load_robot("stanford")
     chain = chain_of(robot)
     n = robot.n_coordinates
-    J_n = velocity_propagation(robot).jacobian
+    J_n = velocity_propagation(robot, FLANGE).jacobian
     assert _identical(sp.diag(chain.rotation(0, n), chain.rotation(0, n)) * J_n,
                       jacobian(robot, frame=0, method="differentiation", simplify=False), robot)
-    assert J_n == sp.Matrix(force_propagation(robot).torques).T
+    assert J_n == sp.Matrix(force_propagation(robot, FLANGE).torques).T
 
 
 # --- propagation steps against finite differences -------------------------------------------------------------
@@ -101,7 +104,7 @@ def test_every_velocity_step_matches_finite_differences_of_its_frame(name):
     if robot.coupling is not None:
         pytest.skip("frame k is truncated to joints 1..k = coordinates 1..k; coupled steps: tests/test_coordinates.py")
     q = random_configuration(robot, np.random.default_rng(7))
-    first, *steps = velocity_propagation(robot).steps
+    first, *steps = velocity_propagation(robot, FLANGE).steps
     assert first.frame == 0
     assert sp.Matrix.vstack(sp.Matrix(first.omega), sp.Matrix(first.v)) == sp.zeros(6, robot.n_coordinates)
     for step in steps:

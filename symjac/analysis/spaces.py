@@ -142,7 +142,7 @@ def symbolic_spaces(
 
 
 @memoized(point=point_vector)
-def task_rows(chain: Chain, point: Point = "wrist") -> tuple[int, ...]:
+def task_rows(chain: Chain, point: Point | None = None) -> tuple[int, ...]:
     r"""The rows of the basic Jacobian an arm controls: all six for n >= 6, else n independent rows.
 
     Rows identically zero in frame {0} are dropped (a planar arm never moves along z); of the rest, rows are taken in

@@ -113,6 +113,8 @@ class AccelerationPropagation:
 
 def _coordinates(chain: Chain, point: Point | None, link: int) -> tuple[sp.Expr, ...] | None:
     """``None`` (the tool frame, on the last link only) or the point's coordinates in {link}, validated."""
+    if point == "end":
+        point = None if chain.robot.tool is not None and link == chain.n_joints else (0, 0, 0)
     if point is None:
         if link != chain.n_joints:
             raise FrameError(f"the tool frame is fixed in the last link ({chain.n_joints}), not in link {link}")
@@ -122,7 +124,7 @@ def _coordinates(chain: Chain, point: Point | None, link: int) -> tuple[sp.Expr,
 
 @memoized(link=link_of, point=_coordinates, coupling="rates")
 def acceleration_propagation(
-    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True,
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | str | None = "end", *, simplify: bool = True,
     link: int | None = None,
 ) -> AccelerationPropagation:
     r"""Propagate angular and linear velocities and accelerations from the base to the tip (module docstring).
@@ -132,7 +134,8 @@ def acceleration_propagation(
     robot : Robot or Chain
     point : tuple of 3, or None
         The tip, as for :func:`symjac.kinematics.propagation.velocity_propagation`: a point given in frame {l} of its
-        link (default its origin, which adds no step), or ``None`` for the tool frame.
+        link, or ``None`` for the tool frame; default ``"end"``, the end of the chain (the tool frame when the robot
+        has one and l is the last link, else the origin of {l}).
     simplify : bool
         Lay every step out in compact textbook form (default); ``False`` keeps the raw products. The iteration
         always runs on the raw products.

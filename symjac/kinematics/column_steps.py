@@ -102,8 +102,8 @@ def _arguments(robot: Robot | Chain, frame: Frame, point: Point | None,
                link: int | None) -> tuple[Chain, Frame, sp.Matrix, int]:
     chain = as_chain(robot).joint_chain
     frame = frame_of(chain, frame)
-    link = link_of(chain, link)
-    return chain, frame, sp.Matrix(link_point(chain, point, link)), link
+    point_l = link_point(chain, point, link)  # before link_of: with no link, no point is the end of the chain
+    return chain, frame, sp.Matrix(point_l), link_of(chain, link)
 
 
 def _simplified(chain: Chain, frame: Frame, vector: sp.MatrixBase, simplify: bool) -> sp.ImmutableMatrix:

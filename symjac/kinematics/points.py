@@ -182,8 +182,10 @@ def wrist_centre(robot: Robot | Chain) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     Examples
     --------
     >>> from symjac import load_robot
-    >>> wrist_centre(load_robot("puma560"))  # standard DH: d6 before the origin of {6}, along z6
-    (0, 0, -d6)
+    >>> wrist_centre(load_robot("iiwa7"))  # d7 before the origin of {7}, along z7
+    (0, 0, -d7)
+    >>> wrist_centre(load_robot("puma560"))  # Craig's table puts {4}, {5} and {6} at the wrist centre
+    (0, 0, 0)
     """
     model = robot.robot if isinstance(robot, Chain) else robot
     n = model.n_joints

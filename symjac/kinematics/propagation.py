@@ -196,13 +196,21 @@ def _layout(chain: Chain, simplify: bool) -> Callable[[sp.MatrixBase, Frame], sp
     return lambda matrix, frame: sp.ImmutableMatrix(simplify_matrix(matrix, chain.angle_bases(frame)))
 
 
-def _coordinates(chain: Chain, point: Sequence[sp.Expr] | None) -> tuple[sp.Expr, ...] | None:
+def _coordinates(chain: Chain, point: Sequence[sp.Expr] | str | None, link: int) -> tuple[sp.Expr, ...] | None:
+    """The tip: ``None`` (the tool frame) or coordinates; ``"end"`` is the end of the chain when ``link`` is the last.
+
+    That is the tool frame when the robot has a tool (as for forward kinematics and the Jacobian), else the origin.
+    """
+    if isinstance(point, str):
+        if point != "end":
+            raise FrameError(f"a propagation's tip is 'end', None (the tool frame) or 3 coordinates, got {point!r}")
+        return None if chain.robot.tool is not None and link == chain.n_joints else (sp.S.Zero,) * 3
     return None if point is None else tuple(point)
 
 
 @memoized(link=link_of, point=_coordinates, coupling="columns")
 def velocity_propagation(
-    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True,
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | str | None = "end", *, simplify: bool = True,
     link: int | None = None,
 ) -> VelocityPropagation:
     r"""Propagate link velocities from the base to the tip (see the module docstring).
@@ -211,8 +219,9 @@ def velocity_propagation(
     ----------
     robot : Robot
     point : tuple of 3, or None
-        The tip: a point given in frame {l} of its link (default its origin, the wrist for the last link), or
-        ``None`` for the tool frame.
+        The tip: a point given in frame {l} of its link, or ``None`` for the tool frame. Default ``"end"``: the end
+        of the chain (the tool frame when the robot has one and l is the last link, else the origin of {l}), the
+        default of forward kinematics and the Jacobian.
     simplify : bool
         Lay every step out in compact textbook form (default); ``False`` keeps the raw products.
     link : int, optional
@@ -272,7 +281,7 @@ def _velocity_propagation(chain: Chain, point: tuple[sp.Expr, ...] | None, simpl
 
 @memoized(link=link_of, point=_coordinates, coupling="transposed")
 def force_propagation(
-    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | None = (sp.S.Zero,) * 3, *, simplify: bool = True,
+    chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr] | str | None = "end", *, simplify: bool = True,
     link: int | None = None,
 ) -> ForcePropagation:
     r"""Propagate a tip wrench from the tip to the base and project it on the joint axes (module docstring).
@@ -281,9 +290,9 @@ def force_propagation(
     ----------
     robot : Robot
     point : tuple of 3, or None
-        Where the wrench acts: a point given in frame {l} of its link (default its origin, the wrist for the last
-        link; the wrench is then expressed in {l}), or ``None`` for the origin of the tool frame (the wrench
-        expressed in the tool frame).
+        Where the wrench acts: a point given in frame {l} of its link (the wrench is then expressed in {l}), or
+        ``None`` for the origin of the tool frame (the wrench expressed in the tool frame). Default ``"end"``: the
+        end of the chain, as for :func:`velocity_propagation`.
     simplify : bool
         Lay every step out in compact textbook form (default); ``False`` keeps the raw products.
     link : int, optional

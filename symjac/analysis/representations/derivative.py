@@ -175,7 +175,7 @@ def representation_jacobian_derivative(
     chain: Chain,
     orientation: Orientation = "zyz",
     position: Position = "cartesian",
-    point: Point = "wrist",
+    point: Point | None = None,
     frame: Frame = 0,
 ) -> RepresentationJacobianDerivative:
     r"""The time derivative :math:`\dot J_x` of the representation Jacobian :math:`J_x = E(x)\,J_0`, symbolic.
@@ -240,7 +240,7 @@ def representation_jacobian_derivative_at(
     q_dot: Sequence[float],
     orientation: Orientation = "zyz",
     position: Position = "cartesian",
-    point: Point = "wrist",
+    point: Point | None = None,
     frame: Frame = 0,
     *,
     tol: float = 1e-9,

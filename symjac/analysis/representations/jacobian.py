@@ -117,7 +117,7 @@ def representation_jacobian(
     chain: Chain,
     orientation: Orientation = "zyz",
     position: Position = "cartesian",
-    point: Point = "wrist",
+    point: Point | None = None,
     frame: Frame = 0,
 ) -> RepresentationJacobian:
     r"""The representation Jacobian :math:`J_x = E(x)\,J_0` of ``robot`` (course chapter, eqs. 4.36-4.38).
@@ -134,7 +134,7 @@ def representation_jacobian(
         tool frame for ``point="tool"``, frame {n} otherwise).
     position : str
         One of :data:`POSITIONS`: the coordinates of ``point``.
-    point : "wrist", "tool" or sequence of 3
+    point : "tool", "flange", "wrist_centre", sequence of 3, or None (the end of the chain)
         As for :func:`symjac.kinematics.jacobian`.
     frame : 0 or "world"
         The fixed frame x is measured in. Moving frames are refused: the rates of a pose relative to a moving frame
@@ -176,7 +176,7 @@ def representation_jacobian_at(
     q: Sequence[float | sp.Expr],
     orientation: Orientation = "zyz",
     position: Position = "cartesian",
-    point: Point = "wrist",
+    point: Point | None = None,
     frame: Frame = 0,
     *,
     tol: float = 1e-9,

@@ -219,7 +219,7 @@ def representation_jacobian_derivative(
 
 
 @memoized(frame=frame_of, point=point_vector)
-def _compiled_jacobian_derivative(chain: Chain, frame: Frame, point: Point) -> Callable[..., Any]:
+def _compiled_jacobian_derivative(chain: Chain, frame: Frame, point: Point | None) -> Callable[..., Any]:
     r""":math:`\dot J_0` lambdified over :math:`(q, \dot q)`, the parameters at their defaults."""
     Jdot = jacobian_derivative(chain, frame, point, simplify=False).xreplace(chain.robot.defaults)
     return sp.lambdify([list(chain.robot.q), list(joint_rate_symbols(chain))], Jdot, modules="numpy", cse=True)

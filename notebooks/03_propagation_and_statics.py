@@ -55,7 +55,7 @@ OUTPUT.mkdir(parents=True, exist_ok=True)
 
 # %%
 robot = load_robot("planar3r")
-propagation = velocity_propagation(robot)
+propagation = velocity_propagation(robot, (0, 0, 0))  # to the origin of {3} (by default: the end, the tool)
 for line in propagation_steps(propagation):
     display(Math(line))
 
@@ -74,7 +74,7 @@ check(propagation.jacobian, jacobian(robot, frame=3, point="flange"), robot)
 # hold it still. The inward iteration answers, and the torques are the rows of ${}^3J^T$ applied to the wrench.
 
 # %%
-forces = force_propagation(robot)
+forces = force_propagation(robot, (0, 0, 0))  # the wrench acts at the origin of {3}, given in {3}
 for line in propagation_steps(forces)[-3:]:
     display(Math(line))
 check(forces.jacobian, jacobian(robot, frame=3, point="flange"), robot)

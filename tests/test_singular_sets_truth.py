@@ -134,8 +134,8 @@ def _local_singularities(robot, report, starts: int) -> list[np.ndarray]:
     return found
 
 
-@pytest.mark.parametrize("name", SHORT)
-def test_every_reported_set_of_a_short_arm_is_singular(name):
+@pytest.mark.parametrize("name", SHORT + LONG)
+def test_every_reported_set_is_singular(name):
     robot = _robot(name)
     report = singularities(robot)
     samples = _samples_on_sets(robot, report)
@@ -144,12 +144,12 @@ def test_every_reported_set_of_a_short_arm_is_singular(name):
         assert _reference_ratio(robot, report, q) < 1e-7, (name, where, q)
 
 
-@pytest.mark.parametrize("name", SHORT)
-def test_no_rank_loss_of_a_short_arm_lies_outside_the_reported_sets(name):
+@pytest.mark.parametrize("name", SHORT + LONG)
+def test_no_rank_loss_lies_outside_the_reported_sets(name):
     robot = _robot(name)
     report = singularities(robot)
     conditions = _Conditions(robot, report)
-    found = _local_singularities(robot, report, starts=6)
+    found = _local_singularities(robot, report, starts=6 if name in SHORT else 4)
     assert found, f"{name}: the local search found no singular configuration to check"
     for q in found:
         assert conditions.holds(q), (name, q.tolist())
@@ -175,27 +175,6 @@ def test_a_five_joint_arm_reports_the_approach_axis_only_with_the_point_on_the_b
     assert len(pairs) == 1
     c234 = sp.cos(sum(robot.q[1:4]))
     assert any(sp.simplify(c.expression - c234) == 0 for c in pairs[0].conditions)
-
-
-@pytest.mark.parametrize("name", LONG)
-def test_every_reported_set_of_a_long_arm_is_singular(name):
-    robot = _robot(name)
-    report = singularities(robot)
-    samples = _samples_on_sets(robot, report)
-    assert samples, f"{name}: no singular set reported"
-    for where, q in samples:
-        assert _reference_ratio(robot, report, q) < 1e-7, (name, where, q)
-
-
-@pytest.mark.parametrize("name", LONG)
-def test_no_rank_loss_of_a_long_arm_lies_outside_the_reported_sets(name):
-    robot = _robot(name)
-    report = singularities(robot)
-    conditions = _Conditions(robot, report)
-    found = _local_singularities(robot, report, starts=4)
-    assert found, f"{name}: the local search found no singular configuration to check"
-    for q in found:
-        assert conditions.holds(q), (name, q.tolist())
 
 
 @settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])

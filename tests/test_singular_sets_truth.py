@@ -12,6 +12,7 @@ independent finite-difference Jacobian of tests/reference.py:
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
@@ -33,10 +34,11 @@ from symjac.kinematics.numeric import numeric_jacobian
 from symjac.model.robot import JointType
 
 SHORT = ["planar2r", "planar3r", "articulated3r", "scara", "palletizer", "spherical_rrp", "cylindrical_rpp",
-         "open_manipulator_x", "five_r"]
+         "open_manipulator_x", "five_r", "yppr_tool"]
 LONG = ["tx90", "irb2400", "ur5", "puma560", "iiwa7"]  # six joints (the TX90 in degrees), and seven
 
 
+@functools.cache
 def _robot(name: str):
     return robot_from_toml(ARMS[name]) if name in ARMS else load_robot(name)
 
@@ -175,6 +177,14 @@ def test_a_five_joint_arm_reports_the_approach_axis_only_with_the_point_on_the_b
     assert len(pairs) == 1
     c234 = sp.cos(sum(robot.q[1:4]))
     assert any(sp.simplify(c.expression - c234) == 0 for c in pairs[0].conditions)
+
+
+def test_a_set_found_again_through_another_reading_is_reported_once():
+    """The YPPR arm with an offset tool: 15 sets before (Set 1 again through rewritten atan2 conditions, and one
+    conjunction whose own points were regular); one now, confirmed by points of its own."""
+    report = singularities(_robot("yppr_tool"))
+    assert report.over_rows and len(report.sets) == 1
+    assert {str(c.expression) for c in report.sets[0].conditions} == {"sin(theta3)", "cos(theta2 + theta3)"}
 
 
 @settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])

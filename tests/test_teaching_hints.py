@@ -119,3 +119,13 @@ def test_a_set_answer_shows_the_solutions_on_request():
 
 def test_a_set_is_not_an_answer_to_a_value_question():
     assert "not a set" in _message({1}, 1)
+
+
+def test_a_hint_reads_the_expected_answer_simplified():
+    """A raw det J holds theta1 that cancels: the hint must not ask for theta1 (it named it before)."""
+    robot = load_robot("planar2r")
+    raw = jacobian(robot, simplify=False)[:2, :].det()
+    L1, L2, theta2 = sp.symbols("L1 L2 theta2")
+    with pytest.raises(AssertionError) as wrong:
+        check(L1 * L2 * sp.cos(theta2), raw, robot)
+    assert "theta1" not in str(wrong.value) and "θ" not in str(wrong.value)

@@ -166,6 +166,32 @@ type = "revolute"
 d = "d6"
 """
 
+YPPR_TOOL = """
+name = "yppr_tool"
+description = "yaw, pitch, pitch, roll with a tool off the roll axis"
+convention = "standard"
+[parameters]
+d1 = 0.3
+a2 = 0.4
+a3 = 0.3
+[[joints]]
+type = "revolute"
+d = "d1"
+alpha = "pi/2"
+[[joints]]
+type = "revolute"
+a = "a2"
+[[joints]]
+type = "revolute"
+alpha = "pi/2"
+theta = "pi/2"
+[[joints]]
+type = "revolute"
+d = "a3"
+[tool]
+xyz = [0.05, 0, 0.1]
+"""
+
 ARMS = {"spherical_rrp": SPHERICAL_RRP, "cylindrical_rpp": CYLINDRICAL_RPP, "open_manipulator_x": OPEN_MANIPULATOR_X,
-        "five_r": FIVE_R, "tx90": TX90, "irb2400": IRB2400}
+        "five_r": FIVE_R, "yppr_tool": YPPR_TOOL, "tx90": TX90, "irb2400": IRB2400}
 """Every arm above by name."""

@@ -61,9 +61,10 @@ def matrix_strings(matrix: sp.MatrixBase) -> list[list[str]]:
 
 
 def determinant_data(det: Determinant) -> dict[str, Any]:
-    """A factored determinant: the product, its coefficient, ``[factor, multiplicity]`` pairs, 1-based columns."""
+    """A factored determinant: the product, its coefficient, ``[factor, multiplicity]`` pairs, 1-based columns, rows."""
     return {"expression": sp.sstr(det.expression), "coefficient": sp.sstr(det.coefficient),
-            "factors": [[sp.sstr(f), m] for f, m in det.factors], "columns": [c + 1 for c in det.columns]}
+            "factors": [[sp.sstr(f), m] for f, m in det.factors], "columns": [c + 1 for c in det.columns],
+            "rows": list(det.row_names), "frame": det.frame}
 
 
 def singularity_data(report: SingularityReport) -> dict[str, Any]:

@@ -122,7 +122,10 @@ def _check(answer: Any, expected: Any, robot: Robot | None, tolerance: float) ->
     if left.is_square and all(_same(a, b, basis, tolerance) for a, b in zip(left.T, right, strict=True)):
         raise AssertionError("your answer is the transpose of the right one (rows and columns swapped)")
     first = wrong[0]
-    hint = _entry_hint(left[first], right[first], basis, tolerance)
+    expected_entry = right[first]  # hints read its symbols: simplified first (a raw det J holds theta1 that cancels)
+    if sp.count_ops(expected_entry) < 400:
+        expected_entry = sp.simplify(expected_entry)
+    hint = _entry_hint(left[first], expected_entry, basis, tolerance)
     if left.shape == (1, 1):
         raise AssertionError(f"your answer {hint}")
     count = f"{len(wrong)} of {len(left)} entries are wrong; " if len(wrong) > 1 else ""

@@ -66,6 +66,7 @@ class RowChoice:
     criterion: Criterion
     exact: bool
     dropped: tuple[tuple[int, int | None], ...] = ()
+    everywhere: bool = True  # every frame was searched (False: only the frame asked for)
 
 
 @memoized()
@@ -98,7 +99,7 @@ def singular_rows(chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr], frame: 
     if choices:
         return min(choices, key=lambda choice: (evaluate.size(choice.rows, choice.frame), choice.frame))
     k = min(frames, key=lambda k: evaluate.size(evaluate.nonzero(candidates, k), k))
-    return RowChoice(evaluate.nonzero(candidates, k), k, criterion, False)
+    return RowChoice(evaluate.nonzero(candidates, k), k, criterion, False, everywhere=frame is None)
 
 
 def _exact_in(evaluate: _Evaluator, frame: Frame, candidates: Sequence[int], criterion: Criterion) -> RowChoice | None:

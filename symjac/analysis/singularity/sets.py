@@ -269,6 +269,16 @@ class _Sampler:
                     return False
         return True
 
+    def on(self, conjunction: Sequence[Condition], q: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """Rows of ``q`` where every condition of ``conjunction`` holds (a branch of an angle modulo 2 pi)."""
+        result = np.ones(len(q), dtype=bool)
+        with np.errstate(all="ignore"):
+            for condition in conjunction:
+                value = _evaluate(_compiled(condition.expression, tuple(self.arguments)), q, p)
+                value = _wrap(value) if self.wrapped(condition) else value
+                result &= np.abs(value) <= 1e3 * RELATIVE_ZERO * self.scale(condition.expression)
+        return result
+
     def scale(self, expr: sp.Expr) -> float:
         """The median size of ``expr`` at random configurations and parameters (kept per expression)."""
         if expr not in self.scales_of:
@@ -347,10 +357,32 @@ def singular_conditions(chain: Chain, minors: Sequence[Determinant], seed: int =
     for conjunction in kept:
         if not any(sampler.contained(conjunction, other) for other in minimal):
             minimal = [other for other in minimal if not sampler.contained(other, conjunction)] + [conjunction]
-    kept = minimal
+    kept = _confirmed(sampler, kept) if every_joint else minimal
     variables = set(sampler.variables)
     return tuple(sorted(kept, key=lambda c: (len(c), len(set().union(*(x.expression.free_symbols & variables
                                                                           for x in c))))))
+
+
+def _confirmed(sampler: _Sampler, kept: Sequence[tuple[Condition, ...]]) -> list[tuple[Condition, ...]]:
+    """The sets that fresh points on them confirm: every point singular, not every point on an earlier set.
+
+    Projected points can gather where a conjunction meets a smaller set (the branch formulas of a short arm's
+    rewritten factors feed each other), so a set is kept only if its own points show it: all of them singular
+    (sound), and not all of them on one set kept before it (a set found again through another reading).
+    """
+    confirmed: list[tuple[Condition, ...]] = []
+    for conjunction in sorted(kept, key=len):
+        q, p = sampler.random_points(4 * _SAMPLES)
+        valid = sampler.place([conjunction], q, p)
+        if valid.sum() < 3:
+            continue
+        q, p = q[valid], p[valid]
+        if not sampler.singular(q, p).all():
+            continue
+        if any(sampler.on(other, q, p).all() for other in confirmed):
+            continue
+        confirmed.append(conjunction)
+    return confirmed
 
 
 def condition_samples(chain: Chain, conjunction: Sequence[Condition], count: int, seed: int = 0,

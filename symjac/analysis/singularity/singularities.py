@@ -14,7 +14,7 @@ from __future__ import annotations
 import itertools
 import random
 from collections.abc import Container, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import sympy as sp
@@ -109,6 +109,8 @@ class SingularityReport:
     coordinates: tuple[str, ...] = ()  # a redundant arm's columns: "joint 3", or a coupled robot's "theta5"
     variables: tuple[sp.Symbol, ...] = ()  # the coordinates' symbols, in the order of every sample configuration
     choice: RowChoice | None = None  # how the rows of a short arm were chosen (None: given, or all six)
+    point_name: str = "reference"  # "tool", "flange" or the coordinates in frame {n}: which point the rows move
+    n_joints: int = 0  # the last frame, n
 
     @property
     def over_rows(self) -> bool:
@@ -154,7 +156,15 @@ def singularities(
     >>> [(f.expression, str(f.kind)) for f in report.factors]
     [(L1, 'parameter'), (L2, 'parameter'), (sin(theta2), 'elbow')]
     """
-    return _report(chain, rows, frame, point, numeric, seed)  # type: ignore[arg-type]  # normalised by @memoized
+    report = _report(chain, rows, frame, point, numeric, seed)  # type: ignore[arg-type]  # normalised by @memoized
+    return replace(report, point_name=_point_name(chain, point), n_joints=chain.n_joints)  # type: ignore[arg-type]
+
+
+def _point_name(chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr]) -> str:
+    """``"tool"``, ``"flange"`` (the origin of {n}) or the coordinates of ``point`` in frame {n}."""
+    if chain.robot.tool is not None and tuple(point) == tuple(point_vector(chain, "tool")):
+        return "tool"
+    return "flange" if all(c == 0 for c in point) else ",".join(sp.sstr(c) for c in point)
 
 
 def _report(chain: Chain, rows: tuple[int, ...], frame: Frame | None, point: tuple[sp.Expr, sp.Expr, sp.Expr],

@@ -105,8 +105,9 @@ def sets_caption(report: SingularityReport) -> str:
         return ("Singular sets: none found among the combinations of up to three minor factors, each solved for a "
                 f"different joint.{incomplete}")
     sets = "one singular set" if count == 1 else f"{count} singular sets"
-    return (f"Singular sets: the arm loses rank exactly where every nonzero minor vanishes; {sets} found, each a "
-            f"combination of minor factors:{incomplete}")
+    each = "a combination" if count == 1 else "each a combination"
+    return (f"Singular sets: the arm loses rank exactly where every nonzero minor vanishes; {sets} found, {each} "
+            f"of minor factors:{incomplete}")
 
 
 def _motion_count(singular_set: SingularSet) -> str:

@@ -11,6 +11,7 @@ import sympy as sp
 
 from symjac.kinematics.jacobian import ROW_NAMES
 from symjac.printing.document import Inline
+from symjac.printing.prose.results import point_phrase
 
 if TYPE_CHECKING:
     from symjac.analysis.singularity.determinant import Determinant
@@ -38,6 +39,11 @@ def _size(rows: int, columns: int) -> Inline:
     return Inline(rf"{rows} \times {columns}", f"{rows} \N{MULTIPLICATION SIGN} {columns}")
 
 
+def _joints(n: int, report: SingularityReport) -> str:
+    """``4 joints``, or for a coupled robot ``5 joints and 4 independent coordinates``."""
+    return f"{n} joints" if report.n_joints in (n, 0) else f"{report.n_joints} joints and {n} independent coordinates"
+
+
 def _why(report: SingularityReport) -> list[str | Inline]:
     """Why the determinant of the chosen rows is the arm's test, as caption parts (empty for six rows)."""
     choice, n = report.choice, len(report.variables)
@@ -47,8 +53,8 @@ def _why(report: SingularityReport) -> list[str | Inline]:
         parts: list[str | Inline] = [f" The arm only positions a point with its {n} joints, so it is singular where "
                                      "the linear rows of its Jacobian lose rank"]
     else:
-        parts = [f" The arm has {n} joints and moves in {n} independent directions, so it is singular where its ",
-                 _size(6, n), " Jacobian loses rank"]
+        parts = [f" The arm has {_joints(n, report)} and moves in {n} independent directions, so it is singular "
+                 "where its ", _size(6, n), " Jacobian loses rank"]
     zero = tuple(row for row, anchor in choice.dropped if anchor is None)
     multiples = [(row, anchor) for row, anchor in choice.dropped if anchor is not None]
     if zero or multiples:
@@ -69,8 +75,9 @@ def _why(report: SingularityReport) -> list[str | Inline]:
 def choice_parts(report: SingularityReport) -> tuple[str | Inline, ...]:
     """``Determinant of rows v_x, v_y of the Jacobian in frame {2}:``, with the reason for a short arm's rows."""
     det = report.determinant
+    where = point_phrase(report.point_name, n=report.n_joints)
     parts: list[str | Inline] = ["Determinant of rows ", *_listed(det.rows),
-                                 f" of the Jacobian in frame {{{det.frame}}}"]
+                                 f" of the Jacobian in frame {{{det.frame}}}, at {where}"]
     why = _why(report)
     return (*parts, ":") if not why else (*parts, ".", *why)
 
@@ -81,7 +88,9 @@ def row_minors_caption(report: SingularityReport) -> tuple[str | Inline, ...]:
     assert choice is not None
     position = choice.criterion == "position"
     criterion = ("its linear rows lose",) if position else ("its ", _size(6, n), " Jacobian loses")
-    return (f"{report.robot} has {n} joints and is singular where ", *criterion, f" rank. No frame carries that rank "
+    frames = "No frame carries" if choice.everywhere else f"Frame {{{choice.frame}}} does not carry"
+    return (f"{report.robot} has {_joints(n, report)} and is singular at "
+            f"{point_phrase(report.point_name, n=report.n_joints)} where ", *criterion, f" rank. {frames} that rank "
             f"in {n} rows alone, so every ", _size(n, n), " minor of the rows ", *_listed(choice.rows),
             f" in frame {{{choice.frame}}} is below; the arm is singular exactly where all of them vanish at once (the "
             "minors that vanish everywhere are left out).")

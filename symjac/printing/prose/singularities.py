@@ -20,6 +20,7 @@ from symjac.model.robot import Robot
 from symjac.printing.document import Inline
 from symjac.printing.pretty import one_line
 from symjac.printing.prose.evidence import evidence_clauses, landmark_name
+from symjac.printing.prose.results import point_phrase
 
 if TYPE_CHECKING:
     from symjac.analysis.representations import RepresentationSingularity
@@ -193,13 +194,23 @@ def _self_motion_rates(factor: SingularFactor | SingularSet) -> list[tuple[float
             for i, rate in enumerate(motion.rates) if abs(rate) > 1e-9]
 
 
+def _still(factor: SingularFactor | SingularSet) -> str:
+    """What a null motion leaves still: nothing moves for all six rows, else only what the rows analysed see."""
+    rows = factor.lost_direction.rows if factor.lost_direction is not None else tuple(range(6))
+    if set(rows) == set(range(6)):
+        return " move nothing"
+    if set(rows) <= {0, 1, 2}:
+        return " leave the reference point still"
+    return " produce nothing in the rows analysed"
+
+
 def self_motion_words(factor: SingularFactor | SingularSet) -> str:
     """The joint motion that moves nothing, in words (``""`` if unknown)."""
     shown = [(readable_number(rate), joint) for rate, joint in _self_motion_rates(factor)]
     if not shown:
         return ""
     rates = ", ".join(f"{'' if value.startswith('-') else '+'}{value} on {joint}" for value, joint in shown)
-    return f"joint rates {rates} move nothing"
+    return f"joint rates {rates}{_still(factor)}"
 
 
 def self_motion_parts(factor: SingularFactor | SingularSet) -> tuple[str | sp.Basic, ...]:
@@ -210,7 +221,7 @@ def self_motion_parts(factor: SingularFactor | SingularSet) -> tuple[str | sp.Ba
     parts: list[str | sp.Basic] = ["joint rates "]
     for number, (rate, joint) in enumerate(shown):
         parts += [", "] * bool(number) + [readable_value(rate), f" on {joint}"]
-    return (*parts, " move nothing")
+    return (*parts, _still(factor))
 
 
 def sample_parts(sample: Sequence[float] | None, variables: Sequence[sp.Symbol], degrees: bool = False
@@ -303,7 +314,7 @@ def rows_caption(report: SingularityReport) -> str:
 
 def _row_symbol(name: str) -> Inline:
     symbol = sp.Symbol(name)
-    return Inline(sp.latex(symbol), name, symbol)
+    return Inline(sp.latex(symbol), name.replace("omega", "\N{GREEK SMALL LETTER OMEGA}"), symbol)
 
 
 def rows_parts(report: SingularityReport) -> tuple[str | Inline, ...]:
@@ -312,7 +323,8 @@ def rows_parts(report: SingularityReport) -> tuple[str | Inline, ...]:
     parts: list[str | Inline] = ["Determinant of rows "]
     for number, row in enumerate(det.rows):
         parts += [", "] * bool(number) + [_row_symbol(ROW_NAMES[row])]
-    return (*parts, f" of the Jacobian in frame {{{det.frame}}}:")
+    where = point_phrase(report.point_name, n=report.n_joints)
+    return (*parts, f" of the Jacobian in frame {{{det.frame}}}, at {where}:")
 
 
 def redundant_caption(report: SingularityReport) -> tuple[str | Inline, ...]:

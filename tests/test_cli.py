@@ -489,7 +489,7 @@ def test_json_output_round_trips_with_the_same_keys(cli, command, robot):
     assert set(data) == JSON_KEYS[command, robot]
     assert json.dumps(data, indent=2) + "\n" == out
     if command == "singularities":
-        assert set(data["determinant"]) == {"expression", "coefficient", "factors", "columns"}
+        assert set(data["determinant"]) == {"expression", "coefficient", "factors", "columns", "rows", "frame"}
         for factor in data["factors"]:
             assert set(factor) == {"expression", "multiplicity", "kind", "reason", "solutions", "existence",
                                    "exists_for_defaults", "sample", "evidence", "lost_direction", "lost", "self_motion",

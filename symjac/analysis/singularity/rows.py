@@ -80,7 +80,7 @@ def singular_rows(chain: Chain, point: tuple[sp.Expr, sp.Expr, sp.Expr], frame: 
     >>> from symjac import load_robot
     >>> from symjac.kinematics.chain import Chain
     >>> singular_rows(Chain(load_robot("planar2r")), (0, 0, 0))
-    RowChoice(rows=(0, 1), frame=2, criterion='position', exact=True, dropped=((2, None),))
+    RowChoice(rows=(0, 1), frame=2, criterion='position', exact=True, dropped=((2, None),), everywhere=True)
     """
     n = chain.robot.n_coordinates
     if n >= 6:

@@ -21,6 +21,7 @@ import pytest
 import sympy as sp
 from marks import BUILT_IN_ROBOTS, marked
 from reference import finite_difference_jacobian, frame_index, frames
+from truth_arms import ARMS, EXPLAINED
 
 from symjac import load_robot, robot_from_toml, singularities
 from symjac.printing import prose
@@ -28,55 +29,6 @@ from symjac.printing.document import Inline
 from symjac.printing.json import singularity_data
 from symjac.printing.pretty import one_line
 from symjac.printing.summary import singularity_summary
-
-R, P = "revolute", "prismatic"
-
-
-def dh_file(name: str, rows: list[tuple], parameters: dict[str, float], *, degrees: bool = False,
-            tool: tuple | None = None, base: tuple | None = None) -> str:
-    """A standard-DH robot file: ``rows`` of (type, alpha, a, d, theta), lengths named in ``parameters``."""
-    lines = [f'name = "{name}"', f'description = "{name}, published DH table"', 'convention = "standard"']
-    lines += ['angle_unit = "deg"'] * degrees + ["", "[parameters]"] + [f"{k} = {v}" for k, v in parameters.items()]
-    for kind, alpha, a, d, theta in rows:
-        lines += ["", "[[joints]]", f'type = "{kind}"', f'alpha = "{alpha}"', f'a = "{a}"', f'd = "{d}"',
-                  f'theta = "{theta}"']
-    for label, transform in (("base", base), ("tool", tool)):
-        if transform is not None:
-            lines += ["", f"[{label}]", f"xyz = {list(transform[0])}", f"rpy = {list(transform[1])}"]
-    return "\n".join(lines) + "\n"
-
-
-WRIST_6R = [(R, "-pi/2", "a1", "d1", 0), (R, 0, "a2", 0, "-pi/2"), (R, "-pi/2", "a3", 0, 0), (R, "pi/2", 0, "d4", 0),
-            (R, "-pi/2", 0, 0, 0), (R, 0, 0, "d6", 0)]
-"""The standard DH table shared by the IRB 2400 and the LR Mate 200iD (shoulder offset a1, elbow offset a3)."""
-
-ARMS = {
-    "irb2400": dh_file("irb2400", WRIST_6R, {"a1": 0.1, "d1": 0.615, "a2": 0.705, "a3": 0.135, "d4": 0.755,
-                                             "d6": 0.085}),
-    "lrmate200id": dh_file("lrmate200id", WRIST_6R, {"a1": 0.05, "d1": 0.33, "a2": 0.33, "a3": 0.035, "d4": 0.335,
-                                                     "d6": 0.08}),
-    "tx90": dh_file("tx90", [(R, -90, "a1", "d1", 0), (R, 0, "a2", 0, -90), (R, 90, 0, "d3", 90),
-                             (R, -90, 0, "d4", 0), (R, 90, 0, 0, 0), (R, 0, 0, "d6", 0)],
-                    {"a1": 0.05, "d1": 0.478, "a2": 0.425, "d3": 0.05, "d4": 0.425, "d6": 0.1}, degrees=True),
-    "gen3": dh_file("gen3", [(R, "pi/2", 0, "-d1", 0), (R, "pi/2", 0, "-d2", "pi"), (R, "pi/2", 0, "-d3", "pi"),
-                             (R, "pi/2", 0, "-d4", "pi"), (R, "pi/2", 0, "-d5", "pi"), (R, "pi/2", 0, 0, "pi"),
-                             (R, "pi", 0, "-d7", "pi")],
-                    {"d1": 0.2848, "d2": 0.0118, "d3": 0.4208, "d4": 0.0128, "d5": 0.3143, "d7": 0.1674},
-                    base=([0, 0, 0], ["pi", 0, 0])),
-    "cylindrical_rpp": dh_file("cylindrical_rpp", [(R, 0, 0, "d1", 0), (P, "-pi/2", 0, 0, 0), (P, 0, 0, 0, 0)],
-                               {"d1": 0.5}),
-    "spherical_rrp": dh_file("spherical_rrp", [(R, "-pi/2", 0, "d1", 0), (R, "pi/2", 0, "d2", 0), (P, 0, 0, 0, 0)],
-                             {"d1": 0.3, "d2": 0.1}),
-    "scara_rrpr": dh_file("scara_rrpr", [(R, 0, "a1", "d1", 0), (R, "pi", "a2", 0, 0), (P, 0, 0, 0, 0),
-                                         (R, 0, 0, "d4", 0)], {"a1": 0.325, "a2": 0.275, "d1": 0.4, "d4": 0.1}),
-    "tool3r": dh_file("tool3r", [(R, "pi/2", 0, "d1", 0), (R, 0, "a2", 0, 0), (R, 0, "a3", 0, 0)],
-                      {"d1": 0.3, "a2": 0.4, "a3": 0.3}, tool=([0.1, 0.05, 0], [0, 0, 0])),
-    "open_manipulator_x": dh_file("open_manipulator_x", [(R, "pi/2", 0, "d1", 0), (R, 0, "a2", 0, "-beta"),
-                                                         (R, 0, "a3", 0, "beta"), (R, 0, "a4", 0, 0)],
-                                  {"d1": 0.077, "a2": 0.1302, "a3": 0.124, "a4": 0.126, "beta": 1.3872}),
-}
-"""Published arms as robot files: lengths in metres from the makers' DH tables (the Gen3's from its user guide,
-the OpenManipulator-X's second link as one length with its angle offset beta)."""
 
 SLOW_ARMS = {"gen3"}  # a redundant 7R: about 7 s for its singular sets
 SLOW_CATALOG = {"panda", "panda.urdf", "iiwa7"}  # measured: 2.5-5 s each on the development machine
@@ -91,7 +43,7 @@ def report_of(name: str):
 def cases() -> list:
     catalog = [pytest.param(name, marks=pytest.mark.slow) if name in SLOW_CATALOG else name
                for name in sorted(BUILT_IN_ROBOTS)]
-    arms = [pytest.param(name, marks=pytest.mark.slow) if name in SLOW_ARMS else name for name in ARMS]
+    arms = [pytest.param(name, marks=pytest.mark.slow) if name in SLOW_ARMS else name for name in EXPLAINED]
     return marked(catalog, keep=BUILT_IN_ROBOTS - SLOW_CATALOG) + arms
 
 

@@ -12,7 +12,8 @@ import pytest
 import symjac.kinematics.jacobian
 from symjac import write_module
 from symjac.cli.main import main
-from symjac.model.io import catalog, urdf_catalog
+from symjac.errors import RobotFileError
+from symjac.model.io import catalog, load_robot, urdf_catalog
 
 FK_PLANAR2R = ["fk", "planar2r", "--format", "pretty"]
 
@@ -169,6 +170,33 @@ def test_the_links_decide_the_chain(cli, gripper):
 def test_links_are_refused_for_a_toml_robot(cli, command, option):
     line = cli.one_line_error(command, "planar2r", *COMMANDS[command], option, "tip")
     assert line == f"symjac: error: {option} applies to URDF files only; 'planar2r' is not one"
+
+
+# A URDF whose links are called like the options: base_link (the most common URDF link name) and tip_link.
+NAMED_LIKE_OPTIONS = """<robot name="arm"><link name="base_link"/><link name="tip_link"/><link name="{odd}"/>
+  <link name="l1"/>
+  <joint name="j1" type="revolute"><parent link="base_link"/><child link="l1"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1"/></joint>
+  <joint name="j2" type="fixed"><parent link="l1"/><child link="tip_link"/><origin xyz="0.5 0 0"/></joint>
+  <joint name="j3" type="fixed"><parent link="l1"/><child link="{odd}"/></joint></robot>"""
+
+
+@pytest.mark.parametrize(("options", "expected"), [
+    ((), "choose --tip-link: the links without children below 'base_link' are tip_link, {odd}"),
+    (("--tip-link", "nowhere"), "--tip-link 'nowhere' is not a link of this robot (links: base_link, l1, tip_link, "
+                                "{odd})"),
+    (("--base-link", "tip_link", "--tip-link", "base_link"), "--tip-link 'base_link' is not below --base-link "
+                                                             "'tip_link'"),
+])
+def test_error_text_keeps_the_users_link_names(cli, tmp_path, options, expected):
+    path = tmp_path / "arm.urdf"
+    path.write_text(NAMED_LIKE_OPTIONS, encoding="utf-8")
+    assert cli.one_line_error("fk", str(path), *options) == f"symjac: error: {path}: {expected}"
+    # from Python, the arguments are named as Python names them, and the link names are the same
+    with pytest.raises(RobotFileError) as info:
+        load_robot(path, **{option[2:].replace("-", "_"): value for option, value in zip(options[::2], options[1::2])})
+    python = expected.replace("--tip-link", "tip_link").replace("--base-link", "base_link")
+    assert str(info.value) == f"{path}: {python}"
 
 
 def test_help_names_all_three_kinds_of_robot(capsys):

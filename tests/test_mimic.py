@@ -232,8 +232,6 @@ A = _joint("a", "revolute", "l0", "l1")
 @pytest.mark.parametrize(("joints", "expected"), [
     ((A, _joint("b", "revolute", "l1", "l2", mimic='<mimic joint="nothing"/>'), _joint("c", "fixed", "l2", "l3")),
      "joint b mimic.*mimics 'nothing', which is not a joint of this robot"),
-    ((A, _joint("b", "revolute", "l1", "l3", mimic='<mimic joint="c"/>'), _joint("c", "revolute", "l1", "l2")),
-     "joint b mimic.*mimics joint 'c', which is not on the chain"),
     ((_joint("a", "fixed", "l0", "l1"), _joint("b", "revolute", "l1", "l2", mimic='<mimic joint="a"/>'),
       _joint("c", "revolute", "l2", "l3")), "joint b mimic.*mimics joint 'a', a fixed joint"),
     ((_joint("a", "revolute", "l0", "l1", mimic='<mimic joint="b"/>'),
@@ -251,7 +249,7 @@ A = _joint("a", "revolute", "l0", "l1")
       _joint("c", "fixed", "l2", "l3")), "joint b mimic.*expected a finite number, got 'two'"),
     ((A, _joint("b", "revolute", "l1", "l2", mimic='<mimic joint="a" offset="1e12"/>'),
       _joint("c", "fixed", "l2", "l3")), "joint b mimic.*at most 1e\\+09 in size"),
-], ids=["not-a-joint", "off-the-chain", "fixed-leader", "cycle", "self", "no-joint", "nan", "inf", "text", "huge"])
+], ids=["not-a-joint", "fixed-leader", "cycle", "self", "no-joint", "nan", "inf", "text", "huge"])
 def test_bad_mimics_are_refused_in_one_line_naming_file_and_joint(joints, expected):
     assert re.search(expected, _refused(*joints))
 
@@ -282,12 +280,26 @@ def test_the_catalog_gripper_names_its_default_tip_and_other_tips_still_load_or_
     assert load_robot("gripper.urdf") == load_robot("gripper.urdf", tip_link="left_fingertip")
     wrist = load_robot("gripper.urdf", tip_link="palm")
     assert wrist.n_joints == wrist.n_coordinates == 2 and wrist.coupling is None
-    # the right finger follows finger_joint, which lies on the left finger's branch: not on this chain
-    with pytest.raises(RobotFileError, match=r"^gripper\.urdf, field 'joint right_knuckle_joint mimic': "
-                                             r".*'finger_joint', which is not on the chain"):
-        load_robot("gripper.urdf", tip_link="right_fingertip")
+    # the right finger follows finger_joint, which lies on the left finger's branch: a coordinate of its own
+    right = load_robot("gripper.urdf", tip_link="right_fingertip")
+    finger = sp.Symbol("finger_joint", real=True)
+    assert finger in right.q and finger not in right.joint_variables
+    assert right.n_coordinates == right.n_joints - 1  # right_knuckle_joint and its inner finger follow finger_joint
     with pytest.raises(RobotFileError, match="choose tip_link"):  # the comment is the catalog's, not URDF's
         robot_from_urdf(GRIPPER, source="gripper.urdf")
+
+
+def test_a_leader_off_the_chain_is_a_coordinate_named_after_its_joint():
+    robot = robot_from_urdf(_urdf(A, _joint("b", "revolute", "l1", "l3", mimic='<mimic joint="c" multiplier="2"/>'),
+                                  _joint("c", "revolute", "l1", "l2"), _joint("d", "revolute", "l3", "l4"),
+                                  links=5), tip_link="l4")
+    t1, t2, t3 = robot.joint_variables
+    c = sp.Symbol("c", real=True)
+    assert robot.q == (t1, c, t3) and robot.joint_values == (t1, 2 * c, t3)
+    # a name that reads as a joint variable gets a prefix: theta2 may only be joint 2's own variable
+    renamed = robot_from_urdf(_urdf(A, _joint("b", "revolute", "l1", "l3", mimic='<mimic joint="theta2"/>'),
+                                    _joint("theta2", "revolute", "l1", "l2"), links=4), tip_link="l3")
+    assert [str(q) for q in renamed.q] == ["theta1", "q_theta2"]
 
 
 def test_a_leader_further_down_the_chain_and_a_zero_multiplier():

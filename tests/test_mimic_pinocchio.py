@@ -11,12 +11,15 @@ revolute joint that mimics a prismatic one, so the screw arm is compared with ev
 
 from __future__ import annotations
 
+from importlib import resources
+
 import numpy as np
 import pytest
 from test_mimic import CASES, _robot
 
 from symjac.kinematics.coupling import coupling_matrix
 from symjac.kinematics.numeric import numeric_jacobian
+from symjac.model.io import load_robot
 
 pytestmark = pytest.mark.external
 pin = pytest.importorskip("pinocchio", reason="pinocchio is not installed (pip install pin, or the [compare] extra)")
@@ -69,6 +72,28 @@ def test_pinocchio_own_mimic_support(name, tmp_path):
         pytest.skip(f"pinocchio {pin.__version__} has no mimic support in buildModelFromUrdf")
     assert model.nv == robot.n_coordinates  # one velocity per joint that mimics nothing
     free = [model.joints[model.getJointId(robot.joints[robot.joint_variables.index(c)].name)] for c in robot.q]
+    for q in _configurations(robot):
+        configuration = pin.neutral(model)
+        for joint, value in zip(free, q, strict=True):
+            configuration[joint.idx_q] = value
+        J = _tip_jacobian(model, frame_id, configuration)[:, [joint.idx_v for joint in free]]
+        np.testing.assert_allclose(numeric_jacobian(robot, q, 0, "tool"), J, atol=1e-12)
+
+
+def test_a_finger_that_mimics_the_other_finger_against_pinocchio(tmp_path):
+    """The catalog gripper to its right fingertip: the leader, finger_joint, is on the other finger, off the chain."""
+    robot = load_robot("gripper.urdf", tip_link="right_fingertip")
+    path = tmp_path / "gripper.urdf"
+    path.write_bytes(resources.files("symjac.robots").joinpath("urdf", "gripper.urdf").read_bytes())
+    try:
+        model = pin.buildModelFromUrdf(str(path), mimic=True)
+    except TypeError:  # an older pinocchio has no mimic argument
+        pytest.skip(f"pinocchio {pin.__version__} has no mimic support in buildModelFromUrdf")
+    frame_id = model.getFrameId("right_fingertip")
+    names = [str(c) if c not in robot.joint_variables else robot.joints[robot.joint_variables.index(c)].name
+             for c in robot.q]
+    assert "finger_joint" in names
+    free = [model.joints[model.getJointId(name)] for name in names]
     for q in _configurations(robot):
         configuration = pin.neutral(model)
         for joint, value in zip(free, q, strict=True):

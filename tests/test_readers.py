@@ -15,7 +15,7 @@ import pytest
 import sympy as sp
 
 from symjac.cli.main import main
-from symjac.errors import InertialWarning, RobotFileError
+from symjac.errors import ArgumentError, InertialWarning, RobotFileError
 from symjac.kinematics.chain import forward_kinematics
 from symjac.kinematics.numeric import numeric_at
 from symjac.model import readers
@@ -139,8 +139,32 @@ def test_the_size_limit_is_the_readers_and_is_checked_before_reading(tmp_path):
     [urdf] = [reader for reader in readers.readers() if reader.name == "URDF"]
     assert urdf.max_bytes == MAX_URDF_BYTES == 5_000_000
     path = _write(tmp_path, "big.xml", "<robot name='a'>" + " " * MAX_URDF_BYTES + "</robot>")
-    with pytest.raises(RobotFileError, match=f"^{path}: file larger than 5000000 bytes$"):
+    with pytest.raises(RobotFileError, match=f"^{path}: file larger than 5000000 bytes, the limit that keeps "
+                                             f"runaway files out .*: raise it with max_bytes "
+                                             r"\(--max-bytes on the command line\) to read it$"):
         load_robot(path)
+    # raised, the same file is read (and refused for what it holds, not for its size)
+    with pytest.raises(RobotFileError, match="the robot has no links"):
+        load_robot(path, max_bytes=2 * MAX_URDF_BYTES)
+    # lowered, a small file is refused, by the whole-file check and by the parser's own
+    small = _write(tmp_path, "small.urdf", "<robot name='a'><link name='b'/></robot>")
+    with pytest.raises(RobotFileError, match="file larger than 10 bytes"):
+        load_robot(small, max_bytes=10)
+    with pytest.raises(RobotFileError, match="file larger than 10 bytes"):
+        robot_from_urdf(small.read_text(), max_bytes=10)
+
+
+@pytest.mark.parametrize("value", [0, -1, 2.5, True, "big"])
+def test_a_size_limit_that_is_no_positive_whole_number_is_refused(value, tmp_path):
+    with pytest.raises(ArgumentError, match=f"max_bytes must be a positive whole number of bytes, got {value!r}"):
+        load_robot(_write(tmp_path, "a.urdf", "<robot name='a'/>"), max_bytes=value)
+
+
+def test_the_command_line_raises_the_size_limit(tmp_path, capsys):
+    path = _write(tmp_path, "big.urdf", ARM.replace("</robot>", " " * MAX_URDF_BYTES + "</robot>"))
+    assert main(["fk", str(path), "--format", "json"]) != 0
+    assert "raise it with max_bytes (--max-bytes on the command line)" in capsys.readouterr().err
+    assert main(["fk", str(path), "--format", "json", "--max-bytes", str(2 * MAX_URDF_BYTES)]) == 0
 
 
 # --- base_link and tip_link: a typed error, for every tree reader ---------------------------------------------------

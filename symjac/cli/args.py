@@ -51,24 +51,28 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"{formats} files only: first link of the chain (default: the root link)")
     parser.add_argument("--tip-link", default=None, metavar="LINK",
                         help=f"{formats} files only: last link of the chain (default: the only leaf link)")
+    parser.add_argument("--max-bytes", default=None, type=int, metavar="N",
+                        help="largest robot file read, in bytes (default: the format's limit, 5000000 for URDF; "
+                             "it keeps runaway files out)")
 
 
 def load(args: argparse.Namespace) -> Robot:
     """The robot named by ``args.robot``; ``--base-link`` / ``--tip-link`` choose the chain of a tree format (URDF)."""
     from symjac.model.io import load_robot
     from symjac.model.readers import LinksNotApplicableError
+    from symjac.model.readers.tree import ChainChoiceError
 
     links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
     try:
-        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
+        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link, max_bytes=args.max_bytes)
     except LinksNotApplicableError as error:  # say it with the options the user typed
         given = [option for option, value in links.items() if value is not None]
         verb = "applies" if len(given) == 1 else "apply"
         raise ArgumentError(f"{' and '.join(given)} {verb} to {error.formats} files only; {args.robot!r} is not "
                             "one") from None
-    except RobotFileError as error:
-        message = re.sub(r"\b(base|tip)_link\b", r"--\1-link", error.message)  # the option, not the API name
-        raise RobotFileError(message, source=error.source, joint=error.joint, field=error.field) from None
+    except ChainChoiceError as error:  # the options the user typed, never a rewritten link name
+        raise RobotFileError(error.worded(base_link="--base-link", tip_link="--tip-link"), source=error.source,
+                             joint=error.joint, field=error.field) from None
 
 
 def refuse_ignored_options(args: argparse.Namespace) -> None:

@@ -16,8 +16,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from symjac.errors import RobotFileError, UnknownRobotError
-from symjac.model.readers import HEAD_BYTES, LinksNotApplicableError, Reader, reader_for, tree_formats
+from symjac.errors import ArgumentError, RobotFileError, UnknownRobotError
+from symjac.model.readers import HEAD_BYTES, LinksNotApplicableError, Reader, reader_for, too_large, tree_formats
 from symjac.model.robot import Robot
 from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
 
@@ -44,7 +44,8 @@ def urdf_catalog() -> dict[str, str]:
     return robots
 
 
-def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_link: str | None = None) -> Robot:
+def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_link: str | None = None,
+               max_bytes: int | None = None) -> Robot:
     """Load a robot: a catalog name (see :func:`catalog`), or a robot file in any format symjac reads.
 
     A file's format is chosen by its content, whatever its name (:func:`symjac.model.readers.reader_for`): a URDF
@@ -54,7 +55,8 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
     looked up in the catalog, then among the built-in URDF files (see :func:`urdf_catalog`); a catalog name wins over
     a TOML file of the same name. ``base_link`` and ``tip_link`` choose the chain of a tree format such as URDF
     (defaults: the root link and the only leaf, or for a built-in file with several leaves the one its
-    ``<!-- tip_link: ... -->`` comment names); see :mod:`symjac.model.readers.tree`.
+    ``<!-- tip_link: ... -->`` comment names); see :mod:`symjac.model.readers.tree`. ``max_bytes`` raises (or
+    lowers) the size limit of the file's reader (:attr:`symjac.model.readers.Reader.max_bytes`: 5 MB for URDF).
 
     Raises
     ------
@@ -71,6 +73,8 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
     >>> load_robot("panda.urdf", tip_link="panda_link8").n_joints
     7
     """
+    if max_bytes is not None and (isinstance(max_bytes, bool) or not isinstance(max_bytes, int) or max_bytes < 1):
+        raise ArgumentError(f"max_bytes must be a positive whole number of bytes, got {max_bytes!r}")
     path = Path(name_or_path)
     head = _head(path)
     builtin = isinstance(name_or_path, str) and "/" not in name_or_path and "\\" not in name_or_path
@@ -86,18 +90,20 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
                 raise
         else:
             if entry is None or reader.tree:  # a catalog name wins over a TOML file of the same name
-                return _read(reader, _file_bytes(path, reader), str(path), base_link, tip_link)
+                limit = reader.max_bytes if max_bytes is None else max_bytes
+                return _read(reader, _file_bytes(path, limit), str(path), base_link, tip_link, limit)
     if entry is not None:
         data = entry.read_bytes()
         return _read(reader_for(data[:HEAD_BYTES], f"{name_or_path}.toml", ".toml"), data, f"{name_or_path}.toml",
-                     base_link, tip_link)
+                     base_link, tip_link, max_bytes)
     urdf_entry = resources.files("symjac.robots").joinpath("urdf", str(name_or_path)) if builtin else None
     if urdf_entry is not None and name_or_path and urdf_entry.is_file():
         data = urdf_entry.read_bytes()
         if tip_link is None:  # a built-in file with several leaves names its default tip in a comment
             tip = re.search(rb"<!--\s*tip_link:\s*([A-Za-z0-9_.-]+)\s*-->", data)
             tip_link = tip.group(1).decode("ascii") if tip else None
-        return _read(reader_for(data[:HEAD_BYTES], str(name_or_path)), data, str(name_or_path), base_link, tip_link)
+        return _read(reader_for(data[:HEAD_BYTES], str(name_or_path)), data, str(name_or_path), base_link, tip_link,
+                     max_bytes)
     if path.suffix.lower() == ".urdf":
         raise UnknownRobotError(f"{str(name_or_path)!r} is neither a URDF file nor a built-in one "
                                 f"({', '.join(urdf_catalog())})")
@@ -116,20 +122,22 @@ def _head(path: Path) -> bytes | None:
         raise RobotFileError(f"cannot read file: {error}", source=str(path)) from None
 
 
-def _file_bytes(path: Path, reader: Reader) -> bytes:
-    """The whole file, after refusing one larger than its reader takes."""
+def _file_bytes(path: Path, limit: int | None) -> bytes:
+    """The whole file, after refusing one larger than ``limit`` bytes (the reader's own, or the caller's)."""
     try:
-        if reader.max_bytes is not None and path.stat().st_size > reader.max_bytes:
-            raise RobotFileError(f"file larger than {reader.max_bytes} bytes", source=str(path))
+        if limit is not None and path.stat().st_size > limit:
+            raise RobotFileError(too_large(limit), source=str(path))
         return path.read_bytes()
     except OSError as error:
         raise RobotFileError(f"cannot read file: {error}", source=str(path)) from None
 
 
-def _read(reader: Reader, data: bytes, source: str, base_link: str | None, tip_link: str | None) -> Robot:
+def _read(reader: Reader, data: bytes, source: str, base_link: str | None, tip_link: str | None,
+          max_bytes: int | None) -> Robot:
     if not reader.tree and (base_link is not None or tip_link is not None):
         raise LinksNotApplicableError(source, tree_formats())
-    return reader.read(data, source, base_link=base_link, tip_link=tip_link)
+    limit = {} if max_bytes is None else {"max_bytes": max_bytes}  # a reader without a limit need not take one
+    return reader.read(data, source, base_link=base_link, tip_link=tip_link, **limit)
 
 
 def robot_from_toml(text: str, source: str = "<string>") -> Robot:

@@ -2,7 +2,7 @@ r"""Robot readers as plug-ins: each file format is one :class:`Reader`, chosen b
 
 A reader has a name (``"URDF"``), a sniffing function that decides from the first bytes of a file whether they are
 its format (URDF claims the XML root element ``<robot>``; an MJCF reader would claim ``<mujoco>``), and a ``read``
-function ``read(content, source, *, base_link, tip_link) -> Robot``. Tree formats (:attr:`Reader.tree`) go through
+function ``read(content, source, *, base_link, tip_link, max_bytes) -> Robot``. Tree formats (:attr:`Reader.tree`) go through
 the shared :class:`~symjac.model.readers.tree.KinematicTree` and
 :func:`~symjac.model.readers.tree.robot_from_tree`, so ``base_link`` and ``tip_link`` mean the same for all of them.
 :func:`symjac.model.io.load_robot` asks :func:`reader_for` which reader takes a file; a file no reader claims gets
@@ -26,8 +26,8 @@ from symjac.errors import RobotFileError
 if TYPE_CHECKING:
     from symjac.model.robot import Robot
 
-__all__ = ["HEAD_BYTES", "LinksNotApplicableError", "Reader", "reader_for", "readers", "register", "tree_formats",
-           "unregister", "xml_root"]
+__all__ = ["HEAD_BYTES", "LinksNotApplicableError", "Reader", "reader_for", "readers", "register", "too_large",
+           "tree_formats", "unregister", "xml_root"]
 
 HEAD_BYTES = 65_536
 """How much of a file's start the sniffing functions see (a license comment before the root element fits)."""
@@ -45,14 +45,16 @@ class Reader:
         ``sniff(head: bytes) -> bool``: whether a file starting with ``head`` (at most :data:`HEAD_BYTES`) is in
         this format. Decide by content, never by the file's name.
     read : callable
-        ``read(content: bytes, source: str, *, base_link, tip_link) -> Robot``; ``source`` names the file in errors.
+        ``read(content: bytes, source: str, *, base_link, tip_link[, max_bytes]) -> Robot``; ``source`` names the
+        file in errors; ``max_bytes``, the size limit in force (:attr:`max_bytes`, or the caller's), is passed
+        whenever there is one, so a reader with a limit checks what it reads besides the file (included files).
     tree : bool
         Whether the format is a kinematic tree, so that ``base_link`` and ``tip_link`` choose its chain.
     suffixes : tuple of str
         File name suffixes of the format (``".urdf"``): a file whose content no reader claims is given to the
         reader of its suffix, whose own error says what is wrong with it.
     max_bytes : int, optional
-        The largest file read (refused in one line before it is read).
+        The largest file read by default (refused in one line before it is read, see :func:`too_large`).
     """
 
     name: str
@@ -61,6 +63,19 @@ class Reader:
     tree: bool = False
     suffixes: tuple[str, ...] = ()
     max_bytes: int | None = None
+
+
+def too_large(limit: int) -> str:
+    """Why a file over ``limit`` bytes is refused, and how to read it anyway (one line, for every reader).
+
+    A reader parses the whole file in memory; real robot files are kilobytes, so the limit keeps out runaway and
+    hostile files before any parsing starts.
+
+    >>> too_large(5_000_000)
+    'file larger than 5000000 bytes, the limit that keeps runaway files out (robot files are kilobytes): raise it with max_bytes (--max-bytes on the command line) to read it'
+    """
+    return (f"file larger than {limit} bytes, the limit that keeps runaway files out (robot files are kilobytes): "
+            f"raise it with max_bytes (--max-bytes on the command line) to read it")
 
 
 class LinksNotApplicableError(RobotFileError):
@@ -182,7 +197,8 @@ def _is_toml(head: bytes) -> bool:
     return True  # empty, or only comments: the TOML reader says what a robot file needs
 
 
-def _read_toml(content: bytes, source: str, *, base_link: str | None = None, tip_link: str | None = None) -> Robot:
+def _read_toml(content: bytes, source: str, *, base_link: str | None = None, tip_link: str | None = None,
+               max_bytes: int | None = None) -> Robot:
     robot_from_toml: Any = import_module("symjac.model.io").robot_from_toml  # io imports this module: late
     try:
         text = content.decode("utf-8-sig")  # a byte-order mark, as some editors write, is no TOML
@@ -191,10 +207,12 @@ def _read_toml(content: bytes, source: str, *, base_link: str | None = None, tip
     return robot_from_toml(text, source=source)  # type: ignore[no-any-return]
 
 
-def _read_urdf(content: bytes, source: str, *, base_link: str | None = None, tip_link: str | None = None) -> Robot:
-    from symjac.model.readers.urdf import robot_from_urdf  # the XML machinery only when a URDF is read
+def _read_urdf(content: bytes, source: str, *, base_link: str | None = None, tip_link: str | None = None,
+               max_bytes: int | None = None) -> Robot:
+    from symjac.model.readers.urdf import MAX_URDF_BYTES, robot_from_urdf  # the XML machinery only for a URDF
 
-    return robot_from_urdf(content, source=source, base_link=base_link, tip_link=tip_link)
+    return robot_from_urdf(content, source=source, base_link=base_link, tip_link=tip_link,
+                           max_bytes=MAX_URDF_BYTES if max_bytes is None else max_bytes)
 
 
 register(Reader("TOML robot file", _is_toml, _read_toml, suffixes=(".toml",)))

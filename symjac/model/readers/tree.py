@@ -17,18 +17,22 @@ The chain
     (:mod:`symjac.model.conventions.general`); the ``"tool"`` frame is ``tip_link``.
 
 Mimic joints
-    A moving joint of the chain with a :class:`Mimic` rule follows another moving joint *J* of the chain:
+    A moving joint of the chain with a :class:`Mimic` rule follows another moving joint *J*:
     :math:`x_i = m\,x_J + o`. The variable of a general joint is its position along the axis as written, so
     :math:`\vartheta_i = m\,\vartheta_J + o` exactly; the robot's coordinates are the variables of the joints that
     mimic nothing, in chain order (a :class:`~symjac.model.coordinates.Coupling`). A mimic of a mimic is followed to
     the joint that mimics nothing (:math:`\vartheta_i = m_1 (m_2 \vartheta_K + o_2) + o_1`); a cycle is refused.
-    Mimic rules on other branches, and on fixed joints, are ignored.
+    A leader off the chain (the finger of a gripper that the other finger, on the chain, mimics) is a coordinate of
+    its own, named after that joint (``l_gripper_l_finger_joint``; prefixed ``q_`` where the name would read as a
+    joint variable), placed where its first follower is. Mimic rules on other branches, and on fixed joints, are
+    ignored.
 
 Every problem raises :class:`~symjac.errors.RobotFileError` naming the source and the link or joint.
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
@@ -51,8 +55,32 @@ from symjac.model.robot import (
 )
 from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_motions
 
-__all__ = ["JointLimits", "KinematicTree", "LinkInertial", "Mimic", "TreeJoint", "TreeJointType", "TreeLink",
-           "identifier", "robot_from_tree"]
+__all__ = ["ChainChoiceError", "JointLimits", "KinematicTree", "LinkInertial", "Mimic", "TreeJoint", "TreeJointType",
+           "TreeLink", "identifier", "robot_from_tree"]
+
+
+class ChainChoiceError(RobotFileError):
+    """The chain cannot be chosen as asked; the message names the arguments that choose it (``base_link``, ...).
+
+    ``template`` is the message with ``{base_link}`` and ``{tip_link}`` where an argument's name goes
+    (:meth:`str.format` fields; the link names in it are escaped), so that a front end can name its own options
+    (:meth:`worded`) without ever rewriting a link name: a link may well be called ``base_link``.
+    """
+
+    ARGUMENTS = {"base_link": "base_link", "tip_link": "tip_link"}
+
+    def __init__(self, template: str, *, source: str, field: str | None = None):
+        self.template = template
+        super().__init__(self.worded(), source=source, field=field)
+
+    def worded(self, **names: str) -> str:
+        """The message with the arguments called by ``names`` (``base_link="--base-link"``), the others by theirs."""
+        return self.template.format(**{**self.ARGUMENTS, **names})
+
+
+def _braced(text: object) -> str:
+    """``text`` (a link name, a list of them) safe inside a :class:`ChainChoiceError` template."""
+    return str(text).replace("{", "{{").replace("}", "}}")
 
 
 class TreeJointType(StrEnum):
@@ -244,21 +272,25 @@ def _chain(links: dict[str, TreeLink], joints: dict[str, TreeJoint], source: str
             seen.add(link)
     if base_link is None:
         if len(roots) > 1:
-            raise _fail(source, f"several root links ({', '.join(roots)}); choose one with base_link")
+            raise ChainChoiceError(f"several root links ({_braced(', '.join(roots))}); choose one with {{base_link}}",
+                                   source=source)
         base_link = roots[0]
     if base_link not in links:
-        raise _fail(source, f"base_link {base_link!r} is not a link of this robot (links: {', '.join(sorted(links))})")
+        raise ChainChoiceError(f"{{base_link}} {_braced(repr(base_link))} is not a link of this robot (links: "
+                               f"{_braced(', '.join(sorted(links)))})", source=source)
     if tip_link is None:
         parents = {joint.parent for joint in joints.values()}
         below = [link for link in sorted(set(links) - parents) if _reaches(link, base_link, parent_joint)]
         if len(below) != 1:
-            raise _fail(source, f"choose tip_link: the links without children below {base_link!r} are "
-                                f"{', '.join(below) or 'none'}")
+            raise ChainChoiceError(f"choose {{tip_link}}: the links without children below {_braced(repr(base_link))} "
+                                   f"are {_braced(', '.join(below) or 'none')}", source=source)
         tip_link = below[0]
     if tip_link not in links:
-        raise _fail(source, f"tip_link {tip_link!r} is not a link of this robot (links: {', '.join(sorted(links))})")
+        raise ChainChoiceError(f"{{tip_link}} {_braced(repr(tip_link))} is not a link of this robot (links: "
+                               f"{_braced(', '.join(sorted(links)))})", source=source)
     if not _reaches(tip_link, base_link, parent_joint):
-        raise _fail(source, f"tip_link {tip_link!r} is not below base_link {base_link!r}")
+        raise ChainChoiceError(f"{{tip_link}} {_braced(repr(tip_link))} is not below {{base_link}} "
+                               f"{_braced(repr(base_link))}", source=source)
     path: list[TreeJoint] = []
     link = tip_link
     while link != base_link:
@@ -293,9 +325,6 @@ def _leader(joint: TreeJoint, joints: dict[str, TreeJoint], chain: set[str],
         if mimic.joint not in joints:
             raise _fail(source, f"joint {current.name!r} mimics {mimic.joint!r}, which is not a joint of this robot",
                         where)
-        if mimic.joint not in chain:
-            raise _fail(source, f"joint {current.name!r} mimics joint {mimic.joint!r}, which is not on the chain "
-                                f"(choose base_link and tip_link so that the chain holds both)", where)
         if mimic.joint in followed:
             raise _fail(source, f"mimic joints form a cycle: {' -> '.join([*followed, mimic.joint])}", where)
         leader = joints[mimic.joint]
@@ -313,12 +342,26 @@ def _coupled(robot: Robot, moving: list[TreeJoint], joints: dict[str, TreeJoint]
     if all(joint.mimic is None for joint in moving):
         return robot
     variable = {joint.name: symbol for joint, symbol in zip(moving, robot.joint_variables, strict=True)}
+    off_chain: dict[str, sp.Symbol] = {}
+    taken = {str(symbol) for symbol in robot.joint_variables} | {str(p) for p in robot.parameter_symbols}
     values = []
     for joint in moving:
         leader, multiplier, offset = _leader(joint, joints, chain, source)
-        values.append(multiplier * variable[leader] + offset)
-    coordinates = tuple(variable[joint.name] for joint in moving if joint.mimic is None)
+        if leader not in variable:  # a leader off the chain (a gripper's other finger) is a coordinate of its own
+            off_chain[leader] = off_chain.get(leader) or _off_chain_coordinate(leader, taken)
+        values.append(multiplier * (variable[leader] if leader in variable else off_chain[leader]) + offset)
+    leaders = set(variable.values()) | set(off_chain.values())
+    # each value is m x + o of one leader: the coordinates in the order of their first joint along the chain
+    coordinates = tuple(dict.fromkeys(symbol for value in values for symbol in value.free_symbols & leaders))
     return replace(robot, coupling=Coupling(coordinates, tuple(values)))
+
+
+def _off_chain_coordinate(name: str, taken: set[str]) -> sp.Symbol:
+    """The coordinate of a leader joint off the chain: its name made an identifier, never a chain joint's variable."""
+    symbol_name = identifier(name)
+    if re.fullmatch(r"(theta|d|q)\d*", symbol_name) or symbol_name in taken:
+        symbol_name = f"q_{symbol_name}"
+    return sp.Symbol(symbol_name, real=True)
 
 
 def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str, TreeLink],

@@ -5,7 +5,8 @@ What is read
     ``<inertia ixx ixy ixz iyy iyz izz>``); and every ``<joint name type>`` with its ``<parent link>``,
     ``<child link>``, ``<origin xyz rpy>``, ``<axis xyz>``, ``<limit lower upper velocity effort>`` and ``<mimic>``.
     Visual, collision, transmission and gazebo elements are ignored. Position limits with ``lower = upper = 0``
-    (URDF's default) mean "no limits"; any other pair must have ``lower < upper``. URDF angles are radians: an
+    (URDF's default) mean "no limits", and so do two bounds of at least :data:`MAX_URDF_ANGLE` in size (``+-1e16``,
+    which files written for Gazebo give spinning rotors); any other pair must have ``lower < upper``. URDF angles are radians: an
     ``rpy`` entry of more than a turn, or a revolute limit of more than two turns, is refused as degrees
     (:func:`symjac.model.bounds.urdf_turn_problem`). The chain between two links, fixed joints, mimic joints and
     frames are the tree's (:mod:`symjac.model.readers.tree`).
@@ -23,9 +24,12 @@ Numbers
 Safety
     The file is parsed with the standard library's expat parser, after refusing any document type declaration
     (``<!DOCTYPE``/``<!ENTITY``): no entity is ever expanded and no other file or URL is ever read (no external
-    entities, no ``package://`` lookups). A xacro file (``<xacro:...>`` elements, ``${...}`` substitutions) is
-    refused with the command that expands it. Files up to :data:`MAX_URDF_BYTES` in UTF-8, or in US-ASCII or
-    ISO-8859-1 when the XML declaration says so, are read.
+    entities, no ``package://`` lookups). A xacro file (elements or attributes in the xacro namespace, ``${...}``
+    or ``$(...)`` in attribute values; never what comments or text hold) is refused with the command that expands
+    it into a new file. Files up to :data:`MAX_URDF_BYTES` (5 MB) in UTF-8, or in US-ASCII or ISO-8859-1 when the XML
+    declaration says so, are read: the whole file is parsed in memory, and a real arm's file is tens of kilobytes
+    (the largest of a public collection of 69 robots, a dual-arm mobile manipulator, is 211 kB), so the limit keeps
+    runaway and hostile files out; ``max_bytes`` raises it.
     Every problem raises :class:`~symjac.errors.RobotFileError` naming the file and the element.
 """
 
@@ -41,6 +45,7 @@ import sympy as sp
 from symjac.errors import ExpressionError, RobotFileError
 from symjac.model.bounds import size_problem, urdf_turn_problem
 from symjac.model.expressions import exact_number, snap_angle
+from symjac.model.readers import too_large
 from symjac.model.readers.tree import (
     JointLimits,
     KinematicTree,
@@ -53,11 +58,14 @@ from symjac.model.readers.tree import (
 )
 from symjac.model.robot import FixedTransform, Robot
 
-__all__ = ["MAX_URDF_BYTES", "robot_from_urdf", "tree_from_urdf"]
+__all__ = ["MAX_URDF_ANGLE", "MAX_URDF_BYTES", "robot_from_urdf", "tree_from_urdf"]
 
 MAX_URDF_BYTES = 5_000_000
-"""Largest URDF file read, in bytes (a real arm's file is tens of kilobytes; larger is refused in one line)."""
-MAX_URDF_ANGLE = 10**9  # radians; a float angle this large has lost every digit below 1e-7 rad anyway
+"""Largest URDF file read by default, in bytes (a real arm's file is tens of kilobytes; larger is refused in one
+line, and ``max_bytes`` raises the limit)."""
+MAX_URDF_ANGLE = 10**9
+"""Radians: the largest angle read (a float this large has lost every digit below 1e-7 rad); position bounds this
+large in size mean "no bound"."""
 _TYPES = {kind.value: kind for kind in TreeJointType}
 _MOVING = {TreeJointType.REVOLUTE, TreeJointType.CONTINUOUS, TreeJointType.PRISMATIC}
 _BOUNDED = {TreeJointType.REVOLUTE, TreeJointType.PRISMATIC}  # a continuous joint's lower and upper are ignored
@@ -65,9 +73,7 @@ _DECLARATION = re.compile(rb"<!\s*(DOCTYPE|ENTITY|ELEMENT|ATTLIST)", re.IGNORECA
 _ENCODING = re.compile(rb"""^(?:\xef\xbb\xbf)?\s*<\?xml[^>]*encoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
 _ENCODINGS = {"utf-8": "utf-8", "utf8": "utf-8", "us-ascii": "ascii", "ascii": "ascii", "iso-8859-1": "latin-1",
               "iso8859-1": "latin-1", "latin-1": "latin-1", "latin1": "latin-1", "l1": "latin-1"}
-# an xacro element or a ${...} / $(...) substitution in an attribute value; not the xmlns:xacro declaration alone,
-# which xacro itself leaves on the <robot> of the URDF files it writes
-_XACRO = re.compile(r"""<\s*xacro:|=\s*(?:"[^"]*|'[^']*)\$[{(]""")
+_SUBSTITUTION = re.compile(r"\$[{(]")  # xacro's ${expression} and $(find package) in an attribute value
 _INERTIA_KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
 
@@ -77,6 +83,7 @@ def robot_from_urdf(
     base_link: str | None = None,
     tip_link: str | None = None,
     name: str | None = None,
+    max_bytes: int = MAX_URDF_BYTES,
 ) -> Robot:
     """Build the general-convention robot of the chain ``base_link`` .. ``tip_link`` of a URDF document.
 
@@ -90,6 +97,8 @@ def robot_from_urdf(
         The chain's first and last link (defaults: the root, and the only leaf).
     name : str, optional
         The robot's name (default: the ``<robot name>``, made an identifier).
+    max_bytes : int
+        The largest document read, in bytes (default :data:`MAX_URDF_BYTES`).
 
     Raises
     ------
@@ -108,13 +117,13 @@ def robot_from_urdf(
     >>> robot.joints[0].limits, robot.joints[0].placement.axis
     ((-pi/2, pi/2), (0, 1, 0))
     """
-    return robot_from_tree(tree_from_urdf(content, source), source, base_link=base_link, tip_link=tip_link,
-                           name=name)
+    return robot_from_tree(tree_from_urdf(content, source, max_bytes=max_bytes), source, base_link=base_link,
+                           tip_link=tip_link, name=name)
 
 
-def tree_from_urdf(content: str | bytes, source: str = "<urdf>") -> KinematicTree:
+def tree_from_urdf(content: str | bytes, source: str = "<urdf>", *, max_bytes: int = MAX_URDF_BYTES) -> KinematicTree:
     """The links and joints of a URDF document, checked element by element (see the module text)."""
-    root = _parse(content, source)
+    root = _parse(content, source, max_bytes)
     links = []
     seen: set[str] = set()
     for link in root.findall("link"):
@@ -133,7 +142,7 @@ def _fail(source: str, message: str, element: str | None = None) -> RobotFileErr
     return RobotFileError(message, source=source, field=element)
 
 
-def _parse(content: str | bytes, source: str) -> ET.Element:
+def _parse(content: str | bytes, source: str, max_bytes: int) -> ET.Element:
     if isinstance(content, str):
         try:
             data = content.encode("utf-8")
@@ -141,8 +150,8 @@ def _parse(content: str | bytes, source: str) -> ET.Element:
             raise _fail(source, f"not UTF-8 text: {error}") from None
     else:
         data = bytes(content)
-    if len(data) > MAX_URDF_BYTES:
-        raise _fail(source, f"file larger than {MAX_URDF_BYTES} bytes")
+    if len(data) > max_bytes:
+        raise _fail(source, too_large(max_bytes))
     if b"\x00" in data:
         raise _fail(source, "not a UTF-8 text file (NUL bytes)")
     declared = _ENCODING.match(data)
@@ -160,21 +169,58 @@ def _parse(content: str | bytes, source: str) -> ET.Element:
     # before the parser sees anything, rather than trusting the parser's limits.
     if _DECLARATION.search(data):
         raise _fail(source, "document type and entity declarations (<!DOCTYPE, <!ENTITY) are not allowed in URDF")
-    if _XACRO.search(text):
-        name = Path(source).name if source != "<urdf>" else "FILE"
-        output = name.removesuffix(".xacro").removesuffix(".urdf") + ".urdf"
-        raise _fail(source, f"this is a xacro file (macros and ${{...}} substitutions are not URDF): run "
-                            f"`xacro {name} > {output}` first and load {output}")
     try:
         # expat reads the declared encoding itself (UTF-8, US-ASCII and ISO-8859-1 are built in)
         root = ET.fromstring(data)
     except ET.ParseError as error:
+        if "unbound prefix" in str(error) and _tag_at(text, error.position).startswith("xacro:"):
+            raise _xacro(source) from None  # <xacro:macro> without the xmlns:xacro declaration
         raise _fail(source, f"invalid XML: {error}") from None
     except RecursionError:  # pragma: no cover - expat is iterative; kept for tree builders that are not
         raise _fail(source, "invalid XML: elements nested too deeply") from None
     if root.tag != "robot":
         raise _fail(source, f"the root element must be <robot>, got <{root.tag}>")
+    if _is_xacro(root):
+        raise _xacro(source)
     return root
+
+
+def _is_xacro(root: ET.Element) -> bool:
+    """Whether the parsed document still needs xacro: an element or attribute in the xacro namespace, or a
+    substitution (``${...}``, ``$(...)``) in an attribute value.
+
+    Comments and text are not looked at: files written by xacro keep commented-out macros and ``${...}`` in comments,
+    and the ``xmlns:xacro`` declaration alone, which xacro leaves on the ``<robot>`` it writes, is no sign either.
+    """
+    for element in root.iter():
+        if _in_xacro_namespace(element.tag):
+            return True
+        for key, value in element.attrib.items():
+            if _in_xacro_namespace(key) or _SUBSTITUTION.search(value):
+                return True
+    return False
+
+
+def _in_xacro_namespace(name: str) -> bool:
+    return name.startswith("{") and name[1:name.find("}")].rstrip("/#").endswith("xacro")
+
+
+def _tag_at(text: str, position: tuple[int, int]) -> str:
+    """The element name starting at expat's (line, column) ``position`` of ``text`` ("" if none)."""
+    line, column = position
+    lines = text.splitlines()
+    start = lines[line - 1][column:] if 0 < line <= len(lines) else ""
+    match = re.match(r"<\s*([\w.:-]+)", start)
+    return match.group(1) if match else ""
+
+
+def _xacro(source: str) -> RobotFileError:
+    """The refusal of a xacro file, with a command that expands it into a new file (never over the input)."""
+    name = Path(source).name if source != "<urdf>" else "FILE.urdf.xacro"
+    stem = name.removesuffix(".xacro").removesuffix(".urdf")
+    output = f"{stem}.urdf" if f"{stem}.urdf" != name else f"{stem}_expanded.urdf"
+    return _fail(source, f"this is a xacro file (xacro macros or ${{...}} substitutions are not URDF): run "
+                         f"`xacro {name} -o {output}` first and load {output}")
 
 
 def _number(text: str, source: str, element: str) -> sp.Rational:
@@ -240,12 +286,14 @@ def _limits(element: ET.Element | None, kind: TreeJointType, source: str, where:
     lower = upper = None
     if kind in _BOUNDED:
         bounds = [_number(element.get(key, "0"), source, where) for key in ("lower", "upper")]
-        if kind is TreeJointType.REVOLUTE:
+        # +-1e16, as files written for Gazebo give spinning rotors, is no bound at all (nor is it degrees)
+        unbounded = all(abs(b) >= MAX_URDF_ANGLE for b in bounds)
+        if kind is TreeJointType.REVOLUTE and not unbounded:
             bounds = [snap_angle(b) for b in bounds]
             problem = next((p for p in (urdf_turn_problem(float(b), limit=True) for b in bounds) if p), None)
             if problem is not None:  # multi-turn wrists pass (bounds.MAX_URDF_LIMIT), limits in degrees do not
                 raise _fail(source, problem, where)
-        if bounds[0] != 0 or bounds[1] != 0:  # lower = upper = 0 is the common "no limits given"
+        if not unbounded and (bounds[0] != 0 or bounds[1] != 0):  # lower = upper = 0 is "no limits given" too
             lower, upper = bounds
     rates = [_number(element.get(key), source, where) if element.get(key) is not None else None  # type: ignore
              for key in ("velocity", "effort")]

@@ -194,7 +194,8 @@ def test_error_text_keeps_the_users_link_names(cli, tmp_path, options, expected)
     assert cli.one_line_error("fk", str(path), *options) == f"symjac: error: {path}: {expected}"
     # from Python, the arguments are named as Python names them, and the link names are the same
     with pytest.raises(RobotFileError) as info:
-        load_robot(path, **{option[2:].replace("-", "_"): value for option, value in zip(options[::2], options[1::2])})
+        load_robot(path, **{option[2:].replace("-", "_"): value
+                            for option, value in zip(options[::2], options[1::2], strict=True)})
     python = expected.replace("--tip-link", "tip_link").replace("--base-link", "base_link")
     assert str(info.value) == f"{path}: {python}"
 

@@ -293,7 +293,7 @@ def test_a_leader_off_the_chain_is_a_coordinate_named_after_its_joint():
     robot = robot_from_urdf(_urdf(A, _joint("b", "revolute", "l1", "l3", mimic='<mimic joint="c" multiplier="2"/>'),
                                   _joint("c", "revolute", "l1", "l2"), _joint("d", "revolute", "l3", "l4"),
                                   links=5), tip_link="l4")
-    t1, t2, t3 = robot.joint_variables
+    t1, _, t3 = robot.joint_variables
     c = sp.Symbol("c", real=True)
     assert robot.q == (t1, c, t3) and robot.joint_values == (t1, 2 * c, t3)
     # a name that reads as a joint variable gets a prefix: theta2 may only be joint 2's own variable

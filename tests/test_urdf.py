@@ -143,9 +143,15 @@ def test_several_leaves_are_listed():
         robot_from_urdf(_arm(FINGERS), source="arm.urdf")
 
 
-def test_mimic_of_a_joint_off_the_chain_is_refused():
-    with pytest.raises(RobotFileError, match=r"arm\.urdf.*joint fb mimic.*mimics joint 'fa', which is not on the"):
-        robot_from_urdf(_arm(FINGERS), source="arm.urdf", tip_link="finger_b")
+def test_mimic_of_a_joint_off_the_chain_makes_that_joint_a_coordinate():
+    robot = robot_from_urdf(_arm(FINGERS), source="arm.urdf", tip_link="finger_b")
+    t1, t2, _ = robot.joint_variables
+    fa = sp.Symbol("fa", real=True)
+    assert robot.q == (t1, t2, fa) and robot.joint_values == (t1, t2, fa)
+    # finger b slides (no angular part) exactly as its own joint would, one for one with fa
+    J, J_joints = jacobian(robot, simplify=True), jacobian(robot.uncoupled, simplify=True)
+    assert J[:, 2] == J_joints[:, 2].xreplace({robot.joint_variables[2]: fa}) and J[3:, 2] == sp.zeros(3, 1)
+    assert J[:3, 2] != sp.zeros(3, 1)
 
 
 @pytest.mark.parametrize("kind", ["floating", "planar"])

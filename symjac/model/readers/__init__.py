@@ -2,8 +2,8 @@ r"""Robot readers as plug-ins: each file format is one :class:`Reader`, chosen b
 
 A reader has a name (``"URDF"``), a sniffing function that decides from the first bytes of a file whether they are
 its format (URDF claims the XML root element ``<robot>``; an MJCF reader would claim ``<mujoco>``), and a ``read``
-function ``read(content, source, *, base_link, tip_link, max_bytes) -> Robot``. Tree formats (:attr:`Reader.tree`) go through
-the shared :class:`~symjac.model.readers.tree.KinematicTree` and
+function ``read(content, source, *, base_link, tip_link[, max_bytes]) -> Robot``. Tree formats
+(:attr:`Reader.tree`) go through the shared :class:`~symjac.model.readers.tree.KinematicTree` and
 :func:`~symjac.model.readers.tree.robot_from_tree`, so ``base_link`` and ``tip_link`` mean the same for all of them.
 :func:`symjac.model.io.load_robot` asks :func:`reader_for` which reader takes a file; a file no reader claims gets
 one line naming the formats known::
@@ -66,13 +66,14 @@ class Reader:
 
 
 def too_large(limit: int) -> str:
-    """Why a file over ``limit`` bytes is refused, and how to read it anyway (one line, for every reader).
+    r"""Why a file over ``limit`` bytes is refused, and how to read it anyway (one line, for every reader).
 
     A reader parses the whole file in memory; real robot files are kilobytes, so the limit keeps out runaway and
     hostile files before any parsing starts.
 
-    >>> too_large(5_000_000)
-    'file larger than 5000000 bytes, the limit that keeps runaway files out (robot files are kilobytes): raise it with max_bytes (--max-bytes on the command line) to read it'
+    >>> print(too_large(5_000_000).replace(": ", ":\n"))
+    file larger than 5000000 bytes, the limit that keeps runaway files out (robot files are kilobytes):
+    raise it with max_bytes (--max-bytes on the command line) to read it
     """
     return (f"file larger than {limit} bytes, the limit that keeps runaway files out (robot files are kilobytes): "
             f"raise it with max_bytes (--max-bytes on the command line) to read it")

@@ -36,14 +36,15 @@ import re
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 from pathlib import Path
+from typing import ClassVar
 
 import sympy as sp
 
-from symjac.errors import InertialWarning, RobotFileError, warn
+from symjac.errors import RobotFileError
 from symjac.model.conventions.general import GeneralPlacement
 from symjac.model.coordinates import Coupling
-from symjac.model.expressions import exact_number, is_valid_name
-from symjac.model.inertia import Inertial, combined_inertial, inertial_problem
+from symjac.model.expressions import is_valid_name
+from symjac.model.readers.lumping import link_inertial
 from symjac.model.robot import (
     Convention,
     FixedTransform,
@@ -67,7 +68,7 @@ class ChainChoiceError(RobotFileError):
     (:meth:`worded`) without ever rewriting a link name: a link may well be called ``base_link``.
     """
 
-    ARGUMENTS = {"base_link": "base_link", "tip_link": "tip_link"}
+    ARGUMENTS: ClassVar[dict[str, str]] = {"base_link": "base_link", "tip_link": "tip_link"}
 
     def __init__(self, template: str, *, source: str, field: str | None = None):
         self.template = template
@@ -383,7 +384,13 @@ def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str,
     last_alignment = alignment(placement.unit_axis)
     tool = _combine(pending, list(inverse_motions(last_alignment)))
     moving = [joint for joint in path if joint.type in _MOVING]
-    inertials = tuple(_link_inertial(joint, links, all_joints, source) for joint in moving) \
+    fixed_children: dict[str, list[tuple[str, sp.Matrix]]] = {}
+    for other in all_joints.values():
+        if other.type is TreeJointType.FIXED:
+            fixed_children.setdefault(other.parent, []).append((other.child, sp.Matrix(other.origin.matrix)))
+    bodies = {name: link.inertial for name, link in links.items()}
+    inertials = tuple(link_inertial(unit_vector(joint.axis), joint.child, bodies, fixed_children, source)
+                      for joint in moving) \
         if any(link.inertial is not None for link in links.values()) else ()
     # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
     robot = Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
@@ -399,59 +406,3 @@ def _combine(transforms: list[FixedTransform], prefix: list) -> FixedTransform:
         return nontrivial[0] if nontrivial else FixedTransform()
     rotation_matrix, position = compose([*prefix, *(sp.Matrix(t.matrix) for t in nontrivial)])
     return fixed_transform_from_matrix(homogeneous(rotation_matrix, position))
-
-
-def _link_inertial(joint: TreeJoint, links: dict[str, TreeLink], joints: dict[str, TreeJoint],
-                   source: str) -> Inertial | None:
-    r"""The inertial data of the chain link that moving ``joint`` drives, in symjac's frame {i} (None if none given).
-
-    The link is the joint's child :math:`L` and every link fixed to it (through fixed joints only, on the chain or
-    beside it). Body :math:`X`, with its inertial frame {c} at :math:`T_{X,c}` and tensor :math:`I` about its centre,
-    is expressed in {i} by :math:`T_{i,X} = A_i^{-1}\,T_{L,X}` (frame {i} is :math:`L` turned by the alignment
-    :math:`A_i`): :math:`c_i = R\,p_{X,c} + p`, :math:`I_i = R\,R_{X,c}\,I\,R_{X,c}^T R^T`; several bodies are
-    combined by the parallel-axis theorem (:func:`~symjac.model.inertia.combined_inertial`). A link without
-    ``<inertial>`` has no mass. Bodies behind moving joints off the chain (held at zero) are not added: lumping them
-    is the dynamics' choice.
-    """
-    R_A = compose(alignment(unit_vector(joint.axis)))[0]
-    start = homogeneous(R_A.T, sp.zeros(3, 1))
-    children: dict[str, list[TreeJoint]] = {}
-    for other in joints.values():
-        children.setdefault(other.parent, []).append(other)
-    parts = []
-    stack = [(joint.child, start)]
-    while stack:
-        name, T_i_X = stack.pop()
-        body = links[name].inertial
-        if body is not None:
-            own = Inertial(body.mass, body.xyz, _rotated(body.tensor, sp.Matrix(body.origin.matrix)[:3, :3]))
-            problem = inertial_problem(own, physical=False)
-            if problem is not None:
-                raise _fail(source, problem, f"link {name} inertial")
-            problem = inertial_problem(own)
-            if problem is not None:  # CAD exports round into these: read the file, say so (pinocchio reads it too)
-                warn(InertialWarning(f"{source}, link {name}: {problem} (kept as given)"))
-            parts.append(own.expressed_in(T_i_X))
-        stack += [(child.child, T_i_X * sp.Matrix(child.origin.matrix))
-                  for child in children.get(name, []) if child.type is TreeJointType.FIXED]
-    if not parts:
-        return None
-    return _plain(parts[0] if len(parts) == 1 else combined_inertial(parts))
-
-
-def _plain(inertial: Inertial) -> Inertial:
-    """``inertial`` with every entry that is not a rational number (``cos(3/10)/4``) as the rational of its float.
-
-    Exact forms pay for kinematics, where a textbook form exists; a tensor turned by a generic angle has none, and
-    rational entries keep the data cheap for the dynamics and writable in a robot file.
-    """
-    def plain(value: sp.Expr) -> sp.Expr:
-        return value if value.is_Rational else exact_number(float(value))
-
-    return Inertial(plain(inertial.mass), tuple(plain(v) for v in inertial.com),  # type: ignore[arg-type]
-                    sp.ImmutableMatrix(inertial.inertia.applyfunc(plain)))
-
-
-def _rotated(tensor: sp.MatrixBase, R: sp.MatrixBase) -> sp.ImmutableMatrix:
-    r""":math:`R\,I\,R^T`: a tensor given along the axes of a frame turned by ``R``, along the original axes."""
-    return sp.ImmutableMatrix((R * tensor * R.T).applyfunc(sp.expand))

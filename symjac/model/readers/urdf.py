@@ -6,8 +6,8 @@ What is read
     ``<child link>``, ``<origin xyz rpy>``, ``<axis xyz>``, ``<limit lower upper velocity effort>`` and ``<mimic>``.
     Visual, collision, transmission and gazebo elements are ignored. Position limits with ``lower = upper = 0``
     (URDF's default) mean "no limits", and so do two bounds of at least :data:`MAX_URDF_ANGLE` in size (``+-1e16``,
-    which files written for Gazebo give spinning rotors); any other pair must have ``lower < upper``. URDF angles are radians: an
-    ``rpy`` entry of more than a turn, or a revolute limit of more than two turns, is refused as degrees
+    which files written for Gazebo give spinning rotors); any other pair must have ``lower < upper``. URDF angles
+    are radians: an ``rpy`` entry of more than a turn, or a revolute limit of more than two turns, is refused as degrees
     (:func:`symjac.model.bounds.urdf_turn_problem`). The chain between two links, fixed joints, mimic joints and
     frames are the tree's (:mod:`symjac.model.readers.tree`).
 
@@ -186,8 +186,9 @@ def _parse(content: str | bytes, source: str, max_bytes: int) -> ET.Element:
 
 
 def _is_xacro(root: ET.Element) -> bool:
-    """Whether the parsed document still needs xacro: an element or attribute in the xacro namespace, or a
-    substitution (``${...}``, ``$(...)``) in an attribute value.
+    """Whether the parsed document still needs xacro (xacro elements or attributes, substitutions in attributes).
+
+    Signs: an element or attribute in the xacro namespace, or ``${...}`` or ``$(...)`` in an attribute value.
 
     Comments and text are not looked at: files written by xacro keep commented-out macros and ``${...}`` in comments,
     and the ``xmlns:xacro`` declaration alone, which xacro leaves on the ``<robot>`` it writes, is no sign either.

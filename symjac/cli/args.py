@@ -51,6 +51,9 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
                         help=f"{formats} files only: first link of the chain (default: the root link)")
     parser.add_argument("--tip-link", default=None, metavar="LINK",
                         help=f"{formats} files only: last link of the chain (default: the only leaf link)")
+    site_formats = " and ".join(reader.name for reader in readers() if reader.sites)
+    parser.add_argument("--tip-site", default=None, metavar="SITE",
+                        help=f"{site_formats} files only: end the chain at this site (the tool frame is the site's)")
 
 
 def load(args: argparse.Namespace) -> Robot:
@@ -60,14 +63,14 @@ def load(args: argparse.Namespace) -> Robot:
 
     links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
     try:
-        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link)
+        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link, tip_site=args.tip_site)
     except LinksNotApplicableError as error:  # say it with the options the user typed
         given = [option for option, value in links.items() if value is not None]
         verb = "applies" if len(given) == 1 else "apply"
         raise ArgumentError(f"{' and '.join(given)} {verb} to {error.formats} files only; {args.robot!r} is not "
                             "one") from None
     except RobotFileError as error:
-        message = re.sub(r"\b(base|tip)_link\b", r"--\1-link", error.message)  # the option, not the API name
+        message = re.sub(r"\b(base|tip)_(link|site)\b", r"--\1-\2", error.message)  # the option, not the API name
         raise RobotFileError(message, source=error.source, joint=error.joint, field=error.field) from None
 
 

@@ -221,7 +221,7 @@ class _Reader:
             if joint.tag not in ("joint", "freejoint"):
                 continue
             self.joint_count += 1
-            attributes = {"type": "free"} if joint.tag == "freejoint" else \
+            attributes = {**joint.attrib, "type": "free"} if joint.tag == "freejoint" else \
                 self.defaults.attributes(joint, own_class, self.source, f"joint in body {name}")
             joint_name = attributes.get("name") or f"joint{self.joint_count - 1}"
             kind = attributes.get("type", "hinge")

@@ -1,4 +1,4 @@
-"""The MJCF reader on its own: exact numbers, MJCF's rules (degrees, defaults, includes, sites), refusals, hostile input.
+"""The MJCF reader on its own: exact numbers, MJCF's rules (degrees, defaults, includes, sites), refusals, hostility.
 
 MuJoCo itself checks the poses and Jacobians of the same fixtures in ``tests/test_mjcf_mujoco.py``; here the reader's
 numbers are compared with what the file says, computed by hand, and every refusal is one line naming file and element.
@@ -71,8 +71,9 @@ def test_angles_in_degrees_and_radians_are_exact():
 def test_quaternions_are_normalised_exactly_and_stay_rational():
     robot = robot_from_mjcf(_mjcf('<body quat="1 0 0 1"><joint/></body><body quat="2 1 0 0" pos="1 0 0"><joint/>'
                                   '</body>'), tip_link="body2")
-    assert robot.joints[0].placement.origin.matrix[:3, :3] == sp.Matrix([[1, 0, 0], [0, sp.Rational(3, 5), -sp.Rational(4, 5)],
-                                                                         [0, sp.Rational(4, 5), sp.Rational(3, 5)]])
+    three, four = sp.Rational(3, 5), sp.Rational(4, 5)  # (2, 1, 0, 0): cos = 3/5, sin = 4/5 about x, no root
+    rotation = robot.joints[0].placement.origin.matrix[:3, :3]
+    assert rotation == sp.Matrix([[1, 0, 0], [0, three, -four], [0, four, three]])
     turned = robot_from_mjcf(_mjcf('<body quat="1 0 0 1"><joint/></body>'))
     assert turned.joints[0].placement.origin.rpy == (0, 0, sp.pi / 2)
 
@@ -108,7 +109,8 @@ def test_a_hinge_off_the_body_origin_turns_about_its_own_axis():
 def test_slide_joints_and_several_joints_in_one_body():
     robot = robot_from_mjcf(_mjcf('<body><joint name="x" type="slide" axis="2 0 0" ref="0.1"/>'
                                   '<joint name="y" type="slide" axis="0 1 0" range="0 0.3"/>'
-                                  '<joint name="turn" axis="0 0 1" pos="0 0.1 0"/><site name="s" pos="0 0.1 0"/></body>'),
+                                  '<joint name="turn" axis="0 0 1" pos="0 0.1 0"/><site name="s" pos="0 0.1 0"/>'
+                                  '</body>'),
                             tip_site="s")
     assert [joint.type.value for joint in robot.joints] == ["prismatic", "prismatic", "revolute"]
     assert robot.joints[1].limits == (0, sp.Rational(3, 10))
@@ -143,8 +145,8 @@ def test_scene_with_a_free_object_beside_the_arm(tmp_path):
     in_scene, alone = load_robot(scene, tip_link="wrist_3"), load_robot(DATA / "arm6" / "arm6.xml")
     assert (in_scene.name, alone.name) == ("arm6_scene", "arm6")  # the model's name, not the included file's
     assert (in_scene.joints, in_scene.tool, in_scene.inertials) == (alone.joints, alone.tool, alone.inertials)
-    with pytest.raises(RobotFileError, match=r"field 'joint box_free': free joint 'box_free' \(body box\): a free joint "
-                                             r"lets the body float: choose a base_link at or below this body"):
+    with pytest.raises(RobotFileError, match=r"field 'joint box_free': free joint 'box_free' \(body box\): a free "
+                                             r"joint lets the body float: choose a base_link at or below this body"):
         load_robot(scene, tip_link="box")
     assert mjcf_model(scene.read_bytes(), str(scene), scene.parent).refused.keys() == {"box_free"}
 
@@ -191,7 +193,7 @@ REFUSED = {
     "unknown class": (TWO.replace('<joint name="j2"', '<joint name="j2" class="nope"'), "class 'nope' is not defined"),
     "unknown childclass": (TWO.replace('<body name="l2"', '<body name="l2" childclass="nope"'), "'nope' is not def"),
     "reversed range": (TWO.replace('range="-90 90"', 'range="90 -90"'), "lower < upper"),
-    "limited without autolimits": (TWO.replace('<mujoco model="t">', '<mujoco model="t"><compiler autolimits="false"/>'),
+    "limited without autolimits": (TWO.replace('model="t">', 'model="t"><compiler autolimits="false"/>'),
                                    "needs <compiler autolimits"),
     "bad unit": (TWO.replace('<mujoco model="t">', '<mujoco model="t"><compiler angle="grad"/>'), "'degree' or"),
     "bad eulerseq": (TWO.replace('<mujoco model="t">', '<mujoco model="t"><compiler eulerseq="xyw"/>'), "eulerseq"),

@@ -105,7 +105,8 @@ def test_the_command_line_says_it_in_one_line(tmp_path, capsys):
     assert main(["fk", str(path)]) != 0
     err = capsys.readouterr().err
     assert err.strip().splitlines() == [
-        f"symjac: error: {path}: not a robot file symjac reads (root element <sdf>); formats: MJCF, TOML robot file, URDF"]
+        f"symjac: error: {path}: not a robot file symjac reads (root element <sdf>); formats: MJCF, TOML robot file, "
+        "URDF"]
 
 
 def test_a_suffix_sends_what_no_reader_claims_to_its_reader(tmp_path):
@@ -146,7 +147,7 @@ def test_the_size_limit_is_the_readers_and_is_checked_before_reading(tmp_path):
 # --- base_link and tip_link: a typed error, for every tree reader ---------------------------------------------------
 
 def test_links_for_a_robot_that_is_no_tree_are_a_typed_error(tmp_path):
-    with pytest.raises(LinksNotApplicableError, match="base_link and tip_link apply to URDF and MJCF files only") as info:
+    with pytest.raises(LinksNotApplicableError, match="tip_link apply to URDF and MJCF files only") as info:
         load_robot(_write(tmp_path, "planar.toml", TOML), tip_link="x")
     assert info.value.formats == "URDF and MJCF"
     with pytest.raises(LinksNotApplicableError):

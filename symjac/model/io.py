@@ -2,8 +2,8 @@
 
 ``load_robot`` accepts a catalog name (``"puma560"``), or a robot file in any format a reader of
 :mod:`symjac.model.readers` claims by its content (a TOML robot file, a URDF file, a MuJoCo MJCF model; a built-in
-URDF by its name: ``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The catalog lives in
-``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
+URDF by its name: ``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The
+catalog lives in ``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
 """
 
 from __future__ import annotations

@@ -162,7 +162,7 @@ def _fail(source: str, message: str, element: str | None = None) -> RobotFileErr
 
 
 def _transform(T: sp.Matrix) -> FixedTransform:
-    return FixedTransform() if T == sp.eye(4) else fixed_transform_from_matrix(T)
+    return FixedTransform() if sp.eye(4) == T else fixed_transform_from_matrix(T)
 
 
 def _translation(vector: list[sp.Expr]) -> sp.Matrix:

@@ -87,7 +87,7 @@ def angle(value: sp.Rational, compiler: Compiler, source: str, element: str) -> 
 
 
 def rotation_about(axis: list[sp.Expr], turn: sp.Expr) -> sp.Matrix:
-    r"""The turn by ``turn`` about ``axis`` (any length but zero): :math:`I + \sin a\,[k]_\times + (1 - \cos a)[k]^2`."""
+    r"""The turn by ``turn`` about ``axis`` (not zero): :math:`I + \sin a\,[k]_\times + (1 - \cos a)[k]_\times^2`."""
     norm = sp.sqrt(sum(v**2 for v in axis))
     K = skew([sp.radsimp(v / norm) for v in axis])
     return (sp.eye(3) + sp.sin(turn) * K + (1 - sp.cos(turn)) * K * K).applyfunc(sp.expand)

@@ -1,10 +1,10 @@
 """Fuzzing the readers: any input gives a robot (or an expression) or a typed error, quickly, never a hang.
 
 The readers are what symjac shows the outside world: TOML robot files (:func:`symjac.robot_from_toml`), URDF
-(:func:`symjac.robot_from_urdf`), MJCF (:func:`symjac.model.readers.mjcf.robot_from_mjcf`, its includes read from the
-test fixtures' folder) and the field-expression parser (:func:`symjac.model.expressions.parse_expression`).
-Each gets random input and the catalog's own files (for MJCF, the test fixtures) mutated (slices deleted, duplicated or replaced, lines dropped or
-repeated, numbers swapped for hostile ones: ``1e999999``, 5000 nines, 10 000 nested parentheses, ...). The answer
+(:func:`symjac.robot_from_urdf`), MJCF (:func:`symjac.robot_from_mjcf`, its includes read from the test fixtures'
+folder) and the field-expression parser (:func:`symjac.model.expressions.parse_expression`). Each gets random input
+and the catalog's own files (for MJCF, the test fixtures) mutated (slices deleted, duplicated or replaced, lines
+dropped or repeated, numbers swapped for hostile ones: ``1e999999``, 5000 nines, 10 000 nested parentheses, ...). The answer
 must be a result or a :class:`~symjac.errors.SymjacError` within :data:`LIMIT` seconds; an alarm stops a hang.
 
 By default (profile ``symjac``) each test runs :data:`EXAMPLES` derandomized examples, a few seconds in all;

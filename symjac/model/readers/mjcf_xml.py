@@ -108,31 +108,32 @@ def _expand(element: ET.Element, source: str, includes: _Includes) -> None:
 
 
 def _included(name: str | None, source: str, includes: _Includes) -> ET.Element:
-    where = f"include {name}"
     if not name:
         raise _fail(source, "<include> needs file=...", "include")
+    where = f"include {name[:200]}"
     if includes.folder is None:
         raise _fail(source, "<include> needs the model's folder: load the model from its file", where)
     includes.count += 1
     if includes.count > MAX_MJCF_INCLUDES:
         raise _fail(source, f"more than {MAX_MJCF_INCLUDES} <include> elements", where)
-    folder = includes.folder.resolve()
-    path = (folder / name).resolve()
-    if not path.is_relative_to(folder):
-        raise _fail(source, f"included file {name!r} is outside the model's folder {str(folder)!r}", where)
-    if path in includes.seen:
-        raise _fail(source, f"{name!r} is included twice (an include loop, or a repeated include)", where)
-    includes.seen.add(path)
-    if not path.is_file():
-        raise _fail(source, f"included file {name!r} does not exist in {str(folder)!r}", where)
     try:
+        folder = includes.folder.resolve()
+        path = (folder / name).resolve()
+        if not path.is_relative_to(folder):
+            raise _fail(source, f"included file {name[:200]!r} is outside the model's folder {str(folder)!r}", where)
+        if path in includes.seen:
+            raise _fail(source, f"{name[:200]!r} is included twice (an include loop, or a repeated include)", where)
+        includes.seen.add(path)
+        if not path.is_file():
+            raise _fail(source, f"included file {name[:200]!r} does not exist in {str(folder)!r}", where)
         size = path.stat().st_size
         includes.total += size
         if includes.total > MAX_MJCF_BYTES:
             raise _fail(source, f"the model and its included files hold more than {MAX_MJCF_BYTES} bytes", where)
         data = path.read_bytes()
-    except OSError as error:
-        raise _fail(source, f"cannot read included file {name!r}: {error}", where) from None
+    except (OSError, ValueError) as error:  # a name too long for the system, a NUL byte, a file that vanished
+        reason = getattr(error, "strerror", None) or error
+        raise _fail(source, f"cannot read included file {name[:200]!r}: {reason}", where) from None
     return _parse(data, f"{source} (included {name})")
 
 

@@ -4,8 +4,9 @@ The readers are what symjac shows the outside world: TOML robot files (:func:`sy
 (:func:`symjac.robot_from_urdf`), MJCF (:func:`symjac.robot_from_mjcf`, its includes read from the test fixtures'
 folder) and the field-expression parser (:func:`symjac.model.expressions.parse_expression`). Each gets random input
 and the catalog's own files (for MJCF, the test fixtures) mutated (slices deleted, duplicated or replaced, lines
-dropped or repeated, numbers swapped for hostile ones: ``1e999999``, 5000 nines, 10 000 nested parentheses, ...). The answer
-must be a result or a :class:`~symjac.errors.SymjacError` within :data:`LIMIT` seconds; an alarm stops a hang.
+dropped or repeated, numbers swapped for hostile ones: ``1e999999``, 5000 nines, 10 000 nested parentheses, ...).
+The answer must be a result or a :class:`~symjac.errors.SymjacError` within :data:`LIMIT` seconds; an alarm stops a
+hang.
 
 By default (profile ``symjac``) each test runs :data:`EXAMPLES` derandomized examples, a few seconds in all;
 ``HYPOTHESIS_PROFILE=explore`` draws many new ones (it found the crashes listed in the module's tests below).

@@ -1,6 +1,6 @@
 r"""The kinematic tree every robot reader produces, and the one way symjac cuts a serial chain out of it.
 
-A reader (URDF today, MJCF next) turns its file into a :class:`KinematicTree`: named links, each with its inertial
+A reader (URDF, MJCF) turns its file into a :class:`KinematicTree`: named links, each with its inertial
 data as the file gives it (:class:`LinkInertial`), and named joints, each with its type, parent and child link, the
 fixed ``origin`` transform from the parent link's frame to the child link's frame at zero motion, a constant ``axis``
 (in the child link's frame, which the origin places), its limits and a mimic rule. :func:`robot_from_tree` then

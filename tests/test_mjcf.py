@@ -119,11 +119,14 @@ def test_slide_joints_and_several_joints_in_one_body():
 
 
 def test_inertials_are_read_and_a_body_without_one_has_none():
-    robot = robot_from_mjcf(_mjcf('<body><joint/><inertial pos="0 0 0.1" mass="2" fullinertia="1 2 3 0.1 0 0"/>'
-                                  '<body pos="1 0 0"><joint/></body></body>'))
-    first, second = robot.inertials
+    text = _mjcf('<body><joint/><inertial pos="0 0 0.1" mass="2" fullinertia="1 2 3 0.1 0 0"/>'
+                 '<body pos="1 0 0"><joint/></body></body>')
+    first, second = robot_from_mjcf(text).inertials
     assert first.mass == 2 and first.com == (0, 0, sp.Rational(1, 10)) and second is None
     assert first.inertia == sp.Matrix([[1, sp.Rational(1, 10), 0], [sp.Rational(1, 10), 2, 0], [0, 0, 3]])
+    # MuJoCo ignores <inertial> when told to take the inertia from the geoms, which symjac does not read
+    from_geoms = robot_from_mjcf(text.replace('model="t">', 'model="t"><compiler inertiafromgeom="true"/>'))
+    assert all(inertial is None for inertial in from_geoms.inertials)
 
 
 def test_fixture_classes_includes_and_coupling():
@@ -140,7 +143,8 @@ def test_fixture_classes_includes_and_coupling():
 
 def test_scene_with_a_free_object_beside_the_arm(tmp_path):
     scene = DATA / "arm6" / "scene.xml"
-    with pytest.raises(RobotFileError, match=r"choose tip_link: .* box, wrist_3"):
+    with pytest.raises(RobotFileError, match=r"choose tip_link: .* box, wrist_3; or end it at a site with tip_site "
+                                             r"\(flange\)$"):
         load_robot(scene)
     in_scene, alone = load_robot(scene, tip_link="wrist_3"), load_robot(DATA / "arm6" / "arm6.xml")
     assert (in_scene.name, alone.name) == ("arm6_scene", "arm6")  # the model's name, not the included file's

@@ -37,6 +37,7 @@ CASES = {
     "classes": ("classes.xml", "fingertip", True),
     "classes, site by class": ("classes.xml", "s3", True),
     "classes at a body": ("classes.xml", "b3", False),
+    "classes, site from-to": ("classes.xml", "rod", True),
     "arm6": ("arm6/arm6.xml", "flange", True),
     "arm6 scene": ("arm6/scene.xml", "flange", True),
     "arm6 at its last body": ("arm6/arm6.xml", "wrist_3", False),

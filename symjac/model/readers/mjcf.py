@@ -9,7 +9,8 @@ What is read
     and ``slide``, with ``pos``, ``axis``, ``range``, ``limited``, ``ref``); its ``<inertial pos (orientation) mass
     diaginertia | fullinertia>``; its ``<site>`` elements; and ``<equality><joint joint1 joint2 polycoef>``.
     Geoms, meshes, actuators, sensors, tendons and contacts are not read: a body without ``<inertial>`` has no
-    inertial data here, although MuJoCo would compute one from its geoms.
+    inertial data here, although MuJoCo would compute one from its geoms; with ``<compiler inertiafromgeom="true">``
+    (MuJoCo then ignores ``<inertial>``) no body has any.
 
 Joints
     A body without joints is fixed to its parent. A hinge at ``pos`` :math:`p` (body frame) turns the body about the
@@ -137,6 +138,9 @@ def robot_from_mjcf(content: str | bytes, source: str = "<mjcf>", base_link: str
         joint = (error.field or "").removeprefix("joint ")
         if joint in model.refused:  # a ball or free joint on the chain: say why, in MJCF's words
             raise RobotFileError(model.refused[joint], source=source, field=f"joint {joint}") from None
+        if error.message.startswith("choose tip_link") and model.sites:
+            raise RobotFileError(f"{error.message}; or end it at a site with tip_site "
+                                 f"({', '.join(sorted(model.sites)[:20])})", source=source) from None
         raise
 
 
@@ -215,7 +219,7 @@ class _Reader:
         self.bodies += 1
         name = element.get("name") or f"body{self.bodies}"
         own_class = element.get("childclass", childclass)
-        inertial = element.find("inertial")
+        inertial = None if self.compiler.inertia_from_geoms else element.find("inertial")
         kinds = []
         for joint in element:
             if joint.tag not in ("joint", "freejoint"):

@@ -17,6 +17,9 @@ angle in radians is snapped to a multiple of :math:`\pi/12` when within 1e-9 of 
     the frame's x axis, and its y axis made orthogonal to x (Gram-Schmidt), both normalised; z is their cross product.
 ``zaxis="z1 z2 z3"``
     the smallest turn taking (0, 0, 1) onto the normalised vector (a half turn about x for the opposite direction).
+``fromto="a1 a2 a3 b1 b2 b3"`` (sites of capsule, cylinder, box or ellipsoid type)
+    the frame at the midpoint of a and b, its z axis along a - b (MuJoCo's direction, from the end to the start) as
+    for ``zaxis``; it overrides ``pos`` and the orientation.
 """
 
 from __future__ import annotations
@@ -47,6 +50,7 @@ class Compiler:
     degree: bool = True
     eulerseq: str = "xyz"
     autolimits: bool = True
+    inertia_from_geoms: bool = False  # inertiafromgeom="true": MuJoCo replaces every <inertial> by the geoms'
 
 
 def _fail(source: str, message: str, element: str | None) -> RobotFileError:
@@ -138,6 +142,11 @@ def _zaxis(values: list[sp.Expr], source: str, element: str) -> sp.Matrix:
 
 def frame(attributes: Mapping[str, str], compiler: Compiler, source: str, element: str) -> sp.Matrix:
     """The 4 x 4 pose an element's ``pos`` and orientation attribute give (the identity without them)."""
+    if "fromto" in attributes:
+        ends = numbers(attributes["fromto"], 6, source, f"{element} fromto")
+        middle = sp.Matrix([(a + b) / 2 for a, b in zip(ends[:3], ends[3:], strict=True)])
+        return homogeneous(_zaxis([a - b for a, b in zip(ends[:3], ends[3:], strict=True)], source,
+                                  f"{element} fromto"), middle)
     given = [key for key in ORIENTATIONS if key in attributes]
     if len(given) > 1:
         raise _fail(source, f"more than one orientation given ({', '.join(given)})", element)

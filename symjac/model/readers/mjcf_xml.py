@@ -138,7 +138,7 @@ def _included(name: str | None, source: str, includes: _Includes) -> ET.Element:
 
 
 def compiler_of(root: ET.Element, source: str) -> Compiler:
-    """The ``<compiler>`` settings: ``angle``, ``eulerseq`` and ``autolimits`` (several elements: the last wins)."""
+    """The ``<compiler>`` settings: ``angle``, ``eulerseq``, ``autolimits``, ``inertiafromgeom`` (the last wins)."""
     settings: dict[str, str] = {}
     for element in root.iter("compiler"):
         settings.update(element.attrib)
@@ -151,7 +151,7 @@ def compiler_of(root: ET.Element, source: str) -> Compiler:
     autolimits = settings.get("autolimits", "true")
     if autolimits not in ("true", "false"):
         raise _fail(source, f"autolimits must be 'true' or 'false', got {autolimits!r}", "compiler")
-    return Compiler(unit == "degree", sequence, autolimits == "true")
+    return Compiler(unit == "degree", sequence, autolimits == "true", settings.get("inertiafromgeom") == "true")
 
 
 @dataclass(frozen=True)

@@ -270,3 +270,15 @@ def test_tip_choices_are_checked():
         robot_from_mjcf(TWO, tip_site="hand")
     with pytest.raises(RobotFileError, match="'hand' is not a site of this model"):
         robot_from_mjcf(TWO, tip_link="hand")
+
+
+def test_a_gripper_coupled_beside_the_chain_does_not_stop_the_arm():
+    # Menagerie's Panda couples its fingers with a joint equality (default polycoef "0 1 0 0 0") on two branches
+    gripper = _mjcf('<body name="arm"><joint name="j1"/><body name="hand" pos="0 0 0.1">'
+                    '<body name="left"><joint name="f1" type="slide" axis="0 1 0" range="0 0.04"/></body>'
+                    '<body name="right" quat="0 0 0 1"><joint name="f2" type="slide" axis="0 1 0" range="0 0.04"/>'
+                    '</body></body></body>', tail='<equality><joint joint1="f1" joint2="f2"/></equality>')
+    assert [joint.name for joint in robot_from_mjcf(gripper, tip_link="hand").joints] == ["j1"]
+    assert [joint.name for joint in robot_from_mjcf(gripper, tip_link="right").joints] == ["j1", "f2"]
+    with pytest.raises(RobotFileError, match=r"joint f1 mimic'?: joint 'f1' mimics joint 'f2', which is not on the"):
+        robot_from_mjcf(gripper, tip_link="left")  # the follower on the chain, its leader beside it: as for URDF

@@ -76,6 +76,7 @@ def test_quaternions_are_normalised_exactly_and_stay_rational():
     assert rotation == sp.Matrix([[1, 0, 0], [0, three, -four], [0, four, three]])
     turned = robot_from_mjcf(_mjcf('<body quat="1 0 0 1"><joint/></body>'))
     assert turned.joints[0].placement.origin.rpy == (0, 0, sp.pi / 2)
+    assert robot_from_mjcf(_mjcf('<body quat="2000 0 0 2000"><joint/></body>')) == turned  # no length: no metres
 
 
 @pytest.mark.parametrize(("orientation", "expected"), [
@@ -184,12 +185,13 @@ REFUSED = {
     "nan": (TWO.replace('pos="0.4 0 0"', 'pos="nan 0 0"'), r"body l2 in body l1 pos'?: expected a finite number"),
     "inf": (TWO.replace('range="-90 90"', 'range="-inf 90"'), "joint j1 range'?: expected a finite number"),
     "huge length": (TWO.replace('pos="0.4 0 0"', 'pos="4e9 0 0"'), "larger than 1000 m"),
-    "huge angle": (TWO.replace('range="-90 90"', 'range="-9e9 90"'), "too large an angle in degrees"),
+    "huge angle": (TWO.replace('range="-90 90"', 'range="-9e8 90"'), "too large an angle in degrees"),
     "long number": (TWO.replace('pos="0.4 0 0"', f'pos="{"1" * 500} 0 0"'), "number too long"),
     "two numbers": (TWO.replace('pos="0.4 0 0"', 'pos="0.4 0"'), "expected 3 numbers"),
     "two orientations": (TWO.replace('pos="0.4 0 0"', 'pos="0.4 0 0" quat="1 0 0 0" euler="0 0 0"'),
                          r"more than one orientation given \(quat, euler\)"),
     "zero quaternion": (TWO.replace('pos="0.4 0 0"', 'quat="0 0 0 0"'), "quaternion must not be zero"),
+    "huge quaternion": (TWO.replace('pos="0.4 0 0"', 'quat="1e12 0 0 0"'), r"quat'?: 1e\+12 is larger than 1e\+09"),
     "zero axis": (TWO.replace('axis="0 1 0"', 'axis="0 0 0"'), "joint j2 axis'?: the axis must not be the zero"),
     "ball": (TWO.replace('<joint name="j2" axis="0 1 0"/>', '<joint name="j2" type="ball"/>'),
              r"ball joint 'j2' \(body l2\): a ball joint turns about three axes"),

@@ -144,7 +144,7 @@ def robot_from_mjcf(content: str | bytes, source: str = "<mjcf>", base_link: str
         raise
 
 
-def mjcf_model(data: bytes, source: str = "<mjcf>", folder: Path | None = None) -> MjcfModel:
+def mjcf_model(data: bytes | str, source: str = "<mjcf>", folder: Path | None = None) -> MjcfModel:
     """The kinematic tree, sites and refused joints of an MJCF document (see the module text)."""
     if isinstance(data, str):
         data = data.encode("utf-8", "surrogatepass")

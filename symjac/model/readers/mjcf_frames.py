@@ -35,12 +35,14 @@ from symjac.model.bounds import size_problem
 from symjac.model.expressions import exact_number, snap_angle
 from symjac.symbolic.transforms import homogeneous, skew
 
-__all__ = ["ORIENTATIONS", "Compiler", "angle", "frame", "numbers", "rotation_about"]
+__all__ = ["MAX_NUMBER", "ORIENTATIONS", "Compiler", "angle", "frame", "numbers", "rotation_about"]
 
 ORIENTATIONS = ("quat", "axisangle", "euler", "xyaxes", "zaxis")
 """The attributes that give an MJCF frame's orientation (at most one per element)."""
 _SIZES = {"quat": 4, "axisangle": 4, "euler": 3, "xyaxes": 6, "zaxis": 3}
 _MAX_DIGITS = 40
+MAX_NUMBER = 1e9
+"""Largest number in size an MJCF attribute may hold that is no length (a quaternion entry, a mass, a coefficient)."""
 
 
 @dataclass(frozen=True)
@@ -59,7 +61,7 @@ def _fail(source: str, message: str, element: str | None) -> RobotFileError:
 
 def numbers(text: str, count: int | tuple[int, ...], source: str, element: str, *,
             length: bool = True) -> list[sp.Rational]:
-    """The ``count`` numbers of an attribute, exact; each finite and (for a ``length``) at most 1000 in size."""
+    """The ``count`` exact numbers of an attribute: finite, a ``length`` at most 1000 m, others :data:`MAX_NUMBER`."""
     parts = text.split()
     counts = (count,) if isinstance(count, int) else count
     if len(parts) not in counts:
@@ -73,7 +75,8 @@ def numbers(text: str, count: int | tuple[int, ...], source: str, element: str, 
             value = exact_number(float(token))
         except (ValueError, ExpressionError):
             raise _fail(source, f"expected a finite number, got {token!r}", element) from None
-        problem = size_problem(float(value), angle=False) if length else None
+        problem = size_problem(float(value), angle=False) if length else \
+            f"{float(value):.6g} is larger than {MAX_NUMBER:.0e} in size" if abs(value) > MAX_NUMBER else None
         if problem is not None:
             raise _fail(source, problem, element)
         values.append(value)
@@ -155,7 +158,7 @@ def frame(attributes: Mapping[str, str], compiler: Compiler, source: str, elemen
         return homogeneous(sp.eye(3), position)
     key = given[0]
     where = f"{element} {key}"
-    values: list[sp.Expr] = list(numbers(attributes[key], _SIZES[key], source, where, length=key != "euler"))
+    values: list[sp.Expr] = list(numbers(attributes[key], _SIZES[key], source, where, length=False))
     if key == "quat":
         R = _quaternion(values, source, where)
     elif key == "axisangle":

@@ -11,7 +11,9 @@ configurations (MuJoCo's ``qpos`` of the chain's joints, the other joints at ``q
   Jacobian at the end of the chain (the tool point, or the origin of {n} when the tip body ends in a joint);
 * each chain link's mass, world centre of mass (``xipos``) and world tensor (``ximat diag(body_inertia) ximat^T``)
   is symjac's inertial of that link carried to {0} by ``T_0_i``;
-* a joint equality holds (``efc_pos`` of its row is zero) when the follower is placed by symjac's coupling.
+* a joint equality holds (``efc_pos`` of its row is zero) when the follower is placed by symjac's coupling;
+* random models (hypothesis: every orientation form, degrees or radians, any ``eulerseq``, hinge and slide joints
+  with ``pos`` and ``ref``, several per body, sites placed by every form) agree the same way.
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 
 from symjac.kinematics.chain import forward_kinematics
 from symjac.kinematics.coupling import coupling_matrix
@@ -159,3 +163,74 @@ def test_degrees_are_converted_where_mujoco_converts_them():
     assert _joint(model, "j2").qpos0[0] == pytest.approx(np.radians(15), abs=1e-15)
     assert _joint(model, "d4").qpos0[0] == pytest.approx(0.05, abs=1e-15)
     assert robot.joints[3].limits == (0, pytest.approx(0.2))
+
+
+# --- random models: every frame form, joint kind, offset and unit, against MuJoCo ---------------------------------
+
+COORDINATE = st.sampled_from([0, 0, 0.1, -0.25, 0.4, 0.125])
+VECTOR = st.lists(st.sampled_from([0, 1, -1, 0.5, 2, -0.3]), min_size=3, max_size=3).filter(lambda v: any(v))
+
+
+@st.composite
+def orientations(draw: st.DrawFn, degree: bool) -> str:
+    angle = st.sampled_from([0, 30, -45, 90, 120, 17.5] if degree else [0, 0.5, -1.2, 1.5707963267948966, 2.5])
+    kind = draw(st.sampled_from(["", "quat", "axisangle", "euler", "xyaxes", "zaxis"]))
+    if kind == "quat":
+        values = draw(st.lists(st.sampled_from([0, 1, -1, 0.5, 0.7071068, 2]), min_size=4, max_size=4)
+                      .filter(lambda q: any(q)))
+    elif kind == "axisangle":
+        values = [*draw(VECTOR), draw(angle)]
+    elif kind == "euler":
+        values = [draw(angle) for _ in range(3)]
+    elif kind == "xyaxes":
+        x, y = draw(VECTOR), draw(VECTOR)
+        assume(np.linalg.norm(np.cross(x, y)) > 0.1)
+        values = [*x, *y]
+    elif kind == "zaxis":
+        values = draw(VECTOR)
+    else:
+        return ""
+    return f' {kind}="{" ".join(str(v) for v in values)}"'
+
+
+@st.composite
+def models(draw: st.DrawFn) -> str:
+    degree = draw(st.booleans())
+    sequence = "".join(draw(st.lists(st.sampled_from("xyzXYZ"), min_size=3, max_size=3)))
+    head = f'<compiler angle="{"degree" if degree else "radian"}" eulerseq="{sequence}"/>'
+    bodies = draw(st.integers(1, 3))
+    text = ""
+    for index in range(bodies):
+        pos = " ".join(str(draw(COORDINATE)) for _ in range(3))
+        text += f'<body name="b{index}" pos="{pos}"{draw(orientations(degree))}>'
+        text += '<inertial pos="0.01 0 0.02" mass="1" diaginertia="0.01 0.02 0.03"/>'
+        for number in range(draw(st.integers(1 if index == 0 else 0, 2))):
+            kind = draw(st.sampled_from(["hinge", "hinge", "slide"]))
+            ref = draw(st.sampled_from([0, 0, 0.2, -0.5] if kind == "slide" or not degree else [0, 0, 20, -35]))
+            pos = " ".join(str(draw(COORDINATE)) for _ in range(3))
+            axis = " ".join(str(v) for v in draw(VECTOR))
+            text += f'<joint name="j{index}_{number}" type="{kind}" axis="{axis}" pos="{pos}" ref="{ref}"/>'
+    pos = " ".join(str(draw(COORDINATE)) for _ in range(3))
+    text += f'<site name="end" pos="{pos}"{draw(orientations(degree))}/>' + "</body>" * bodies
+    return f'<mujoco model="random">{head}<worldbody>{text}</worldbody></mujoco>'
+
+
+@settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=list(HealthCheck))
+@given(models())
+def test_random_models_agree_with_mujoco(tmp_path_factory, text):
+    path = tmp_path_factory.mktemp("random") / "random.xml"
+    path.write_text(text, encoding="utf-8")
+    robot = load_robot(path, tip_site="end")
+    model = mujoco.MjModel.from_xml_path(str(path))
+    data = mujoco.MjData(model)
+    dofs = [_joint(model, joint.name).dofadr[0] for joint in robot.joints]
+    pose = forward_kinematics(robot, target="tool")
+    for q in _configurations(robot, 2):
+        _place(robot, model, data, q)
+        jacp, jacr = np.zeros((3, model.nv)), np.zeros((3, model.nv))
+        mujoco.mj_jacSite(model, data, jacp, jacr, 0)
+        T = numeric_at(robot, pose, list(q))
+        np.testing.assert_allclose(T[:3, 3], data.site_xpos[0], atol=TOLERANCE, err_msg=text)
+        np.testing.assert_allclose(T[:3, :3], data.site_xmat[0].reshape(3, 3), atol=TOLERANCE, err_msg=text)
+        np.testing.assert_allclose(numeric_jacobian(robot, q, 0), np.vstack([jacp, jacr])[:, dofs], atol=TOLERANCE,
+                                   err_msg=text)

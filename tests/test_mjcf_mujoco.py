@@ -18,6 +18,8 @@ configurations (MuJoCo's ``qpos`` of the chain's joints, the other joints at ``q
 
 from __future__ import annotations
 
+import os
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -47,6 +49,16 @@ CASES = {
     "arm6 at its last body": ("arm6/arm6.xml", "wrist_3", False),
 }
 TOLERANCE = 1e-10
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _scratch_folder(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
+    """Run in a scratch folder: MuJoCo writes its warnings (a singular mass matrix of a random model) to
+    ``MUJOCO_LOG.TXT`` in the working folder, which must not be the checkout."""
+    previous = Path.cwd()
+    os.chdir(tmp_path_factory.mktemp("mujoco"))
+    yield
+    os.chdir(previous)
 
 
 def _load(case: str):

@@ -63,7 +63,8 @@ def load(args: argparse.Namespace) -> Robot:
 
     links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
     try:
-        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link, tip_site=args.tip_site)
+        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link,
+                          tip_site=getattr(args, "tip_site", None))
     except LinksNotApplicableError as error:  # say it with the options the user typed
         given = [option for option, value in links.items() if value is not None]
         verb = "applies" if len(given) == 1 else "apply"

@@ -24,7 +24,7 @@ Joints
     scene does not stop the arm from loading). ``<equality><joint>`` with ``polycoef="c0 c1 0 0 0"`` (MuJoCo's
     :math:`q_1 - r_1 = c_0 + c_1 (q_2 - r_2)`) is a mimic rule of ``joint1`` (a coupling); higher coefficients, a
     ``joint1`` without ``joint2`` (a locked joint) and two equalities on one joint are refused; inactive ones
-    (``active="false"``) are ignored.
+    (``active="false"``) are ignored; equalities of other types (connect, weld, tendon) are not read.
 
 Sites
     A ``tip_link`` that names a site (and no body), or ``tip_site``, ends the chain at that site: the tool frame is

@@ -165,6 +165,7 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.model.io import robot_from_toml as robot_from_toml
     from symjac.model.io import robot_to_toml as robot_to_toml
     from symjac.model.io import urdf_catalog as urdf_catalog
+    from symjac.model.readers.mjcf import robot_from_mjcf as robot_from_mjcf
     from symjac.model.robot import Convention as Convention
     from symjac.model.robot import FixedTransform as FixedTransform
     from symjac.model.robot import Joint as Joint

@@ -169,7 +169,7 @@ def test_the_links_decide_the_chain(cli, gripper):
 @pytest.mark.parametrize("command", COMMANDS)
 def test_links_are_refused_for_a_toml_robot(cli, command, option):
     line = cli.one_line_error(command, "planar2r", *COMMANDS[command], option, "tip")
-    assert line == f"symjac: error: {option} applies to URDF files only; 'planar2r' is not one"
+    assert line == f"symjac: error: {option} applies to URDF and MJCF files only; 'planar2r' is not one"
 
 
 # A URDF whose links are called like the options: base_link (the most common URDF link name) and tip_link.

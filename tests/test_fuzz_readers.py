@@ -1,10 +1,12 @@
-"""Fuzzing the three readers: any input gives a robot (or an expression) or a typed error, quickly, never a hang.
+"""Fuzzing the readers: any input gives a robot (or an expression) or a typed error, quickly, never a hang.
 
 The readers are what symjac shows the outside world: TOML robot files (:func:`symjac.robot_from_toml`), URDF
-(:func:`symjac.robot_from_urdf`) and the field-expression parser (:func:`symjac.model.expressions.parse_expression`).
-Each gets random input and the catalog's own files mutated (slices deleted, duplicated or replaced, lines dropped or
-repeated, numbers swapped for hostile ones: ``1e999999``, 5000 nines, 10 000 nested parentheses, ...). The answer
-must be a result or a :class:`~symjac.errors.SymjacError` within :data:`LIMIT` seconds; an alarm stops a hang.
+(:func:`symjac.robot_from_urdf`), MJCF (:func:`symjac.robot_from_mjcf`, its includes read from the test fixtures'
+folder) and the field-expression parser (:func:`symjac.model.expressions.parse_expression`). Each gets random input
+and the catalog's own files (for MJCF, the test fixtures) mutated (slices deleted, duplicated or replaced, lines
+dropped or repeated, numbers swapped for hostile ones: ``1e999999``, 5000 nines, 10 000 nested parentheses, ...).
+The answer must be a result or a :class:`~symjac.errors.SymjacError` within :data:`LIMIT` seconds; an alarm stops a
+hang.
 
 By default (profile ``symjac``) each test runs :data:`EXAMPLES` derandomized examples, a few seconds in all;
 ``HYPOTHESIS_PROFILE=explore`` draws many new ones (it found the crashes listed in the module's tests below).
@@ -19,6 +21,7 @@ import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from importlib import resources
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -29,6 +32,7 @@ from hypothesis import strategies as st
 from symjac import Robot, robot_from_toml, robot_from_urdf, robot_to_toml
 from symjac.errors import SymjacError
 from symjac.model.expressions import parse_expression, snap_angle
+from symjac.model.readers.mjcf import robot_from_mjcf
 
 EXPLORE = os.environ.get("HYPOTHESIS_PROFILE") == "explore"
 EXAMPLES = 2000 if EXPLORE else 60
@@ -39,6 +43,11 @@ _ROBOTS = resources.files("symjac.robots")
 TOML_SEEDS = sorted(e.read_text(encoding="utf-8") for e in _ROBOTS.iterdir() if e.name.endswith(".toml"))
 URDF_SEEDS = sorted(e.read_text(encoding="utf-8") for e in _ROBOTS.joinpath("urdf").iterdir()
                     if e.name.endswith(".urdf"))
+MJCF_FOLDER = Path(__file__).parent / "data" / "mjcf"
+MJCF_SEEDS = sorted([(MJCF_FOLDER / "frames.xml").read_text(encoding="utf-8"),
+                     (MJCF_FOLDER / "classes.xml").read_text(encoding="utf-8"),
+                     (MJCF_FOLDER / "arm6" / "arm6.xml").read_text(encoding="utf-8")
+                     .replace('file="arm6_defaults.xml"', 'file="arm6/arm6_defaults.xml"')])
 NAMES = {name: sp.Symbol(name, real=True) for name in ("L1", "L2", "a2", "d4")}
 EXPRESSION_SEEDS = ["-pi/2", "L1 + L2", "0.4318", "a2*(L1 - 0.02)/3", "pi/12 + d4**2", "-(L1/2)**-3"]
 
@@ -49,7 +58,8 @@ HOSTILE = [
     "__import__('os')", "\x00", "\ufeff", "\u202e", "\\u0000", "${L}", "$(find arm)", "<xacro:property/>",
     "<!DOCTYPE robot>", "<!ENTITY x 'y'>", "&amp;", "&#0;", "&x;", "<![CDATA[x]]>", "]]>", "<?xml?>", "<", ">",
     "\"", "'", "'''", '"""', "=", "[[joints]]", "[parameters]", "\n", "#", "1e308", "1.7976931348623157e308",
-    "4.9e-324", str(10**39), "-0.0", "1e40",
+    "4.9e-324", str(10**39), "-0.0", "1e40", '<include file="../../etc/passwd"/>', '<include file="/etc/passwd"/>',
+    '<include file="classes.xml"/>', "<replicate/>", '<joint type="ball"/>', '<freejoint/>', 'childclass="x"',
 ]
 # the same, as TOML strings (robot-file expressions) and numbers TOML reads: they get past the TOML parser
 VALUES = [*HOSTILE, *(f'"{h}"' for h in HOSTILE if '"' not in h and "\\" not in h and len(h) < 300),
@@ -155,6 +165,11 @@ def test_toml_reader_gives_a_robot_or_a_typed_error(text):
     _check_toml(text)
 
 
+def _check_mjcf(content: str | bytes) -> None:
+    robot = answers(lambda: robot_from_mjcf(content, source="fuzz.xml", folder=MJCF_FOLDER))
+    assert robot is None or isinstance(robot, Robot)
+
+
 @FUZZ
 @given(st.one_of(mutated(URDF_SEEDS), mutated(URDF_SEEDS, ("number", "value")), st.text(max_size=300),
                  st.sampled_from(HOSTILE)))
@@ -166,6 +181,24 @@ def test_urdf_reader_gives_a_robot_or_a_typed_error(text):
 @given(st.one_of(st.binary(max_size=300), mutated(URDF_SEEDS).map(lambda t: t.encode("utf-8", "surrogatepass"))))
 def test_urdf_reader_takes_any_bytes(data):
     _check_urdf(data)
+
+
+@FUZZ
+@given(st.one_of(mutated(MJCF_SEEDS), mutated(MJCF_SEEDS, ("number", "value")), st.text(max_size=300),
+                 st.sampled_from(HOSTILE)))
+def test_mjcf_reader_gives_a_robot_or_a_typed_error(text):
+    _check_mjcf(text)
+
+
+@FUZZ
+@given(st.one_of(st.binary(max_size=300), mutated(MJCF_SEEDS).map(lambda t: t.encode("utf-8", "surrogatepass"))))
+def test_mjcf_reader_takes_any_bytes(data):
+    _check_mjcf(data)
+
+
+@pytest.mark.parametrize("seed", range(len(MJCF_SEEDS)))
+def test_every_mjcf_seed_reads_within_the_limit(seed):
+    assert isinstance(answers(lambda: robot_from_mjcf(MJCF_SEEDS[seed], folder=MJCF_FOLDER)), Robot)
 
 
 @FUZZ

@@ -81,8 +81,8 @@ def test_a_urdf_file_named_like_a_catalog_robot_is_the_file(tmp_path, monkeypatc
 
 
 UNKNOWN = {
-    "mjcf": ("arm.xml", '<?xml version="1.0"?>\n<!-- a MuJoCo model -->\n<mujoco model="arm"><worldbody/></mujoco>',
-             "root element <mujoco>"),
+    "collada": ("arm.xml", '<?xml version="1.0"?>\n<!-- a COLLADA scene -->\n<COLLADA version="1.4.1"/>',
+                "root element <COLLADA>"),
     "sdf with a doctype": ("arm.sdf", '<!DOCTYPE sdf [<!ENTITY x "y">]><sdf version="1.6"/>', "root element <sdf>"),
     "binary": ("arm.bin", b"\x7fELF\x00\x01\x02", "binary data"),
     "text": ("arm.txt", "hello: this is no robot\n", "text that is neither TOML nor XML"),
@@ -97,15 +97,16 @@ def test_a_file_no_reader_claims_is_one_line_naming_the_formats(tmp_path, case):
     path = _write(tmp_path, name, content)
     with pytest.raises(RobotFileError) as info:
         load_robot(path)
-    assert str(info.value) == f"{path}: not a robot file symjac reads ({what}); formats: TOML robot file, URDF"
+    assert str(info.value) == f"{path}: not a robot file symjac reads ({what}); formats: MJCF, TOML robot file, URDF"
 
 
 def test_the_command_line_says_it_in_one_line(tmp_path, capsys):
-    path = _write(tmp_path, "arm.xml", '<mujoco model="arm"/>')
+    path = _write(tmp_path, "arm.xml", '<sdf version="1.9"/>')
     assert main(["fk", str(path)]) != 0
     err = capsys.readouterr().err
     assert err.strip().splitlines() == [
-        f"symjac: error: {path}: not a robot file symjac reads (root element <mujoco>); formats: TOML robot file, URDF"]
+        f"symjac: error: {path}: not a robot file symjac reads (root element <sdf>); formats: MJCF, TOML robot file, "
+        "URDF"]
 
 
 def test_a_suffix_sends_what_no_reader_claims_to_its_reader(tmp_path):
@@ -170,9 +171,9 @@ def test_the_command_line_raises_the_size_limit(tmp_path, capsys):
 # --- base_link and tip_link: a typed error, for every tree reader ---------------------------------------------------
 
 def test_links_for_a_robot_that_is_no_tree_are_a_typed_error(tmp_path):
-    with pytest.raises(LinksNotApplicableError, match="base_link and tip_link apply to URDF files only") as info:
+    with pytest.raises(LinksNotApplicableError, match="tip_link apply to URDF and MJCF files only") as info:
         load_robot(_write(tmp_path, "planar.toml", TOML), tip_link="x")
-    assert info.value.formats == "URDF"
+    assert info.value.formats == "URDF and MJCF"
     with pytest.raises(LinksNotApplicableError):
         load_robot("puma560", base_link="x")
 
@@ -235,10 +236,10 @@ def test_a_new_reader_works_end_to_end(chain_reader, tmp_path, capsys):
     # and the command line's link options apply to it
     assert main(["fk", str(path), "--tip-link", "flange", "--format", "json"]) == 0
     assert '"entries"' in capsys.readouterr().out
-    with pytest.raises(LinksNotApplicableError, match="apply to URDF and CHAIN files only"):
+    with pytest.raises(LinksNotApplicableError, match="apply to URDF, MJCF and CHAIN files only"):
         load_robot(_write(tmp_path, "planar.toml", TOML), tip_link="flange")
     assert main(["fk", "planar2r", "--base-link", "l1"]) != 0
-    assert capsys.readouterr().err.strip() == ("symjac: error: --base-link applies to URDF and CHAIN files only; "
+    assert capsys.readouterr().err.strip() == ("symjac: error: --base-link applies to URDF, MJCF and CHAIN files only; "
                                                "'planar2r' is not one")
 
 

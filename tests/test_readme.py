@@ -2,7 +2,8 @@
 
 Python blocks run in order in one namespace per page (later blocks use the ``robot`` of the first), in a scratch
 folder. Commands run in-process through :func:`symjac.cli.main.main` in a folder that holds the files the pages name:
-``my_arm.toml`` (the robot-file guide's own example) and ``arm.urdf`` (a UR5 with a ``tool0`` link). A command with
+``my_arm.toml`` (the robot-file guide's own example), ``arm.urdf`` (a UR5 with a ``tool0`` link) and ``arm.xml`` (the
+MJCF guide's own example). A command with
 a placeholder (``ROBOT``, ``FILE``, ``K``) or alternatives (``a|b``) is a usage line, not an example. The C and C++
 programs of the code generation pages are compiled and run by ``tests/test_docs.py``.
 """
@@ -65,6 +66,8 @@ def readme_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
                if "[[joints]]" in b and 'name = "puma560"' in b]
     (tmp_path / "my_arm.toml").write_text(toml.replace('name = "puma560"', 'name = "my_arm"'), encoding="utf-8")
     (tmp_path / "arm.urdf").write_bytes((ROOT / "symjac" / "robots" / "urdf" / "ur5.urdf").read_bytes())
+    (mjcf,) = [b for b in _blocks("xml", ROOT / "docs" / "guide" / "mjcf.md") if "<mujoco" in b]
+    (tmp_path / "arm.xml").write_text(mjcf, encoding="utf-8")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 

@@ -357,7 +357,7 @@ def test_unknown_urdf_name_is_an_unknown_robot():
 
 
 def test_links_apply_to_urdf_only():
-    with pytest.raises(RobotFileError, match="URDF files only"):
+    with pytest.raises(RobotFileError, match="URDF and MJCF files only"):
         load_robot("puma560", tip_link="x")
 
 

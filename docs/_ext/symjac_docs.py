@@ -40,7 +40,7 @@ STAGES: list[tuple[str, str, str]] = [
      "wrenches between frames."),
     ("model", "Robots",
      "A robot as data: joints, parameters, conventions (standard and modified DH, general transforms, product of "
-     "exponentials), robot files in TOML, URDF files and the built-in catalog."),
+     "exponentials), robot files in TOML, URDF and MuJoCo (MJCF) files and the built-in catalog."),
     ("kinematics", "Kinematics",
      "Link transforms and forward kinematics, the basic Jacobian by four methods, statics, screw Jacobians, and the "
      "acceleration level (Hessian, dJ/dt, bias acceleration)."),

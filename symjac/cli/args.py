@@ -54,6 +54,9 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--max-bytes", default=None, type=int, metavar="N",
                         help="largest robot file read, in bytes (default: the format's limit, 5000000 for URDF; "
                              "it keeps runaway files out)")
+    site_formats = " and ".join(reader.name for reader in readers() if reader.sites)
+    parser.add_argument("--tip-site", default=None, metavar="SITE",
+                        help=f"{site_formats} files only: end the chain at this site (the tool frame is the site's)")
 
 
 def load(args: argparse.Namespace) -> Robot:
@@ -64,15 +67,16 @@ def load(args: argparse.Namespace) -> Robot:
 
     links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
     try:
-        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link, max_bytes=args.max_bytes)
+        return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link,
+                          tip_site=getattr(args, "tip_site", None), max_bytes=args.max_bytes)
     except LinksNotApplicableError as error:  # say it with the options the user typed
         given = [option for option, value in links.items() if value is not None]
         verb = "applies" if len(given) == 1 else "apply"
         raise ArgumentError(f"{' and '.join(given)} {verb} to {error.formats} files only; {args.robot!r} is not "
                             "one") from None
     except ChainChoiceError as error:  # the options the user typed, never a rewritten link name
-        raise RobotFileError(error.worded(base_link="--base-link", tip_link="--tip-link"), source=error.source,
-                             joint=error.joint, field=error.field) from None
+        raise RobotFileError(error.worded(base_link="--base-link", tip_link="--tip-link", tip_site="--tip-site"),
+                             source=error.source, joint=error.joint, field=error.field) from None
 
 
 def refuse_ignored_options(args: argparse.Namespace) -> None:

@@ -1,9 +1,9 @@
-"""Reading and writing robot files (TOML, URDF), and the built-in catalog.
+"""Reading and writing robot files (TOML, URDF, MJCF), and the built-in catalog.
 
 ``load_robot`` accepts a catalog name (``"puma560"``), or a robot file in any format a reader of
-:mod:`symjac.model.readers` claims by its content (a TOML robot file, a URDF file; a built-in URDF by its name:
-``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The catalog lives in
-``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
+:mod:`symjac.model.readers` claims by its content (a TOML robot file, a URDF file, a MuJoCo MJCF model; a built-in
+URDF by its name: ``"panda.urdf"``, ``"ur5.urdf"``); ``robot_to_toml`` writes a robot back in the TOML format. The
+catalog lives in ``symjac/robots/*.toml`` and ``symjac/robots/urdf/*.urdf`` inside the package, as data, not code.
 """
 
 from __future__ import annotations
@@ -17,7 +17,16 @@ from pathlib import Path
 from typing import Any
 
 from symjac.errors import ArgumentError, RobotFileError, UnknownRobotError
-from symjac.model.readers import HEAD_BYTES, LinksNotApplicableError, Reader, reader_for, too_large, tree_formats
+from symjac.model.readers import (
+    HEAD_BYTES,
+    LinksNotApplicableError,
+    Reader,
+    reader_for,
+    readers,
+    too_large,
+    tree_formats,
+)
+from symjac.model.readers.tree import ChainChoiceError
 from symjac.model.robot import Robot
 from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
 
@@ -45,7 +54,7 @@ def urdf_catalog() -> dict[str, str]:
 
 
 def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_link: str | None = None,
-               max_bytes: int | None = None) -> Robot:
+               tip_site: str | None = None, max_bytes: int | None = None) -> Robot:
     """Load a robot: a catalog name (see :func:`catalog`), or a robot file in any format symjac reads.
 
     A file's format is chosen by its content, whatever its name (:func:`symjac.model.readers.reader_for`): a URDF
@@ -55,8 +64,10 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
     looked up in the catalog, then among the built-in URDF files (see :func:`urdf_catalog`); a catalog name wins over
     a TOML file of the same name. ``base_link`` and ``tip_link`` choose the chain of a tree format such as URDF
     (defaults: the root link and the only leaf, or for a built-in file with several leaves the one its
-    ``<!-- tip_link: ... -->`` comment names); see :mod:`symjac.model.readers.tree`. ``max_bytes`` raises (or
-    lowers) the size limit of the file's reader (:attr:`symjac.model.readers.Reader.max_bytes`: 5 MB for URDF).
+    ``<!-- tip_link: ... -->`` comment names); see :mod:`symjac.model.readers.tree`. ``tip_site`` ends the chain at
+    a site of an MJCF model instead (its frame is the tool frame; :mod:`symjac.model.readers.mjcf`). ``max_bytes``
+    raises (or lowers) the size limit of the file's reader (:attr:`symjac.model.readers.Reader.max_bytes`: 5 MB for
+    URDF and for an MJCF model with its included files).
 
     Raises
     ------
@@ -91,11 +102,11 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
         else:
             if entry is None or reader.tree:  # a catalog name wins over a TOML file of the same name
                 limit = reader.max_bytes if max_bytes is None else max_bytes
-                return _read(reader, _file_bytes(path, limit), str(path), base_link, tip_link, limit)
+                return _read(reader, _file_bytes(path, limit), str(path), base_link, tip_link, tip_site, limit)
     if entry is not None:
         data = entry.read_bytes()
         return _read(reader_for(data[:HEAD_BYTES], f"{name_or_path}.toml", ".toml"), data, f"{name_or_path}.toml",
-                     base_link, tip_link, max_bytes)
+                     base_link, tip_link, tip_site, max_bytes)
     urdf_entry = resources.files("symjac.robots").joinpath("urdf", str(name_or_path)) if builtin else None
     if urdf_entry is not None and name_or_path and urdf_entry.is_file():
         data = urdf_entry.read_bytes()
@@ -103,7 +114,7 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
             tip = re.search(rb"<!--\s*tip_link:\s*([A-Za-z0-9_.-]+)\s*-->", data)
             tip_link = tip.group(1).decode("ascii") if tip else None
         return _read(reader_for(data[:HEAD_BYTES], str(name_or_path)), data, str(name_or_path), base_link, tip_link,
-                     max_bytes)
+                     tip_site, max_bytes)
     if path.suffix.lower() == ".urdf":
         raise UnknownRobotError(f"{str(name_or_path)!r} is neither a URDF file nor a built-in one "
                                 f"({', '.join(urdf_catalog())})")
@@ -133,11 +144,17 @@ def _file_bytes(path: Path, limit: int | None) -> bytes:
 
 
 def _read(reader: Reader, data: bytes, source: str, base_link: str | None, tip_link: str | None,
-          max_bytes: int | None) -> Robot:
+          tip_site: str | None, max_bytes: int | None) -> Robot:
     if not reader.tree and (base_link is not None or tip_link is not None):
         raise LinksNotApplicableError(source, tree_formats())
-    limit = {} if max_bytes is None else {"max_bytes": max_bytes}  # a reader without a limit need not take one
-    return reader.read(data, source, base_link=base_link, tip_link=tip_link, **limit)
+    options: dict[str, Any] = {} if max_bytes is None else {"max_bytes": max_bytes}  # a reader may have no limit
+    if tip_site is not None:
+        if not reader.sites:
+            formats = " and ".join(r.name for r in readers() if r.sites)
+            raise ChainChoiceError(f"{{tip_site}} applies to {formats} files only, not to a {reader.name}",
+                                   source=source)
+        options["tip_site"] = tip_site
+    return reader.read(data, source, base_link=base_link, tip_link=tip_link, **options)
 
 
 def robot_from_toml(text: str, source: str = "<string>") -> Robot:

@@ -1,14 +1,14 @@
 r"""Robot readers as plug-ins: each file format is one :class:`Reader`, chosen by the file's content.
 
 A reader has a name (``"URDF"``), a sniffing function that decides from the first bytes of a file whether they are
-its format (URDF claims the XML root element ``<robot>``; an MJCF reader would claim ``<mujoco>``), and a ``read``
-function ``read(content, source, *, base_link, tip_link[, max_bytes]) -> Robot``. Tree formats
+its format (URDF claims the XML root element ``<robot>``, MJCF claims ``<mujoco>``), and a ``read`` function
+``read(content, source, *, base_link, tip_link[, max_bytes][, tip_site]) -> Robot``. Tree formats
 (:attr:`Reader.tree`) go through the shared :class:`~symjac.model.readers.tree.KinematicTree` and
 :func:`~symjac.model.readers.tree.robot_from_tree`, so ``base_link`` and ``tip_link`` mean the same for all of them.
 :func:`symjac.model.io.load_robot` asks :func:`reader_for` which reader takes a file; a file no reader claims gets
 one line naming the formats known::
 
-    arm.xml: not a robot file symjac reads (root element <mujoco>); formats: TOML robot file, URDF
+    arm.xml: not a robot file symjac reads (root element <sdf>); formats: MJCF, TOML robot file, URDF
 
 This module imports nothing heavy: a reader's own module is imported when a file of its format is read.
 """
@@ -55,6 +55,8 @@ class Reader:
         reader of its suffix, whose own error says what is wrong with it.
     max_bytes : int, optional
         The largest file read by default (refused in one line before it is read, see :func:`too_large`).
+    sites : bool
+        Whether the format names points on links (MJCF sites): ``read`` then takes ``tip_site`` too.
     """
 
     name: str
@@ -63,6 +65,7 @@ class Reader:
     tree: bool = False
     suffixes: tuple[str, ...] = ()
     max_bytes: int | None = None
+    sites: bool = False
 
 
 def too_large(limit: int) -> str:
@@ -216,6 +219,16 @@ def _read_urdf(content: bytes, source: str, *, base_link: str | None = None, tip
                            max_bytes=MAX_URDF_BYTES if max_bytes is None else max_bytes)
 
 
+def _read_mjcf(content: bytes, source: str, *, base_link: str | None = None, tip_link: str | None = None,
+               tip_site: str | None = None, max_bytes: int | None = None) -> Robot:
+    from symjac.model.readers.mjcf import MAX_MJCF_BYTES, robot_from_mjcf  # the XML machinery only for MJCF
+
+    return robot_from_mjcf(content, source=source, base_link=base_link, tip_link=tip_link, tip_site=tip_site,
+                           max_bytes=MAX_MJCF_BYTES if max_bytes is None else max_bytes)
+
+
 register(Reader("TOML robot file", _is_toml, _read_toml, suffixes=(".toml",)))
 register(Reader("URDF", lambda head: xml_root(head) == "robot", _read_urdf, tree=True, suffixes=(".urdf",),
                 max_bytes=5_000_000))  # MAX_URDF_BYTES, without importing the reader to know it
+register(Reader("MJCF", lambda head: xml_root(head) == "mujoco", _read_mjcf, tree=True, suffixes=(".mjcf",),
+                max_bytes=5_000_000, sites=True))  # MAX_MJCF_BYTES (with the included files)

@@ -1,6 +1,6 @@
 r"""The kinematic tree every robot reader produces, and the one way symjac cuts a serial chain out of it.
 
-A reader (URDF today, MJCF next) turns its file into a :class:`KinematicTree`: named links, each with its inertial
+A reader (URDF, MJCF) turns its file into a :class:`KinematicTree`: named links, each with its inertial
 data as the file gives it (:class:`LinkInertial`), and named joints, each with its type, parent and child link, the
 fixed ``origin`` transform from the parent link's frame to the child link's frame at zero motion, a constant ``axis``
 (in the child link's frame, which the origin places), its limits and a mimic rule. :func:`robot_from_tree` then
@@ -63,12 +63,12 @@ __all__ = ["ChainChoiceError", "JointLimits", "KinematicTree", "LinkInertial", "
 class ChainChoiceError(RobotFileError):
     """The chain cannot be chosen as asked; the message names the arguments that choose it (``base_link``, ...).
 
-    ``template`` is the message with ``{base_link}`` and ``{tip_link}`` where an argument's name goes
+    ``template`` is the message with ``{base_link}``, ``{tip_link}`` and ``{tip_site}`` where an argument's name goes
     (:meth:`str.format` fields; the link names in it are escaped), so that a front end can name its own options
     (:meth:`worded`) without ever rewriting a link name: a link may well be called ``base_link``.
     """
 
-    ARGUMENTS: ClassVar[dict[str, str]] = {"base_link": "base_link", "tip_link": "tip_link"}
+    ARGUMENTS: ClassVar[dict[str, str]] = {"base_link": "base_link", "tip_link": "tip_link", "tip_site": "tip_site"}
 
     def __init__(self, template: str, *, source: str, field: str | None = None):
         self.template = template

@@ -30,8 +30,9 @@ from symjac.codegen.functions import (
     scalar_descriptions,
     self_checks,
 )
+from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
 from symjac.codegen.printers import float_literal
-from symjac.codegen.provenance import names_relative_file, robot_loader
+from symjac.codegen.provenance import catalog_files, names_relative_file, robot_loader
 from symjac.codegen.request import (
     STRATEGIES,
     JacobianRequest,
@@ -117,7 +118,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     """The module around its functions: robot facts, exported names and the command that regenerates it."""
     model = chain.robot
     spec = backend(request.target)
-    exports = ({"PARAMETERS", "COORDINATES", "JOINTS", "ROBOT", "selftest", *spec.exports}
+    exports = ({"PARAMETERS", "COORDINATES", "JOINTS", "ROBOT", "JOINT_NAMES", "JOINT_TYPES", "LOWER", "UPPER",
+                "TIP_FRAME", "coordinates", "selftest", *spec.exports}
                | {name for name in defined_names(functions, infos) if not name.startswith("_")})
     command, shell = request.command, request.command is not None
     if command is None:
@@ -144,6 +146,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
         checks=self_checks(infos),
         request_lines=request_lines(infos),
+        joint_entries=joint_entries(model, spec.identifiers), tip_frame=tip_frame(model),
+        origin=source_words(model, catalog_files()),
     )
 
 

@@ -103,4 +103,6 @@ RESERVED: Mapping[str, str] = MappingProxyType({
                                                                 "jacobian_determinant", "hessian",
                                                                 "bias_acceleration", "manipulability_gradient",
                                                                 "kinematics", "coordinates")},
+    **{name: "a table of the generated C and C++ code" for name in ("joint_names", "joint_types", "lower", "upper",
+                                                                     "tip_frame", "joint")},
 })

@@ -130,6 +130,9 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
     coupled, n = model.coupling is not None, model.n_coordinates
+    # names, tip frame and source take no part in a robot's equality: read them from the robot given, not the one
+    # a cached chain was first built for
+    given = request.robot if isinstance(request.robot, Robot) else model
     derived = derived_functions(infos, n, coupled)
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
@@ -146,8 +149,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
         checks=self_checks(infos),
         request_lines=request_lines(infos),
-        joint_entries=joint_entries(model, spec.identifiers), tip_frame=tip_frame(model),
-        origin=source_words(model, catalog_files()),
+        joint_entries=joint_entries(given, spec.identifiers), tip_frame=tip_frame(given),
+        origin=source_words(given, catalog_files()),
     )
 
 

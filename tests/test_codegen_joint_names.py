@@ -105,11 +105,11 @@ def test_python_modules_expose_the_tables_and_fill_q_from_a_shuffled_name_list(t
     path = tmp_path / f"{robot.name}.py"
     path.write_text(generate(robot, target))
     module = _import(path)
-    assert module.JOINT_NAMES == expected["names"]
-    assert module.JOINT_TYPES == expected["types"]
+    assert expected["names"] == module.JOINT_NAMES
+    assert expected["types"] == module.JOINT_TYPES
     np.testing.assert_allclose(module.LOWER, expected["lower"], rtol=1e-15)
     np.testing.assert_allclose(module.UPPER, expected["upper"], rtol=1e-15)
-    assert module.TIP_FRAME == expected["tip"]
+    assert expected["tip"] == module.TIP_FRAME
     assert {"JOINT_NAMES", "JOINT_TYPES", "LOWER", "UPPER", "TIP_FRAME", "coordinates"} <= set(module.__all__)
     rtol = 1e-7 if target == "jax" else 0.0  # jax.numpy computes in float32 unless x64 is enabled
     for seed in range(3):
@@ -174,7 +174,7 @@ def test_headers_say_the_format_and_the_convention():
 def test_a_name_that_is_not_safe_never_reaches_generated_code(bad):
     urdf = ODD_URDF.replace("slide.1", bad.replace('"', "&quot;"))
     for target in ("python", "c99", "cpp"):
-        with pytest.raises(CodegenError, match="joint name .* cannot appear in generated code"):
+        with pytest.raises(CodegenError, match=r"joint name .* cannot appear in generated code"):
             generate(robot_from_urdf(urdf, source="odd.urdf"), target)
 
 

@@ -18,8 +18,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from symjac import load_robot
+from symjac import load_robot, robot_from_mapping
 from symjac.codegen import CodegenError, ModuleRequest, describe, generate, render_files
+from symjac.errors import RobotFileError
+from symjac.model.io import robot_from_toml, robot_to_toml
 from symjac.model.readers.urdf import robot_from_urdf
 
 PYTHON_TARGETS = ["python", "numpy", "lambdify", "c", "jax", "casadi"]
@@ -311,3 +313,17 @@ def test_cpp_fills_q_from_a_shuffled_name_list_or_a_map_and_exposes_the_tables(t
     n = len(expected["names"])
     _check_table("\n".join(output.splitlines()[:3 + n]), expected, q, _first_missing(names, expected))
     assert output.splitlines()[3 + n:] == [f"0 {0.25 * (n - 1)!r}", "-1"]
+
+
+def test_a_dh_robot_file_may_name_its_joints_and_the_names_survive_writing_it_back():
+    robot = robot_from_mapping({"name": "named", "convention": "modified", "joints": [
+        {"type": "revolute", "name": "waist", "limits": [-1, 2]}, {"type": "prismatic", "alpha": "-pi/2"}]})
+    assert [joint.name for joint in robot.joints] == ["waist", ""]
+    again = robot_from_toml(robot_to_toml(robot))
+    assert [joint.name for joint in again.joints] == ["waist", ""]
+    description = describe(ModuleRequest(again, "python"))
+    assert description.joint_names == ("waist", "d2")
+    assert [(e.type, e.lower, e.upper) for e in description.joint_entries] == [
+        ("revolute", -1.0, 2.0), ("prismatic", -math.inf, math.inf)]
+    with pytest.raises(RobotFileError, match="'name' must be a string"):
+        robot_from_mapping({"name": "named", "convention": "standard", "joints": [{"type": "revolute", "name": 3}]})

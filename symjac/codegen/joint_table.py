@@ -25,7 +25,7 @@ from symjac.model.robot import Robot
 __all__ = ["NAME_PATTERN", "JointEntry", "convention_words", "joint_entries", "name_identifier", "source_words",
            "tip_frame"]
 
-NAME_PATTERN = re.compile(r"[A-Za-z0-9_./:-]{1,128}\Z")
+NAME_PATTERN = re.compile(r"[A-Za-z0-9_./:-]{1,64}\Z")
 """The names a generated module may carry in a string literal: short, ASCII letters, digits, ``_ . / : -``."""
 
 _CONVENTIONS = {
@@ -85,7 +85,7 @@ def joint_entries(robot: Robot, identifiers: IdentifierRule) -> tuple[JointEntry
         joint = by_variable.get(symbol)
         name = joint.name if joint is not None and joint.name else symbol.name
         if not NAME_PATTERN.match(name):
-            raise CodegenError(f"{robot.source}: joint name {name!r} cannot appear in generated code: use at most 128 "
+            raise CodegenError(f"{robot.source}: joint name {name!r} cannot appear in generated code: use at most 64 "
                                "ASCII letters, digits and the characters _ . / : -")
         lower, upper = -math.inf, math.inf
         if joint is not None and joint.limits is not None:
@@ -123,7 +123,7 @@ def tip_frame(robot: Robot) -> str:
     name = robot.tip_frame or end_point(robot)
     if not NAME_PATTERN.match(name):
         raise CodegenError(f"{robot.source}: tip frame name {name!r} cannot appear in generated code: use at most "
-                           "128 ASCII letters, digits and the characters _ . / : -")
+                           "64 ASCII letters, digits and the characters _ . / : -")
     return name
 
 

@@ -105,6 +105,9 @@ def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescri
         raise CodegenError(f"expected a symjac Robot or Chain, got {type(request.robot).__name__}")
     chain = as_chain(request.robot)
     validate_robot(chain.robot, spec.identifiers, request.name)
+    given = request.robot if isinstance(request.robot, Robot) else chain.robot
+    joint_entries(given, spec.identifiers)  # refuse unusable joint and tip names before deriving anything
+    tip_frame(given)
     requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
         raise CodegenError("at least one Jacobian (frame and point) must be requested")

@@ -107,8 +107,10 @@ def test_generated_file_names_stay_in_the_output_folder(tmp_path):
 def test_name_sets_the_module_name_and_is_checked_by_the_target(target, tmp_path):
     files = render_files(describe(ModuleRequest(load_robot("planar2r"), target, name="arm_two")))
     assert all(name.startswith("arm_two.") for name in files)
-    # prefixes, namespace and ROBOT take the name; the robot is still loaded as planar2r by the regenerating call
-    assert all("planar2r" not in text.replace('load_robot("planar2r")', "") for text in files.values())
+    # prefixes, namespace and ROBOT take the name; the robot is still loaded as planar2r by the regenerating call,
+    # and the header names the file it came from
+    assert all("planar2r" not in text.replace('load_robot("planar2r")', "").replace("file (TOML) planar2r.toml", "")
+               for text in files.values())
     assert 'name="arm_two"' in next(iter(files.values()))  # the primary file says how to regenerate
     with pytest.raises(CodegenError, match="module name 'two-arms' is not an ASCII identifier"):
         describe(ModuleRequest(load_robot("planar2r"), target, name="two-arms"))

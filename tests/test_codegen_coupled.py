@@ -178,7 +178,8 @@ def test_header_and_docstring_say_how_the_joints_couple(target):
     robot = _robot("palletizer")
     text = generate(robot, target)
     header = text.split('"""', 1)[0]
-    assert "# Robot: palletizer (modified DH, 5 joints)." in header
+    assert "# Robot: palletizer (5 joints), from " in header
+    assert "# Convention: modified DH (Craig)." in header
     assert "# Coupled joints, driven by 4 coordinates q = (theta1, theta2, theta3, theta5):" in header
     assert "#   theta4 = -theta2 - theta3" in header
     docstring = " ".join(text.split('"""', 2)[1].split())

@@ -205,8 +205,8 @@ def test_the_c_runtime_compiles_alone_and_agrees_with_numpy(tmp_path):
 
     if shutil.which("gcc") is None:
         pytest.skip("gcc is not installed")
-    (tmp_path / "c99.h").write_text("#include <math.h>\n#include <stddef.h>\ntypedef double real;\n#define SJ_DIM 6\n"
-                                    + runtime_source("c99.h"))
+    (tmp_path / "c99.h").write_text("#include <math.h>\n#include <stddef.h>\n#include <string.h>\n"
+                                    "typedef double real;\n#define SJ_DIM 6\n" + runtime_source("c99.h"))
     (tmp_path / "main.c").write_text(C_TEST)
     subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wno-unused-function",
                     "main.c", "-o", "main", "-lm"], cwd=tmp_path, check=True, capture_output=True, text=True)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from symjac.codegen.joint_table import JointEntry, convention_words
 from symjac.codegen.kinds import CHECK_WORDS, COUPLED_WORDS, kind_spec
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import PYTHON_IDENTIFIERS, IdentifierRule
@@ -272,6 +273,9 @@ class ModuleDescription:
     computed by the runtime from others (manipulability, determinant, gradient), ``listing`` every public function
     with its line for the module docstring, in order, ``checks`` the self-test's checks in order and
     ``request_lines`` each requested Jacobian's name with what it is (frame, point, rows), for headers.
+    ``joint_entries`` describe the entries of ``q`` as the robot's source names them (name, identifier-safe variant,
+    type, limits: :class:`~symjac.codegen.joint_table.JointEntry`), ``tip_frame`` names the frame the chain ends at
+    and ``origin`` says where the robot came from (``URDF file ur5.urdf``).
     """
 
     target: str
@@ -297,6 +301,19 @@ class ModuleDescription:
     request_lines: tuple[tuple[str, str], ...] = ()
     coordinate_symbols: tuple[sp.Symbol, ...] = ()
     parameter_symbols: tuple[sp.Symbol, ...] = ()
+    joint_entries: tuple[JointEntry, ...] = ()
+    tip_frame: str = ""
+    origin: str = ""
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """The names of the entries of ``q`` as the robot's source writes them (``JOINT_NAMES``)."""
+        return tuple(entry.name for entry in self.joint_entries)
+
+    @property
+    def convention_words(self) -> str:
+        """The convention as headers say it: ``standard DH``, ``general (fixed origins and joint axes, ...)``."""
+        return convention_words(self.convention)
 
     @property
     def symbols(self) -> tuple[sp.Symbol, ...]:

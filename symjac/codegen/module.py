@@ -30,8 +30,9 @@ from symjac.codegen.functions import (
     scalar_descriptions,
     self_checks,
 )
+from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
 from symjac.codegen.printers import float_literal
-from symjac.codegen.provenance import names_relative_file, robot_loader
+from symjac.codegen.provenance import catalog_files, names_relative_file, robot_loader
 from symjac.codegen.request import (
     STRATEGIES,
     JacobianRequest,
@@ -104,6 +105,9 @@ def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescri
         raise CodegenError(f"expected a symjac Robot or Chain, got {type(request.robot).__name__}")
     chain = as_chain(request.robot)
     validate_robot(chain.robot, spec.identifiers, request.name)
+    given = request.robot if isinstance(request.robot, Robot) else chain.robot
+    joint_entries(given, spec.identifiers)  # refuse unusable joint and tip names before deriving anything
+    tip_frame(given)
     requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
         raise CodegenError("at least one Jacobian (frame and point) must be requested")
@@ -117,7 +121,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     """The module around its functions: robot facts, exported names and the command that regenerates it."""
     model = chain.robot
     spec = backend(request.target)
-    exports = ({"PARAMETERS", "COORDINATES", "JOINTS", "ROBOT", "selftest", *spec.exports}
+    exports = ({"PARAMETERS", "COORDINATES", "JOINTS", "ROBOT", "JOINT_NAMES", "JOINT_TYPES", "LOWER", "UPPER",
+                "TIP_FRAME", "coordinates", "selftest", *spec.exports}
                | {name for name in defined_names(functions, infos) if not name.startswith("_")})
     command, shell = request.command, request.command is not None
     if command is None:
@@ -128,6 +133,9 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
     coupled, n = model.coupling is not None, model.n_coordinates
+    # names, tip frame and source take no part in a robot's equality: read them from the robot given, not the one
+    # a cached chain was first built for
+    given = request.robot if isinstance(request.robot, Robot) else model
     derived = derived_functions(infos, n, coupled)
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
@@ -144,6 +152,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
         checks=self_checks(infos),
         request_lines=request_lines(infos),
+        joint_entries=joint_entries(given, spec.identifiers), tip_frame=tip_frame(given),
+        origin=source_words(given, catalog_files()),
     )
 
 

@@ -16,10 +16,10 @@ import shlex
 from pathlib import Path
 
 from symjac.errors import SymjacError
-from symjac.model.io import catalog, load_robot
+from symjac.model.io import catalog, load_robot, urdf_catalog
 from symjac.model.robot import Robot
 
-__all__ = ["names_relative_file", "robot_loader"]
+__all__ = ["catalog_files", "names_relative_file", "robot_loader"]
 
 
 def robot_loader(robot: Robot) -> tuple[str, str]:
@@ -49,6 +49,12 @@ def robot_loader(robot: Robot) -> tuple[str, str]:
 def _catalog_names() -> frozenset[str]:
     """The catalog's robot names, read once (listing the catalog reads every one of its files)."""
     return frozenset(catalog())
+
+
+@functools.cache
+def catalog_files() -> frozenset[str]:
+    """The file names of the catalog's robots (``planar2r.toml``, ``ur5.urdf``), as their robots' ``source``."""
+    return frozenset(f"{name}.toml" for name in _catalog_names()) | frozenset(urdf_catalog())
 
 
 def _file_stamp(candidate: str) -> tuple[int, int] | None:

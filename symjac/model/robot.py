@@ -135,7 +135,9 @@ class Joint:
 
     Every convention moves joint *i* by :math:`R_z(\theta_i + \theta)\,T_z(d)` (revolute) or
     :math:`R_z(\theta)\,T_z(d_i + d)` (prismatic) about its own axis: ``theta`` and ``d`` are those constant
-    offsets; the constant motions around it come from ``placement``.
+    offsets; the constant motions around it come from ``placement``. ``name`` is the joint's name as the robot file
+    or URDF writes it (empty when it gives none), ``continuous`` whether the file says the joint turns without end
+    (URDF's ``continuous`` type: a revolute joint without ``limits``); like ``name`` it takes no part in equality.
     """
 
     index: int
@@ -145,6 +147,7 @@ class Joint:
     theta: sp.Expr = sp.S.Zero
     limits: tuple[sp.Expr, sp.Expr] | None = None
     name: str = field(default="", compare=False)
+    continuous: bool = field(default=False, compare=False)  # a URDF "continuous" joint: revolute, never limited
 
     @property
     def is_revolute(self) -> bool:
@@ -231,7 +234,8 @@ class Robot:
 
     ``angle_unit`` is the unit the robot file wrote its angles in (``"deg"`` or ``"rad"``, the default): the model
     itself is always in radians; the command line reads a plain ``--q`` number in this unit. Like ``source`` it is
-    where the robot came from, not what it is, so it takes no part in equality.
+    where the robot came from, not what it is, so it takes no part in equality. So is ``tip_frame``, the name the
+    source gives the frame the chain ends at (a URDF's tip link), empty when it names none.
     """
 
     name: str
@@ -245,6 +249,7 @@ class Robot:
     coupling: Coupling | None = None
     inertials: tuple[Inertial | None, ...] = ()
     angle_unit: Literal["rad", "deg"] = field(default="rad", compare=False)
+    tip_frame: str = field(default="", compare=False)
 
     def __post_init__(self) -> None:
         """Refuse bad parameter names, couplings and inertial data.

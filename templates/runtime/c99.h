@@ -8,6 +8,7 @@
  * Tested on its own: tests/test_codegen_runtime.py compiles it with a small driver and compares with numpy.linalg.
  */
 #include <stddef.h>
+#include <string.h>
 #include <tgmath.h>
 
 /* ---- runtime: everything below is copied into every generated module of the target ---- */
@@ -370,4 +371,28 @@ static inline int sj_check_acceleration(int n, int size, const int *rows, sj_map
         failures += sj_differs(out[i], expected, tolerance);
     }
     return failures;
+}
+
+/* ---- runtime section: core ---- */
+
+/* q[i] = the position of joint_names[i] in names and positions (count entries; other names are ignored, the first
+ * of a repeated name counts): 0 when every joint has a value, else 1 + the index of the first without one; -1 for
+ * a NULL array or a negative count. */
+static inline int sj_coordinates_from(const char *const *joint_names, int n, const char *const *names,
+                                      const real *positions, int count, real *q)
+{
+    if (names == NULL || positions == NULL || q == NULL || count < 0) {
+        return -1;
+    }
+    for (int i = 0; i < n; i++) {
+        int k = 0;
+        while (k < count && (names[k] == NULL || strcmp(names[k], joint_names[i]) != 0)) {
+            k++;
+        }
+        if (k == count) {
+            return i + 1;
+        }
+        q[i] = positions[k];
+    }
+    return 0;
 }

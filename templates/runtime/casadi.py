@@ -9,7 +9,7 @@ routines build graphs (SX) from graphs: ``Function.generate()`` sees them as any
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import casadi as ca
 
@@ -126,3 +126,38 @@ def _cholesky_solve(M: ca.SX, b: ca.SX) -> ca.SX:
     """The solution x of M x = b, M symmetric positive definite: M = R^T R (``ca.chol``), R^T y = b, R x = y."""
     R = ca.chol(M)
     return ca.solve(R, ca.solve(R.T, b))
+
+
+# ---- runtime section: core ----
+
+
+def _coordinates_from(joint_names: Sequence[str], values: Mapping[str, float] | Sequence[str],
+                      positions: Sequence[float] | None) -> list[float]:
+    """The coordinate vector, in the order of ``joint_names``, from ``{name: value}`` or from names and positions.
+
+    A mapping must give every joint and nothing else; names with positions (a ROS ``JointState``'s ``name`` and
+    ``position``) must give every joint once, and may give other joints too, which are ignored. Anything missing,
+    repeated or unknown raises ``ValueError`` naming it.
+    """
+    if positions is None:
+        if not isinstance(values, Mapping):
+            raise TypeError(f"give a mapping of joint name to value, or joint names and positions, got "
+                            f"{type(values).__name__}")
+        given = dict(values)
+        unknown = [name for name in given if name not in joint_names]
+        if unknown:
+            raise ValueError(f"unknown joint name(s) {', '.join(map(repr, unknown))}; the joints are "
+                             f"{', '.join(joint_names)}")
+    else:
+        names, numbers = list(values), list(positions)
+        if len(names) != len(numbers):
+            raise ValueError(f"{len(names)} joint names but {len(numbers)} positions")
+        given = {}
+        for name, number in zip(names, numbers, strict=True):
+            if name in given:
+                raise ValueError(f"joint name {name!r} is given twice")
+            given[name] = number
+    missing = [name for name in joint_names if name not in given]
+    if missing:
+        raise ValueError(f"no value for joint(s) {', '.join(missing)}")
+    return [float(given[name]) for name in joint_names]

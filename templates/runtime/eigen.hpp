@@ -10,6 +10,10 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -103,6 +107,60 @@ Eigen::Matrix<Scalar, N, 1> cholesky_solve(const Eigen::Matrix<Scalar, N, N>& M,
 // ---- runtime section: acceleration ----
 
 // ---- runtime section: core ----
+
+// q[i] = the position of joint_names[i] in names and positions (other names are ignored, the first of a repeated
+// name counts): 0 when every joint has a value, else 1 + the index of the first without one; -1 if the sizes differ.
+template <class Scalar, std::size_t N, int Rows>
+int coordinates_from(const std::array<const char*, N>& joint_names, const std::vector<std::string>& names,
+                     const std::vector<Scalar>& positions, Eigen::Matrix<Scalar, Rows, 1>& q)
+{
+    static_assert(static_cast<std::size_t>(Rows) == N, "q has one entry per joint name");
+    if (names.size() != positions.size()) {
+        return -1;
+    }
+    for (std::size_t i = 0; i < N; ++i) {
+        std::size_t k = 0;
+        while (k < names.size() && std::strcmp(names[k].c_str(), joint_names[i]) != 0) {
+            ++k;
+        }
+        if (k == names.size()) {
+            return static_cast<int>(i) + 1;
+        }
+        q(static_cast<Eigen::Index>(i)) = positions[k];
+    }
+    return 0;
+}
+
+// q[i] = values[joint_names[i]]: 0 when every joint has a value, else 1 + the index of the first without one; -1
+// if values names a joint not in joint_names.
+template <class Scalar, std::size_t N, int Rows>
+int coordinates_from(const std::array<const char*, N>& joint_names, const std::map<std::string, Scalar>& values,
+                     Eigen::Matrix<Scalar, Rows, 1>& q)
+{
+    static_assert(static_cast<std::size_t>(Rows) == N, "q has one entry per joint name");
+    for (const auto& entry : values) {
+        std::size_t i = 0;
+        while (i < N && std::strcmp(entry.first.c_str(), joint_names[i]) != 0) {
+            ++i;
+        }
+        if (i == N) {
+            return -1;
+        }
+    }
+    for (std::size_t i = 0; i < N; ++i) {
+        std::size_t found = N;
+        for (const auto& entry : values) {
+            if (std::strcmp(entry.first.c_str(), joint_names[i]) == 0) {
+                q(static_cast<Eigen::Index>(i)) = entry.second;
+                found = i;
+            }
+        }
+        if (found == N) {
+            return static_cast<int>(i) + 1;
+        }
+    }
+    return 0;
+}
 
 }  // namespace runtime
 // ---- end of runtime ----

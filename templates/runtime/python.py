@@ -10,7 +10,7 @@ Matrices are sequences of rows; every routine is a plain loop over floats.
 from __future__ import annotations
 
 import random
-from collections.abc import Callable, Sequence, Sized
+from collections.abc import Callable, Mapping, Sequence, Sized
 from math import pi, sqrt
 from typing import Any
 
@@ -256,3 +256,38 @@ def _cholesky_solve(matrix: Sequence[Sequence[float]], right: Sequence[float]) -
 def _length_error(name: str, value: object, length: int) -> str:
     got = f"{len(value)} values" if isinstance(value, Sized) else type(value).__name__
     return f"{name} must be a sequence of {length} numbers, got {got}"
+
+
+# ---- runtime section: core ----
+
+
+def _coordinates_from(joint_names: Sequence[str], values: Mapping[str, float] | Sequence[str],
+                      positions: Sequence[float] | None) -> list[float]:
+    """The coordinate vector, in the order of ``joint_names``, from ``{name: value}`` or from names and positions.
+
+    A mapping must give every joint and nothing else; names with positions (a ROS ``JointState``'s ``name`` and
+    ``position``) must give every joint once, and may give other joints too, which are ignored. Anything missing,
+    repeated or unknown raises ``ValueError`` naming it.
+    """
+    if positions is None:
+        if not isinstance(values, Mapping):
+            raise TypeError(f"give a mapping of joint name to value, or joint names and positions, got "
+                            f"{type(values).__name__}")
+        given = dict(values)
+        unknown = [name for name in given if name not in joint_names]
+        if unknown:
+            raise ValueError(f"unknown joint name(s) {', '.join(map(repr, unknown))}; the joints are "
+                             f"{', '.join(joint_names)}")
+    else:
+        names, numbers = list(values), list(positions)
+        if len(names) != len(numbers):
+            raise ValueError(f"{len(names)} joint names but {len(numbers)} positions")
+        given = {}
+        for name, number in zip(names, numbers, strict=True):
+            if name in given:
+                raise ValueError(f"joint name {name!r} is given twice")
+            given[name] = number
+    missing = [name for name in joint_names if name not in given]
+    if missing:
+        raise ValueError(f"no value for joint(s) {', '.join(missing)}")
+    return [float(given[name]) for name in joint_names]

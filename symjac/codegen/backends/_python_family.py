@@ -8,6 +8,7 @@ out. The registry skips this module (a leading underscore: not a target).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -199,6 +200,17 @@ class PythonModule:
         return (*names, "JOINTS = COORDINATES  # the older name of the same tuple")
 
     @property
+    def joint_lines(self) -> tuple[str, ...]:
+        """``JOINT_NAMES``, ``JOINT_TYPES``, ``LOWER``, ``UPPER`` and ``TIP_FRAME`` as Python source lines."""
+        entries = self.description.joint_entries
+        lines = [*tuple_lines("JOINT_NAMES = ", (f'"{entry.name}"' for entry in entries)),
+                 *tuple_lines("JOINT_TYPES = ", (f'"{entry.type}"' for entry in entries)),
+                 *tuple_lines("LOWER = ", (_bound(entry.lower) for entry in entries)),
+                 *tuple_lines("UPPER = ", (_bound(entry.upper) for entry in entries)),
+                 f'TIP_FRAME = "{self.description.tip_frame}"']
+        return tuple(lines)
+
+    @property
     def revolute_lines(self) -> tuple[str, ...]:
         """``_REVOLUTE = (True, False)`` as Python source lines."""
         return tuple(tuple_lines("_REVOLUTE = ", (str(flag) for flag in self.description.revolute)))
@@ -209,6 +221,11 @@ class PythonModule:
         names = self.description.parameter_names
         return tuple(wrap_statement("    parameters = ", "(" + ", ".join(names) + ("," if len(names) == 1 else "")
                                     + ")"))
+
+
+def _bound(value: float) -> str:
+    """A position limit as Python source: ``-6.283185307179586``, ``float("inf")`` when there is none."""
+    return repr(value) if math.isfinite(value) else f'float("{value}")'
 
 
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),

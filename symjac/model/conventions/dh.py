@@ -53,15 +53,19 @@ def dh_cells(joint: Joint) -> tuple[Cell, ...]:
 
 
 def read_dh(table: Mapping[str, Any], reader: JointReader) -> tuple[DHPlacement, str]:
-    """``alpha`` (an angle) and ``a`` of one robot-file joint table."""
-    return DHPlacement(alpha=reader.number("alpha", angle=True), a=reader.number("a")), ""
+    """``alpha`` (an angle) and ``a`` of one robot-file joint table, and its optional ``name``."""
+    name = table.get("name", "")
+    if not isinstance(name, str):
+        raise reader.fail("'name' must be a string", "name")
+    return DHPlacement(alpha=reader.number("alpha", angle=True), a=reader.number("a")), name
 
 
 def write_dh(joint: Joint) -> dict[str, Any]:
-    """Every field of a DH row, zeros included."""
+    """Every field of a DH row, zeros included, after the joint's ``name`` when it has one."""
     placement = dh_placement(joint)
-    return {key: expression_text(value) for key, value in
-            (("alpha", placement.alpha), ("a", placement.a), ("d", joint.d), ("theta", joint.theta))}
+    row: dict[str, Any] = {"name": joint.name} if joint.name else {}
+    return row | {key: expression_text(value) for key, value in
+                  (("alpha", placement.alpha), ("a", placement.a), ("d", joint.d), ("theta", joint.theta))}
 
 
 def dh_forms(robot: Robot, *, normal_first: bool) -> tuple[JointForm, ...]:

@@ -22,7 +22,7 @@ class ModifiedDH(NoRobotFields):
 
     convention = Convention.MODIFIED
     table_name = "modified Denavit-Hartenberg table"
-    keys: tuple[str, ...] = ("alpha", "a")
+    keys: tuple[str, ...] = ("alpha", "a", "name")
     columns: tuple[Column, ...] = dh_columns("i-1")
 
     def read(self, table: Mapping[str, Any], reader: JointReader) -> tuple[DHPlacement, str]:

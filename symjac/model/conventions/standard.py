@@ -42,7 +42,7 @@ class StandardDH(NoRobotFields):
 
     convention = Convention.STANDARD
     table_name = "standard Denavit-Hartenberg table"
-    keys: tuple[str, ...] = ("alpha", "a")
+    keys: tuple[str, ...] = ("alpha", "a", "name")
     columns: tuple[Column, ...] = dh_columns("i")
 
     def read(self, table: Mapping[str, Any], reader: JointReader) -> tuple[DHPlacement, str]:

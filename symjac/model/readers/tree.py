@@ -380,7 +380,8 @@ def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str,
                                      None if tuple(axis) == (0, 0, 1) else axis)
         bounds = tree_joint.limits.bounds if tree_joint.limits is not None else None
         joints.append(Joint(index=len(joints) + 1, type=_MOVING[tree_joint.type], placement=placement,
-                            limits=bounds, name=tree_joint.name))
+                            limits=bounds, name=tree_joint.name,
+                            continuous=tree_joint.type is TreeJointType.CONTINUOUS))
     last_alignment = alignment(placement.unit_axis)
     tool = _combine(pending, list(inverse_motions(last_alignment)))
     moving = [joint for joint in path if joint.type in _MOVING]
@@ -395,7 +396,7 @@ def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str,
     # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
     robot = Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
                   description=f"from {Path(source).name}", tool=None if tool == FixedTransform() else tool,
-                  source=source, inertials=inertials if any(inertials) else ())
+                  source=source, inertials=inertials if any(inertials) else (), tip_frame=path[-1].child)
     return _coupled(robot, moving, all_joints, {joint.name for joint in path}, source)
 
 

@@ -31,7 +31,7 @@ from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
 from symjac.resources import render_template
 
-__all__ = ["BACKEND", "C99_KEYWORDS", "IDENTIFIERS", "LIBRARY_NAMES", "render"]
+__all__ = ["BACKEND", "C99_KEYWORDS", "IDENTIFIERS", "LIBRARY_NAMES", "joint_arrays", "render"]
 
 C99_KEYWORDS = C_KEYWORDS | {"_Bool", "_Complex", "_Imaginary"}
 
@@ -52,6 +52,19 @@ IDENTIFIERS = IdentifierRule.of("C", C99_KEYWORDS, LIBRARY_NAMES | GENERATED_NAM
 the names the generated files use themselves, and no name starting with ``sj_`` (their helpers and function bodies:
 a robot ``sj_body`` would name its Jacobian like the Jacobian's body)."""
 
+def joint_arrays(description: ModuleDescription) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """The source file's joint tables: (declaration head, printed entries) for names, types, lower and upper limits."""
+    prefix, entries = description.robot, description.joint_entries
+
+    def bound(value: float) -> str:
+        return float_literal(value) if math.isfinite(value) else ("INFINITY" if value > 0 else "-INFINITY")
+
+    return ((f"const char *const {prefix}_joint_names", tuple(f'"{e.name}"' for e in entries)),
+            (f"const char *const {prefix}_joint_types", tuple(f'"{e.type}"' for e in entries)),
+            (f"const real {prefix}_lower", tuple(bound(e.lower) for e in entries)),
+            (f"const real {prefix}_upper", tuple(bound(e.upper) for e in entries)))
+
+
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header and the source file: ``{"<robot>.h": ..., "<robot>.c": ...}``."""
     dialect = dataclasses.replace(C_DIALECT, reserved=C99_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES)
@@ -70,6 +83,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "c_names": lambda names: [f"{description.robot}{'' if name.startswith('_') else '_'}{name}" for name in names],
         "runtime": runtime_source(backend.runtime, description.runtime_sections).rstrip("\n"),
         "block_comment": block_comment,
+        "joint_arrays": joint_arrays(description),
         **header_comments(description),
     }
     header, source = (name.format(robot=description.robot) for name in backend.files)

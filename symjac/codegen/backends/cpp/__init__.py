@@ -11,6 +11,7 @@ are those of the c99 target (:mod:`symjac.codegen.backends._c_family`), with C++
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 from symjac.codegen.backends._c_family import Dialect, c_function, header_comments, line_comment
@@ -22,7 +23,7 @@ from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
 from symjac.resources import render_template
 
-__all__ = ["BACKEND", "CPP_KEYWORDS", "IDENTIFIERS", "cpp_type", "render"]
+__all__ = ["BACKEND", "CPP_KEYWORDS", "IDENTIFIERS", "cpp_type", "joint_arrays", "render"]
 
 CPP_KEYWORDS = C99_KEYWORDS | {
     "alignas", "alignof", "and", "and_eq", "asm", "bitand", "bitor", "bool", "catch", "char16_t", "char32_t",
@@ -67,6 +68,20 @@ DIALECT = Dialect(CPP_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES, CppPrinter, la
 """C++: parameters as members of ``Params``, outputs as Eigen matrices (Hessians as arrays of slices)."""
 
 
+def joint_arrays(description: ModuleDescription) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """The header's joint tables: (declaration head, printed entries) for names, types, lower and upper limits."""
+    entries, n = description.joint_entries, description.n_coordinates
+    infinity = "std::numeric_limits<double>::infinity()"
+
+    def bound(value: float) -> str:
+        return float_literal(value) if math.isfinite(value) else (infinity if value > 0 else f"-{infinity}")
+
+    return ((f"inline constexpr std::array<const char*, {n}> joint_names", tuple(f'"{e.name}"' for e in entries)),
+            (f"inline constexpr std::array<const char*, {n}> joint_types", tuple(f'"{e.type}"' for e in entries)),
+            (f"inline constexpr std::array<double, {n}> lower", tuple(bound(e.lower) for e in entries)),
+            (f"inline constexpr std::array<double, {n}> upper", tuple(bound(e.upper) for e in entries)))
+
+
 def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
     """The header: ``{"<robot>.hpp": ...}``."""
     functions = tuple(c_function(description, f, DIALECT) for f in description.functions if not f.name.startswith("_"))
@@ -77,6 +92,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "defaults": tuple(float_literal(value) for _, value in description.parameters),
         "line_comment": line_comment,
         "cpp_type": cpp_type,
+        "joint_arrays": joint_arrays(description),
         "runtime": runtime_source(backend.runtime, description.runtime_sections).rstrip("\n"),
         **header_comments(description),
     }

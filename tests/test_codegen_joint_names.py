@@ -172,6 +172,21 @@ def test_headers_say_the_format_and_the_convention():
     assert "from URDF file odd.urdf." in generate(odd_robot(), "python")
 
 
+def test_the_format_is_the_readers_and_a_file_name_never_breaks_a_comment(tmp_path):
+    mjcf = Path(__file__).parent / "data" / "mjcf" / "arm6" / "arm6.xml"
+    assert "from MJCF file arm6.xml." in generate(load_robot(mjcf), "python")
+    # a URDF file called .xml is URDF (the reader says so, not the suffix)
+    urdf = tmp_path / "arm.xml"
+    urdf.write_text(ODD_URDF, encoding="utf-8")
+    assert "from URDF file arm.xml." in generate(load_robot(urdf), "python")
+    # a file name with a newline would break out of a header comment: only plain characters remain
+    hostile = tmp_path / "x\nimport os; #.urdf"
+    hostile.write_text(ODD_URDF, encoding="utf-8")
+    for target in ("python", "c99"):
+        text = generate(load_robot(hostile), target)
+        assert "\nimport os" not in text and "from URDF file x_import_os___.urdf." in text
+
+
 @pytest.mark.parametrize("bad", ['a"b', "a\\b", "a b", "ä", "a;b", "x" * 65])
 def test_a_name_that_is_not_safe_never_reaches_generated_code(bad):
     urdf = ODD_URDF.replace("slide.1", bad.replace('"', "&quot;"))

@@ -28,6 +28,7 @@ __all__ = ["NAME_PATTERN", "JointEntry", "convention_words", "joint_entries", "n
 NAME_PATTERN = re.compile(r"[A-Za-z0-9_./:-]{1,64}\Z")
 """The names a generated module may carry in a string literal: short, ASCII letters, digits, ``_ . / : -``."""
 
+_FORMATS = {"URDF": "URDF file", "MJCF": "MJCF file", "TOML robot file": "robot file (TOML)"}
 _CONVENTIONS = {
     "standard": "standard DH",
     "modified": "modified DH (Craig)",
@@ -149,9 +150,12 @@ def source_words(robot: Robot, catalog_files: frozenset[str] = frozenset()) -> s
         return {"<mapping>": "a mapping", "<string>": "a robot-file string"}.get(
             source, f"a {source.strip('<>').upper()} string")
     path = Path(source)
-    name = path.name if len(path.name) <= 60 else path.name[:57] + "..."  # a header line has room for 60
-    kind = {".urdf": "URDF file", ".xml": "MJCF file", ".mjcf": "MJCF file",
-            ".toml": "robot file (TOML)"}.get(path.suffix.lower(), "file")
+    # a file name is the user's: only plain characters reach a comment (a newline would end a Python comment, and
+    # "*/" a C one), and a header line has room for 60
+    name = re.sub(r"[^A-Za-z0-9_.+-]", "_", path.name)
+    name = name if len(name) <= 60 else name[:57] + "..."
+    kind = _FORMATS.get(robot.source_format) or {".urdf": "URDF file", ".xml": "XML file", ".mjcf": "MJCF file",
+                                                 ".toml": "robot file (TOML)"}.get(path.suffix.lower(), "file")
     if source in catalog_files and not path.is_file():
         return f"the symjac catalog's {kind} {name}"
     return f"{kind} {name}"

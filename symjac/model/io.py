@@ -12,6 +12,7 @@ import json
 import re
 import sys
 import tomllib
+from dataclasses import replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -170,7 +171,7 @@ def robot_from_toml(text: str, source: str = "<string>") -> Robot:
     if not data:  # blank, or only comments
         raise RobotFileError("the file is empty: a robot file needs 'name', 'convention' and [[joints]]",
                              source=source)
-    return robot_from_mapping(data, source=source)
+    return replace(robot_from_mapping(data, source=source), source_format="TOML robot file")
 
 
 def _huge_integer(text: str, source: str) -> RobotFileError:

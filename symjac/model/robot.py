@@ -235,7 +235,9 @@ class Robot:
     ``angle_unit`` is the unit the robot file wrote its angles in (``"deg"`` or ``"rad"``, the default): the model
     itself is always in radians; the command line reads a plain ``--q`` number in this unit. Like ``source`` it is
     where the robot came from, not what it is, so it takes no part in equality. So is ``tip_frame``, the name the
-    source gives the frame the chain ends at (a URDF's tip link), empty when it names none.
+    source gives the frame the chain ends at (a URDF's tip link), empty when it names none, and ``source_format``,
+    the format the robot was read from (a reader's name: ``"URDF"``, ``"MJCF"``, ``"TOML robot file"``; empty for a
+    robot built in Python).
     """
 
     name: str
@@ -250,6 +252,7 @@ class Robot:
     inertials: tuple[Inertial | None, ...] = ()
     angle_unit: Literal["rad", "deg"] = field(default="rad", compare=False)
     tip_frame: str = field(default="", compare=False)
+    source_format: str = field(default="", compare=False)
 
     def __post_init__(self) -> None:
         """Refuse bad parameter names, couplings and inertial data.

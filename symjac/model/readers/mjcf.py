@@ -37,7 +37,7 @@ problem raises :class:`~symjac.errors.RobotFileError` naming the file and the el
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import sympy as sp
@@ -136,7 +136,8 @@ def robot_from_mjcf(content: str | bytes, source: str = "<mjcf>", base_link: str
                              (*tree.joints, TreeJoint(f"{tip_link} (fixed)", TreeJointType.FIXED, body, tip_link,
                                                       fixed_transform_from_matrix(T))))
     try:
-        return robot_from_tree(tree, source, base_link=base_link, tip_link=tip_link, name=name)
+        return replace(robot_from_tree(tree, source, base_link=base_link, tip_link=tip_link, name=name),
+                       source_format="MJCF")
     except RobotFileError as error:
         joint = (error.field or "").removeprefix("joint ")
         if joint in model.refused:  # a ball or free joint on the chain: say why, in MJCF's words

@@ -38,6 +38,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
+from dataclasses import replace
 from pathlib import Path
 
 import sympy as sp
@@ -117,8 +118,9 @@ def robot_from_urdf(
     >>> robot.joints[0].limits, robot.joints[0].placement.axis
     ((-pi/2, pi/2), (0, 1, 0))
     """
-    return robot_from_tree(tree_from_urdf(content, source, max_bytes=max_bytes), source, base_link=base_link,
-                           tip_link=tip_link, name=name)
+    robot = robot_from_tree(tree_from_urdf(content, source, max_bytes=max_bytes), source, base_link=base_link,
+                            tip_link=tip_link, name=name)
+    return replace(robot, source_format="URDF")
 
 
 def tree_from_urdf(content: str | bytes, source: str = "<urdf>", *, max_bytes: int = MAX_URDF_BYTES) -> KinematicTree:

@@ -101,6 +101,9 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.codegen import JacobianRequest as JacobianRequest
     from symjac.codegen import generate as generate
     from symjac.codegen import write_module as write_module
+    from symjac.codegen.numeric_model import NumericModel as NumericModel
+    from symjac.codegen.numeric_model import numeric_jacobian as numeric_jacobian
+    from symjac.codegen.numeric_model import numeric_model as numeric_model
     from symjac.drawing.animation import animate as animate
     from symjac.drawing.animation import joint_path as joint_path
     from symjac.drawing.figure import ArmDrawing as ArmDrawing
@@ -144,7 +147,6 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.kinematics.jacobian import rows_from_names as rows_from_names
     from symjac.kinematics.jacobian import shift_point as shift_point
     from symjac.kinematics.numeric import evaluate_at as evaluate_at
-    from symjac.kinematics.numeric import numeric_jacobian as numeric_jacobian
     from symjac.kinematics.points import point_position as point_position
     from symjac.kinematics.propagation import ForcePropagation as ForcePropagation
     from symjac.kinematics.propagation import VelocityPropagation as VelocityPropagation

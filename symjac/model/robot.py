@@ -33,6 +33,7 @@ import sympy as sp
 from symjac.errors import RobotFileError
 from symjac.model.coordinates import Coupling, acceleration_symbol, coupling_problem, rate_symbol
 from symjac.model.expressions import snap_angle
+from symjac.model.hashing import cached_hash
 from symjac.model.inertia import Inertial, inertial_problem
 from symjac.symbolic.transforms import homogeneous, rotation_rpy
 
@@ -245,6 +246,7 @@ class Robot:
     coupling: Coupling | None = None
     inertials: tuple[Inertial | None, ...] = ()
     angle_unit: Literal["rad", "deg"] = field(default="rad", compare=False)
+    __hash__ = cached_hash  # computed once: every cached derivation looks its chain up by it
 
     def __post_init__(self) -> None:
         """Refuse bad parameter names, couplings and inertial data.

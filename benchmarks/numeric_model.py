@@ -93,7 +93,7 @@ def single_table(models: dict[str, Any], seconds: float) -> None:
     qs = q.tolist()
     rows.append(("symjac.numeric_jacobian (numpy)", us(lambda: symjac.numeric_jacobian(puma, qs)),
                  us(lambda: symjac.numeric_jacobian(ur5, qs, "world", "tool")), "-"))
-    rows.append(("sympy.lambdify path (before)", us(lambda: lambdified_jacobian(puma, qs)),
+    rows.append(("sympy.lambdify path (the analyses')", us(lambda: lambdified_jacobian(puma, qs)),
                  us(lambda: lambdified_jacobian(ur5, qs, "world", "tool")), "-"))
     if pin is not None:
         model = pin.buildModelFromUrdf(str(URDF))

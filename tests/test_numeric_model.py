@@ -116,14 +116,17 @@ def test_forward_kinematics_is_the_end_of_the_chain_in_frame_0(name, backend):
 def test_a_batch_of_any_shape_equals_the_loop_and_fills_out(backend):
     robot = load_robot("stanford")
     model = _model(robot, "tool", "wrist_centre", backend)
-    q = np.array([random_configuration(robot, np.random.default_rng(k)) for k in range(6)]).reshape(2, 3, 6)
+    # 40 configurations: more than the numpy backend evaluates one by one in plain Python floats
+    q = np.array([random_configuration(robot, np.random.default_rng(k)) for k in range(40)]).reshape(5, 8, 6)
     J = model.jacobian(q)
-    assert J.shape == (2, 3, 6, 6)
+    assert J.shape == (5, 8, 6, 6)
     loop = np.array([[model.jacobian(row) for row in rows] for rows in q])
     np.testing.assert_allclose(J, loop, rtol=0, atol=1e-14)
-    out = np.empty((2, 3, 4, 4))
+    out = np.empty((5, 8, 4, 4))
     assert model.fk(q, out=out) is out
     np.testing.assert_allclose(out, [[model.fk(row) for row in rows] for rows in q], rtol=0, atol=1e-14)
+    few = q[0]  # eight configurations: one by one in plain Python floats for the numpy backend
+    np.testing.assert_allclose(model.jacobian(few), J[0], rtol=0, atol=1e-14)
     single = np.empty((6, 6))
     assert model.jacobian(q[0, 0], out=single) is single
     np.testing.assert_allclose(single, J[0, 0], rtol=0, atol=1e-14)

@@ -101,26 +101,35 @@ class NumericModel:
     def _call(self, function: str, q: Any, out: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:
         values = q if type(q) is np.ndarray and q.dtype == np.float64 else _as_array(q)
         n = len(self.names)
-        if values.ndim == 1 and values.shape[0] == n:
-            entries = values.tolist()
-            # a sum of finite numbers is finite unless it overflows (then the exact check below decides): 0.15 us
-            # against 1 us for numpy.isfinite on six numbers
-            if not math.isfinite(sum(entries)) and not np.isfinite(values).all():
-                raise ArgumentError(f"q must be finite; {_first_bad(values)}")
-        elif values.ndim == 0 or values.shape[-1] != n:
+        if values.ndim == 0 or values.shape[-1] != n:
             raise ArgumentError(f"q must have shape ({n},) or (N, {n}) for {self.robot} ({', '.join(self.names)}), "
                                 f"got shape {values.shape}")
-        elif not np.isfinite(values).all():
+        small = values.size <= _SMALL * n
+        entries = values.ravel().tolist() if small else []
+        # a sum of finite numbers is finite unless it overflows (then numpy.isfinite decides): 0.15 us for six
+        # numbers, where numpy.isfinite costs 1 us
+        if not (small and math.isfinite(sum(entries))) and not np.isfinite(values).all():
             raise ArgumentError(f"q must be finite; {_first_bad(values)}")
         if out is not None:
             _check_out(out, (*values.shape[:-1], *shape))
-        if self._single is not None and values.ndim == 1:  # plain Python floats: no NumPy overhead per operation
-            result = getattr(self._single, function)(entries)
-            if out is None:
-                return np.array(result)
-            out[...] = result
-            return out
-        return getattr(self._batch, function)(values, out)  # type: ignore[no-any-return]
+        if self._single is None or not small:
+            return getattr(self._batch, function)(values, out)  # type: ignore[no-any-return]
+        # plain Python floats for one configuration or a few: NumPy costs 50-80 us a call on tiny arrays
+        single = getattr(self._single, function)
+        if values.ndim == 1:
+            result = np.array(single(entries))
+        else:
+            results = [single(entries[k:k + n]) for k in range(0, len(entries), n)]
+            result = np.array(results).reshape(*values.shape[:-1], *shape)
+        if out is None:
+            return result
+        out[...] = result
+        return out
+
+
+_SMALL = 16
+"""Up to this many configurations, the numpy backend evaluates them one by one in plain Python floats (about 3 us
+each for a 6-joint arm, where a NumPy call costs 50-80 us however few there are)."""
 
 
 def _check_out(out: Any, expected: tuple[int, ...]) -> None:

@@ -28,6 +28,7 @@ from symjac import (
     load_robot,
     numeric_jacobian,
     numeric_model,
+    robot_from_mapping,
 )
 from symjac.kinematics.points import point_vector
 
@@ -197,3 +198,17 @@ def test_numeric_jacobian_is_the_model_one_configuration_or_a_batch(name):
                                   model.jacobian(batch[0]))
     with pytest.raises(ArgumentError, match="must be finite"):
         numeric_jacobian(robot, [float("nan")] * robot.n_coordinates)
+
+
+def test_numeric_jacobian_of_a_robot_generated_code_cannot_name_evaluates_through_lambdify():
+    robot = robot_from_mapping({"name": "arm", "convention": "standard", "parameters": {"seed": 0.5, "L2": 0.4},
+                                "joints": [{"type": "revolute", "alpha": 0, "a": "seed", "d": 0, "theta": 0},
+                                           {"type": "revolute", "alpha": 0, "a": "L2", "d": 0, "theta": 0}]})
+    with pytest.raises(CodegenError, match="seed"):  # an argument of every generated selftest
+        numeric_model(robot, backend="numpy")
+    batch = np.array([[0.0, 1.5707963267948966], [0.3, -0.2]])
+    J = numeric_jacobian(robot, batch)
+    assert J.shape == (2, 6, 2)
+    np.testing.assert_allclose(J[0, :2], [[-0.4, -0.4], [0.5, 0.0]], atol=1e-12)
+    np.testing.assert_allclose(J[1], finite_difference_jacobian(robot, batch[1]), atol=1e-6)
+    np.testing.assert_allclose(numeric_jacobian(robot, batch[1].tolist()), J[1], atol=1e-15)

@@ -9,7 +9,8 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 :func:`body_jacobian`, :func:`screw_exponential`, :func:`exponential_product`, :func:`adjoint`), singular configurations
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
 :func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`); print them
-(:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`).
+(:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`), or compile
+one in memory (:func:`numeric_model`, :func:`numeric_jacobian`).
 
 Every name is imported on first use (PEP 562), so ``import symjac`` costs nothing until a name is asked for and
 ``symjac --version`` does not load SymPy; ``from symjac import jacobian``, ``symjac.jacobian`` and ``dir(symjac)``

@@ -56,7 +56,7 @@ class NumericModel:
     reach the kernels; ``out=``, a C-contiguous float64 array of the result's shape, is written and returned
     without allocating.
 
-    Attributes
+    Parameters
     ----------
     robot : str
         The robot's name.

@@ -80,6 +80,13 @@ class NumericModel:
     note: str
     _batch: types.ModuleType = field(repr=False)
     _single: types.ModuleType | None = field(repr=False)
+    _one: tuple[int] = field(init=False, repr=False)  # the shape of one configuration
+    _fast: tuple[Any, Any] | None = field(init=False, repr=False)  # C's fk and jacobian, for the common call
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_one", (len(self.names),))
+        fast = (self._batch.forward_kinematics, self._batch.jacobian) if self._single is None else None
+        object.__setattr__(self, "_fast", fast)
 
     @property
     def n(self) -> int:
@@ -92,11 +99,18 @@ class NumericModel:
         The end is the tool frame when the robot has a tool, else frame {n}, as for
         :func:`~symjac.kinematics.chain.forward_kinematics` with ``target="tool"`` where there is one.
         """
+        # the common call (C, one float64 configuration, no out) checked inline: every call from Python costs
+        if (self._fast is not None and out is None and type(q) is np.ndarray and q.shape == self._one
+                and q.dtype is _FLOAT64 and math.isfinite(sum(q.tolist()))):
+            return self._fast[0](q, None)  # type: ignore[no-any-return]
         return self._call("forward_kinematics", q, out, (4, 4))
 
     def jacobian(self, q: Any, out: np.ndarray | None = None) -> np.ndarray:
         """The basic Jacobian [v; omega] in :attr:`frame` at :attr:`point`: shape (6, n), or (..., 6, n)."""
-        return self._call("jacobian", q, out, (6, self.n))
+        if (self._fast is not None and out is None and type(q) is np.ndarray and q.shape == self._one
+                and q.dtype is _FLOAT64 and math.isfinite(sum(q.tolist()))):
+            return self._fast[1](q, None)  # type: ignore[no-any-return]
+        return self._call("jacobian", q, out, (6, len(self.names)))
 
     def _call(self, function: str, q: Any, out: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:
         values = q if type(q) is np.ndarray and q.dtype == np.float64 else _as_array(q)
@@ -130,6 +144,11 @@ class NumericModel:
 _SMALL = 16
 """Up to this many configurations, the numpy backend evaluates them one by one in plain Python floats (about 3 us
 each for a 6-joint arm, where a NumPy call costs 50-80 us however few there are)."""
+
+
+_FLOAT64 = np.dtype(np.float64)
+"""NumPy's float64 dtype: arrays of native doubles share this one object, so ``is`` tests it (anything else takes the
+general path)."""
 
 
 def _check_out(out: Any, expected: tuple[int, ...]) -> None:

@@ -128,6 +128,11 @@ def test_a_batch_of_any_shape_equals_the_loop_and_fills_out(backend):
     np.testing.assert_allclose(out, [[model.fk(row) for row in rows] for rows in q], rtol=0, atol=1e-14)
     few = q[0]  # eight configurations: one by one in plain Python floats for the numpy backend
     np.testing.assert_allclose(model.jacobian(few), J[0], rtol=0, atol=1e-14)
+    with pytest.raises(ArgumentError, match=r"q\[2\] is nan"):  # the common call's own check
+        model.jacobian(np.array([0.1, 0.2, np.nan, 0.3, 0.4, 0.5]))
+    with pytest.raises(ArgumentError, match=r"q\[0\] is -inf"):
+        model.fk(np.array([-np.inf, 0.2, 0.5, 0.3, 0.4, 0.5]))
+    np.testing.assert_array_equal(model.fk(np.arange(6)), model.fk(np.arange(6.0)))  # integers become floats
     single = np.empty((6, 6))
     assert model.jacobian(q[0, 0], out=single) is single
     np.testing.assert_allclose(single, J[0, 0], rtol=0, atol=1e-14)

@@ -9,7 +9,8 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 :func:`body_jacobian`, :func:`screw_exponential`, :func:`exponential_product`, :func:`adjoint`), singular configurations
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
 :func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`); print them
-(:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`).
+(:func:`latex`) and generate fast numeric modules from them (:func:`generate`, :func:`write_module`), or compile
+one in memory (:func:`numeric_model`, :func:`numeric_jacobian`).
 
 Every name is imported on first use (PEP 562), so ``import symjac`` costs nothing until a name is asked for and
 ``symjac --version`` does not load SymPy; ``from symjac import jacobian``, ``symjac.jacobian`` and ``dir(symjac)``
@@ -101,6 +102,9 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.codegen import JacobianRequest as JacobianRequest
     from symjac.codegen import generate as generate
     from symjac.codegen import write_module as write_module
+    from symjac.codegen.numeric_model import NumericModel as NumericModel
+    from symjac.codegen.numeric_model import numeric_jacobian as numeric_jacobian
+    from symjac.codegen.numeric_model import numeric_model as numeric_model
     from symjac.drawing.animation import animate as animate
     from symjac.drawing.animation import joint_path as joint_path
     from symjac.drawing.figure import ArmDrawing as ArmDrawing
@@ -144,7 +148,6 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.kinematics.jacobian import rows_from_names as rows_from_names
     from symjac.kinematics.jacobian import shift_point as shift_point
     from symjac.kinematics.numeric import evaluate_at as evaluate_at
-    from symjac.kinematics.numeric import numeric_jacobian as numeric_jacobian
     from symjac.kinematics.points import point_position as point_position
     from symjac.kinematics.propagation import ForcePropagation as ForcePropagation
     from symjac.kinematics.propagation import VelocityPropagation as VelocityPropagation

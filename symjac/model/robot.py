@@ -33,6 +33,7 @@ import sympy as sp
 from symjac.errors import RobotFileError
 from symjac.model.coordinates import Coupling, acceleration_symbol, coupling_problem, rate_symbol
 from symjac.model.expressions import snap_angle
+from symjac.model.hashing import cached_hash
 from symjac.model.inertia import Inertial, inertial_problem
 from symjac.symbolic.transforms import homogeneous, rotation_rpy
 
@@ -253,6 +254,7 @@ class Robot:
     angle_unit: Literal["rad", "deg"] = field(default="rad", compare=False)
     tip_frame: str = field(default="", compare=False)
     source_format: str = field(default="", compare=False)
+    __hash__ = cached_hash  # computed once: every cached derivation looks its chain up by it
 
     def __post_init__(self) -> None:
         """Refuse bad parameter names, couplings and inertial data.

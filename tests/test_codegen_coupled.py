@@ -243,3 +243,12 @@ def test_renamed_coordinates_give_the_same_numbers_as_the_joint_variables(target
                                 ("hessian", (x,)), ("bias_acceleration", (x, rates))):
         np.testing.assert_allclose(np.asarray(getattr(coupled, function)(*arguments), dtype=float),
                                    np.asarray(getattr(plain, function)(*arguments), dtype=float), atol=1e-13)
+
+
+@pytest.mark.parametrize("target", ["python", "numpy", "c99", "cpp"])
+def test_a_long_point_keeps_every_line_within_the_width(target):
+    # the summary of a coupled robot's Jacobian names its point; a long one moves to the module's listing
+    point = (sp.Rational(1, 10), -sp.Rational(1, 5), sp.Rational(3, 10))
+    text = generate(load_robot("palletizer"), target, jacobians=[JacobianRequest("world", point)])
+    assert max(len(line) for line in text.splitlines()) <= 120
+    assert "the point the module docstring names" in text and "(1/10, -1/5, 3/10)" in text

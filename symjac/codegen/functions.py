@@ -57,6 +57,9 @@ __all__ = [
     "self_checks",
 ]
 
+MAX_SUMMARY = 110
+"""The longest docstring summary (a line of 120 characters holds it after an indent, quotes and a comment sign)."""
+
 
 def lowered(kind: Generated, chain: Chain, strategy: Strategy, frame: Frame | None = None,
             point: tuple[sp.Expr, ...] = (), rows: tuple[int, ...] = ()) -> LoweredFunction:
@@ -95,7 +98,10 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
                                      "Wrench (force, moment) at the point"),
                   "qdot": Argument("qdot", rates, "Coordinate rates" if coupled else "Joint rates")}
         returns = kind.returns_text(coupled, shape=function.shape)
-        spec = FunctionSpec(name, kind.name, kind.summary_text(coupled, **fields),
+        summary = kind.summary_text(coupled, **fields)
+        if len(summary) > MAX_SUMMARY and "at" in fields:  # a long point: its words stay in the module's listing
+            summary = kind.summary_text(coupled, **{**fields, "at": "the point the module docstring names"})
+        spec = FunctionSpec(name, kind.name, summary,
                             (q_argument, *(inputs[i] for i in kind.inputs)), returns)
         functions.append(FunctionDescription(spec, function))
 

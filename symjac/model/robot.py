@@ -225,20 +225,18 @@ class Robot:
     (:class:`~symjac.model.coordinates.Coupling`), each joint variable is an affine expression of the coordinates,
     and every result symjac returns (transforms, Jacobians, Hessians, rates, torques) is in the coordinates.
 
-    Inertial data: ``inertials[i - 1]`` is link *i*'s :class:`~symjac.model.inertia.Inertial` (mass, centre of mass
-    and tensor about it, in frame {i}), or None where it is unknown; without it (the default ``()``) every link's is
-    None. Each must be well formed with the parameters' defaults (a mass that is not negative, finite values, a
-    symmetric tensor: :func:`~symjac.model.inertia.inertial_problem` with ``physical=False``); robot files and
-    URDF files keep a tensor no rigid body can have with an :class:`~symjac.errors.InertialWarning`. Note the
-    numbering: ``inertials[k - 1]`` belongs to the body that ``link=k`` of a Jacobian or
-    :func:`~symjac.kinematics.points.point_position` names (``link=0`` is the base, which has no entry).
+    Inertial data: ``inertials[k - 1]`` is link *k*'s :class:`~symjac.model.inertia.Inertial` (mass, centre of mass
+    and tensor about it, in frame {k}; the body ``link=k`` of a Jacobian names, ``link=0`` being the base, which has
+    none), or None where it is unknown, as for every link without it (the default ``()``). Each must be well formed
+    with the parameters' defaults (a mass that is not negative, finite values, a symmetric tensor:
+    :func:`~symjac.model.inertia.inertial_problem` with ``physical=False``); robot files, URDF and MJCF keep a
+    tensor no rigid body can have with an :class:`~symjac.errors.InertialWarning`.
 
     ``angle_unit`` is the unit the robot file wrote its angles in (``"deg"`` or ``"rad"``, the default): the model
     itself is always in radians; the command line reads a plain ``--q`` number in this unit. Like ``source`` it is
-    where the robot came from, not what it is, so it takes no part in equality. So is ``tip_frame``, the name the
-    source gives the frame the chain ends at (a URDF's tip link), empty when it names none, and ``source_format``,
-    the format the robot was read from (a reader's name: ``"URDF"``, ``"MJCF"``, ``"TOML robot file"``; empty for a
-    robot built in Python).
+    where the robot came from, not what it is, so it takes no part in equality. So are ``tip_frame``, the frame the
+    chain ends at as the source names it (a URDF's tip link), and ``source_format``, the reader's name (``"URDF"``,
+    ``"MJCF"``, ``"TOML robot file"``); both are empty when there is none.
     """
 
     name: str

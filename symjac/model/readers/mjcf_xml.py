@@ -6,8 +6,8 @@ Safety
     ``<include file>`` names a file relative to the model's folder (MuJoCo's rule, also for includes inside included
     files); a file outside that folder (through the parent folder, an absolute path, a symbolic link leading out) is
     refused, and so is a file included twice (which is also how an include loop ends). The model and its included
-    files together may hold at most :data:`MAX_MJCF_BYTES`. Elements that create bodies symjac does not expand (``<replicate>``,
-    ``<attach>``, ``<composite>``, ``<flexcomp>``) are refused rather than silently left out.
+    files together may hold at most :data:`MAX_MJCF_BYTES`. Elements that create bodies symjac does not expand
+    (``<replicate>``, ``<attach>``, ``<composite>``, ``<flexcomp>``) are refused rather than silently left out.
 
 Default classes
     The top-level ``<default>`` is class ``main``; a ``<default class>`` inside another inherits its settings and

@@ -64,7 +64,7 @@ class ChainChoiceError(RobotFileError):
     """The chain cannot be chosen as asked; the message names the arguments that choose it (``base_link``, ...).
 
     ``template`` is the message with ``{base_link}``, ``{tip_link}`` and ``{tip_site}`` where an argument's name goes
-    (:meth:`str.format` fields; the link names in it are escaped), so that a front end can name its own options
+    (``str.format`` fields; the link names in it are escaped), so that a front end can name its own options
     (:meth:`worded`) without ever rewriting a link name: a link may well be called ``base_link``.
     """
 

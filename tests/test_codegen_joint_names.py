@@ -353,3 +353,26 @@ def test_the_longest_names_fit_the_line_width_of_every_target():
     for target in ("python", "numpy", "lambdify", "c", "c99", "cpp", "jax", "casadi"):
         text = "".join(render_files(describe(ModuleRequest(robot, target))).values())  # check_layout: 120 columns
         assert all(name in text for name in long)
+
+
+def _finger_chain(name_length: int) -> str:
+    """An arm whose finger on the chain mimics the other finger, beside it; joint names ``name_length`` long."""
+    long = "j" * (name_length - 2)
+    return f"""<robot name="hand"><link name="base"/><link name="palm"/><link name="left"/><link name="right"/>
+  <joint name="{long}_1" type="revolute"><parent link="base"/><child link="palm"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1"/></joint>
+  <joint name="{long}_l" type="prismatic"><parent link="palm"/><child link="left"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.04"/></joint>
+  <joint name="{long}_r" type="prismatic"><parent link="palm"/><child link="right"/><axis xyz="0 -1 0"/>
+    <origin xyz="0.1 0 0"/><limit lower="-0.01" upper="0.05"/><mimic joint="{long}_l" multiplier="2"/></joint>
+</robot>"""
+
+
+@pytest.mark.parametrize("target", ["python", "numpy", "c", "c99", "cpp", "jax", "casadi", "lambdify"])
+def test_a_finger_beside_the_chain_fits_every_header_and_keeps_the_limits_its_follower_implies(target):
+    robot = robot_from_urdf(_finger_chain(64), source="hand.urdf", tip_link="right")
+    for text in render_files(describe(ModuleRequest(robot, target))).values():
+        assert max(len(line) for line in text.splitlines()) <= 120
+    # the right finger (limits -0.01 .. 0.05) moves twice the left finger's coordinate: q in [-0.005, 0.025]
+    module = generate(robot, "python")
+    assert "LOWER = (-1.0, -0.005)" in module and "UPPER = (1.0, 0.025)" in module

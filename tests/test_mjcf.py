@@ -7,6 +7,7 @@ numbers are compared with what the file says, computed by hand, and every refusa
 from __future__ import annotations
 
 import json
+import re
 import time
 from pathlib import Path
 
@@ -272,7 +273,7 @@ def test_tip_choices_are_checked():
         robot_from_mjcf(TWO, tip_link="l2", tip_site="tip")
     with pytest.raises(RobotFileError, match=r"site 'hand' is not a site of this model \(sites: tip\)"):
         robot_from_mjcf(TWO, tip_site="hand")
-    with pytest.raises(RobotFileError, match="'hand' is not a site of this model"):
+    with pytest.raises(RobotFileError, match="tip_link 'hand' is neither a body nor a site of this model"):
         robot_from_mjcf(TWO, tip_link="hand")
 
 
@@ -287,3 +288,14 @@ def test_a_gripper_coupled_beside_the_chain_does_not_stop_the_arm():
     # the follower on the chain, its leader beside it: the leader is a coordinate of its own, as for URDF
     left = robot_from_mjcf(gripper, tip_link="left")
     assert [str(q) for q in left.q] == ["theta1", "f2"] and [joint.name for joint in left.joints] == ["j1", "f1"]
+
+
+def test_a_tip_that_is_neither_a_body_nor_a_site_names_both_lists(cli, tmp_path):
+    path = tmp_path / "bl.xml"
+    path.write_text('<mujoco><worldbody><body name="a"><joint name="j"/><site name="s"/></body></worldbody>'
+                    '</mujoco>', encoding="utf-8")
+    expected = "'nosuch' is neither a body nor a site of this model (bodies: a, world; sites: s)"
+    with pytest.raises(RobotFileError, match=re.escape(f"tip_link {expected}")):
+        robot_from_mjcf(path.read_text(), source=str(path), tip_link="nosuch")
+    assert cli.one_line_error("fk", str(path), "--tip-link", "nosuch") == \
+        f"symjac: error: {path}: --tip-link {expected}"

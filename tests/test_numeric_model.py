@@ -217,3 +217,17 @@ def test_numeric_jacobian_of_a_robot_generated_code_cannot_name_evaluates_throug
     np.testing.assert_allclose(J[0, :2], [[-0.4, -0.4], [0.5, 0.0]], atol=1e-12)
     np.testing.assert_allclose(J[1], finite_difference_jacobian(robot, batch[1]), atol=1e-6)
     np.testing.assert_allclose(numeric_jacobian(robot, batch[1].tolist()), J[1], atol=1e-15)
+
+
+@pytest.mark.parametrize("backend", marked(["numpy", "c"], keep=["ur5.urdf"]))
+def test_the_model_names_its_coordinates_as_the_file_does_and_reads_a_joint_state(backend):
+    model = numeric_model(load_robot("ur5.urdf"), backend=backend)
+    assert model.names == ("shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint",
+                           "wrist_2_joint", "wrist_3_joint")
+    state = (["wrist_3_joint", "finger", "elbow_joint", "shoulder_pan_joint", "wrist_1_joint", "shoulder_lift_joint",
+              "wrist_2_joint"], [0.6, 9.0, 0.3, 0.1, 0.4, 0.2, 0.5])
+    q = model.coordinates(*state)
+    np.testing.assert_array_equal(q, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+    np.testing.assert_array_equal(model.coordinates(dict(zip(model.names, q, strict=True))), q)
+    with pytest.raises(ValueError, match="wrist_3_joint"):
+        model.coordinates(state[0][1:], state[1][1:])

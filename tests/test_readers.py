@@ -401,3 +401,31 @@ def test_a_toml_file_with_a_byte_order_mark_reads(tmp_path):
     plain.write_text(TOML, encoding="utf-8")
     marked.write_bytes(b"\xef\xbb\xbf" + TOML.encode("utf-8"))  # as some editors save UTF-8
     assert load_robot(marked) == load_robot(plain)
+
+
+@pytest.mark.parametrize("kind", ["urdf", "mjcf"])
+def test_a_tree_of_more_links_than_a_robot_has_is_refused_before_it_is_built(kind):
+    n = readers.MAX_TREE_LINKS + 1
+    if kind == "urdf":
+        links = "".join(f'<link name="l{i}"/>' for i in range(n))
+        text, read = f'<robot name="a">{links}</robot>', robot_from_urdf
+    else:
+        from symjac.model.readers.mjcf import robot_from_mjcf
+
+        bodies = "".join(f'<body name="b{i}">' for i in range(n)) + '<joint name="j"/>' + "</body>" * n
+        text, read = f"<mujoco><worldbody>{bodies}</worldbody></mujoco>", robot_from_mjcf
+    start = time.perf_counter()
+    with pytest.raises(RobotFileError, match=f"{n} links \\(bodies\\) is more than the 5000 a robot tree may have"):
+        read(text)
+    assert time.perf_counter() - start < 5  # refused before any exact arithmetic: a second even on a loaded machine
+
+
+def test_a_deep_chain_is_checked_for_loops_in_time_that_grows_with_its_size():
+    # the walk to the root stops at links known to reach it: 5000 nested fixed links, each walked once
+    n = readers.MAX_TREE_LINKS - 1
+    links = "".join(f'<link name="l{i}"/>' for i in range(n + 1))
+    joints = "".join(f'<joint name="f{i}" type="fixed"><parent link="l{i}"/><child link="l{i + 1}"/></joint>'
+                     for i in range(n))
+    tree = tree_from_urdf(f'<robot name="a">{links}{joints}</robot>')
+    with pytest.raises(RobotFileError, match="no revolute, continuous or prismatic joint"):
+        robot_from_tree(tree, "deep.urdf")

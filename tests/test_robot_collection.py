@@ -81,6 +81,7 @@ def test_the_collection_is_the_one_described():
     assert len(FILES) >= 69 and set(REFUSED) | set(ARMS) <= {_name(path) for path in FILES}
 
 
+@pytest.mark.filterwarnings("ignore::symjac.errors.InertialWarning")  # CAD-rounded tensors, kept as given
 @pytest.mark.parametrize("path", FILES, ids=_name)
 def test_every_file_loads_or_is_refused_for_a_reason(path):
     if _name(path) in REFUSED:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import shlex
 import shutil
 import subprocess
 import time
@@ -284,8 +285,20 @@ def test_xacro_file_is_refused_with_a_command_that_keeps_the_input(case, name, o
     with pytest.raises(RobotFileError, match=re.escape(f"{path}: this is a xacro file")) as info:
         load_robot(path)
     # -o, never "> out": a shell redirection onto the input would empty it before xacro reads it
-    assert f"run `xacro {name} -o {output}` first and load {output}" in str(info.value)
+    assert f"run `xacro {path} -o {tmp_path / output}` first and load {tmp_path / output}" in str(info.value)
     assert "finite number" not in str(info.value)
+
+
+def test_the_xacro_command_is_quoted_and_never_overwrites_a_file(tmp_path):
+    folder = tmp_path / "my robot;rm -rf x"
+    folder.mkdir()
+    path = folder / "arm.xacro"
+    path.write_text(XACRO["substitution"], encoding="utf-8")
+    (folder / "arm.urdf").write_text("an older expansion the user keeps", encoding="utf-8")
+    with pytest.raises(RobotFileError) as info:
+        load_robot(path)
+    command = re.search(r"run `([^`]*)`", str(info.value)).group(1)
+    assert shlex.split(command) == ["xacro", str(path), "-o", str(folder / "arm_expanded.urdf")]
 
 
 def test_the_xacro_command_given_expands_the_file_into_a_new_one(tmp_path):
@@ -296,12 +309,12 @@ def test_the_xacro_command_given_expands_the_file_into_a_new_one(tmp_path):
     path.write_text(source, encoding="utf-8")
     with pytest.raises(RobotFileError) as info:
         load_robot(path)
-    command = re.search(r"run `([^`]*)`", str(info.value)).group(1).split()
+    command = shlex.split(re.search(r"run `([^`]*)`", str(info.value)).group(1))
     xacro = shutil.which("xacro")
     assert xacro is not None, "the test extra installs xacro (PyPI), the command the hint names"
     subprocess.run([xacro, *command[1:]], cwd=tmp_path, check=True, capture_output=True)
     assert path.read_text(encoding="utf-8") == source  # the input is untouched
-    expanded = load_robot(tmp_path / command[-1])
+    expanded = load_robot(command[-1])
     assert expanded.n_joints == robot_from_urdf(_arm()).n_joints
     assert sp.simplify(forward_kinematics(expanded) - forward_kinematics(robot_from_urdf(_arm()))) == sp.zeros(4, 4)
 

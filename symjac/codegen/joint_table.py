@@ -17,6 +17,8 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+import sympy as sp
+
 from symjac.codegen.names import IdentifierRule
 from symjac.errors import CodegenError
 from symjac.model.ends import end_point
@@ -71,7 +73,8 @@ def joint_entries(robot: Robot, identifiers: IdentifierRule) -> tuple[JointEntry
     """The entries of ``q`` of ``robot``: name, identifier, symbol, type and limits of each, in order.
 
     A coordinate that is a joint's variable takes that joint's name, type and limits (for a coupled robot: the
-    joint that mimics nothing); another coordinate (a coupling's own ``s``) its symbol's name and no limits.
+    joint that mimics nothing); another coordinate (a coupling's own ``s``, a mimic leader beside the chain) its
+    symbol's name and the limits its followers imply (:func:`_implied_limits`).
     An identifier the target's language refuses (a keyword) gets a trailing ``_``.
 
     Raises
@@ -91,6 +94,8 @@ def joint_entries(robot: Robot, identifiers: IdentifierRule) -> tuple[JointEntry
         lower, upper = -math.inf, math.inf
         if joint is not None and joint.limits is not None:
             lower, upper = (float(limit.subs(robot.defaults)) for limit in joint.limits)
+        elif joint is None:
+            lower, upper = _implied_limits(robot, symbol)
         continuous = joint is not None and joint.continuous
         entries.append(JointEntry(name, _identifier(name, identifiers), symbol.name,
                                   "continuous" if continuous else kind.value, lower, upper))
@@ -100,6 +105,24 @@ def joint_entries(robot: Robot, identifiers: IdentifierRule) -> tuple[JointEntry
                 raise CodegenError(f"{robot.source}: two coordinates have the joint {what} {value!r} "
                                    f"({entries[values.index(value)].name!r} and {entries[index].name!r})")
     return tuple(entries)
+
+
+def _implied_limits(robot: Robot, coordinate: sp.Symbol) -> tuple[float, float]:
+    r"""The bounds on a coordinate that no joint owns (a mimic leader beside the chain) its followers' limits imply.
+
+    A joint :math:`\vartheta_i = m\,q + o` with limits :math:`[l_i, u_i]` allows :math:`q` between
+    :math:`(l_i - o)/m` and :math:`(u_i - o)/m`; the coordinate's bounds are where every follower's allow it.
+    """
+    lower, upper = -math.inf, math.inf
+    for joint, value in zip(robot.joints, robot.joint_values, strict=True):
+        multiplier = sp.diff(value, coordinate)
+        if joint.limits is None or multiplier == 0 or (value - multiplier * coordinate).has(*robot.q):
+            continue  # no limits, not a follower, or a follower of several coordinates
+        m = float(multiplier.subs(robot.defaults))
+        o = float((value - multiplier * coordinate).subs(robot.defaults))
+        ends = sorted((float(limit.subs(robot.defaults)) - o) / m for limit in joint.limits)
+        lower, upper = max(lower, ends[0]), min(upper, ends[1])
+    return lower, upper
 
 
 def _identifier(name: str, identifiers: IdentifierRule) -> str:

@@ -61,7 +61,8 @@ class NumericModel:
     robot : str
         The robot's name.
     names : tuple of str
-        The coordinates, in the order ``q`` gives them.
+        The coordinates as the robot's file names them (URDF and MJCF joint names, else ``theta1``), in the order
+        ``q`` gives them; :meth:`coordinates` builds ``q`` from names.
     frame : int or str
         The frame the Jacobian is expressed in.
     point : str or tuple of float
@@ -92,6 +93,14 @@ class NumericModel:
     def n(self) -> int:
         """The number of coordinates (entries of one configuration)."""
         return len(self.names)
+
+    def coordinates(self, values: Any, positions: Any = None) -> np.ndarray:
+        """``q`` from ``{name: value}`` or from names and positions, as the generated modules' ``coordinates``.
+
+        The mapping names every coordinate and nothing else; names and positions (a ROS JointState) may come in any
+        order and carry other joints, which are ignored.
+        """
+        return np.asarray(self._batch.coordinates(values, positions), dtype=float)
 
     def fk(self, q: Any, out: np.ndarray | None = None) -> np.ndarray:
         """The pose of the end of the chain in {0}: shape (4, 4) for one configuration, (..., 4, 4) for a batch.
@@ -196,11 +205,10 @@ def _model(chain: Chain, frame: Frame, point: Point | None, backend: BackendChoi
     shown: str | tuple[float, float, float] = (
         point if isinstance(point, str)
         else tuple(float(v.subs(robot.defaults)) for v in point_vector(chain, point)))  # type: ignore[assignment]
-    names = tuple(s.name for s in robot.q)
 
     def made(backend: Literal["c", "numpy"], note: str, batch: types.ModuleType,
              single: types.ModuleType | None) -> NumericModel:
-        return NumericModel(robot.name, names, frame, shown, backend, note, batch, single)
+        return NumericModel(robot.name, tuple(batch.JOINT_NAMES), frame, shown, backend, note, batch, single)
 
     note = ""
     if backend in ("auto", "c"):

@@ -26,8 +26,8 @@ from symjac.errors import RobotFileError
 if TYPE_CHECKING:
     from symjac.model.robot import Robot
 
-__all__ = ["HEAD_BYTES", "LinksNotApplicableError", "Reader", "reader_for", "readers", "register", "too_large",
-           "tree_formats", "unregister", "xml_root"]
+__all__ = ["HEAD_BYTES", "MAX_TREE_LINKS", "LinksNotApplicableError", "Reader", "reader_for", "readers", "register",
+           "too_large", "too_many_links", "tree_formats", "unregister", "xml_root"]
 
 HEAD_BYTES = 65_536
 """How much of a file's start the sniffing functions see (a license comment before the root element fits)."""
@@ -66,6 +66,18 @@ class Reader:
     suffixes: tuple[str, ...] = ()
     max_bytes: int | None = None
     sites: bool = False
+
+
+MAX_TREE_LINKS = 5_000
+"""The most links (URDF links, MJCF bodies) a tree may have: the largest robot of a public collection of 69 has a few
+hundred, and each link costs exact arithmetic, so a file with more is refused in one line before it is built."""
+
+
+def too_many_links(count: int, source: str) -> None:
+    """Refuse a tree of more than :data:`MAX_TREE_LINKS` links (``count``), in one line naming ``source``."""
+    if count > MAX_TREE_LINKS:
+        raise RobotFileError(f"{count} links (bodies) is more than the {MAX_TREE_LINKS} a robot tree may have",
+                             source=source)
 
 
 def too_large(limit: int) -> str:

@@ -43,6 +43,7 @@ from pathlib import Path
 import sympy as sp
 
 from symjac.errors import RobotFileError
+from symjac.model.readers import too_many_links
 from symjac.model.readers.mjcf_frames import Compiler, angle, frame, numbers, rotation_about
 from symjac.model.readers.mjcf_xml import MAX_MJCF_BYTES, Defaults, compiler_of, defaults_of, model_root
 from symjac.model.readers.tree import (
@@ -128,8 +129,12 @@ def robot_from_mjcf(content: str | bytes, source: str = "<mjcf>", base_link: str
     tree = model.tree
     if site is not None:
         if site not in model.sites:
-            raise RobotFileError(f"site {site!r} is not a site of this model (sites: "
-                                 f"{', '.join(sorted(model.sites)) or 'none'})", source=source)
+            sites = ", ".join(sorted(model.sites)) or "none"
+            if tip_site is None:  # a name given as the tip link that is neither a body nor a site
+                words = f"{site!r} is neither a body nor a site of this model (bodies: {', '.join(sorted(links))}; " \
+                        f"sites: {sites})"
+                raise ChainChoiceError("{tip_link} " + words.replace("{", "{{").replace("}", "}}"), source=source)
+            raise RobotFileError(f"site {site!r} is not a site of this model (sites: {sites})", source=source)
         body, T = model.sites[site]
         tip_link = site if site not in links else f"{site} (site)"
         tree = KinematicTree(tree.name, (*tree.links, TreeLink(tip_link)),
@@ -155,6 +160,7 @@ def mjcf_model(data: bytes | str, source: str = "<mjcf>", folder: Path | None = 
     if isinstance(data, str):
         data = data.encode("utf-8", "surrogatepass")
     root = model_root(data, source, folder, max_bytes)
+    too_many_links(sum(1 for _ in root.iter("body")), source)
     reader = _Reader(source, compiler_of(root, source), defaults_of(root, source))
     worldbodies = root.findall("worldbody")
     reader.links.append(TreeLink(WORLD))

@@ -263,14 +263,17 @@ def _chain(links: dict[str, TreeLink], joints: dict[str, TreeJoint], source: str
     roots = sorted(set(links) - set(parent_joint))
     if not roots:
         raise _fail(source, "the joints form a loop: every link has a parent")
-    # every link must reach a root; a loop elsewhere would otherwise go unnoticed
+    # every link must reach a root; a loop elsewhere would otherwise go unnoticed. Each link is walked once: a walk
+    # stops at a link known to reach a root, so a deep tree costs its size, not its size times its depth
+    reaches_root = set(roots)
     for link in sorted(links):
-        seen = {link}
-        while link in parent_joint:
+        walked: set[str] = set()
+        while link not in reaches_root:
+            walked.add(link)
             link = parent_joint[link].parent
-            if link in seen:
+            if link in walked:
                 raise _fail(source, f"the joints form a loop through link {link!r}", f"link {link}")
-            seen.add(link)
+        reaches_root |= walked
     if base_link is None:
         if len(roots) > 1:
             raise ChainChoiceError(f"several root links ({_braced(', '.join(roots))}); choose one with {{base_link}}",

@@ -36,6 +36,7 @@ Safety
 from __future__ import annotations
 
 import re
+import shlex
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 from dataclasses import replace
@@ -46,7 +47,7 @@ import sympy as sp
 from symjac.errors import ExpressionError, RobotFileError
 from symjac.model.bounds import size_problem, urdf_turn_problem
 from symjac.model.expressions import exact_number, snap_angle
-from symjac.model.readers import too_large
+from symjac.model.readers import too_large, too_many_links
 from symjac.model.readers.tree import (
     JointLimits,
     KinematicTree,
@@ -126,6 +127,7 @@ def robot_from_urdf(
 def tree_from_urdf(content: str | bytes, source: str = "<urdf>", *, max_bytes: int = MAX_URDF_BYTES) -> KinematicTree:
     """The links and joints of a URDF document, checked element by element (see the module text)."""
     root = _parse(content, source, max_bytes)
+    too_many_links(len(root.findall("link")), source)
     links = []
     seen: set[str] = set()
     for link in root.findall("link"):
@@ -218,12 +220,18 @@ def _tag_at(text: str, position: tuple[int, int]) -> str:
 
 
 def _xacro(source: str) -> RobotFileError:
-    """The refusal of a xacro file, with a command that expands it into a new file (never over the input)."""
-    name = Path(source).name if source != "<urdf>" else "FILE.urdf.xacro"
-    stem = name.removesuffix(".xacro").removesuffix(".urdf")
-    output = f"{stem}.urdf" if f"{stem}.urdf" != name else f"{stem}_expanded.urdf"
+    """The refusal of a xacro file, with a command that expands it into a new file beside it.
+
+    The output never is the input nor a file that exists (``-o``, not a shell redirection, which would empty the
+    input before xacro reads it), and both paths are quoted for a POSIX shell.
+    """
+    path = Path(source) if source != "<urdf>" else Path("FILE.urdf.xacro")
+    stem = path.name.removesuffix(".xacro").removesuffix(".urdf")
+    candidates = [f"{stem}.urdf", f"{stem}_expanded.urdf", *(f"{stem}_expanded_{k}.urdf" for k in range(2, 100))]
+    output = next(path.with_name(name) for name in candidates
+                  if path.with_name(name) != path and not path.with_name(name).exists())
     return _fail(source, f"this is a xacro file (xacro macros or ${{...}} substitutions are not URDF): run "
-                         f"`xacro {name} -o {output}` first and load {output}")
+                         f"`xacro {shlex.quote(str(path))} -o {shlex.quote(str(output))}` first and load {output}")
 
 
 def _number(text: str, source: str, element: str) -> sp.Rational:

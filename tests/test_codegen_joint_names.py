@@ -161,10 +161,10 @@ def test_casadi_limits_bound_an_opti_problem(tmp_path):
 def test_headers_say_the_format_and_the_convention():
     urdf = generate(load_robot("ur5.urdf"), "python")
     assert "# Robot: ur5 (6 joints), from the symjac catalog's URDF file ur5.urdf." in urdf
-    assert "# Convention: general (fixed origins and joint axes, as URDF writes them)." in urdf
+    assert "# Convention: general (fixed origins and joint axes, as URDF and MJCF write them)." in urdf
     assert "general DH" not in urdf
     cpp = generate(load_robot("ur5.urdf"), "cpp")
-    assert "// Convention: general (fixed origins and joint axes, as URDF writes them)." in cpp
+    assert "// Convention: general (fixed origins and joint axes, as URDF and MJCF write them)." in cpp
     assert "general DH" not in cpp
     assert "// Convention: standard DH." in generate(load_robot("ur5"), "cpp")
     assert " * Convention: modified DH (Craig)." in generate(load_robot("stanford"), "c99")

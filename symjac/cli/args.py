@@ -66,6 +66,8 @@ def load(args: argparse.Namespace) -> Robot:
     from symjac.model.readers.tree import ChainChoiceError
 
     links = {"--base-link": args.base_link, "--tip-link": args.tip_link}
+    if args.max_bytes is not None and args.max_bytes < 1:
+        raise ArgumentError(f"--max-bytes must be a positive whole number of bytes, got {args.max_bytes}")
     try:
         return load_robot(args.robot, base_link=args.base_link, tip_link=args.tip_link,
                           tip_site=getattr(args, "tip_site", None), max_bytes=args.max_bytes)

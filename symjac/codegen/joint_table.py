@@ -34,7 +34,7 @@ _FORMATS = {"URDF": "URDF file", "MJCF": "MJCF file", "TOML robot file": "robot 
 _CONVENTIONS = {
     "standard": "standard DH",
     "modified": "modified DH (Craig)",
-    "general": "general (fixed origins and joint axes, as URDF writes them)",
+    "general": "general (fixed origins and joint axes, as URDF and MJCF write them)",
     "poe": "product of exponentials (PoE)",
 }
 

@@ -136,6 +136,8 @@ def _included(name: str | None, source: str, includes: _Includes) -> ET.Element:
                                 f"that keeps runaway files out: raise it with max_bytes (--max-bytes on the command "
                                 f"line) to read them", where)
         data = path.read_bytes()
+    except RobotFileError:
+        raise  # said already, in one line
     except (OSError, ValueError) as error:  # a name too long for the system, a NUL byte, a file that vanished
         reason = getattr(error, "strerror", None) or error
         raise _fail(source, f"cannot read included file {name[:200]!r}: {reason}", where) from None

@@ -1,0 +1,73 @@
+r"""What the dynamics reads from a chain: each link's body and each joint's axis, in the link's own frame {k}.
+
+Link k is the body moved by joint k, with its frame {k} (:attr:`Robot.inertials <symjac.model.robot.Robot>`:
+mass, centre of mass :math:`{}^kc_k` and tensor :math:`{}^kI_k` about the centre, axes of {k}). Joint k turns about,
+or slides along, the axis :math:`z_a` through the origin of frame {a}: {k-1} in the standard DH convention, {k} in the
+modified and general ones (:meth:`Chain.axis_frame <symjac.kinematics.chain.Chain.axis_frame>`). Written in {k}, the
+axis is :math:`{}^kz_a` and the origin of {k} lies :math:`r = {}^kp_{ak}` from the axis point (zero unless the
+axis frame is {k-1}).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from symjac.errors import NoInertialDataError
+from symjac.kinematics.chain import Chain
+from symjac.model.inertia import Inertial
+from symjac.symbolic.simplify import simplify_matrix
+
+__all__ = ["JointAxis", "joint_axis", "link_bodies", "tidy"]
+
+
+def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
+    """The inertial data of links 1..n; an error names every link that has none.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> from symjac.kinematics.chain import chain_of
+    >>> link_bodies(chain_of(load_robot("planar2r")))
+    Traceback (most recent call last):
+    ...
+    symjac.errors.NoInertialDataError: planar2r: links 1, 2 have no inertial data (mass, centre of mass, inertia); ...
+    """
+    robot = chain.robot
+    missing = [str(k) for k, inertial in enumerate(robot.inertials, start=1) if inertial is None]
+    if missing:
+        which = f"link {missing[0]} has" if len(missing) == 1 else f"links {', '.join(missing)} have"
+        raise NoInertialDataError(
+            f"{robot.name}: {which} no inertial data (mass, centre of mass, inertia); give them in the robot file's "
+            f"[joints.inertial] tables or the URDF <inertial> elements, or use symbolic ones "
+            f"(symjac.model.inertial_parameters.with_symbolic_inertials)")
+    return tuple(inertial for inertial in robot.inertials if inertial is not None)
+
+
+@dataclass(frozen=True)
+class JointAxis:
+    r"""Joint k's axis in frame {k}: direction :math:`{}^kz_a` and the origin of {k} seen from the axis, :math:`r`."""
+
+    z: sp.ImmutableMatrix
+    r: sp.ImmutableMatrix
+    revolute: bool
+
+
+def joint_axis(chain: Chain, k: int) -> JointAxis:
+    """The axis of joint ``k`` (1-based) written in frame {k} (module docstring)."""
+    a = chain.axis_frame(k)
+    z = sp.ImmutableMatrix(chain.rotation(k, a)[:, 2])
+    r = sp.ImmutableMatrix.zeros(3, 1) if a == k else sp.ImmutableMatrix(-chain.transform(k, a)[:3, 3])
+    return JointAxis(z, r, chain.robot.joints[k - 1].is_revolute)
+
+
+def tidy(chain: Chain, vector: sp.MatrixBase, frame: int, simplify: bool) -> sp.ImmutableMatrix:
+    """A small per-link quantity in compact form (trig normal form in ``frame``'s angle bases), or as it is.
+
+    Each step of a recursion is simplified as it is formed, so that vanishing terms are gone before the next link
+    multiplies them out; nested chains (generic geometry) have no textbook form and are returned unchanged.
+    """
+    if not simplify or all(entry.is_number for entry in vector):
+        return sp.ImmutableMatrix(vector)
+    return sp.ImmutableMatrix(simplify_matrix(vector, chain.angle_bases(frame)))

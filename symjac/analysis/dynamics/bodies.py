@@ -17,9 +17,10 @@ import sympy as sp
 from symjac.errors import NoInertialDataError
 from symjac.kinematics.chain import Chain
 from symjac.model.inertia import Inertial
+from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.simplify import simplify_matrix
 
-__all__ = ["JointAxis", "joint_axis", "link_bodies", "tidy"]
+__all__ = ["JointAxis", "joint_axis", "link_bodies", "result_bases", "tidy"]
 
 
 def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
@@ -71,3 +72,15 @@ def tidy(chain: Chain, vector: sp.MatrixBase, frame: int, simplify: bool) -> sp.
     if not simplify or all(entry.is_number for entry in vector):
         return sp.ImmutableMatrix(vector)
     return sp.ImmutableMatrix(simplify_matrix(vector, chain.angle_bases(frame)))
+
+
+def result_bases(chain: Chain) -> tuple[AngleBasis, ...]:
+    r"""The angle bases of results that belong to no frame (torques, M, C, g, energies): those of {0} and alternatives.
+
+    These are the bases of frame {0} (:meth:`Chain.angle_bases <symjac.kinematics.chain.Chain.angle_bases>`), which
+    measure each group of parallel joints from either end and from the frames next to {0}: :math:`c_2` and
+    :math:`c_{12}` of a planar arm, :math:`c_{23}` of the PUMA. Every frame's bases (``all_angle_bases``) add, on arms
+    without parallel joints, only sign-flipped copies of the same angles, and each costs a whole layout (16 bases
+    took most of the PUMA's Newton-Euler torques).
+    """
+    return chain.angle_bases(0)

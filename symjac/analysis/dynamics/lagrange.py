@@ -28,7 +28,7 @@ from collections.abc import Callable
 
 import sympy as sp
 
-from symjac.analysis.dynamics.bodies import link_bodies
+from symjac.analysis.dynamics.bodies import link_bodies, result_bases
 from symjac.analysis.dynamics.gravity import EARTH, Gravity, check_gravity
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
 from symjac.kinematics.coupling import in_coordinates
@@ -50,8 +50,8 @@ __all__ = [
 
 
 def _laid_out(chain: Chain, matrix: sp.MatrixBase, simplify: bool) -> sp.ImmutableMatrix:
-    """Each entry in the shortest form over every angle basis of the chain (results that belong to no frame)."""
-    return sp.ImmutableMatrix(simplify_matrix(matrix, chain.all_angle_bases()) if simplify else matrix)
+    """Each entry in the shortest form over the angle bases of results (results that belong to no frame)."""
+    return sp.ImmutableMatrix(simplify_matrix(matrix, result_bases(chain)) if simplify else matrix)
 
 
 def _memo(chain: Chain, function: Callable[..., object], arguments: tuple, compute: Callable[[], sp.Expr]) -> sp.Expr:

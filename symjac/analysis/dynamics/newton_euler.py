@@ -37,7 +37,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from symjac.analysis.dynamics.bodies import joint_axis, link_bodies, tidy
+from symjac.analysis.dynamics.bodies import joint_axis, link_bodies, result_bases, tidy
 from symjac.analysis.dynamics.gravity import EARTH, NO_GRAVITY, Gravity, check_gravity
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
 from symjac.kinematics.coupling import coupling_matrix, in_coordinates
@@ -189,7 +189,7 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
                           gravity, simplify=simplify)
         tau = sp.ImmutableMatrix([step.tau for step in steps])
         if simplify:  # each torque in the shortest of every frame's angles (c_12 rather than c_1 c_2 - s_1 s_2)
-            tau = sp.ImmutableMatrix(simplify_matrix(tau, joints.all_angle_bases()))
+            tau = sp.ImmutableMatrix(simplify_matrix(tau, result_bases(joints)))
         if chain.robot.coupling is None:
             return NewtonEuler(steps, tau, tau, gravity)
         moved = tuple(LinkStep(s.link, *(in_coordinates(chain, getattr(s, name)) for name in STEP_NAMES),
@@ -197,7 +197,7 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
         tau_joints = in_coordinates(chain, sp.Matrix(tau))
         tau_q = coupling_matrix(chain).T * tau_joints
         if simplify:
-            tau_q = simplify_matrix(tau_q, chain.all_angle_bases())
+            tau_q = simplify_matrix(tau_q, result_bases(chain))
         return NewtonEuler(moved, sp.ImmutableMatrix(tau_joints), sp.ImmutableMatrix(tau_q), gravity)
 
     return chain.memo(MemoKey(newton_euler, (gravity, simplify)), compute)
@@ -224,7 +224,7 @@ def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> 
             C = coupling_matrix(chain)
             M = C.T * in_coordinates(chain, M) * C
         if simplify:
-            M = simplify_matrix(M, chain.all_angle_bases())
+            M = simplify_matrix(M, result_bases(chain))
         return sp.ImmutableMatrix(M)
 
     return chain.memo(MemoKey(newton_euler_mass_matrix, (simplify,)), compute)

@@ -10,17 +10,23 @@ axis frame is {k-1}).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TypeVar
 
 import sympy as sp
 
-from symjac.errors import NoInertialDataError
+from symjac.errors import NoInertialDataError, ResultTooLargeError
 from symjac.kinematics.chain import Chain
 from symjac.model.inertia import Inertial
 from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.nested import has_intermediates, named, presented
 from symjac.symbolic.simplify import simplify_matrix
+from symjac.symbolic.size import limit_lowered
 
-__all__ = ["JointAxis", "joint_axis", "link_bodies", "result_bases", "tidy"]
+T = TypeVar("T")
+
+__all__ = ["JointAxis", "exact_or_nested", "joint_axis", "laid_out", "link_bodies", "result_bases", "tidy"]
 
 
 def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
@@ -67,8 +73,12 @@ def tidy(chain: Chain, vector: sp.MatrixBase, frame: int, simplify: bool) -> sp.
     """A small per-link quantity in compact form (trig normal form in ``frame``'s angle bases), or as it is.
 
     Each step of a recursion is simplified as it is formed, so that vanishing terms are gone before the next link
-    multiplies them out; nested chains (generic geometry) have no textbook form and are returned unchanged.
+    multiplies them out. A nested chain (generic geometry, :mod:`symjac.kinematics.generic`) has no textbook form:
+    each entry is named instead (:func:`~symjac.symbolic.nested.named`), so the next link multiplies names and
+    nothing grows.
     """
+    if chain.nested:
+        return sp.ImmutableMatrix(sp.Matrix(vector).applyfunc(named))
     if not simplify or all(entry.is_number for entry in vector):
         return sp.ImmutableMatrix(vector)
     return sp.ImmutableMatrix(simplify_matrix(vector, chain.angle_bases(frame)))
@@ -84,3 +94,28 @@ def result_bases(chain: Chain) -> tuple[AngleBasis, ...]:
     took most of the PUMA's Newton-Euler torques).
     """
     return chain.angle_bases(0)
+
+
+def laid_out(chain: Chain, matrix: sp.MatrixBase, simplify: bool) -> sp.ImmutableMatrix:
+    """A whole result as people get it: compact in :func:`result_bases`, or, for a nested chain, presented.
+
+    A nested result is written out when that stays small, else kept with its intermediates
+    (:func:`~symjac.symbolic.nested.presented`).
+    """
+    if chain.nested or has_intermediates(matrix):
+        return presented(sp.ImmutableMatrix(sp.Matrix(matrix).applyfunc(named)))  # type: ignore[no-any-return]
+    return sp.ImmutableMatrix(simplify_matrix(matrix, result_bases(chain)) if simplify else matrix)
+
+
+def exact_or_nested(chain: Chain, derive: Callable[[Chain], T]) -> T:
+    """``derive(chain)``, or, when its compact form would be too large to write out, ``derive`` on the nested twin.
+
+    As forward kinematics does (:attr:`Chain.nested_twin <symjac.kinematics.chain.Chain.nested_twin>`): the result
+    then comes with named intermediates instead of being refused.
+    """
+    try:
+        return derive(chain)
+    except ResultTooLargeError:
+        if chain.nested or limit_lowered():
+            raise
+        return derive(chain.nested_twin)

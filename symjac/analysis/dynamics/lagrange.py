@@ -28,7 +28,7 @@ from collections.abc import Callable
 
 import sympy as sp
 
-from symjac.analysis.dynamics.bodies import link_bodies, result_bases
+from symjac.analysis.dynamics.bodies import exact_or_nested, laid_out, link_bodies
 from symjac.analysis.dynamics.gravity import EARTH, Gravity, check_gravity
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
 from symjac.kinematics.coupling import in_coordinates
@@ -36,7 +36,7 @@ from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.propagation import velocity_propagation
 from symjac.model.robot import Robot
 from symjac.progress import report
-from symjac.symbolic.simplify import simplify_matrix
+from symjac.symbolic.nested import named
 
 __all__ = [
     "coriolis_matrix",
@@ -49,13 +49,10 @@ __all__ = [
 ]
 
 
-def _laid_out(chain: Chain, matrix: sp.MatrixBase, simplify: bool) -> sp.ImmutableMatrix:
-    """Each entry in the shortest form over the angle bases of results (results that belong to no frame)."""
-    return sp.ImmutableMatrix(simplify_matrix(matrix, result_bases(chain)) if simplify else matrix)
-
-
-def _memo(chain: Chain, function: Callable[..., object], arguments: tuple, compute: Callable[[], sp.Expr]) -> sp.Expr:
-    return chain.memo(MemoKey(function, arguments), compute)
+def _memo(chain: Chain, function: Callable[..., object], arguments: tuple,
+          compute: Callable[[Chain], sp.Expr]) -> sp.Expr:
+    """``compute(chain)`` kept in the chain; from the nested twin when the compact form is too large to write out."""
+    return chain.memo(MemoKey(function, arguments), lambda: exact_or_nested(chain, compute))
 
 
 def mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableMatrix:
@@ -73,7 +70,7 @@ def mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableM
     """
     chain = as_chain(robot)
 
-    def compute() -> sp.ImmutableMatrix:
+    def compute(chain: Chain) -> sp.ImmutableMatrix:
         n = chain.robot.n_coordinates
         M = sp.zeros(n, n)
         for i, body in enumerate(link_bodies(chain), start=1):
@@ -81,7 +78,9 @@ def mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableM
             J = jacobian(chain, frame=i, point=body.com, link=i, simplify=simplify)
             J_v, J_w = J[:3, :], J[3:, :]
             M += body.mass * J_v.T * J_v + J_w.T * sp.Matrix(body.inertia) * J_w
-        return _laid_out(chain, M, simplify)
+            if chain.nested:  # each link's sum named: the next link adds to names
+                M = M.applyfunc(named)
+        return laid_out(chain, M, simplify)
 
     return _memo(chain, mass_matrix, (simplify,), compute)  # type: ignore[return-value]
 
@@ -90,14 +89,14 @@ def coriolis_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.Immuta
     r"""The Coriolis matrix :math:`C(q, \dot q)` from the Christoffel symbols of :func:`mass_matrix`, n x n."""
     chain = as_chain(robot)
 
-    def compute() -> sp.ImmutableMatrix:
+    def compute(chain: Chain) -> sp.ImmutableMatrix:
         M = mass_matrix(chain, simplify=simplify)
         q, qdot = chain.robot.q, chain.robot.coordinate_rates
         n = len(q)
         dM = [M.diff(variable) for variable in q]  # dM[i][k, j] = dM_kj / dq_i
         C = sp.Matrix(n, n, lambda k, j: sp.Add(*[
             sp.Rational(1, 2) * (dM[i][k, j] + dM[j][k, i] - dM[k][i, j]) * qdot[i] for i in range(n)]))
-        return _laid_out(chain, C, simplify)
+        return laid_out(chain, C, simplify)
 
     return _memo(chain, coriolis_matrix, (simplify,), compute)  # type: ignore[return-value]
 
@@ -107,13 +106,13 @@ def potential_energy(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify
     chain = as_chain(robot)
     check_gravity(chain.robot, gravity)
 
-    def compute() -> sp.Expr:
+    def compute(chain: Chain) -> sp.Expr:
         joints = chain.joint_chain
         V = sp.S.Zero
         for i, body in enumerate(link_bodies(chain), start=1):
             p_c = joints.transform(0, i) * sp.Matrix([*body.com, 1])
             V -= body.mass * (sp.Matrix(gravity.vector).T * p_c[:3, :])[0]
-        return _laid_out(chain, in_coordinates(chain, sp.Matrix([V])), simplify)[0]
+        return laid_out(chain, in_coordinates(chain, sp.Matrix([V])), simplify)[0]
 
     return _memo(chain, potential_energy, (gravity, simplify), compute)
 
@@ -122,9 +121,9 @@ def gravity_torques(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify:
     r"""The gravity vector :math:`g(q) = \partial V / \partial q`, n x 1: the torques that hold the arm still."""
     chain = as_chain(robot)
 
-    def compute() -> sp.ImmutableMatrix:
+    def compute(chain: Chain) -> sp.ImmutableMatrix:
         V = potential_energy(chain, gravity, simplify=False)
-        return _laid_out(chain, sp.Matrix([V]).jacobian(sp.Matrix(chain.robot.q)).T, simplify)
+        return laid_out(chain, sp.Matrix([V]).jacobian(sp.Matrix(chain.robot.q)).T, simplify)
 
     return _memo(chain, gravity_torques, (gravity, simplify), compute)  # type: ignore[return-value]
 
@@ -133,13 +132,13 @@ def kinetic_energy(robot: Robot | Chain, *, simplify: bool = True) -> sp.Expr:
     r"""The kinetic energy :math:`T(q, \dot q)` from the link velocities (velocity propagation, each link's frame)."""
     chain = as_chain(robot)
 
-    def compute() -> sp.Expr:
+    def compute(chain: Chain) -> sp.Expr:
         T = sp.S.Zero
         for i, body in enumerate(link_bodies(chain), start=1):
             report(f"kinetic energy: link {i} of {chain.n_joints}")
             *_, (_, omega, v) = velocity_propagation(chain, point=body.com, link=i, simplify=simplify).velocities()
             T += body.mass * (v.T * v)[0] / 2 + (omega.T * sp.Matrix(body.inertia) * omega)[0] / 2
-        return _laid_out(chain, sp.Matrix([T]), simplify)[0]
+        return laid_out(chain, sp.Matrix([T]), simplify)[0]
 
     return _memo(chain, kinetic_energy, (simplify,), compute)
 
@@ -169,11 +168,11 @@ def euler_lagrange(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: 
     chain = as_chain(robot)
     check_gravity(chain.robot, gravity)
 
-    def compute() -> sp.ImmutableMatrix:
+    def compute(chain: Chain) -> sp.ImmutableMatrix:
         model = chain.robot
         L = kinetic_energy(chain, simplify=simplify) - potential_energy(chain, gravity, simplify=simplify)
         tau = [time_derivative(L.diff(qd), chain) - L.diff(q) for q, qd in zip(model.q, model.coordinate_rates,
                                                                               strict=True)]
-        return _laid_out(chain, sp.Matrix(tau), simplify)
+        return laid_out(chain, sp.Matrix(tau), simplify)
 
     return _memo(chain, euler_lagrange, (gravity, simplify), compute)  # type: ignore[return-value]

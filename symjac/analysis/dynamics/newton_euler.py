@@ -37,13 +37,12 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from symjac.analysis.dynamics.bodies import joint_axis, link_bodies, result_bases, tidy
+from symjac.analysis.dynamics.bodies import exact_or_nested, joint_axis, laid_out, link_bodies, tidy
 from symjac.analysis.dynamics.gravity import EARTH, NO_GRAVITY, Gravity, check_gravity
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
 from symjac.kinematics.coupling import coupling_matrix, in_coordinates
 from symjac.model.robot import Robot
 from symjac.progress import report
-from symjac.symbolic.simplify import simplify_matrix
 
 __all__ = ["STEP_NAMES", "LinkStep", "NewtonEuler", "newton_euler", "newton_euler_mass_matrix", "recursion"]
 
@@ -182,25 +181,22 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
     chain = as_chain(robot)
     check_gravity(chain.robot, gravity)
 
-    def compute() -> NewtonEuler:
+    def compute(chain: Chain) -> NewtonEuler:
         joints = chain.joint_chain
         model = joints.robot
         steps = recursion(joints, [j.rate for j in model.joints], [j.acceleration for j in model.joints],
                           gravity, simplify=simplify)
-        tau = sp.ImmutableMatrix([step.tau for step in steps])
-        if simplify:  # each torque in the shortest of every frame's angles (c_12 rather than c_1 c_2 - s_1 s_2)
-            tau = sp.ImmutableMatrix(simplify_matrix(tau, result_bases(joints)))
+        # each torque in the shortest of frame {0}'s angles (c_12 rather than c_1 c_2 - s_1 s_2)
+        tau = laid_out(joints, sp.Matrix([step.tau for step in steps]), simplify)
         if chain.robot.coupling is None:
             return NewtonEuler(steps, tau, tau, gravity)
         moved = tuple(LinkStep(s.link, *(in_coordinates(chain, getattr(s, name)) for name in STEP_NAMES),
                                in_coordinates(chain, sp.Matrix([s.tau]))[0]) for s in steps)
         tau_joints = in_coordinates(chain, sp.Matrix(tau))
-        tau_q = coupling_matrix(chain).T * tau_joints
-        if simplify:
-            tau_q = simplify_matrix(tau_q, result_bases(chain))
-        return NewtonEuler(moved, sp.ImmutableMatrix(tau_joints), sp.ImmutableMatrix(tau_q), gravity)
+        tau_q = laid_out(chain, coupling_matrix(chain).T * tau_joints, simplify)
+        return NewtonEuler(moved, sp.ImmutableMatrix(tau_joints), tau_q, gravity)
 
-    return chain.memo(MemoKey(newton_euler, (gravity, simplify)), compute)
+    return chain.memo(MemoKey(newton_euler, (gravity, simplify)), lambda: exact_or_nested(chain, compute))
 
 
 def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableMatrix:
@@ -211,7 +207,7 @@ def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> 
     """
     chain = as_chain(robot)
 
-    def compute() -> sp.ImmutableMatrix:
+    def compute(chain: Chain) -> sp.ImmutableMatrix:
         joints = chain.joint_chain
         n = joints.n_joints
         columns = []
@@ -223,8 +219,6 @@ def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> 
         if chain.robot.coupling is not None:
             C = coupling_matrix(chain)
             M = C.T * in_coordinates(chain, M) * C
-        if simplify:
-            M = simplify_matrix(M, result_bases(chain))
-        return sp.ImmutableMatrix(M)
+        return laid_out(chain, M, simplify)
 
-    return chain.memo(MemoKey(newton_euler_mass_matrix, (simplify,)), compute)
+    return chain.memo(MemoKey(newton_euler_mass_matrix, (simplify,)), lambda: exact_or_nested(chain, compute))

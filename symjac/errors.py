@@ -14,6 +14,7 @@ __all__ = [
     "FrameError",
     "InertialWarning",
     "NoClosedFormError",
+    "NoInertialDataError",
     "RepresentationError",
     "ResultTooLargeError",
     "RobotFileError",

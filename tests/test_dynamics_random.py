@@ -68,7 +68,8 @@ class Reference:
         return [base_inverse @ world[k + 1] for k in range(1, self.robot.n_joints + 1)]
 
     def _centres(self, q):
-        return [(T[:3, :3], T[:3, :3] @ c + T[:3, 3]) for T, (_, c, _) in zip(self._poses(q), self.bodies, strict=True)]
+        poses = zip(self._poses(q), self.bodies, strict=True)
+        return [(T[:3, :3], T[:3, :3] @ c + T[:3, 3]) for T, (_, c, _) in poses]
 
     def M(self, q: np.ndarray) -> np.ndarray:
         n, h = len(q), self.h
@@ -79,11 +80,11 @@ class Reference:
             plus.append(self._centres(q + step))
             minus.append(self._centres(q - step))
         M = np.zeros((n, n))
-        for i, ((R, _), (m, _, I)) in enumerate(zip(self._centres(q), self.bodies, strict=True)):
+        for i, ((R, _), (m, _, inertia)) in enumerate(zip(self._centres(q), self.bodies, strict=True)):
             J_v = np.array([(plus[j][i][1] - minus[j][i][1]) / (2 * h) for j in range(n)]).T
             spins = [(plus[j][i][0] - minus[j][i][0]) / (2 * h) @ R.T for j in range(n)]
             J_w = np.array([(w[2, 1], w[0, 2], w[1, 0]) for w in spins]).T
-            M += m * J_v.T @ J_v + J_w.T @ R @ I @ R.T @ J_w
+            M += m * J_v.T @ J_v + J_w.T @ R @ inertia @ R.T @ J_w
         return M
 
     def V(self, q: np.ndarray) -> float:
@@ -131,7 +132,8 @@ def test_revolute_chains_three_routes_and_a_numeric_lagrangian(name):
 
     convention, rows = REVOLUTE_CHAINS[name]
     joints = [{"type": kind, "alpha": alpha, "a": a, "d": d} for kind, alpha, a, d in rows]
-    _check(_with_bodies(robot_from_mapping({"name": name.replace("-", "_"), "convention": convention, "joints": joints}), 44), 44)
+    robot = robot_from_mapping({"name": name.replace("-", "_"), "convention": convention, "joints": joints})
+    _check(_with_bodies(robot, 44), 44)
 
 
 def _check(arm, seed: int) -> None:

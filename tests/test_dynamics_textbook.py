@@ -83,7 +83,7 @@ def test_two_link_arm_is_the_textbooks(centred):
 
 
 def test_two_link_mass_matrix_is_laid_out_as_printed_in_the_book():
-    arm, L1, L2 = _two_link(True)
+    arm, L1, _ = _two_link(True)
     M = mass_matrix(arm)
     assert M[1, 1] == I2 + lc2**2 * m2
     assert M[0, 1] == M[1, 0] == I2 + lc2 * m2 * (L1 * sp.cos(t2) + lc2)
@@ -143,7 +143,8 @@ def test_mdot_minus_twice_c_is_skew_symmetric(name):
     basis = chain_of(arm).all_angle_bases()[0]
     M_dot = mass_matrix(arm).applyfunc(lambda entry: time_derivative(entry, arm))
     N = M_dot - 2 * coriolis_matrix(arm)
-    assert all(is_identity(N[i, j], -N[j, i], basis) for i in range(arm.n_coordinates) for j in range(i, arm.n_coordinates))
+    n = arm.n_coordinates
+    assert all(is_identity(N[i, j], -N[j, i], basis) for i in range(n) for j in range(i, n))
     assert not all(entry == 0 for entry in coriolis_matrix(arm))  # the test can fail: there is a Coriolis matrix
 
 
@@ -203,7 +204,7 @@ def test_coupled_joints_give_results_in_the_coordinates():
 
 
 def test_gravity_setting_defaults_and_errors():
-    arm, L1, _ = _two_link(True)
+    arm, *_ = _two_link(True)
     assert dynamics_defaults(arm)[g] == sp.Rational(981, 100)
     assert Gravity(direction=(0, 0, -2)).vector == sp.Matrix([0, 0, -g])
     assert g not in newton_euler(arm, NO_GRAVITY).torques.free_symbols

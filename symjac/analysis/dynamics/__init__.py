@@ -1,6 +1,8 @@
-"""The dynamics of an arm: gravity (:mod:`.gravity`), inverse dynamics by recursive Newton-Euler with every step
-kept (:mod:`.newton_euler`), and the Lagrangian route: mass matrix, Coriolis matrix, gravity torques, energies and the
-Euler-Lagrange equations (:mod:`.lagrange`). Pure mathematics: SymPy results in, SymPy results out.
+"""The dynamics of an arm: gravity, inverse dynamics by Newton-Euler, and the Lagrangian route.
+
+Gravity is a setting (:mod:`.gravity`); inverse dynamics comes from the recursive Newton-Euler algorithm with every
+step kept (:mod:`.newton_euler`); the Lagrangian route gives the mass matrix, the Coriolis matrix, the gravity
+torques, the energies and the Euler-Lagrange equations (:mod:`.lagrange`). Pure mathematics: SymPy in, SymPy out.
 """
 
 from symjac.analysis.dynamics.gravity import EARTH, GRAVITY_SYMBOL, NO_GRAVITY, Gravity, dynamics_defaults

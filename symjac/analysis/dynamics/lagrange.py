@@ -63,8 +63,8 @@ def mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableM
     >>> from symjac import load_robot
     >>> from symjac.model.inertia import Inertial
     >>> m = sp.Symbol("m", positive=True)
-    >>> arm = load_robot("planar2r")
-    >>> arm = type(arm)(**{**arm.__dict__, "inertials": (Inertial(m), Inertial(m))})  # point masses at the joints
+    >>> import dataclasses
+    >>> arm = dataclasses.replace(load_robot("planar2r"), inertials=(Inertial(m), Inertial(m)))  # masses at the ends
     >>> mass_matrix(arm)[0, 0]
     m*(L1*(2*L1 + 2*L2*cos(theta2)) + L2**2)
     """
@@ -144,8 +144,11 @@ def kinetic_energy(robot: Robot | Chain, *, simplify: bool = True) -> sp.Expr:
 
 
 def time_derivative(expr: sp.Expr, robot: Robot | Chain) -> sp.Expr:
-    r""":math:`\frac{d}{dt}` of an expression in :math:`q, \dot q`: :math:`\sum_j \frac{\partial}{\partial q_j}\dot q_j
-    + \frac{\partial}{\partial \dot q_j}\ddot q_j`."""
+    r"""The time derivative of an expression in :math:`q, \dot q` along the motion.
+
+    .. math::
+        \frac{d}{dt} = \sum_j \dot q_j \frac{\partial}{\partial q_j} + \ddot q_j \frac{\partial}{\partial \dot q_j}
+    """
     model = as_chain(robot).robot
     return sp.Add(*[expr.diff(q) * qd for q, qd in zip(model.q, model.coordinate_rates, strict=True)],
                   *[expr.diff(qd) * qdd for qd, qdd in zip(model.coordinate_rates, model.coordinate_accelerations,
@@ -160,8 +163,8 @@ def euler_lagrange(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: 
     >>> from symjac import load_robot
     >>> from symjac.model.inertia import Inertial
     >>> m = sp.Symbol("m", positive=True)
-    >>> arm = load_robot("planar2r")
-    >>> arm = type(arm)(**{**arm.__dict__, "inertials": (Inertial(m), Inertial(m))})
+    >>> import dataclasses
+    >>> arm = dataclasses.replace(load_robot("planar2r"), inertials=(Inertial(m), Inertial(m)))
     >>> euler_lagrange(arm)[1]
     L2*m*(L1*(thetaddot1*cos(theta2) + thetadot1**2*sin(theta2)) + L2*(thetaddot1 + thetaddot2))
     """

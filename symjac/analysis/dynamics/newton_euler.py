@@ -32,7 +32,8 @@ next link; the torques come out in textbook form.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import dataclasses
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import sympy as sp
@@ -64,6 +65,11 @@ class LinkStep:
     f: sp.ImmutableMatrix
     n: sp.ImmutableMatrix
     tau: sp.Expr
+
+    def moved(self, move: Callable[[sp.ImmutableMatrix], sp.ImmutableMatrix]) -> LinkStep:
+        """The same step with ``move`` applied to every quantity (to write it in a coupled robot's coordinates)."""
+        values = {name: move(getattr(self, name)) for name in STEP_NAMES}
+        return dataclasses.replace(self, tau=move(sp.ImmutableMatrix([self.tau]))[0], **values)
 
     def named(self) -> dict[str, sp.ImmutableMatrix | sp.Expr]:
         """The quantities by name with the link number: ``omega_2``, ``alpha_2``, ..., ``n_2``, ``tau_2``."""
@@ -126,10 +132,10 @@ def recursion(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp
         alpha = tidy(chain, R * alpha + _cross(omega_rotated, turn) + turning, k, simplify)
         omega = tidy(chain, omega_rotated + turn, k, simplify)
         body = bodies[k - 1]
-        c, I = sp.Matrix(body.com), sp.Matrix(body.inertia)
+        c, inertia = sp.Matrix(body.com), sp.Matrix(body.inertia)
         a_c = tidy(chain, a + _cross(alpha, c) + _cross(omega, _cross(omega, c)), k, simplify)
         F = tidy(chain, body.mass * a_c, k, simplify)
-        N = tidy(chain, I * alpha + _cross(omega, I * omega), k, simplify)
+        N = tidy(chain, inertia * alpha + _cross(omega, inertia * omega), k, simplify)
         outward.append((k, axis, omega, alpha, a, a_c, F, N, c))
     steps: list[LinkStep] = []
     f, m = sp.zeros(3, 1), sp.zeros(3, 1)
@@ -145,7 +151,9 @@ def recursion(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp
         f, m = tidy(chain, f, k, simplify), tidy(chain, m, k, simplify)
         about_axis = m + _cross(axis.r, f) if axis.revolute else f
         tau = tidy(chain, axis.z.T * about_axis, k, simplify)[0]
-        steps.append(LinkStep(k, *(sp.ImmutableMatrix(v) for v in (omega, alpha, a, a_c, F, N, f, m)), tau))
+        steps.append(LinkStep(k, sp.ImmutableMatrix(omega), sp.ImmutableMatrix(alpha), sp.ImmutableMatrix(a),
+                              sp.ImmutableMatrix(a_c), sp.ImmutableMatrix(F), sp.ImmutableMatrix(N),
+                              sp.ImmutableMatrix(f), sp.ImmutableMatrix(m), tau))
     return tuple(reversed(steps))
 
 
@@ -172,11 +180,15 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
     --------
     >>> from symjac import load_robot
     >>> from symjac.model.inertia import Inertial
-    >>> m, I = sp.symbols("m I", positive=True)
-    >>> arm = load_robot("planar2r")
-    >>> arm = type(arm)(**{**arm.__dict__, "inertials": (Inertial(m, (0, 0, 0), sp.diag(0, 0, I)),) * 2})
-    >>> newton_euler(arm).torques[1]
-    I*(thetaddot1 + thetaddot2) + L1*m*(g*cos(theta1) + thetadot1**2*sin(theta2) + thetaddot1*cos(theta2)) ...
+    >>> import dataclasses
+    >>> from symjac.analysis.dynamics.gravity import GRAVITY_SYMBOL, Gravity
+    >>> m = sp.Symbol("m", positive=True)
+    >>> arm = dataclasses.replace(load_robot("planar2r"), inertials=(Inertial(m), Inertial(m)))  # masses at the ends
+    >>> tau = newton_euler(arm, Gravity(direction=(0, -1, 0))).torques  # gravity along -y, in the arm's plane
+    >>> tau[1].subs(GRAVITY_SYMBOL, 0)
+    L2*m*(L1*(thetaddot1*cos(theta2) + thetadot1**2*sin(theta2)) + L2*(thetaddot1 + thetaddot2))
+    >>> sp.expand(tau[1]).coeff(GRAVITY_SYMBOL)
+    L2*m*cos(theta1 + theta2)
     """
     chain = as_chain(robot)
     check_gravity(chain.robot, gravity)
@@ -190,8 +202,7 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
         tau = laid_out(joints, sp.Matrix([step.tau for step in steps]), simplify)
         if chain.robot.coupling is None:
             return NewtonEuler(steps, tau, tau, gravity)
-        moved = tuple(LinkStep(s.link, *(in_coordinates(chain, getattr(s, name)) for name in STEP_NAMES),
-                               in_coordinates(chain, sp.Matrix([s.tau]))[0]) for s in steps)
+        moved = tuple(s.moved(lambda value: in_coordinates(chain, value)) for s in steps)
         tau_joints = in_coordinates(chain, sp.Matrix(tau))
         tau_q = laid_out(chain, coupling_matrix(chain).T * tau_joints, simplify)
         return NewtonEuler(moved, sp.ImmutableMatrix(tau_joints), tau_q, gravity)
@@ -200,7 +211,7 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
 
 
 def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableMatrix:
-    r"""The mass matrix by Newton-Euler: column j is :math:`\tau` with :math:`\dot q = 0`, no gravity, :math:`\ddot q = e_j`.
+    r"""The mass matrix by Newton-Euler: column j is :math:`\tau` at :math:`\dot q = 0,\ \ddot q = e_j`, no gravity.
 
     An independent route to :func:`~symjac.analysis.dynamics.lagrange.mass_matrix` (the two agree exactly); for a
     coupled robot :math:`C^T M C`, in the coordinates.
@@ -221,4 +232,5 @@ def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> 
             M = C.T * in_coordinates(chain, M) * C
         return laid_out(chain, M, simplify)
 
-    return chain.memo(MemoKey(newton_euler_mass_matrix, (simplify,)), lambda: exact_or_nested(chain, compute))
+    key = MemoKey(newton_euler_mass_matrix, (simplify,))
+    return chain.memo(key, lambda: exact_or_nested(chain, compute))

@@ -150,7 +150,7 @@ def recursion(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp
             f, m = sp.Matrix(F), N + _cross(c, F)
         f, m = tidy(chain, f, k, simplify), tidy(chain, m, k, simplify)
         about_axis = m + _cross(axis.r, f) if axis.revolute else f
-        tau = tidy(chain, axis.z.T * about_axis, k, simplify)[0]
+        tau = (axis.z.T * about_axis)[0]  # laid out with the others at the end
         steps.append(LinkStep(k, sp.ImmutableMatrix(omega), sp.ImmutableMatrix(alpha), sp.ImmutableMatrix(a),
                               sp.ImmutableMatrix(a_c), sp.ImmutableMatrix(F), sp.ImmutableMatrix(N),
                               sp.ImmutableMatrix(f), sp.ImmutableMatrix(m), tau))

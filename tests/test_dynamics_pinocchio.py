@@ -138,3 +138,21 @@ def test_mdot_minus_twice_c_is_skew_and_the_routes_add_up(pair):
         total = pair.M(*args) @ qdd + pair.C(*args) @ qd + pair.g(*args).ravel()
         _close(pair.tau(*args).ravel(), total)
         assert np.all(np.linalg.eigvalsh(pair.M(*args)) > 0)
+
+
+def test_gravity_compensation_three_ways(pair):
+    """g(q) is what pinocchio's rnea needs to hold the arm still, and the static route -sum J_ci^T m_i g0."""
+    from symjac.kinematics.jacobian import jacobian
+
+    arm = pair.robot
+    numbers = {s: sp.Float(v, 30) for s, v in dynamics_defaults(arm).items()}
+    static = sp.zeros(arm.n_joints, 1)
+    for i, body in enumerate(arm.inertials, start=1):
+        J_v = jacobian(arm, 0, point=body.com, link=i, simplify=False)[:3, :]
+        static -= J_v.T * body.mass * sp.Matrix([0, 0, -sp.Symbol("g", positive=True)])
+    static = sp.lambdify(arm.q, static.xreplace(numbers))
+    zero = np.zeros(arm.n_joints)
+    for q, _, _ in _states(arm.n_joints, 3):
+        held = pair.chain(pin.rnea(pair.model, pair.data, pair.full(q), pair.full(zero), pair.full(zero)))
+        _close(pair.g(*q, *zero, *zero).ravel(), held)
+        _close(np.array(static(*q), dtype=float).ravel(), held)

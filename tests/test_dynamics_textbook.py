@@ -225,3 +225,19 @@ def test_missing_inertial_data_names_the_links():
     partial = dataclasses.replace(arm, inertials=(Inertial(1), None, Inertial(1)))
     with pytest.raises(NoInertialDataError, match="planar3r: link 2 has no inertial data"):
         newton_euler(partial)
+
+
+def test_puma_gravity_torques_and_mass_matrix_by_two_routes_exactly():
+    """The PUMA 560 with ten symbolic inertial parameters per link: g three ways and M two ways, as identities."""
+    puma = with_symbolic_inertials(load_robot("puma560"))
+    basis = chain_of(puma).all_angle_bases()[0]
+    G = gravity_torques(puma)
+    at_rest = {s: 0 for s in (*puma.coordinate_rates, *puma.coordinate_accelerations)}
+    held = newton_euler(puma, simplify=False).torques.xreplace(at_rest)
+    static = sp.zeros(6, 1)
+    for i, body in enumerate(puma.inertials, start=1):
+        static -= jacobian(puma, 0, point=body.com, link=i)[:3, :].T * body.mass * EARTH.vector
+    assert G[0] == 0 and G[5] != 0  # joint 1 turns about the vertical; the wrist carries link 6's weight
+    assert all(is_identity(G[k], held[k], basis) and is_identity(G[k], static[k], basis) for k in range(6))
+    M, M_ne = mass_matrix(puma), newton_euler_mass_matrix(puma)
+    assert all(is_identity(M[i, j], M_ne[i, j], basis) for i in range(6) for j in range(i, 6))

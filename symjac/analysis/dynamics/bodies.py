@@ -74,9 +74,9 @@ def tidy(chain: Chain, vector: sp.MatrixBase, frame: int, simplify: bool) -> sp.
 
     Each step of a recursion is simplified as it is formed, so that vanishing terms are gone before the next link
     multiplies them out. One basis per frame: the alternatives only shorten a few entries, and each costs a whole
-    layout (with them the PUMA 560's torques took 67 s instead of 29 s, for the same final size). A nested chain (generic geometry, :mod:`symjac.kinematics.generic`) has no textbook form:
-    each entry is named instead (:func:`~symjac.symbolic.nested.named`), so the next link multiplies names and
-    nothing grows.
+    layout (with them the PUMA 560's torques took 67 s instead of 29 s, for the same final size). A nested chain
+    (generic geometry, :mod:`symjac.kinematics.generic`) has no textbook form: each entry is named instead
+    (:func:`~symjac.symbolic.nested.named`), so the next link multiplies names and nothing grows.
     """
     if chain.nested:
         return sp.ImmutableMatrix(sp.Matrix(vector).applyfunc(named))

@@ -54,6 +54,8 @@ class Gravity:
                      for v in self.direction]
         if len(direction) != 3:
             raise ArgumentError(f"gravity's direction has 3 components in {{0}}, got {len(direction)}")
+        if not all(v.is_number and v.is_real for v in direction):
+            raise ArgumentError(f"gravity's direction must be 3 real numbers, got {tuple(direction)}")
         norm = sp.sqrt(sum(v**2 for v in direction))
         if norm == 0:
             raise ArgumentError("gravity's direction must not be the zero vector")

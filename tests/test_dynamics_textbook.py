@@ -158,6 +158,7 @@ def test_every_step_is_named_and_the_angular_velocity_is_the_jacobians():
         assert _zero(step.omega - omega)
     assert _zero(names[1]["F_2"] - m2 * names[1]["a_c_2"])
     assert _zero(names[1]["f_2"] - names[1]["F_2"])  # the last link: nothing beyond it
+    assert [step.tau for step in result.steps] == list(result.torques)
 
 
 def test_prismatic_joint_carries_its_load():

@@ -15,7 +15,8 @@ zero for a revolute one:
     F_k = m_k a_{ck}, \qquad N_k = I_k \alpha_k + \omega_k \times I_k \omega_k
 
 starting from :math:`\omega_0 = \alpha_0 = 0` and :math:`a_0 = -g_0` (the base accelerating upwards stands for
-gravity, :mod:`~symjac.analysis.dynamics.gravity`). :math:`a_k` is the acceleration of the origin of {k} and
+gravity, :mod:`~symjac.analysis.dynamics.gravity`; so every :math:`a_k` and :math:`a_{ck}` is the acceleration minus
+gravity, what an accelerometer fixed there would read). :math:`a_k` is the acceleration of the origin of {k} and
 :math:`a_{ck}` that of the centre of mass :math:`c_k` (given in {k}); :math:`I_k` is the tensor about the centre.
 
 **Inward** (tip to base), with :math:`R' = {}^k_{k+1}R` and :math:`p' = {}^kp_{k+1}`, the force :math:`f_k` and
@@ -198,8 +199,9 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
         model = joints.robot
         steps = recursion(joints, [j.rate for j in model.joints], [j.acceleration for j in model.joints],
                           gravity, simplify=simplify)
-        # each torque in the shortest of frame {0}'s angles (c_12 rather than c_1 c_2 - s_1 s_2)
+        # each torque in the shortest of frame {0}'s angles (c_12 rather than c_1 c_2 - s_1 s_2), in its step too
         tau = laid_out(joints, sp.Matrix([step.tau for step in steps]), simplify)
+        steps = tuple(dataclasses.replace(step, tau=tau[k]) for k, step in enumerate(steps))
         if chain.robot.coupling is None:
             return NewtonEuler(steps, tau, tau, gravity)
         moved = tuple(s.moved(lambda value: in_coordinates(chain, value)) for s in steps)

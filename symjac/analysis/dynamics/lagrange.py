@@ -56,7 +56,19 @@ def _memo(chain: Chain, function: Callable[..., object], arguments: tuple,
 
 
 def mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableMatrix:
-    r"""The mass matrix :math:`M(q)` from the Jacobians of the link centres (module docstring), n x n.
+    r"""The mass matrix :math:`M(q)` from the Jacobians of the link centres (module docstring).
+
+    Parameters
+    ----------
+    robot : Robot or Chain
+        With inertial data on every link (an error names the links without).
+    simplify : bool
+        Lay the result out in compact form (default); ``False`` keeps the raw products.
+
+    Returns
+    -------
+    M : sympy.ImmutableMatrix, shape (n, n)
+        Symmetric, in the coordinates ``robot.q`` (:math:`C^T M C` for coupled joints).
 
     Examples
     --------
@@ -86,7 +98,14 @@ def mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableM
 
 
 def coriolis_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableMatrix:
-    r"""The Coriolis matrix :math:`C(q, \dot q)` from the Christoffel symbols of :func:`mass_matrix`, n x n."""
+    r"""The Coriolis matrix :math:`C(q, \dot q)` from the Christoffel symbols of :func:`mass_matrix`.
+
+    Returns
+    -------
+    C : sympy.ImmutableMatrix, shape (n, n)
+        Linear in the rates ``robot.coordinate_rates``; :math:`\dot M - 2C` is skew-symmetric and
+        :math:`C\dot q` the Coriolis and centrifugal torques.
+    """
     chain = as_chain(robot)
 
     def compute(chain: Chain) -> sp.ImmutableMatrix:
@@ -118,7 +137,13 @@ def potential_energy(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify
 
 
 def gravity_torques(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bool = True) -> sp.ImmutableMatrix:
-    r"""The gravity vector :math:`g(q) = \partial V / \partial q`, n x 1: the torques that hold the arm still."""
+    r"""The gravity vector :math:`g(q) = \partial V / \partial q`: the torques that hold the arm still.
+
+    Returns
+    -------
+    g : sympy.ImmutableMatrix, shape (n, 1)
+        In ``robot.q`` and gravity's magnitude (the symbol ``g`` unless ``gravity`` gives a number).
+    """
     chain = as_chain(robot)
 
     def compute(chain: Chain) -> sp.ImmutableMatrix:

@@ -216,6 +216,7 @@ def test_gravity_setting_defaults_and_errors():
     with pytest.raises(ArgumentError, match="3 real numbers"):
         Gravity(direction=(0, 0, "x"))
     assert Gravity(direction=(0, 0.6, -0.8)).vector == sp.Matrix([0, 3 * g / 5, -4 * g / 5])
+    assert Gravity(magnitude=9.81).vector == sp.Matrix([0, 0, -sp.Rational(981, 100)])  # exact, not a float
     clash = robot_from_mapping({"name": "clash", "convention": "standard", "parameters": {"g": 1},
                                 "joints": [{"type": "revolute", "alpha": 0, "a": "g"}]})
     with pytest.raises(ArgumentError, match="'g' has the name of gravity"):

@@ -61,8 +61,11 @@ class Gravity:
             raise ArgumentError("gravity's direction must not be the zero vector")
         unit = tuple(sp.nsimplify(sp.simplify(v / norm)) if v != 0 else sp.S.Zero for v in direction)
         object.__setattr__(self, "direction", unit)
-        object.__setattr__(self, "magnitude", sp.sympify(self.magnitude))
-        value = sp.sympify(self.value)
+        # a float such as 9.81 becomes the exact 981/100: floats make SymPy slow and leave 1e-17 residues
+        magnitude = sp.nsimplify(self.magnitude, rational=True) if isinstance(self.magnitude, float) else \
+            sp.sympify(self.magnitude)
+        object.__setattr__(self, "magnitude", magnitude)
+        value = sp.nsimplify(self.value, rational=True) if isinstance(self.value, float) else sp.sympify(self.value)
         if not value.is_number:
             raise ArgumentError(f"gravity's value must be a number, got {value}")
         object.__setattr__(self, "value", value)

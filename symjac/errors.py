@@ -14,6 +14,7 @@ __all__ = [
     "FrameError",
     "InertialWarning",
     "NoClosedFormError",
+    "NoInertialDataError",
     "RepresentationError",
     "ResultTooLargeError",
     "RobotFileError",
@@ -136,3 +137,7 @@ class NoClosedFormError(SymjacError, ArithmeticError):
             "intermediate values; evaluate them numerically instead (symjac.numeric_jacobian, `symjac codegen`), "
             "or write the angles exactly (pi/2, or a parameter) where the design has them")
 
+
+
+class NoInertialDataError(SymjacError, ValueError):
+    """A dynamics request on a robot some of whose links have no inertial data (the message names them)."""

@@ -29,6 +29,7 @@ pytestmark = pytest.mark.slow  # seconds per script
         reason="jax and casadi come with the test extra")),
     "acceleration.py planar2r",
     "derivation.py planar2r",
+    "dynamics.py planar2r --planar 3 --limit 120",
     "generic_geometry.py --quick -n 1 --section puma --section numbers",  # 5 processes, a few seconds
     "growth.py --family planar --sizes 2 3 --limit 10",
     "poe.py",

@@ -87,7 +87,7 @@ class TrigImage:
 
     @cached_property
     def ideal(self) -> list[PolyElement]:
-        """S^2 + C^2 - 1 per angle, g^2 - n per sqrt(n): a Groebner basis (leading monomials pairwise coprime)."""
+        """The relations S^2 + C^2 - 1 per angle and g^2 - n per sqrt(n), a Groebner basis (coprime leading terms)."""
         pythagoras = [self.sine(j) ** 2 + self.cosine(j) ** 2 - 1 for j in range(self.angle_count)]
         offset = 2 * self.angle_count
         return pythagoras + [self.gens[offset + i] ** 2 - n for i, n in self.relations]

@@ -35,6 +35,7 @@ LONGEST_FIRST = (
     # compiled targets, hypothesis over random chains)
     "test_packaging.py", "test_latex_compile.py", "test_notebooks.py", "test_quality.py", "test_docs.py",
     "test_properties.py", "test_codegen_c99.py", "test_codegen_cpp.py", "test_jacobian_numeric.py",
+    "test_numeric_model.py", "test_dynamics_random.py", "test_dynamics_pinocchio.py", "test_benchmarks.py",
     # the fast loop's longest, measured (tests/marks.py, docs/testing.md)
     "test_acceleration.py", "test_codegen_jax.py", "test_codegen.py", "test_representations.py", "test_errata.py",
     "test_report.py", "test_codegen_acceleration.py", "test_redundant.py", "test_readme.py", "test_coordinates.py",

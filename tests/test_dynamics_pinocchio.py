@@ -15,12 +15,10 @@ mass here; the hand itself, fixed to link 8, is lumped by both.
 
 from __future__ import annotations
 
-from importlib import metadata
-from pathlib import Path
-
 import numpy as np
 import pytest
 import sympy as sp
+from collection import example_robots
 
 from symjac.analysis.dynamics import (
     coriolis_matrix,
@@ -36,19 +34,7 @@ pytestmark = pytest.mark.external
 pin = pytest.importorskip("pinocchio", reason="pinocchio is not installed (pip install pin, or the [compare] extra)")
 
 
-def _robots_folder() -> Path | None:
-    try:
-        files = metadata.distribution("example-robot-data").files or []
-    except metadata.PackageNotFoundError:
-        return None
-    marker = next((f for f in files if str(f).endswith("share/example-robot-data/package.xml")), None)
-    return Path(marker.locate()).parent / "robots" if marker is not None else None
-
-
-FOLDER = _robots_folder()
-if FOLDER is None:
-    pytest.skip("example-robot-data is not installed (pip install example-robot-data, or the [compare] extra)",
-                allow_module_level=True)
+FOLDER = example_robots()
 
 ARMS = {  # name: (file, tip link)
     "ur5": ("ur_description/urdf/ur5_robot.urdf", "tool0"),

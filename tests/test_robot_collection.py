@@ -10,11 +10,11 @@ coordinate (PR2, TALOS, TIAGo Pro).
 
 from __future__ import annotations
 
-from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 import pytest
+from collection import example_robots
 
 from symjac.errors import RobotFileError
 from symjac.kinematics.numeric import numeric_jacobian
@@ -25,19 +25,7 @@ from symjac.model.readers.urdf import tree_from_urdf
 pytestmark = pytest.mark.external
 
 
-def _robots_folder() -> Path | None:
-    try:
-        files = metadata.distribution("example-robot-data").files or []
-    except metadata.PackageNotFoundError:
-        return None
-    marker = next((f for f in files if str(f).endswith("share/example-robot-data/package.xml")), None)
-    return Path(marker.locate()).parent / "robots" if marker is not None else None
-
-
-FOLDER = _robots_folder()
-if FOLDER is None:
-    pytest.skip("example-robot-data is not installed (pip install example-robot-data, or the [compare] extra)",
-                allow_module_level=True)
+FOLDER = example_robots()
 FILES = sorted(FOLDER.rglob("*.urdf"))
 
 REFUSED = {  # file: why it is no arm symjac can read (a reason, never the format)

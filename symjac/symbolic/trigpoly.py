@@ -367,32 +367,50 @@ def expanded_expr(poly: PolyElement, image: TrigImage) -> sp.Expr:
 
 def nested_expr(poly: PolyElement, image: TrigImage) -> sp.Expr:
     """A polynomial of the image as a nested SymPy sum (greedy Horner, see :mod:`symjac.symbolic.simplify`)."""
-    return _nest(list(poly.terms()), image)
+    sparse = [({i: e for i, e in enumerate(m) if e}, c) for m, c in poly.terms()]
+    return _nest(sparse, image)
 
 
-def _nest(terms: list[tuple[tuple[int, ...], Any]], image: TrigImage) -> sp.Expr:
-    """Greedy multivariate Horner: factor out the generator shared by most terms, recurse on both parts."""
-    if len(terms) <= 1:
-        return sp.Add(*[_coefficient_expr(c) * _monomial_expr(m, image) for m, c in terms])
-    counts: dict[int, int] = {}
-    for monomial, _ in terms:
-        for i, e in enumerate(monomial):
-            if e:
+Sparse = dict[int, int]  # a monomial as {generator index: exponent}, exponents positive
+
+
+def _sparse_term(monomial: Sparse, coefficient: Any, image: TrigImage) -> sp.Expr:
+    return _coefficient_expr(coefficient) * sp.Mul(*[image.back(i) ** e for i, e in sorted(monomial.items())])
+
+
+def _nest(terms: list[tuple[Sparse, Any]], image: TrigImage) -> sp.Expr:
+    """Greedy multivariate Horner: factor out the generator shared by most terms, recurse on both parts.
+
+    Monomials are sparse (a ring has a generator per parameter, a term uses a few), and the parts outside each
+    factored generator are handled in a loop and summed once at the end rather than added to the sum of the rest
+    one by one (which re-sorted that growing sum at every step). A SymPy sum is canonical: the result is the same.
+    """
+    summands: list[sp.Expr] = []
+    while terms:
+        counts: dict[int, int] = {}
+        for monomial, _ in terms:
+            for i in monomial:
                 counts[i] = counts.get(i, 0) + 1
-    best = max(counts, key=lambda i: (counts[i], -i), default=None)
-    if best is None or counts[best] < 2:
-        return sp.Add(*[_coefficient_expr(c) * _monomial_expr(m, image) for m, c in terms])
-    inside, outside = [], []
-    for monomial, coefficient in terms:
-        if monomial[best]:
-            reduced = list(monomial)
-            reduced[best] -= 1
-            inside.append((tuple(reduced), coefficient))
-        else:
-            outside.append((monomial, coefficient))
-    inner = _nest(inside, image)
-    factor = image.back(best)
-    # keep a leading minus outside the parentheses: -c1*(x + y) rather than c1*(-x - y)
-    negated = isinstance(inner, sp.Add) and inner.could_extract_minus_sign()
-    product = -(factor * (-inner)) if negated else factor * inner
-    return product + _nest(outside, image)
+        best = max(counts, key=lambda i: (counts[i], -i), default=None)
+        if len(terms) <= 1 or best is None or counts[best] < 2:
+            summands += [_sparse_term(m, c, image) for m, c in terms]
+            break
+        inside: list[tuple[Sparse, Any]] = []
+        outside: list[tuple[Sparse, Any]] = []
+        for monomial, coefficient in terms:
+            if best in monomial:
+                reduced = dict(monomial)
+                if reduced[best] > 1:
+                    reduced[best] -= 1
+                else:
+                    del reduced[best]
+                inside.append((reduced, coefficient))
+            else:
+                outside.append((monomial, coefficient))
+        inner = _nest(inside, image)
+        factor = image.back(best)
+        # keep a leading minus outside the parentheses: -c1*(x + y) rather than c1*(-x - y)
+        negated = isinstance(inner, sp.Add) and inner.could_extract_minus_sign()
+        summands.append(-(factor * (-inner)) if negated else factor * inner)
+        terms = outside
+    return sp.Add(*summands)

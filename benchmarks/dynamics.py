@@ -4,8 +4,10 @@ How long symjac takes to derive the equations of motion, cold (each point in a f
 no derived chain), with ten symbolic inertial parameters per link (``m{i}``, ``cx{i}`` .. ``Izz{i}``): the gravity
 torques g(q), the mass matrix M(q) from the link Jacobians and by Newton-Euler, the Coriolis matrix C(q, qd) from the
 Christoffel symbols, and the Newton-Euler torques, laid out (``tau``) and raw (``tau raw``, ``simplify=False``: what
-code would start from). ``--planar`` adds planar N-R arms (gravity in their plane), for the growth with the joints.
-A point past ``--limit`` seconds is stopped and shown as such. It measures and asserts nothing, so it never flakes.
+code would start from). ``--planar`` adds planar N-R arms (gravity in their plane) and ``--prefix ROBOT --joints 3 4
+...`` the arms made of a catalog robot's first joints (``iiwa7:4``), for the growth with the joints; the last column
+is the total of g, M, C and tau (the four results the issue asks of a 7-joint arm). A point past ``--limit``
+seconds is stopped and shown as such. It measures and asserts nothing, so it never flakes.
 """
 
 from __future__ import annotations
@@ -34,6 +36,12 @@ if name.startswith("planar-"):  # planar-3R: a generated arm, not the catalog's 
     robot = robot_from_mapping({"name": "planar", "convention": "standard", "parameters": {"L": 0.3},
                                 "joints": [{"type": "revolute", "alpha": 0, "a": "L"}] * n})
     gravity = Gravity(direction=(0, -1, 0))
+elif ":" in name:  # iiwa7:4: the robot's first four joints
+    import dataclasses
+    base, count = name.split(":")
+    whole = load_robot(base)
+    robot = dataclasses.replace(whole, name=f"{base}_{count}", joints=whole.joints[:int(count)], tool=None)
+    gravity = Gravity()
 else:
     robot, gravity = load_robot(name), Gravity()
 arm = with_symbolic_inertials(robot)
@@ -64,18 +72,26 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("robots", nargs="*", default=["puma560"], help="catalog robots (default: puma560)")
     parser.add_argument("--planar", type=int, nargs="*", default=[], help="planar N-R arms to add")
+    parser.add_argument("--prefix", help="a catalog robot whose first --joints joints make arms (iiwa7, panda)")
+    parser.add_argument("--joints", type=int, nargs="*", default=[3, 4, 5, 6, 7], help="joints of the --prefix arms")
     parser.add_argument("--limit", type=float, default=300.0, help="seconds per point before it is stopped")
     parser.add_argument("--parts", nargs="*", default=list(PARTS), choices=PARTS)
     options = parser.parse_args(argv)
     names = [*options.robots, *(f"planar-{n}R" for n in options.planar)]
-    print("| robot | " + " | ".join(options.parts) + " |")
-    print("|---|" + "---|" * len(options.parts))
+    if options.prefix:
+        names += [f"{options.prefix}:{n}" for n in options.joints]
+    total_parts = [part for part in ("g", "M", "C", "tau") if part in options.parts]
+    print("| robot | " + " | ".join(options.parts) + " | total " + " + ".join(total_parts) + " |")
+    print("|---|" + "---|" * (len(options.parts) + 1))
     started = time.perf_counter()
     for name in names:
-        cells = []
+        cells, total = [], 0.0
         for part in options.parts:
             seconds, ops = measure(name, part, options.limit)
             cells.append(f"> {options.limit:.0f} s" if seconds is None else f"{seconds:.2f} s ({ops:,} ops)")
+            if part in total_parts:
+                total = float("inf") if seconds is None else total + seconds
+        cells.append(f"{total:.1f} s" if total != float("inf") else "-")
         print(f"| {name} | " + " | ".join(cells) + " |", flush=True)
     print(f"\n(total {time.perf_counter() - started:.0f} s; cold, one process per point, symbolic inertial data)")
     return 0

@@ -2,8 +2,9 @@
 
 A benchmark asserts nothing about speed (a timed test would flake on a shared machine), but a script that no longer
 runs is a defect the suite can see: ``generated_code.py`` once failed on a target that writes C, not Python. The
-slowest scripts (``drawing.py``, ``redundant.py``, ``sweep.py``, ``cpp_vs_pinocchio.py``, which builds pinocchio,
-and ``before_after.py``, which needs a second checkout) are left to their authors' runs.
+slowest scripts (``drawing.py``, ``redundant.py``, ``sweep.py``, ``cpp_vs_pinocchio.py`` and
+``dynamics_vs_pinocchio.py``, which build pinocchio, and ``before_after.py``, which needs a second checkout) are left
+to their authors' runs.
 """
 
 from __future__ import annotations

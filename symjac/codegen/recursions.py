@@ -40,33 +40,33 @@ def _is_simple(expr: sp.Expr) -> bool:
     return bool(expr.is_Mul and len(expr.args) == 2 and expr.args[0].is_Number and expr.args[1].is_Symbol)
 
 
-def cross(u: Vector, v: Vector) -> Vector:
+def _cross(u: Vector, v: Vector) -> Vector:
     """``u x v`` entry by entry (a zero entry's products vanish as they are formed)."""
     return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
 
 
-def add(*vectors: Vector) -> Vector:
+def _add(*vectors: Vector) -> Vector:
     """The sum of 3-vectors."""
     return (sp.Add(*(v[0] for v in vectors)), sp.Add(*(v[1] for v in vectors)), sp.Add(*(v[2] for v in vectors)))
 
 
-def scaled(s: sp.Expr, v: Vector) -> Vector:
+def _scaled(s: sp.Expr, v: Vector) -> Vector:
     """``s v``."""
     return (s * v[0], s * v[1], s * v[2])
 
 
-def times(R: Matrix3, v: Vector) -> Vector:
+def _times(R: Matrix3, v: Vector) -> Vector:
     """``R v``."""
     return (R[0][0] * v[0] + R[0][1] * v[1] + R[0][2] * v[2], R[1][0] * v[0] + R[1][1] * v[1] + R[1][2] * v[2],
             R[2][0] * v[0] + R[2][1] * v[1] + R[2][2] * v[2])
 
 
-def transposed(R: Matrix3) -> Matrix3:
+def _transposed(R: Matrix3) -> Matrix3:
     """``R^T``."""
     return ((R[0][0], R[1][0], R[2][0]), (R[0][1], R[1][1], R[2][1]), (R[0][2], R[1][2], R[2][2]))
 
 
-def dot(u: Vector, v: Vector) -> sp.Expr:
+def _dot(u: Vector, v: Vector) -> sp.Expr:
     """``u . v``."""
     return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 
@@ -178,22 +178,22 @@ def newton_euler_trace(trace: Trace, rates: Sequence[sp.Expr], accelerations: Se
         z, r, revolute = _axis(trace, k)
         R, p = trace.rotation(k, k - 1), trace.offset(k - 1, k)
         qd, qdd = rates[k - 1], accelerations[k - 1]
-        wr = trace.vector(times(R, w))
-        vd = times(R, add(vd, cross(wd, p), cross(w, trace.vector(cross(w, p)))))
+        wr = trace.vector(_times(R, w))
+        vd = _times(R, _add(vd, _cross(wd, p), _cross(w, trace.vector(_cross(w, p)))))
         if revolute:
-            turn = scaled(qd, z)
-            rz = cross(turn, r)
-            vd = add(vd, cross(scaled(qdd, z), r), cross(turn, trace.vector(rz)), scaled(2, cross(wr, rz)))
-            wd = trace.vector(add(times(R, wd), cross(wr, turn), scaled(qdd, z)))
-            w = trace.vector(add(wr, turn))
+            turn = _scaled(qd, z)
+            rz = _cross(turn, r)
+            vd = _add(vd, _cross(_scaled(qdd, z), r), _cross(turn, trace.vector(rz)), _scaled(2, _cross(wr, rz)))
+            wd = trace.vector(_add(_times(R, wd), _cross(wr, turn), _scaled(qdd, z)))
+            w = trace.vector(_add(wr, turn))
         else:
-            vd = add(vd, scaled(qdd, z), scaled(2, cross(wr, scaled(qd, z))))
-            wd = trace.vector(times(R, wd))
+            vd = _add(vd, _scaled(qdd, z), _scaled(2, _cross(wr, _scaled(qd, z))))
+            wd = trace.vector(_times(R, wd))
             w = wr
         vd = trace.vector(vd)
         m, h, J = _body(trace, k)
-        F = trace.vector(add(scaled(m, vd), cross(wd, h), cross(w, trace.vector(cross(w, h)))))
-        N = trace.vector(add(times(J, wd), cross(w, trace.vector(times(J, w))), cross(h, vd)))
+        F = trace.vector(_add(_scaled(m, vd), _cross(wd, h), _cross(w, trace.vector(_cross(w, h)))))
+        N = trace.vector(_add(_times(J, wd), _cross(w, trace.vector(_times(J, w))), _cross(h, vd)))
         forces.append((z, r, revolute, F, N))
     f, nm = ZERO, ZERO
     tau: list[sp.Expr] = []
@@ -201,12 +201,12 @@ def newton_euler_trace(trace: Trace, rates: Sequence[sp.Expr], accelerations: Se
         z, r, revolute, F, N = forces[k - 1]
         if k < n:
             R, p = trace.rotation(k, k + 1), trace.offset(k, k + 1)
-            fr = trace.vector(times(R, f))
-            nm = trace.vector(add(N, times(R, nm), cross(p, fr)))
-            f = trace.vector(add(F, fr))
+            fr = trace.vector(_times(R, f))
+            nm = trace.vector(_add(N, _times(R, nm), _cross(p, fr)))
+            f = trace.vector(_add(F, fr))
         else:
             f, nm = F, N
-        tau.append(dot(z, add(nm, cross(r, f))) if revolute else dot(z, f))
+        tau.append(_dot(z, _add(nm, _cross(r, f))) if revolute else _dot(z, f))
     return tau[::-1]
 
 
@@ -221,7 +221,7 @@ def gravity_trace(trace: Trace, gravity: Sequence[sp.Expr]) -> list[sp.Expr]:
     a: Vector = tuple(-sp.sympify(g) for g in gravity)  # type: ignore[assignment]
     accelerations = []
     for k in range(1, n + 1):
-        a = trace.vector(times(trace.rotation(k, k - 1), a))
+        a = trace.vector(_times(trace.rotation(k, k - 1), a))
         accelerations.append(a)
     mass, H = sp.S.Zero, ZERO
     tau: list[sp.Expr] = []
@@ -229,19 +229,19 @@ def gravity_trace(trace: Trace, gravity: Sequence[sp.Expr]) -> list[sp.Expr]:
         m, h, _ = _body(trace, k)
         if k < n:
             R, p = trace.rotation(k, k + 1), trace.offset(k, k + 1)
-            H = trace.vector(add(h, times(R, H), scaled(mass, p)))
+            H = trace.vector(_add(h, _times(R, H), _scaled(mass, p)))
         else:
             H = h
         mass = trace.value(mass + m)
         z, r, revolute = _axis(trace, k)
         a = accelerations[k - 1]
-        tau.append(dot(z, cross(add(H, scaled(mass, r)), a)) if revolute else mass * dot(z, a))
+        tau.append(_dot(z, _cross(_add(H, _scaled(mass, r)), a)) if revolute else mass * _dot(z, a))
     return tau[::-1]
 
 
 def _skew_product(u: Vector, v: Vector) -> Matrix3:
     """The matrix of ``x -> u x (v x x)``, i.e. ``[u][v] = v u^T - (u . v) E``."""
-    d = dot(u, v)
+    d = _dot(u, v)
     return tuple(tuple(v[i] * u[j] - (d if i == j else 0) for j in range(3)) for i in range(3))  # type: ignore[return-value]
 
 
@@ -263,14 +263,14 @@ def mass_matrix_trace(trace: Trace) -> list[list[sp.Expr]]:
         if k < n:
             mc, hc, Jc = composite[k]
             R, p = trace.rotation(k, k + 1), trace.offset(k, k + 1)
-            hr = trace.vector(times(R, hc))
-            RJ = [trace.vector(times(R, column)) for column in transposed(Jc)]  # columns of R J
-            RJRt = [trace.vector(times(R, row)) for row in zip(*RJ, strict=True)]  # columns of R (R J)^T
+            hr = trace.vector(_times(R, hc))
+            RJ = [trace.vector(_times(R, column)) for column in _transposed(Jc)]  # columns of R J
+            RJRt = [trace.vector(_times(R, row)) for row in zip(*RJ, strict=True)]  # columns of R (R J)^T
             a, b, pp = _skew_product(hr, p), _skew_product(p, hr), _skew_product(p, p)
             entries = {(i, j): trace.value(J[i][j] + RJRt[j][i] - a[i][j] - b[i][j] - mc * pp[i][j])
                        for i in range(3) for j in range(i, 3)}
             J = tuple(tuple(entries[min(i, j), max(i, j)] for j in range(3)) for i in range(3))  # type: ignore[assignment]
-            h = trace.vector(add(h, hr, scaled(mc, p)))
+            h = trace.vector(_add(h, hr, _scaled(mc, p)))
             m = trace.value(m + mc)
         composite[k - 1] = (m, h, J)
     axes = [_axis(trace, k) for k in range(1, n + 1)]
@@ -279,16 +279,16 @@ def mass_matrix_trace(trace: Trace) -> list[list[sp.Expr]]:
         m, h, J = composite[j - 1]
         z, r, revolute = axes[j - 1]
         if revolute:
-            v = cross(z, r)
-            f = trace.vector(add(scaled(m, v), cross(z, h)))
-            nm = trace.vector(add(times(J, z), cross(h, v)))
+            v = _cross(z, r)
+            f = trace.vector(_add(_scaled(m, v), _cross(z, h)))
+            nm = trace.vector(_add(_times(J, z), _cross(h, v)))
         else:
-            f, nm = trace.vector(scaled(m, z)), trace.vector(cross(h, z))
+            f, nm = trace.vector(_scaled(m, z)), trace.vector(_cross(h, z))
         for i in range(j, 0, -1):
             if i < j:
                 R, p = trace.rotation(i, i + 1), trace.offset(i, i + 1)
-                f = trace.vector(times(R, f))
-                nm = trace.vector(add(times(R, nm), cross(p, f)))
+                f = trace.vector(_times(R, f))
+                nm = trace.vector(_add(_times(R, nm), _cross(p, f)))
             zi, ri, rev = axes[i - 1]
-            M[i - 1][j - 1] = M[j - 1][i - 1] = dot(zi, add(nm, cross(ri, f))) if rev else dot(zi, f)
+            M[i - 1][j - 1] = M[j - 1][i - 1] = _dot(zi, _add(nm, _cross(ri, f))) if rev else _dot(zi, f)
     return M

@@ -21,12 +21,13 @@ from symjac.kinematics.chain import Chain
 from symjac.model.inertia import Inertial
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.nested import has_intermediates, named, presented
-from symjac.symbolic.simplify import simplify_matrix
+from symjac.symbolic.simplify import printed_ops, simplify_matrix
 from symjac.symbolic.size import limit_lowered
 
 T = TypeVar("T")
 
-__all__ = ["JointAxis", "exact_or_nested", "joint_axis", "laid_out", "link_bodies", "result_bases", "tidy"]
+__all__ = ["JointAxis", "exact_or_nested", "joint_axis", "laid_out", "laid_out_from_first_basis", "link_bodies",
+           "result_bases", "tidy"]
 
 
 def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
@@ -106,6 +107,22 @@ def laid_out(chain: Chain, matrix: sp.MatrixBase, simplify: bool) -> sp.Immutabl
     if chain.nested or has_intermediates(matrix):
         return presented(sp.ImmutableMatrix(sp.Matrix(matrix).applyfunc(named)))  # type: ignore[no-any-return]
     return sp.ImmutableMatrix(simplify_matrix(matrix, result_bases(chain)) if simplify else matrix)
+
+
+def laid_out_from_first_basis(chain: Chain, entries: list[sp.Expr]) -> sp.ImmutableMatrix:
+    """:func:`laid_out` of a column whose entries are already laid out in the first of :func:`result_bases`.
+
+    Each entry is written in every other basis too and the shortest form kept (the first basis wins ties), as
+    :func:`~symjac.symbolic.simplify.simplify_matrix` does with several bases; the first basis is not done again.
+    """
+    best = list(entries)
+    ops = [printed_ops(entry) for entry in best]
+    for basis in result_bases(chain)[1:]:
+        for index, candidate in enumerate(simplify_matrix(sp.Matrix(entries), basis)):
+            cost = printed_ops(candidate)
+            if cost < ops[index]:
+                best[index], ops[index] = candidate, cost
+    return sp.ImmutableMatrix(best)
 
 
 def exact_or_nested(chain: Chain, derive: Callable[[Chain], T]) -> T:

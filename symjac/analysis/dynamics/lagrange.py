@@ -28,15 +28,16 @@ from collections.abc import Callable
 
 import sympy as sp
 
-from symjac.analysis.dynamics.bodies import exact_or_nested, laid_out, link_bodies
+from symjac.analysis.dynamics.bodies import exact_or_nested, laid_out, laid_out_from_first_basis, link_bodies
 from symjac.analysis.dynamics.gravity import EARTH, Gravity, check_gravity
+from symjac.analysis.dynamics.polynomial import christoffel_coriolis
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
 from symjac.kinematics.coupling import in_coordinates
 from symjac.kinematics.jacobian import jacobian
 from symjac.kinematics.propagation import velocity_propagation
 from symjac.model.robot import Robot
 from symjac.progress import report
-from symjac.symbolic.nested import named
+from symjac.symbolic.nested import has_intermediates, named
 
 __all__ = [
     "coriolis_matrix",
@@ -112,6 +113,11 @@ def coriolis_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.Immuta
         M = mass_matrix(chain, simplify=simplify)
         q, qdot = chain.robot.q, chain.robot.coordinate_rates
         n = len(q)
+        if simplify and not chain.nested and chain.robot.coupling is None and not has_intermediates(M):
+            # on normal forms: no tree is differentiated, and the first result basis is laid out only once
+            entries = christoffel_coriolis(chain, M, q, qdot)
+            if entries is not None:
+                return sp.ImmutableMatrix(n, n, list(laid_out_from_first_basis(chain, entries)))
         dM = [M.diff(variable) for variable in q]  # dM[i][k, j] = dM_kj / dq_i
         C = sp.Matrix(n, n, lambda k, j: sp.Add(*[
             sp.Rational(1, 2) * (dM[i][k, j] + dM[j][k, i] - dM[k][i, j]) * qdot[i] for i in range(n)]))

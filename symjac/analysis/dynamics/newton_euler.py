@@ -40,7 +40,14 @@ from functools import cached_property
 
 import sympy as sp
 
-from symjac.analysis.dynamics.bodies import exact_or_nested, joint_axis, laid_out, link_bodies, tidy
+from symjac.analysis.dynamics.bodies import (
+    exact_or_nested,
+    joint_axis,
+    laid_out,
+    laid_out_from_first_basis,
+    link_bodies,
+    tidy,
+)
 from symjac.analysis.dynamics.gravity import EARTH, NO_GRAVITY, Gravity, check_gravity
 from symjac.analysis.dynamics.polynomial import PolynomialSteps, polynomial_recursion
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
@@ -180,13 +187,21 @@ def _laid_out_steps(chain: Chain, found: PolynomialSteps) -> tuple[LinkStep, ...
 
 
 def _torques(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp.Expr], gravity: Gravity,
-             simplify: bool) -> tuple[list[sp.Expr], Callable[[], tuple[LinkStep, ...]]]:
-    """The joint torques of the recursion (not yet laid out as results) and the way to its steps."""
+             simplify: bool, final: bool = True) -> tuple[sp.ImmutableMatrix, Callable[[], tuple[LinkStep, ...]]]:
+    """The joint torques of the recursion laid out as results (:func:`laid_out`), and the way to its steps.
+
+    On normal forms the first layout is already in frame {0}'s angle basis, the first of the result bases
+    (:func:`~symjac.analysis.dynamics.bodies.laid_out_from_first_basis`). Not ``final``: as the recursion leaves
+    them (a caller lays out a larger result made of them).
+    """
     if simplify and not chain.nested:
         found = polynomial_recursion(chain, rates, accelerations, gravity.vector)
-        return [found.expression(p) for p in found.torques], lambda: _laid_out_steps(chain, found)
+        entries = [found.expression(p) for p in found.torques]
+        tau = laid_out_from_first_basis(chain, entries) if final else sp.ImmutableMatrix(entries)
+        return tau, lambda: _laid_out_steps(chain, found)
     steps = recursion(chain, rates, accelerations, gravity, simplify=simplify)
-    return [step.tau for step in steps], lambda: steps
+    raw = sp.Matrix([step.tau for step in steps])
+    return laid_out(chain, raw, simplify) if final else sp.ImmutableMatrix(raw), lambda: steps
 
 
 def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bool = True) -> NewtonEuler:
@@ -228,10 +243,9 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
     def compute(chain: Chain) -> NewtonEuler:
         joints = chain.joint_chain
         model = joints.robot
-        tau_raw, layout = _torques(joints, [j.rate for j in model.joints], [j.acceleration for j in model.joints],
-                                   gravity, simplify)
         # each torque in the shortest of frame {0}'s angles (c_12 rather than c_1 c_2 - s_1 s_2), in its step too
-        tau = laid_out(joints, sp.Matrix(tau_raw), simplify)
+        tau, layout = _torques(joints, [j.rate for j in model.joints], [j.acceleration for j in model.joints],
+                               gravity, simplify)
 
         def steps() -> tuple[LinkStep, ...]:
             return tuple(dataclasses.replace(step, tau=tau[k]) for k, step in enumerate(layout()))
@@ -263,7 +277,7 @@ def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> 
         columns = []
         for j in range(n):
             unit = [sp.S.One if i == j else sp.S.Zero for i in range(n)]
-            columns.append(_torques(joints, [sp.S.Zero] * n, unit, NO_GRAVITY, simplify)[0])
+            columns.append(list(_torques(joints, [sp.S.Zero] * n, unit, NO_GRAVITY, simplify, final=False)[0]))
         M = sp.Matrix(columns).T
         if chain.robot.coupling is not None:
             C = coupling_matrix(chain)

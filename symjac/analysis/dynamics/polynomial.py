@@ -23,7 +23,7 @@ from symjac.analysis.dynamics.bodies import joint_axis, link_bodies
 from symjac.kinematics.chain import Chain
 from symjac.symbolic.trigpoly import TrigImage, image_of, nested_expr, reduce_image
 
-__all__ = ["PolynomialSteps", "polynomial_recursion"]
+__all__ = ["PolynomialSteps", "christoffel_coriolis", "polynomial_recursion"]
 
 Vector = tuple[PolyElement, PolyElement, PolyElement]
 
@@ -151,3 +151,52 @@ def polynomial_recursion(chain: Chain, rates: Sequence[sp.Expr], accelerations: 
         values[k]["f"], values[k]["n"] = f, m
         torques[k] = algebra.dot(z, algebra.add(m, algebra.cross(r, f))) if revolute else algebra.dot(z, f)
     return PolynomialSteps(image, values, torques)
+
+
+def christoffel_coriolis(chain: Chain, M: sp.MatrixBase, q: Sequence[sp.Symbol], rates: Sequence[sp.Symbol]
+                         ) -> list[sp.Expr] | None:
+    r"""The Coriolis matrix of the Christoffel symbols of ``M``, differentiated on normal forms; row-major.
+
+    .. math:: C_{kj} = \sum_i \tfrac12 (\partial_i M_{kj} + \partial_j M_{ki} - \partial_k M_{ij})\,\dot q_i
+
+    with :math:`\partial S_b/\partial\theta_i = m_{bi} C_b` and :math:`\partial C_b/\partial\theta_i = -m_{bi} S_b`
+    for the basis angles :math:`\psi_b = \sum_i m_{bi}\theta_i + o_b` (frame {0}'s basis, the first result basis), a
+    prismatic variable being a generator of its own. The entries come back laid out in that basis. ``None`` when the
+    ring holds an atom that depends on a coordinate otherwise (the caller then differentiates the trees).
+    """
+    basis = chain.angle_basis(0)
+    n = len(q)
+    image, polys = image_of([*M, *rates], basis)
+    coordinates = set(q)
+    if any(getattr(atom, "free_symbols", set()) & coordinates for atom in image.atoms if atom not in coordinates):
+        return None
+    _, gens = image.ring_and_gens
+    offset = 2 * image.angle_count
+    slopes = [sp.expand(angle) for angle in basis.angles]
+    entries, qd = polys[:n * n], polys[n * n:]
+    zero = image.ring_and_gens[0].zero
+
+    def derivative(poly: PolyElement, variable: sp.Symbol) -> PolyElement:
+        result = zero
+        if variable in basis.variables:
+            for b, slope in enumerate(slopes):
+                m = slope.coeff(variable)
+                if m:
+                    S, C = image.sine(b), image.cosine(b)
+                    result += int(m) * (poly.diff(S) * C - poly.diff(C) * S)
+        elif variable in image.atoms:
+            result = poly.diff(gens[offset + image.atoms.index(variable)])
+        return reduce_image(result, image) if result else result
+
+    dM = [[derivative(entry, variable) for entry in entries] for variable in q]  # dM[i][k * n + j]
+    half = image.ring_and_gens[0](sp.Rational(1, 2))
+    result = []
+    for k in range(n):
+        for j in range(n):
+            total = zero
+            for i in range(n):
+                christoffel = dM[i][k * n + j] + dM[j][k * n + i] - dM[k][i * n + j]
+                if christoffel and qd[i]:
+                    total += christoffel * qd[i]
+            result.append(nested_expr(reduce_image(half * total, image), image) if total else sp.S.Zero)
+    return result

@@ -1,5 +1,5 @@
 """The lowered dynamics (symjac.codegen.dynamics) evaluated numerically, against symjac's symbolic dynamics and an
-independent numeric Newton-Euler (tests/reference_dynamics.py), for every strategy.
+independent numeric Newton-Euler (tests/spatial_reference.py), for every strategy.
 
 Each LoweredFunction is evaluated as generated code would run it: sines and cosines of its angles, then its
 temporaries in order, then its outputs. The arms: the planar 2R with symbolic inertial parameters (their defaults as
@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 import pytest
 import sympy as sp
-from reference_dynamics import inverse_dynamics, mass_matrix
+from spatial_reference import inverse_dynamics, mass_matrix
 
 from symjac import load_robot, robot_from_mapping
 from symjac.analysis.dynamics import dynamics_defaults, newton_euler

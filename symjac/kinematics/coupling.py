@@ -63,10 +63,10 @@ __all__ = [
     "LAW_NAMES",
     "CouplingLaw",
     "LawName",
+    "congruent_in_coordinates",
     "coordinate_bases",
     "coordinate_substitution",
     "coupling_law",
-    "congruent_in_coordinates",
     "coupling_matrix",
     "hessian_in_coordinates",
     "in_coordinates",
@@ -217,9 +217,11 @@ def hessian_in_coordinates(robot: Robot | Chain, H: sp.NDimArray, layout: Frame 
 
 def congruent_in_coordinates(robot: Robot | Chain, value: sp.MatrixBase | sp.NDimArray, layout: Frame | None = None
                              ) -> sp.ImmutableMatrix | sp.ImmutableDenseNDimArray:
-    r"""The ``congruent`` law: :math:`C^T M\,C` for a matrix whose rows and columns belong to the joints (the mass
-    and Coriolis matrices, with :math:`\vartheta = \vartheta(q)`, :math:`\dot\vartheta = C\dot q`), else a Hessian
-    slice by slice (:func:`hessian_in_coordinates`)."""
+    r"""The ``congruent`` law: :math:`C^T M\,C` for a matrix, a Hessian slice by slice.
+
+    A matrix's rows and columns belong to the joints (the mass and Coriolis matrices; :math:`\vartheta =
+    \vartheta(q)`, :math:`\dot\vartheta = C\dot q` substituted); an array is a Hessian (:func:`hessian_in_coordinates`).
+    """
     if isinstance(value, sp.NDimArray):
         return hessian_in_coordinates(robot, value, layout)
     if _model(robot).coupling is None:

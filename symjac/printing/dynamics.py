@@ -1,5 +1,6 @@
-r"""The document of ``symjac dynamics``: the equations of motion :math:`\tau = M(q)\,\ddot q + C(q, \dot q)\,\dot q +
-g(q)`, part by part, in textbook shorthand.
+r"""The document of ``symjac dynamics``: the equations of motion, part by part, in textbook shorthand.
+
+:math:`\tau = M(q)\,\ddot q + C(q, \dot q)\,\dot q + g(q)`.
 
 :func:`dynamics_document` takes the parts a caller derived (the torques, :math:`M`, :math:`C`, :math:`g`, the kinetic
 and potential energy, the Newton-Euler steps) and lays out those given, in that order after the steps: LaTeX, pretty

@@ -30,8 +30,8 @@ Steps = Propagation | CrossProductSteps | DifferentiationSteps | NewtonEuler
 """Any derivation whose steps can be printed: a propagation, the columns of the cross-product or differentiation
 method (:mod:`symjac.kinematics.column_steps`), or the Newton-Euler recursion of the dynamics."""
 
-_OUTWARD = (("omega", r"\omega", "ω"), ("alpha", r"\alpha", "α"), ("a", "a", "a"), ("a_c", "a_{{c_{i}}}", "a_c{i}"),
-            ("F", "F", "F"), ("N", "N", "N"))
+_OUTWARD = (("omega", r"\omega", "ω"), ("alpha", r"\alpha", "\N{GREEK SMALL LETTER ALPHA}"), ("a", "a", "a"),
+            ("a_c", "a_{{c_{i}}}", "a_c{i}"), ("F", "F", "F"), ("N", "N", "N"))
 _INWARD = (("f", "f", "f"), ("n", "n", "n"))
 
 

@@ -11,7 +11,7 @@ quantity.
 from __future__ import annotations
 
 import argparse
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from symjac.errors import ArgumentError
 
@@ -88,7 +88,7 @@ def gravity_setting(text: str | None, request: Request | None = None) -> Gravity
     return Gravity(direction=direction, magnitude=magnitude)
 
 
-def _number(text: str, what: str) -> object:
+def _number(text: str, what: str) -> Any:
     import sympy as sp
 
     try:

@@ -20,9 +20,11 @@ __all__ = ["QUANTITY", "inverse_dynamics"]
 
 
 def inverse_dynamics(robot: Any, *args: Any, **kwargs: Any) -> sp.ImmutableMatrix:
-    r""":math:`\tau(q, \dot q, \ddot q)`, n x 1: the ``torques`` of
-    :func:`~symjac.analysis.dynamics.newton_euler.newton_euler` (same arguments: the robot or chain, gravity,
-    ``simplify``)."""
+    r"""The torques :math:`\tau(q, \dot q, \ddot q)`, n x 1, by recursive Newton-Euler.
+
+    The ``torques`` of :func:`~symjac.analysis.dynamics.newton_euler.newton_euler`, called with the same arguments
+    (the robot or chain, gravity, ``simplify``).
+    """
     from symjac.analysis.dynamics.newton_euler import newton_euler
 
     return newton_euler(robot, *args, **kwargs).torques

@@ -4,9 +4,9 @@ r"""The document of ``symjac dynamics``: the equations of motion, part by part, 
 
 :func:`dynamics_document` takes the parts a caller derived and lays out those given in the order a derivation
 builds up to the torques: the kinetic and potential energy, :math:`M`, :math:`C`, :math:`g`, then the Newton-Euler
-steps and the torques they end with. LaTeX, pretty text and JSON all print it (JSON keys ``torques``, ``mass_matrix``, ``coriolis_matrix``, ``gravity_torques``,
-``kinetic_energy``, ``potential_energy``, ``steps``, with ``*_latex`` beside each). The HTML report builds its
-dynamics section from the same document.
+steps and the torques they end with. LaTeX, pretty text and JSON all print it (JSON keys ``kinetic_energy``,
+``potential_energy``, ``mass_matrix``, ``coriolis_matrix``, ``gravity_torques``, ``steps``, ``torques``, with
+``*_latex`` beside each). The HTML report builds its dynamics section from the same document.
 """
 
 from __future__ import annotations

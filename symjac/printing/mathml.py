@@ -22,7 +22,7 @@ from symjac.printing.shorthand import GREEK, readable_float, shorthand_indices, 
 __all__ = ["TextbookMathMLPrinter", "core_elements", "math_element", "mathml_node"]
 
 _INVISIBLE_TIMES = "\u2062"
-_DOTTED = re.compile(r"^(.+?)(ddot|dot)(\d*)$")  # thetadot1, thetaddot1, ddot3 (d3's rate), dddot3: rates, accelerations
+_DOTTED = re.compile(r"^(.+?)(ddot|dot)(\d*)$")  # rates and accelerations: thetadot1, thetaddot1, ddot3 (d3's rate)
 _DOTS = {"dot": "\u02d9", "ddot": "\u00a8"}
 
 

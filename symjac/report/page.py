@@ -6,9 +6,9 @@ explanations, the arm drawn at home and at each solved singular configuration (w
 and two inline SVG pictures: the manipulability over two joints with the singular curves drawn from
 the solved factors, and the joint rates along a path through a singularity; then the dynamics (the mass matrix, the
 gravity torques and for a short arm the joint torques, or a sentence saying which links lack inertial data). Math is
-MathML Core (rendered natively by browsers); nothing is fetched when the page is viewed (no scripts, fonts, or images from elsewhere). Every string
-that comes from the user (robot name, description, file name) is HTML-escaped. Identical input gives identical
-bytes.
+MathML Core (rendered natively by browsers); nothing is fetched when the page is viewed (no scripts, fonts, or images
+from elsewhere). Every string that comes from the user (robot name, description, file name) is HTML-escaped.
+Identical input gives identical bytes.
 """
 
 from __future__ import annotations

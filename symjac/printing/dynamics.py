@@ -109,8 +109,14 @@ def dynamics_document(robot: Robot, parts: DynamicsParts, method: str = "newton-
         if parts.steps is not None and key == "torques":  # the recursion, then the torques it ends with
             from symjac.printing.steps import step_equations
 
-            blocks += [Block((), (replace(step, rhs=shown(step.rhs), key=JsonKey("steps", record=True)),))
-                       for step in step_equations(parts.steps)]
+            inward = 6 * len(parts.steps.steps)  # six outward quantities per link, then the inward ones
+            captions = {0: ("Newton-Euler, outward from the base: each link's velocities, accelerations and the "
+                            "force and moment that move it, in its own frame",),
+                        inward: ("Newton-Euler, inward from the tip: the force and moment on each link from the one "
+                                 "before, and its joint's torque",)}
+            blocks += [Block(captions.get(k, ()), (replace(step, rhs=shown(step.rhs),
+                                                           key=JsonKey("steps", record=True)),))
+                       for k, step in enumerate(step_equations(parts.steps))]
         if value is not None:
             equation = Equation(tex, text, shown(value), key=JsonKey(key, latex=f"{key}_latex", flat=flat))
             blocks.append(Block((caption,), (equation,)))

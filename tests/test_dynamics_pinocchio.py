@@ -8,9 +8,9 @@ largest entry (the raw torques of a 6-joint arm are a sum of about 150 000 opera
 forms; the torques and the Newton-Euler mass matrix are the raw products (``simplify=False``: laid out, the UR5's
 torques take about 30 s; the compact forms are checked exactly on smaller arms in test_dynamics_textbook).
 
-The Panda's fingers hang from prismatic joints off the chain: symjac holds them at zero but does not (yet) lump
-their bodies into the hand (the readers' lumping stops at moving joints), so pinocchio's finger bodies are given no
-mass here; the hand itself, fixed to link 8, is lumped by both.
+The Panda's fingers hang from prismatic joints off the chain: symjac holds them at zero and lumps their bodies into
+link 7 with the hand (fixed to link 8); pinocchio keeps them as joints of their own, here at rest at zero, which is
+the same load on the arm.
 """
 
 from __future__ import annotations
@@ -52,9 +52,6 @@ class Pair:
         self.data = self.model.createData()
         ids = [self.model.getJointId(joint.name) for joint in self.robot.joints]
         self.index = [self.model.joints[i].idx_q for i in ids]
-        for i in range(1, self.model.njoints):  # bodies off the chain (the Panda's fingers): no mass
-            if i not in ids and i > max(ids):
-                self.model.inertias[i] = pin.Inertia.Zero()
         arm = self.robot
         args = [*arm.q, *arm.coordinate_rates, *arm.coordinate_accelerations]
         numbers = {s: sp.Float(v, 30) for s, v in dynamics_defaults(arm).items()}

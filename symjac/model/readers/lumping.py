@@ -29,13 +29,13 @@ def link_inertial(axis: Sequence[sp.Expr], link: str, bodies: Mapping[str, LinkI
     r"""The inertial data of chain ``link``, driven by a joint along ``axis``, in symjac's frame {i} (None if none).
 
     ``bodies`` holds every link's inertial data as its file gives it, ``fixed_children`` the links fixed to each
-    link with the transform from its frame to theirs. The link is :math:`L` and every link fixed to it (through
-    fixed joints only, on the chain or beside it). Body :math:`X`, with its inertial frame {c} at :math:`T_{X,c}`
-    and tensor :math:`I` about its centre, is expressed in {i} by :math:`T_{i,X} = A_i^{-1}\,T_{L,X}` (frame {i} is
-    :math:`L` turned by the alignment :math:`A_i`): :math:`c_i = R\,p_{X,c} + p`, :math:`I_i =
-    R\,R_{X,c}\,I\,R_{X,c}^T R^T`; several bodies are combined by the parallel-axis theorem
-    (:func:`~symjac.model.inertia.combined_inertial`). A link without ``<inertial>`` has no mass. Bodies behind
-    moving joints off the chain (held at zero) are not added: lumping them is the dynamics' choice.
+    link with the transform from its frame to theirs. The link is :math:`L` and every link fixed to it: through
+    fixed joints, on the chain or beside it, and through moving joints off the chain, which symjac holds at zero
+    (the Panda's fingers ride with its hand, a torso's head with the torso). Body :math:`X`, with its inertial
+    frame {c} at :math:`T_{X,c}` and tensor :math:`I` about its centre, is expressed in {i} by :math:`T_{i,X} =
+    A_i^{-1}\,T_{L,X}` (frame {i} is :math:`L` turned by the alignment :math:`A_i`): :math:`c_i = R\,p_{X,c} + p`,
+    :math:`I_i = R\,R_{X,c}\,I\,R_{X,c}^T R^T`; several bodies are combined by the parallel-axis theorem
+    (:func:`~symjac.model.inertia.combined_inertial`). A link without ``<inertial>`` has no mass.
     """
     R_A = compose(alignment(axis))[0]
     start = homogeneous(R_A.T, sp.zeros(3, 1))

@@ -52,24 +52,30 @@ def link_inertial(axis: Sequence[sp.Expr], link: str, bodies: Mapping[str, LinkI
             problem = inertial_problem(own)
             if problem is not None:  # CAD exports round into these: read the file, say so (pinocchio reads it too)
                 warn(InertialWarning(f"{source}, link {name}: {problem} (kept as given)"))
-            parts.append(own.expressed_in(T_i_X))
-        stack += [(child, T_i_X * transform) for child, transform in fixed_children.get(name, ())]
+            parts.append(_plain(own.expressed_in(T_i_X)))
+        # plain numbers as the bodies pile up: exact products of generic rotations grow with every joint of a tree
+        stack += [(child, (T_i_X * transform).applyfunc(_plain_number))
+                  for child, transform in fixed_children.get(name, ())]
     if not parts:
         return None
     return _plain(parts[0] if len(parts) == 1 else combined_inertial(parts))
+
+
+def _plain_number(value: sp.Expr) -> sp.Expr:
+    """``value`` if it is a rational number, else the rational of its float (``cos(3/10)/4`` as 0.2388...)."""
+    return value if value.is_Rational else exact_number(float(value))
 
 
 def _plain(inertial: Inertial) -> Inertial:
     """``inertial`` with every entry that is not a rational number (``cos(3/10)/4``) as the rational of its float.
 
     Exact forms pay for kinematics, where a textbook form exists; a tensor turned by a generic angle has none, and
-    rational entries keep the data cheap for the dynamics and writable in a robot file.
+    rational entries keep the data cheap for the dynamics and writable in a robot file. Lumping a humanoid's torso
+    (both arms and the head held at zero) multiplies a dozen generic rotations: kept exact, that took minutes.
     """
-    def plain(value: sp.Expr) -> sp.Expr:
-        return value if value.is_Rational else exact_number(float(value))
-
-    return Inertial(plain(inertial.mass), tuple(plain(v) for v in inertial.com),  # type: ignore[arg-type]
-                    sp.ImmutableMatrix(inertial.inertia.applyfunc(plain)))
+    com = tuple(_plain_number(v) for v in inertial.com)
+    tensor = sp.ImmutableMatrix(inertial.inertia.applyfunc(_plain_number))
+    return Inertial(_plain_number(inertial.mass), com, tensor)  # type: ignore[arg-type]
 
 
 def _rotated(tensor: sp.MatrixBase, R: sp.MatrixBase) -> sp.ImmutableMatrix:

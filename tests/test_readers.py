@@ -371,7 +371,7 @@ def test_links_without_inertial_data_have_none_and_bad_data_names_the_link():
     assert kept.inertials[2] is not None
     # the base's data is not used, so not checked; a finger behind a moving joint off the chain rides with link 3
     assert robot_from_urdf(INERTIAL.replace('<mass value="9"/>', '<mass value="-9"/>'), tip_link="tool").n_joints == 3
-    with pytest.raises(RobotFileError, match="link finger inertial.*negative"):
+    with pytest.raises(RobotFileError, match=r"link finger inertial.*negative"):
         robot_from_urdf(INERTIAL.replace('<mass value="5"/>', '<mass value="-5"/>'), tip_link="tool")
     with pytest.raises(RobotFileError, match=r"link l1 inertial.*needs <mass"):
         robot_from_urdf(INERTIAL.replace('<mass value="2.5"/>', ""), tip_link="tool")

@@ -42,14 +42,18 @@ def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
     symjac.errors.NoInertialDataError: planar2r: links 1, 2 have no inertial data (mass, centre of mass, inertia); ...
     """
     robot = chain.robot
-    missing = [str(k) for k, inertial in enumerate(robot.inertials, start=1) if inertial is None]
+    inertials = robot.inertials  # one entry per link (None where unknown)
+    # a file's own names where it has them (URDF, MJCF): link k is the one its joint k moves
+    missing = [f"{k} (moved by joint {joint.name})" if joint.name else str(k)
+               for k, (joint, inertial) in enumerate(zip(robot.joints, inertials, strict=True), start=1)
+               if inertial is None]
     if missing:
         which = f"link {missing[0]} has" if len(missing) == 1 else f"links {', '.join(missing)} have"
         raise NoInertialDataError(
             f"{robot.name}: {which} no inertial data (mass, centre of mass, inertia); give them in the robot file's "
             f"[joints.inertial] tables or the URDF <inertial> elements, or use symbolic ones "
             f"(symjac.model.inertial_parameters.with_symbolic_inertials)")
-    return tuple(inertial for inertial in robot.inertials if inertial is not None)
+    return tuple(inertial for inertial in inertials if inertial is not None)
 
 
 @dataclass(frozen=True)

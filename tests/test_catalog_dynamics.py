@@ -4,7 +4,8 @@ The PUMA 560 carries Armstrong, Khatib and Burdick's parameters as the Robotics 
 holds them, moved from the Toolbox's standard-DH frames to the file's modified-DH ones (the file's comments say how).
 Its torques are those of the Toolbox's pure-Python ``rne_python`` (not the compiled ``rne``, whose gravity is wrong
 for some models) with the motors' inertia and friction taken out, at the Toolbox's angles q + (pi, pi, 0, 0, 0, 0),
-to 1e-9 relative to the largest torque.
+to 1e-9 relative to the largest torque. The Panda carries Gaz et al.'s (2019) identified parameters as the Toolbox's
+DH Panda holds them (the same frames but the last), checked the same way.
 """
 
 from __future__ import annotations
@@ -58,3 +59,20 @@ def test_the_file_and_the_toolbox_are_one_arm():
         poses.append([np.linalg.inv(T) @ pedestal @ X.A for T, X in zip(ours, theirs, strict=True)])
     for other in poses[1:]:
         np.testing.assert_allclose(np.array(other), np.array(poses[0]), atol=1e-12)
+
+
+def test_panda_torques_equal_the_robotics_toolboxs_rne_python():
+    """Gaz et al.'s identified parameters, in the Toolbox's frames (its frame 7 is the flange: link 7 moved by dF)."""
+    arm = load_robot("panda")
+    numbers = {s: float(v) for s, v in dynamics_defaults(arm).items()}
+    args = [*arm.q, *arm.coordinate_rates, *arm.coordinate_accelerations, *numbers]
+    torques = sp.lambdify(args, newton_euler(arm, simplify=False).torques, cse=True)
+    panda = rtb.models.DH.Panda()
+    assert all(link.Jm == 0 and link.B == 0 and not np.any(link.Tc) for link in panda.links)  # rigid bodies only
+    rng = np.random.default_rng(7)
+    for _ in range(3):
+        q, qd, qdd = (rng.uniform(-2, 2, 7) for _ in range(3))
+        expected = np.asarray(panda.rne_python(q, qd, qdd), dtype=float).ravel()
+        got = np.array(torques(*q, *qd, *qdd, *numbers.values()), dtype=float).ravel()
+        assert np.abs(got - expected).max() <= 1e-9 * np.abs(expected).max(), (got, expected)
+        assert np.abs(expected).max() > 1

@@ -18,6 +18,7 @@ import sympy as sp
 
 from symjac.errors import NoInertialDataError, ResultTooLargeError
 from symjac.kinematics.chain import Chain
+from symjac.kinematics.coupling import coordinate_bases
 from symjac.model.inertia import Inertial
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.nested import has_intermediates, named, presented
@@ -98,6 +99,10 @@ def result_bases(chain: Chain) -> tuple[AngleBasis, ...]:
     without parallel joints, only sign-flipped copies of the same angles, and each costs a whole layout (16 bases
     took most of the PUMA's Newton-Euler torques).
     """
+    if chain.robot.coupling is not None:
+        # in the coordinates: a basis of the joints' own angles would bring a coupled joint's variable back
+        # (theta2 for theta1 + theta2 when theta2 = 2 theta1)
+        return tuple(coordinate_bases(chain, 0))
     return chain.angle_bases(0)
 
 

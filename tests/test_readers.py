@@ -333,7 +333,8 @@ def _bodies_in_base(q: np.ndarray) -> dict[int, list[tuple[float, np.ndarray, np
             2: [body(T_l2, (0.2, -0.01, 0.03), (0, 0.4, 0), 1.5, I2),
                 body(T_sensor, (0.01, 0, 0.02), (0, 0, 0), 0.3, np.diag([1e-4, 2e-4, 1.5e-4]))],
             3: [body(T_l3, (0, 0.05, 0.1), (0, 0, 0), 0.8, np.diag([4e-3, 4e-3, 1e-3])),
-                body(T_tool, (0, 0, 0), (0, 0, 0), 0.2, np.diag([2e-4] * 3))]}
+                body(T_tool, (0, 0, 0), (0, 0, 0), 0.2, np.diag([2e-4] * 3)),
+                body(T_l3, (0, 0, 0), (0, 0, 0), 5, np.eye(3))]}  # the finger, off the chain, held at zero
 
 
 def test_urdf_inertials_land_in_symjacs_link_frames():
@@ -368,8 +369,10 @@ def test_links_without_inertial_data_have_none_and_bad_data_names_the_link():
     with pytest.warns(InertialWarning, match=r"link l3: .*triangle inequality.*\(kept as given\)"):
         kept = robot_from_urdf(triangle, tip_link="tool")  # CAD exports round into this: the file still reads
     assert kept.inertials[2] is not None
-    # off the chain (the base, a finger behind a moving joint) the data is not used, so not checked
-    assert robot_from_urdf(INERTIAL.replace('<mass value="5"/>', '<mass value="-5"/>'), tip_link="tool").n_joints == 3
+    # the base's data is not used, so not checked; a finger behind a moving joint off the chain rides with link 3
+    assert robot_from_urdf(INERTIAL.replace('<mass value="9"/>', '<mass value="-9"/>'), tip_link="tool").n_joints == 3
+    with pytest.raises(RobotFileError, match=r"link finger inertial.*negative"):
+        robot_from_urdf(INERTIAL.replace('<mass value="5"/>', '<mass value="-5"/>'), tip_link="tool")
     with pytest.raises(RobotFileError, match=r"link l1 inertial.*needs <mass"):
         robot_from_urdf(INERTIAL.replace('<mass value="2.5"/>', ""), tip_link="tool")
 

@@ -52,7 +52,8 @@ def with_symbolic_inertials(robot: Robot, values: Sequence[Inertial | None] | No
                 raise RobotFileError(f"link {link}: the default of {symbol.name} must be a number, got {value}",
                                      source=robot.source, joint=link, field="inertial")
             parameters.append(Parameter(symbol.name, sp.nsimplify(value, rational=True)))
-        inertials[link - 1] = symbolic
+        # defaults kept as published keep the link's word for it (the PUMA 560's link 3)
+        inertials[link - 1] = replace(symbolic, keep_impossible=default.keep_impossible)
     return replace(robot, parameters=tuple(parameters), inertials=tuple(inertials))
 
 
@@ -65,4 +66,4 @@ def _numeric(inertial: Inertial | None, robot: Robot) -> Inertial | None:
     tensor = sp.ImmutableMatrix(inertial.inertia.xreplace(defaults))
     if not all(entry.is_number for entry in (mass, *com, *tensor)):
         return None
-    return Inertial(mass, com, tensor)  # type: ignore[arg-type]
+    return Inertial(mass, com, tensor, keep_impossible=inertial.keep_impossible)  # type: ignore[arg-type]

@@ -12,13 +12,12 @@ import json
 import re
 import sys
 import tomllib
-import warnings
 from dataclasses import replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from symjac.errors import ArgumentError, InertialWarning, RobotFileError, UnknownRobotError
+from symjac.errors import ArgumentError, RobotFileError, UnknownRobotError
 from symjac.model.readers import (
     HEAD_BYTES,
     LinksNotApplicableError,
@@ -107,12 +106,8 @@ def load_robot(name_or_path: str | Path, *, base_link: str | None = None, tip_li
                 return _read(reader, _file_bytes(path, limit), str(path), base_link, tip_link, tip_site, limit)
     if entry is not None:
         data = entry.read_bytes()
-        with warnings.catch_warnings():
-            # the catalog keeps published inertial data as published, and its comments say where no rigid body can
-            # have it (the PUMA 560's link 3 in Armstrong, Khatib and Burdick's numbers): nothing for a user to fix
-            warnings.simplefilter("ignore", InertialWarning)
-            return _read(reader_for(data[:HEAD_BYTES], f"{name_or_path}.toml", ".toml"), data,
-                         f"{name_or_path}.toml", base_link, tip_link, tip_site, max_bytes)
+        return _read(reader_for(data[:HEAD_BYTES], f"{name_or_path}.toml", ".toml"), data, f"{name_or_path}.toml",
+                     base_link, tip_link, tip_site, max_bytes)
     urdf_entry = resources.files("symjac.robots").joinpath("urdf", str(name_or_path)) if builtin else None
     if urdf_entry is not None and name_or_path and urdf_entry.is_file():
         data = urdf_entry.read_bytes()

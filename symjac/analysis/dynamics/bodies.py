@@ -16,10 +16,10 @@ from typing import TypeVar
 
 import sympy as sp
 
-from symjac.errors import NoInertialDataError, ResultTooLargeError
+from symjac.errors import ImpossibleInertiaError, NoInertialDataError, ResultTooLargeError
 from symjac.kinematics.chain import Chain
 from symjac.kinematics.coupling import coordinate_bases
-from symjac.model.inertia import Inertial
+from symjac.model.inertia import Inertial, inertial_problem
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.nested import has_intermediates, named, presented
 from symjac.symbolic.simplify import simplify_matrix
@@ -54,6 +54,13 @@ def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
             f"{robot.name}: {which} no inertial data (mass, centre of mass, inertia); give them in the robot file's "
             f"[joints.inertial] tables or the URDF <inertial> elements, or use symbolic ones "
             f"(symjac.model.inertial_parameters.with_symbolic_inertials)")
+    for k, (joint, inertial) in enumerate(zip(robot.joints, inertials, strict=True), start=1):
+        problem = None if inertial is None or inertial.keep_impossible else inertial_problem(inertial, robot.defaults)
+        if problem is not None:
+            which = f"link {k} (moved by joint {joint.name})" if joint.name else f"link {k}"
+            raise ImpossibleInertiaError(
+                f"{robot.name}: {which}: {problem}, which no rigid body has; correct the data, or keep them "
+                f"knowingly with keep_impossible = true in the link's inertial table (Inertial.keep_impossible)")
     return tuple(inertial for inertial in inertials if inertial is not None)
 
 

@@ -51,7 +51,8 @@ def link_inertial(axis: Sequence[sp.Expr], link: str, bodies: Mapping[str, LinkI
                 raise RobotFileError(problem, source=source, field=f"link {name} inertial")
             problem = inertial_problem(own)
             if problem is not None:  # CAD exports round into these: read the file, say so (pinocchio reads it too)
-                warn(InertialWarning(f"{source}, link {name}: {problem} (kept as given)"))
+                warn(InertialWarning(f"{source}, link {name}: {problem} (kept as given; the dynamics refuse "
+                                     f"it)"))
             parts.append(_plain(own.expressed_in(T_i_X)))
         # plain numbers as the bodies pile up: exact products of generic rotations grow with every joint of a tree
         stack += [(child, (T_i_X * transform).applyfunc(_plain_number))

@@ -115,7 +115,8 @@ def _robot(request: Request) -> Robot:
 
     values = [None if data is None else Inertial(data.mass.xreplace(robot.defaults),
                                                  tuple(c.xreplace(robot.defaults) for c in data.com),
-                                                 data.inertia.xreplace(robot.defaults))
+                                                 data.inertia.xreplace(robot.defaults),
+                                                 keep_impossible=data.keep_impossible)
               for data in robot.inertials]
     return with_symbolic_inertials(robot, values)
 

@@ -110,15 +110,9 @@ def _robot(request: Request) -> Robot:
     robot = request.robot
     if not request.args.symbolic_inertials:
         return robot
-    from symjac.model.inertia import Inertial
     from symjac.model.inertial_parameters import with_symbolic_inertials
 
-    values = [None if data is None else Inertial(data.mass.xreplace(robot.defaults),
-                                                 tuple(c.xreplace(robot.defaults) for c in data.com),
-                                                 data.inertia.xreplace(robot.defaults),
-                                                 keep_impossible=data.keep_impossible)
-              for data in robot.inertials]
-    return with_symbolic_inertials(robot, values)
+    return with_symbolic_inertials(robot)
 
 
 def command(request: Request) -> Document:

@@ -284,7 +284,8 @@ class ModuleDescription:
     to the robot's derivation (no ``Chain``): a backend prints from this data alone. ``derived`` are the functions
     computed by the runtime from others (manipulability, determinant, gradient), ``listing`` every public function
     with its line for the module docstring, in order, ``checks`` the self-test's checks in order and
-    ``request_lines`` each requested Jacobian's name with what it is (frame, point, rows), for headers.
+    ``request_lines`` each requested Jacobian's name with what it is (frame, point, rows), for headers. ``rates``
+    and ``accelerations`` name the entries of ``qdot`` and ``qddot`` when functions take them.
     ``joint_entries`` describe the entries of ``q`` as the robot's source names them (name, identifier-safe variant,
     type, limits: :class:`~symjac.codegen.joint_table.JointEntry`), ``tip_frame`` names the frame the chain ends at
     and ``origin`` says where the robot came from (``URDF file ur5.urdf``).
@@ -306,6 +307,7 @@ class ModuleDescription:
     shell_command: bool = False
     command_note: str = ""
     rates: tuple[str, ...] = ()
+    accelerations: tuple[str, ...] = ()
     coupling: tuple[str, ...] = ()
     derived: tuple[DerivedFunction, ...] = ()
     listing: tuple[tuple[str, str], ...] = ()

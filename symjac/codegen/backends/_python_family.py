@@ -172,6 +172,12 @@ class PythonModule:
         return tuple(tuple_lines("_RATE_NAMES = ", (f'"{name}"' for name in self.description.rates)))
 
     @property
+    def acceleration_names_lines(self) -> tuple[str, ...]:
+        """``_ACCELERATION_NAMES = ("thetaddot1", "dddot2")``: the names of the entries of qddot as source lines."""
+        return tuple(tuple_lines("_ACCELERATION_NAMES = ",
+                                 (f'"{name}"' for name in self.description.accelerations)))
+
+    @property
     def check_lines(self) -> tuple[str, ...]:
         """The self-test's checks as the entries of a tuple: ``("jacobian", (jacobian, ...), (0, 1)),`` each.
 

@@ -22,6 +22,7 @@ from symjac.quantities import MEMBERS, QUANTITIES, LawName, Quantity
 from symjac.quantities.spec import entry_point
 
 ROOT = Path(__file__).resolve().parent.parent
+DYNAMICS = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "gravity_torques")
 
 
 @pytest.mark.parametrize("name", list(QUANTITIES))
@@ -31,9 +32,11 @@ def test_every_spec_names_what_exists(name):
     assert quantity.document is None or callable(entry_point(quantity.document)), quantity.document
     assert quantity.law.name == quantity.coupling  # a law of symjac.kinematics.coupling, the one place applying it
     derived = entry_point(quantity.derivation)
-    # the derivation applies the law the spec states (kinematics.memo), or is computed from J_q, which does
+    # the derivation applies the law the spec states (kinematics.memo), or is computed from J_q, which does, or (the
+    # dynamics) moves its result to the coordinates in its own code, as the law says (tests/test_dynamics*.py)
     law = getattr(derived, "coupling_law", None)
-    assert law is not None or name in {"manipulability", "joint_torques"}, f"{quantity.derivation} applies no law"
+    assert law is not None or name in {"manipulability", "joint_torques", *DYNAMICS}, \
+        f"{quantity.derivation} applies no law"
     assert law is None or law.name == quantity.coupling, (name, law)
     assert quantity.kind is None or quantity.kind.isidentifier()
     assert quantity.command is None or quantity.command in COMMANDS

@@ -23,35 +23,25 @@ from symjac.errors import CodegenError
 from symjac.quantities import QUANTITIES, Quantity
 from symjac.quantities.spec import Generated, Scope
 
-__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "DYNAMICS_KINDS", "KINDS", "SCALAR", "generated_kinds", "kind_spec", "quantity_of"]
+__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "DYNAMICS_CHECKED", "KINDS", "SCALAR", "generated_kinds", "kind_spec", "quantity_of"]
 
 SCALAR = Generated("scalar", "The value of the expression.", "A scalar function of the joint values.",
                    scope="module")
 """The kind of the extra scalar functions a module is asked for (``scalars=``): no quantity, no lowering of its own."""
 
-_DYNAMICS = "symjac.codegen.dynamics_reference"
+_DYNAMICS = "symjac.codegen.dynamics"
 """The module of the dynamics' lowerings."""
 
-DYNAMICS_KINDS = (
-    Generated("inverse_dynamics", "tau = M(q) qddot + C(q, qdot) qdot + g(q), one generalised force per {unit}.",
-              "Inverse dynamics tau(q, qdot, qddot) by Newton-Euler.", output="tau", scope="module", dynamics=True,
-              summary="Inverse dynamics tau = M(q) qddot + C(q, qdot) qdot + g(q)", inputs=("qdot", "qddot"),
-              lowering=f"{_DYNAMICS}:lowered_inverse_dynamics"),
-    Generated("mass_matrix", "M(q), symmetric positive definite, shape {shape}.", "The mass matrix M(q).",
-              output="M", scope="module", dynamics=True, summary="Mass matrix M(q) (joint-space inertia)",
-              lowering=f"{_DYNAMICS}:lowered_mass_matrix"),
-    Generated("coriolis_matrix", "C(q, qdot) from the Christoffel symbols (Mdot - 2C is skew), shape {shape}.",
-              "The Coriolis and centrifugal matrix C(q, qdot) (Christoffel symbols: Mdot - 2C is skew).",
-              output="coriolis", scope="module", dynamics=True, inputs=("qdot",),
-              summary="Coriolis and centrifugal matrix C(q, qdot), from the Christoffel symbols",
-              lowering=f"{_DYNAMICS}:lowered_coriolis_matrix"),
+DYNAMICS_CHECKED = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "bias_forces", "gravity_torques",
+                    "forward_dynamics")
+"""The dynamics' kinds, generated with ``dynamics=True`` once per module, in the order the self-test's dynamics check
+takes their functions (the quantities' kinds are in their specs; the bias forces and forward dynamics here)."""
+
+_DYNAMICS_OWN = (
     Generated("bias_forces", "C(q, qdot) qdot + g(q), one per {unit}.",
               "The bias forces C(q, qdot) qdot + g(q): inverse dynamics at qddot = 0.", output="b", scope="module",
               dynamics=True, inputs=("qdot",), summary="Bias forces b = C(q, qdot) qdot + g(q)",
               lowering=f"{_DYNAMICS}:lowered_bias_forces"),
-    Generated("gravity_torques", "g(q) = dV/dq, one per {unit}.", "The gravity torques g(q) = dV/dq.",
-              output="gravity", scope="module", dynamics=True, summary="Gravity torques g(q) = dV/dq",
-              lowering=f"{_DYNAMICS}:lowered_gravity_torques"),
     Generated("forward_dynamics", "qddot, one acceleration per {unit}.",
               "Forward dynamics qddot = M^-1 (tau - b), by a Cholesky solve of M.", output="qddot", scope="module",
               dynamics=True, inputs=("qdot", "tau"), routine="forward_dynamics",
@@ -60,15 +50,15 @@ DYNAMICS_KINDS = (
               details="M = L L^T by Cholesky, then two triangular solves (no inverse is formed); M is the mass "
                       "matrix ``{mass_matrix}``, C qdot + g the bias forces ``{bias_forces}``."),
 )
-"""The dynamics' kinds, generated with ``dynamics=True`` once per module; forward dynamics is derived (a Cholesky
-solve of the runtime from the mass matrix and the bias forces)."""
+"""Code generation's own dynamics kinds: no quantity. Forward dynamics is derived (a Cholesky solve of the runtime
+from the mass matrix and the bias forces)."""
 
 _OWN = (
     Generated("kinematics", "Point position, ^0_nR and ^0_kR, row by row.", output="out", selftest_only=True,
               function="_kinematics",
               summary="Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)",
               lowering="symjac.codegen.coupled:coordinate_kinematics"),
-    *DYNAMICS_KINDS,
+    *_DYNAMICS_OWN,
     SCALAR,
     Generated("jacobian_determinant", "det J, LU with partial pivoting.", "det J of that (square) Jacobian.",
               output="det", routine="determinant", sources=("jacobian",), square_only=True,

@@ -44,7 +44,7 @@ from symjac.codegen.request import (
     validate_robot,
 )
 from symjac.analysis.dynamics.gravity import GRAVITY_SYMBOL, STANDARD_GRAVITY
-from symjac.codegen.kinds import DYNAMICS_KINDS
+from symjac.codegen.kinds import DYNAMICS_CHECKED
 from symjac.errors import CodegenError
 from symjac.files import write_files, write_text
 from symjac.kinematics.chain import Chain, Frame, as_chain
@@ -147,7 +147,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     dynamics = dynamics_functions(chain, functions) if request.dynamics else []
     derived = [*dynamics, *derived_functions(infos, n, coupled)]
     exports |= {d.name for d in dynamics}
-    checked = [f.name for kind in DYNAMICS_KINDS for f in (*functions, *dynamics) if f.kind == kind.name]
+    checked = [f.name for kind in DYNAMICS_CHECKED for f in (*functions, *dynamics) if f.kind == kind]
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if request.dynamics else ()
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,

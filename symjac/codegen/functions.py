@@ -50,8 +50,8 @@ __all__ = [
     "defined_names",
     "derived_functions",
     "dynamics_functions",
-    "input_arguments",
     "function_descriptions",
+    "input_arguments",
     "listing",
     "lowered",
     "request_lines",
@@ -89,7 +89,8 @@ def input_arguments(chain: Chain, selected: tuple[int, ...] = ()) -> dict[str, A
     """The arguments a generated function may take after ``q`` (:data:`~symjac.quantities.spec.Input`), by name."""
     model = chain.robot
     coupled = model.coupling is not None
-    return {"wrench": Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected), "Wrench (force, moment) at the point"),
+    return {"wrench": Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected),
+                               "Wrench (force, moment) at the point"),
             "qdot": Argument("qdot", tuple(s.name for s in joint_rate_symbols(chain)),
                              "Coordinate rates" if coupled else "Joint rates"),
             "qddot": Argument("qddot", tuple(s.name for s in model.coordinate_accelerations),
@@ -228,9 +229,9 @@ def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedF
     for function in functions:
         if function.name not in requested and function.kind != "scalar":
             add(function.name, kind_spec(function.kind), shape=str(function.shape), end=end)
-    for function in derived:
-        if kind_spec(function.kind).scope == "module":
-            add(function.name, kind_spec(function.kind), shape=str(function.shape), end=end)
+    for made in derived:
+        if kind_spec(made.kind).scope == "module":
+            add(made.name, kind_spec(made.kind), shape=str(made.shape), end=end)
     for info in infos:
         fields = {"frame": info.frame, "point": info.point, "at": info.point, "rows": ", ".join(info.row_names),
                   "wrench": ", ".join(info.wrench_names)}

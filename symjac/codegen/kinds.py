@@ -23,7 +23,8 @@ from symjac.errors import CodegenError
 from symjac.quantities import QUANTITIES, Quantity
 from symjac.quantities.spec import Generated, Scope
 
-__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "DYNAMICS_CHECKED", "KINDS", "SCALAR", "generated_kinds", "kind_spec", "quantity_of"]
+__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "DYNAMICS_CHECKED", "KINDS", "SCALAR", "generated_kinds", "kind_spec",
+           "quantity_of"]
 
 SCALAR = Generated("scalar", "The value of the expression.", "A scalar function of the joint values.",
                    scope="module")

@@ -12,6 +12,7 @@ from typing import Any
 import sympy as sp
 
 from symjac._version import __version__
+from symjac.analysis.dynamics.gravity import GRAVITY_SYMBOL, STANDARD_GRAVITY
 from symjac.codegen.backends import backend
 from symjac.codegen.coupled import (
     coupling_lines,
@@ -32,6 +33,7 @@ from symjac.codegen.functions import (
     self_checks,
 )
 from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
+from symjac.codegen.kinds import DYNAMICS_CHECKED
 from symjac.codegen.printers import float_literal
 from symjac.codegen.provenance import catalog_files, names_relative_file, robot_loader
 from symjac.codegen.request import (
@@ -43,8 +45,6 @@ from symjac.codegen.request import (
     requests_from,
     validate_robot,
 )
-from symjac.analysis.dynamics.gravity import GRAVITY_SYMBOL, STANDARD_GRAVITY
-from symjac.codegen.kinds import DYNAMICS_CHECKED
 from symjac.errors import CodegenError
 from symjac.files import write_files, write_text
 from symjac.kinematics.chain import Chain, Frame, as_chain
@@ -147,7 +147,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     dynamics = dynamics_functions(chain, functions) if request.dynamics else []
     derived = [*dynamics, *derived_functions(infos, n, coupled)]
     exports |= {d.name for d in dynamics}
-    checked = [f.name for kind in DYNAMICS_CHECKED for f in (*functions, *dynamics) if f.kind == kind]
+    kinds = {f.kind: f.name for f in functions} | {d.kind: d.name for d in dynamics}
+    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics else []
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if request.dynamics else ()
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
@@ -172,8 +173,10 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
 
 
 def check_dynamics(chain: Chain) -> None:
-    """Refuse dynamics for a robot without inertial data on every link (the error names them) or whose parameter
-    takes gravity's name ``g``."""
+    """Refuse dynamics for a robot without inertial data on every link (the error names them) or named ``g``.
+
+    A robot parameter called ``g`` would clash with gravity's magnitude, which every dynamics module takes.
+    """
     from symjac.analysis.dynamics.bodies import link_bodies
     from symjac.analysis.dynamics.gravity import EARTH, check_gravity
 

@@ -1,0 +1,355 @@
+"""Generated dynamics (``dynamics=True``) in every target, against an independent numeric Newton-Euler and pinocchio.
+
+The reference here is written for this file from the robot's frames alone (``reference.frames``, plain NumPy): the
+recursive Newton-Euler algorithm in the base frame for a chain of revolute joints in standard DH (joint k turns about
+z_{k-1} through the origin of {k-1}), each body's inertia rotated into the base frame. It gives tau exactly (no finite
+differences), so M (columns of tau at qdot = 0, qddot = e_j, no gravity), g (tau at rest), C qdot (tau at qddot = 0
+minus g) and the bias forces follow, and every target must agree with it to 1e-9 at inertial parameters other than
+their defaults (they are parameters of the module). Forward dynamics must invert inverse dynamics. The UR5, read from
+its URDF with its published numbers, is compared with pinocchio. Each module's own self-test passes, and fails when
+any one of its dynamics functions is corrupted; modules are byte-deterministic, ruff-clean, and the C and C++ ones
+compile with -Wall -Wextra -Werror.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import importlib.util
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from reference import frames
+
+from symjac import robot_from_mapping
+from symjac.cli.main import main
+from symjac.codegen import ModuleRequest, describe, render_files
+from symjac.errors import NoInertialDataError
+from symjac.model.inertial_parameters import with_symbolic_inertials
+from symjac.model.io import load_robot
+
+REPO = Path(__file__).resolve().parent.parent
+PYTHON_FAMILY = ("python", "numpy", "lambdify", "c", "jax", "casadi")
+COMPILED = ("c99", "cpp")
+FUNCTIONS = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "bias_forces", "gravity_torques",
+             "forward_dynamics")
+GRAVITY = 9.81
+
+
+def _elbow():
+    """A spatial 3R arm (standard DH) whose gravity torques are not zero, with symbolic inertial parameters."""
+    robot = robot_from_mapping({
+        "name": "elbow", "convention": "standard", "parameters": {"d1": 0.3, "a2": 0.4, "a3": 0.35},
+        "joints": [{"type": "revolute", "alpha": "pi/2", "d": "d1"}, {"type": "revolute", "a": "a2"},
+                   {"type": "revolute", "a": "a3"}]})
+    return with_symbolic_inertials(robot)
+
+
+ROBOTS = {"elbow": _elbow, "planar2r": lambda: with_symbolic_inertials(load_robot("planar2r"))}
+
+
+def _inertials(n: int) -> dict[str, float]:
+    """Physical inertial parameters other than the defaults: mass, centre, inertia about it (positive definite)."""
+    values: dict[str, float] = {}
+    for k in range(1, n + 1):
+        values |= {f"m{k}": 1.5 + 0.7 * k, f"cx{k}": -0.12 + 0.02 * k, f"cy{k}": 0.03 * k, f"cz{k}": 0.01 - 0.02 * k,
+                   f"Ixx{k}": 0.05 + 0.01 * k, f"Iyy{k}": 0.06 + 0.01 * k, f"Izz{k}": 0.07 + 0.005 * k,
+                   f"Ixy{k}": 0.002, f"Ixz{k}": -0.003, f"Iyz{k}": 0.001 * k}
+    return values
+
+
+def newton_euler(robot, values: dict[str, float], q, qdot, qddot, gravity: float = GRAVITY) -> np.ndarray:
+    """tau of a standard-DH chain of revolute joints, by recursive Newton-Euler in the base frame {0}."""
+    world = frames(robot, np.asarray(q, dtype=float))
+    base = np.linalg.inv(world[1])
+    poses = [base @ world[k + 1] for k in range(robot.n_joints + 1)]  # {0}, {1}, ..., {n} in {0}
+    n = robot.n_joints
+    omega, alpha, acceleration = np.zeros(3), np.zeros(3), np.array([0.0, 0.0, gravity])  # of the origin of {k-1}
+    forces, moments, centres = [], [], []
+    for k in range(1, n + 1):
+        z, origin = poses[k - 1][:3, 2], poses[k - 1][:3, 3]
+        R, p = poses[k][:3, :3], poses[k][:3, 3]
+        alpha = alpha + z * qddot[k - 1] + np.cross(omega, z * qdot[k - 1])
+        omega = omega + z * qdot[k - 1]
+        centre = p + R @ np.array([values[f"c{axis}{k}"] for axis in "xyz"])
+        r = centre - origin
+        a_c = acceleration + np.cross(alpha, r) + np.cross(omega, np.cross(omega, r))
+        I = np.array([[values[f"I{a}{b}{k}" if f"I{a}{b}{k}" in values else f"I{b}{a}{k}"] for b in "xyz"]
+                      for a in "xyz"])
+        inertia = R @ I @ R.T
+        forces.append(values[f"m{k}"] * a_c)
+        moments.append(inertia @ alpha + np.cross(omega, inertia @ omega))
+        centres.append(centre)
+        step = p - origin  # the next joint's axis passes through the origin of {k}
+        acceleration = acceleration + np.cross(alpha, step) + np.cross(omega, np.cross(omega, step))
+    tau = np.zeros(n)
+    f, m = np.zeros(3), np.zeros(3)
+    for k in range(n, 0, -1):
+        origin, p = poses[k - 1][:3, 3], poses[k][:3, 3]
+        m = moments[k - 1] + m + np.cross(centres[k - 1] - origin, forces[k - 1]) + np.cross(p - origin, f)
+        f = forces[k - 1] + f
+        tau[k - 1] = poses[k - 1][:3, 2] @ m
+    return tau
+
+
+def test_the_reference_is_newton_euler_and_can_fail():
+    """The reference's own check: a point mass on a 1R pendulum, and a doubled mass is seen."""
+    robot = robot_from_mapping({"name": "pendulum", "convention": "standard", "joints": [
+        {"type": "revolute", "alpha": "pi/2", "a": 0}, {"type": "revolute", "a": 1}]})
+    values = {f"{name}{k}": 0.0 for k in (1, 2) for name in ("cx", "cy", "cz", "Ixx", "Iyy", "Izz", "Ixy", "Ixz",
+                                                               "Iyz")}
+    values |= {"m1": 0.0, "m2": 2.0}
+    q = np.array([0.0, 0.4])
+    # a mass of 2 at distance 1 from joint 2, its arm in the vertical plane: g = m g cos(theta2), M22 = m
+    expected = 2.0 * GRAVITY * np.cos(0.4) + 2.0 * 0.5
+    assert newton_euler(robot, values, q, np.zeros(2), np.array([0.0, 0.5]))[1] == pytest.approx(expected)
+    values["m2"] = 4.0
+    assert newton_euler(robot, values, q, np.zeros(2), np.array([0.0, 0.5]))[1] != pytest.approx(expected)
+
+
+# --- the modules, one per robot and target ----------------------------------------------------------------------------
+
+def _import(path: Path):
+    spec = importlib.util.spec_from_file_location(f"dynamics_{path.stem}_{id(path)}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+class Python:
+    """A Python-family module: keyword parameters (CasADi: the parameter vector), NumPy out."""
+
+    def __init__(self, folder: Path, robot, target: str):
+        if target == "jax":
+            jax = pytest.importorskip("jax")
+            jax.config.update("jax_enable_x64", True)
+        if target == "casadi":
+            pytest.importorskip("casadi")
+        self.target = target
+        self.files = render_files(describe(ModuleRequest(robot, target, dynamics=True)))
+        path = folder / f"{robot.name}_{target}.py"
+        path.write_text(next(iter(self.files.values())))
+        self.path, self.module = path, _import(path)
+
+    def call(self, name: str, *inputs, parameters: dict[str, float]) -> np.ndarray:
+        function = getattr(self.module, name)
+        if self.target == "casadi":
+            vector = [parameters.get(p, d) for p, d in zip(self.module.PARAMETER_NAMES,
+                                                           self.module.PARAMETER_DEFAULTS, strict=True)]
+            return np.asarray(function(*inputs, vector), dtype=float).ravel()
+        return np.asarray(function(*inputs, **parameters), dtype=float).ravel()
+
+
+CPP_SHIM = """#include "{robot}.hpp"
+using namespace symjac::{robot};
+using V = Eigen::Matrix<double, {n}, 1>;
+static V vector(const double *x) {{ return V(Eigen::Map<const V>(x)); }}
+static Params<double> parameters(const double *p) {{ Params<double> values; {assignments} return values; }}
+template <class M> static void store(const M& m, double *out)
+{{
+    for (int i = 0; i < m.rows(); i++) {{
+        for (int j = 0; j < m.cols(); j++) {{
+            out[i * m.cols() + j] = m(i, j);
+        }}
+    }}
+}}
+extern "C" {{
+void inverse_dynamics_(const double *q, const double *p, const double *a, const double *b, double *out)
+{{ store(inverse_dynamics(vector(q), vector(a), vector(b), parameters(p)), out); }}
+void forward_dynamics_(const double *q, const double *p, const double *a, const double *b, double *out)
+{{ store(forward_dynamics(vector(q), vector(a), vector(b), parameters(p)), out); }}
+void coriolis_matrix_(const double *q, const double *p, const double *a, double *out)
+{{ store(coriolis_matrix(vector(q), vector(a), parameters(p)), out); }}
+void bias_forces_(const double *q, const double *p, const double *a, double *out)
+{{ store(bias_forces(vector(q), vector(a), parameters(p)), out); }}
+void mass_matrix_(const double *q, const double *p, double *out) {{ store(mass_matrix(vector(q), parameters(p)), out); }}
+void gravity_torques_(const double *q, const double *p, double *out)
+{{ store(gravity_torques(vector(q), parameters(p)), out); }}
+}}
+"""
+
+C_FLAGS = ["-Wall", "-Wextra", "-Werror", "-O1", "-fPIC", "-shared"]
+EIGEN = Path("/usr/include/eigen3")
+
+
+class Compiled:
+    """A c99 pair, or a cpp header behind a C-ABI shim, compiled with warnings as errors and called through ctypes."""
+
+    def __init__(self, folder: Path, robot, target: str):
+        compiler = "gcc" if target == "c99" else "g++"
+        if shutil.which(compiler) is None or (target == "cpp" and not (EIGEN / "Eigen" / "Dense").is_file()):
+            pytest.skip(f"{compiler} (or Eigen's headers) is not installed")
+        self.files = render_files(describe(ModuleRequest(robot, target, dynamics=True)))
+        for name, text in self.files.items():
+            (folder / name).write_text(text)
+        self.names = [name for name, _ in describe(ModuleRequest(robot, "python")).parameters]
+        self.names.append("g")
+        n = robot.n_coordinates
+        if target == "c99":
+            command = [compiler, "-std=c99", "-pedantic", *C_FLAGS, f"{robot.name}.c", "-o", "lib.so", "-lm"]
+            self.prefix, self.suffix = f"{robot.name}_", ""
+        else:
+            assignments = " ".join(f"values.{name} = p[{k}];" for k, name in enumerate(self.names))
+            (folder / "shim.cpp").write_text(CPP_SHIM.format(robot=robot.name, n=n, assignments=assignments))
+            command = [compiler, "-std=c++17", f"-I{EIGEN}", *C_FLAGS, "shim.cpp", "-o", "lib.so"]
+            self.prefix, self.suffix = "", "_"
+        subprocess.run(command, cwd=folder, check=True, capture_output=True, text=True)
+        self.library = ctypes.CDLL(str(folder / "lib.so"))
+        self.n = n
+        self.defaults = dict(describe(ModuleRequest(robot, "python", dynamics=True)).parameters)
+
+    def call(self, name: str, *inputs, parameters: dict[str, float]) -> np.ndarray:
+        values = np.array([parameters.get(p, self.defaults[p]) for p in self.names])
+        arrays = [np.ascontiguousarray(a, dtype=float) for a in inputs]
+        size = self.n * self.n if name in ("mass_matrix", "coriolis_matrix") else self.n
+        out = np.zeros(size)
+        pointer = ctypes.POINTER(ctypes.c_double)
+        first, *rest = arrays
+        getattr(self.library, f"{self.prefix}{name}{self.suffix}")(first.ctypes.data_as(pointer), values.ctypes.data_as(pointer),
+                                                      *(a.ctypes.data_as(pointer) for a in rest),
+                                                      out.ctypes.data_as(pointer))
+        return out
+
+    def selftest(self) -> int:
+        return int(self.library[f"{self.prefix}selftest"]()) if self.prefix else 0
+
+
+@pytest.fixture(scope="module")
+def modules(tmp_path_factory):
+    """Every target's module of every robot, made once: ``modules(robot name, target)``."""
+    made: dict[tuple[str, str], Python | Compiled] = {}
+    robots = {name: make() for name, make in ROBOTS.items()}
+
+    def get(name: str, target: str):
+        if (name, target) not in made:
+            folder = tmp_path_factory.mktemp(f"{name}_{target}")
+            kind = Compiled if target in COMPILED else Python
+            made[(name, target)] = kind(folder, robots[name], target)
+        return made[(name, target)], robots[name]
+
+    return get
+
+
+def _close(got, expected, tolerance: float = 1e-9) -> None:
+    expected = np.asarray(expected, dtype=float).ravel()
+    scale = max(1.0, float(np.abs(expected).max()))
+    assert np.abs(np.asarray(got, dtype=float).ravel() - expected).max() <= tolerance * scale
+
+
+@pytest.mark.parametrize("target", PYTHON_FAMILY + COMPILED)
+@pytest.mark.parametrize("name", sorted(ROBOTS))
+def test_every_function_agrees_with_a_numeric_newton_euler(modules, name, target):
+    module, robot = modules(name, target)
+    n = robot.n_coordinates
+    values = _inertials(n)
+    rng = np.random.default_rng(44)
+    zero = np.zeros(n)
+    for _ in range(3):
+        q, qdot, qddot = (rng.uniform(-1.5, 1.5, n) for _ in range(3))
+        tau = newton_euler(robot, values, q, qdot, qddot)
+        g = newton_euler(robot, values, q, zero, zero)
+        M = np.array([newton_euler(robot, values, q, zero, np.eye(n)[j], gravity=0.0) for j in range(n)]).T
+        bias = newton_euler(robot, values, q, qdot, zero)
+        _close(module.call("inverse_dynamics", q, qdot, qddot, parameters=values), tau)
+        _close(module.call("mass_matrix", q, parameters=values), M)
+        _close(module.call("gravity_torques", q, parameters=values), g)
+        _close(module.call("bias_forces", q, qdot, parameters=values), bias)
+        C = module.call("coriolis_matrix", q, qdot, parameters=values).reshape(n, n)
+        _close(C @ qdot, bias - g)
+        _close(module.call("forward_dynamics", q, qdot, tau, parameters=values), qddot)
+
+
+@pytest.mark.parametrize("target", ("python", "numpy"))
+def test_gravity_is_a_parameter(modules, target):
+    module, robot = modules("elbow", target)
+    q = np.array([0.3, -0.7, 1.1])
+    values = _inertials(3)
+    earth = module.call("gravity_torques", q, parameters=values)
+    assert np.abs(earth).max() > 1.0
+    _close(module.call("gravity_torques", q, parameters={**values, "g": 2 * GRAVITY}), 2 * earth)
+    _close(module.call("gravity_torques", q, parameters={**values, "g": 0.0}), np.zeros(3))
+
+
+@pytest.mark.parametrize("target", PYTHON_FAMILY)
+def test_the_self_test_passes_and_fails_for_any_corrupted_function(modules, target):
+    module, _ = modules("elbow", target)
+    generated = module.module
+    assert generated.selftest() <= 1e-6
+    # JAX's functions are checked as NumPy's (one corruption is enough there); CasADi's return its own matrices
+    corrupted_kinds = {"jax": ("coriolis_matrix",), "casadi": ()}.get(target, FUNCTIONS)
+    checks = generated._CHECKS
+    for corrupted in corrupted_kinds:
+        def wrong(*args, _function=getattr(generated, corrupted), **keywords):
+            value = _function(*args, **keywords)
+            return value + 1e-3 * (np.arange(np.size(value)) == 1).reshape(np.shape(value))
+
+        generated._CHECKS = tuple(
+            (routine, tuple(wrong if f is getattr(generated, corrupted) else f for f in functions), rows)
+            for routine, functions, rows in checks)
+        try:
+            with pytest.raises(AssertionError, match="self-test error"):
+                generated.selftest()
+        finally:
+            generated._CHECKS = checks
+
+
+@pytest.mark.parametrize("target", COMPILED)
+def test_the_compiled_self_test_passes(modules, target):
+    module, _ = modules("elbow", target)
+    assert module.selftest() == 0
+
+
+@pytest.mark.parametrize("target", PYTHON_FAMILY + COMPILED)
+def test_modules_are_deterministic_and_python_ones_ruff_clean(modules, target, tmp_path):
+    module, robot = modules("planar2r", target)
+    assert render_files(describe(ModuleRequest(robot, target, dynamics=True))) == module.files
+    if target in PYTHON_FAMILY and shutil.which("ruff") is not None:
+        result = subprocess.run(["ruff", "check", "--no-cache", "--config", str(REPO / "pyproject.toml"),
+                                 str(module.path)], capture_output=True, text=True, check=False)
+        assert result.returncode == 0, result.stdout
+
+
+def test_without_the_option_nothing_changes():
+    robot = ROBOTS["planar2r"]()
+    text = next(iter(render_files(describe(ModuleRequest(robot, "python"))).values()))
+    assert "inverse_dynamics" not in text and "cholesky" not in text.lower() and '"g":' not in text
+
+
+def test_a_robot_without_inertial_data_is_refused_naming_its_links(capsys):
+    with pytest.raises(NoInertialDataError, match="links 1, 2 have no inertial data"):
+        describe(ModuleRequest(load_robot("planar2r"), "python", dynamics=True))
+    assert main(["codegen", "planar2r", "--dynamics"]) != 0
+    error = capsys.readouterr().err.strip()
+    assert "links 1, 2 have no inertial data" in error and len(error.splitlines()) == 1
+
+
+# --- a real arm with its published numbers, against pinocchio --------------------------------------------------------
+
+@pytest.mark.external
+def test_the_ur5_agrees_with_pinocchio(tmp_path):
+    pin = pytest.importorskip("pinocchio")
+    from collection import example_robots
+
+    path = example_robots() / "ur_description" / "urdf" / "ur5_robot.urdf"
+    robot = load_robot(str(path), tip_link="tool0")
+    model = pin.buildModelFromUrdf(str(path))
+    data = model.createData()
+    index = [model.joints[model.getJointId(joint.name)].idx_q for joint in robot.joints]
+    assert index == list(range(model.nq))
+    rng = np.random.default_rng(5)
+    for target in ("python", "c", "c99"):
+        module = (Compiled if target in COMPILED else Python)(tmp_path, robot, target)
+        for _ in range(2):
+            q, qdot, qddot = (rng.uniform(-1.5, 1.5, 6) for _ in range(3))
+            _close(module.call("inverse_dynamics", q, qdot, qddot, parameters={}), pin.rnea(model, data, q, qdot, qddot))
+            M = pin.crba(model, data, q)
+            _close(module.call("mass_matrix", q, parameters={}), np.triu(M) + np.triu(M, 1).T)
+            _close(module.call("gravity_torques", q, parameters={}), pin.computeGeneralizedGravity(model, data, q))
+            _close(module.call("coriolis_matrix", q, qdot, parameters={}),
+                   pin.computeCoriolisMatrix(model, data, q, qdot))
+            tau = rng.uniform(-5, 5, 6)
+            _close(module.call("forward_dynamics", q, qdot, tau, parameters={}),
+                   pin.aba(model, data, q, qdot, tau), 1e-8)

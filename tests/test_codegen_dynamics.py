@@ -76,9 +76,9 @@ def newton_euler(robot, values: dict[str, float], q, qdot, qddot, gravity: float
         centre = p + R @ np.array([values[f"c{axis}{k}"] for axis in "xyz"])
         r = centre - origin
         a_c = acceleration + np.cross(alpha, r) + np.cross(omega, np.cross(omega, r))
-        I = np.array([[values[f"I{a}{b}{k}" if f"I{a}{b}{k}" in values else f"I{b}{a}{k}"] for b in "xyz"]
-                      for a in "xyz"])
-        inertia = R @ I @ R.T
+        about_centre = np.array([[values[f"I{a}{b}{k}" if f"I{a}{b}{k}" in values else f"I{b}{a}{k}"]
+                                  for b in "xyz"] for a in "xyz"])
+        inertia = R @ about_centre @ R.T
         forces.append(values[f"m{k}"] * a_c)
         moments.append(inertia @ alpha + np.cross(omega, inertia @ omega))
         centres.append(centre)
@@ -165,7 +165,8 @@ void coriolis_matrix_(const double *q, const double *p, const double *a, double 
 {{ store(coriolis_matrix(vector(q), vector(a), parameters(p)), out); }}
 void bias_forces_(const double *q, const double *p, const double *a, double *out)
 {{ store(bias_forces(vector(q), vector(a), parameters(p)), out); }}
-void mass_matrix_(const double *q, const double *p, double *out) {{ store(mass_matrix(vector(q), parameters(p)), out); }}
+void mass_matrix_(const double *q, const double *p, double *out)
+{{ store(mass_matrix(vector(q), parameters(p)), out); }}
 void gravity_torques_(const double *q, const double *p, double *out)
 {{ store(gravity_torques(vector(q), parameters(p)), out); }}
 }}
@@ -208,9 +209,9 @@ class Compiled:
         out = np.zeros(size)
         pointer = ctypes.POINTER(ctypes.c_double)
         first, *rest = arrays
-        getattr(self.library, f"{self.prefix}{name}{self.suffix}")(first.ctypes.data_as(pointer), values.ctypes.data_as(pointer),
-                                                      *(a.ctypes.data_as(pointer) for a in rest),
-                                                      out.ctypes.data_as(pointer))
+        function = getattr(self.library, f"{self.prefix}{name}{self.suffix}")
+        function(first.ctypes.data_as(pointer), values.ctypes.data_as(pointer),
+                 *(a.ctypes.data_as(pointer) for a in rest), out.ctypes.data_as(pointer))
         return out
 
     def selftest(self) -> int:
@@ -264,7 +265,7 @@ def test_every_function_agrees_with_a_numeric_newton_euler(modules, name, target
 
 @pytest.mark.parametrize("target", ("python", "numpy"))
 def test_gravity_is_a_parameter(modules, target):
-    module, robot = modules("elbow", target)
+    module, _ = modules("elbow", target)
     q = np.array([0.3, -0.7, 1.1])
     values = _inertials(3)
     earth = module.call("gravity_torques", q, parameters=values)
@@ -282,13 +283,14 @@ def test_the_self_test_passes_and_fails_for_any_corrupted_function(modules, targ
     corrupted_kinds = {"jax": ("coriolis_matrix",), "casadi": ()}.get(target, FUNCTIONS)
     checks = generated._CHECKS
     for corrupted in corrupted_kinds:
-        def wrong(*args, _function=getattr(generated, corrupted), **keywords):
+        right = getattr(generated, corrupted)
+
+        def wrong(*args, _function=right, **keywords):
             value = _function(*args, **keywords)
             return value + 1e-3 * (np.arange(np.size(value)) == 1).reshape(np.shape(value))
 
-        generated._CHECKS = tuple(
-            (routine, tuple(wrong if f is getattr(generated, corrupted) else f for f in functions), rows)
-            for routine, functions, rows in checks)
+        generated._CHECKS = tuple((routine, tuple(wrong if f is right else f for f in functions), rows)
+                                  for routine, functions, rows in checks)
         try:
             with pytest.raises(AssertionError, match="self-test error"):
                 generated.selftest()
@@ -344,7 +346,8 @@ def test_the_ur5_agrees_with_pinocchio(tmp_path):
         module = (Compiled if target in COMPILED else Python)(tmp_path, robot, target)
         for _ in range(2):
             q, qdot, qddot = (rng.uniform(-1.5, 1.5, 6) for _ in range(3))
-            _close(module.call("inverse_dynamics", q, qdot, qddot, parameters={}), pin.rnea(model, data, q, qdot, qddot))
+            _close(module.call("inverse_dynamics", q, qdot, qddot, parameters={}),
+                   pin.rnea(model, data, q, qdot, qddot))
             M = pin.crba(model, data, q)
             _close(module.call("mass_matrix", q, parameters={}), np.triu(M) + np.triu(M, 1).T)
             _close(module.call("gravity_torques", q, parameters={}), pin.computeGeneralizedGravity(model, data, q))

@@ -356,3 +356,28 @@ def test_the_ur5_agrees_with_pinocchio(tmp_path):
             tau = rng.uniform(-5, 5, 6)
             _close(module.call("forward_dynamics", q, qdot, tau, parameters={}),
                    pin.aba(model, data, q, qdot, tau), 1e-8)
+
+
+def test_a_coupled_robot_is_in_its_coordinates():
+    """theta4 = -(theta2 + theta3): tau_q = C^T tau(theta, C qdot, C qddot), M_q = C^T M C, against the free arm."""
+    data = {"name": "arm", "convention": "modified", "parameters": {"L": 0.5},
+            "joints": [{"type": "revolute", "alpha": a, "a": "L"} for a in (0, "pi/2", 0, 0)]}
+    free = with_symbolic_inertials(robot_from_mapping(data))
+    data["joints"][3]["coupled"] = "-(theta2 + theta3)"
+    coupled = with_symbolic_inertials(robot_from_mapping(data))
+    modules = {}
+    for name, robot in (("free", free), ("coupled", coupled)):
+        modules[name] = {}
+        exec(compile(next(iter(render_files(describe(ModuleRequest(robot, "python", dynamics=True))).values())),
+                     name, "exec"), modules[name])
+    C = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, -1, -1]], dtype=float)
+    values = _inertials(4)
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        q, qdot, qddot = (rng.uniform(-1.5, 1.5, 3) for _ in range(3))
+        tau = np.array(modules["free"]["inverse_dynamics"](C @ q, C @ qdot, C @ qddot, **values))
+        _close(modules["coupled"]["inverse_dynamics"](q, qdot, qddot, **values), C.T @ tau)
+        M = np.array(modules["free"]["mass_matrix"](C @ q, **values))
+        _close(modules["coupled"]["mass_matrix"](q, **values), C.T @ M @ C)
+        _close(modules["coupled"]["forward_dynamics"](q, qdot, C.T @ tau, **values), qddot)
+    assert modules["coupled"]["selftest"]() <= 1e-6

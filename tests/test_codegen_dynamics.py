@@ -381,3 +381,48 @@ def test_a_coupled_robot_is_in_its_coordinates():
         _close(modules["coupled"]["mass_matrix"](q, **values), C.T @ M @ C)
         _close(modules["coupled"]["forward_dynamics"](q, qdot, C.T @ tau, **values), qddot)
     assert modules["coupled"]["selftest"]() <= 1e-6
+
+
+ARM_FILE = """name = "arm2"
+convention = "standard"
+
+[parameters]
+L1 = 0.5
+L2 = 0.4
+m2 = 1.5
+
+[[joints]]
+type = "revolute"
+alpha = "pi/2"
+a = "L1"
+[joints.inertial]
+mass = 2.0
+com = ["-L1/2", 0, 0]
+ixx = 0.01
+iyy = 0.05
+izz = 0.05
+
+[[joints]]
+type = "revolute"
+a = "L2"
+[joints.inertial]
+mass = "m2"
+com = ["-L2/2", 0, 0]
+ixx = 0.005
+iyy = "m2*L2**2/12"
+izz = "m2*L2**2/12"
+"""
+
+
+def test_the_command_line_writes_a_dynamics_module(tmp_path, capsys):
+    """Inertial data from a robot file (numbers and expressions over its parameters): m2 is a module parameter."""
+    (tmp_path / "arm2.toml").write_text(ARM_FILE)
+    output = tmp_path / "arm2.py"
+    assert main(["codegen", str(tmp_path / "arm2.toml"), "--dynamics", "-o", str(output)]) == 0
+    module = _import(output)
+    assert "--dynamics" in output.read_text().split('"""', 1)[0]  # the header's command regenerates it
+    assert module.selftest() <= 1e-6 and set(module.PARAMETERS) == {"L1", "L2", "m2", "g"}
+    q, zero = np.array([0.2, -0.4]), np.zeros(2)
+    heavier = np.array(module.mass_matrix(q, m2=3.0)) - np.array(module.mass_matrix(q))
+    assert np.abs(heavier).max() > 1e-3  # the mass is a parameter, not a number baked in
+    _close(module.inverse_dynamics(q, zero, zero), module.gravity_torques(q))

@@ -326,6 +326,10 @@ def test_a_robot_without_inertial_data_is_refused_naming_its_links(capsys):
     assert main(["codegen", "planar2r", "--dynamics"]) != 0
     error = capsys.readouterr().err.strip()
     assert "links 1, 2 have no inertial data" in error and len(error.splitlines()) == 1
+    named_g = robot_from_mapping({"name": "arm", "convention": "standard", "parameters": {"g": 1.0},
+                                  "joints": [{"type": "revolute", "a": "g"}]})
+    with pytest.raises(ValueError, match="the parameter 'g' has the name of gravity's magnitude"):
+        describe(ModuleRequest(with_symbolic_inertials(named_g), "python", dynamics=True))
 
 
 # --- a real arm with its published numbers, against pinocchio --------------------------------------------------------

@@ -47,6 +47,8 @@ def test_the_printed_parts_make_the_torques_and_both_methods_agree(cli):
     assert is_zero(tau - (M * qdd + C * qd + g))
     lagrange = parsed(cli.json(*ARM, "--gravity=-y", "--method", "lagrange")["torques"])
     assert is_zero(tau - lagrange)
+    # laid out alike, the two routes print the same line, symbol for symbol
+    assert cli.ok(*ARM, "--gravity=-y") == cli.ok(*ARM, "--gravity=-y", "--method", "lagrange")
     assert not is_zero(tau - parsed(cli.json(*ARM)["torques"]))  # gravity along -z0 is normal to the arm's plane
 
 
@@ -95,3 +97,37 @@ def test_bad_gravity_is_one_line(cli, option, message):
 
 def test_steps_are_newton_eulers(cli):
     assert "does not apply with --method lagrange" in cli.one_line_error(*ARM, "--steps", "--method", "lagrange")
+
+
+ROD_ARM = """\
+name = "rods"
+convention = "standard"
+[parameters]
+L1 = 0.5
+L2 = 0.4
+[[joints]]
+type = "revolute"
+a = "L1"
+inertial = {mass = 2.0, com = [-0.25, 0, 0], izz = 0.0416667}
+[[joints]]
+type = "revolute"
+a = "L2"
+inertial = {mass = 1.5, com = [-0.2, 0, 0], izz = 0.02}
+"""
+
+
+def test_a_robots_own_data_are_the_defaults_of_its_symbols(cli, tmp_path):
+    path = tmp_path / "rods.toml"
+    path.write_text(ROD_ARM, encoding="utf-8")
+    # by hand: g1 = g (m1 lc1 + m2 L1) c1 + g m2 lc2 c12, g2 = g m2 lc2 c12 (lc1 = 0.25, lc2 = 0.2)
+    expected = sp.Matrix([9.81 * (2.0 * 0.25 + 1.5 * 0.5) * sp.cos(S("theta1")),
+                          9.81 * 1.5 * 0.2 * sp.cos(S("theta1") + S("theta2"))])
+    expected[0] += expected[1]
+    for symbolic in ((), ("--symbolic-inertials",)):
+        data = cli.json("dynamics", str(path), "--gravity=-y", "--gravity-torques", "--numeric", "--digits", "6",
+                        *symbolic)
+        g = parsed(data["gravity_torques"])
+        at = {S("theta1"): 0.4, S("theta2"): 0.9}
+        assert np.allclose([float(v) for v in g.xreplace(at)], [float(v) for v in expected.xreplace(at)], rtol=1e-5)
+    assert "m1" in cli.json("dynamics", str(path), "--symbolic-inertials", "--gravity=-y",
+                            "--gravity-torques")["gravity_torques"][0]

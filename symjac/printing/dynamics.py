@@ -2,11 +2,11 @@ r"""The document of ``symjac dynamics``: the equations of motion, part by part, 
 
 :math:`\tau = M(q)\,\ddot q + C(q, \dot q)\,\dot q + g(q)`.
 
-:func:`dynamics_document` takes the parts a caller derived (the torques, :math:`M`, :math:`C`, :math:`g`, the kinetic
-and potential energy, the Newton-Euler steps) and lays out those given, in that order after the steps: LaTeX, pretty
-text and JSON all print it (JSON keys ``torques``, ``mass_matrix``, ``coriolis_matrix``, ``gravity_torques``,
-``kinetic_energy``, ``potential_energy``, ``steps``, with ``*_latex`` beside each). The HTML report builds its
-dynamics section from the same document.
+:func:`dynamics_document` takes the parts a caller derived and lays out those given in the order a derivation
+builds up to the torques: the kinetic and potential energy, :math:`M`, :math:`C`, :math:`g`, then the Newton-Euler
+steps and the torques they end with. LaTeX, pretty text and JSON all print it (JSON keys ``kinetic_energy``,
+``potential_energy``, ``mass_matrix``, ``coriolis_matrix``, ``gravity_torques``, ``steps``, ``torques``, with
+``*_latex`` beside each). The HTML report builds its dynamics section from the same document.
 """
 
 from __future__ import annotations
@@ -93,24 +93,30 @@ def dynamics_document(robot: Robot, parts: DynamicsParts, method: str = "newton-
     def shown(value: Any) -> Any:
         return value if digits is None else rounded(value.xreplace(values), digits)
 
-    blocks: list[Block] = []
-    if parts.steps is not None:
-        from symjac.printing.steps import step_equations
-
-        blocks += [Block((), (replace(step, rhs=shown(step.rhs), key=JsonKey("steps", record=True)),))
-                   for step in step_equations(parts.steps)]
     words = gravity_words(gravity)
     entries: list[tuple[str, Any, str, str, str, bool]] = [
-        (f"Joint torques tau = M(q) qddot + C(q, qdot) qdot + g(q), by {_METHODS[method]} ({words})",
-         parts.torques, r"\tau", "tau", "torques", True),
+        ("Kinetic energy T = 1/2 qdot^T M(q) qdot", parts.kinetic_energy, "T", "T", "kinetic_energy", False),
+        (f"Potential energy V(q) ({words})", parts.potential_energy, "V", "V", "potential_energy", False),
         ("Mass matrix M(q) (symmetric, positive definite)", parts.mass_matrix, "M", "M", "mass_matrix", False),
         ("Coriolis matrix C(q, qdot) from the Christoffel symbols (Mdot - 2C skew-symmetric)",
          parts.coriolis_matrix, "C", "C", "coriolis_matrix", False),
         (f"Gravity torques g(q) ({words})", parts.gravity_torques, "g", "g", "gravity_torques", True),
-        ("Kinetic energy T = 1/2 qdot^T M(q) qdot", parts.kinetic_energy, "T", "T", "kinetic_energy", False),
-        (f"Potential energy V(q) ({words})", parts.potential_energy, "V", "V", "potential_energy", False),
+        (f"Joint torques tau = M(q) qddot + C(q, qdot) qdot + g(q), by {_METHODS[method]} ({words})",
+         parts.torques, r"\tau", "τ", "torques", True),
     ]
+    blocks: list[Block] = []
     for caption, value, tex, text, key, flat in entries:
+        if parts.steps is not None and key == "torques":  # the recursion, then the torques it ends with
+            from symjac.printing.steps import step_equations
+
+            inward = 6 * len(parts.steps.steps)  # six outward quantities per link, then the inward ones
+            captions = {0: ("Newton-Euler, outward from the base: each link's velocities, accelerations and the "
+                            "force and moment that move it, in its own frame",),
+                        inward: ("Newton-Euler, inward from the tip: the force and moment on each link from the one "
+                                 "before, and its joint's torque",)}
+            blocks += [Block(captions.get(k, ()), (replace(step, rhs=shown(step.rhs),
+                                                           key=JsonKey("steps", record=True)),))
+                       for k, step in enumerate(step_equations(parts.steps))]
         if value is not None:
             equation = Equation(tex, text, shown(value), key=JsonKey(key, latex=f"{key}_latex", flat=flat))
             blocks.append(Block((caption,), (equation,)))

@@ -38,11 +38,12 @@ def options(sub: argparse.ArgumentParser) -> None:
                      help="derive the torques by recursive Newton-Euler (default) or by Lagrange's equations; "
                           "the two agree exactly")
     sub.add_argument("--gravity", default=None, metavar="[X,Y,Z][:MAGNITUDE]",
-                     help="gravity's direction in {0} and/or magnitude: 0,-1,0 (along -y0), 0,0,-1:9.81, :0 (none), "
-                          ":1.62; default g along -z0, the symbol g (9.81 m/s^2 with --numeric)")
+                     help="gravity's direction in {0} (3 numbers or an axis: -y, z0) and/or magnitude: --gravity=-y, "
+                          "0,-1,0:9.81, :0 (none), :1.62; default g along -z0, the symbol g (9.81 m/s^2 with "
+                          "--numeric)")
     sub.add_argument("--symbolic-inertials", action="store_true",
                      help="give every link symbolic inertial parameters m_i, cx_i, ..., Izz_i (for robots without "
-                          "inertial data, or to see the structure)")
+                          "inertial data, or to see the structure; a link's own data become their defaults)")
     sub.add_argument("--steps", action="store_true",
                      help="print every Newton-Euler step per link first (omega_i, alpha_i, a_i, a_ci, F_i, N_i, f_i, "
                           "n_i, tau_i)")
@@ -101,13 +102,22 @@ def _number(text: str, what: str) -> Any:
 
 
 def _robot(request: Request) -> Robot:
-    """The robot, with symbolic inertial parameters where ``--symbolic-inertials`` asks for them."""
+    """The robot, with symbolic inertial parameters where ``--symbolic-inertials`` asks for them.
+
+    A link that has inertial data keeps it as the defaults of its symbols (at the parameters' defaults), so
+    ``--numeric`` still gives its numbers; a link without gets the placeholder (unit mass at the origin of {i}).
+    """
     robot = request.robot
     if not request.args.symbolic_inertials:
         return robot
+    from symjac.model.inertia import Inertial
     from symjac.model.inertial_parameters import with_symbolic_inertials
 
-    return with_symbolic_inertials(robot)
+    values = [None if data is None else Inertial(data.mass.xreplace(robot.defaults),
+                                                 tuple(c.xreplace(robot.defaults) for c in data.com),
+                                                 data.inertia.xreplace(robot.defaults))
+              for data in robot.inertials]
+    return with_symbolic_inertials(robot, values)
 
 
 def command(request: Request) -> Document:

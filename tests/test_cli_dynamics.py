@@ -108,11 +108,11 @@ L2 = 0.4
 [[joints]]
 type = "revolute"
 a = "L1"
-inertial = {mass = 2.0, com = [-0.25, 0, 0], izz = 0.0416667}
+inertial = {mass = 2.0, com = [-0.25, 0, 0], iyy = 0.0416667, izz = 0.0416667}  # a slender rod along x
 [[joints]]
 type = "revolute"
 a = "L2"
-inertial = {mass = 1.5, com = [-0.2, 0, 0], izz = 0.02}
+inertial = {mass = 1.5, com = [-0.2, 0, 0], iyy = 0.02, izz = 0.02}
 """
 
 

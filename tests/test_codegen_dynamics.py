@@ -1,19 +1,18 @@
 """Generated dynamics (``dynamics=True``) in every target, against an independent numeric Newton-Euler and pinocchio.
 
-The reference here is written for this file from the robot's frames alone (``reference.frames``, plain NumPy): the
-recursive Newton-Euler algorithm in the base frame for a chain of revolute joints in standard DH (joint k turns about
-z_{k-1} through the origin of {k-1}), each body's inertia rotated into the base frame. It gives tau exactly (no finite
-differences), so M (columns of tau at qdot = 0, qddot = e_j, no gravity), g (tau at rest), C qdot (tau at qddot = 0
-minus g) and the bias forces follow, and every target must agree with it to 1e-9 at inertial parameters other than
-their defaults (they are parameters of the module). Forward dynamics must invert inverse dynamics. The UR5, read from
-its URDF with its published numbers, is compared with pinocchio. Each module's own self-test passes, and fails when
-any one of its dynamics functions is corrupted; modules are byte-deterministic, ruff-clean, and the C and C++ ones
-compile with -Wall -Wextra -Werror.
+The reference is the tests' exact numeric Newton-Euler (``reference_dynamics.NumericDynamics``: spatial vectors in
+{0} from the robot's frames, nothing of symjac's dynamics), at inertial parameters other than the modules' defaults
+(they are parameters of the module: the reference gets a robot whose defaults are those values) and, for the
+catalog's PUMA 560, its published numbers. Every target must agree with it to 1e-9: tau, M, g, C qdot, the bias
+forces, and forward dynamics inverting it. The UR5, read from its URDF, is compared with pinocchio. Each module's own
+self-test passes, and fails when any one of its dynamics functions is corrupted; modules are byte-deterministic,
+ruff-clean, and the C and C++ ones compile with -Wall -Wextra -Werror.
 """
 
 from __future__ import annotations
 
 import ctypes
+import dataclasses
 import importlib.util
 import shutil
 import subprocess
@@ -21,7 +20,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from reference import frames
+import sympy as sp
+from reference_dynamics import NumericDynamics
 
 from symjac import robot_from_mapping
 from symjac.cli.main import main
@@ -29,6 +29,7 @@ from symjac.codegen import ModuleRequest, describe, render_files
 from symjac.errors import NoInertialDataError
 from symjac.model.inertial_parameters import with_symbolic_inertials
 from symjac.model.io import load_robot
+from symjac.model.robot import Parameter
 
 REPO = Path(__file__).resolve().parent.parent
 PYTHON_FAMILY = ("python", "numpy", "lambdify", "c", "jax", "casadi")
@@ -47,7 +48,9 @@ def _elbow():
     return with_symbolic_inertials(robot)
 
 
-ROBOTS = {"elbow": _elbow, "planar2r": lambda: with_symbolic_inertials(load_robot("planar2r"))}
+ROBOTS = {"elbow": _elbow, "planar2r": lambda: with_symbolic_inertials(load_robot("planar2r")),
+          "puma560": lambda: load_robot("puma560")}
+"""Symbolic inertial parameters (a spatial 3R arm, the planar 2R arm) and published numbers (the PUMA 560)."""
 
 
 def _inertials(n: int) -> dict[str, float]:
@@ -60,53 +63,11 @@ def _inertials(n: int) -> dict[str, float]:
     return values
 
 
-def newton_euler(robot, values: dict[str, float], q, qdot, qddot, gravity: float = GRAVITY) -> np.ndarray:
-    """tau of a standard-DH chain of revolute joints, by recursive Newton-Euler in the base frame {0}."""
-    world = frames(robot, np.asarray(q, dtype=float))
-    base = np.linalg.inv(world[1])
-    poses = [base @ world[k + 1] for k in range(robot.n_joints + 1)]  # {0}, {1}, ..., {n} in {0}
-    n = robot.n_joints
-    omega, alpha, acceleration = np.zeros(3), np.zeros(3), np.array([0.0, 0.0, gravity])  # of the origin of {k-1}
-    forces, moments, centres = [], [], []
-    for k in range(1, n + 1):
-        z, origin = poses[k - 1][:3, 2], poses[k - 1][:3, 3]
-        R, p = poses[k][:3, :3], poses[k][:3, 3]
-        alpha = alpha + z * qddot[k - 1] + np.cross(omega, z * qdot[k - 1])
-        omega = omega + z * qdot[k - 1]
-        centre = p + R @ np.array([values[f"c{axis}{k}"] for axis in "xyz"])
-        r = centre - origin
-        a_c = acceleration + np.cross(alpha, r) + np.cross(omega, np.cross(omega, r))
-        about_centre = np.array([[values[f"I{a}{b}{k}" if f"I{a}{b}{k}" in values else f"I{b}{a}{k}"]
-                                  for b in "xyz"] for a in "xyz"])
-        inertia = R @ about_centre @ R.T
-        forces.append(values[f"m{k}"] * a_c)
-        moments.append(inertia @ alpha + np.cross(omega, inertia @ omega))
-        centres.append(centre)
-        step = p - origin  # the next joint's axis passes through the origin of {k}
-        acceleration = acceleration + np.cross(alpha, step) + np.cross(omega, np.cross(omega, step))
-    tau = np.zeros(n)
-    f, m = np.zeros(3), np.zeros(3)
-    for k in range(n, 0, -1):
-        origin, p = poses[k - 1][:3, 3], poses[k][:3, 3]
-        m = moments[k - 1] + m + np.cross(centres[k - 1] - origin, forces[k - 1]) + np.cross(p - origin, f)
-        f = forces[k - 1] + f
-        tau[k - 1] = poses[k - 1][:3, 2] @ m
-    return tau
-
-
-def test_the_reference_is_newton_euler_and_can_fail():
-    """The reference's own check: a point mass on a 1R pendulum, and a doubled mass is seen."""
-    robot = robot_from_mapping({"name": "pendulum", "convention": "standard", "joints": [
-        {"type": "revolute", "alpha": "pi/2", "a": 0}, {"type": "revolute", "a": 1}]})
-    values = {f"{name}{k}": 0.0 for k in (1, 2) for name in ("cx", "cy", "cz", "Ixx", "Iyy", "Izz", "Ixy", "Ixz",
-                                                               "Iyz")}
-    values |= {"m1": 0.0, "m2": 2.0}
-    q = np.array([0.0, 0.4])
-    # a mass of 2 at distance 1 from joint 2, its arm in the vertical plane: g = m g cos(theta2), M22 = m
-    expected = 2.0 * GRAVITY * np.cos(0.4) + 2.0 * 0.5
-    assert newton_euler(robot, values, q, np.zeros(2), np.array([0.0, 0.5]))[1] == pytest.approx(expected)
-    values["m2"] = 4.0
-    assert newton_euler(robot, values, q, np.zeros(2), np.array([0.0, 0.5]))[1] != pytest.approx(expected)
+def reference(robot, values: dict[str, float], gravity: float = GRAVITY) -> NumericDynamics:
+    """The numeric Newton-Euler of ``robot`` with its parameters at ``values`` (the others at their defaults)."""
+    parameters = tuple(Parameter(p.name, sp.nsimplify(values[p.name], rational=True)) if p.name in values else p
+                       for p in robot.parameters)
+    return NumericDynamics(dataclasses.replace(robot, parameters=parameters), gravity)
 
 
 # --- the modules, one per robot and target ----------------------------------------------------------------------------
@@ -245,21 +206,18 @@ def _close(got, expected, tolerance: float = 1e-9) -> None:
 def test_every_function_agrees_with_a_numeric_newton_euler(modules, name, target):
     module, robot = modules(name, target)
     n = robot.n_coordinates
-    values = _inertials(n)
+    values = _inertials(n) if robot.parameters and name != "puma560" else {}
+    exact = reference(robot, values)
     rng = np.random.default_rng(44)
-    zero = np.zeros(n)
     for _ in range(3):
         q, qdot, qddot = (rng.uniform(-1.5, 1.5, n) for _ in range(3))
-        tau = newton_euler(robot, values, q, qdot, qddot)
-        g = newton_euler(robot, values, q, zero, zero)
-        M = np.array([newton_euler(robot, values, q, zero, np.eye(n)[j], gravity=0.0) for j in range(n)]).T
-        bias = newton_euler(robot, values, q, qdot, zero)
+        tau, g = exact.tau(q, qdot, qddot), exact.g(q)
         _close(module.call("inverse_dynamics", q, qdot, qddot, parameters=values), tau)
-        _close(module.call("mass_matrix", q, parameters=values), M)
+        _close(module.call("mass_matrix", q, parameters=values), exact.M(q))
         _close(module.call("gravity_torques", q, parameters=values), g)
-        _close(module.call("bias_forces", q, qdot, parameters=values), bias)
+        _close(module.call("bias_forces", q, qdot, parameters=values), exact.C_qd(q, qdot) + g)
         C = module.call("coriolis_matrix", q, qdot, parameters=values).reshape(n, n)
-        _close(C @ qdot, bias - g)
+        _close(C @ qdot, exact.C_qd(q, qdot))
         _close(module.call("forward_dynamics", q, qdot, tau, parameters=values), qddot)
 
 

@@ -149,7 +149,9 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     exports |= {d.name for d in dynamics}
     kinds = {f.kind: f.name for f in functions} | {d.kind: d.name for d in dynamics}
     checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics else []
-    gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if request.dynamics else ()
+    # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
+    symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
+    gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
@@ -163,7 +165,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration or request.dynamics else (),
         accelerations=tuple(s.name for s in model.coordinate_accelerations) if request.dynamics else (),
         coordinate_symbols=tuple(model.q),
-        parameter_symbols=(*model.parameter_symbols, *((GRAVITY_SYMBOL,) if request.dynamics else ())),
+        parameter_symbols=(*model.parameter_symbols, *((GRAVITY_SYMBOL,) if symbolic_gravity else ())),
         derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
         checks=self_checks(infos, checked),
         request_lines=request_lines(infos),

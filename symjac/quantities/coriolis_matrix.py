@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 
 from symjac.quantities.dynamics import command
-from symjac.quantities.spec import Quantity
+from symjac.quantities.spec import Generated, Quantity
 
 __all__ = ["QUANTITY", "options"]
 
@@ -27,7 +27,11 @@ QUANTITY = Quantity(
     derivation="symjac.analysis.dynamics.lagrange:coriolis_matrix",
     coupling="congruent",
     document="symjac.printing.dynamics:dynamics_document",
-    codegen=None,
+    codegen=Generated("coriolis_matrix", "C(q, qdot) from the Christoffel symbols (Mdot - 2C is skew), shape {shape}.",
+                      "The Coriolis and centrifugal matrix C(q, qdot) (Christoffel symbols: Mdot - 2C is skew).",
+                      output="coriolis", scope="module", dynamics=True, inputs=("qdot",),
+                      summary="Coriolis and centrifugal matrix C(q, qdot), from the Christoffel symbols",
+                      lowering="symjac.codegen.dynamics:lowered_coriolis_matrix"),
     command="dynamics",
     flag="coriolis",
     options=options,

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 
 from symjac.quantities.dynamics import command
-from symjac.quantities.spec import Quantity
+from symjac.quantities.spec import Generated, Quantity
 
 __all__ = ["QUANTITY", "options"]
 
@@ -26,7 +26,9 @@ QUANTITY = Quantity(
     derivation="symjac.analysis.dynamics.lagrange:gravity_torques",
     coupling="transposed",
     document="symjac.printing.dynamics:dynamics_document",
-    codegen=None,
+    codegen=Generated("gravity_torques", "g(q) = dV/dq, one per {unit}.", "The gravity torques g(q) = dV/dq.",
+                      output="gravity", scope="module", dynamics=True, summary="Gravity torques g(q) = dV/dq",
+                      lowering="symjac.codegen.dynamics:lowered_gravity_torques"),
     command="dynamics",
     flag="gravity_torques",
     options=options,

@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from symjac.quantities.dynamics import command, options
-from symjac.quantities.spec import Quantity
+from symjac.quantities.spec import Generated, Quantity
 
 if TYPE_CHECKING:
     import sympy as sp
@@ -36,7 +36,12 @@ QUANTITY = Quantity(
     derivation="symjac.quantities.inverse_dynamics:inverse_dynamics",
     coupling="transposed",
     document="symjac.printing.dynamics:dynamics_document",
-    codegen=None,
+    codegen=Generated("inverse_dynamics",
+                      "tau = M(q) qddot + C(q, qdot) qdot + g(q), one generalised force per {unit}.",
+                      "Inverse dynamics tau(q, qdot, qddot) by Newton-Euler.", output="tau", scope="module",
+                      dynamics=True, inputs=("qdot", "qddot"),
+                      summary="Inverse dynamics tau = M(q) qddot + C(q, qdot) qdot + g(q)",
+                      lowering="symjac.codegen.dynamics:lowered_inverse_dynamics"),
     command="dynamics",
     options=options,
     handler=command,

@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 
 from symjac.quantities.dynamics import command
-from symjac.quantities.spec import Quantity
+from symjac.quantities.spec import Generated, Quantity
 
 __all__ = ["QUANTITY", "options"]
 
@@ -26,7 +26,9 @@ QUANTITY = Quantity(
     derivation="symjac.analysis.dynamics.lagrange:mass_matrix",
     coupling="congruent",
     document="symjac.printing.dynamics:dynamics_document",
-    codegen=None,
+    codegen=Generated("mass_matrix", "M(q), symmetric positive definite, shape {shape}.", "The mass matrix M(q).",
+                      output="M", scope="module", dynamics=True, summary="Mass matrix M(q) (joint-space inertia)",
+                      lowering="symjac.codegen.dynamics:lowered_mass_matrix"),
     command="dynamics",
     flag="mass_matrix",
     options=options,

@@ -35,12 +35,14 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import sympy as sp
 
 from symjac.analysis.dynamics.bodies import exact_or_nested, joint_axis, laid_out, link_bodies, tidy
 from symjac.analysis.dynamics.gravity import EARTH, NO_GRAVITY, Gravity, check_gravity
+from symjac.analysis.dynamics.polynomial import PolynomialSteps, polynomial_recursion
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
 from symjac.kinematics.coupling import coupling_matrix, in_coordinates
 from symjac.model.robot import Robot
@@ -85,13 +87,19 @@ class NewtonEuler:
 
     For a robot with coupled joints the steps are written in the coordinates (:math:`\vartheta = \vartheta(q)`,
     :math:`\dot\vartheta = C\dot q`, ...) and ``torques`` are the generalised forces :math:`C^T\tau` (one per
-    coordinate); ``joint_torques`` are always those of the joints.
+    coordinate); ``joint_torques`` are always those of the joints. The steps are laid out when first asked for
+    (``layout``): the torques alone do not need them.
     """
 
-    steps: tuple[LinkStep, ...]
     joint_torques: sp.ImmutableMatrix
     torques: sp.ImmutableMatrix
     gravity: Gravity
+    layout: Callable[[], tuple[LinkStep, ...]] = field(repr=False, compare=False)
+
+    @cached_property
+    def steps(self) -> tuple[LinkStep, ...]:
+        """One :class:`LinkStep` per link, base to tip."""
+        return self.layout()
 
     def named(self) -> list[dict[str, sp.ImmutableMatrix | sp.Expr]]:
         """Per link, base to tip, its named quantities (:meth:`LinkStep.named`): what ``--steps`` prints."""
@@ -110,8 +118,12 @@ def recursion(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp
     r"""Run the recursion on a chain of joints (no coupling) for the given joint rates and accelerations.
 
     ``rates`` and ``accelerations`` are one expression per joint (symbols for inverse dynamics; zeros and unit
-    values for the mass matrix's columns). Returns the steps, base to tip, with each joint's torque.
+    values for the mass matrix's columns). Returns the steps, base to tip, with each joint's torque. Laid out
+    (``simplify``), the recursion runs on normal forms (:mod:`~symjac.analysis.dynamics.polynomial`) and each step is
+    laid out in its frame's angle basis at the end, as :func:`~symjac.analysis.dynamics.bodies.tidy` lays it out.
     """
+    if simplify and not chain.nested:
+        return _laid_out_steps(chain, polynomial_recursion(chain, rates, accelerations, gravity.vector))
     n = chain.n_joints
     bodies = link_bodies(chain)
     omega, alpha = sp.zeros(3, 1), sp.zeros(3, 1)
@@ -158,6 +170,25 @@ def recursion(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp
     return tuple(reversed(steps))
 
 
+def _laid_out_steps(chain: Chain, found: PolynomialSteps) -> tuple[LinkStep, ...]:
+    """The steps of a recursion on normal forms, each quantity laid out in its own frame's angle basis."""
+    steps = []
+    for k in range(1, chain.n_joints + 1):
+        values = {name: tidy(chain, found.vector(k, name), k, True) for name in STEP_NAMES}
+        steps.append(LinkStep(k, tau=found.expression(found.torques[k - 1]), **values))
+    return tuple(steps)
+
+
+def _torques(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp.Expr], gravity: Gravity,
+             simplify: bool) -> tuple[list[sp.Expr], Callable[[], tuple[LinkStep, ...]]]:
+    """The joint torques of the recursion (not yet laid out as results) and the way to its steps."""
+    if simplify and not chain.nested:
+        found = polynomial_recursion(chain, rates, accelerations, gravity.vector)
+        return [found.expression(p) for p in found.torques], lambda: _laid_out_steps(chain, found)
+    steps = recursion(chain, rates, accelerations, gravity, simplify=simplify)
+    return [step.tau for step in steps], lambda: steps
+
+
 def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bool = True) -> NewtonEuler:
     r"""Inverse dynamics :math:`\tau(q, \dot q, \ddot q)` by recursive Newton-Euler (module docstring).
 
@@ -197,17 +228,23 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
     def compute(chain: Chain) -> NewtonEuler:
         joints = chain.joint_chain
         model = joints.robot
-        steps = recursion(joints, [j.rate for j in model.joints], [j.acceleration for j in model.joints],
-                          gravity, simplify=simplify)
+        tau_raw, layout = _torques(joints, [j.rate for j in model.joints], [j.acceleration for j in model.joints],
+                                   gravity, simplify)
         # each torque in the shortest of frame {0}'s angles (c_12 rather than c_1 c_2 - s_1 s_2), in its step too
-        tau = laid_out(joints, sp.Matrix([step.tau for step in steps]), simplify)
-        steps = tuple(dataclasses.replace(step, tau=tau[k]) for k, step in enumerate(steps))
+        tau = laid_out(joints, sp.Matrix(tau_raw), simplify)
+
+        def steps() -> tuple[LinkStep, ...]:
+            return tuple(dataclasses.replace(step, tau=tau[k]) for k, step in enumerate(layout()))
+
         if chain.robot.coupling is None:
-            return NewtonEuler(steps, tau, tau, gravity)
-        moved = tuple(s.moved(lambda value: in_coordinates(chain, value)) for s in steps)
+            return NewtonEuler(tau, tau, gravity, steps)
+
+        def moved() -> tuple[LinkStep, ...]:
+            return tuple(s.moved(lambda value: in_coordinates(chain, value)) for s in steps())
+
         tau_joints = in_coordinates(chain, sp.Matrix(tau))
         tau_q = laid_out(chain, coupling_matrix(chain).T * tau_joints, simplify)
-        return NewtonEuler(moved, sp.ImmutableMatrix(tau_joints), tau_q, gravity)
+        return NewtonEuler(sp.ImmutableMatrix(tau_joints), tau_q, gravity, moved)
 
     return chain.memo(MemoKey(newton_euler, (gravity, simplify)), lambda: exact_or_nested(chain, compute))
 
@@ -226,8 +263,7 @@ def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> 
         columns = []
         for j in range(n):
             unit = [sp.S.One if i == j else sp.S.Zero for i in range(n)]
-            steps = recursion(joints, [sp.S.Zero] * n, unit, NO_GRAVITY, simplify=simplify)
-            columns.append([step.tau for step in steps])
+            columns.append(_torques(joints, [sp.S.Zero] * n, unit, NO_GRAVITY, simplify)[0])
         M = sp.Matrix(columns).T
         if chain.robot.coupling is not None:
             C = coupling_matrix(chain)

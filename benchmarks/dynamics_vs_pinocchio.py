@@ -1,0 +1,408 @@
+r"""Generated dynamics against pinocchio, in one C++ binary: ``python benchmarks/dynamics_vs_pinocchio.py [ROBOT ...]``.
+
+For the PUMA 560 (symjac's catalog geometry, modified DH, with the inertial data of Armstrong, Khatib and Burdick as
+Corke's ``mdl_puma560akb`` lists them; link 1's published :math:`I_{zz} = 0.35` alone breaks the triangle
+inequality, so it is given :math:`I_{xx} = I_{yy} = 0.175` too), the UR5 and the Panda (example-robot-data's URDFs
+with their own inertial data), symjac lowers inverse dynamics, the mass matrix, the bias forces
+:math:`C\dot q + g`, the gravity torques and the Coriolis matrix (:mod:`symjac.codegen.dynamics`), and this script
+prints each as a plain C function with the project's C printer (one ``sin`` and one ``cos`` per joint, the CSE
+temporaries, the outputs); forward dynamics is :math:`M^{-1}(\tau - b)` by a Cholesky solve of the generated M.
+Pinocchio gets the same model: for the PUMA built joint by joint from symjac's link transforms and inertial data; for
+the URDF arms read from the file, with the joints off symjac's chain (the Panda's fingers) locked by
+``buildReducedModel`` (their bodies given no mass first when symjac does not lump them, as in the tests).
+
+The program first checks that every symjac function agrees with pinocchio's (``rnea``, ``crba``,
+``computeGeneralizedGravity``, ``rnea`` with zero acceleration, ``computeCoriolisMatrix``, ``aba``) to 1e-9
+relative at random states, then times each: the best of five runs of a million calls with a changing ``q``
+(``-O2``). It prints ns per call, pinocchio / symjac, and the multiplications and additions of each generated
+function (after CSE; a subtraction counts as an addition, a negation as nothing). It asserts nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import shutil
+import site
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from importlib import metadata
+from pathlib import Path
+
+import sympy as sp
+
+from symjac import load_robot
+from symjac.codegen.backends.c.printer import CPrinter
+from symjac.codegen.dynamics import (
+    lowered_bias_forces,
+    lowered_coriolis_matrix,
+    lowered_gravity_torques,
+    lowered_inverse_dynamics,
+    lowered_mass_matrix,
+)
+from symjac.codegen.lower import LoweredFunction
+from symjac.kinematics.chain import Chain
+from symjac.model.inertia import Inertial
+from symjac.model.robot import Robot
+from symjac.symbolic.dag import distinct_nodes
+
+__all__ = ["FUNCTIONS", "main", "operations", "puma560_akb"]
+
+EIGEN = "/usr/include/eigen3"
+URDF = {"ur5": ("ur_description/urdf/ur5_robot.urdf", "tool0"),
+        "panda": ("panda_description/urdf/panda.urdf", "panda_link8")}
+
+FUNCTIONS: dict[str, Callable[[Chain, str], LoweredFunction]] = {
+    "tau": lowered_inverse_dynamics, "M": lowered_mass_matrix, "g": lowered_gravity_torques,
+    "b": lowered_bias_forces, "C": lowered_coriolis_matrix,
+}
+
+_AKB = [  # mass, centre of mass, (Ixx, Iyy, Izz) about it, in symjac's (modified DH) link frames
+    ("0", ("0", "0", "0"), ("0.175", "0.175", "0.35")),
+    ("17.4", ("0.068", "0.006", "-0.016"), ("0.130", "0.524", "0.539")),
+    ("4.8", ("0", "-0.070", "0.014"), ("0.066", "0.0125", "0.066")),
+    ("0.82", ("0", "0", "-0.019"), ("1.8e-3", "1.8e-3", "1.3e-3")),
+    ("0.34", ("0", "0", "0"), ("0.3e-3", "0.3e-3", "0.4e-3")),
+    ("0.09", ("0", "0", "0.032"), ("0.15e-3", "0.15e-3", "0.04e-3")),
+]
+
+
+def puma560_akb() -> Robot:
+    """The catalog PUMA 560 with Armstrong, Khatib and Burdick's inertial data (module docstring), exact numbers."""
+    inertials = tuple(Inertial(sp.Rational(m), tuple(sp.Rational(v) for v in c),
+                               sp.diag(*(sp.Rational(v) for v in moments))) for m, c, moments in _AKB)
+    return dataclasses.replace(load_robot("puma560"), inertials=inertials)
+
+
+def operations(lowered: LoweredFunction) -> tuple[int, int]:
+    """Multiplications and additions of a lowered function (distinct subexpressions; x*x counts one)."""
+    exprs = [e for _, e in lowered.temporaries] + list(lowered.outputs)
+    mul = add = 0
+    for node in distinct_nodes(exprs):
+        if node.is_Add:
+            add += len(node.args) - 1
+        elif node.is_Mul:
+            factors = [a for a in node.args if a not in (-1, sp.S.NegativeOne)]
+            mul += len(factors) - 1
+        elif node.is_Pow and node.exp.is_Integer:
+            mul += abs(int(node.exp)) - 1 + (1 if node.exp < 0 else 0)
+    return mul, add
+
+
+def _example_robots() -> Path:
+    files = metadata.distribution("example-robot-data").files or []
+    marker = next(f for f in files if str(f).endswith("share/example-robot-data/package.xml"))
+    return Path(str(marker.locate())).parent / "robots"
+
+
+def _pinocchio_prefix() -> Path | None:
+    for folder in site.getsitepackages():
+        prefix = Path(folder) / "cmeel.prefix"
+        if (prefix / "include" / "pinocchio").is_dir():
+            return prefix
+    return None
+
+
+def arm(name: str):  # -> (Robot, pinocchio.Model)
+    """The symjac robot and the pinocchio model with the same joints, geometry and inertial data."""
+    import numpy as np
+    import pinocchio as pin
+
+    if name == "puma560":
+        robot = puma560_akb()
+        chain = Chain(robot)
+        numbers = {**robot.defaults, **dict.fromkeys(robot.q, 0)}
+        model = pin.Model()
+        for k, body in enumerate(robot.inertials, start=1):
+            T = np.array(sp.Matrix(chain.transform(k - 1, k)).subs(numbers).evalf(), dtype=float)
+            joint = model.addJoint(k - 1, pin.JointModelRZ(), pin.SE3(T[:3, :3], T[:3, 3]), f"joint{k}")
+            model.appendBodyToJoint(joint, pin.Inertia(float(body.mass), np.array(body.com, dtype=float),
+                                                       np.array(body.inertia, dtype=float)), pin.SE3.Identity())
+        return robot, model
+    path, tip = URDF[name]
+    file = str(_example_robots() / path)
+    robot = load_robot(file, tip_link=tip)
+    full = pin.buildModelFromUrdf(file)
+    chain_ids = [full.getJointId(joint.name) for joint in robot.joints]
+    others = [i for i in range(1, full.njoints) if i not in chain_ids]
+    for i in others:  # symjac holds joints off the chain at zero (their bodies unlumped, as test_dynamics_pinocchio)
+        full.inertias[i] = pin.Inertia.Zero()
+    model = pin.buildReducedModel(full, others, pin.neutral(full)) if others else full
+    if [model.joints[model.getJointId(j.name)].idx_q for j in robot.joints] != list(range(robot.n_joints)):
+        raise SystemExit(f"{name}: pinocchio orders the joints differently")
+    return robot, model
+
+
+def _model_code(model) -> str:
+    """C++ statements building ``model`` (joint types, placements, inertias) with pinocchio's API."""
+    lines = ["    pinocchio::Model model;"]
+    for i in range(1, model.njoints):
+        kind = model.joints[i].shortname()
+        if kind not in ("JointModelRX", "JointModelRY", "JointModelRZ"):
+            raise SystemExit(f"joint type {kind} is not handled by this benchmark")
+        place, body = model.jointPlacements[i], model.inertias[i]
+        R = ", ".join(repr(float(v)) for v in place.rotation.flatten())
+        t = ", ".join(repr(float(v)) for v in place.translation)
+        c = ", ".join(repr(float(v)) for v in body.lever)
+        J = ", ".join(repr(float(v)) for v in body.inertia.flatten())
+        lines.append(f"    model.addJoint({model.parents[i]}, pinocchio::{kind}(), pinocchio::SE3("
+                     f"(Eigen::Matrix3d() << {R}).finished(), Eigen::Vector3d({t})), \"j{i}\");")
+        lines.append(f"    model.appendBodyToJoint({i}, pinocchio::Inertia({float(body.mass)!r}, Eigen::Vector3d({c}), "
+                     f"(Eigen::Matrix3d() << {J}).finished()), pinocchio::SE3::Identity());")
+    return "\n".join(lines)
+
+
+def c_function(name: str, lowered: LoweredFunction, robot: Robot) -> str:
+    """``static void name(q, qdot, qddot, params, out)``: the lowered function as C statements."""
+    names: dict[sp.Symbol, str] = {}
+    arrays = {"q": "q", "qdot": "qdot", "qddot": "qddot"}
+    for argument, symbols in lowered.inputs:
+        names.update({s: f"{arrays[argument]}[{k}]" for k, s in enumerate(symbols)})
+    used = lowered.used_symbols
+    parameters = [(k, p) for k, p in enumerate(robot.parameter_symbols) if p in used]
+    names.update({p: f"p_{p.name}" for _, p in parameters})
+    for sine, cosine, _ in lowered.angles:
+        names[sine], names[cosine] = sine.name.removeprefix("_"), cosine.name.removeprefix("_")
+    for k, (symbol, _) in enumerate(lowered.temporaries):
+        names[symbol] = f"x{k}"
+    printer = CPrinter(names)
+    body = [f"    const double p_{p.name} = params[{k}];" for k, p in parameters]
+    for sine, cosine, angle in lowered.angles:
+        argument = printer.doprint(angle)
+        body.append(f"    const double {names[sine]} = sin({argument}), {names[cosine]} = cos({argument});")
+    body += [f"    const double {names[s]} = {printer.doprint(e)};" for s, e in lowered.temporaries]
+    body += [f"    out[{k}] = {printer.doprint(e)};" for k, e in enumerate(lowered.outputs)]
+    return (f"static void {name}(const double* q, const double* qdot, const double* qddot, const double* params, "
+            f"double* out)\n{{\n    (void)q; (void)qdot; (void)qddot; (void)params;\n" + "\n".join(body) + "\n}\n")
+
+
+DRIVER = r"""
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <pinocchio/multibody.hpp>
+#include <pinocchio/algorithm/rnea.hpp>
+#include <pinocchio/algorithm/crba.hpp>
+#include <pinocchio/algorithm/aba.hpp>
+
+constexpr int N = @N@;
+constexpr int CALLS = 1000000;
+using Clock = std::chrono::steady_clock;
+using Vector = Eigen::Matrix<double, N, 1>;
+
+@FUNCTIONS@
+
+static void forward_dynamics(const double* q, const double* qdot, const double* tau, const double* params,
+                             double* qddot)
+{
+    double M[N * N], b[N], L[N * N];
+    symjac_M(q, nullptr, nullptr, params, M);
+    symjac_b(q, qdot, nullptr, params, b);
+    for (int j = 0; j < N; j++) {
+        double d = M[j * N + j];
+        for (int k = 0; k < j; k++) d -= L[j * N + k] * L[j * N + k];
+        const double root = std::sqrt(d), inverse = 1.0 / root;
+        L[j * N + j] = root;
+        for (int i = j + 1; i < N; i++) {
+            double s = M[i * N + j];
+            for (int k = 0; k < j; k++) s -= L[i * N + k] * L[j * N + k];
+            L[i * N + j] = s * inverse;
+        }
+    }
+    double y[N];
+    for (int i = 0; i < N; i++) {
+        double s = tau[i] - b[i];
+        for (int k = 0; k < i; k++) s -= L[i * N + k] * y[k];
+        y[i] = s / L[i * N + i];
+    }
+    for (int i = N - 1; i >= 0; i--) {
+        double s = y[i];
+        for (int k = i + 1; k < N; k++) s -= L[k * N + i] * qddot[k];
+        qddot[i] = s / L[i * N + i];
+    }
+}
+
+template <class F>
+static double best_ns(F f)
+{
+    double best = 1e300;
+    for (int run = 0; run < 5; run++) {
+        const auto start = Clock::now();
+        for (int k = 0; k < CALLS; k++) f(k);
+        best = std::min(best, std::chrono::duration<double, std::nano>(Clock::now() - start).count() / CALLS);
+    }
+    return best;
+}
+
+template <class Derived>
+static void store(double* out, const Eigen::MatrixBase<Derived>& value)
+{
+    for (int i = 0; i < value.rows(); i++)
+        for (int j = 0; j < value.cols(); j++) out[i * value.cols() + j] = value(i, j);
+}
+
+static double differs(const double* a, const double* b, int size)
+{
+    double scale = 1.0, worst = 0.0;
+    for (int k = 0; k < size; k++) scale = std::max(scale, std::abs(b[k]));
+    for (int k = 0; k < size; k++) worst = std::max(worst, std::abs(a[k] - b[k]));
+    return worst / scale;
+}
+
+int main()
+{
+@MODEL@
+    pinocchio::Data data(model);
+    const double params[] = {@PARAMS@ 0.0};
+    std::mt19937 generator(44);
+    std::uniform_real_distribution<double> uniform(-2.0, 2.0);
+    double worst[6] = {0, 0, 0, 0, 0, 0};
+    for (int trial = 0; trial < 10; trial++) {
+        Vector q, v, a;
+        for (int k = 0; k < N; k++) {
+            q(k) = uniform(generator);
+            v(k) = uniform(generator);
+            a(k) = uniform(generator);
+        }
+        double out[N * N], expected[N * N];
+        symjac_tau(q.data(), v.data(), a.data(), params, out);
+        store(expected, pinocchio::rnea(model, data, q, v, a));
+        worst[0] = std::max(worst[0], differs(out, expected, N));
+        symjac_M(q.data(), nullptr, nullptr, params, out);
+        pinocchio::crba(model, data, q);
+        data.M.triangularView<Eigen::StrictlyLower>() = data.M.transpose().triangularView<Eigen::StrictlyLower>();
+        store(expected, data.M);
+        worst[1] = std::max(worst[1], differs(out, expected, N * N));
+        symjac_g(q.data(), nullptr, nullptr, params, out);
+        store(expected, pinocchio::computeGeneralizedGravity(model, data, q));
+        worst[2] = std::max(worst[2], differs(out, expected, N));
+        symjac_b(q.data(), v.data(), nullptr, params, out);
+        store(expected, pinocchio::rnea(model, data, q, v, Vector::Zero()));
+        worst[3] = std::max(worst[3], differs(out, expected, N));
+        symjac_C(q.data(), v.data(), nullptr, params, out);
+        store(expected, pinocchio::computeCoriolisMatrix(model, data, q, v));
+        worst[4] = std::max(worst[4], differs(out, expected, N * N));
+        forward_dynamics(q.data(), v.data(), a.data(), params, out);
+        store(expected, pinocchio::aba(model, data, q, v, a));
+        worst[5] = std::max(worst[5], differs(out, expected, N));
+    }
+    std::printf("agree %.3e %.3e %.3e %.3e %.3e %.3e\n", worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]);
+    Vector q, v, a;
+    for (int k = 0; k < N; k++) { q(k) = 0.3 + 0.2 * k; v(k) = 0.5 - 0.1 * k; a(k) = 0.2 * k - 0.4; }
+    volatile double sink = 0;
+    double out[N * N];
+    auto nudge = [&](int k) { q(0) += 1e-12 * (k & 1 ? 1 : -1); };
+    const double* p = params;
+    std::printf("tau %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); sink = sink + pinocchio::rnea(model, data, q, v, a)(N - 1); }),
+        best_ns([&](int k) { nudge(k); symjac_tau(q.data(), v.data(), a.data(), p, out); sink = sink + out[0]; }));
+    std::printf("M %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); sink = sink + pinocchio::crba(model, data, q)(0, N - 1); }),
+        best_ns([&](int k) { nudge(k); symjac_M(q.data(), nullptr, nullptr, p, out); sink = sink + out[N - 1]; }));
+    std::printf("g %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); sink = sink + pinocchio::computeGeneralizedGravity(model, data, q)(0); }),
+        best_ns([&](int k) { nudge(k); symjac_g(q.data(), nullptr, nullptr, p, out); sink = sink + out[0]; }));
+    const Vector zero = Vector::Zero();
+    std::printf("b %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); sink = sink + pinocchio::rnea(model, data, q, v, zero)(N - 1); }),
+        best_ns([&](int k) { nudge(k); symjac_b(q.data(), v.data(), nullptr, p, out); sink = sink + out[0]; }));
+    std::printf("C %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); sink = sink + pinocchio::computeCoriolisMatrix(model, data, q, v)(0, 1); }),
+        best_ns([&](int k) { nudge(k); symjac_C(q.data(), v.data(), nullptr, p, out); sink = sink + out[1]; }));
+    std::printf("fd %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); sink = sink + pinocchio::aba(model, data, q, v, a)(N - 1); }),
+        best_ns([&](int k) { nudge(k); forward_dynamics(q.data(), v.data(), a.data(), p, out); sink = sink + *out; }));
+    std::printf("sincos %.2f %.2f\n", 0.0, best_ns([&](int k) {
+        nudge(k);
+        double sum = 0;
+        for (int j = 0; j < N; j++) sum += std::sin(q(j)) + std::cos(q(j));
+        sink = sink + sum;
+    }));
+    return 0;
+}
+"""
+
+LABELS = {"tau": "inverse dynamics (rnea)", "M": "mass matrix (crba)", "g": "gravity (computeGeneralizedGravity)",
+          "b": "bias forces (rnea, qdd = 0)", "C": "Coriolis matrix (computeCoriolisMatrix)",
+          "fd": "forward dynamics (aba)", "sincos": "sin + cos of the joint angles"}
+
+
+def measure(name: str, strategy: str, folder: Path) -> tuple[dict[str, tuple[float, float]], dict[str, LoweredFunction],
+                                                              dict[str, float], list[float]]:
+    """Lower, print, compile and run one robot.
+
+    Returns (pinocchio ns, symjac ns) per function, the lowered functions, the lowering seconds and the agreement.
+    """
+    robot, model = arm(name)
+    chain = Chain(robot)
+    lowered, seconds = {}, {}
+    for key, lower in FUNCTIONS.items():
+        start = time.perf_counter()
+        lowered[key] = lower(chain, strategy)
+        seconds[key] = time.perf_counter() - start
+    functions = "\n".join(c_function(f"symjac_{key}", lowered[key], robot) for key in FUNCTIONS)
+    params = "".join(f"{float(robot.defaults[p])!r}, " for p in robot.parameter_symbols)
+    driver = (DRIVER.replace("@N@", str(robot.n_coordinates)).replace("@FUNCTIONS@", functions)
+              .replace("@MODEL@", _model_code(model)).replace("@PARAMS@", params))
+    (folder / "driver.cpp").write_text(driver)
+    prefix = _pinocchio_prefix()
+    assert prefix is not None
+    flags = ["-std=c++17", "-O2", f"-I{EIGEN}", "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS",
+             "-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
+             "-DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION", f"-I{prefix / 'include'}",
+             f"-L{prefix / 'lib'}", f"-Wl,-rpath,{prefix / 'lib'}"]
+    subprocess.run(["g++", *flags, "driver.cpp", "-o", "driver", "-lpinocchio_default", "-lm"], cwd=folder,
+                   check=True)
+    output = subprocess.run([str(folder / "driver")], check=True, capture_output=True, text=True).stdout
+    figures: dict[str, tuple[float, float]] = {}
+    agree: list[float] = []
+    for line in output.splitlines():
+        key, *values = line.split()
+        if key == "agree":
+            agree = [float(v) for v in values]
+        else:
+            figures[key] = (float(values[0]), float(values[1]))
+    return figures, lowered, seconds, agree
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Print one table per robot: ns per call, ratios, operation counts."""
+    parser = argparse.ArgumentParser(prog="python benchmarks/dynamics_vs_pinocchio.py",
+                                     description=__doc__.splitlines()[0])
+    parser.add_argument("robots", nargs="*", default=["puma560", "ur5", "panda"])
+    parser.add_argument("--strategy", default="fastest", choices=("fastest", "raw", "simplified"))
+    parser.add_argument("--keep", type=Path, help="write each robot's driver.cpp into this folder and keep it")
+    args = parser.parse_args(argv)
+    if shutil.which("g++") is None or _pinocchio_prefix() is None:
+        print("needs g++ and pinocchio (PyPI 'pin'): nothing measured")
+        return 0
+    for name in args.robots:
+        with tempfile.TemporaryDirectory() as scratch:
+            folder = Path(scratch) if args.keep is None else args.keep / name
+            folder.mkdir(parents=True, exist_ok=True)
+            figures, lowered, seconds, agree = measure(name, args.strategy, folder)
+        if not agree or max(agree) > 1e-9:
+            print(f"{name}: symjac and pinocchio disagree (tau, M, g, b, C, fd): {agree}", file=sys.stderr)
+            return 1
+        print(f"\n{name} (agree to {max(agree):.1e}; strategy {args.strategy!r})\n")
+        print("| function | pinocchio ns | symjac ns | pinocchio / symjac | symjac mul | symjac add | lowering s |")
+        print("|---|---|---|---|---|---|---|")
+        for key, (pin_ns, ours) in figures.items():
+            if key == "sincos":
+                print(f"| {LABELS[key]} | - | {ours:.0f} | - | - | - | - |")
+                continue
+            if key in lowered:
+                mul, add = operations(lowered[key])
+                counts = f"{mul} | {add} | {seconds[key]:.1f}"
+            else:
+                counts = "M, b + Cholesky | | "
+            print(f"| {LABELS[key]} | {pin_ns:.0f} | {ours:.0f} | {pin_ns / ours:.1f} | {counts} |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

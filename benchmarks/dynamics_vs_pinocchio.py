@@ -36,12 +36,14 @@ import sympy as sp
 
 from symjac import load_robot
 from symjac.codegen.backends.c.printer import CPrinter
+from symjac.analysis.dynamics import EARTH
 from symjac.codegen.dynamics import (
     lowered_bias_forces,
     lowered_coriolis_matrix,
     lowered_gravity_torques,
     lowered_inverse_dynamics,
     lowered_mass_matrix,
+    numeric_gravity,
 )
 from symjac.codegen.lower import LoweredFunction
 from symjac.kinematics.chain import Chain
@@ -55,7 +57,7 @@ EIGEN = "/usr/include/eigen3"
 URDF = {"ur5": ("ur_description/urdf/ur5_robot.urdf", "tool0"),
         "panda": ("panda_description/urdf/panda.urdf", "panda_link8")}
 
-FUNCTIONS: dict[str, Callable[[Chain, str], LoweredFunction]] = {
+FUNCTIONS: dict[str, Callable[..., LoweredFunction]] = {
     "tau": lowered_inverse_dynamics, "M": lowered_mass_matrix, "g": lowered_gravity_torques,
     "b": lowered_bias_forces, "C": lowered_coriolis_matrix,
 }
@@ -342,7 +344,9 @@ def measure(name: str, strategy: str, folder: Path) -> tuple[dict[str, tuple[flo
     lowered, seconds = {}, {}
     for key, lower in FUNCTIONS.items():
         start = time.perf_counter()
-        lowered[key] = lower(chain, strategy)
+        # gravity's 9.81 written in, as pinocchio's model holds it (generated modules take it as the parameter g)
+        lowered[key] = lower(chain, strategy, numeric_gravity(EARTH)) if key in ("tau", "b", "g") else \
+            lower(chain, strategy)
         seconds[key] = time.perf_counter() - start
     functions = "\n".join(c_function(f"symjac_{key}", lowered[key], robot) for key in FUNCTIONS)
     params = "".join(f"{float(robot.defaults[p])!r}, " for p in robot.parameter_symbols)

@@ -52,4 +52,9 @@ SOLUTIONS: dict[str, dict[str, str]] = {
         "answer_2": "answer_2 = np.sqrt((0.57 + np.sqrt(0.57**2 - 4 * 0.04)) / 2)  # eigenvalues of J_v J_v^T",
         "answer_3": "answer_3 = 3  # {1} and {2}, {3}, and the wrist centre {4}, {5}, {6}",
     },
+    "10_dynamics": {
+        "answer_1": "answer_1 = m2 * lc2**2 + I2",
+        "answer_2": "answer_2 = m2 * g_symbol * lc2 * sp.cos(theta1 + theta2)",
+        "answer_3": "answer_3 = 0  # joint 1 turns about the vertical",
+    },
 }

@@ -12,6 +12,7 @@ __all__ = [
     "ConversionError",
     "ExpressionError",
     "FrameError",
+    "ImpossibleInertiaError",
     "InertialWarning",
     "NoClosedFormError",
     "NoInertialDataError",
@@ -141,3 +142,11 @@ class NoClosedFormError(SymjacError, ArithmeticError):
 
 class NoInertialDataError(SymjacError, ValueError):
     """A dynamics request on a robot some of whose links have no inertial data (the message names them)."""
+
+
+class ImpossibleInertiaError(SymjacError, ValueError):
+    """A dynamics request on a link whose inertial data no rigid body can have (the message names the link and why).
+
+    Files with such data are read, with an :class:`InertialWarning` (their kinematics do not depend on it); the
+    dynamics refuse them unless the data say ``keep_impossible`` (published parameters kept as published).
+    """

@@ -48,6 +48,7 @@ def _refuse(*args, **kwargs):
     ["jacobian", "planar2r", "--derivative"],
     ["jacobian", "planar2r", "--representation", "zyz"],
     ["singularities", "planar2r"],
+    ["dynamics", "planar2r", "--symbolic-inertials", "--steps", "--mass-matrix"],
 ])
 def test_json_is_built_only_for_format_json(cli, monkeypatch, argv):
     for name in symjac.printing.json.__all__:

@@ -123,7 +123,7 @@ def test_the_fastest_torques_are_the_symbolic_ones_exactly():
     g = sp.Symbol("g", positive=True)
     expected = newton_euler(arm).torques.subs(g, sp.Rational(981, 100))
     for got, want in zip(lowered.outputs, expected, strict=True):
-        assert sp.simplify(sp.nsimplify(got.xreplace(values)) - want) == 0
+        assert sp.simplify(sp.nsimplify(got.xreplace(values).subs(g, sp.Rational(981, 100))) - want) == 0
 
 
 def test_the_reference_can_fail():

@@ -57,6 +57,15 @@ def test_the_python_determinant_and_solves_agree_with_numpy(n):
         np.testing.assert_allclose(NP._cholesky_solve(M, b), np.linalg.solve(M, b), rtol=1e-10)
 
 
+def test_forward_dynamics_solves_m_qddot_equals_tau_minus_the_bias_forces():
+    rng = np.random.default_rng(11)
+    M, bias, tau = _spd(rng, 4), rng.normal(size=4), rng.normal(size=4)
+    expected = np.linalg.solve(M, tau - bias)
+    np.testing.assert_allclose(PY._forward_dynamics(M.tolist(), bias.tolist(), tau.tolist()), expected, rtol=1e-10)
+    batch = np.stack([M, 2 * M])
+    np.testing.assert_allclose(NP._forward_dynamics(batch, bias, tau), [expected, expected / 2], rtol=1e-10)
+
+
 def test_the_determinant_pivots_and_is_zero_exactly_for_a_zero_column():
     assert PY._determinant([[0.0, 1.0], [1.0, 0.0]]) == -1.0  # a zero first pivot: rows swapped, sign flipped
     assert PY._determinant([[1.0, 0.0], [2.0, 0.0]]) == 0.0

@@ -1,5 +1,9 @@
-"""Dynamics of random DH chains (standard and modified, prismatic joints, generic twists, base transforms) against an
-independent numeric Lagrangian, and the symbolic routes against each other.
+"""Dynamics of random chains against two independent numeric references, and the symbolic routes against each other.
+
+Exact to 1e-9: random chains of every convention (standard and modified DH, general, product of exponentials), with
+prismatic joints and coupled joints, against the numeric Newton-Euler of ``reference_dynamics`` (spatial vectors in
+frame {0}, nothing of symjac's dynamics): tau, M, C qd and g. Properties under hypothesis: M symmetric positive
+definite, Mdot - 2C skew-symmetric, and without gravity d/dt(1/2 qd^T M qd) = qd^T tau along random trajectories.
 
 The reference uses nothing of symjac but the robot's data: frame poses from ``reference.frames`` (plain NumPy), the
 Jacobians of the link centres and the angular velocities by central differences, M = sum m J_v^T J_v + J_w^T R I R^T
@@ -18,9 +22,12 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from marks import marked
 from reference import frames
-from strategies import robots
+from reference_dynamics import NumericDynamics
+from strategies import general_robots, robots
 
+from symjac import robot_from_mapping
 from symjac.analysis.dynamics import (
     coriolis_matrix,
     dynamics_defaults,
@@ -30,6 +37,7 @@ from symjac.analysis.dynamics import (
     newton_euler_mass_matrix,
 )
 from symjac.model.inertia import Inertial, combined_inertial
+from symjac.model.io import catalog
 from symjac.symbolic.nested import lambdify_cse
 
 G = 9.81
@@ -174,3 +182,148 @@ def test_the_reference_can_fail(convention):
     _close(_compiled(arm, newton_euler(arm).torques)(q, qd, qdd).ravel(), expected, 1e-5)
     wrong = _compiled(heavier, newton_euler(heavier).torques)(q, qd, qdd).ravel()
     assert np.abs(wrong - expected).max() > 1e-2
+
+
+# ------------------------------------------------------------------ every convention, prismatic and coupled joints
+
+
+class Numeric:
+    """symjac's tau (Newton-Euler), M, C and g of ``arm``, compiled once to functions of (q, qd, qdd)."""
+
+    def __init__(self, arm):
+        self.tau = _compiled(arm, newton_euler(arm, simplify=False).torques)
+        self.M, self.C, self.g = (_compiled(arm, x) for x in (mass_matrix(arm), coriolis_matrix(arm),
+                                                              gravity_torques(arm)))
+
+
+def _exact(arm, seed: int, states: int = 2) -> Numeric:
+    """tau, M, C qd and g equal the numeric Newton-Euler's to 1e-9; M is symmetric positive definite."""
+    ours, theirs = Numeric(arm), NumericDynamics(arm)
+    rng = np.random.default_rng(seed)
+    n = arm.n_coordinates
+    for _ in range(states):
+        q, qd, qdd = (rng.uniform(-1.5, 1.5, n) for _ in range(3))
+        M = ours.M(q, qd, qdd)
+        _close(ours.tau(q, qd, qdd).ravel(), theirs.tau(q, qd, qdd), 1e-9)
+        _close(M, theirs.M(q), 1e-9)
+        _close(ours.C(q, qd, qdd) @ qd, theirs.C_qd(q, qd), 1e-9)
+        _close(ours.g(q, qd, qdd).ravel(), theirs.g(q), 1e-9)
+        _close(M, M.T, 1e-12)
+        assert np.linalg.eigvalsh(M).min() > 0
+    return ours
+
+
+@settings(max_examples=8, deadline=None, derandomize=True)
+@given(robot=robots(max_joints=4), seed=st.integers(0, 2**16))
+def test_random_dh_chains_equal_a_numeric_newton_euler(robot, seed):
+    _exact(_with_bodies(robot, seed), seed)
+
+
+@settings(max_examples=6, deadline=None, derandomize=True)
+@given(robot=general_robots(max_joints=3), seed=st.integers(0, 2**16))
+def test_random_general_chains_equal_a_numeric_newton_euler(robot, seed):
+    _exact(_with_bodies(robot, seed), seed)
+
+
+@st.composite
+def coupled_chains(draw: st.DrawFn):
+    """A 3-4 joint DH chain with one or two joints coupled affinely to free ones before them (prismatic ones too)."""
+    n = draw(st.integers(3, 4))
+    joints = [{"type": draw(st.sampled_from(["revolute", "revolute", "prismatic"])),
+               "alpha": draw(st.sampled_from([0, "pi/2", "-pi/2", 0.4])), "a": draw(st.sampled_from([0, 0.3, 0.2])),
+               "d": draw(st.sampled_from([0, 0.1]))} for _ in range(n)]
+    for k in sorted(draw(st.lists(st.integers(1, n - 1), min_size=1, max_size=2, unique=True))):
+        leader = draw(st.integers(0, k - 1))
+        if "coupled" in joints[leader]:
+            continue
+        variable = ("theta" if joints[leader]["type"] == "revolute" else "d") + str(leader + 1)
+        joints[k]["coupled"] = f"{draw(st.sampled_from([-1, 2, 0.5]))}*{variable} + {draw(st.sampled_from([0, 0.3]))}"
+        if joints[k]["type"] == "prismatic":
+            joints[k].pop("d")
+    convention = draw(st.sampled_from(["standard", "modified"]))
+    return robot_from_mapping({"name": "coupled", "convention": convention, "joints": joints})
+
+
+@settings(max_examples=6, deadline=None, derandomize=True)
+@given(robot=coupled_chains(), seed=st.integers(0, 2**16))
+def test_random_coupled_chains_equal_a_numeric_newton_euler(robot, seed):
+    arm = _with_bodies(robot, seed)
+    assert arm.n_coordinates < arm.n_joints
+    _exact(arm, seed)
+
+
+POE = {"name": "poe3", "convention": "poe", "home": {"matrix": [[1, 0, 0, 0.6], [0, 1, 0, 0], [0, 0, 1, 0.2],
+                                                                 [0, 0, 0, 1]]},
+       "joints": [{"type": "revolute", "screw": [0, 0, 1, 0, 0, 0]},
+                  {"type": "revolute", "screw": [0, 1, 0, -0.2, 0, 0.1]},
+                  {"type": "prismatic", "screw": [0, 0, 0, 0.6, 0, 0.8]}]}
+
+
+def test_a_product_of_exponentials_chain_equals_a_numeric_newton_euler():
+    _exact(_with_bodies(robot_from_mapping(POE), 3), 3)
+
+
+def test_the_numeric_newton_euler_can_fail():
+    """A body moved by a quarter turn in its link frame changes the torques: the reference reads the frames."""
+    arm = _with_bodies(robot_from_mapping(POE), 3)
+    turned = dataclasses.replace(arm, inertials=(*arm.inertials[:-1], arm.inertials[-1].expressed_in(
+        sp.Matrix([[0, -1, 0, 0], [1, 0, 0, 0.1], [0, 0, 1, 0], [0, 0, 0, 1]]))))
+    q, qd, qdd = np.array([0.3, -0.2, 0.4]), np.array([0.5, 0.1, -0.7]), np.array([0.2, -0.3, 0.1])
+    assert np.abs(NumericDynamics(turned).tau(q, qd, qdd) - Numeric(arm).tau(q, qd, qdd).ravel()).max() > 1e-3
+
+
+@settings(max_examples=6, deadline=None, derandomize=True)
+@given(robot=robots(max_joints=3), seed=st.integers(0, 2**16))
+def test_kinetic_energy_changes_by_the_power_of_the_torques_without_gravity(robot, seed):
+    """Along q(t) = q0 + v t + a t^2/2: d/dt(1/2 qd^T M qd) = qd^T (tau - g) at t = 0 (central differences)."""
+    arm = _with_bodies(robot, seed)
+    ours = Numeric(arm)
+    rng = np.random.default_rng(seed)
+    n = arm.n_joints
+    q0, v, a = (rng.uniform(-1.5, 1.5, n) for _ in range(3))
+
+    def energy(t: float) -> float:
+        q, qd = q0 + v * t + a * t**2 / 2, v + a * t
+        return float(qd @ ours.M(q, qd, a) @ qd) / 2
+
+    h = 1e-4
+    rate = (energy(h) - energy(-h)) / (2 * h)
+    power = float(v @ (ours.tau(q0, v, a).ravel() - ours.g(q0, v, a).ravel()))
+    assert abs(rate - power) <= 1e-6 * max(1.0, abs(power))
+    h_dot = 1e-6  # and Mdot - 2C is skew-symmetric
+    N = (ours.M(q0 + h_dot * v, v, a) - ours.M(q0 - h_dot * v, v, a)) / (2 * h_dot) - 2 * ours.C(q0, v, a)
+    _close(N, -N.T, 1e-6)
+
+
+@pytest.mark.parametrize("name", marked(sorted(catalog()), keep=["puma560"]))  # the PUMA: published data, fast
+def test_every_catalog_robot_runs_the_dynamics_with_symbolic_inertial_parameters(name):
+    """m1, cx1, .., Izz_n as parameters (the published numbers as defaults where the file has them): the torques at
+    those defaults equal the numeric Newton-Euler's."""
+    from symjac import load_robot
+    from symjac.model.inertial_parameters import with_symbolic_inertials
+
+    robot = load_robot(name)
+    arm = with_symbolic_inertials(robot)
+    assert all(str(inertial.mass) == f"m{k}" for k, inertial in enumerate(arm.inertials, start=1))
+    tau = _compiled(arm, newton_euler(arm, simplify=False).torques)
+    rng = np.random.default_rng(len(name))
+    q, qd, qdd = (rng.uniform(-1.5, 1.5, arm.n_coordinates) for _ in range(3))
+    _close(tau(q, qd, qdd).ravel(), NumericDynamics(arm).tau(q, qd, qdd), 1e-9)
+    if any(robot.inertials):  # the published data: the same torques from the file's own numbers
+        _close(tau(q, qd, qdd).ravel(), NumericDynamics(robot).tau(q, qd, qdd), 1e-9)
+
+
+@pytest.mark.parametrize("name", ["puma560", "panda"])
+@pytest.mark.parametrize("to", ["standard", "poe"])
+def test_converting_published_inertial_data_keeps_the_dynamics(name, to):
+    """symjac convert moves each body with its link's frame: the numeric Newton-Euler sees the same arm."""
+    from symjac import load_robot
+    from symjac.kinematics.convert import convert
+
+    arm = load_robot(name)
+    other = convert(arm, to)
+    assert other.convention == to and any(other.inertials)
+    rng = np.random.default_rng(44)
+    for _ in range(2):
+        q, qd, qdd = (rng.uniform(-2, 2, arm.n_joints) for _ in range(3))
+        _close(NumericDynamics(other).tau(q, qd, qdd), NumericDynamics(arm).tau(q, qd, qdd), 1e-12)

@@ -230,6 +230,17 @@ def test_missing_inertial_data_names_the_links():
     partial = dataclasses.replace(arm, inertials=(Inertial(1), None, Inertial(1)))
     with pytest.raises(NoInertialDataError, match="planar3r: link 2 has no inertial data"):
         newton_euler(partial)
+    # a URDF's links by the joints that move them, as the file names them
+    from symjac.model.urdf import robot_from_urdf
+
+    body = '<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    urdf = robot_from_urdf(f"""<robot name="two"><link name="base"/><link name="upper">{body}</link>
+        <link name="fore"/><joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+        <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+        <joint name="elbow" type="continuous"><parent link="upper"/><child link="fore"/>
+        <origin xyz="0.3 0 0"/><axis xyz="0 1 0"/></joint></robot>""")
+    with pytest.raises(NoInertialDataError, match=r"two: link 2 \(moved by joint elbow\) has no inertial data"):
+        gravity_torques(urdf)
 
 
 def test_puma_gravity_torques_and_mass_matrix_by_two_routes_exactly():

@@ -6,6 +6,7 @@ by hand, and world poses of frames from ``tests/reference.py`` (plain NumPy, no 
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -17,13 +18,14 @@ from marks import marked
 from reference import frames
 
 from symjac import load_robot
-from symjac.errors import InertialWarning, RobotFileError
+from symjac.analysis.dynamics import gravity_torques
+from symjac.errors import ImpossibleInertiaError, InertialWarning, RobotFileError
 from symjac.kinematics.convert import convert
 from symjac.model.conventions import file_inertials, with_file_inertials
 from symjac.model.inertia import Inertial, combined_inertial, inertial_problem, symbolic_inertial
 from symjac.model.inertial_parameters import with_symbolic_inertials
 from symjac.model.io import robot_from_toml, robot_to_toml
-from symjac.model.robot_file import robot_from_mapping
+from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
 
 # --- independent numeric references -------------------------------------------------------------------------------
 
@@ -311,12 +313,31 @@ def test_data_no_body_can_have_is_kept_with_a_warning_naming_the_link(inertial: 
     # CAD exports round into these (URDF files of real arms do); kinematics does not need them, so the file reads
     data = {"name": "r", "convention": "standard", "parameters": {"L": 1},
             "joints": [ROW, {**ROW, "inertial": inertial}]}
-    with pytest.warns(InertialWarning, match=rf"^arm\.toml, .*{message}.*\(kept as given\)$"):
+    with pytest.warns(InertialWarning, match=rf"^arm\.toml, .*{message}.*\(kept as given; the dynamics refuse"):
         robot = robot_from_mapping(data, source="arm.toml")
     with pytest.warns(InertialWarning) as caught:
         robot_from_mapping(data, source="arm.toml")
     assert caught[0].filename == __file__  # the warning points at the caller's line, not into symjac
     assert robot.inertials[1] is not None and robot.inertials[1].mass == 1
+    # ... but the dynamics refuse it, in one line naming the link and what is wrong
+    with pytest.raises(ImpossibleInertiaError, match=rf"^r: {message}.*keep_impossible = true"):
+        gravity_torques(replace(robot, inertials=(Inertial(1), robot.inertials[1])))
+
+
+def test_data_kept_knowingly_reads_silently_the_dynamics_accept_and_files_keep_the_word() -> None:
+    impossible = {"mass": 1, "ixx": 1, "iyy": 1, "izz": 3, "keep_impossible": True}
+    data = {"name": "r", "convention": "standard", "parameters": {"L": 1},
+            "joints": [{**ROW, "inertial": {"mass": 1}}, {**ROW, "inertial": impossible}]}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", InertialWarning)
+        robot = robot_from_mapping(data, source="arm.toml")
+    assert robot.inertials[1].keep_impossible and not robot.inertials[0].keep_impossible
+    assert gravity_torques(robot).shape == (2, 1)
+    assert robot_to_mapping(robot)["joints"][1]["inertial"]["keep_impossible"] is True
+    assert with_symbolic_inertials(robot).inertials[1].keep_impossible  # the published numbers become defaults
+    with pytest.raises(RobotFileError, match=r"'keep_impossible' must be true or false, got 'yes'"):
+        robot_from_mapping({**data, "joints": [ROW, {**ROW, "inertial": {**impossible, "keep_impossible": "yes"}}]},
+                           source="arm.toml")
 
 
 @pytest.mark.parametrize(("inertial", "message"), [

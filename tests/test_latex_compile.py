@@ -275,3 +275,16 @@ def _bare_units(text: str) -> list[str]:
             units.append(line)
             inside = line == r"\begin{gathered}"
     return units
+
+
+# --- the dynamics: planar2r with symbolic inertial parameters (the catalog loop above has none to derive with) -----
+
+
+@pytest.mark.parametrize("options", [["--steps", "--gravity=-y"],
+                                     ["--mass-matrix", "--coriolis", "--gravity-torques", "--energy", "--torques"],
+                                     ["--numeric", "--gravity-torques", "--mass-matrix"]],
+                         ids=["steps", "every-part", "numeric"])
+def test_the_dynamics_document_compiles_and_fits(tmp_path, options):
+    path = tmp_path / "dynamics.tex"
+    assert main(["dynamics", "planar2r", "--symbolic-inertials", *options, "--standalone", "-o", str(path)]) == 0
+    assert compile_tex(path) == []

@@ -133,6 +133,17 @@ def test_inertials_are_read_and_a_body_without_one_has_none():
     assert all(inertial is None for inertial in from_geoms.inertials)
 
 
+def test_bad_inertial_data_names_the_body():
+    """Refused in one line naming the MJCF body (a negative mass); kept with a warning where no rigid body has it."""
+    from symjac.errors import InertialWarning
+
+    body = '<body name="arm"><joint/><inertial pos="0 0 0" mass="{m}" diaginertia="{d}"/></body>'
+    with pytest.raises(RobotFileError, match=r"link arm inertial.*the mass -2 is negative"):
+        robot_from_mjcf(_mjcf(body.format(m=-2, d="1 1 1")))
+    with pytest.warns(InertialWarning, match=r"link arm: the principal moments 1, 1, 3 break the triangle"):
+        assert robot_from_mjcf(_mjcf(body.format(m=2, d="1 1 3"))).inertials[0].mass == 2
+
+
 def test_fixture_classes_includes_and_coupling():
     robot = load_robot(DATA / "classes.xml", tip_site="fingertip")
     assert [joint.name for joint in robot.joints] == ["a1", "a2", "a3", "a4", "a5"]

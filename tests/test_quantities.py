@@ -22,6 +22,7 @@ from symjac.quantities import MEMBERS, QUANTITIES, LawName, Quantity
 from symjac.quantities.spec import entry_point
 
 ROOT = Path(__file__).resolve().parent.parent
+DYNAMICS = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "gravity_torques")
 
 
 @pytest.mark.parametrize("name", list(QUANTITIES))
@@ -31,9 +32,11 @@ def test_every_spec_names_what_exists(name):
     assert quantity.document is None or callable(entry_point(quantity.document)), quantity.document
     assert quantity.law.name == quantity.coupling  # a law of symjac.kinematics.coupling, the one place applying it
     derived = entry_point(quantity.derivation)
-    # the derivation applies the law the spec states (kinematics.memo), or is computed from J_q, which does
+    # the derivation applies the law the spec states (kinematics.memo), or is computed from J_q, which does, or (the
+    # dynamics) moves its result to the coordinates in its own code, as the law says (tests/test_dynamics*.py)
     law = getattr(derived, "coupling_law", None)
-    assert law is not None or name in {"manipulability", "joint_torques"}, f"{quantity.derivation} applies no law"
+    assert law is not None or name in {"manipulability", "joint_torques", *DYNAMICS}, \
+        f"{quantity.derivation} applies no law"
     assert law is None or law.name == quantity.coupling, (name, law)
     assert quantity.kind is None or quantity.kind.isidentifier()
     assert quantity.command is None or quantity.command in COMMANDS
@@ -138,3 +141,17 @@ def test_a_screw_jacobian_refuses_the_options_it_ignores_in_one_line(capsys, ext
     assert main(["jacobian", "planar2r", "--kind", "space", *extra]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith(f"symjac: error: --kind space does not take {named}: ")
+
+
+@pytest.mark.parametrize("name", ["mass_matrix", "gravity_torques"])
+def test_a_dynamics_specs_law_moves_the_joints_result_to_the_coordinates(name):
+    """What code generation does with a spec's law (derive on the joints, move) gives the coupled robot's result."""
+    from symjac.kinematics.chain import as_chain
+    from symjac.model.inertial_parameters import with_symbolic_inertials
+
+    robot = with_symbolic_inertials(load_robot("palletizer"))  # theta4 = -(theta2 + theta3)
+    quantity, chain = QUANTITIES[name], as_chain(robot)
+    on_the_joints = quantity.derive(chain.joint_chain)
+    moved = quantity.law(chain, on_the_joints)
+    assert moved.shape[0] == robot.n_coordinates == on_the_joints.shape[0] - 1
+    assert sp.simplify(sp.expand(sp.Matrix(moved) - sp.Matrix(quantity.derive(robot)))).is_zero_matrix

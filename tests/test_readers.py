@@ -14,8 +14,9 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from symjac.analysis.dynamics import gravity_torques
 from symjac.cli.main import main
-from symjac.errors import ArgumentError, InertialWarning, RobotFileError
+from symjac.errors import ArgumentError, ImpossibleInertiaError, InertialWarning, RobotFileError
 from symjac.kinematics.chain import forward_kinematics
 from symjac.kinematics.numeric import numeric_at
 from symjac.model import readers
@@ -333,7 +334,8 @@ def _bodies_in_base(q: np.ndarray) -> dict[int, list[tuple[float, np.ndarray, np
             2: [body(T_l2, (0.2, -0.01, 0.03), (0, 0.4, 0), 1.5, I2),
                 body(T_sensor, (0.01, 0, 0.02), (0, 0, 0), 0.3, np.diag([1e-4, 2e-4, 1.5e-4]))],
             3: [body(T_l3, (0, 0.05, 0.1), (0, 0, 0), 0.8, np.diag([4e-3, 4e-3, 1e-3])),
-                body(T_tool, (0, 0, 0), (0, 0, 0), 0.2, np.diag([2e-4] * 3))]}
+                body(T_tool, (0, 0, 0), (0, 0, 0), 0.2, np.diag([2e-4] * 3)),
+                body(T_l3, (0, 0, 0), (0, 0, 0), 5, np.eye(3))]}  # the finger, off the chain, held at zero
 
 
 def test_urdf_inertials_land_in_symjacs_link_frames():
@@ -365,11 +367,19 @@ def test_links_without_inertial_data_have_none_and_bad_data_names_the_link():
     with pytest.raises(RobotFileError, match="field 'link l2 inertial': the mass -3/2 is negative"):
         robot_from_urdf(bad, tip_link="tool")
     triangle = INERTIAL.replace('ixx="0.004" iyy="0.004" izz="0.001"', 'ixx="0.001" iyy="0.001" izz="0.004"')
-    with pytest.warns(InertialWarning, match=r"link l3: .*triangle inequality.*\(kept as given\)"):
+    with pytest.warns(InertialWarning, match=r"link l3: .*triangle inequality.*\(kept as given; the dynamics refuse"):
         kept = robot_from_urdf(triangle, tip_link="tool")  # CAD exports round into this: the file still reads
     assert kept.inertials[2] is not None
-    # off the chain (the base, a finger behind a moving joint) the data is not used, so not checked
-    assert robot_from_urdf(INERTIAL.replace('<mass value="5"/>', '<mass value="-5"/>'), tip_link="tool").n_joints == 3
+    no_finger = triangle.replace('<mass value="5"/><inertia ixx="1" iyy="1" izz="1"/>',
+                                 '<mass value="0"/><inertia ixx="0" iyy="0" izz="0"/>')  # else link 3 is a body
+    with pytest.warns(InertialWarning):
+        refused = robot_from_urdf(no_finger, tip_link="tool")
+    with pytest.raises(ImpossibleInertiaError, match=r"^massive: link 3 \(moved by joint j3\): .*triangle inequality"):
+        gravity_torques(refused)
+    # the base's data is not used, so not checked; a finger behind a moving joint off the chain rides with link 3
+    assert robot_from_urdf(INERTIAL.replace('<mass value="9"/>', '<mass value="-9"/>'), tip_link="tool").n_joints == 3
+    with pytest.raises(RobotFileError, match=r"link finger inertial.*negative"):
+        robot_from_urdf(INERTIAL.replace('<mass value="5"/>', '<mass value="-5"/>'), tip_link="tool")
     with pytest.raises(RobotFileError, match=r"link l1 inertial.*needs <mass"):
         robot_from_urdf(INERTIAL.replace('<mass value="2.5"/>', ""), tip_link="tool")
 
@@ -382,7 +392,7 @@ def test_the_command_line_says_a_kept_inertial_in_one_warning_line(tmp_path, cap
     out, err = capsys.readouterr()
     assert out.strip()  # the pose is printed: a kept inertial does not stop the kinematics
     assert err.count("\n") == 1 and err.startswith("symjac: warning: ")
-    assert "link l3: the principal moments" in err and err.rstrip().endswith("(kept as given)")
+    assert "link l3: the principal moments" in err and err.rstrip().endswith("(kept as given; the dynamics refuse it)")
 
 
 def test_urdf_inertials_agree_with_the_general_robot_file_frames():

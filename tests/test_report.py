@@ -318,3 +318,78 @@ def test_the_arrow_at_the_tool_is_the_lost_direction_in_the_world(name):
     assert drawn >= 2
     if name == "puma560":  # the elbow and the shoulder lose a translation; the wrist a translation with a turn
         assert kinds == {"linear", "mixed"}
+
+
+# --- the dynamics section -------------------------------------------------------------------------------------------
+
+ROD_ARM = """\
+name = "rod_arm"
+description = "A planar 2R arm of two slender rods"
+convention = "standard"
+
+[parameters]
+L1 = 0.5
+L2 = 0.4
+m1 = 2.0
+m2 = 1.5
+
+[[joints]]
+type = "revolute"
+a = "L1"
+[joints.inertial]
+mass = "m1"
+com = ["-L1/2", 0, 0]
+iyy = "m1*L1**2/12"
+izz = "m1*L1**2/12"
+
+[[joints]]
+type = "revolute"
+a = "L2"
+[joints.inertial]
+mass = "m2"
+com = ["-L2/2", 0, 0]
+iyy = "m2*L2**2/12"
+izz = "m2*L2**2/12"
+"""
+
+
+@pytest.fixture(scope="module")
+def rod_page(tmp_path_factory) -> Path:
+    """The report of :data:`ROD_ARM`, an arm with inertial data, through the command line."""
+    folder = tmp_path_factory.mktemp("rod")
+    (folder / "rod_arm.toml").write_text(ROD_ARM, encoding="utf-8")
+    assert main(["report", str(folder / "rod_arm.toml"), "-o", str(folder / "rod_arm.html")]) == 0
+    return folder / "rod_arm.html"
+
+
+def test_the_dynamics_section_shows_m_g_and_tau(rod_page):
+    text = rod_page.read_text(encoding="utf-8")
+    section = text[text.index('<section id="dynamics">'):]
+    section = section[:section.index("</section>")]
+    assert '<a href="#dynamics">Dynamics</a>' in text
+    for words in ("Mass matrix M(q)", "Gravity torques g(q)", "Joint torques tau", "gravity g along -z0"):
+        assert words in section, words
+    assert '<mover accent="true"><mi>&#952;</mi><mo>&#168;</mo></mover><mn>1</mn>' in section  # theta-double-dot_1
+    assert "<msub><mi>c</mi><mn>2</mn></msub>" in section  # shorthand: M12 holds L1 lc2 c2
+
+
+def test_an_arm_without_inertial_data_says_which_links_lack_it():
+    from symjac.report.dynamics import dynamics_html
+
+    text = dynamics_html(load_robot("planar2r"))
+    assert text.count("<p") == 1 and "links 1, 2 have no inertial data" in text and "--symbolic-inertials" in text
+
+
+@pytest.mark.external
+def test_the_dynamics_section_renders_in_chromium(rod_page, tmp_path):
+    binary = _chromium()
+    if binary is None:
+        pytest.skip("chromium is not installed (.ci/run installs it: apt-get install chromium)")
+    probed = tmp_path / "probed.html"
+    probed.write_text(rod_page.read_text(encoding="utf-8").replace("</body>", PROBE + "</body>"), encoding="utf-8")
+    result = _browser(binary, "--dump-dom", probed.as_uri())
+    found = re.search(r'<pre id="symjac-probe">(.*?)</pre>', result.stdout)
+    assert found, result.stderr[-2000:]
+    seen = json.loads(found.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+    assert seen["merror"] == 0 and seen["emptyMath"] == 0, seen
+    assert seen["scrollWidth"] <= seen["innerWidth"] and not seen["wide"], seen

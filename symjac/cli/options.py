@@ -36,7 +36,7 @@ def errata_options(sub: argparse.ArgumentParser, name: str) -> None:
 
 
 def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
-    """``symjac codegen``: target, Jacobians (frames, points, rows), strategy, acceleration level."""
+    """``symjac codegen``: target, Jacobians (frames, points, rows), strategy, acceleration level, dynamics."""
     from symjac.codegen import BACKENDS, STRATEGIES, TARGETS
 
     add_robot_arguments(sub)
@@ -52,6 +52,9 @@ def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
                      help="expressions to start from (default: fewest operations after CSE)")
     sub.add_argument("--acceleration", action="store_true",
                      help="also generate hessian, bias_acceleration (Jdot qdot) and manipulability_gradient")
+    sub.add_argument("--dynamics", action="store_true",
+                     help="also generate inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques "
+                          "and forward_dynamics (the robot needs inertial data on every link)")
     sub.add_argument("--name", default=None,
                      help="the module's name: file names, C prefix, C++ namespace (default: the robot's name)")
 

@@ -114,6 +114,9 @@ class DerivedFunction:
     name (:attr:`~symjac.quantities.spec.Generated.routine`), which each target prefixes with its runtime's
     (``_manipulability``, ``sj_manipulability``, ``runtime::manipulability``).
     ``shape`` is the result's (``()``: a scalar), ``summary``, ``details`` and ``returns`` its documentation.
+    ``inputs`` are its arguments after ``q`` (forward dynamics: ``qdot``, ``tau``), ``source_inputs`` the names of
+    those each source takes after ``q``, and ``routine_inputs`` those passed to the routine after the sources'
+    results (``forward_dynamics(M, b, tau)``); all empty for a function of ``q`` alone.
     """
 
     name: str
@@ -126,6 +129,14 @@ class DerivedFunction:
     source_shapes: tuple[tuple[int, ...], ...]
     routine: str
     shape: tuple[int, ...]
+    inputs: tuple[Argument, ...] = ()
+    source_inputs: tuple[tuple[str, ...], ...] = ()
+    routine_inputs: tuple[str, ...] = ()
+
+    @property
+    def input_names(self) -> tuple[str, ...]:
+        """The names of its arguments after ``q``."""
+        return tuple(argument.name for argument in self.inputs)
 
     @property
     def output(self) -> str:
@@ -148,8 +159,9 @@ class Check:
     """One check of a module's self-test: the runtime's check ``routine`` applied to module functions.
 
     ``routine`` is ``"pose"`` (the forward kinematics is a rigid transform), ``"jacobian"`` (a Jacobian against
-    central differences of its kinematics, its torques against J^T F) or ``"acceleration"`` (the Hessian, bias
-    acceleration and manipulability gradient against central differences); ``functions`` are the names it calls, in
+    central differences of its kinematics, its torques against J^T F), ``"acceleration"`` (the Hessian, bias
+    acceleration and manipulability gradient against central differences) or ``"dynamics"`` (inverse dynamics, M,
+    C, the bias forces, g and forward dynamics against each other); ``functions`` are the names it calls, in
     the routine's order; ``rows`` the Jacobian's task rows (none for the pose). The checks run in the order given.
     """
 
@@ -272,7 +284,8 @@ class ModuleDescription:
     to the robot's derivation (no ``Chain``): a backend prints from this data alone. ``derived`` are the functions
     computed by the runtime from others (manipulability, determinant, gradient), ``listing`` every public function
     with its line for the module docstring, in order, ``checks`` the self-test's checks in order and
-    ``request_lines`` each requested Jacobian's name with what it is (frame, point, rows), for headers.
+    ``request_lines`` each requested Jacobian's name with what it is (frame, point, rows), for headers. ``rates``
+    and ``accelerations`` name the entries of ``qdot`` and ``qddot`` when functions take them.
     ``joint_entries`` describe the entries of ``q`` as the robot's source names them (name, identifier-safe variant,
     type, limits: :class:`~symjac.codegen.joint_table.JointEntry`), ``tip_frame`` names the frame the chain ends at
     and ``origin`` says where the robot came from (``URDF file ur5.urdf``).
@@ -294,6 +307,7 @@ class ModuleDescription:
     shell_command: bool = False
     command_note: str = ""
     rates: tuple[str, ...] = ()
+    accelerations: tuple[str, ...] = ()
     coupling: tuple[str, ...] = ()
     derived: tuple[DerivedFunction, ...] = ()
     listing: tuple[tuple[str, str], ...] = ()

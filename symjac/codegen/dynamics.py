@@ -2,9 +2,9 @@ r"""Lowering of the dynamics for machines: inverse dynamics, mass matrix, Coriol
 
 Each function returns a :class:`~symjac.codegen.lower.LoweredFunction` whose inputs are the coordinates ``q`` and, as
 the function needs them, their rates ``qdot`` and accelerations ``qddot``; the inertial parameters and the geometric
-ones are parameters (symbols with defaults, :attr:`Robot.parameter_symbols <symjac.model.robot.Robot>`), and the
-magnitude of gravity is written as its number (:attr:`Gravity.value
-<symjac.analysis.dynamics.gravity.Gravity>` when it is a symbol).
+ones are parameters (symbols with defaults, :attr:`Robot.parameter_symbols <symjac.model.robot.Robot>`), and so is
+the magnitude of gravity when it is a symbol (``g`` by default; a generated module takes it as the parameter ``g``;
+:func:`numeric_gravity` writes its value in instead).
 
 .. math::
     \tau = M(q)\,\ddot q + C(q, \dot q)\,\dot q + g(q), \qquad b(q, \dot q) = C(q, \dot q)\,\dot q + g(q)
@@ -123,7 +123,7 @@ def _torque_function(chain: Chain, strategy: str, gravity: Gravity, rates: bool,
     zero = [sp.S.Zero] * n
     qd = space.rates if rates else zero
     qdd = space.accelerations if accelerations else zero
-    g = numeric_gravity(gravity)
+    g = gravity  # a symbolic magnitude stays the symbol: generated modules take it as the parameter g
     inputs = space.inputs(*names)
     if strategy == "fastest":
         trace = Trace(space.joints, angle_expansion(space.joints))

@@ -49,7 +49,9 @@ from symjac.quantities.spec import Generated, entry_point
 __all__ = [
     "defined_names",
     "derived_functions",
+    "dynamics_functions",
     "function_descriptions",
+    "input_arguments",
     "listing",
     "lowered",
     "request_lines",
@@ -83,20 +85,36 @@ def lowered(kind: Generated, chain: Chain, strategy: Strategy, frame: Frame | No
     return lowering(chain, **{name: value for name, value in offered.items() if name in taken})  # type: ignore[no-any-return]
 
 
-def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool
-                          ) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
-    """The module-scoped functions, then per Jacobian request its functions (:func:`generated_kinds` order)."""
+def input_arguments(chain: Chain, selected: tuple[int, ...] = ()) -> dict[str, Argument]:
+    """The arguments a generated function may take after ``q`` (:data:`~symjac.quantities.spec.Input`), by name."""
+    model = chain.robot
+    coupled = model.coupling is not None
+    return {"wrench": Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected),
+                               "Wrench (force, moment) at the point"),
+            "qdot": Argument("qdot", tuple(s.name for s in joint_rate_symbols(chain)),
+                             "Coordinate rates" if coupled else "Joint rates"),
+            "qddot": Argument("qddot", tuple(s.name for s in model.coordinate_accelerations),
+                              "Coordinate accelerations" if coupled else "Joint accelerations"),
+            "tau": Argument("tau", tuple(f"tau_{s.name}" for s in model.q),
+                            "Generalised forces, one per coordinate" if coupled else
+                            "Joint torques (forces at prismatic joints)")}
+
+
+def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool,
+                          dynamics: bool = False) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
+    """The module-scoped functions, then per Jacobian request its functions (:func:`generated_kinds` order).
+
+    With ``dynamics`` the module-scoped functions include the dynamics' lowered kinds (forward dynamics, derived,
+    is :func:`dynamics_functions`'s).
+    """
     model = chain.robot
     q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
     coupled = model.coupling is not None
-    rates = tuple(s.name for s in joint_rate_symbols(chain)) if acceleration else ()
     functions: list[FunctionDescription] = []
 
     def add(function: LoweredFunction, name: str, kind: Generated, selected: tuple[int, ...],
             **fields: object) -> None:
-        inputs = {"wrench": Argument("wrench", tuple(WRENCH_NAMES[r] for r in selected),
-                                     "Wrench (force, moment) at the point"),
-                  "qdot": Argument("qdot", rates, "Coordinate rates" if coupled else "Joint rates")}
+        inputs = input_arguments(chain, selected)
         returns = kind.returns_text(coupled, shape=function.shape)
         summary = kind.summary_text(coupled, **fields)
         if len(summary) > MAX_SUMMARY and "at" in fields:  # a long point: its words stay in the module's listing
@@ -105,8 +123,9 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
                             (q_argument, *(inputs[i] for i in kind.inputs)), returns)
         functions.append(FunctionDescription(spec, function))
 
-    for kind in generated_kinds("module", acceleration):
-        add(lowered(kind, chain, strategy), kind.base, kind, (), end=end_words(model))
+    for kind in generated_kinds("module", acceleration, dynamics):
+        if not kind.derived:
+            add(lowered(kind, chain, strategy), kind.base, kind, (), end=end_words(model))
     infos: list[JacobianInfo] = []
     n = model.n_coordinates
     for request, label in zip(requests, function_labels(model, requests), strict=True):
@@ -162,6 +181,34 @@ def derived_functions(infos: Sequence[JacobianInfo], n: int, coupled: bool) -> l
     return found
 
 
+def dynamics_functions(chain: Chain, functions: Sequence[FunctionDescription]) -> list[DerivedFunction]:
+    """The module-scoped derived functions (forward dynamics), from the module's functions of their sources' kinds.
+
+    Each source is called with ``q`` and those of the derived function's inputs its own kind takes; the inputs no
+    source takes go to the routine after the sources' results.
+    """
+    model = chain.robot
+    coupled = model.coupling is not None
+    by_kind = {function.kind: function for function in functions}
+    found: list[DerivedFunction] = []
+    arguments = input_arguments(chain)
+    for kind in KINDS.values():
+        if not (kind.derived and kind.scope == "module") or not all(s in by_kind for s in kind.sources):
+            continue
+        names = {**dict.fromkeys(KINDS, ""), **{k: f.name for k, f in by_kind.items()}}
+        taken = {name for s in kind.sources for name in kind_spec(s).inputs}
+        shape = (model.n_coordinates,) if kind.per_coordinate else ()
+        found.append(DerivedFunction(
+            name=kind.base, kind=kind.name, summary=kind.summary_text(coupled, **names),
+            details=kind.details.format(**names), returns=kind.returns_text(coupled, shape=shape),
+            sources=tuple(by_kind[s].name for s in kind.sources), source_kinds=kind.sources,
+            source_shapes=tuple(by_kind[s].shape for s in kind.sources), routine=kind.routine, shape=shape,
+            inputs=tuple(arguments[i] for i in kind.inputs),
+            source_inputs=tuple(tuple(i for i in kind.inputs if i in kind_spec(s).inputs) for s in kind.sources),
+            routine_inputs=tuple(i for i in kind.inputs if i not in taken)))
+    return found
+
+
 def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedFunction],
             infos: Sequence[JacobianInfo], n: int, coupled: bool, end: str = "the tool frame"
             ) -> tuple[tuple[str, str], ...]:
@@ -182,6 +229,9 @@ def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedF
     for function in functions:
         if function.name not in requested and function.kind != "scalar":
             add(function.name, kind_spec(function.kind), shape=str(function.shape), end=end)
+    for made in derived:
+        if kind_spec(made.kind).scope == "module":
+            add(made.name, kind_spec(made.kind), shape=str(made.shape), end=end)
     for info in infos:
         fields = {"frame": info.frame, "point": info.point, "at": info.point, "rows": ", ".join(info.row_names),
                   "wrench": ", ".join(info.wrench_names)}
@@ -195,13 +245,19 @@ def listing(functions: Sequence[FunctionDescription], derived: Sequence[DerivedF
     return tuple(entries)
 
 
-def self_checks(infos: Sequence[JacobianInfo]) -> tuple[Check, ...]:
-    """The self-test: the pose, then every Jacobian (with its torques), then every acceleration-level family."""
+def self_checks(infos: Sequence[JacobianInfo], dynamics: Sequence[str] = ()) -> tuple[Check, ...]:
+    """The self-test: the pose, every Jacobian (with its torques), every acceleration-level family, the dynamics.
+
+    ``dynamics`` names the functions the dynamics check calls (inverse dynamics, M, C, bias forces, g, forward
+    dynamics), or nothing.
+    """
     checks = [Check("pose", ("forward_kinematics",))]
     checks += [Check("jacobian", (info.jacobian, info.joint_torques, info.kinematics), info.rows) for info in infos]
     checks += [Check("acceleration", (info.jacobian, info.hessian, info.bias_acceleration, info.manipulability,
                                       info.manipulability_gradient), info.rows)
                for info in infos if info.hessian and info.bias_acceleration and info.manipulability_gradient]
+    if dynamics:
+        checks.append(Check("dynamics", tuple(dynamics)))
     return tuple(checks)
 
 

@@ -23,17 +23,43 @@ from symjac.errors import CodegenError
 from symjac.quantities import QUANTITIES, Quantity
 from symjac.quantities.spec import Generated, Scope
 
-__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "KINDS", "SCALAR", "generated_kinds", "kind_spec", "quantity_of"]
+__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "DYNAMICS_CHECKED", "KINDS", "SCALAR", "generated_kinds", "kind_spec",
+           "quantity_of"]
 
 SCALAR = Generated("scalar", "The value of the expression.", "A scalar function of the joint values.",
                    scope="module")
 """The kind of the extra scalar functions a module is asked for (``scalars=``): no quantity, no lowering of its own."""
+
+_DYNAMICS = "symjac.codegen.dynamics"
+"""The module of the dynamics' lowerings."""
+
+DYNAMICS_CHECKED = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "bias_forces", "gravity_torques",
+                    "forward_dynamics")
+"""The dynamics' kinds, generated with ``dynamics=True`` once per module, in the order the self-test's dynamics check
+takes their functions (the quantities' kinds are in their specs; the bias forces and forward dynamics here)."""
+
+_DYNAMICS_OWN = (
+    Generated("bias_forces", "C(q, qdot) qdot + g(q), one per {unit}.",
+              "The bias forces C(q, qdot) qdot + g(q): inverse dynamics at qddot = 0.", output="b", scope="module",
+              dynamics=True, inputs=("qdot",), summary="Bias forces b = C(q, qdot) qdot + g(q)",
+              lowering=f"{_DYNAMICS}:lowered_bias_forces"),
+    Generated("forward_dynamics", "qddot, one acceleration per {unit}.",
+              "Forward dynamics qddot = M^-1 (tau - b), by a Cholesky solve of M.", output="qddot", scope="module",
+              dynamics=True, inputs=("qdot", "tau"), routine="forward_dynamics",
+              sources=("mass_matrix", "bias_forces"), per_coordinate=True,
+              summary="Forward dynamics qddot = M(q)^-1 (tau - C(q, qdot) qdot - g(q))",
+              details="M = L L^T by Cholesky, then two triangular solves (no inverse is formed); M is the mass "
+                      "matrix ``{mass_matrix}``, C qdot + g the bias forces ``{bias_forces}``."),
+)
+"""Code generation's own dynamics kinds: no quantity. Forward dynamics is derived (a Cholesky solve of the runtime
+from the mass matrix and the bias forces)."""
 
 _OWN = (
     Generated("kinematics", "Point position, ^0_nR and ^0_kR, row by row.", output="out", selftest_only=True,
               function="_kinematics",
               summary="Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)",
               lowering="symjac.codegen.coupled:coordinate_kinematics"),
+    *_DYNAMICS_OWN,
     SCALAR,
     Generated("jacobian_determinant", "det J, LU with partial pivoting.", "det J of that (square) Jacobian.",
               output="det", routine="determinant", sources=("jacobian",), square_only=True,
@@ -69,15 +95,16 @@ def quantity_of(kind: str) -> Quantity | None:
     return _QUANTITY_OF.get(kind)
 
 
-def generated_kinds(scope: Scope, acceleration: bool) -> tuple[Generated, ...]:
+def generated_kinds(scope: Scope, acceleration: bool, dynamics: bool = False) -> tuple[Generated, ...]:
     """The kinds a module generates once per module or once per request, in the order it defines their functions.
 
     Lowered kinds first, in :data:`KINDS` order with those needing ``acceleration`` last (after the self-test's
     kinematics): within a request, the velocity level, then the acceleration level. Then the derived kinds, in
-    :data:`KINDS` order. Scalar functions are asked for by name and are not among them.
+    :data:`KINDS` order. Scalar functions are asked for by name and are not among them; the dynamics' kinds only
+    with ``dynamics``.
     """
     wanted = [kind for kind in KINDS.values() if kind.scope == scope and kind is not SCALAR
-              and (acceleration or not kind.acceleration)]
+              and (acceleration or not kind.acceleration) and (dynamics or not kind.dynamics)]
     lowered = [kind for kind in wanted if not kind.derived]
     lowered.sort(key=lambda kind: 2 if kind.acceleration else 1 if kind.selftest_only else 0)
     return (*lowered, *(kind for kind in wanted if kind.derived))
@@ -89,6 +116,9 @@ CHECK_WORDS: Mapping[str, str] = MappingProxyType({
     "pose": "that the forward kinematics is a rigid transform",
     "acceleration": "the Hessians, bias accelerations and manipulability gradients against central differences of "
                     "the Jacobians and manipulabilities",
+    "dynamics": "that M is symmetric positive definite, Mdot - 2C is skew (central differences of M along qdot), g "
+                "and the columns of M are inverse dynamics at rest, tau = M qddot + C qdot + g, the bias forces are "
+                "C qdot + g, and forward dynamics inverts inverse dynamics",
 })
 """What each check of the self-test (:class:`~symjac.codegen.description.Check`) checks, for docstrings."""
 

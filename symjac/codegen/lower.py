@@ -364,8 +364,8 @@ def symbol_names(symbols: Robot | Iterable[sp.Symbol], lowered: LoweredFunction,
         if argument == "wrench":
             for symbol in symbols:  # _F0 .. _F5: the row each multiplies
                 names.fresh(symbol, WRENCH_NAMES[int(symbol.name.removeprefix("_F"))])
-        elif argument == "qdot":
-            for symbol in symbols:  # thetadot1, ddot3, ...
+        elif argument in ("qdot", "qddot", "tau"):
+            for symbol in symbols:  # thetadot1, ddot3, thetaddot1, ...
                 names.fresh(symbol, symbol.name)
     named = [symbol for symbol, _ in lowered.temporaries if not symbol.name.startswith("_")]
     for symbol in named:  # a coupled robot's joint variables and rates (d3 = d30 + k*theta4), under their names

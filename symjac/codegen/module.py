@@ -12,6 +12,7 @@ from typing import Any
 import sympy as sp
 
 from symjac._version import __version__
+from symjac.analysis.dynamics.gravity import GRAVITY_SYMBOL, STANDARD_GRAVITY
 from symjac.codegen.backends import backend
 from symjac.codegen.coupled import (
     coupling_lines,
@@ -24,6 +25,7 @@ from symjac.codegen.description import (
 from symjac.codegen.functions import (
     defined_names,
     derived_functions,
+    dynamics_functions,
     function_descriptions,
     listing,
     request_lines,
@@ -31,6 +33,7 @@ from symjac.codegen.functions import (
     self_checks,
 )
 from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
+from symjac.codegen.kinds import DYNAMICS_CHECKED
 from symjac.codegen.printers import float_literal
 from symjac.codegen.provenance import catalog_files, names_relative_file, robot_loader
 from symjac.codegen.request import (
@@ -53,6 +56,7 @@ __all__ = [
     "STRATEGIES",
     "ModuleRequest",
     "Strategy",
+    "check_dynamics",
     "describe",
     "function_descriptions",
     "generate",
@@ -84,6 +88,7 @@ class ModuleRequest:
     command: str | None = None
     acceleration: bool = False
     name: str | None = None
+    dynamics: bool = False
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -111,7 +116,10 @@ def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescri
     requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
         raise CodegenError("at least one Jacobian (frame and point) must be requested")
-    functions, infos = function_descriptions(chain, requests, request.strategy, request.acceleration)
+    if request.dynamics:
+        check_dynamics(chain)
+    functions, infos = function_descriptions(chain, requests, request.strategy, request.acceleration,
+                                             request.dynamics)
     functions += scalar_descriptions(chain, request.scalars or {}, functions, infos, spec.identifiers)
     return module_header(request, chain, requests, functions, infos)
 
@@ -128,7 +136,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     if command is None:
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
-                              request.acceleration, request.name)
+                              request.acceleration, request.name, request.dynamics)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
@@ -136,25 +144,46 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     # names, tip frame and source take no part in a robot's equality: read them from the robot given, not the one
     # a cached chain was first built for
     given = request.robot if isinstance(request.robot, Robot) else model
-    derived = derived_functions(infos, n, coupled)
+    dynamics = dynamics_functions(chain, functions) if request.dynamics else []
+    derived = [*dynamics, *derived_functions(infos, n, coupled)]
+    exports |= {d.name for d in dynamics}
+    kinds = {f.kind: f.name for f in functions} | {d.kind: d.name for d in dynamics}
+    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics else []
+    # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
+    symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
+    gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
         n_joints=model.n_joints, n_coordinates=model.n_coordinates,
         coordinates=tuple((c.name, kind.value) for c, kind in zip(model.q, model.coordinate_types, strict=True)),
         coupling=coupling_lines(chain),
-        parameters=tuple((p.name, float(float_literal(p.default))) for p in model.parameters),
+        parameters=(*((p.name, float(float_literal(p.default))) for p in model.parameters), *gravity),
         functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
-        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration else (),
-        coordinate_symbols=tuple(model.q), parameter_symbols=tuple(model.parameter_symbols),
+        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration or request.dynamics else (),
+        accelerations=tuple(s.name for s in model.coordinate_accelerations) if request.dynamics else (),
+        coordinate_symbols=tuple(model.q),
+        parameter_symbols=(*model.parameter_symbols, *((GRAVITY_SYMBOL,) if symbolic_gravity else ())),
         derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
-        checks=self_checks(infos),
+        checks=self_checks(infos, checked),
         request_lines=request_lines(infos),
         joint_entries=joint_entries(given, spec.identifiers), tip_frame=tip_frame(given),
         origin=source_words(given, catalog_files()),
     )
+
+
+def check_dynamics(chain: Chain) -> None:
+    """Refuse dynamics for a robot without inertial data on every link (the error names them) or named ``g``.
+
+    A robot parameter called ``g`` would clash with gravity's magnitude, which every dynamics module takes.
+    """
+    from symjac.analysis.dynamics.bodies import link_bodies
+    from symjac.analysis.dynamics.gravity import EARTH, check_gravity
+
+    link_bodies(chain)
+    check_gravity(chain.robot, EARTH)
 
 
 def _sorted_exports(names: Iterable[str]) -> list[str]:
@@ -182,6 +211,7 @@ def generate(
     command: str | None = None,
     acceleration: bool = False,
     name: str | None = None,
+    dynamics: bool = False,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -224,6 +254,14 @@ def generate(
     name : str, optional
         The module's name: its file names, the C prefix, the C++ namespace, ``ROBOT`` (default: the robot's name,
         always an identifier). It must be an identifier of the target's language.
+    dynamics : bool
+        Also generate the equations of motion, in the coordinates, each function once per module:
+        ``inverse_dynamics(q, qdot, qddot)`` (Newton-Euler), ``mass_matrix(q)``, ``coriolis_matrix(q, qdot)``
+        (Christoffel symbols), ``bias_forces(q, qdot)`` (C qdot + g), ``gravity_torques(q)`` and
+        ``forward_dynamics(q, qdot, tau)`` (qddot by a Cholesky solve of the generated M, in the runtime), all
+        checked by ``selftest`` against each other. Gravity's magnitude ``g`` (default 9.81, along -z of {0}) joins
+        the parameters, as do symbolic inertial parameters (``m2``, ``cx2``, ``Ixx2``, ...). The robot needs
+        inertial data on every link (else a ``NoInertialDataError`` names the links without).
 
     Returns
     -------
@@ -251,7 +289,8 @@ def generate(
     [[-0.4, -0.4], [1.0, 0.0]]
     """
     request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
-                            strategy=strategy, command=command, acceleration=acceleration, name=name)
+                            strategy=strategy, command=command, acceleration=acceleration, name=name,
+                            dynamics=dynamics)
     return primary(render_files(describe(request)))
 
 

@@ -25,7 +25,7 @@ law             equation                                        quantities
 ==============  ==============================================  ======================================
 ``columns``     :math:`J_q = J(\vartheta(q))\,C`                Jacobians, J-dot, velocity propagation
 ``transposed``  :math:`\tau_q = C^T\tau`                        torque maps (force propagation)
-``congruent``   :math:`H_q[i] = C^T H[i]\,C`                    the kinematic Hessian
+``congruent``   :math:`H_q[i] = C^T H[i]\,C`                    the kinematic Hessian; M, C (dynamics)
 ``rates``       :math:`\vartheta(q),\ \dot\vartheta = C\dot q`  poses, bias, acceleration propagation
 ==============  ==============================================  ======================================
 
@@ -63,6 +63,7 @@ __all__ = [
     "LAW_NAMES",
     "CouplingLaw",
     "LawName",
+    "congruent_in_coordinates",
     "coordinate_bases",
     "coordinate_substitution",
     "coupling_law",
@@ -214,6 +215,21 @@ def hessian_in_coordinates(robot: Robot | Chain, H: sp.NDimArray, layout: Frame 
     return sp.ImmutableDenseNDimArray(list(flat), (rows, n, n))
 
 
+def congruent_in_coordinates(robot: Robot | Chain, value: sp.MatrixBase | sp.NDimArray, layout: Frame | None = None
+                             ) -> sp.ImmutableMatrix | sp.ImmutableDenseNDimArray:
+    r"""The ``congruent`` law: :math:`C^T M\,C` for a matrix, a Hessian slice by slice.
+
+    A matrix's rows and columns belong to the joints (the mass and Coriolis matrices; :math:`\vartheta =
+    \vartheta(q)`, :math:`\dot\vartheta = C\dot q` substituted); an array is a Hessian (:func:`hessian_in_coordinates`).
+    """
+    if isinstance(value, sp.NDimArray):
+        return hessian_in_coordinates(robot, value, layout)
+    if _model(robot).coupling is None:
+        return sp.ImmutableMatrix(value)
+    C = coupling_matrix(robot)
+    return sp.ImmutableMatrix(_product(_product(C.T, in_coordinates(robot, sp.Matrix(value))), C))
+
+
 def _product(left: sp.MatrixBase, right: sp.MatrixBase) -> sp.Matrix:
     """``left * right`` with zero terms left out, so an uncoupled column keeps its joint-space entries as they are."""
     return sp.Matrix(left.rows, right.cols, lambda r, c: sp.Add(*[left[r, k] * right[k, c] for k in range(left.cols)
@@ -246,7 +262,7 @@ class CouplingLaw:
 COUPLING_LAWS: dict[str, CouplingLaw] = {law.name: law for law in (
     CouplingLaw("columns", r"J_q = J(\vartheta(q))\,C", jacobian_in_coordinates),
     CouplingLaw("transposed", r"\tau_q = C^T \tau", lambda chain, M, layout: torques_in_coordinates(chain, M)),
-    CouplingLaw("congruent", r"H_q[i] = C^T H[i]\,C", hessian_in_coordinates),
+    CouplingLaw("congruent", r"H_q[i] = C^T H[i]\,C", congruent_in_coordinates),
     CouplingLaw("rates", r"\vartheta = \vartheta(q),\ \dot\vartheta = C\dot q,\ \ddot\vartheta = C\ddot q",
                 lambda chain, value, layout: in_coordinates(chain, value, layout)),
 )}

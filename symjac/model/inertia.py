@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Literal
 
 import sympy as sp
@@ -65,6 +65,9 @@ class Inertial:
     given_about : ``"com"`` or ``"origin"``
         About which point the source gave the tensor (the centre of mass, or the origin of the frame it gave it in;
         ignored by ``==``, kept to write it back that way): the stored one is always about the centre of mass.
+    keep_impossible : bool
+        Keep data that no rigid body can have (:func:`inertial_problem`), knowingly: published parameters kept as
+        published (the PUMA 560's link 3). Without it the dynamics refuse such a link, naming it.
 
     Examples
     --------
@@ -80,6 +83,7 @@ class Inertial:
     com: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.Zero)
     inertia: sp.ImmutableMatrix = field(default_factory=lambda: sp.ImmutableMatrix(sp.zeros(3, 3)))
     given_about: Literal["com", "origin"] = field(default="com", compare=False)
+    keep_impossible: bool = False
 
     def __post_init__(self) -> None:
         """Turn the entries into SymPy expressions; refuse a centre of mass or tensor of the wrong shape."""
@@ -129,7 +133,7 @@ class Inertial:
         com = (R * sp.Matrix(self.com) + p).applyfunc(sp.expand)
         inertia = (R * self.inertia * R.T).applyfunc(sp.expand)
         return Inertial(self.mass, tuple(com), sp.ImmutableMatrix(inertia),  # type: ignore[arg-type]
-                        given_about=self.given_about)
+                        given_about=self.given_about, keep_impossible=self.keep_impossible)
 
     @property
     def entries(self) -> dict[str, sp.Expr]:
@@ -250,10 +254,11 @@ def combined_inertial(parts: Sequence[Inertial]) -> Inertial:
     inertia = sp.zeros(3, 3)
     for part in parts:
         inertia += part.inertia_about(com)
-    return Inertial(mass, com, sp.ImmutableMatrix(inertia.applyfunc(sp.cancel)))  # type: ignore[arg-type]
+    return Inertial(mass, com, sp.ImmutableMatrix(inertia.applyfunc(sp.cancel)),  # type: ignore[arg-type]
+                    keep_impossible=any(part.keep_impossible for part in parts))
 
 
-INERTIAL_KEYS: tuple[str, ...] = ("mass", "com", "about", *INERTIA_NAMES, "inertia")
+INERTIAL_KEYS: tuple[str, ...] = ("mass", "com", "about", *INERTIA_NAMES, "inertia", "keep_impossible")
 """The keys of a robot file's ``[joints.inertial]`` table, in the order they are written."""
 
 
@@ -263,7 +268,8 @@ def inertial_from_table(table: object, value: Callable[[object, str], sp.Expr],
 
     ``mass`` (required), ``com`` (``[x, y, z]``, default the origin), ``about`` (``"com"``, the default, or
     ``"origin"``: the point the tensor is about) and the tensor as the six entries ``ixx ixy ixz iyy iyz izz`` (missing
-    ones 0) or as ``inertia``, 3 rows of 3. ``value(raw, field)`` parses one entry; ``fail(message, field)`` is the
+    ones 0) or as ``inertia``, 3 rows of 3; ``keep_impossible = true`` keeps data no rigid body can have
+    (:attr:`Inertial.keep_impossible`). ``value(raw, field)`` parses one entry; ``fail(message, field)`` is the
     error to raise.
     """
     if not isinstance(table, Mapping):
@@ -281,11 +287,22 @@ def inertial_from_table(table: object, value: Callable[[object, str], sp.Expr],
     com = table.get("com", [0, 0, 0])
     if not isinstance(com, Sequence) or isinstance(com, str) or len(com) != 3:
         raise fail("'com' must be a list of 3 numbers or expressions", "inertial.com")
+    keep = table.get("keep_impossible", False)
+    if not isinstance(keep, bool):
+        raise fail(f"'keep_impossible' must be true or false, got {keep!r}", "inertial.keep_impossible")
+    inertial = _tensor_from_table(table, value, fail, about)
+    return replace(inertial, keep_impossible=True) if keep else inertial
+
+
+def _tensor_from_table(table: Mapping[str, object], value: Callable[[object, str], sp.Expr],
+                       fail: Callable[[str, str], Exception], about: Literal["com", "origin"]) -> Inertial:
+    """:func:`inertial_from_table`'s body and tensor, either as six entries or as 3 rows of 3."""
+    com: Sequence[object] = table.get("com", [0, 0, 0])  # type: ignore[assignment]
     entries = {name: value(table[name], f"inertial.{name}") for name in INERTIA_NAMES if name in table}
     mass = value(table["mass"], "inertial.mass")
     centre = tuple(value(v, "inertial.com") for v in com)
     if "inertia" not in table:
-        return Inertial.from_entries(mass, centre, entries, about)  # type: ignore[arg-type]
+        return Inertial.from_entries(mass, centre, entries, about)
     rows = table["inertia"]
     if entries:
         raise fail("give the tensor either as 'inertia' or as ixx .. izz, not both", "inertial.inertia")
@@ -305,4 +322,6 @@ def inertial_table(inertial: Inertial) -> dict[str, object]:
         table.update({name: expression_text(tensor[i, j]) for name, (i, j) in _INDEX.items()})
     else:  # only symbols can be unequal across the diagonal (numbers are refused): keep both
         table["inertia"] = [[expression_text(tensor[i, j]) for j in range(3)] for i in range(3)]
+    if inertial.keep_impossible:
+        table["keep_impossible"] = True
     return table

@@ -198,9 +198,10 @@ def _inertial(table: Mapping[str, Any], number: int, value: Any, defaults: Mappi
     reason = inertial_problem(inertial, defaults, physical=False)
     if reason is not None:
         raise problem(reason, "inertial")
-    reason = inertial_problem(inertial, defaults)
+    reason = None if inertial.keep_impossible else inertial_problem(inertial, defaults)
     if reason is not None:  # kept, as URDF's are: a converted CAD export must read back (kinematics does not need it)
-        warn(InertialWarning(f"{problem(reason, 'inertial').args[0]} (kept as given)"))
+        warn(InertialWarning(f"{problem(reason, 'inertial').args[0]} (kept as given; the dynamics refuse it unless "
+                             f"the table says keep_impossible = true)"))
     return inertial
 
 

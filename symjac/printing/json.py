@@ -191,7 +191,10 @@ def document_data(document: Document) -> dict[str, Any]:
 
 def _place(data: dict[str, Any], equation: Equation, key: JsonKey, stacks: dict[str, list[sp.MatrixBase]]) -> None:
     """Write one keyed equation into ``data`` (see :class:`.document.JsonKey`)."""
-    entries = [sp.sstr(e) for e in equation.rhs] if key.flat or key.record else matrix_strings(equation.rhs)
+    if not isinstance(equation.rhs, sp.MatrixBase | sp.NDimArray):  # a scalar: its string (one entry of a record)
+        entries: Any = [sp.sstr(equation.rhs)] if key.record else sp.sstr(equation.rhs)
+    else:
+        entries = [sp.sstr(e) for e in equation.rhs] if key.flat or key.record else matrix_strings(equation.rhs)
     if key.record:
         data.setdefault(key.name, []).append(
             {"name": equation.text, "latex": equation_latex(equation), "entries": entries})

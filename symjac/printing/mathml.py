@@ -9,6 +9,7 @@ which Chromium renders natively) is rewritten to an ``mrow`` with explicit fence
 
 from __future__ import annotations
 
+import re
 from typing import Any
 from xml.dom.minidom import Element, Text
 
@@ -21,6 +22,8 @@ from symjac.printing.shorthand import GREEK, readable_float, shorthand_indices, 
 __all__ = ["TextbookMathMLPrinter", "core_elements", "math_element", "mathml_node"]
 
 _INVISIBLE_TIMES = "\u2062"
+_DOTTED = re.compile(r"^(.+?)(ddot|dot)(\d*)$")  # rates and accelerations: thetadot1, thetaddot1, ddot3 (d3's rate)
+_DOTS = {"dot": "\u02d9", "ddot": "\u00a8"}
 
 
 class TextbookMathMLPrinter(MathMLPresentationPrinter):
@@ -53,6 +56,23 @@ class TextbookMathMLPrinter(MathMLPresentationPrinter):
         node = self._element("msub")
         node.appendChild(self._element("mi", letter))
         node.appendChild(subscript)
+        return node
+
+    def _print_Symbol(self, sym: sp.Symbol, style: str = "plain") -> Element:
+        """A rate or acceleration (``thetadot1``, ``thetaddot1``) as its coordinate with dots over it, as in LaTeX."""
+        match = _DOTTED.match(sym.name)
+        if match is None:
+            return super()._print_Symbol(sym, style)  # type: ignore[no-any-return]
+        prefix, dots, digits = match.groups()
+        over = self._element("mover")
+        over.setAttribute("accent", "true")
+        over.appendChild(super()._print_Symbol(sp.Symbol(prefix), style))
+        over.appendChild(self._element("mo", _DOTS[dots]))
+        if not digits:
+            return over
+        node = self._element("msub")
+        node.appendChild(over)
+        node.appendChild(self._element("mn", digits))
         return node
 
     def _print_sin(self, expr: sp.Function) -> Element:

@@ -192,10 +192,10 @@ def displays(rhs: sp.Basic, lhs: Element | None = None, budget: float = BUDGET_E
             start, width = j, 1.0
         width += column_width
     blocks.append((start, rhs.cols))
-    shown = []
+    shown, alone = [], len(blocks) == 1  # one block (a column vector of long entries) keeps its name
     for first, last in blocks:
-        cell_budget = budget - 2.0 if last - first == 1 else budget
+        cell_budget = (budget - 2.0 if last - first == 1 else budget) - (lhs_width if alone else 0.0)
         cells = [[_lines(printer, rhs[i, j], cell_budget) if widths[j] > cell_budget else entries[i][j]
                   for j in range(first, last)] for i in range(rhs.rows)]
-        shown.append(Display(_equation(printer, None, _matrix(printer, cells)), (first, last)))
+        shown.append(Display(_equation(printer, lhs if alone else None, _matrix(printer, cells)), (first, last)))
     return shown

@@ -1,4 +1,4 @@
-r"""Every Jacobian method step by step, as equations for lecture notes.
+r"""Every Jacobian method, and the Newton-Euler recursion of the dynamics, step by step, as equations for lecture notes.
 
 Propagations: outward :math:`{}^{i}\omega_i, {}^{i}v_i` (and :math:`{}^{i}\dot\omega_i, {}^{i}\dot v_i`), inward
 :math:`{}^{i}f_i, {}^{i}n_i`, then :math:`\tau`. Cross products, per joint i with its axis in frame {a}:
@@ -14,6 +14,7 @@ from typing import Any
 
 import sympy as sp
 
+from symjac.analysis.dynamics.newton_euler import NewtonEuler
 from symjac.errors import ArgumentError
 from symjac.kinematics.acceleration_propagation import AccelerationPropagation
 from symjac.kinematics.column_steps import CrossProductSteps, DifferentiationSteps
@@ -25,9 +26,30 @@ __all__ = ["Propagation", "Steps", "propagation_steps", "step_equations"]
 
 Propagation = VelocityPropagation | AccelerationPropagation | ForcePropagation
 """Any of the three iterations whose steps can be printed one by one."""
-Steps = Propagation | CrossProductSteps | DifferentiationSteps
-"""Any derivation whose steps can be printed: a propagation, or the columns of the cross-product or
-differentiation method (:mod:`symjac.kinematics.column_steps`)."""
+Steps = Propagation | CrossProductSteps | DifferentiationSteps | NewtonEuler
+"""Any derivation whose steps can be printed: a propagation, the columns of the cross-product or differentiation
+method (:mod:`symjac.kinematics.column_steps`), or the Newton-Euler recursion of the dynamics."""
+
+_OUTWARD = (("omega", r"\omega", "ω"), ("alpha", r"\alpha", "\N{GREEK SMALL LETTER ALPHA}"), ("a", "a", "a"),
+            ("a_c", "a_{{c_{i}}}", "a_c{i}"), ("F", "F", "F"), ("N", "N", "N"))
+_INWARD = (("f", "f", "f"), ("n", "n", "n"))
+
+
+def _newton_euler_equations(recursion: NewtonEuler) -> list[Equation]:
+    """Outward link by link (omega, alpha, a, a_c, F, N), then inward from the tip (f, n, tau), each in its frame."""
+    equations = []
+    for step in recursion.steps:
+        i = step.link
+        for field, tex, text in _OUTWARD:
+            tex_name = tex.format(i=i) if "{i}" in tex else f"{tex}_{{{i}}}"
+            text_name = text.format(i=i) if "{i}" in text else f"{text}_{i}"
+            equations.append(Equation(f"{{}}^{{{i}}}{tex_name}", f"{text_name} (in frame {i})", getattr(step, field)))
+    for step in reversed(recursion.steps):
+        i = step.link
+        equations += [Equation(f"{{}}^{{{i}}}{tex}_{{{i}}}", f"{text}_{i} (in frame {i})", getattr(step, field))
+                      for field, tex, text in _INWARD]
+        equations.append(Equation(rf"\tau_{{{i}}}", f"tau_{i}", step.tau))
+    return equations
 
 
 def _frame(frame: Any) -> str:
@@ -68,8 +90,9 @@ def _differentiation_equations(steps: DifferentiationSteps) -> list[Equation]:
 def step_equations(propagation: Steps, values: Mapping[Any, Any] | None = None) -> list[Equation]:
     """Every step of a propagation or column method as an :class:`Equation`, in order (``values`` substituted)."""
     substitution = dict(values or {})
-    if isinstance(propagation, CrossProductSteps | DifferentiationSteps):
+    if isinstance(propagation, CrossProductSteps | DifferentiationSteps | NewtonEuler):
         equations = (_cross_product_equations(propagation) if isinstance(propagation, CrossProductSteps)
+                     else _newton_euler_equations(propagation) if isinstance(propagation, NewtonEuler)
                      else _differentiation_equations(propagation))
         return [Equation(e.tex, e.text, e.rhs.xreplace(substitution)) for e in equations]
     rows: list[tuple[Any, ...]]

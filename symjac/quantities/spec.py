@@ -56,9 +56,10 @@ Scope = Literal["module", "request"]
 """Where a generated kind's functions sit: once per module (the pose), or once per Jacobian request (its frame,
 point and task rows: the Jacobian, torques, Hessian)."""
 
-Input = Literal["wrench", "qdot"]
-"""An argument a generated function takes after ``q``: the wrench entries of the request's task rows, or the
-coordinate rates (with ``acceleration``). Code generation knows how to describe each."""
+Input = Literal["wrench", "qdot", "qddot", "tau"]
+"""An argument a generated function takes after ``q``: the wrench entries of the request's task rows, the coordinate
+rates (with ``acceleration`` or ``dynamics``), their accelerations, or one generalised force per coordinate (the last
+two with ``dynamics``). Code generation knows how to describe each."""
 
 
 def entry_point(path: str) -> Any:
@@ -222,6 +223,9 @@ class Generated:
         request. Within a request, the functions come in registry order, those needing ``acceleration`` last.
     acceleration : bool
         Generated only with ``acceleration=True`` (the Hessian, the bias acceleration, the manipulability gradient).
+    dynamics : bool
+        Generated only with ``dynamics=True`` (inverse and forward dynamics, M, C, the bias forces, g): once per
+        module, and only for a robot with inertial data on every link.
     lowering : str
         The entry point ``"module:function"`` of its lowering into straight-line code: called with the chain and
         those of ``frame``, ``point``, ``rows`` (the request's) and ``strategy`` it takes by name, it returns a
@@ -237,8 +241,11 @@ class Generated:
         request's rows are selected.
     routine, sources : str, tuple of str
         A *derived* kind is computed by the runtime routine ``routine`` (each target prefixes its runtime's:
-        ``_manipulability``, ``sj_manipulability``) from the results of the request's functions of kinds
-        ``sources``, in that order; it has no lowering.
+        ``_manipulability``, ``sj_manipulability``) from the results of the request's (or, module-scoped, the
+        module's) functions of kinds ``sources``, in that order, each called with ``q`` and those of the derived
+        function's ``inputs`` its own kind takes; the routine then gets the ``inputs`` no source takes (forward
+        dynamics: ``forward_dynamics(M, b, tau)`` from ``mass_matrix(q)`` and ``bias_forces(q, qdot)``). It has
+        no lowering.
     per_coordinate : bool
         A derived result has one value per coordinate (else it is a scalar).
     square_only : bool
@@ -260,6 +267,7 @@ class Generated:
     layout: str = ""
     scope: Scope = "request"
     acceleration: bool = False
+    dynamics: bool = False
     lowering: str = ""
     inputs: tuple[Input, ...] = ()
     task_rows: bool = False
@@ -281,8 +289,11 @@ class Generated:
             raise ArgumentError(f"{where}: inputs {unknown} are not among {', '.join(get_args(Input))}")
         if self.lowering and self.lowering.count(":") != 1:
             raise ArgumentError(f"{where}: an entry point is 'module:name', got {self.lowering!r}")
-        if self.routine and (self.lowering or not self.sources or self.scope != "request"):
-            raise ArgumentError(f"{where}: a derived kind has sources, no lowering, and one function per request")
+        if self.routine and (self.lowering or not self.sources or (self.scope != "request" and not self.dynamics)):
+            raise ArgumentError(f"{where}: a derived kind has sources, no lowering, and one function per request "
+                                f"(or, with dynamics, per module)")
+        if self.dynamics and (self.scope != "module" or self.acceleration):
+            raise ArgumentError(f"{where}: a dynamics kind has one function per module and no acceleration level")
 
     @property
     def derived(self) -> bool:

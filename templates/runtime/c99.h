@@ -373,6 +373,99 @@ static inline int sj_check_acceleration(int n, int size, const int *rows, sj_map
     return failures;
 }
 
+/* ---- runtime section: forward_dynamics; needs: cholesky_solve ---- */
+
+/* qddot = M^-1 (tau - b) by a Cholesky solve: M the n x n mass matrix, b = C qdot + g the bias forces; NaN when M is
+ * not positive definite. */
+static inline void sj_forward_dynamics(const real *M, const real *b, int n, int columns, const real *tau, real *qddot)
+{
+    real rest[SJ_DIM];
+    (void)columns;
+    for (int i = 0; i < n; i++) {
+        rest[i] = tau[i] - b[i];
+    }
+    if (!sj_cholesky_solve(M, rest, n, qddot)) {
+        for (int i = 0; i < n; i++) {
+            qddot[i] = (real)NAN;
+        }
+    }
+}
+
+/* ---- runtime section: dynamics; needs: cholesky_solve ---- */
+
+/* A function of one configuration and two inputs (inverse dynamics: qdot, qddot; forward dynamics: qdot, tau). */
+typedef void (*sj_map_with2)(const real *q, const real *params, const real *a, const real *b, real *out);
+
+/* The dynamics against each other and central differences of M: M symmetric positive definite; Mdot - 2C skew
+ * (Mdot = (M(q + h qdot) - M(q - h qdot)) / 2h); g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g;
+ * tau(q, qdot, qddot) = M qddot + C qdot + g; b = C qdot + g; forward dynamics of that tau gives qddot back. */
+static inline int sj_check_dynamics(int n, int size, const int *rows, sj_map_with2 inverse_dynamics,
+                                    sj_map mass_matrix, sj_map_with coriolis_matrix, sj_map_with bias_forces,
+                                    sj_map gravity_torques, sj_map_with2 forward_dynamics, const real *q, real h,
+                                    real tolerance)
+{
+    real M[SJ_DIM * SJ_DIM], C[SJ_DIM * SJ_DIM], above[SJ_DIM * SJ_DIM], below[SJ_DIM * SJ_DIM];
+    real g[SJ_DIM], qdot[SJ_DIM], qddot[SJ_DIM], zero[SJ_DIM], unit[SJ_DIM], tau[SJ_DIM], out[SJ_DIM];
+    real step[SJ_DIM], solution[SJ_DIM];
+    int failures = 0;
+    (void)size;
+    (void)rows;
+    for (int k = 0; k < n; k++) {
+        qdot[k] = (real)0.7 - (real)0.3 * (real)k;
+        qddot[k] = (real)0.5 - (real)0.25 * (real)k + (real)0.3 * qdot[k];
+        zero[k] = 0;
+    }
+    mass_matrix(q, NULL, M);
+    coriolis_matrix(q, NULL, qdot, C);
+    gravity_torques(q, NULL, g);
+    failures += !sj_cholesky_solve(M, qdot, n, solution);
+    for (int k = 0; k < n; k++) {
+        step[k] = q[k] + h * qdot[k];
+    }
+    mass_matrix(step, NULL, above);
+    for (int k = 0; k < n; k++) {
+        step[k] = q[k] - h * qdot[k];
+    }
+    mass_matrix(step, NULL, below);
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < n; j++) {
+            const real skew = (above[i * n + j] - below[i * n + j]) / (2 * h) - 2 * C[i * n + j];
+            const real mirror = (above[j * n + i] - below[j * n + i]) / (2 * h) - 2 * C[j * n + i];
+            failures += sj_differs(M[i * n + j], M[j * n + i], tolerance);
+            failures += sj_differs(skew, -mirror, tolerance);
+        }
+    }
+    inverse_dynamics(q, NULL, zero, zero, out);
+    for (int i = 0; i < n; i++) {
+        failures += sj_differs(g[i], out[i], tolerance);
+    }
+    for (int j = 0; j < n; j++) {
+        for (int k = 0; k < n; k++) {
+            unit[k] = k == j ? 1 : 0;
+        }
+        inverse_dynamics(q, NULL, zero, unit, out);
+        for (int i = 0; i < n; i++) {
+            failures += sj_differs(M[i * n + j], out[i] - g[i], tolerance);
+        }
+    }
+    inverse_dynamics(q, NULL, qdot, qddot, tau);
+    bias_forces(q, NULL, qdot, out);
+    for (int i = 0; i < n; i++) {
+        real Cqdot = 0, Mqddot = 0;
+        for (int k = 0; k < n; k++) {
+            Cqdot += C[i * n + k] * qdot[k];
+            Mqddot += M[i * n + k] * qddot[k];
+        }
+        failures += sj_differs(out[i], Cqdot + g[i], tolerance);
+        failures += sj_differs(tau[i], Mqddot + Cqdot + g[i], tolerance);
+    }
+    forward_dynamics(q, NULL, qdot, tau, out);
+    for (int i = 0; i < n; i++) {
+        failures += sj_differs(out[i], qddot[i], tolerance);
+    }
+    return failures;
+}
+
 /* ---- runtime section: core ---- */
 
 /* q[i] = the position of joint_names[i] in names and positions (count entries; other names are ignored, the first

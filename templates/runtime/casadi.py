@@ -128,6 +128,45 @@ def _cholesky_solve(M: ca.SX, b: ca.SX) -> ca.SX:
     return ca.solve(R, ca.solve(R.T, b))
 
 
+# ---- runtime section: forward_dynamics; needs: cholesky_solve ----
+
+
+def _forward_dynamics(M: ca.SX, bias: ca.SX, tau: ca.SX, q: ca.SX) -> ca.SX:
+    """The accelerations qddot = M^-1 (tau - b) by a Cholesky solve: M the mass matrix, b = C qdot + g (q unused)."""
+    del q
+    return _cholesky_solve(M, tau - bias)
+
+
+# ---- runtime section: dynamics; needs: cholesky_solve ----
+
+
+def _dynamics_error(functions: tuple[ca.Function, ...], q: ca.DM, qdot: ca.DM, p: ca.DM) -> float:
+    """Largest relative error of the dynamics against each other and central differences of M.
+
+    M symmetric positive definite (a Cholesky factor exists); Mdot - 2C skew (Mdot: central differences of M along
+    qdot); g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot + C qdot + g;
+    b = C qdot + g; forward dynamics of that tau gives qddot back.
+    """
+    inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques, forward_dynamics = functions
+    n, step, error = q.numel(), 1e-6, _relative_error
+    qddot = ca.DM([0.5 - 0.25 * k + 0.3 * float(qdot[k]) for k in range(n)])
+    zero = ca.DM.zeros(n, 1)
+    M, C, g = mass_matrix(q, p), coriolis_matrix(q, qdot, p), gravity_torques(q, p)
+    try:
+        ca.chol(M)
+    except RuntimeError:
+        return float("inf")
+    skew = (mass_matrix(q + step * qdot, p) - mass_matrix(q - step * qdot, p)) / (2 * step) - 2 * C
+    worst = max(error(M, M.T), error(skew, -skew.T), error(g, inverse_dynamics(q, zero, zero, p)))
+    unit = ca.DM.eye(n)
+    for j in range(n):
+        worst = max(worst, error(M[:, j], inverse_dynamics(q, zero, unit[:, j], p) - g))
+    tau = inverse_dynamics(q, qdot, qddot, p)
+    Cqdot = ca.mtimes(C, qdot)
+    worst = max(worst, error(bias_forces(q, qdot, p), Cqdot + g), error(tau, ca.mtimes(M, qddot) + Cqdot + g))
+    return max(worst, error(forward_dynamics(q, qdot, tau, p), qddot))
+
+
 # ---- runtime section: core ----
 
 

@@ -4,7 +4,8 @@
 // namespace (symjac::<robot>::runtime), so that two generated headers can be included together and each still
 // needs only Eigen. Every routine is a template on the scalar type and the fixed sizes; a decision on the shape
 // (square, wide or tall) is made at compile time. Tested on its own: tests/test_codegen_runtime.py compiles it.
-// A header carries only the sections it uses; the acceleration section is empty: the header has no self-test.
+// A header carries only the sections it uses; the acceleration and dynamics sections are empty: the header has
+// no self-test.
 #pragma once
 
 #include <array>
@@ -103,6 +104,18 @@ Eigen::Matrix<Scalar, N, 1> cholesky_solve(const Eigen::Matrix<Scalar, N, N>& M,
     }
     return factor.solve(b);
 }
+
+// ---- runtime section: forward_dynamics; needs: cholesky_solve ----
+
+// qddot = M^-1 (tau - b) by a Cholesky solve: M the mass matrix, b = C qdot + g the bias forces.
+template <class Scalar, int N>
+Eigen::Matrix<Scalar, N, 1> forward_dynamics(const Eigen::Matrix<Scalar, N, N>& M, const Eigen::Matrix<Scalar, N, 1>& b,
+                                             const Eigen::Matrix<Scalar, N, 1>& tau)
+{
+    return cholesky_solve<Scalar, N>(M, Eigen::Matrix<Scalar, N, 1>(tau - b));
+}
+
+// ---- runtime section: dynamics ----
 
 // ---- runtime section: acceleration ----
 

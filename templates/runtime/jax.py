@@ -133,6 +133,43 @@ def _cholesky_solve(M: Array, b: Array) -> Array:
     return jnp.linalg.solve(L.T, y)
 
 
+# ---- runtime section: forward_dynamics; needs: cholesky_solve ----
+
+
+def _forward_dynamics(M: Array, bias: Array, tau: ArrayLike) -> Array:
+    """The accelerations qddot = M^-1 (tau - b) by a Cholesky solve: M the mass matrix, b = C qdot + g."""
+    return _cholesky_solve(M, jnp.asarray(tau) - bias)
+
+
+# ---- runtime section: dynamics ----
+
+
+def _dynamics_error(functions: tuple[Callable[..., Array], ...], q: Array, qdot: Array,
+                    error: Callable[[ArrayLike, ArrayLike], float],
+                    central: Callable[[Callable[[Array], Array], Array, Array], Array]) -> float:
+    """Largest relative error of the dynamics against each other and central differences of M.
+
+    M symmetric positive definite (its Cholesky factor is finite); Mdot - 2C skew (Mdot: central differences of M
+    along qdot); g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot + C qdot + g;
+    b = C qdot + g; forward dynamics of that tau gives qddot back.
+    """
+    inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques, forward_dynamics = functions
+    n = q.shape[0]
+    qddot = 0.5 - 0.25 * jnp.arange(n) + 0.3 * qdot
+    zero = jnp.zeros(n)
+    M, C, g = mass_matrix(q), coriolis_matrix(q, qdot), gravity_torques(q)
+    if not bool(jnp.all(jnp.isfinite(jnp.linalg.cholesky(M)))):
+        return float("inf")
+    skew = central(mass_matrix, q, qdot) - 2.0 * C
+    worst = max(error(M, M.T), error(skew, -skew.T), error(g, inverse_dynamics(q, zero, zero)))
+    unit = jnp.eye(n)
+    columns = jnp.stack([inverse_dynamics(q, zero, unit[j]) for j in range(n)], axis=1)
+    worst = max(worst, error(M, columns - g[:, None]))
+    tau = inverse_dynamics(q, qdot, qddot)
+    worst = max(worst, error(bias_forces(q, qdot), C @ qdot + g), error(tau, M @ qddot + C @ qdot + g))
+    return max(worst, error(forward_dynamics(q, qdot, tau), qddot))
+
+
 # ---- runtime section: core ----
 
 

@@ -171,6 +171,62 @@ def _cholesky_solve(M: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.linalg.solve(np.swapaxes(L, -1, -2), y)[..., 0]
 
 
+# ---- runtime section: forward_dynamics; needs: cholesky_solve ----
+
+
+def _forward_dynamics(M: np.ndarray, bias: np.ndarray, tau: ArrayLike) -> np.ndarray:
+    """The accelerations qddot = M^-1 (tau - b) by a Cholesky solve: M the mass matrix, b = C qdot + g."""
+    return _cholesky_solve(M, np.asarray(tau, dtype=float) - bias)
+
+
+# ---- runtime section: dynamics ----
+
+
+def _dynamics_error(
+    inverse_dynamics: Callable[..., np.ndarray],
+    mass_matrix: Callable[..., np.ndarray],
+    coriolis_matrix: Callable[..., np.ndarray],
+    bias_forces: Callable[..., np.ndarray],
+    gravity_torques: Callable[..., np.ndarray],
+    forward_dynamics: Callable[..., np.ndarray],
+    q: np.ndarray,
+    qdot: np.ndarray,
+    step: float = 1e-6,
+) -> float:
+    """Largest relative error of the dynamics against each other and central differences of M.
+
+    M symmetric and positive definite (its Cholesky factor exists); Mdot - 2C skew, Mdot = (M(q + h qdot) -
+    M(q - h qdot)) / 2h; g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot +
+    C qdot + g; b = C qdot + g; forward dynamics of tau(q, qdot, qddot) gives qddot back; batched against
+    one-configuration calls.
+    """
+    def error(actual: np.ndarray, expected: np.ndarray) -> float:
+        return float((np.abs(actual - expected) / (1.0 + np.abs(expected))).max(initial=0.0))
+
+    n = q.shape[-1]
+    qddot = 0.5 - 0.25 * np.arange(n) + 0.3 * qdot
+    zero = np.zeros_like(q)
+    M, C, g = mass_matrix(q), coriolis_matrix(q, qdot), gravity_torques(q)
+    try:
+        np.linalg.cholesky(M)
+    except np.linalg.LinAlgError:
+        return float("inf")
+    Mdot = (mass_matrix(q + step * qdot) - mass_matrix(q - step * qdot)) / (2 * step)
+    skew = Mdot - 2 * C
+    worst = max(error(M, np.swapaxes(M, -1, -2)), error(skew, -np.swapaxes(skew, -1, -2)))
+    worst = max(worst, error(g, inverse_dynamics(q, zero, zero)))
+    for j in range(n):
+        unit = np.zeros_like(q)
+        unit[..., j] = 1.0
+        worst = max(worst, error(M[..., j], inverse_dynamics(q, zero, unit) - g))
+    tau = inverse_dynamics(q, qdot, qddot)
+    Cqdot = np.einsum("...ij,...j->...i", C, qdot)
+    worst = max(worst, error(bias_forces(q, qdot), Cqdot + g))
+    worst = max(worst, error(tau, np.einsum("...ij,...j->...i", M, qddot) + Cqdot + g))
+    worst = max(worst, error(forward_dynamics(q, qdot, tau), qddot))
+    return max(worst, error(inverse_dynamics(q[0], qdot[0], qddot[0]), tau[0]))
+
+
 # ---- runtime section: sincos ----
 
 

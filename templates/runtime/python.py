@@ -250,6 +250,72 @@ def _cholesky_solve(matrix: Sequence[Sequence[float]], right: Sequence[float]) -
     return x
 
 
+# ---- runtime section: forward_dynamics; needs: cholesky_solve ----
+
+
+def _forward_dynamics(M: Sequence[Sequence[float]], bias: Sequence[float], tau: Sequence[float]) -> tuple[float, ...]:
+    """The accelerations qddot = M^-1 (tau - b) by a Cholesky solve: M the mass matrix, b = C qdot + g."""
+    return tuple(_cholesky_solve(M, [t - b for t, b in zip(tau, bias, strict=True)]))
+
+
+# ---- runtime section: dynamics; needs: cholesky_solve ----
+
+
+def _dynamics_error(
+    inverse_dynamics: Callable[..., Sequence[float]],
+    mass_matrix: Callable[..., Sequence[Sequence[float]]],
+    coriolis_matrix: Callable[..., Sequence[Sequence[float]]],
+    bias_forces: Callable[..., Sequence[float]],
+    gravity_torques: Callable[..., Sequence[float]],
+    forward_dynamics: Callable[..., Sequence[float]],
+    q: Sequence[float],
+    qdot: Sequence[float],
+    step: float = 1e-6,
+) -> float:
+    """Largest relative error of the dynamics against each other and central differences of M.
+
+    M symmetric and positive definite (a Cholesky solve succeeds); Mdot - 2C skew, Mdot = (M(q + h qdot) -
+    M(q - h qdot)) / 2h; g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot +
+    C qdot + g; b = C qdot + g; forward dynamics of tau(q, qdot, qddot) gives qddot back.
+    """
+    n = len(q)
+    qddot = [0.5 - 0.25 * k + 0.3 * v for k, v in enumerate(qdot)]
+    zero = [0.0] * n
+    M, C, g = mass_matrix(q), coriolis_matrix(q, qdot), gravity_torques(q)
+    worst = 0.0
+
+    def differs(value: float, expected: float) -> float:
+        return abs(value - expected) / (1.0 + abs(expected))
+
+    try:
+        _cholesky_solve(M, [1.0] * n)
+    except ValueError:
+        return float("inf")
+    above = mass_matrix([x + step * v for x, v in zip(q, qdot, strict=True)])
+    below = mass_matrix([x - step * v for x, v in zip(q, qdot, strict=True)])
+    for i in range(n):
+        for j in range(n):
+            worst = max(worst, differs(M[i][j], M[j][i]))
+            skew = (above[i][j] - below[i][j]) / (2.0 * step) - 2.0 * C[i][j]
+            mirror = (above[j][i] - below[j][i]) / (2.0 * step) - 2.0 * C[j][i]
+            worst = max(worst, differs(skew, -mirror))
+    for i, value in enumerate(inverse_dynamics(q, zero, zero)):
+        worst = max(worst, differs(g[i], value))
+    for j in range(n):
+        column = inverse_dynamics(q, zero, [1.0 if k == j else 0.0 for k in range(n)])
+        for i in range(n):
+            worst = max(worst, differs(M[i][j], column[i] - g[i]))
+    tau = inverse_dynamics(q, qdot, qddot)
+    bias = bias_forces(q, qdot)
+    for i in range(n):
+        Cqdot = sum(C[i][k] * qdot[k] for k in range(n))
+        worst = max(worst, differs(bias[i], Cqdot + g[i]))
+        worst = max(worst, differs(tau[i], sum(M[i][k] * qddot[k] for k in range(n)) + Cqdot + g[i]))
+    for value, expected in zip(forward_dynamics(q, qdot, tau), qddot, strict=True):
+        worst = max(worst, differs(value, expected))
+    return worst
+
+
 # ---- runtime section: core ----
 
 

@@ -16,9 +16,10 @@ from typing import TypeVar
 
 import sympy as sp
 
-from symjac.errors import NoInertialDataError, ResultTooLargeError
+from symjac.errors import ImpossibleInertiaError, NoInertialDataError, ResultTooLargeError
 from symjac.kinematics.chain import Chain
-from symjac.model.inertia import Inertial
+from symjac.kinematics.coupling import coordinate_bases
+from symjac.model.inertia import Inertial, inertial_problem
 from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.nested import has_intermediates, named, presented
 from symjac.symbolic.simplify import printed_ops, simplify_matrix
@@ -43,14 +44,25 @@ def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
     symjac.errors.NoInertialDataError: planar2r: links 1, 2 have no inertial data (mass, centre of mass, inertia); ...
     """
     robot = chain.robot
-    missing = [str(k) for k, inertial in enumerate(robot.inertials, start=1) if inertial is None]
+    inertials = robot.inertials  # one entry per link (None where unknown)
+    # a file's own names where it has them (URDF, MJCF): link k is the one its joint k moves
+    missing = [f"{k} (moved by joint {joint.name})" if joint.name else str(k)
+               for k, (joint, inertial) in enumerate(zip(robot.joints, inertials, strict=True), start=1)
+               if inertial is None]
     if missing:
         which = f"link {missing[0]} has" if len(missing) == 1 else f"links {', '.join(missing)} have"
         raise NoInertialDataError(
             f"{robot.name}: {which} no inertial data (mass, centre of mass, inertia); give them in the robot file's "
             f"[joints.inertial] tables or the URDF <inertial> elements, or use symbolic ones "
             f"(symjac.model.inertial_parameters.with_symbolic_inertials)")
-    return tuple(inertial for inertial in robot.inertials if inertial is not None)
+    for k, (joint, inertial) in enumerate(zip(robot.joints, inertials, strict=True), start=1):
+        problem = None if inertial is None or inertial.keep_impossible else inertial_problem(inertial, robot.defaults)
+        if problem is not None:
+            which = f"link {k} (moved by joint {joint.name})" if joint.name else f"link {k}"
+            raise ImpossibleInertiaError(
+                f"{robot.name}: {which}: {problem}, which no rigid body has; correct the data, or keep them "
+                f"knowingly with keep_impossible = true in the link's inertial table (Inertial.keep_impossible)")
+    return tuple(inertial for inertial in inertials if inertial is not None)
 
 
 @dataclass(frozen=True)
@@ -95,6 +107,10 @@ def result_bases(chain: Chain) -> tuple[AngleBasis, ...]:
     without parallel joints, only sign-flipped copies of the same angles, and each costs a whole layout (16 bases
     took most of the PUMA's Newton-Euler torques).
     """
+    if chain.robot.coupling is not None:
+        # in the coordinates: a basis of the joints' own angles would bring a coupled joint's variable back
+        # (theta2 for theta1 + theta2 when theta2 = 2 theta1)
+        return tuple(coordinate_bases(chain, 0))
     return chain.angle_bases(0)
 
 

@@ -57,10 +57,10 @@ class Dialect:
 
 
 _LOCALS = frozenset(("q", "p", "params", "F", "qdot", "T", "J", "tau", "H", "out", "real", "k", "m", "i", "j", "A",
-                     "S", "C"))
+                     "S", "C", "qddot", "M", "b", "coriolis", "gravity"))
 """Names the generated functions use themselves: a temporary never takes one."""
 
-_INPUT = {"q": "q", "wrench": "F", "qdot": "qdot"}
+_INPUT = {"q": "q", "wrench": "F", "qdot": "qdot", "qddot": "qddot", "tau": "tau"}
 
 
 @dataclass(frozen=True)

@@ -172,6 +172,19 @@ class PythonModule:
         return tuple(tuple_lines("_RATE_NAMES = ", (f'"{name}"' for name in self.description.rates)))
 
     @property
+    def parameter_tuple_lines(self) -> tuple[str, ...]:
+        """``PARAMETER_NAMES = ("a2", "d4")`` and ``PARAMETER_DEFAULTS = (0.4, 0.1)`` as source lines (CasADi)."""
+        names = tuple_lines("PARAMETER_NAMES = ", (f'"{name}"' for name in self.description.parameter_names))
+        defaults = tuple_lines("PARAMETER_DEFAULTS = ", (repr(value) for _, value in self.description.parameters))
+        return (*names, *defaults)
+
+    @property
+    def acceleration_names_lines(self) -> tuple[str, ...]:
+        """``_ACCELERATION_NAMES = ("thetaddot1", "dddot2")``: the names of the entries of qddot as source lines."""
+        return tuple(tuple_lines("_ACCELERATION_NAMES = ",
+                                 (f'"{name}"' for name in self.description.accelerations)))
+
+    @property
     def check_lines(self) -> tuple[str, ...]:
         """The self-test's checks as the entries of a tuple: ``("jacobian", (jacobian, ...), (0, 1)),`` each.
 

@@ -115,6 +115,6 @@ def carried_inertials(source: Robot, result: Robot) -> Robot:
         moved = moved_inertial(inertial, None if T.equals(sp.eye(4)) else T)
         if moved is not None and lost:
             moved = Inertial(moved.mass.xreplace(lost), tuple(c.xreplace(lost) for c in moved.com),
-                             moved.inertia.xreplace(lost), moved.given_about)
+                             moved.inertia.xreplace(lost), moved.given_about, moved.keep_impossible)
         inertials.append(moved)
     return replace(result, inertials=tuple(inertials))

@@ -109,7 +109,7 @@ def moved_inertial(inertial: Inertial | None, T: sp.MatrixBase | None) -> Inerti
         return inertial
     moved = inertial.expressed_in(T)
     return Inertial(moved.mass, tuple(map(_tidy, moved.com)), moved.inertia.applyfunc(_tidy),  # type: ignore[arg-type]
-                    moved.given_about)
+                    moved.given_about, moved.keep_impossible)
 
 
 def transform_fields(transform: FixedTransform) -> dict[str, Any]:

@@ -389,8 +389,9 @@ def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str,
     tool = _combine(pending, list(inverse_motions(last_alignment)))
     moving = [joint for joint in path if joint.type in _MOVING]
     fixed_children: dict[str, list[tuple[str, sp.Matrix]]] = {}
-    for other in all_joints.values():
-        if other.type is TreeJointType.FIXED:
+    on_chain = {joint.name for joint in path}
+    for other in all_joints.values():  # a moving joint off the chain is held at zero: its child rides as if fixed
+        if other.type is TreeJointType.FIXED or (other.type in _MOVING and other.name not in on_chain):
             fixed_children.setdefault(other.parent, []).append((other.child, sp.Matrix(other.origin.matrix)))
     bodies = {name: link.inertial for name, link in links.items()}
     inertials = tuple(link_inertial(unit_vector(joint.axis), joint.child, bodies, fixed_children, source)

@@ -38,7 +38,7 @@ IDENTIFIERS: IdentifierRule = PYTHON_IDENTIFIERS | IdentifierRule.of("C", C_KEYW
 
 def batch_call(function: CFunction) -> str:
     """The body's call for configuration ``i`` of a batch, ``k`` of its block: inputs and output at row ``i``."""
-    inputs = tuple(f"w + i * {length}" for _, length, _ in function.inputs)
+    inputs = tuple(f"w[{k}] + i * {length}" for k, (_, length, _) in enumerate(function.inputs))
     n = len(function.angles)
     call = function.body_call("qs + i * DOF", "p", inputs, f"out + i * {function.size}", f"S + k * {n}",
                               f"C + k * {n}")

@@ -35,8 +35,8 @@ from pathlib import Path
 import sympy as sp
 
 from symjac import load_robot
-from symjac.codegen.backends.c.printer import CPrinter
 from symjac.analysis.dynamics import EARTH
+from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.dynamics import (
     lowered_bias_forces,
     lowered_coriolis_matrix,

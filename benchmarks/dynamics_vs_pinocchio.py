@@ -1,15 +1,14 @@
 r"""Generated dynamics against pinocchio, in one C++ binary: ``python benchmarks/dynamics_vs_pinocchio.py [ROBOT ...]``.
 
-For the PUMA 560 (symjac's catalog geometry, modified DH, with the inertial data of Armstrong, Khatib and Burdick as
-Corke's ``mdl_puma560akb`` lists them; link 1's published :math:`I_{zz} = 0.35` alone breaks the triangle
-inequality, so it is given :math:`I_{xx} = I_{yy} = 0.175` too), the UR5 and the Panda (example-robot-data's URDFs
+For the PUMA 560 (the catalog's, modified DH, with the inertial data of Armstrong, Khatib and Burdick its file
+carries), the UR5 and the Panda (example-robot-data's URDFs
 with their own inertial data), symjac lowers inverse dynamics, the mass matrix, the bias forces
 :math:`C\dot q + g`, the gravity torques and the Coriolis matrix (:mod:`symjac.codegen.dynamics`), and this script
 prints each as a plain C function with the project's C printer (one ``sin`` and one ``cos`` per joint, the CSE
 temporaries, the outputs); forward dynamics is :math:`M^{-1}(\tau - b)` by a Cholesky solve of the generated M.
 Pinocchio gets the same model: for the PUMA built joint by joint from symjac's link transforms and inertial data; for
 the URDF arms read from the file, with the joints off symjac's chain (the Panda's fingers) locked by
-``buildReducedModel`` (their bodies given no mass first when symjac does not lump them, as in the tests).
+``buildReducedModel``, their bodies lumped into the hand by both libraries.
 
 The program first checks that every symjac function agrees with pinocchio's (``rnea``, ``crba``,
 ``computeGeneralizedGravity``, ``rnea`` with zero acceleration, ``computeCoriolisMatrix``, ``aba``) to 1e-9
@@ -21,7 +20,6 @@ function (after CSE; a subtraction counts as an addition, a negation as nothing)
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import shutil
 import site
 import subprocess
@@ -47,7 +45,6 @@ from symjac.codegen.dynamics import (
 )
 from symjac.codegen.lower import LoweredFunction
 from symjac.kinematics.chain import Chain
-from symjac.model.inertia import Inertial
 from symjac.model.robot import Robot
 from symjac.symbolic.dag import distinct_nodes
 
@@ -62,21 +59,9 @@ FUNCTIONS: dict[str, Callable[..., LoweredFunction]] = {
     "b": lowered_bias_forces, "C": lowered_coriolis_matrix,
 }
 
-_AKB = [  # mass, centre of mass, (Ixx, Iyy, Izz) about it, in symjac's (modified DH) link frames
-    ("0", ("0", "0", "0"), ("0.175", "0.175", "0.35")),
-    ("17.4", ("0.068", "0.006", "-0.016"), ("0.130", "0.524", "0.539")),
-    ("4.8", ("0", "-0.070", "0.014"), ("0.066", "0.0125", "0.066")),
-    ("0.82", ("0", "0", "-0.019"), ("1.8e-3", "1.8e-3", "1.3e-3")),
-    ("0.34", ("0", "0", "0"), ("0.3e-3", "0.3e-3", "0.4e-3")),
-    ("0.09", ("0", "0", "0.032"), ("0.15e-3", "0.15e-3", "0.04e-3")),
-]
-
-
 def puma560_akb() -> Robot:
-    """The catalog PUMA 560 with Armstrong, Khatib and Burdick's inertial data (module docstring), exact numbers."""
-    inertials = tuple(Inertial(sp.Rational(m), tuple(sp.Rational(v) for v in c),
-                               sp.diag(*(sp.Rational(v) for v in moments))) for m, c, moments in _AKB)
-    return dataclasses.replace(load_robot("puma560"), inertials=inertials)
+    """The catalog PUMA 560, which carries Armstrong, Khatib and Burdick's inertial data (its file cites them)."""
+    return load_robot("puma560")
 
 
 def operations(lowered: LoweredFunction) -> tuple[int, int]:
@@ -129,9 +114,7 @@ def arm(name: str):  # -> (Robot, pinocchio.Model)
     robot = load_robot(file, tip_link=tip)
     full = pin.buildModelFromUrdf(file)
     chain_ids = [full.getJointId(joint.name) for joint in robot.joints]
-    others = [i for i in range(1, full.njoints) if i not in chain_ids]
-    for i in others:  # symjac holds joints off the chain at zero (their bodies unlumped, as test_dynamics_pinocchio)
-        full.inertias[i] = pin.Inertia.Zero()
+    others = [i for i in range(1, full.njoints) if i not in chain_ids]  # held at zero, their bodies lumped
     model = pin.buildReducedModel(full, others, pin.neutral(full)) if others else full
     if [model.joints[model.getJointId(j.name)].idx_q for j in robot.joints] != list(range(robot.n_joints)):
         raise SystemExit(f"{name}: pinocchio orders the joints differently")

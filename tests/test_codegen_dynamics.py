@@ -220,6 +220,18 @@ def test_every_function_agrees_with_a_numeric_newton_euler(modules, name, target
         _close(module.call("forward_dynamics", q, qdot, tau, parameters=values), qddot)
 
 
+@pytest.mark.parametrize("target", ("python", "numpy", "c"))
+@pytest.mark.parametrize("name", ("planar2r", "puma560"))
+def test_the_self_tests_potential_energy_agrees_with_a_numeric_one(modules, name, target):
+    """The self-test's V(q) (g = dV/dq) is sum_k m_k g z_k, the centres of mass from plain NumPy kinematics."""
+    module, robot = modules(name, target)
+    values = _inertials(robot.n_coordinates) if name != "puma560" else {}
+    exact = reference(robot, values)
+    for q in np.random.default_rng(7).uniform(-1.5, 1.5, (3, robot.n_coordinates)):
+        _close(module.call("_potential_energy", q, parameters=values), exact.V(q))
+        _close(module.call("_potential_energy", q, parameters={**values, "g": 2 * GRAVITY}), 2 * exact.V(q))
+
+
 @pytest.mark.parametrize("target", ("python", "numpy"))
 def test_gravity_is_a_parameter(modules, target):
     module, _ = modules("elbow", target)
@@ -254,6 +266,17 @@ def test_the_self_test_passes_and_fails_for_any_corrupted_function(modules, targ
                 generated.selftest()
         finally:
             generated._CHECKS = checks
+    if target == "casadi":
+        return
+    right = generated._potential_energy  # g = dV/dq: V tilted along q_2 by 1e-3 (a constant would go unnoticed)
+    generated._CHECKS = tuple((routine, tuple(f if f is not right else lambda q, **keywords: right(q, **keywords)
+                                              + 1e-3 * np.asarray(q, dtype=float)[..., 1] for f in functions), rows)
+                              for routine, functions, rows in checks)
+    try:
+        with pytest.raises(AssertionError, match="self-test error"):
+            generated.selftest()
+    finally:
+        generated._CHECKS = checks
 
 
 @pytest.mark.parametrize("target", COMPILED)

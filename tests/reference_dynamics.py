@@ -116,3 +116,11 @@ class NumericDynamics:
 
     def g(self, q: np.ndarray) -> np.ndarray:
         return self.tau(q, np.zeros(len(q)), np.zeros(len(q)))
+
+    def V(self, q: np.ndarray) -> float:
+        """The potential energy sum_k m_k g z_k, z_k the height of link k's centre of mass in {0}."""
+        world = frames(self.robot, np.asarray(q, dtype=float))
+        to_base = np.linalg.inv(world[1])
+        poses = [to_base @ T for T in world[1:-1]]
+        return sum(m * self.gravity * (poses[k][:3, :3] @ c + poses[k][:3, 3])[2]
+                   for k, (m, c, _) in enumerate(self.bodies, start=1))

@@ -4,9 +4,10 @@ The reference is the tests' exact numeric Newton-Euler (``reference_dynamics.Num
 {0} from the robot's frames, nothing of symjac's dynamics), at inertial parameters other than the modules' defaults
 (they are parameters of the module: the reference gets a robot whose defaults are those values) and, for the
 catalog's PUMA 560, its published numbers. Every target must agree with it to 1e-9: tau, M, g, C qdot, the bias
-forces, and forward dynamics inverting it. The UR5, read from its URDF, is compared with pinocchio. Each module's own
-self-test passes, and fails when any one of its dynamics functions is corrupted; modules are byte-deterministic,
-ruff-clean, and the C and C++ ones compile with -Wall -Wextra -Werror.
+forces, and forward dynamics inverting it; the self-test's potential energy V (g = dV/dq) too (python, numpy, c).
+The UR5, read from its URDF, is compared with pinocchio. Each module's own self-test passes, and fails when any one
+of its dynamics functions (or V) is corrupted; modules are byte-deterministic, ruff-clean, and the C and C++ ones
+compile with -Wall -Wextra -Werror.
 """
 
 from __future__ import annotations
@@ -220,6 +221,21 @@ def test_every_function_agrees_with_a_numeric_newton_euler(modules, name, target
         _close(module.call("forward_dynamics", q, qdot, tau, parameters=values), qddot)
 
 
+@pytest.mark.parametrize("target", ("python", "numpy", "c"))
+@pytest.mark.parametrize("name", sorted(ROBOTS))
+def test_the_self_tests_potential_energy_agrees_with_a_numeric_one(modules, name, target):
+    """The self-test's V(q) (g = dV/dq) is sum_k m_k g z_k, the centres of mass from plain NumPy kinematics.
+
+    The planar 2R arm moves in a horizontal plane (V constant: its centres' heights); the elbow and the PUMA do not.
+    """
+    module, robot = modules(name, target)
+    values = _inertials(robot.n_coordinates) if name != "puma560" else {}
+    exact = reference(robot, values)
+    for q in np.random.default_rng(7).uniform(-1.5, 1.5, (3, robot.n_coordinates)):
+        _close(module.call("_potential_energy", q, parameters=values), exact.V(q))
+        _close(module.call("_potential_energy", q, parameters={**values, "g": 2 * GRAVITY}), 2 * exact.V(q))
+
+
 @pytest.mark.parametrize("target", ("python", "numpy"))
 def test_gravity_is_a_parameter(modules, target):
     module, _ = modules("elbow", target)
@@ -254,6 +270,17 @@ def test_the_self_test_passes_and_fails_for_any_corrupted_function(modules, targ
                 generated.selftest()
         finally:
             generated._CHECKS = checks
+    if target == "casadi":
+        return
+    right = generated._potential_energy  # g = dV/dq: V tilted along q_2 by 1e-3 (a constant would go unnoticed)
+    generated._CHECKS = tuple((routine, tuple(f if f is not right else lambda q, **keywords: right(q, **keywords)
+                                              + 1e-3 * np.asarray(q, dtype=float)[..., 1] for f in functions), rows)
+                              for routine, functions, rows in checks)
+    try:
+        with pytest.raises(AssertionError, match="self-test error"):
+            generated.selftest()
+    finally:
+        generated._CHECKS = checks
 
 
 @pytest.mark.parametrize("target", COMPILED)

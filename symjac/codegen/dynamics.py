@@ -29,7 +29,13 @@ from symjac.analysis.dynamics.lagrange import coriolis_matrix, gravity_torques, 
 from symjac.analysis.dynamics.newton_euler import newton_euler, newton_euler_mass_matrix, recursion
 from symjac.codegen.cse import eliminate_common
 from symjac.codegen.lower import Inputs, LoweredFunction, angle_expansion
-from symjac.codegen.recursions import Trace, gravity_trace, mass_matrix_trace, newton_euler_trace
+from symjac.codegen.recursions import (
+    Trace,
+    gravity_trace,
+    mass_matrix_trace,
+    newton_euler_trace,
+    potential_energy_trace,
+)
 from symjac.codegen.request import strategy_of
 from symjac.kinematics.chain import Chain
 from symjac.kinematics.coupling import coupling_matrix
@@ -41,6 +47,7 @@ __all__ = [
     "lowered_gravity_torques",
     "lowered_inverse_dynamics",
     "lowered_mass_matrix",
+    "lowered_potential_energy",
     "numeric_gravity",
 ]
 
@@ -167,6 +174,19 @@ def lowered_bias_forces(chain: Chain, strategy: str, gravity: Gravity = EARTH) -
 def lowered_gravity_torques(chain: Chain, strategy: str, gravity: Gravity = EARTH) -> LoweredFunction:
     r"""``gravity_torques(q)``: :math:`g(q)`, n values."""
     return _torque_function(chain, strategy, gravity, False, False, ("q",), ", qdot = qddot = 0")
+
+
+@memoized()
+def lowered_potential_energy(chain: Chain, gravity: Gravity = EARTH) -> LoweredFunction:
+    r"""``_potential_energy(q)``: :math:`V(q) = -\sum_i m_i\,g_0^T p_{ci}`, a scalar (for the self-test: g = dV/dq).
+
+    One lowering whatever the strategy (the self-test differentiates it; nothing else calls it): the masses beyond
+    each joint and the first moments, traced (:func:`~symjac.codegen.recursions.potential_energy_trace`).
+    """
+    space = _Space(chain)
+    trace = Trace(space.joints, angle_expansion(space.joints))
+    V = potential_energy_trace(trace, gravity.vector)
+    return _finished(space, trace, [V], (), space.inputs("q"), "masses beyond each joint and first moments")
 
 
 @memoized(strategy=strategy_of)

@@ -34,9 +34,10 @@ _DYNAMICS = "symjac.codegen.dynamics"
 """The module of the dynamics' lowerings."""
 
 DYNAMICS_CHECKED = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "bias_forces", "gravity_torques",
-                    "forward_dynamics")
+                    "forward_dynamics", "potential_energy")
 """The dynamics' kinds, generated with ``dynamics=True`` once per module, in the order the self-test's dynamics check
-takes their functions (the quantities' kinds are in their specs; the bias forces and forward dynamics here)."""
+takes their functions (the quantities' kinds are in their specs; the bias forces, forward dynamics and the
+self-test's potential energy here)."""
 
 _DYNAMICS_OWN = (
     Generated("bias_forces", "C(q, qdot) qdot + g(q), one per {unit}.",
@@ -50,9 +51,13 @@ _DYNAMICS_OWN = (
               summary="Forward dynamics qddot = M(q)^-1 (tau - C(q, qdot) qdot - g(q))",
               details="M = L L^T by Cholesky, then two triangular solves (no inverse is formed); M is the mass "
                       "matrix ``{mass_matrix}``, C qdot + g the bias forces ``{bias_forces}``."),
+    Generated("potential_energy", "V(q), the potential energy of gravity.", scope="module", dynamics=True,
+              selftest_only=True, function="_potential_energy",
+              summary="Potential energy V(q) = -sum_i m_i g0^T p_ci (the self-test checks g = dV/dq with it)",
+              lowering=f"{_DYNAMICS}:lowered_potential_energy"),
 )
 """Code generation's own dynamics kinds: no quantity. Forward dynamics is derived (a Cholesky solve of the runtime
-from the mass matrix and the bias forces)."""
+from the mass matrix and the bias forces); the potential energy exists for the self-test only (g = dV/dq)."""
 
 _OWN = (
     Generated("kinematics", "Point position, ^0_nR and ^0_kR, row by row.", output="out", selftest_only=True,
@@ -118,7 +123,8 @@ CHECK_WORDS: Mapping[str, str] = MappingProxyType({
                     "the Jacobians and manipulabilities",
     "dynamics": "that M is symmetric positive definite, Mdot - 2C is skew (central differences of M along qdot), g "
                 "and the columns of M are inverse dynamics at rest, tau = M qddot + C qdot + g, the bias forces are "
-                "C qdot + g, and forward dynamics inverts inverse dynamics",
+                "C qdot + g, forward dynamics inverts inverse dynamics, and g is the gradient of the potential energy "
+                "(central differences)",
 })
 """What each check of the self-test (:class:`~symjac.codegen.description.Check`) checks, for docstrings."""
 

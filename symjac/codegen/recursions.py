@@ -26,7 +26,7 @@ from symjac.analysis.dynamics.bodies import joint_axis, link_bodies
 from symjac.kinematics.chain import Chain
 from symjac.symbolic.angles import AngleExpansion
 
-__all__ = ["Trace", "gravity_trace", "mass_matrix_trace", "newton_euler_trace"]
+__all__ = ["Trace", "gravity_trace", "mass_matrix_trace", "newton_euler_trace", "potential_energy_trace"]
 
 Vector = tuple[sp.Expr, sp.Expr, sp.Expr]
 Matrix3 = tuple[Vector, Vector, Vector]
@@ -237,6 +237,26 @@ def gravity_trace(trace: Trace, gravity: Sequence[sp.Expr]) -> list[sp.Expr]:
         a = accelerations[k - 1]
         tau.append(_dot(z, _cross(_add(H, _scaled(mass, r)), a)) if revolute else mass * _dot(z, a))
     return tau[::-1]
+
+
+def potential_energy_trace(trace: Trace, gravity: Sequence[sp.Expr]) -> sp.Expr:
+    r"""The potential energy :math:`V = -\sum_i m_i\,g_0^T p_{ci}` from the masses beyond each joint and first moments.
+
+    With :math:`a_k = {}^k_{k-1}R\,a_{k-1}`, :math:`a_0 = -g_0` (gravity's opposite in {k}) and :math:`M_k` the mass
+    of links k..n: :math:`V = \sum_k M_k\,a_{k-1}^T\,{}^{k-1}p_k + \sum_k a_k^T h_k` (:math:`h_k = m_k c_k`).
+    """
+    n = trace.chain.n_joints
+    a: Vector = tuple(-sp.sympify(g) for g in gravity)  # type: ignore[assignment]
+    bodies = [_body(trace, k)[:2] for k in range(1, n + 1)]
+    terms: list[sp.Expr] = []
+    masses = [sp.S.Zero] * (n + 1)
+    for k in range(n, 0, -1):
+        masses[k - 1] = masses[k] + bodies[k - 1][0]
+    for k in range(1, n + 1):
+        terms.append(trace.value(masses[k - 1]) * _dot(a, trace.offset(k - 1, k)))
+        a = trace.vector(_times(trace.rotation(k, k - 1), a))
+        terms.append(_dot(a, bodies[k - 1][1]))
+    return sp.Add(*terms)
 
 
 def _skew_product(u: Vector, v: Vector) -> Matrix3:

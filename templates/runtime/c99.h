@@ -396,13 +396,15 @@ static inline void sj_forward_dynamics(const real *M, const real *b, int n, int 
 /* A function of one configuration and two inputs (inverse dynamics: qdot, qddot; forward dynamics: qdot, tau). */
 typedef void (*sj_map_with2)(const real *q, const real *params, const real *a, const real *b, real *out);
 
-/* The dynamics against each other and central differences of M: M symmetric positive definite; Mdot - 2C skew
- * (Mdot = (M(q + h qdot) - M(q - h qdot)) / 2h); g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g;
- * tau(q, qdot, qddot) = M qddot + C qdot + g; b = C qdot + g; forward dynamics of that tau gives qddot back. */
+/* The dynamics against each other and central differences of M and V: M symmetric positive definite; Mdot - 2C
+ * skew (Mdot = (M(q + h qdot) - M(q - h qdot)) / 2h); g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g;
+ * tau(q, qdot, qddot) = M qddot + C qdot + g; b = C qdot + g; forward dynamics of that tau gives qddot back;
+ * g_j = (V(q + h e_j) - V(q - h e_j)) / 2h, V the potential energy. */
 static inline int sj_check_dynamics(int n, int size, const int *rows, sj_map_with2 inverse_dynamics,
                                     sj_map mass_matrix, sj_map_with coriolis_matrix, sj_map_with bias_forces,
-                                    sj_map gravity_torques, sj_map_with2 forward_dynamics, const real *q, real h,
-                                    real tolerance)
+                                    sj_map gravity_torques, sj_map_with2 forward_dynamics,
+                                    real (*potential_energy)(const real *q, const real *params), const real *q,
+                                    real h, real tolerance)
 {
     real M[SJ_DIM * SJ_DIM], C[SJ_DIM * SJ_DIM], above[SJ_DIM * SJ_DIM], below[SJ_DIM * SJ_DIM];
     real g[SJ_DIM], qdot[SJ_DIM], qddot[SJ_DIM], zero[SJ_DIM], unit[SJ_DIM], tau[SJ_DIM], out[SJ_DIM];
@@ -447,6 +449,12 @@ static inline int sj_check_dynamics(int n, int size, const int *rows, sj_map_wit
         for (int i = 0; i < n; i++) {
             failures += sj_differs(M[i * n + j], out[i] - g[i], tolerance);
         }
+        for (int k = 0; k < n; k++) {
+            step[k] = q[k] + (k == j ? h : 0);
+        }
+        const real V_above = potential_energy(step, NULL);
+        step[j] = q[j] - h;
+        failures += sj_differs(g[j], (V_above - potential_energy(step, NULL)) / (2 * h), tolerance);
     }
     inverse_dynamics(q, NULL, qdot, qddot, tau);
     bias_forces(q, NULL, qdot, out);

@@ -141,13 +141,15 @@ def _forward_dynamics(M: ca.SX, bias: ca.SX, tau: ca.SX, q: ca.SX) -> ca.SX:
 
 
 def _dynamics_error(functions: tuple[ca.Function, ...], q: ca.DM, qdot: ca.DM, p: ca.DM) -> float:
-    """Largest relative error of the dynamics against each other and central differences of M.
+    """Largest relative error of the dynamics against each other and central differences of M and V.
 
     M symmetric positive definite (a Cholesky factor exists); Mdot - 2C skew (Mdot: central differences of M along
     qdot); g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot + C qdot + g;
-    b = C qdot + g; forward dynamics of that tau gives qddot back.
+    b = C qdot + g; forward dynamics of that tau gives qddot back; g_j = (V(q + h e_j) - V(q - h e_j)) / 2h, V the
+    potential energy.
     """
-    inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques, forward_dynamics = functions
+    (inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques, forward_dynamics,
+     potential_energy) = functions
     n, step, error = q.numel(), 1e-6, _relative_error
     qddot = ca.DM([0.5 - 0.25 * k + 0.3 * float(qdot[k]) for k in range(n)])
     zero = ca.DM.zeros(n, 1)
@@ -161,6 +163,8 @@ def _dynamics_error(functions: tuple[ca.Function, ...], q: ca.DM, qdot: ca.DM, p
     unit = ca.DM.eye(n)
     for j in range(n):
         worst = max(worst, error(M[:, j], inverse_dynamics(q, zero, unit[:, j], p) - g))
+        slope = (potential_energy(q + step * unit[:, j], p) - potential_energy(q - step * unit[:, j], p)) / (2 * step)
+        worst = max(worst, error(g[j], slope))
     tau = inverse_dynamics(q, qdot, qddot, p)
     Cqdot = ca.mtimes(C, qdot)
     worst = max(worst, error(bias_forces(q, qdot, p), Cqdot + g), error(tau, ca.mtimes(M, qddot) + Cqdot + g))

@@ -147,13 +147,15 @@ def _forward_dynamics(M: Array, bias: Array, tau: ArrayLike) -> Array:
 def _dynamics_error(functions: tuple[Callable[..., Array], ...], q: Array, qdot: Array,
                     error: Callable[[ArrayLike, ArrayLike], float],
                     central: Callable[[Callable[[Array], Array], Array, Array], Array]) -> float:
-    """Largest relative error of the dynamics against each other and central differences of M.
+    """Largest relative error of the dynamics against each other and central differences of M and V.
 
     M symmetric positive definite (its Cholesky factor is finite); Mdot - 2C skew (Mdot: central differences of M
     along qdot); g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot + C qdot + g;
-    b = C qdot + g; forward dynamics of that tau gives qddot back.
+    b = C qdot + g; forward dynamics of that tau gives qddot back; g = dV/dq (central differences of the potential
+    energy V along each e_j).
     """
-    inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques, forward_dynamics = functions
+    (inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques, forward_dynamics,
+     potential_energy) = functions
     n = q.shape[0]
     qddot = 0.5 - 0.25 * jnp.arange(n) + 0.3 * qdot
     zero = jnp.zeros(n)
@@ -165,6 +167,8 @@ def _dynamics_error(functions: tuple[Callable[..., Array], ...], q: Array, qdot:
     unit = jnp.eye(n)
     columns = jnp.stack([inverse_dynamics(q, zero, unit[j]) for j in range(n)], axis=1)
     worst = max(worst, error(M, columns - g[:, None]))
+    slopes = jnp.stack([central(potential_energy, q, unit[j]) for j in range(n)])
+    worst = max(worst, error(g, slopes))
     tau = inverse_dynamics(q, qdot, qddot)
     worst = max(worst, error(bias_forces(q, qdot), C @ qdot + g), error(tau, M @ qddot + C @ qdot + g))
     return max(worst, error(forward_dynamics(q, qdot, tau), qddot))

@@ -189,16 +189,17 @@ def _dynamics_error(
     bias_forces: Callable[..., np.ndarray],
     gravity_torques: Callable[..., np.ndarray],
     forward_dynamics: Callable[..., np.ndarray],
+    potential_energy: Callable[..., np.ndarray],
     q: np.ndarray,
     qdot: np.ndarray,
     step: float = 1e-6,
 ) -> float:
-    """Largest relative error of the dynamics against each other and central differences of M.
+    """Largest relative error of the dynamics against each other and central differences of M and V.
 
     M symmetric and positive definite (its Cholesky factor exists); Mdot - 2C skew, Mdot = (M(q + h qdot) -
     M(q - h qdot)) / 2h; g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot +
-    C qdot + g; b = C qdot + g; forward dynamics of tau(q, qdot, qddot) gives qddot back; batched against
-    one-configuration calls.
+    C qdot + g; b = C qdot + g; forward dynamics of tau(q, qdot, qddot) gives qddot back; g_j = (V(q + h e_j) -
+    V(q - h e_j)) / 2h, V the potential energy; batched against one-configuration calls.
     """
     def error(actual: np.ndarray, expected: np.ndarray) -> float:
         return float((np.abs(actual - expected) / (1.0 + np.abs(expected))).max(initial=0.0))
@@ -219,6 +220,8 @@ def _dynamics_error(
         unit = np.zeros_like(q)
         unit[..., j] = 1.0
         worst = max(worst, error(M[..., j], inverse_dynamics(q, zero, unit) - g))
+        slope = (potential_energy(q + step * unit) - potential_energy(q - step * unit)) / (2 * step)
+        worst = max(worst, error(g[..., j], slope))
     tau = inverse_dynamics(q, qdot, qddot)
     Cqdot = np.einsum("...ij,...j->...i", C, qdot)
     worst = max(worst, error(bias_forces(q, qdot), Cqdot + g))

@@ -268,15 +268,17 @@ def _dynamics_error(
     bias_forces: Callable[..., Sequence[float]],
     gravity_torques: Callable[..., Sequence[float]],
     forward_dynamics: Callable[..., Sequence[float]],
+    potential_energy: Callable[..., float],
     q: Sequence[float],
     qdot: Sequence[float],
     step: float = 1e-6,
 ) -> float:
-    """Largest relative error of the dynamics against each other and central differences of M.
+    """Largest relative error of the dynamics against each other and central differences of M and V.
 
     M symmetric and positive definite (a Cholesky solve succeeds); Mdot - 2C skew, Mdot = (M(q + h qdot) -
     M(q - h qdot)) / 2h; g = tau(q, 0, 0); column j of M = tau(q, 0, e_j) - g; tau(q, qdot, qddot) = M qddot +
-    C qdot + g; b = C qdot + g; forward dynamics of tau(q, qdot, qddot) gives qddot back.
+    C qdot + g; b = C qdot + g; forward dynamics of tau(q, qdot, qddot) gives qddot back; g_j = (V(q + h e_j) -
+    V(q - h e_j)) / 2h, V the potential energy.
     """
     n = len(q)
     qddot = [0.5 - 0.25 * k + 0.3 * v for k, v in enumerate(qdot)]
@@ -305,6 +307,9 @@ def _dynamics_error(
         column = inverse_dynamics(q, zero, [1.0 if k == j else 0.0 for k in range(n)])
         for i in range(n):
             worst = max(worst, differs(M[i][j], column[i] - g[i]))
+        above_j = potential_energy([x + step if k == j else x for k, x in enumerate(q)])
+        below_j = potential_energy([x - step if k == j else x for k, x in enumerate(q)])
+        worst = max(worst, differs(g[j], (above_j - below_j) / (2.0 * step)))
     tau = inverse_dynamics(q, qdot, qddot)
     bias = bias_forces(q, qdot)
     for i in range(n):

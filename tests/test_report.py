@@ -373,6 +373,19 @@ def test_the_dynamics_section_shows_m_g_and_tau(rod_page):
     assert "<msub><mi>c</mi><mn>2</mn></msub>" in section  # shorthand: M12 holds L1 lc2 c2
 
 
+def test_a_part_nobody_could_read_is_named_not_printed(monkeypatch):
+    from symjac.model.io import robot_from_toml
+    from symjac.report import dynamics
+
+    robot = robot_from_toml(ROD_ARM, "rod_arm.toml")
+    assert "Mass matrix M(q)" in dynamics.dynamics_html(robot)
+    monkeypatch.setattr(dynamics, "READABLE_CHARACTERS", 60)  # longer than g, shorter than M
+    text = dynamics.dynamics_html(robot)
+    assert "Mass matrix M(q)" not in text and "Gravity torques g(q)" in text
+    assert "The mass matrix M of this arm runs to more than 60 characters" in text
+    assert "symjac codegen rod_arm --dynamics" in text
+
+
 def test_an_arm_without_inertial_data_says_which_links_lack_it():
     from symjac.report.dynamics import dynamics_html
 

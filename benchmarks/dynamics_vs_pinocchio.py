@@ -6,15 +6,19 @@ with their own inertial data), symjac lowers inverse dynamics, the mass matrix, 
 :math:`C\dot q + g`, the gravity torques and the Coriolis matrix (:mod:`symjac.codegen.dynamics`), and this script
 prints each as a plain C function with the project's C printer (one ``sin`` and one ``cos`` per joint, the CSE
 temporaries, the outputs); forward dynamics is :math:`M^{-1}(\tau - b)` by a Cholesky solve of the generated M.
+The same binary also links what users get: the ``c99`` target's source and header and the ``cpp`` target's header
+(``--dynamics``, the same strategy; their gravity is the parameter ``g`` at its default 9.81, their own
+``forward_dynamics``: the c99 one's Cholesky in C, the cpp one's Eigen's ``LLT``).
 Pinocchio gets the same model: for the PUMA built joint by joint from symjac's link transforms and inertial data; for
 the URDF arms read from the file, with the joints off symjac's chain (the Panda's fingers) locked by
 ``buildReducedModel``, their bodies lumped into the hand by both libraries.
 
-The program first checks that every symjac function agrees with pinocchio's (``rnea``, ``crba``,
+The program first checks that every symjac function (plain C, c99, cpp) agrees with pinocchio's (``rnea``, ``crba``,
 ``computeGeneralizedGravity``, ``rnea`` with zero acceleration, ``computeCoriolisMatrix``, ``aba``) to 1e-9
 relative at random states, then times each: the best of five runs of a million calls with a changing ``q``
-(``-O2``). It prints ns per call, pinocchio / symjac, and the multiplications and additions of each generated
-function (after CSE; a subtraction counts as an addition, a negation as nothing). It asserts nothing.
+(``-O2``; every output of symjac's functions passes an empty ``asm`` barrier, so none is dropped). It prints ns
+per call, pinocchio / symjac per column, and the multiplications and additions of each plain C function
+(after CSE; a subtraction counts as an addition, a negation as nothing). It asserts nothing.
 """
 
 from __future__ import annotations
@@ -34,6 +38,7 @@ import sympy as sp
 
 from symjac import load_robot
 from symjac.analysis.dynamics import EARTH
+from symjac.codegen import ModuleRequest, describe, render_files
 from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.dynamics import (
     lowered_bias_forces,
@@ -173,11 +178,17 @@ DRIVER = r"""
 #include <pinocchio/algorithm/rnea.hpp>
 #include <pinocchio/algorithm/crba.hpp>
 #include <pinocchio/algorithm/aba.hpp>
+#include "@ROBOT@.h"
+#include "@ROBOT@.hpp"
 
 constexpr int N = @N@;
 constexpr int CALLS = 1000000;
 using Clock = std::chrono::steady_clock;
 using Vector = Eigen::Matrix<double, N, 1>;
+namespace cpp = symjac::@ROBOT@;
+
+// Every output of every implementation reaches memory: the compiler may not drop the ones the timing loop ignores.
+static inline void escape(void* p) { asm volatile("" : : "g"(p) : "memory"); }
 
 @FUNCTIONS@
 
@@ -238,6 +249,13 @@ static double differs(const double* a, const double* b, int size)
     return worst / scale;
 }
 
+// worst[column][function]: the plain C functions, the c99 target, the cpp target against pinocchio
+static void compare(double (*worst)[6], int function, const double (*out)[N * N], const double* expected, int size)
+{
+    for (int column = 0; column < 3; column++)
+        worst[column][function] = std::max(worst[column][function], differs(out[column], expected, size));
+}
+
 int main()
 {
 @MODEL@
@@ -245,7 +263,7 @@ int main()
     const double params[] = {@PARAMS@ 0.0};
     std::mt19937 generator(44);
     std::uniform_real_distribution<double> uniform(-2.0, 2.0);
-    double worst[6] = {0, 0, 0, 0, 0, 0};
+    double worst[3][6] = {};
     for (int trial = 0; trial < 10; trial++) {
         Vector q, v, a;
         for (int k = 0; k < N; k++) {
@@ -253,54 +271,86 @@ int main()
             v(k) = uniform(generator);
             a(k) = uniform(generator);
         }
-        double out[N * N], expected[N * N];
-        symjac_tau(q.data(), v.data(), a.data(), params, out);
+        double out[3][N * N], expected[N * N];
+        symjac_tau(q.data(), v.data(), a.data(), params, out[0]);
+        @ROBOT@_inverse_dynamics(q.data(), nullptr, v.data(), a.data(), out[1]);
+        store(out[2], cpp::inverse_dynamics(q, v, a));
         store(expected, pinocchio::rnea(model, data, q, v, a));
-        worst[0] = std::max(worst[0], differs(out, expected, N));
-        symjac_M(q.data(), nullptr, nullptr, params, out);
+        compare(worst, 0, out, expected, N);
+        symjac_M(q.data(), nullptr, nullptr, params, out[0]);
+        @ROBOT@_mass_matrix(q.data(), nullptr, out[1]);
+        store(out[2], cpp::mass_matrix(q));
         pinocchio::crba(model, data, q);
         data.M.triangularView<Eigen::StrictlyLower>() = data.M.transpose().triangularView<Eigen::StrictlyLower>();
         store(expected, data.M);
-        worst[1] = std::max(worst[1], differs(out, expected, N * N));
-        symjac_g(q.data(), nullptr, nullptr, params, out);
+        compare(worst, 1, out, expected, N * N);
+        symjac_g(q.data(), nullptr, nullptr, params, out[0]);
+        @ROBOT@_gravity_torques(q.data(), nullptr, out[1]);
+        store(out[2], cpp::gravity_torques(q));
         store(expected, pinocchio::computeGeneralizedGravity(model, data, q));
-        worst[2] = std::max(worst[2], differs(out, expected, N));
-        symjac_b(q.data(), v.data(), nullptr, params, out);
+        compare(worst, 2, out, expected, N);
+        symjac_b(q.data(), v.data(), nullptr, params, out[0]);
+        @ROBOT@_bias_forces(q.data(), nullptr, v.data(), out[1]);
+        store(out[2], cpp::bias_forces(q, v));
         store(expected, pinocchio::rnea(model, data, q, v, Vector::Zero()));
-        worst[3] = std::max(worst[3], differs(out, expected, N));
-        symjac_C(q.data(), v.data(), nullptr, params, out);
+        compare(worst, 3, out, expected, N);
+        symjac_C(q.data(), v.data(), nullptr, params, out[0]);
+        @ROBOT@_coriolis_matrix(q.data(), nullptr, v.data(), out[1]);
+        store(out[2], cpp::coriolis_matrix(q, v));
         store(expected, pinocchio::computeCoriolisMatrix(model, data, q, v));
-        worst[4] = std::max(worst[4], differs(out, expected, N * N));
-        forward_dynamics(q.data(), v.data(), a.data(), params, out);
+        compare(worst, 4, out, expected, N * N);
+        forward_dynamics(q.data(), v.data(), a.data(), params, out[0]);
+        @ROBOT@_forward_dynamics(q.data(), nullptr, v.data(), a.data(), out[1]);
+        store(out[2], cpp::forward_dynamics(q, v, a));
         store(expected, pinocchio::aba(model, data, q, v, a));
-        worst[5] = std::max(worst[5], differs(out, expected, N));
+        compare(worst, 5, out, expected, N);
     }
-    std::printf("agree %.3e %.3e %.3e %.3e %.3e %.3e\n", worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]);
+    for (int column = 0; column < 3; column++) {
+        std::printf("agree");
+        for (int k = 0; k < 6; k++) std::printf(" %.3e", worst[column][k]);
+        std::printf("\n");
+    }
     Vector q, v, a;
     for (int k = 0; k < N; k++) { q(k) = 0.3 + 0.2 * k; v(k) = 0.5 - 0.1 * k; a(k) = 0.2 * k - 0.4; }
     volatile double sink = 0;
     double out[N * N];
     auto nudge = [&](int k) { q(0) += 1e-12 * (k & 1 ? 1 : -1); };
     const double* p = params;
-    std::printf("tau %.2f %.2f\n",
+    using Out1 = Eigen::Matrix<double, N, 1>;
+    using OutN = Eigen::Matrix<double, N, N>;
+    std::printf("tau %.2f %.2f %.2f %.2f\n",
         best_ns([&](int k) { nudge(k); sink = sink + pinocchio::rnea(model, data, q, v, a)(N - 1); }),
-        best_ns([&](int k) { nudge(k); symjac_tau(q.data(), v.data(), a.data(), p, out); sink = sink + out[0]; }));
-    std::printf("M %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); symjac_tau(q.data(), v.data(), a.data(), p, out); escape(out); }),
+        best_ns([&](int k) {
+            nudge(k); @ROBOT@_inverse_dynamics(q.data(), nullptr, v.data(), a.data(), out); escape(out); }),
+        best_ns([&](int k) { nudge(k); Out1 r = cpp::inverse_dynamics(q, v, a); escape(r.data()); }));
+    std::printf("M %.2f %.2f %.2f %.2f\n",
         best_ns([&](int k) { nudge(k); sink = sink + pinocchio::crba(model, data, q)(0, N - 1); }),
-        best_ns([&](int k) { nudge(k); symjac_M(q.data(), nullptr, nullptr, p, out); sink = sink + out[N - 1]; }));
-    std::printf("g %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); symjac_M(q.data(), nullptr, nullptr, p, out); escape(out); }),
+        best_ns([&](int k) { nudge(k); @ROBOT@_mass_matrix(q.data(), nullptr, out); escape(out); }),
+        best_ns([&](int k) { nudge(k); OutN r = cpp::mass_matrix(q); escape(r.data()); }));
+    std::printf("g %.2f %.2f %.2f %.2f\n",
         best_ns([&](int k) { nudge(k); sink = sink + pinocchio::computeGeneralizedGravity(model, data, q)(0); }),
-        best_ns([&](int k) { nudge(k); symjac_g(q.data(), nullptr, nullptr, p, out); sink = sink + out[0]; }));
+        best_ns([&](int k) { nudge(k); symjac_g(q.data(), nullptr, nullptr, p, out); escape(out); }),
+        best_ns([&](int k) { nudge(k); @ROBOT@_gravity_torques(q.data(), nullptr, out); escape(out); }),
+        best_ns([&](int k) { nudge(k); Out1 r = cpp::gravity_torques(q); escape(r.data()); }));
     const Vector zero = Vector::Zero();
-    std::printf("b %.2f %.2f\n",
+    std::printf("b %.2f %.2f %.2f %.2f\n",
         best_ns([&](int k) { nudge(k); sink = sink + pinocchio::rnea(model, data, q, v, zero)(N - 1); }),
-        best_ns([&](int k) { nudge(k); symjac_b(q.data(), v.data(), nullptr, p, out); sink = sink + out[0]; }));
-    std::printf("C %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); symjac_b(q.data(), v.data(), nullptr, p, out); escape(out); }),
+        best_ns([&](int k) { nudge(k); @ROBOT@_bias_forces(q.data(), nullptr, v.data(), out); escape(out); }),
+        best_ns([&](int k) { nudge(k); Out1 r = cpp::bias_forces(q, v); escape(r.data()); }));
+    std::printf("C %.2f %.2f %.2f %.2f\n",
         best_ns([&](int k) { nudge(k); sink = sink + pinocchio::computeCoriolisMatrix(model, data, q, v)(0, 1); }),
-        best_ns([&](int k) { nudge(k); symjac_C(q.data(), v.data(), nullptr, p, out); sink = sink + out[1]; }));
-    std::printf("fd %.2f %.2f\n",
+        best_ns([&](int k) { nudge(k); symjac_C(q.data(), v.data(), nullptr, p, out); escape(out); }),
+        best_ns([&](int k) { nudge(k); @ROBOT@_coriolis_matrix(q.data(), nullptr, v.data(), out); escape(out); }),
+        best_ns([&](int k) { nudge(k); OutN r = cpp::coriolis_matrix(q, v); escape(r.data()); }));
+    std::printf("fd %.2f %.2f %.2f %.2f\n",
         best_ns([&](int k) { nudge(k); sink = sink + pinocchio::aba(model, data, q, v, a)(N - 1); }),
-        best_ns([&](int k) { nudge(k); forward_dynamics(q.data(), v.data(), a.data(), p, out); sink = sink + *out; }));
+        best_ns([&](int k) { nudge(k); forward_dynamics(q.data(), v.data(), a.data(), p, out); escape(out); }),
+        best_ns([&](int k) {
+            nudge(k); @ROBOT@_forward_dynamics(q.data(), nullptr, v.data(), a.data(), out); escape(out); }),
+        best_ns([&](int k) { nudge(k); Out1 r = cpp::forward_dynamics(q, v, a); escape(r.data()); }));
     std::printf("sincos %.2f %.2f\n", 0.0, best_ns([&](int k) {
         nudge(k);
         double sum = 0;
@@ -311,16 +361,19 @@ int main()
 }
 """
 
+COLUMNS = ("plain C", "c99", "cpp")
 LABELS = {"tau": "inverse dynamics (rnea)", "M": "mass matrix (crba)", "g": "gravity (computeGeneralizedGravity)",
           "b": "bias forces (rnea, qdd = 0)", "C": "Coriolis matrix (computeCoriolisMatrix)",
           "fd": "forward dynamics (aba)", "sincos": "sin + cos of the joint angles"}
 
 
-def measure(name: str, strategy: str, folder: Path) -> tuple[dict[str, tuple[float, float]], dict[str, LoweredFunction],
-                                                              dict[str, float], list[float]]:
-    """Lower, print, compile and run one robot.
+def measure(name: str, strategy: str, folder: Path) -> tuple[dict[str, tuple[float, ...]],
+                                                              dict[str, LoweredFunction], dict[str, float],
+                                                              list[list[float]]]:
+    """Lower, print, generate, compile and run one robot.
 
-    Returns (pinocchio ns, symjac ns) per function, the lowered functions, the lowering seconds and the agreement.
+    Returns (pinocchio, plain C, c99, cpp) ns per function (sin + cos: (0, ns)), the lowered functions, the lowering
+    seconds and the agreement (one list of six per column: plain C, c99, cpp).
     """
     robot, model = arm(name)
     chain = Chain(robot)
@@ -331,10 +384,14 @@ def measure(name: str, strategy: str, folder: Path) -> tuple[dict[str, tuple[flo
         lowered[key] = lower(chain, strategy, numeric_gravity(EARTH)) if key in ("tau", "b", "g") else \
             lower(chain, strategy)
         seconds[key] = time.perf_counter() - start
+    for target in ("c99", "cpp"):  # the generated targets as users get them (g = 9.81 their parameters' default)
+        request = ModuleRequest(robot, target, strategy=strategy, name=name, dynamics=True)
+        for file_name, text in render_files(describe(request)).items():
+            (folder / file_name).write_text(text)
     functions = "\n".join(c_function(f"symjac_{key}", lowered[key], robot) for key in FUNCTIONS)
     params = "".join(f"{float(robot.defaults[p])!r}, " for p in robot.parameter_symbols)
     driver = (DRIVER.replace("@N@", str(robot.n_coordinates)).replace("@FUNCTIONS@", functions)
-              .replace("@MODEL@", _model_code(model)).replace("@PARAMS@", params))
+              .replace("@MODEL@", _model_code(model)).replace("@PARAMS@", params).replace("@ROBOT@", name))
     (folder / "driver.cpp").write_text(driver)
     prefix = _pinocchio_prefix()
     assert prefix is not None
@@ -342,17 +399,18 @@ def measure(name: str, strategy: str, folder: Path) -> tuple[dict[str, tuple[flo
              "-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
              "-DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION", f"-I{prefix / 'include'}",
              f"-L{prefix / 'lib'}", f"-Wl,-rpath,{prefix / 'lib'}"]
-    subprocess.run(["g++", *flags, "driver.cpp", "-o", "driver", "-lpinocchio_default", "-lm"], cwd=folder,
-                   check=True)
+    subprocess.run(["gcc", "-std=c99", "-O2", "-c", f"{name}.c", "-o", "c99.o"], cwd=folder, check=True)
+    subprocess.run(["g++", *flags, "-I.", "driver.cpp", "c99.o", "-o", "driver", "-lpinocchio_default", "-lm"],
+                   cwd=folder, check=True)
     output = subprocess.run([str(folder / "driver")], check=True, capture_output=True, text=True).stdout
-    figures: dict[str, tuple[float, float]] = {}
-    agree: list[float] = []
+    figures: dict[str, tuple[float, ...]] = {}
+    agree: list[list[float]] = []
     for line in output.splitlines():
         key, *values = line.split()
         if key == "agree":
-            agree = [float(v) for v in values]
+            agree.append([float(v) for v in values])
         else:
-            figures[key] = (float(values[0]), float(values[1]))
+            figures[key] = tuple(float(v) for v in values)
     return figures, lowered, seconds, agree
 
 
@@ -372,22 +430,27 @@ def main(argv: Sequence[str] | None = None) -> int:
             folder = Path(scratch) if args.keep is None else args.keep / name
             folder.mkdir(parents=True, exist_ok=True)
             figures, lowered, seconds, agree = measure(name, args.strategy, folder)
-        if not agree or max(agree) > 1e-9:
-            print(f"{name}: symjac and pinocchio disagree (tau, M, g, b, C, fd): {agree}", file=sys.stderr)
+        worst = max((max(column) for column in agree), default=float("inf"))
+        if len(agree) != len(COLUMNS) or worst > 1e-9:
+            print(f"{name}: symjac ({', '.join(COLUMNS)}) and pinocchio disagree (tau, M, g, b, C, fd): {agree}",
+                  file=sys.stderr)
             return 1
-        print(f"\n{name} (agree to {max(agree):.1e}; strategy {args.strategy!r})\n")
-        print("| function | pinocchio ns | symjac ns | pinocchio / symjac | symjac mul | symjac add | lowering s |")
-        print("|---|---|---|---|---|---|---|")
-        for key, (pin_ns, ours) in figures.items():
+        print(f"\n{name} (agree to {worst:.1e}; strategy {args.strategy!r})\n")
+        print("| function | pinocchio ns | plain C ns | c99 ns | cpp ns | pinocchio / plain C | pinocchio / c99 | "
+              "pinocchio / cpp | plain C mul | plain C add | lowering s |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|")
+        for key, values in figures.items():
             if key == "sincos":
-                print(f"| {LABELS[key]} | - | {ours:.0f} | - | - | - | - |")
+                print(f"| {LABELS[key]} | - | {values[1]:.0f} | - | - | - | - | - | - | - | - |")
                 continue
+            pin_ns, *ours = values
             if key in lowered:
                 mul, add = operations(lowered[key])
                 counts = f"{mul} | {add} | {seconds[key]:.1f}"
             else:
                 counts = "M, b + Cholesky | | "
-            print(f"| {LABELS[key]} | {pin_ns:.0f} | {ours:.0f} | {pin_ns / ours:.1f} | {counts} |", flush=True)
+            print(f"| {LABELS[key]} | {pin_ns:.0f} | {' | '.join(f'{ns:.0f}' for ns in ours)} | "
+                  f"{' | '.join(f'{pin_ns / ns:.1f}' for ns in ours)} | {counts} |", flush=True)
     return 0
 
 

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import html
 
+import sympy as sp
+
 from symjac.analysis.dynamics import gravity_torques, mass_matrix, newton_euler
 from symjac.analysis.dynamics.gravity import EARTH
 from symjac.errors import NoInertialDataError
@@ -29,8 +31,9 @@ READABLE_CHARACTERS = 20_000
 Panda's, with its identified numbers, about 280 000 (1.3 MB of MathML nobody reads)."""
 
 
-def _readable(matrix: object) -> bool:
-    return sum(len(str(entry)) for entry in matrix) <= READABLE_CHARACTERS  # type: ignore[attr-defined]
+def _readable(matrix: sp.MatrixBase) -> bool:
+    characters = sum(len(str(entry)) for entry in matrix)
+    return characters <= READABLE_CHARACTERS
 
 
 def dynamics_html(robot: Robot) -> str:

@@ -144,7 +144,7 @@ def placements(robot: Robot) -> list[tuple[tuple[float, ...], tuple[float, ...]]
     return found
 
 
-def _pinocchio_prefix() -> Path | None:
+def pinocchio_prefix() -> Path | None:
     for folder in site.getsitepackages():
         prefix = Path(folder) / "cmeel.prefix"
         if (prefix / "include" / "pinocchio").is_dir():
@@ -159,7 +159,7 @@ def measure(name: str, folder: Path) -> dict[str, float]:
              **render_files(describe(ModuleRequest(robot, "c99")))}
     for file_name, text in files.items():
         (folder / file_name).write_text(text)
-    prefix = _pinocchio_prefix()
+    prefix = pinocchio_prefix()
     joints = "\n".join(
         f"    parent = model.addJoint(parent, pinocchio::JointModelRZ(), pinocchio::SE3((Eigen::Matrix3d() << "
         f"{', '.join(map(repr, rotation))}).finished(), Eigen::Vector3d({', '.join(map(repr, translation))})), "
@@ -199,7 +199,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if shutil.which("g++") is None:
         raise SystemExit("g++ is needed (Debian: apt-get install g++ libeigen3-dev)")
-    if _pinocchio_prefix() is None:
+    if pinocchio_prefix() is None:
         print("pinocchio (PyPI 'pin') is not installed: its column is skipped")
     print("| robot | pinocchio ns | cpp ns | c99 ns | sin+cos ns | pinocchio / cpp | cpp / sin+cos | header -O2 s |"
           "\n|---|---|---|---|---|---|---|---|")

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import shutil
-import site
 import subprocess
 import sys
 import tempfile
@@ -35,6 +34,7 @@ from importlib import metadata
 from pathlib import Path
 
 import sympy as sp
+from cpp_vs_pinocchio import pinocchio_prefix
 
 from symjac import load_robot
 from symjac.analysis.dynamics import EARTH
@@ -88,14 +88,6 @@ def _example_robots() -> Path:
     files = metadata.distribution("example-robot-data").files or []
     marker = next(f for f in files if str(f).endswith("share/example-robot-data/package.xml"))
     return Path(str(marker.locate())).parent / "robots"
-
-
-def _pinocchio_prefix() -> Path | None:
-    for folder in site.getsitepackages():
-        prefix = Path(folder) / "cmeel.prefix"
-        if (prefix / "include" / "pinocchio").is_dir():
-            return prefix
-    return None
 
 
 def arm(name: str):  # -> (Robot, pinocchio.Model)
@@ -393,7 +385,7 @@ def measure(name: str, strategy: str, folder: Path) -> tuple[dict[str, tuple[flo
     driver = (DRIVER.replace("@N@", str(robot.n_coordinates)).replace("@FUNCTIONS@", functions)
               .replace("@MODEL@", _model_code(model)).replace("@PARAMS@", params).replace("@ROBOT@", name))
     (folder / "driver.cpp").write_text(driver)
-    prefix = _pinocchio_prefix()
+    prefix = pinocchio_prefix()
     assert prefix is not None
     flags = ["-std=c++17", "-O2", f"-I{EIGEN}", "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS",
              "-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
@@ -422,7 +414,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--strategy", default="fastest", choices=("fastest", "raw", "simplified"))
     parser.add_argument("--keep", type=Path, help="write each robot's driver.cpp into this folder and keep it")
     args = parser.parse_args(argv)
-    if shutil.which("g++") is None or _pinocchio_prefix() is None:
+    if shutil.which("g++") is None or pinocchio_prefix() is None:
         print("needs g++ and pinocchio (PyPI 'pin'): nothing measured")
         return 0
     for name in args.robots:

@@ -40,7 +40,8 @@ elif ":" in name:  # iiwa7:4: the robot's first four joints
     import dataclasses
     base, count = name.split(":")
     whole = load_robot(base)
-    robot = dataclasses.replace(whole, name=f"{base}_{count}", joints=whole.joints[:int(count)], tool=None)
+    robot = dataclasses.replace(whole, name=f"{base}_{count}", joints=whole.joints[:int(count)], tool=None,
+                                inertials=whole.inertials[:int(count)])
     gravity = Gravity()
 else:
     robot, gravity = load_robot(name), Gravity()

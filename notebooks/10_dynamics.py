@@ -62,9 +62,9 @@ OUTPUT.mkdir(parents=True, exist_ok=True)
 
 # %%
 m1, m2, lc1, lc2, I1, I2 = sp.symbols("m1 m2 lc1 lc2 I1 I2", positive=True)
-planar = load_robot("planar2r")
-L1, L2 = planar.parameter_symbols
-arm = dataclasses.replace(planar, inertials=(
+planar = load_robot("planar2r")  # its file gives each link ten symbols, m1, cx1, .., Izz2: here, our own
+L1, L2 = (parameter.symbol for parameter in planar.geometric_parameters)
+arm = dataclasses.replace(planar, parameters=planar.geometric_parameters, inertials=(
     Inertial(m1, com=(lc1 - L1, 0, 0), inertia=sp.diag(0, 0, I1)),
     Inertial(m2, com=(lc2 - L2, 0, 0), inertia=sp.diag(0, 0, I2))))
 down_y = Gravity(direction=(0, -1, 0))
@@ -177,12 +177,13 @@ fig.savefig(OUTPUT / "10_torque_parts.png", dpi=100)
 # %% [markdown]
 # ## The 3R arm, with every inertial parameter a symbol
 #
-# `with_symbolic_inertials` gives each link the ten parameters $m_i$, $c_{xi}, c_{yi}, c_{zi}$ (centre of mass in
-# $\{i\}$) and $I_{xx\,i}, \dots, I_{zz\,i}$ (inertia about the centre of mass, axes of $\{i\}$). The two methods
-# still agree exactly; only the $z$-axis moments and the in-plane centre coordinates survive in a planar arm.
+# The catalog's planar 3R arm, like every catalog arm without published data, gives each link the ten parameters
+# $m_i$, $c_{xi}, c_{yi}, c_{zi}$ (centre of mass in $\{i\}$) and $I_{xx\,i}, \dots, I_{zz\,i}$ (inertia about the
+# centre of mass, axes of $\{i\}$); `with_symbolic_inertials` does the same for any robot. The two methods still
+# agree exactly; only the $z$-axis moments and the in-plane centre coordinates survive in a planar arm.
 
 # %%
-arm3 = with_symbolic_inertials(load_robot("planar3r"))
+arm3 = load_robot("planar3r")
 tau3_newton_euler = newton_euler(arm3, down_y).torques
 tau3_lagrange = euler_lagrange(arm3, down_y)
 check(tau3_newton_euler, tau3_lagrange, arm3)

@@ -62,8 +62,8 @@ def agrees_with_python_target(compiled: CompiledModule, robot, samples: int = 20
     """Every function of ``compiled`` equals the python target's to 1e-12, with default and with other parameters."""
     reference = python_module(robot)
     n = robot.n_coordinates
-    names = [p.name for p in robot.parameters]
-    defaults = np.array([float(p.default) for p in robot.parameters])
+    names = [p.name for p in robot.geometric_parameters]
+    defaults = np.array([float(p.default) for p in robot.geometric_parameters])
     rng = np.random.default_rng(7)
     for sample in range(samples):
         q = rng.uniform(-np.pi, np.pi, n)

@@ -80,9 +80,14 @@ def test_steps_print_every_quantity_of_every_link(cli):
     assert "c₁₂" in pretty  # textbook shorthand
 
 
-def test_a_robot_without_inertial_data_says_which_links(cli):
-    line = cli.one_line_error("dynamics", "planar2r")
-    assert "planar2r: links 1, 2 have no inertial data" in line and "--symbolic-inertials" in line
+def test_a_robot_without_inertial_data_says_which_links(cli, tmp_path):
+    bare = tmp_path / "bare.toml"
+    bare.write_text('name = "bare"\nconvention = "standard"\n[[joints]]\ntype = "revolute"\na = 1\n'
+                    '[[joints]]\ntype = "revolute"\na = 1\n', encoding="utf-8")
+    line = cli.one_line_error("dynamics", str(bare))
+    assert "bare: links 1, 2 have no inertial data" in line and "--symbolic-inertials" in line
+    # the catalog's planar2r has symbolic parameters of its own: the option changes nothing
+    assert cli.json("dynamics", "planar2r", "--mass-matrix") == cli.json(*ARM, "--mass-matrix")
 
 
 @pytest.mark.parametrize(("option", "message"), [

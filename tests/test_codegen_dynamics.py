@@ -29,7 +29,7 @@ from symjac.cli.main import main
 from symjac.codegen import ModuleRequest, describe, render_files
 from symjac.errors import NoInertialDataError
 from symjac.model.inertial_parameters import with_symbolic_inertials
-from symjac.model.io import load_robot
+from symjac.model.io import load_robot, robot_to_toml
 from symjac.model.robot import Parameter
 
 REPO = Path(__file__).resolve().parent.parent
@@ -305,10 +305,13 @@ def test_without_the_option_nothing_changes():
     assert "inverse_dynamics" not in text and "cholesky" not in text.lower() and '"g":' not in text
 
 
-def test_a_robot_without_inertial_data_is_refused_naming_its_links(capsys):
+def test_a_robot_without_inertial_data_is_refused_naming_its_links(capsys, tmp_path):
+    planar = load_robot("planar2r")
+    bare = dataclasses.replace(planar, parameters=planar.geometric_parameters, inertials=())
     with pytest.raises(NoInertialDataError, match="links 1, 2 have no inertial data"):
-        describe(ModuleRequest(load_robot("planar2r"), "python", dynamics=True))
-    assert main(["codegen", "planar2r", "--dynamics"]) != 0
+        describe(ModuleRequest(bare, "python", dynamics=True))
+    (tmp_path / "bare.toml").write_text(robot_to_toml(bare), encoding="utf-8")
+    assert main(["codegen", str(tmp_path / "bare.toml"), "--dynamics"]) != 0
     error = capsys.readouterr().err.strip()
     assert "links 1, 2 have no inertial data" in error and len(error.splitlines()) == 1
     named_g = robot_from_mapping({"name": "arm", "convention": "standard", "parameters": {"g": 1.0},

@@ -150,7 +150,7 @@ def test_the_description_carries_no_chain_and_describe_takes_a_request():
     description = describe(ModuleRequest(robot, "python"))
     assert "chain" not in ModuleDescription.__dataclass_fields__
     assert description.coordinate_symbols == tuple(robot.q)
-    assert description.parameter_symbols == tuple(robot.parameter_symbols)
+    assert description.parameter_symbols == tuple(p.symbol for p in robot.geometric_parameters)
     with pytest.warns(DeprecationWarning, match="ModuleRequest"):
         old = describe(robot, "python")
     assert old == description

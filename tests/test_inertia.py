@@ -25,6 +25,7 @@ from symjac.model.conventions import file_inertials, with_file_inertials
 from symjac.model.inertia import Inertial, combined_inertial, inertial_problem, symbolic_inertial
 from symjac.model.inertial_parameters import with_symbolic_inertials
 from symjac.model.io import robot_from_toml, robot_to_toml
+from symjac.model.robot import Robot
 from symjac.model.robot_file import robot_from_mapping, robot_to_mapping
 
 # --- independent numeric references -------------------------------------------------------------------------------
@@ -205,8 +206,14 @@ def sample_inertials(n: int, seed: int) -> list[Inertial]:
     return result
 
 
-ROBOTS = {"standard": lambda: load_robot("planar2r"), "modified": lambda: load_robot("planar3r"),
-          "poe": lambda: load_robot("ur5_poe"), "general": lambda: robot_from_toml(GENERAL, "bent.toml")}
+def _bare(name: str) -> Robot:
+    """A catalog robot without its symbolic inertial parameters: links of unknown data."""
+    robot = load_robot(name)
+    return replace(robot, parameters=robot.geometric_parameters, inertials=())
+
+
+ROBOTS = {"standard": lambda: _bare("planar2r"), "modified": lambda: _bare("planar3r"),
+          "poe": lambda: _bare("ur5_poe"), "general": lambda: robot_from_toml(GENERAL, "bent.toml")}
 
 
 @pytest.mark.parametrize("convention", list(ROBOTS))
@@ -361,15 +368,18 @@ def test_file_errors_name_the_file_and_the_link(inertial: object, message: str) 
 
 
 def test_robot_checks_inertials_it_is_given() -> None:
-    robot = load_robot("planar2r")
-    with pytest.raises(RobotFileError, match=r"planar2r\.toml, joint 2, field 'inertial': link 2: the mass -1"):
+    robot = robot_from_mapping({"name": "two", "convention": "standard", "parameters": {"L": 1},
+                                "joints": [ROW, ROW]}, source="two.toml")
+    with pytest.raises(RobotFileError, match=r"two\.toml, joint 2, field 'inertial': link 2: the mass -1"):
         with_file_inertials(robot, [None, Inertial(-1)])
     with pytest.raises(RobotFileError, match=r"3 inertial entries for 2 links"):
         replace(robot, inertials=(None, None, Inertial(1)))
     assert robot.inertials == (None, None)
     assert replace(robot, joints=robot.joints[:1]).inertials == (None,)  # nothing known: one None per link
+    once = with_symbolic_inertials(robot, links=[1])
+    assert with_symbolic_inertials(once, links=[1]) == once  # symbolic already: kept, defaults and all
     with pytest.raises(RobotFileError, match=r"link 1: the parameter m1 exists already"):
-        with_symbolic_inertials(with_symbolic_inertials(robot, links=[1]), links=[1])
+        with_symbolic_inertials(replace(once, inertials=(None, None)), links=[1])
 
 
 @pytest.mark.parametrize("name", marked(["planar2r", "planar3r"]))

@@ -16,8 +16,9 @@ from symjac.analysis.singularity.sets import condition_samples
 from symjac.analysis.spaces import numeric_jacobian
 from symjac.cli.main import main
 from symjac.kinematics.chain import as_chain
+from symjac.symbolic.layout import nested_expr
 from symjac.symbolic.trigfactor import trig_factor_list
-from symjac.symbolic.trigpoly import image_of, nested_expr
+from symjac.symbolic.trigpoly import image_of
 
 t = sp.symbols("theta1:8", real=True)
 s = [sp.sin(x) for x in t]

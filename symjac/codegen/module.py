@@ -152,20 +152,22 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
     symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()
+    # symbolic inertial parameters are arguments of dynamics modules only
+    parameters = model.parameters if request.dynamics else model.geometric_parameters
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
         n_joints=model.n_joints, n_coordinates=model.n_coordinates,
         coordinates=tuple((c.name, kind.value) for c, kind in zip(model.q, model.coordinate_types, strict=True)),
         coupling=coupling_lines(chain),
-        parameters=(*((p.name, float(float_literal(p.default))) for p in model.parameters), *gravity),
+        parameters=(*((p.name, float(float_literal(p.default))) for p in parameters), *gravity),
         functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
         rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration or request.dynamics else (),
         accelerations=tuple(s.name for s in model.coordinate_accelerations) if request.dynamics else (),
         coordinate_symbols=tuple(model.q),
-        parameter_symbols=(*model.parameter_symbols, *((GRAVITY_SYMBOL,) if symbolic_gravity else ())),
+        parameter_symbols=(*(p.symbol for p in parameters), *((GRAVITY_SYMBOL,) if symbolic_gravity else ())),
         derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
         checks=self_checks(infos, checked),
         request_lines=request_lines(infos),

@@ -19,8 +19,9 @@ from symjac.model.conventions import carried_inertials, plugin
 from symjac.model.conventions.dh import DHPlacement
 from symjac.model.conventions.standard import modified_from_standard, standard_from_modified
 from symjac.model.ends import last_frame
+from symjac.model.exact_transforms import fixed_transform_from_matrix
 from symjac.model.expressions import snap_angle
-from symjac.model.robot import Convention, Joint, Robot, fixed_transform_from_matrix
+from symjac.model.robot import Convention, Joint, Robot
 from symjac.symbolic.nested import inline, substitute
 from symjac.symbolic.transforms import homogeneous, inverse_transform
 

@@ -32,13 +32,12 @@ import sympy as sp
 
 from symjac.errors import RobotFileError
 from symjac.model.coordinates import Coupling, acceleration_symbol, coupling_problem, rate_symbol
-from symjac.model.expressions import snap_angle
 from symjac.model.hashing import cached_hash
 from symjac.model.inertia import Inertial, inertial_problem
 from symjac.symbolic.transforms import homogeneous, rotation_rpy
 
 __all__ = ["VELOCITY_NAMES", "WRENCH_NAMES", "Convention", "FixedTransform", "Joint", "JointType", "Parameter",
-           "Placement", "Robot", "fixed_transform_from_matrix", "reserved_names", "unit_vector"]
+           "Placement", "Robot", "reserved_names", "unit_vector"]
 
 WRENCH_NAMES: tuple[str, ...] = ("f_x", "f_y", "f_z", "n_x", "n_y", "n_z")
 """The components of a symbolic wrench (:func:`symjac.wrench_symbols`): force first, then moment."""
@@ -109,10 +108,14 @@ class JointType(StrEnum):
 
 @dataclass(frozen=True)
 class Parameter:
-    """A named constant of the robot (a length or an angle) with its exact numeric default."""
+    """A named constant of the robot with its exact numeric default.
+
+    ``inertial`` marks the symbolic inertial ones (``m2``, ``Ixx2``, ...), which only the dynamics read.
+    """
 
     name: str
     default: sp.Rational
+    inertial: bool = False
 
     @property
     def symbol(self) -> sp.Symbol:
@@ -362,6 +365,11 @@ class Robot:
         return tuple(parameter.symbol for parameter in self.parameters)
 
     @property
+    def geometric_parameters(self) -> tuple[Parameter, ...]:
+        """The parameters kinematics may read: all but the symbolic inertial ones (:attr:`Parameter.inertial`)."""
+        return tuple(parameter for parameter in self.parameters if not parameter.inertial)
+
+    @property
     def defaults(self) -> dict[sp.Symbol, sp.Rational]:
         """Exact numeric default of every parameter, keyed by symbol (for ``expr.subs(robot.defaults)``)."""
         return {parameter.symbol: parameter.default for parameter in self.parameters}
@@ -392,29 +400,3 @@ def reserved_names(joint_types: Sequence[JointType]) -> dict[str, str]:
                 reserved[probe.variable.name] = ("taken by a joint variable (symjac names the variable of revolute "
                                                  "joint i theta<i>, of prismatic joint i d<i>)")
     return reserved
-
-
-def fixed_transform_from_matrix(T: sp.MatrixBase) -> FixedTransform:
-    r"""Write an exact rigid transform as ``xyz``/``rpy`` when its roll, pitch and yaw are exact, else as a matrix.
-
-    Examples
-    --------
-    >>> from symjac.symbolic.transforms import rotation
-    >>> fixed_transform_from_matrix(homogeneous(rotation("x", sp.pi / 2), sp.Matrix([1, 0, 0]))).rpy
-    (pi/2, 0, 0)
-    """
-    R = sp.Matrix(T[:3, :3]).applyfunc(lambda e: sp.radsimp(sp.nsimplify(e) if e.is_Float else e))
-    position = tuple(sp.radsimp(sp.expand(e)) for e in T[:3, 3])
-    if all(e.is_number for e in R):
-        sin_pitch = -R[2, 0]
-        if sin_pitch == 1 or sin_pitch == -1:
-            angles = (sp.atan2(-R[1, 2], R[1, 1]), sp.pi / 2 * sin_pitch, sp.S.Zero)
-        else:
-            angles = (sp.atan2(R[2, 1], R[2, 2]), sp.asin(sin_pitch), sp.atan2(R[1, 0], R[0, 0]))
-        snapped = tuple(snap_angle(sp.Rational(float(a))) if a.has(sp.atan2, sp.asin, sp.atan) else a
-                        for a in angles)
-        if all(not a.has(sp.atan2, sp.asin, sp.atan) for a in snapped):
-            difference = rotation_rpy(*snapped) - R
-            if all(sp.radsimp(sp.expand(e)) == 0 for e in difference):
-                return FixedTransform(xyz=position, rpy=snapped)  # type: ignore[arg-type]
-    return FixedTransform(given_matrix=sp.ImmutableMatrix(homogeneous(R, sp.Matrix(position))))

@@ -27,6 +27,7 @@ from symjac.model.conventions.base import transform_fields
 from symjac.model.coordinates import Coupling
 from symjac.model.expressions import exact_number, expression_text, name_problem, parse_expression
 from symjac.model.inertia import Inertial, inertial_from_table, inertial_problem, inertial_table
+from symjac.model.inertial_parameters import placeholder_defaults, symbolic_links, symbolic_where_missing
 from symjac.model.robot import FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
 
 __all__ = ["robot_from_mapping", "robot_to_mapping"]
@@ -34,7 +35,7 @@ __all__ = ["robot_from_mapping", "robot_to_mapping"]
 _ROTATION_ROUNDING = 2e-5  # how far from a rotation a file's matrix may be (6 decimals: about 5e-6); kept as given
 
 
-_TOP_KEYS = {"name", "description", "convention", "angle_unit", "parameters", "joints", "base", "tool"}
+_TOP_KEYS = {"name", "description", "convention", "angle_unit", "parameters", "joints", "base", "tool", "inertials"}
 _TRANSFORM_KEYS = {"xyz", "rpy", "matrix"}
 
 
@@ -46,7 +47,8 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     data : mapping
         Keys ``name``, ``convention`` and ``joints`` (required), ``description``, ``angle_unit`` (``"rad"``, the
         default, or ``"deg"`` for alpha, revolute theta, rpy and revolute limits), ``parameters``, ``base``,
-        ``tool``. See the README for the full format.
+        ``tool``, ``inertials`` (``"symbolic"``: links without inertial data get symbolic inertial parameters,
+        :func:`~symjac.model.inertial_parameters.symbolic_where_missing`). See the README for the full format.
     source : str
         Where the data came from, used in error messages.
 
@@ -162,19 +164,13 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
     if spec.owns_tool:
         transforms["tool"] = spec.tool(joints, settings)
 
-    robot = Robot(
-        name=name,
-        convention=convention,
-        joints=tuple(joints),
-        parameters=parameters,
-        description=description,
-        base=transforms.get("base"),
-        tool=transforms.get("tool"),
-        source=source,
-        coupling=coupling,
-        angle_unit=unit,
-    )
-    return robot if all(i is None for i in inertials) else with_file_inertials(robot, inertials)
+    robot = Robot(name=name, convention=convention, joints=tuple(joints), parameters=parameters,
+                  description=description, base=transforms.get("base"), tool=transforms.get("tool"), source=source,
+                  coupling=coupling, angle_unit=unit)
+    robot = robot if all(i is None for i in inertials) else with_file_inertials(robot, inertials)
+    if data.get("inertials", "symbolic") != "symbolic":
+        raise fail(f"'inertials' can only be \"symbolic\", got {data['inertials']!r}", field="inertials")
+    return symbolic_where_missing(robot) if "inertials" in data else robot
 
 
 def _inertial(table: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
@@ -383,19 +379,25 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
     if robot.description:
         data["description"] = robot.description
     data["convention"] = robot.convention.value
-    if robot.parameters:
-        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in robot.parameters}
+    symbolic = symbolic_links(robot)
+    if any(parameter.inertial for parameter in robot.parameters):
+        data["inertials"] = "symbolic"
+    # a link left to ``"symbolic"`` needs only the defaults that are not the placeholder's
+    placeholders = placeholder_defaults(symbolic)
+    written = [p for p in robot.parameters if placeholders.get(p.name, p.default + 1) != p.default]
+    if written:
+        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in written}
     spec = plugin(robot.convention)
     data.update(spec.write_settings(robot))
     joints = []
     written = zip(robot.joints, _written_values(robot), file_inertials(robot), strict=True)
-    for joint, value, inertial in written:
+    for link, (joint, value, inertial) in enumerate(written, start=1):
         row: dict[str, Any] = {"type": joint.type.value, **spec.write(joint)}
         if value != joint.variable:
             row["coupled"] = expression_text(value)
         if joint.limits is not None:
             row["limits"] = [expression_text(limit) for limit in joint.limits]
-        if inertial is not None:
+        if inertial is not None and link not in symbolic:
             row["inertial"] = inertial_table(inertial)
         joints.append(row)
     data["joints"] = joints

@@ -30,8 +30,9 @@ from sympy.polys.rings import PolyElement
 
 from symjac.progress import report
 from symjac.symbolic.angles import AngleBasis
+from symjac.symbolic.layout import expanded_expr, nested_expr
 from symjac.symbolic.nested import has_intermediates, named
-from symjac.symbolic.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, product_image
+from symjac.symbolic.trigpoly import TrigImage, image_of, product_image
 
 __all__ = ["is_identity", "printed_ops", "simplify_expr", "simplify_matrix", "simplify_product", "trig_normal_form"]
 

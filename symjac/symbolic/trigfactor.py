@@ -28,8 +28,9 @@ from typing import Any
 import sympy as sp
 from sympy.polys.rings import PolyElement
 
+from symjac.symbolic.layout import nested_expr
 from symjac.symbolic.simplify import printed_ops
-from symjac.symbolic.trigpoly import TrigImage, nested_expr, reduce_image
+from symjac.symbolic.trigpoly import TrigImage, reduce_image
 
 __all__ = ["FACTOR_UNREDUCED_TERMS", "SPLIT_TERMS", "compact_expr", "determinant_image", "rewrite_square",
            "trig_factor_list"]
@@ -50,7 +51,8 @@ def determinant_image(matrix: Sequence[Sequence[PolyElement]], image: TrigImage,
     Examples
     --------
     >>> from symjac.symbolic.angles import AngleBasis
-    >>> from symjac.symbolic.trigpoly import image_of, expanded_expr
+    >>> from symjac.symbolic.layout import expanded_expr
+    >>> from symjac.symbolic.trigpoly import image_of
     >>> t = sp.Symbol("theta1", real=True)
     >>> image, p = image_of([sp.cos(t), -sp.sin(t), sp.sin(t), sp.cos(t)], AngleBasis.of([t]))
     >>> expanded_expr(determinant_image([p[:2], p[2:]], image), image)

@@ -4,7 +4,7 @@ Every :math:`\sin`/:math:`\cos` of a joint-angle combination is expanded in an a
 :math:`\cos(\sum_j m_j\psi_j) + i\sin(\sum_j m_j\psi_j) = \prod_j (C_j + i S_j)^{m_j}`, with :math:`S_j, C_j`
 independent generators of a sparse polynomial ring over the rationals. Reducing modulo :math:`S_j^2 + C_j^2 - 1`
 (:func:`reduce_image`; the generators form a Groebner basis) gives a *unique normal form*.
-:mod:`symjac.symbolic.simplify` lays normal forms out for people; determinants and singular factors are computed on the
+:mod:`symjac.symbolic.layout` lays normal forms out for people; determinants and singular factors are computed on the
 image directly.
 """
 
@@ -26,7 +26,7 @@ from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.nested import Intermediate
 from symjac.symbolic.size import current_term_limit
 
-__all__ = ["TrigImage", "expanded_expr", "image_of", "nested_expr", "product_image", "reduce_image"]
+__all__ = ["TrigImage", "image_of", "product_image", "reduce_image"]
 
 
 @dataclass
@@ -42,6 +42,9 @@ class TrigImage:
     atoms: list[sp.Expr]
     relations: list[tuple[int, int]] = field(default_factory=list)  # (index of sqrt(n) generator, n)
     _back: dict[int, sp.Expr] = field(default_factory=dict, repr=False)
+    #: Expressions already laid out from this image, by layout (:mod:`symjac.symbolic.layout`): sub-sums met again
+    #: are built once.
+    layouts: dict[str, dict[Any, Any]] = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def angle_count(self) -> int:
@@ -162,6 +165,7 @@ def image_of(exprs: Sequence[sp.Expr], basis: AngleBasis) -> tuple[TrigImage, li
 
     Examples
     --------
+    >>> from symjac.symbolic.layout import expanded_expr
     >>> t = sp.Symbol("theta1", real=True)
     >>> image, (poly,) = image_of([sp.cos(2 * t)], AngleBasis.of([t]))
     >>> expanded_expr(poly, image)
@@ -267,6 +271,7 @@ def product_image(
 
     Examples
     --------
+    >>> from symjac.symbolic.layout import expanded_expr
     >>> t = sp.Symbol("theta1", real=True)
     >>> R = sp.Matrix([[sp.cos(t), -sp.sin(t)], [sp.sin(t), sp.cos(t)]])
     >>> image, polys, shape = product_image([R.T, R], AngleBasis.of([t]))
@@ -350,67 +355,3 @@ def reduce_image(poly: PolyElement, image: TrigImage) -> PolyElement:
             key = tuple(reduced)
             terms[key] = terms.get(key, zero) + coefficient * factor
     return image.ring_and_gens[0].from_dict({m: c for m, c in terms.items() if c})
-
-
-def _monomial_expr(monomial: tuple[int, ...], image: TrigImage) -> sp.Expr:
-    return sp.Mul(*[image.back(i) ** e for i, e in enumerate(monomial) if e])
-
-
-def _coefficient_expr(coefficient: Any) -> sp.Rational:
-    return sp.Rational(int(coefficient.numerator), int(coefficient.denominator))
-
-
-def expanded_expr(poly: PolyElement, image: TrigImage) -> sp.Expr:
-    """A polynomial of the image as a SymPy sum of monomials."""
-    return sp.Add(*[_coefficient_expr(c) * _monomial_expr(m, image) for m, c in poly.terms()])
-
-
-def nested_expr(poly: PolyElement, image: TrigImage) -> sp.Expr:
-    """A polynomial of the image as a nested SymPy sum (greedy Horner, see :mod:`symjac.symbolic.simplify`)."""
-    sparse = [({i: e for i, e in enumerate(m) if e}, c) for m, c in poly.terms()]
-    return _nest(sparse, image)
-
-
-Sparse = dict[int, int]  # a monomial as {generator index: exponent}, exponents positive
-
-
-def _sparse_term(monomial: Sparse, coefficient: Any, image: TrigImage) -> sp.Expr:
-    return _coefficient_expr(coefficient) * sp.Mul(*[image.back(i) ** e for i, e in sorted(monomial.items())])
-
-
-def _nest(terms: list[tuple[Sparse, Any]], image: TrigImage) -> sp.Expr:
-    """Greedy multivariate Horner: factor out the generator shared by most terms, recurse on both parts.
-
-    Monomials are sparse (a ring has a generator per parameter, a term uses a few), and the parts outside each
-    factored generator are handled in a loop and summed once at the end rather than added to the sum of the rest
-    one by one (which re-sorted that growing sum at every step). A SymPy sum is canonical: the result is the same.
-    """
-    summands: list[sp.Expr] = []
-    while terms:
-        counts: dict[int, int] = {}
-        for monomial, _ in terms:
-            for i in monomial:
-                counts[i] = counts.get(i, 0) + 1
-        best = max(counts, key=lambda i: (counts[i], -i), default=None)
-        if len(terms) <= 1 or best is None or counts[best] < 2:
-            summands += [_sparse_term(m, c, image) for m, c in terms]
-            break
-        inside: list[tuple[Sparse, Any]] = []
-        outside: list[tuple[Sparse, Any]] = []
-        for monomial, coefficient in terms:
-            if best in monomial:
-                reduced = dict(monomial)
-                if reduced[best] > 1:
-                    reduced[best] -= 1
-                else:
-                    del reduced[best]
-                inside.append((reduced, coefficient))
-            else:
-                outside.append((monomial, coefficient))
-        inner = _nest(inside, image)
-        factor = image.back(best)
-        # keep a leading minus outside the parentheses: -c1*(x + y) rather than c1*(-x - y)
-        negated = isinstance(inner, sp.Add) and inner.could_extract_minus_sign()
-        summands.append(-(factor * (-inner)) if negated else factor * inner)
-        terms = outside
-    return sp.Add(*summands)

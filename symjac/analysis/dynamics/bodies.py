@@ -36,12 +36,14 @@ def link_bodies(chain: Chain) -> tuple[Inertial, ...]:
 
     Examples
     --------
-    >>> from symjac import load_robot
+    >>> from symjac import robot_from_mapping
     >>> from symjac.kinematics.chain import chain_of
-    >>> link_bodies(chain_of(load_robot("planar2r")))
+    >>> arm = robot_from_mapping({"name": "arm", "convention": "standard",
+    ...                           "joints": [{"type": "revolute", "a": 1}, {"type": "revolute", "a": 1}]})
+    >>> link_bodies(chain_of(arm))
     Traceback (most recent call last):
     ...
-    symjac.errors.NoInertialDataError: planar2r: links 1, 2 have no inertial data (mass, centre of mass, inertia); ...
+    symjac.errors.NoInertialDataError: arm: links 1, 2 have no inertial data (mass, centre of mass, inertia); ...
     """
     robot = chain.robot
     inertials = robot.inertials  # one entry per link (None where unknown)

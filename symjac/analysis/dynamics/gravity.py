@@ -99,8 +99,9 @@ def dynamics_defaults(robot: Robot, gravity: Gravity = EARTH) -> dict[sp.Symbol,
     Examples
     --------
     >>> from symjac import load_robot
-    >>> sorted(dynamics_defaults(load_robot("planar2r")).items(), key=str)
-    [(L1, 1/2), (L2, 2/5), (g, 981/100)]
+    >>> defaults = {str(symbol): value for symbol, value in dynamics_defaults(load_robot("planar2r")).items()}
+    >>> defaults["L1"], defaults["m2"], defaults["g"], len(defaults)  # lengths, 10 inertial parameters a link, g
+    (1/2, 1, 981/100, 23)
     """
     check_gravity(robot, gravity)
     return {**robot.defaults, **gravity.defaults}

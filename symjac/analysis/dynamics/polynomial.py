@@ -21,7 +21,8 @@ from sympy.polys.rings import PolyElement
 
 from symjac.analysis.dynamics.bodies import joint_axis, link_bodies
 from symjac.kinematics.chain import Chain
-from symjac.symbolic.trigpoly import TrigImage, image_of, nested_expr, reduce_image
+from symjac.symbolic.layout import nested_expr
+from symjac.symbolic.trigpoly import TrigImage, image_of, reduce_image
 
 __all__ = ["PolynomialSteps", "christoffel_coriolis", "polynomial_recursion"]
 

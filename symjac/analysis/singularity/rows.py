@@ -124,11 +124,11 @@ class _Evaluator:
         self.chain, self.point, self.n = chain, point, chain.robot.n_coordinates
         robot = chain.robot
         draw = random.Random(20261127)
-        self.arguments = [*robot.q, *(p.symbol for p in robot.parameters)]
-        typical = max((abs(float(p.default)) for p in robot.parameters), default=1.0) or 1.0
+        self.arguments = [*robot.q, *(p.symbol for p in robot.geometric_parameters)]
+        typical = max((abs(float(p.default)) for p in robot.geometric_parameters), default=1.0) or 1.0
         self.points = [[draw.uniform(-math.pi, math.pi) for _ in robot.q]
                        + [float(p.default) * draw.uniform(0.8, 1.2) + draw.uniform(-0.05, 0.05) * typical
-                          for p in robot.parameters] for _ in range(_SAMPLES)]
+                          for p in robot.geometric_parameters] for _ in range(_SAMPLES)]
         self._symbolic: dict[Frame, sp.Matrix] = {}
         self._numeric: dict[Frame, list[np.ndarray]] = {}
 

@@ -148,13 +148,13 @@ class _Sampler:
         self.project = project  # points the branch formulas cannot place are projected onto the conditions
         self.angles = [kind is not JointType.PRISMATIC for kind in robot.coordinate_types]
         self.variables = list(robot.q)
-        self.parameters = [p.symbol for p in robot.parameters]
+        self.parameters = [p.symbol for p in robot.geometric_parameters]
         arguments = [*self.variables, *self.parameters]
         self.generator = np.random.default_rng(seed)
         joint_factors = [[f for f, _ in minor.factors if f.free_symbols & set(self.variables)] for minor in minors]
         self.minor_factors = [[_compiled(f, tuple(arguments)) for f in fs] for fs in joint_factors]
         self.arguments = arguments
-        self.defaults = np.array([float(p.default) for p in robot.parameters])
+        self.defaults = np.array([float(p.default) for p in robot.geometric_parameters])
         q, p = self.random_points(64)
         with np.errstate(all="ignore"):
             self.scales = [[_median_size(g, q, p) for g in gs] for gs in self.minor_factors]

@@ -22,7 +22,8 @@ import sympy as sp
 from symjac.kinematics.chain import Chain, as_chain
 from symjac.model.robot import JointType, Robot
 from symjac.symbolic.angles import AngleBasis
-from symjac.symbolic.trigpoly import TrigImage, expanded_expr, image_of, nested_expr, reduce_image
+from symjac.symbolic.layout import expanded_expr, nested_expr
+from symjac.symbolic.trigpoly import TrigImage, image_of, reduce_image
 
 __all__ = ["Solution", "alternative_solutions", "branch_solutions", "nonnegative_condition", "solution_sample",
            "solve_factor"]

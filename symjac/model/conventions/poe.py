@@ -32,6 +32,7 @@ from symjac.model.bounds import size_problem
 from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields, transform_fields
 from symjac.model.conventions.general import GENERAL, GeneralPlacement
 from symjac.model.conventions.rounding import short, unit, zero_pitch
+from symjac.model.exact_transforms import fixed_transform_from_matrix
 from symjac.model.expressions import exact_number, expression_text
 from symjac.model.robot import (
     Convention,
@@ -40,7 +41,6 @@ from symjac.model.robot import (
     JointType,
     Placement,
     Robot,
-    fixed_transform_from_matrix,
 )
 from symjac.symbolic.nested import has_intermediates, inline
 from symjac.symbolic.transforms import adjoint, alignment, compose, homogeneous, inverse_transform

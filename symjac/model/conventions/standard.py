@@ -31,7 +31,8 @@ import sympy as sp
 from symjac.errors import ConversionError
 from symjac.model.conventions.base import Cell, Column, JointForm, JointReader, NoRobotFields, moved_inertial
 from symjac.model.conventions.dh import DHPlacement, dh_cells, dh_columns, dh_forms, dh_placement, read_dh, write_dh
-from symjac.model.robot import Convention, FixedTransform, Joint, Robot, fixed_transform_from_matrix
+from symjac.model.exact_transforms import fixed_transform_from_matrix
+from symjac.model.robot import Convention, FixedTransform, Joint, Robot
 from symjac.symbolic.transforms import homogeneous, inverse_transform, rotation
 
 __all__ = ["PLUGIN", "STANDARD", "StandardDH", "modified_from_standard", "standard_from_modified"]

@@ -43,6 +43,7 @@ from pathlib import Path
 import sympy as sp
 
 from symjac.errors import RobotFileError
+from symjac.model.exact_transforms import fixed_transform_from_matrix
 from symjac.model.readers import too_many_links
 from symjac.model.readers.mjcf_frames import Compiler, angle, frame, numbers, rotation_about
 from symjac.model.readers.mjcf_xml import MAX_MJCF_BYTES, Defaults, compiler_of, defaults_of, model_root
@@ -57,7 +58,7 @@ from symjac.model.readers.tree import (
     TreeLink,
     robot_from_tree,
 )
-from symjac.model.robot import FixedTransform, Robot, fixed_transform_from_matrix
+from symjac.model.robot import FixedTransform, Robot
 from symjac.symbolic.transforms import homogeneous
 
 __all__ = ["MAX_MJCF_BYTES", "MjcfModel", "mjcf_model", "robot_from_mjcf"]

@@ -43,6 +43,7 @@ import sympy as sp
 from symjac.errors import RobotFileError
 from symjac.model.conventions.general import GeneralPlacement
 from symjac.model.coordinates import Coupling
+from symjac.model.exact_transforms import fixed_transform_from_matrix
 from symjac.model.expressions import is_valid_name
 from symjac.model.readers.lumping import link_inertial
 from symjac.model.robot import (
@@ -51,7 +52,6 @@ from symjac.model.robot import (
     Joint,
     JointType,
     Robot,
-    fixed_transform_from_matrix,
     unit_vector,
 )
 from symjac.symbolic.transforms import alignment, compose, homogeneous, inverse_motions

@@ -1,7 +1,7 @@
-"""Identification of the dynamic parameters: the dynamics linear in its parameters (regressor form).
+r"""Identification of the dynamic parameters: the dynamics linear in its parameters (regressor form).
 
 :mod:`.parameters` names the standard parameters (ten per link, about the link origin; drive parameters per joint)
-and gives a robot's own values of them; :mod:`.regressor` derives :math:`Y` with :math:`\\tau = Y\\pi`. Pure
+and gives a robot's own values of them; :mod:`.regressor` derives :math:`Y` with :math:`\tau = Y\pi`. Pure
 mathematics: SymPy in, SymPy out.
 """
 

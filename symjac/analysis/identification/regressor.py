@@ -64,7 +64,7 @@ class Regressor:
 
 
 class _Vectors:
-    """3-vectors over a ring whose elements support + and * (normal forms, or SymPy expressions), reduced by ``tidy``."""
+    """3-vectors over a ring with + and * (normal forms, or SymPy expressions), each entry reduced by ``tidy``."""
 
     def __init__(self, zero: Any, one: Any, tidy: Callable[[Any], Any]):
         self.zero, self.one, self.tidy = zero, one, tidy
@@ -139,14 +139,14 @@ def _inputs(chain: Chain, gravity: Gravity) -> list[sp.Expr]:
     return [sp.sympify(e) for e in inputs]
 
 
-def _columns(vectors: _Vectors, values: Sequence[Any], revolute: Sequence[bool]) -> list[list[Any]]:
+def _columns(vectors: _Vectors, values: Sequence[Any], kinds: Sequence[bool]) -> list[list[Any]]:
     """Y of a chain of joints (no coupling), ``[joint][column]``, ten columns per link, from :func:`_inputs`' values."""
-    n = len(revolute)
+    n = len(kinds)
     two, a, qd, qdd = values[0], tuple(values[1:4]), values[4:4 + n], values[4 + n:4 + 2 * n]
     links = []
     for k in range(n):
         c = values[4 + 2 * n + 18 * k:4 + 2 * n + 18 * (k + 1)]
-        links.append(([c[0:3], c[3:6], c[6:9]], tuple(c[9:12]), tuple(c[12:15]), tuple(c[15:18]), revolute[k]))
+        links.append(([c[0:3], c[3:6], c[6:9]], tuple(c[9:12]), tuple(c[12:15]), tuple(c[15:18]), kinds[k]))
     omega, alpha = vectors.zeros, vectors.zeros
     parts = []
     for k, (R, p, z, r, revolute) in enumerate(links):
@@ -239,8 +239,8 @@ def regressor(robot: Robot | Chain, gravity: Gravity = EARTH, *, armature: bool 
     >>> Y = regressor(load_robot("planar2r"))
     >>> Y.names[:10]
     ('XX1', 'XY1', 'XZ1', 'YY1', 'YZ1', 'ZZ1', 'MX1', 'MY1', 'MZ1', 'M1')
-    >>> Y.matrix[1, Y.names.index("ZZ2")], Y.matrix[1, Y.names.index("M2")]
-    (thetaddot1 + thetaddot2, 0)
+    >>> Y.matrix[1, Y.names.index("ZZ2")]  # joint 2's torque per unit ZZ2 (inertia about the origin of {2})
+    thetaddot1 + thetaddot2
     >>> Y.matrix[1, Y.names.index("MX2")]
     L1*(thetaddot1*cos(theta2) + thetadot1**2*sin(theta2))
     """

@@ -241,8 +241,8 @@ def regressor(robot: Robot | Chain, gravity: Gravity = EARTH, *, armature: bool 
     ('XX1', 'XY1', 'XZ1', 'YY1', 'YZ1', 'ZZ1', 'MX1', 'MY1', 'MZ1', 'M1')
     >>> Y.matrix[1, Y.names.index("ZZ2")]  # joint 2's torque per unit ZZ2 (inertia about the origin of {2})
     thetaddot1 + thetaddot2
-    >>> Y.matrix[1, Y.names.index("MX2")]
-    L1*(thetaddot1*cos(theta2) + thetadot1**2*sin(theta2))
+    >>> Y.matrix[1, Y.names.index("MX2")]  # frame {2} sits at the tip (standard DH): its origin moves
+    L1*(thetaddot1*cos(theta2) + thetadot1**2*sin(theta2)) + L2*(2*thetaddot1 + 2*thetaddot2)
     """
     chain = as_chain(robot)
     check_gravity(chain.robot, gravity)

@@ -1,0 +1,18 @@
+r"""Identification of the dynamic parameters: the dynamics linear in its parameters (regressor form).
+
+:mod:`.parameters` names the standard parameters (ten per link, about the link origin; drive parameters per joint)
+and gives a robot's own values of them; :mod:`.regressor` derives :math:`Y` with :math:`\tau = Y\pi`. Pure
+mathematics: SymPy in, SymPy out.
+"""
+
+from symjac.analysis.identification.parameters import DRIVE_NAMES, LINK_NAMES, standard_parameters, standard_values
+from symjac.analysis.identification.regressor import Regressor, regressor
+
+__all__ = [
+    "DRIVE_NAMES",
+    "LINK_NAMES",
+    "Regressor",
+    "regressor",
+    "standard_parameters",
+    "standard_values",
+]

@@ -2,8 +2,8 @@
 
 Gravity is a setting (:mod:`.gravity`); inverse dynamics comes from the recursive Newton-Euler algorithm with every
 step kept (:mod:`.newton_euler`); the Lagrangian route gives the mass matrix, the Coriolis matrix, the gravity
-torques, the energies and the Euler-Lagrange equations (:mod:`.lagrange`); motor inertia and friction where the robot has drive data
-(:mod:`.drives`). Pure mathematics: SymPy in, SymPy out.
+torques, the energies and the Euler-Lagrange equations (:mod:`.lagrange`); motor inertia and friction where the robot
+has drive data (:mod:`.drives`). Pure mathematics: SymPy in, SymPy out.
 """
 
 from symjac.analysis.dynamics.drives import armature_matrix, drive_torques, friction_torques

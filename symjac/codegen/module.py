@@ -148,7 +148,9 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     derived = [*dynamics, *derived_functions(infos, n, coupled)]
     exports |= {d.name for d in dynamics}
     kinds = {f.kind: f.name for f in functions} | {d.kind: d.name for d in dynamics}
-    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics else []
+    # the check's tau = M qddot + C qdot + g and b = C qdot + g leave friction out: a robot with friction goes without
+    friction = any(d is not None and (d.viscous != 0 or d.coulomb != 0) for d in model.drives)
+    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics and not friction else []
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
     symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()

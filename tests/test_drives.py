@@ -102,7 +102,8 @@ def test_urdf_dynamics_damping_and_friction_are_viscous_and_coulomb_friction(tmp
 
 MJCF = """<mujoco model="arm"><default><joint damping="0.4" armature="0.02"/>
   <default class="wrist"><joint frictionloss="0.3" armature="0.01"/></default></default>
-<worldbody><body name="l1"><joint name="j1" axis="0 0 1"/><inertial pos="0.2 0 0" mass="1" diaginertia="0.01 0.02 0.02"/>
+<worldbody><body name="l1"><joint name="j1" axis="0 0 1"/>
+  <inertial pos="0.2 0 0" mass="1" diaginertia="0.01 0.02 0.02"/>
   <body name="l2" pos="0.4 0 0"><joint name="j2" class="wrist" axis="0 1 0" damping="0.6"/>
     <inertial pos="0.1 0 0" mass="0.5" diaginertia="0.01 0.01 0.01"/>
     <body name="l3" pos="0.3 0 0"><joint name="j3" axis="1 0 0" damping="0" armature="0"/>
@@ -152,9 +153,10 @@ def test_newton_euler_lagrange_and_the_mass_matrix_agree_with_the_drives_in(coup
     rigid = dataclasses.replace(arm, drives=())
     tau = newton_euler(arm, simplify=False).torques
     M = mass_matrix(arm, simplify=False)
-    evaluate = _numeric(arm, tau, euler_lagrange(arm, simplify=False), M, newton_euler_mass_matrix(arm, simplify=False),
-                        coriolis_matrix(arm, simplify=False), gravity_torques(arm, simplify=False),
-                        friction_torques(arm), mass_matrix(rigid, simplify=False), coriolis_matrix(rigid, simplify=False))
+    raw = {"simplify": False}
+    evaluate = _numeric(arm, tau, euler_lagrange(arm, **raw), M, newton_euler_mass_matrix(arm, **raw),
+                        coriolis_matrix(arm, **raw), gravity_torques(arm, **raw), friction_torques(arm),
+                        mass_matrix(rigid, **raw), coriolis_matrix(rigid, **raw))
     C_map = np.array([[1, 0], [0, 1], [0, -0.5]]) if coupled else np.eye(3)
     Ia = C_map.T @ np.diag([0.8, 0.2, 0.05]) @ C_map
     rng = np.random.default_rng(3)

@@ -132,7 +132,7 @@ def checked_drives(drives: Sequence[object], joints: Sequence[object], defaults:
         problem = None if drive is None else drive_problem(drive, defaults)
         if problem is not None:
             raise fail(f"{where}: {problem}", number)
-    kept = tuple(None if drive is None or drive.is_zero else drive for drive in given)  # type: ignore[union-attr]
+    kept = tuple(drive if isinstance(drive, Drive) and not drive.is_zero else None for drive in given)
     return (None,) * len(joints) if all(drive is None for drive in kept) else kept
 
 

@@ -337,9 +337,9 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
         data["inertials"] = "symbolic"
     # a link left to ``"symbolic"`` needs only the defaults that are not the placeholder's
     placeholders = placeholder_defaults(symbolic)
-    written = [p for p in robot.parameters if placeholders.get(p.name, p.default + 1) != p.default]
-    if written:
-        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in written}
+    kept = [p for p in robot.parameters if placeholders.get(p.name, p.default + 1) != p.default]
+    if kept:
+        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in kept}
     spec = plugin(robot.convention)
     data.update(spec.write_settings(robot))
     joints = []

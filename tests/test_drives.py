@@ -205,3 +205,31 @@ def test_generated_dynamics_include_the_drives(tmp_path, target):
         np.testing.assert_allclose(np.ravel(module.mass_matrix(q)), expected_M.ravel(), atol=1e-12)
         np.testing.assert_allclose(np.ravel(module.forward_dynamics(q, qd, expected_tau.ravel())), qdd, atol=1e-10)
         assert module.selftest() < 1e-6
+
+
+def test_generated_c99_dynamics_with_friction_compile_cleanly_and_agree(tmp_path):
+    """sign(qdot) written as comparisons: gcc -Wall -Wextra -Werror -pedantic, then the torques through ctypes."""
+    import ctypes
+    import shutil
+    import subprocess
+
+    from symjac.codegen import ModuleRequest, describe, render_files
+
+    if shutil.which("gcc") is None:
+        pytest.skip("gcc is not installed")
+    arm = _arm()
+    description = describe(ModuleRequest(arm, "c99", dynamics=True))
+    for name, text in render_files(description).items():
+        (tmp_path / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-O1", "-fPIC", "-shared",
+                    "elbow.c", "-o", "lib.so", "-lm"], cwd=tmp_path, check=True, capture_output=True, text=True)
+    library = ctypes.CDLL(str(tmp_path / "lib.so"))
+    parameters = np.array([value for _, value in description.parameters])
+    rng = np.random.default_rng(9)
+    q, qd, qdd = (rng.uniform(-1, 1, 3) for _ in range(3))
+    out = np.zeros(3)
+    pointer = ctypes.POINTER(ctypes.c_double)
+    library.elbow_inverse_dynamics(*(np.ascontiguousarray(a).ctypes.data_as(pointer)
+                                     for a in (q, parameters, qd, qdd, out)))
+    expected, = _numeric(arm, newton_euler(arm, simplify=False).torques)(*q, *qd, *qdd)
+    np.testing.assert_allclose(out, expected.ravel(), atol=1e-10)

@@ -192,9 +192,10 @@ def euler_lagrange(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: 
                    friction: FrictionLaw = "sign", eps: sp.Expr | float | None = None) -> sp.ImmutableMatrix:
     r"""The torques by the Euler-Lagrange equations of :math:`L = T - V` (module docstring), n x 1.
 
-    The rotors' energy is in :math:`T` (:func:`kinetic_energy`); the joints' friction, which no potential gives, is
-    added as a generalised force (:func:`~symjac.analysis.dynamics.drives.friction_torques` with ``friction`` and
-    ``eps``, as :func:`~symjac.analysis.dynamics.newton_euler.newton_euler` takes them).
+    The rotors' energy is in :math:`T` (:func:`~symjac.analysis.dynamics.lagrange.kinetic_energy`); the joints'
+    friction, which no potential gives, is added as a generalised force
+    (:func:`~symjac.analysis.dynamics.drives.friction_torques` with ``friction`` and ``eps``, as
+    :func:`~symjac.analysis.dynamics.newton_euler.newton_euler` takes them).
 
     Examples
     --------

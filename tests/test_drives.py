@@ -183,22 +183,22 @@ def test_smooth_coulomb_friction_is_tanh_of_the_rate_over_eps():
         friction_torques(arm, "smooth")
 
 
-@pytest.mark.parametrize("target", ["python", "numpy"])
-def test_generated_dynamics_include_the_drives(tmp_path, target):
+@pytest.mark.parametrize(("target", "coupled"), [("python", False), ("numpy", False), ("numpy", True)])
+def test_generated_dynamics_include_the_drives(tmp_path, target, coupled):
     """inverse_dynamics, mass_matrix and forward_dynamics of every strategy against the API's own numbers."""
     from symjac.codegen import ModuleRequest, describe, render_files
 
-    arm = _arm()
+    arm = _arm(coupled)
     tau, M = (np.asarray(v) for v in (newton_euler(arm, simplify=False).torques, mass_matrix(arm, simplify=False)))
     evaluate = _numeric(arm, sp.Matrix(tau), sp.Matrix(M))
     rng = np.random.default_rng(5)
-    q, qd, qdd = (rng.uniform(-1, 1, 3) for _ in range(3))
+    q, qd, qdd = (rng.uniform(-1, 1, arm.n_coordinates) for _ in range(3))
     expected_tau, expected_M = evaluate(*q, *qd, *qdd)
     for strategy in ("fastest", "raw"):
         (name, text), = render_files(describe(ModuleRequest(arm, target, dynamics=True, strategy=strategy))).items()
         path = tmp_path / f"{strategy}_{name}"
         path.write_text(text)
-        spec = importlib.util.spec_from_file_location(f"drives_{target}_{strategy}", path)
+        spec = importlib.util.spec_from_file_location(f"drives_{target}_{strategy}_{coupled}", path)
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
         np.testing.assert_allclose(np.ravel(module.inverse_dynamics(q, qd, qdd)), expected_tau.ravel(), atol=1e-10)

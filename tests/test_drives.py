@@ -122,6 +122,23 @@ def test_mjcf_armature_damping_and_frictionloss_as_mujoco_compiles_them(tmp_path
         assert ours == pytest.approx((model.dof_armature[k], model.dof_damping[k], model.dof_frictionloss[k]))
     assert robot.drives[2] is None and robot.drives[1] == Drive(sp.Rational(1, 100), sp.Rational(3, 5),
                                                                 sp.Rational(3, 10))
+    # MuJoCo's own mass matrix includes the armature, its passive force is the viscous friction
+    data = mujoco.MjData(model)
+    evaluate = _numeric(robot, mass_matrix(robot, simplify=False), friction_torques(robot))
+    rng = np.random.default_rng(11)
+    for _ in range(2):
+        data.qpos[:], data.qvel[:] = rng.uniform(-1.5, 1.5, 3), rng.uniform(-1.5, 1.5, 3)
+        mujoco.mj_forward(model, data)
+        full = np.zeros((3, 3))
+        try:
+            mujoco.mj_fullM(model, data, full)  # MuJoCo 4
+        except TypeError:  # earlier versions: (model, out, qM)
+            mujoco.mj_fullM(model, full, data.qM)
+        M, F = evaluate(*data.qpos, *data.qvel, *np.zeros(3))
+        np.testing.assert_allclose(M, full, atol=1e-12)
+        viscous = np.array([float(d.viscous) if d is not None else 0.0 for d in robot.drives]) * data.qvel
+        np.testing.assert_allclose(-data.qfrc_passive, viscous, atol=1e-12)
+        np.testing.assert_allclose(F.ravel() - viscous, [0, 0.3 * np.sign(data.qvel[1]), 0], atol=1e-12)
     path.write_text(MJCF.replace('damping="0.6"', 'damping="-0.6"'))
     with pytest.raises(RobotFileError, match=r"arm.xml, field 'joint j2': the viscous friction -3/5 is negative$"):
         load_robot(str(path))

@@ -171,6 +171,7 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.kinematics.screws import space_jacobian as space_jacobian
     from symjac.kinematics.statics import joint_torques as joint_torques
     from symjac.kinematics.statics import wrench_between as wrench_between
+    from symjac.model.drive import Drive as Drive
     from symjac.model.inertia import Inertial as Inertial
     from symjac.model.io import catalog as catalog
     from symjac.model.io import load_robot as load_robot

@@ -16,8 +16,10 @@ with :math:`A_0 = [0; 0; 0; 0; 0; g]` (gravity, 9.81 m/s² along -z of {0}, as t
 :math:`I_k` the link's spatial inertia about the origin of {0}. A coupling :math:`\vartheta = \vartheta(q)`
 (``robot.joint_values``) enters through its Jacobian :math:`K = \partial\vartheta/\partial q`:
 :math:`\dot\vartheta = K\dot q`, :math:`\ddot\vartheta = K\ddot q + \dot K\dot q`, :math:`\tau_q = K^T\tau_\vartheta`
-(SymPy differentiates the law, once per robot). Then :math:`M e_i` is the torque at :math:`(q, 0, e_i)` without
-gravity, :math:`C\dot q` the torque at :math:`(q, \dot q, 0)` without gravity, and :math:`g` the torque at rest.
+(SymPy differentiates the law, once per robot). A joint's drive (``robot.drives``) adds
+:math:`I_a\ddot\vartheta + F_v\dot\vartheta + F_c\operatorname{sign}(\dot\vartheta)` to its torque. Then
+:math:`M e_i` is the torque at :math:`(q, 0, e_i)` without gravity, :math:`C\dot q` the rigid bodies' torque at
+:math:`(q, \dot q, 0)` without gravity (no friction), and :math:`g` the torque at rest.
 """
 
 from __future__ import annotations
@@ -64,6 +66,8 @@ class NumericDynamics:
         for c, rate in enumerate(rates):
             K_dot += K.diff(q[c]) * rate
         self._K = sp.lambdify(list(q), K, modules="numpy")
+        self.drives = np.array([[0.0] * 3 if d is None else [number(d.armature), number(d.viscous), number(d.coulomb)]
+                                for d in robot.drives]).reshape(-1, 3)
         self._K_dot = sp.lambdify([*q, *rates], K_dot, modules="numpy")
 
     def _screws_and_inertias(self, q: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray]]:
@@ -88,8 +92,9 @@ class NumericDynamics:
             inertias.append(inertia)
         return screws, inertias
 
-    def tau(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, gravity: bool = True) -> np.ndarray:
-        """The generalised forces at (q, qd, qdd), one per coordinate."""
+    def tau(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, gravity: bool = True,
+            drives: bool = True) -> np.ndarray:
+        """The generalised forces at (q, qd, qdd), one per coordinate (with the drives' share unless ``drives``)."""
         q, qd, qdd = (np.asarray(x, dtype=float) for x in (q, qd, qdd))
         K = np.array(self._K(*q), dtype=float)
         rate = K @ qd
@@ -105,14 +110,22 @@ class NumericDynamics:
         for k in reversed(range(len(screws))):
             total = total + forces[k]
             torques[k] = screws[k] @ total
+        if drives:
+            Ia, Fv, Fc = self.drives.T
+            torques = torques + Ia * acceleration + Fv * rate + Fc * np.sign(rate)
         return K.T @ torques
+
+    def friction(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
+        """The drives' friction torques at (q, qd), one per coordinate."""
+        n = len(q)
+        return self.tau(q, qd, np.zeros(n), gravity=False) - self.C_qd(q, qd)
 
     def M(self, q: np.ndarray) -> np.ndarray:
         n = len(q)
         return np.column_stack([self.tau(q, np.zeros(n), e, gravity=False) for e in np.eye(n)])
 
     def C_qd(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        return self.tau(q, qd, np.zeros(len(q)), gravity=False)
+        return self.tau(q, qd, np.zeros(len(q)), gravity=False, drives=False)
 
     def g(self, q: np.ndarray) -> np.ndarray:
         return self.tau(q, np.zeros(len(q)), np.zeros(len(q)))

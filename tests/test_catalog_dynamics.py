@@ -3,12 +3,16 @@
 The PUMA 560 carries Armstrong, Khatib and Burdick's parameters as the Robotics Toolbox (roboticstoolbox-python)
 holds them, moved from the Toolbox's standard-DH frames to the file's modified-DH ones (the file's comments say how).
 Its torques are those of the Toolbox's pure-Python ``rne_python`` (not the compiled ``rne``, whose gravity is wrong
-for some models) with the motors' inertia and friction taken out, at the Toolbox's angles q + (pi, pi, 0, 0, 0, 0),
-to 1e-9 relative to the largest torque. The Panda carries Gaz et al.'s (2019) identified parameters as the Toolbox's
+for some models), which adds the motors' inertia G^2 Jm qdd and friction B G^2 qd + |G| Tc (the file carries them as
+drives, Coulomb friction as the mean of the Toolbox's two directions: the Toolbox model gets that mean here), at the
+Toolbox's angles q + (pi, pi, 0, 0, 0, 0), to 1e-9 relative to the largest torque; and without the motors, the
+rigid bodies alone. The Panda carries Gaz et al.'s (2019) identified parameters as the Toolbox's
 DH Panda holds them (the same frames but the last), checked the same way.
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 import pytest
@@ -23,19 +27,29 @@ rtb = pytest.importorskip("roboticstoolbox", reason="roboticstoolbox-python is n
 OFFSET = np.array([np.pi, np.pi, 0, 0, 0, 0])  # the Toolbox's angles are the file's plus these
 
 
-def _toolbox_puma():
+def _toolbox_puma(motors: bool = False):
+    """The Toolbox's PUMA 560: rigid bodies only, or with its motors (Coulomb friction the same in both directions)."""
+    if motors:
+        puma = rtb.models.DH.Puma560()
+        for link in puma.links:
+            mean = (link.Tc[0] - link.Tc[1]) / 2
+            link.Tc = [mean, -mean]
+        return puma
     puma = rtb.models.DH.Puma560().nofriction(coulomb=True, viscous=True)
     for link in puma.links:
         link.Jm = 0  # rigid-body torques only: no motor (armature) inertia
     return puma
 
 
-def test_puma560_torques_equal_the_robotics_toolboxs_rne_python():
+@pytest.mark.parametrize("motors", [True, False])
+def test_puma560_torques_equal_the_robotics_toolboxs_rne_python(motors):
     arm = load_robot("puma560")
+    assert all(drive is not None for drive in arm.drives)
+    arm = arm if motors else dataclasses.replace(arm, drives=())
     numbers = {s: float(v) for s, v in dynamics_defaults(arm).items()}
     args = [*arm.q, *arm.coordinate_rates, *arm.coordinate_accelerations, *numbers]
     torques = sp.lambdify(args, newton_euler(arm, simplify=False).torques, cse=True)
-    puma = _toolbox_puma()
+    puma = _toolbox_puma(motors)
     rng = np.random.default_rng(560)
     for _ in range(4):
         q, qd, qdd = (rng.uniform(-2, 2, 6) for _ in range(3))

@@ -64,7 +64,8 @@ def _arms():
         {"type": "revolute", "alpha": 0, "d": 0.4}, {"type": "revolute", "alpha": "-pi/2", "a": 0.1},
         {"type": "revolute", "alpha": 0, "a": 0.5}, {"type": "revolute", "alpha": 0, "a": 0.4,
                                                      "coupled": "-(theta2 + theta3)"}]}
-    return {"planar2r": planar, "puma560": _with_bodies(load_robot("puma560"), 44), "rrpr": prismatic,
+    rigid_puma = dataclasses.replace(load_robot("puma560"), drives=())  # its motors' friction: test_drives
+    return {"planar2r": planar, "puma560": _with_bodies(rigid_puma, 44), "rrpr": prismatic,
             "coupled": _with_bodies(robot_from_mapping(data), 5)}
 
 

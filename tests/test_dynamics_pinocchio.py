@@ -14,7 +14,9 @@ The arms are the UR5 and the Panda, and the six arms of six makers whose Jacobia
 Joints off the chain (the Panda's fingers, the grippers of TALOS's arm and of the Z1) are held at zero by symjac,
 which lumps their bodies into the chain link that carries them (parallel-axis theorem); pinocchio's model is reduced
 the same way (``buildReducedModel``, those joints locked at zero), so that its forward dynamics is that of the same
-rigid arm.
+rigid arm. Friction: symjac reads the URDF's ``<dynamics damping friction>`` into its torques; pinocchio reads them
+into ``model.damping`` and ``model.friction`` but leaves them out of ``rnea``, so they are added to its torques here
+(the Panda, xArm7, TALOS arm and Z1 have them). Armature: pinocchio's ``model.armature`` against symjac's drives.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ from pinocchio_arms import ARMS, FOLDER, PinocchioArm, close, pin, states
 from symjac.analysis.dynamics import (
     coriolis_matrix,
     dynamics_defaults,
+    friction_torques,
     gravity_torques,
     mass_matrix,
     newton_euler,
@@ -55,6 +58,13 @@ class Pair(PinocchioArm):
         self.M_ne = compiled(newton_euler_mass_matrix(arm, simplify=False))
         self.g = compiled(gravity_torques(arm))
         self.C = compiled(coriolis_matrix(arm))
+        self.F = compiled(friction_torques(arm))  # the URDF's <dynamics damping friction>
+        index = [j.idx_v for j in self.joints]
+        self.damping, self.friction = self.model.damping[index], self.model.friction[index]  # as pinocchio read them
+
+    def friction_torques(self, qd: np.ndarray) -> np.ndarray:
+        """pinocchio's damping and friction of the chain's joints as torques (its rnea leaves them out)."""
+        return self.damping * qd + self.friction * np.sign(qd)
 
 
 @pytest.fixture(scope="module", params=sorted(ARMS))
@@ -93,7 +103,8 @@ def test_inverse_dynamics_mass_matrix_gravity_coriolis_and_forward_dynamics_equa
         M = np.triu(M) + np.triu(M, 1).T
         g = pin.computeGeneralizedGravity(model, data, Q)
         C = pin.computeCoriolisMatrix(model, data, Q, qd)
-        close(pair.tau(*args).ravel(), tau)
+        close(pair.tau(*args).ravel(), tau + pair.friction_torques(qd))
+        close(pair.F(*args).ravel(), pair.friction_torques(qd))
         close(pair.M(*args), M)
         close(pair.M_ne(*args), M)
         close(pair.g(*args).ravel(), g)
@@ -116,7 +127,7 @@ def test_mdot_minus_twice_c_is_skew_and_the_routes_add_up(pair):
         M_dot = (pair.M(*(q + h * qd), *qd, *qdd) - pair.M(*(q - h * qd), *qd, *qdd)) / (2 * h)
         N = M_dot - 2 * pair.C(*args)
         close(N, -N.T, 1e-7)
-        total = pair.M(*args) @ qdd + pair.C(*args) @ qd + pair.g(*args).ravel()
+        total = pair.M(*args) @ qdd + pair.C(*args) @ qd + pair.g(*args).ravel() + pair.F(*args).ravel()
         close(pair.tau(*args).ravel(), total)
         assert np.all(np.linalg.eigvalsh(pair.M(*args)) > 0)
 
@@ -137,3 +148,32 @@ def test_gravity_compensation_three_ways(pair):
         held = pin.rnea(pair.model, pair.data, pair.configuration(q), zero, zero)
         close(pair.g(*q, *zero, *zero).ravel(), held)
         close(np.array(static(*q, *numbers.values()), dtype=float).ravel(), held)
+
+
+def test_armature_in_the_mass_matrix_torques_and_forward_dynamics_equals_pinocchios():
+    """The same rotor inertias in both (pinocchio's ``model.armature``): crba, rnea and aba include them."""
+    from dataclasses import replace
+
+    from symjac.model.drive import Drive
+
+    path, tip = ARMS["ur5"]
+    rigid = pin.buildModelFromUrdf(str(FOLDER / path))
+    model = pin.buildModelFromUrdf(str(FOLDER / path))
+    armature = np.array([0.9, 1.1, 0.45, 0.12, 0.11, 0.1])  # kg m^2: Jm G^2 of an arm this size
+    model.armature[:] = armature
+    data = model.createData()
+    drives = tuple(Drive(armature=float(a)) for a in armature)
+    arm = replace(load_robot(str(FOLDER / path), tip_link=tip), drives=drives)
+    numbers = {s: float(v) for s, v in dynamics_defaults(arm).items()}
+    args = [*arm.q, *arm.coordinate_rates, *arm.coordinate_accelerations, *numbers]
+    M = sp.lambdify(args, mass_matrix(arm, simplify=False), cse=lambdify_cse)
+    tau = sp.lambdify(args, newton_euler(arm, simplify=False).torques, cse=lambdify_cse)
+    for q, qd, qdd in states(6, 2):
+        values = (*q, *qd, *qdd, *numbers.values())
+        M_pin = pin.crba(model, data, q)
+        M_pin = np.triu(M_pin) + np.triu(M_pin, 1).T
+        close(np.array(M(*values), dtype=float), M_pin)
+        close(np.array(tau(*values), dtype=float).ravel(), pin.rnea(model, data, q, qd, qdd))
+        torques = np.array(tau(*values), dtype=float).ravel()
+        close(pin.aba(model, data, q, qd, torques), qdd, 1e-9)  # pinocchio's forward dynamics inverts symjac's tau
+        np.testing.assert_allclose(np.diag(M_pin - pin.crba(rigid, rigid.createData(), q)), armature)  # it counts

@@ -16,6 +16,12 @@ symbolic recursion of :mod:`symjac.analysis.dynamics.newton_euler` (``simplify=F
 form; ``"simplified"`` lowers the compact textbook forms. A robot with coupled joints is derived on the chain of its
 joints and written in its coordinates: :math:`\tau_q = C^T\tau`, :math:`M_q = C^T M C`, :math:`C_q = C^T C_\vartheta C`
 with :math:`\vartheta = \vartheta(q)`, :math:`\dot\vartheta = C\dot q`, :math:`\ddot\vartheta = C\ddot q`.
+
+Drive data (:attr:`Robot.drives <symjac.model.robot.Robot>`) enter in joint space, before the coupling: the armature
+on M's diagonal and :math:`I_a\ddot\vartheta + F_v\dot\vartheta + F_c\operatorname{sign}(\dot\vartheta)` in the
+inverse dynamics and the bias forces (so :math:`b` is everything but :math:`M\ddot q`, and forward dynamics solves
+:math:`M\ddot q = \tau - b` with the friction in :math:`b`); g and C do not change. Without drive data nothing
+is added.
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ from collections.abc import Callable, Sequence
 
 import sympy as sp
 
+from symjac.analysis.dynamics.drives import coulomb_law
 from symjac.analysis.dynamics.gravity import EARTH, Gravity
 from symjac.analysis.dynamics.lagrange import coriolis_matrix, gravity_torques, mass_matrix
 from symjac.analysis.dynamics.newton_euler import newton_euler, newton_euler_mass_matrix, recursion
@@ -89,6 +96,26 @@ class _Space:
         return (self.C.T * sp.Matrix(M) * self.C).tolist() if self.coupled else [list(row) for row in M]
 
 
+def _drive_terms(space: _Space, rates: Sequence[sp.Expr], accelerations: Sequence[sp.Expr]) -> list[sp.Expr]:
+    r"""Per joint, :math:`I_a\ddot\vartheta + F_v\dot\vartheta + F_c\operatorname{sign}(\dot\vartheta)`, 0 without."""
+    terms = []
+    for drive, rate, acceleration in zip(space.chain.robot.drives, rates, accelerations, strict=True):
+        if drive is None:
+            terms.append(sp.S.Zero)
+            continue
+        coulomb = drive.coulomb * coulomb_law(rate) if drive.coulomb != 0 and rate != 0 else sp.S.Zero
+        terms.append(drive.armature * acceleration + drive.viscous * rate + coulomb)
+    return terms
+
+
+def _with_drives(space: _Space, tau: Sequence[sp.Expr], rates: Sequence[sp.Expr],
+                 accelerations: Sequence[sp.Expr]) -> list[sp.Expr]:
+    """``tau`` (joint space) with the drives' share added, or ``tau`` itself for a robot without drive data."""
+    if all(drive is None for drive in space.chain.robot.drives):
+        return list(tau)
+    return [t + d for t, d in zip(tau, _drive_terms(space, rates, accelerations), strict=True)]
+
+
 def _finished(space: _Space, trace: Trace, outputs: Sequence[sp.Expr], shape: tuple[int, ...], inputs: Inputs,
               origin: str) -> LoweredFunction:
     """The trace's code for ``outputs``: unused temporaries dropped, one CSE over all, angles in the coordinates."""
@@ -138,7 +165,7 @@ def _torque_function(chain: Chain, strategy: str, gravity: Gravity, rates: bool,
             tau = gravity_trace(trace, g.vector)
             origin = "gravity from composite first moments"
         else:
-            tau = newton_euler_trace(trace, qd, qdd, g.vector)
+            tau = _with_drives(space, newton_euler_trace(trace, qd, qdd, g.vector), qd, qdd)
             origin = f"customised Newton-Euler{what}"
         return _finished(space, trace, space.vector(tau), (space.chain.robot.n_coordinates,), inputs, origin)
     if strategy == "simplified":
@@ -152,9 +179,11 @@ def _torque_function(chain: Chain, strategy: str, gravity: Gravity, rates: bool,
                                                                                    0))}))
         return _symbolic(space, space.vector(values), (space.chain.robot.n_coordinates,), inputs,
                          f"compact Newton-Euler torques{what}")
-    steps = recursion(space.joints, space.joints.robot.coordinate_rates if rates else zero,
-                      space.joints.robot.coordinate_accelerations if accelerations else zero, g, simplify=False)
-    return _symbolic(space, space.vector([step.tau for step in steps]), (space.chain.robot.n_coordinates,), inputs,
+    joint_rates = space.joints.robot.coordinate_rates if rates else zero
+    joint_accelerations = space.joints.robot.coordinate_accelerations if accelerations else zero
+    steps = recursion(space.joints, joint_rates, joint_accelerations, g, simplify=False)
+    tau = _with_drives(space, [step.tau for step in steps], joint_rates, joint_accelerations)
+    return _symbolic(space, space.vector(tau), (space.chain.robot.n_coordinates,), inputs,
                      f"raw Newton-Euler recursion{what}")
 
 
@@ -197,7 +226,11 @@ def lowered_mass_matrix(chain: Chain, strategy: str) -> LoweredFunction:
     inputs = space.inputs("q")
     if strategy == "fastest":
         trace = Trace(space.joints, angle_expansion(space.joints))
-        M = space.matrix(mass_matrix_trace(trace))
+        M_joints = mass_matrix_trace(trace)
+        for i, drive in enumerate(space.chain.robot.drives):  # the armature on the joints' diagonal
+            if drive is not None and drive.armature != 0:
+                M_joints[i][i] = M_joints[i][i] + drive.armature
+        M = space.matrix(M_joints)
         return _finished(space, trace, [e for row in M for e in row], (n, n), inputs, "composite rigid bodies")
     if strategy == "simplified":
         M_joints = mass_matrix(space.joints)

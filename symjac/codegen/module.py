@@ -129,6 +129,10 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     """The module around its functions: robot facts, exported names and the command that regenerates it."""
     model = chain.robot
     spec = backend(request.target)
+    # the check's tau = M qddot + C qdot + g and b = C qdot + g leave friction out: a robot with friction goes without
+    # it, and without the potential energy only the check calls
+    friction = any(d is not None and (d.viscous != 0 or d.coulomb != 0) for d in model.drives)
+    functions = [f for f in functions if not (friction and f.kind == "potential_energy")]
     exports = ({"PARAMETERS", "COORDINATES", "JOINTS", "ROBOT", "JOINT_NAMES", "JOINT_TYPES", "LOWER", "UPPER",
                 "TIP_FRAME", "coordinates", "selftest", *spec.exports}
                | {name for name in defined_names(functions, infos) if not name.startswith("_")})
@@ -148,7 +152,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     derived = [*dynamics, *derived_functions(infos, n, coupled)]
     exports |= {d.name for d in dynamics}
     kinds = {f.kind: f.name for f in functions} | {d.kind: d.name for d in dynamics}
-    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics else []
+    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics and not friction else []
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
     symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()

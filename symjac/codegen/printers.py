@@ -122,6 +122,12 @@ class SymbolPrinting:
         self.used.add(type(expr).__name__)
         return f"{self._function_prefix}{type(expr).__name__}({argument})"
 
+    def _print_sign(self, expr: sp.sign) -> str:
+        """``(1.0*(x > 0.0) - 1.0*(x < 0.0))``: comparisons every target has (0 at 0, as Coulomb friction at rest)."""
+        argument = self._print(expr.args[0])  # type: ignore[attr-defined]
+        one, zero = self._number(1), self._number(0)
+        return f"({one}*({argument} > {zero}) - {one}*({argument} < {zero}))"
+
     _print_sin = _print_Function
     _print_cos = _print_Function
     _print_atan = _print_Function  # SymPy's code printers would write atan(...) without importing it
@@ -184,7 +190,8 @@ class SymbolPrinting:
 def check_expression(*exprs: sp.Basic) -> None:
     """Refuse, before anything is printed, every node of ``exprs`` a generated module cannot evaluate.
 
-    Allowed: symbols, finite numbers, ``pi``, ``+``, ``*``, powers with rational exponents, ``sin`` and ``cos``.
+    Allowed: symbols, finite numbers, ``pi``, ``+``, ``*``, powers with rational exponents, ``sin`` and ``cos``, and
+    ``sign`` (Coulomb friction).
 
     Examples
     --------
@@ -195,7 +202,7 @@ def check_expression(*exprs: sp.Basic) -> None:
     symjac.errors.CodegenError: exp(x) is not supported in generated code (allowed: + * ** sin cos)
     """
     for node in distinct_nodes(exprs):  # each shared subexpression once
-        if isinstance(node, sp.Symbol | sp.Add | sp.Mul | sp.sin | sp.cos) or node is sp.pi:
+        if isinstance(node, sp.Symbol | sp.Add | sp.Mul | sp.sin | sp.cos | sp.sign) or node is sp.pi:
             continue
         if isinstance(node, sp.Number):
             float_literal(node)  # raises for infinities and NaN

@@ -73,7 +73,19 @@ def converted(robot: Robot, to: Convention | str) -> tuple[Robot, tuple[str, ...
             raise ConversionError(f"cannot convert {robot.name}: its joints are coupled and the {target.value} table "
                                   f"would change its joint variables")
         result = replace(result, coupling=robot.coupling)
-    return carried_inertials(robot, result), notes
+    return _carried_drives(robot, carried_inertials(robot, result)), notes
+
+
+def _carried_drives(source: Robot, result: Robot) -> Robot:
+    """``result`` with ``source``'s drives: joint-space data, whatever the frames (lost parameters as numbers)."""
+    if all(drive is None for drive in source.drives):
+        return result
+    lost = {s: v for s, v in source.defaults.items() if s not in set(result.parameter_symbols)}
+    drives = tuple(None if drive is None else replace(drive, armature=drive.armature.xreplace(lost),
+                                                      viscous=drive.viscous.xreplace(lost),
+                                                      coulomb=drive.coulomb.xreplace(lost))
+                   for drive in source.drives)
+    return replace(result, drives=drives)
 
 
 def axes_at_home(robot: Robot) -> tuple[list[sp.Matrix], sp.Matrix]:

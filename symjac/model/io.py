@@ -201,9 +201,11 @@ def robot_to_toml(robot: Robot) -> str:
     if "parameters" in data:
         lines += ["", "[parameters]"] + [f"{name} = {_toml_value(v)}" for name, v in data["parameters"].items()]
     for joint in data["joints"]:
-        lines += ["", "[[joints]]"] + [f"{key} = {_toml_value(v)}" for key, v in joint.items() if key != "inertial"]
-        if "inertial" in joint:  # link i's inertial data, a sub-table of its joint row
-            lines += ["[joints.inertial]"] + [f"{key} = {_toml_value(v)}" for key, v in joint["inertial"].items()]
+        lines += ["", "[[joints]]"] + [f"{key} = {_toml_value(v)}" for key, v in joint.items()
+                                       if not isinstance(v, dict)]
+        for sub in ("drive", "inertial"):  # joint i's drive and link i's inertial data: sub-tables of its joint row
+            if sub in joint:
+                lines += [f"[joints.{sub}]"] + [f"{key} = {_toml_value(v)}" for key, v in joint[sub].items()]
     for key in tables:
         if key != "parameters":
             lines += ["", f"[{key}]"] + [f"{k} = {_toml_value(v)}" for k, v in data[key].items()]

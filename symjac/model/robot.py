@@ -32,6 +32,7 @@ import sympy as sp
 
 from symjac.errors import RobotFileError
 from symjac.model.coordinates import Coupling, acceleration_symbol, coupling_problem, rate_symbol
+from symjac.model.drive import Drive, checked_drives
 from symjac.model.hashing import cached_hash
 from symjac.model.inertia import Inertial, inertial_problem
 from symjac.symbolic.transforms import homogeneous, rotation_rpy
@@ -233,7 +234,8 @@ class Robot:
     none), or None where it is unknown, as for every link without it (the default ``()``). Each must be well formed
     with the parameters' defaults (a mass that is not negative, finite values, a symmetric tensor:
     :func:`~symjac.model.inertia.inertial_problem` with ``physical=False``); robot files, URDF and MJCF keep a
-    tensor no rigid body can have with an :class:`~symjac.errors.InertialWarning`.
+    tensor no rigid body can have with an :class:`~symjac.errors.InertialWarning`. ``drives[i - 1]`` is joint *i*'s
+    :class:`~symjac.model.drive.Drive` (armature, viscous and Coulomb friction, in joint space) or None, likewise.
 
     ``angle_unit`` is the unit the robot file wrote its angles in (``"deg"`` or ``"rad"``, the default): the model
     itself is always in radians; the command line reads a plain ``--q`` number in this unit. Like ``source`` it is
@@ -252,6 +254,7 @@ class Robot:
     source: str = field(default="<mapping>", compare=False)
     coupling: Coupling | None = None
     inertials: tuple[Inertial | None, ...] = ()
+    drives: tuple[Drive | None, ...] = ()
     angle_unit: Literal["rad", "deg"] = field(default="rad", compare=False)
     tip_frame: str = field(default="", compare=False)
     source_format: str = field(default="", compare=False)
@@ -278,6 +281,9 @@ class Robot:
                 raise RobotFileError(f"{parameter.name!r} is reserved: {reserved[parameter.name]}",
                                      source=self.source, field=f"parameters.{parameter.name}")
         self._check_inertials()
+        drives = checked_drives(self.drives, self.joints, self.defaults,
+                                lambda message, _: RobotFileError(message, source=self.source, field="drive"))
+        object.__setattr__(self, "drives", drives)
 
     def _check_inertials(self) -> None:
         inertials = tuple(self.inertials)

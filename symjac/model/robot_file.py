@@ -14,20 +14,21 @@ another's), so there are no cycles to resolve; it is written in radians and leng
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import sympy as sp
 
-from symjac.errors import ExpressionError, InertialWarning, RobotFileError, warn
-from symjac.model.bounds import file_limits, size_problem
+from symjac.errors import ExpressionError, RobotFileError
+from symjac.model.bounds import file_limits
 from symjac.model.conventions import PLUGINS, convention_named, file_inertials, plugin, with_file_inertials
 from symjac.model.conventions.base import transform_fields
 from symjac.model.coordinates import Coupling
+from symjac.model.drive import drive_table
 from symjac.model.expressions import exact_number, expression_text, name_problem, parse_expression
-from symjac.model.inertia import Inertial, inertial_from_table, inertial_problem, inertial_table
+from symjac.model.inertia import inertial_table
 from symjac.model.inertial_parameters import placeholder_defaults, symbolic_links, symbolic_where_missing
+from symjac.model.link_fields import drive_field, inertial_field, is_finite, require_finite
 from symjac.model.robot import FixedTransform, Joint, JointType, Parameter, Robot, reserved_names
 
 __all__ = ["robot_from_mapping", "robot_to_mapping"]
@@ -135,12 +136,12 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
         data, lambda key: _fixed_transform(data[key], key, value, defaults, fail, angle_scale),
         lambda message, field: fail(message, field=field))
 
-    allowed = {"type", "d", "theta", "limits", "coupled", "inertial", *spec.keys}
-    joints, inertials = [], []
+    allowed = {"type", "d", "theta", "limits", "coupled", "inertial", "drive", *spec.keys}
+    joints, inertials, drives = [], [], []
     for number, (joint_data, kind) in enumerate(zip(joints_data, joint_types, strict=True), start=1):
         unknown = sorted(set(joint_data) - allowed)
         if unknown:
-            listed = [*sorted(allowed - {"inertial"}), "inertial"]  # the link's data after the joint's own fields
+            listed = [*sorted(allowed - {"inertial", "drive"}), "drive", "inertial"]  # sub-tables after the fields
             raise fail(f"unknown key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(listed)}",
                        joint=number)
         reader = _JointReader(joint_data, number, value, defaults, fail, angle_scale, settings)
@@ -154,7 +155,8 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
                                  turn=kind is JointType.REVOLUTE and unit == "rad")
         joints.append(Joint(index=number, type=kind, placement=placement, d=d, theta=theta, limits=limits,
                             name=joint_name))
-        inertials.append(_inertial(joint_data, number, value, defaults, fail))
+        inertials.append(inertial_field(joint_data, number, value, defaults, fail))
+        drives.append(drive_field(joint_data, number, value, defaults, fail))
 
     coupling = _coupling(joints_data, joints, names, defaults, fail)
     transforms: dict[str, FixedTransform | None] = {}
@@ -166,39 +168,11 @@ def robot_from_mapping(data: Mapping[str, Any], source: str = "<mapping>") -> Ro
 
     robot = Robot(name=name, convention=convention, joints=tuple(joints), parameters=parameters,
                   description=description, base=transforms.get("base"), tool=transforms.get("tool"), source=source,
-                  coupling=coupling, angle_unit=unit)
+                  coupling=coupling, angle_unit=unit, drives=tuple(drives))
     robot = robot if all(i is None for i in inertials) else with_file_inertials(robot, inertials)
     if data.get("inertials", "symbolic") != "symbolic":
         raise fail(f"'inertials' can only be \"symbolic\", got {data['inertials']!r}", field="inertials")
     return symbolic_where_missing(robot) if "inertials" in data else robot
-
-
-def _inertial(table: Mapping[str, Any], number: int, value: Any, defaults: Mapping[sp.Symbol, sp.Rational],
-              fail: Any) -> Inertial | None:
-    """Joint ``number``'s ``inertial`` table (link *number*'s data, in its convention's frame), checked, or None."""
-    if "inertial" not in table:
-        return None
-
-    def problem(message: str, field: str) -> RobotFileError:
-        return fail(f"link {number}: {message}", joint=number, field=field)
-
-    def entry(raw: Any, field: str) -> sp.Expr:
-        try:
-            return value(raw, field, number)
-        except RobotFileError as error:  # say the link, as every inertial error does
-            raise problem(error.message, field) from None
-
-    inertial = inertial_from_table(table["inertial"], entry, problem)
-    for entry in (inertial.mass, *inertial.com, *inertial.inertia):
-        _require_finite(entry, defaults, lambda message: problem(message, "inertial"))
-    reason = inertial_problem(inertial, defaults, physical=False)
-    if reason is not None:
-        raise problem(reason, "inertial")
-    reason = None if inertial.keep_impossible else inertial_problem(inertial, defaults)
-    if reason is not None:  # kept, as URDF's are: a converted CAD export must read back (kinematics does not need it)
-        warn(InertialWarning(f"{problem(reason, 'inertial').args[0]} (kept as given; the dynamics refuse it unless "
-                             f"the table says keep_impossible = true)"))
-    return inertial
 
 
 def _coupling(tables: Sequence[Mapping[str, Any]], joints: Sequence[Joint], names: Mapping[str, sp.Symbol],
@@ -241,8 +215,8 @@ def _coupling(tables: Sequence[Mapping[str, Any]], joints: Sequence[Joint], name
             if coefficient.free_symbols & set(coordinates):
                 raise problem(f"{raw!r} is not affine in the coordinates ({listed}): give a constant plus "
                               f"constant multiples of them")
-            _require_finite(coefficient, defaults, problem)
-        _require_finite(value.xreplace(dict.fromkeys(coordinates, sp.S.Zero)), defaults, problem)
+            require_finite(coefficient, defaults, problem)
+        require_finite(value.xreplace(dict.fromkeys(coordinates, sp.S.Zero)), defaults, problem)
         values.append(value)
     return Coupling(coordinates, tuple(values))
 
@@ -262,7 +236,7 @@ class _JointReader:
     def number(self, key: str, *, angle: bool = False) -> sp.Expr:
         """The value under ``key`` (0 if absent), checked finite."""
         expr = self.value(self.table.get(key, 0), key, angle=angle)
-        _require_finite(expr, self.defaults, lambda message: self.fail(message, key), angle,
+        require_finite(expr, self.defaults, lambda message: self.fail(message, key), angle,
                         turn=angle and self._angle_scale == 1)  # a file in radians: one turn at most
         return expr
 
@@ -283,7 +257,7 @@ class _JointReader:
 
     def is_finite(self, number: sp.Expr) -> bool:
         """Whether ``number`` converts to a finite float."""
-        return _is_finite(number)
+        return is_finite(number)
 
 
 def _parameters(raw: Any, reserved: Mapping[str, str], fail: Any) -> tuple[Parameter, ...]:
@@ -304,27 +278,6 @@ def _parameters(raw: Any, reserved: Mapping[str, str], fail: Any) -> tuple[Param
     return tuple(parameters)
 
 
-def _require_finite(expr: sp.Expr, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any,
-                    angle: bool | None = None, *, turn: bool = False) -> None:
-    """Refuse ``expr`` unless finite with the defaults, and (an angle or a length) no larger than any robot's.
-
-    With ``turn`` (an angle a file gives in radians) more than a turn is refused too: it is surely in degrees.
-    """
-    number = expr.subs(defaults)
-    if not number.is_number or not _is_finite(number):
-        raise fail(f"value {expr} is not a finite number once parameters take their defaults")
-    problem = None if angle is None else size_problem(float(number), angle=angle, turn=turn)
-    if problem is not None:
-        raise fail(f"{expression_text(expr)} = {problem}" if expr.free_symbols else problem)
-
-
-def _is_finite(number: sp.Expr) -> bool:
-    try:
-        return math.isfinite(float(number))
-    except TypeError:  # complex infinity (1/L1 with L1 = 0) has no float
-        return False
-
-
 def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol, sp.Rational], fail: Any,
                      angle_scale: sp.Expr) -> FixedTransform:
     if not isinstance(raw, Mapping):
@@ -343,7 +296,7 @@ def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol
         if list(matrix[3, :]) != [0, 0, 0, 1]:
             raise fail("the last row of 'matrix' must be [0, 0, 0, 1]", field=f"{key}.matrix")
         for index, entry in enumerate(matrix):  # the translation column holds lengths
-            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.matrix"),
+            require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.matrix"),
                             False if index % 4 == 3 else None)
         rotation = matrix[:3, :3].subs(defaults).evalf()
         error = max(float((rotation.T * rotation - sp.eye(3)).norm()), abs(float(rotation.det()) - 1))
@@ -358,7 +311,7 @@ def _fixed_transform(raw: Any, key: str, value: Any, defaults: Mapping[sp.Symbol
             raise fail(f"'{name}' must be a list of 3 numbers or expressions", field=f"{key}.{name}")
         x, y, z = (value(entry, f"{key}.{name}", None, scale) for entry in entries)
         for entry in (x, y, z):
-            _require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"), name == "rpy",
+            require_finite(entry, defaults, lambda message: fail(message, field=f"{key}.{name}"), name == "rpy",
                             turn=name == "rpy" and angle_scale == 1)
         return x, y, z
 
@@ -384,9 +337,9 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
         data["inertials"] = "symbolic"
     # a link left to ``"symbolic"`` needs only the defaults that are not the placeholder's
     placeholders = placeholder_defaults(symbolic)
-    given = [p for p in robot.parameters if placeholders.get(p.name, p.default + 1) != p.default]
-    if given:
-        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in given}
+    kept = [p for p in robot.parameters if placeholders.get(p.name, p.default + 1) != p.default]
+    if kept:
+        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in kept}
     spec = plugin(robot.convention)
     data.update(spec.write_settings(robot))
     joints = []
@@ -399,6 +352,8 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
             row["limits"] = [expression_text(limit) for limit in joint.limits]
         if inertial is not None and link not in symbolic:
             row["inertial"] = inertial_table(inertial)
+        if robot.drives[link - 1] is not None:
+            row["drive"] = drive_table(robot.drives[link - 1])  # type: ignore[arg-type]
         joints.append(row)
     data["joints"] = joints
     for key in ("base",) if spec.owns_tool else ("base", "tool"):

@@ -19,7 +19,8 @@ from M: :math:`T = \sum_i \tfrac12 m_i v_{ci}^T v_{ci} + \tfrac12 \omega_i^T I_i
 :math:`V = -\sum_i m_i g_0^T p_{ci}` (:math:`p_{ci}` the centre in {0}); the Euler-Lagrange equations
 :math:`\tau_k = \frac{d}{dt}\frac{\partial L}{\partial \dot q_k} - \frac{\partial L}{\partial q_k}`,
 :math:`L = T - V`, are then a third route to the torques. Everything is in the robot's coordinates (for coupled
-joints :math:`C^T M C`, ...: the Jacobians and energies are written in them).
+joints :math:`C^T M C`, ...: the Jacobians and energies are written in them). Drive data
+(:mod:`~symjac.analysis.dynamics.drives`) add the armature to M and the rotors' energy to T.
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from collections.abc import Callable
 import sympy as sp
 
 from symjac.analysis.dynamics.bodies import exact_or_nested, laid_out, laid_out_from_first_basis, link_bodies
+from symjac.analysis.dynamics.drives import FrictionLaw, armature_matrix, drive_energy, friction_torques, has_drives
 from symjac.analysis.dynamics.gravity import EARTH, Gravity, check_gravity
 from symjac.analysis.dynamics.polynomial import christoffel_coriolis
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
@@ -93,7 +95,7 @@ def mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableM
             M += body.mass * J_v.T * J_v + J_w.T * sp.Matrix(body.inertia) * J_w
             if chain.nested:  # each link's sum named: the next link adds to names
                 M = M.applyfunc(named)
-        return laid_out(chain, M, simplify)
+        return laid_out(chain, M + armature_matrix(chain), simplify)
 
     return _memo(chain, mass_matrix, (simplify,), compute)  # type: ignore[return-value]
 
@@ -169,7 +171,7 @@ def kinetic_energy(robot: Robot | Chain, *, simplify: bool = True) -> sp.Expr:
             report(f"kinetic energy: link {i} of {chain.n_joints}")
             *_, (_, omega, v) = velocity_propagation(chain, point=body.com, link=i, simplify=simplify).velocities()
             T += body.mass * (v.T * v)[0] / 2 + (omega.T * sp.Matrix(body.inertia) * omega)[0] / 2
-        return laid_out(chain, sp.Matrix([T]), simplify)[0]
+        return laid_out(chain, sp.Matrix([T + drive_energy(chain)]), simplify)[0]
 
     return _memo(chain, kinetic_energy, (simplify,), compute)
 
@@ -186,8 +188,14 @@ def time_derivative(expr: sp.Expr, robot: Robot | Chain) -> sp.Expr:
                                                            strict=True)])
 
 
-def euler_lagrange(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bool = True) -> sp.ImmutableMatrix:
+def euler_lagrange(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bool = True,
+                   friction: FrictionLaw = "sign", eps: sp.Expr | float | None = None) -> sp.ImmutableMatrix:
     r"""The torques by the Euler-Lagrange equations of :math:`L = T - V` (module docstring), n x 1.
+
+    The rotors' energy is in :math:`T` (:func:`~symjac.analysis.dynamics.lagrange.kinetic_energy`); the joints'
+    friction, which no potential gives, is added as a generalised force
+    (:func:`~symjac.analysis.dynamics.drives.friction_torques` with ``friction`` and ``eps``, as
+    :func:`~symjac.analysis.dynamics.newton_euler.newton_euler` takes them).
 
     Examples
     --------
@@ -205,8 +213,11 @@ def euler_lagrange(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: 
     def compute(chain: Chain) -> sp.ImmutableMatrix:
         model = chain.robot
         L = kinetic_energy(chain, simplify=simplify) - potential_energy(chain, gravity, simplify=simplify)
-        tau = [time_derivative(L.diff(qd), chain) - L.diff(q) for q, qd in zip(model.q, model.coordinate_rates,
-                                                                              strict=True)]
-        return laid_out(chain, sp.Matrix(tau), simplify)
+        tau = sp.Matrix([time_derivative(L.diff(qd), chain) - L.diff(q)
+                         for q, qd in zip(model.q, model.coordinate_rates, strict=True)])
+        if has_drives(model):
+            tau += friction_torques(model, friction, eps)
+        return laid_out(chain, tau, simplify)
 
-    return _memo(chain, euler_lagrange, (gravity, simplify), compute)  # type: ignore[return-value]
+    arguments = (gravity, simplify) if friction == "sign" else (gravity, simplify, friction, eps)
+    return _memo(chain, euler_lagrange, arguments, compute)  # type: ignore[return-value]

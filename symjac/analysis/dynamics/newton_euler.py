@@ -48,6 +48,7 @@ from symjac.analysis.dynamics.bodies import (
     link_bodies,
     tidy,
 )
+from symjac.analysis.dynamics.drives import FrictionLaw, armature_matrix, drive_torques, has_drives
 from symjac.analysis.dynamics.gravity import EARTH, NO_GRAVITY, Gravity, check_gravity
 from symjac.analysis.dynamics.polynomial import PolynomialSteps, polynomial_recursion
 from symjac.kinematics.chain import Chain, MemoKey, as_chain
@@ -204,8 +205,14 @@ def _torques(chain: Chain, rates: Sequence[sp.Expr], accelerations: Sequence[sp.
     return laid_out(chain, raw, simplify) if final else sp.ImmutableMatrix(raw), lambda: steps
 
 
-def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bool = True) -> NewtonEuler:
+def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bool = True,
+                 friction: FrictionLaw = "sign", eps: sp.Expr | float | None = None) -> NewtonEuler:
     r"""Inverse dynamics :math:`\tau(q, \dot q, \ddot q)` by recursive Newton-Euler (module docstring).
+
+    Where the robot has drive data (:attr:`Robot.drives <symjac.model.robot.Robot>`) the torques include the motors'
+    armature and the joints' friction (:mod:`~symjac.analysis.dynamics.drives`): ``friction`` ``"sign"`` (default)
+    or ``"smooth"`` (:math:`F_c\tanh(\dot q/\varepsilon)`, with ``eps``). Each step's ``tau`` is then its joint's
+    whole torque, the drive's share included.
 
     Parameters
     ----------
@@ -246,6 +253,8 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
         # each torque in the shortest of frame {0}'s angles (c_12 rather than c_1 c_2 - s_1 s_2), in its step too
         tau, layout = _torques(joints, [j.rate for j in model.joints], [j.acceleration for j in model.joints],
                                gravity, simplify)
+        if has_drives(model):  # joint space: the coupling below moves them with the rest
+            tau = sp.ImmutableMatrix(tau + drive_torques(model, friction, eps))
 
         def steps() -> tuple[LinkStep, ...]:
             return tuple(dataclasses.replace(step, tau=tau[k]) for k, step in enumerate(layout()))
@@ -260,14 +269,15 @@ def newton_euler(robot: Robot | Chain, gravity: Gravity = EARTH, *, simplify: bo
         tau_q = laid_out(chain, coupling_matrix(chain).T * tau_joints, simplify)
         return NewtonEuler(sp.ImmutableMatrix(tau_joints), tau_q, gravity, moved)
 
-    return chain.memo(MemoKey(newton_euler, (gravity, simplify)), lambda: exact_or_nested(chain, compute))
+    key = MemoKey(newton_euler, (gravity, simplify) if friction == "sign" else (gravity, simplify, friction, eps))
+    return chain.memo(key, lambda: exact_or_nested(chain, compute))
 
 
 def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> sp.ImmutableMatrix:
     r"""The mass matrix by Newton-Euler: column j is :math:`\tau` at :math:`\dot q = 0,\ \ddot q = e_j`, no gravity.
 
     An independent route to :func:`~symjac.analysis.dynamics.lagrange.mass_matrix` (the two agree exactly); for a
-    coupled robot :math:`C^T M C`, in the coordinates.
+    coupled robot :math:`C^T M C`, in the coordinates. The drives' armature is on the joints' diagonal.
     """
     chain = as_chain(robot)
 
@@ -278,7 +288,7 @@ def newton_euler_mass_matrix(robot: Robot | Chain, *, simplify: bool = True) -> 
         for j in range(n):
             unit = [sp.S.One if i == j else sp.S.Zero for i in range(n)]
             columns.append(list(_torques(joints, [sp.S.Zero] * n, unit, NO_GRAVITY, simplify, final=False)[0]))
-        M = sp.Matrix(columns).T
+        M = sp.Matrix(columns).T + armature_matrix(joints)
         if chain.robot.coupling is not None:
             C = coupling_matrix(chain)
             M = C.T * in_coordinates(chain, M) * C

@@ -6,7 +6,8 @@ What is read
     equalities; ``<include file>`` (:mod:`symjac.model.readers.mjcf_xml`); the ``<worldbody>`` tree: each ``<body>``
     is a link (``worldbody`` is the link ``world``) placed by ``pos`` and one orientation attribute
     (:mod:`symjac.model.readers.mjcf_frames`), also inside ``<frame>`` elements; its ``<joint>`` elements (``hinge``
-    and ``slide``, with ``pos``, ``axis``, ``range``, ``limited``, ``ref``); its ``<inertial pos (orientation) mass
+    and ``slide``, with ``pos``, ``axis``, ``range``, ``limited``, ``ref``, and ``armature``, ``damping`` and
+    ``frictionloss`` as the joint's :class:`~symjac.model.drive.Drive`); its ``<inertial pos (orientation) mass
     diaginertia | fullinertia>``; its ``<site>`` elements; and ``<equality><joint joint1 joint2 polycoef>``.
     Geoms, meshes, actuators, sensors, tendons and contacts are not read: a body without ``<inertial>`` has no
     inertial data here, although MuJoCo would compute one from its geoms; with ``<compiler inertiafromgeom="true">``
@@ -43,6 +44,7 @@ from pathlib import Path
 import sympy as sp
 
 from symjac.errors import RobotFileError
+from symjac.model.drive import Drive, drive_problem
 from symjac.model.exact_transforms import fixed_transform_from_matrix
 from symjac.model.readers import too_many_links
 from symjac.model.readers.mjcf_frames import Compiler, angle, frame, numbers, rotation_about
@@ -168,8 +170,8 @@ def mjcf_model(data: bytes | str, source: str = "<mjcf>", folder: Path | None = 
     for worldbody in worldbodies:
         reader.walk(worldbody)
     mimics = _mimics(root, reader)
-    joints = tuple(TreeJoint(j.name, j.type, j.parent, j.child, j.origin, j.axis, j.limits, mimics.get(j.name))
-                   for j in reader.joints)
+    joints = tuple(TreeJoint(j.name, j.type, j.parent, j.child, j.origin, j.axis, j.limits, mimics.get(j.name),
+                             j.drive) for j in reader.joints)
     tree = KinematicTree(root.get("model") or "mjcf_robot", tuple(reader.links), joints)
     return MjcfModel(tree, reader.sites, reader.refused)
 
@@ -282,7 +284,7 @@ class _Reader:
             limits = self._limits(attributes, hinge, where)
             self.joints.append(TreeJoint(joint_name, self.kinds[joint_name] if limits is not None or not hinge
                                          else TreeJointType.CONTINUOUS, previous, child, _transform(origin),
-                                         tuple(axis), limits))  # type: ignore[arg-type]
+                                         tuple(axis), limits, drive=self._drive(attributes, where)))  # type: ignore
             previous, pending = child, after
         if previous != name or not kinds:
             self.joints.append(TreeJoint(f"{name} (fixed)", TreeJointType.FIXED, previous, name, _transform(pending)))
@@ -301,6 +303,16 @@ class _Reader:
     def _angle_or_length(self, text: str, hinge: bool, where: str) -> sp.Expr:
         value = numbers(text, 1, self.source, where, length=not hinge)[0]
         return angle(value, self.compiler, self.source, where) if hinge else value
+
+    def _drive(self, attributes: dict[str, str], where: str) -> Drive | None:
+        """``armature``, ``damping`` and ``frictionloss`` (MuJoCo's defaults 0, classes applied) as a drive."""
+        values = [numbers(attributes.get(key, "0"), 1, self.source, f"{where} {key}", length=False)[0]
+                  for key in ("armature", "damping", "frictionloss")]
+        drive = Drive(*values)
+        problem = drive_problem(drive)
+        if problem is not None:
+            raise _fail(self.source, problem, where)
+        return None if drive.is_zero else drive
 
     def _limits(self, attributes: dict[str, str], hinge: bool, where: str) -> JointLimits | None:
         limited = attributes.get("limited", "auto")

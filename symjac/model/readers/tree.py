@@ -43,6 +43,7 @@ import sympy as sp
 from symjac.errors import RobotFileError
 from symjac.model.conventions.general import GeneralPlacement
 from symjac.model.coordinates import Coupling
+from symjac.model.drive import Drive
 from symjac.model.exact_transforms import fixed_transform_from_matrix
 from symjac.model.expressions import is_valid_name
 from symjac.model.readers.lumping import link_inertial
@@ -174,6 +175,7 @@ class TreeJoint:
     axis: tuple[sp.Expr, sp.Expr, sp.Expr] = (sp.S.Zero, sp.S.Zero, sp.S.One)
     limits: JointLimits | None = None
     mimic: Mimic | None = None
+    drive: Drive | None = None  # armature and friction, joint-side (checked by the reader)
 
 
 @dataclass(frozen=True)
@@ -400,7 +402,8 @@ def _robot(robot_name: str, path: list[TreeJoint], source: str, links: dict[str,
     # every number was checked finite when read, limits ordered, names made identifiers: the robot is valid
     robot = Robot(name=robot_name, convention=Convention.GENERAL, joints=tuple(joints),
                   description=f"from {Path(source).name}", tool=None if tool == FixedTransform() else tool,
-                  source=source, inertials=inertials if any(inertials) else (), tip_frame=path[-1].child)
+                  source=source, inertials=inertials if any(inertials) else (), tip_frame=path[-1].child,
+                  drives=tuple(joint.drive for joint in moving))
     return _coupled(robot, moving, all_joints, {joint.name for joint in path}, source)
 
 

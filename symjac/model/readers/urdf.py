@@ -3,7 +3,8 @@ r"""The URDF reader: a URDF document as a :class:`~symjac.model.readers.tree.Kin
 What is read
     ``<robot name>``; every ``<link name>`` with its ``<inertial>`` (``<origin xyz rpy>``, ``<mass value>``,
     ``<inertia ixx ixy ixz iyy iyz izz>``); and every ``<joint name type>`` with its ``<parent link>``,
-    ``<child link>``, ``<origin xyz rpy>``, ``<axis xyz>``, ``<limit lower upper velocity effort>`` and ``<mimic>``.
+    ``<child link>``, ``<origin xyz rpy>``, ``<axis xyz>``, ``<limit lower upper velocity effort>``, ``<mimic>`` and
+    ``<dynamics damping friction>`` (viscous and Coulomb friction, :class:`~symjac.model.drive.Drive`).
     Visual, collision, transmission and gazebo elements are ignored. Position limits with ``lower = upper = 0``
     (URDF's default) mean "no limits", and so do two bounds of at least :data:`MAX_URDF_ANGLE` in size (``+-1e16``,
     which files written for Gazebo give spinning rotors); any other pair must have ``lower < upper``. URDF angles
@@ -46,6 +47,7 @@ import sympy as sp
 
 from symjac.errors import ExpressionError, RobotFileError
 from symjac.model.bounds import size_problem, urdf_turn_problem
+from symjac.model.drive import Drive, drive_problem
 from symjac.model.expressions import exact_number, snap_angle
 from symjac.model.readers import too_large, too_many_links
 from symjac.model.readers.tree import (
@@ -287,7 +289,20 @@ def _joint(joint: ET.Element, source: str) -> TreeJoint:
     axis_element = joint.find("axis")
     axis = _vector(axis_element.get("xyz") if axis_element is not None else None, source, f"{where} axis", (1, 0, 0))
     return TreeJoint(joint_name, kind, ends[0], ends[1], origin, tuple(axis),  # type: ignore[arg-type]
-                     _limits(joint.find("limit"), kind, source, f"{where} limit"), _mimic(joint, kind, source, where))
+                     _limits(joint.find("limit"), kind, source, f"{where} limit"), _mimic(joint, kind, source, where),
+                     _dynamics(joint.find("dynamics"), kind, source, f"{where} dynamics"))
+
+
+def _dynamics(element: ET.Element | None, kind: TreeJointType, source: str, where: str) -> Drive | None:
+    """``<dynamics damping friction>``: viscous and Coulomb friction of a moving joint (missing ones 0)."""
+    if element is None or kind not in _MOVING:
+        return None
+    drive = Drive(viscous=_number(element.get("damping", "0"), source, where),
+                  coulomb=_number(element.get("friction", "0"), source, where))
+    problem = drive_problem(drive)
+    if problem is not None:
+        raise _fail(source, problem, where)
+    return drive
 
 
 def _limits(element: ET.Element | None, kind: TreeJointType, source: str, where: str) -> JointLimits | None:

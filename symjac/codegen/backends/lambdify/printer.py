@@ -48,12 +48,13 @@ class SymPyPrinter(StrPrinter):
 
     def _print_Function(self, expr: sp.Function) -> str:
         constant = isinstance(expr, sp.atan | sp.atan2) and expr.is_number  # a robot file's offset: atan(16/3)
-        if not (isinstance(expr, ALLOWED_FUNCTIONS) or constant):
+        if not (isinstance(expr, (*ALLOWED_FUNCTIONS, sp.sign)) or constant):
             raise CodegenError(f"function {type(expr).__name__} is not supported in generated code")
         return f"sympy.{type(expr).__name__}({', '.join(self._print(argument) for argument in expr.args)})"
 
     _print_sin = _print_Function
     _print_cos = _print_Function
+    _print_sign = _print_Function  # Coulomb friction
     _print_atan = _print_Function
     _print_atan2 = _print_Function
 

@@ -35,6 +35,7 @@ from symjac.analysis.dynamics import (
     newton_euler,
     newton_euler_mass_matrix,
 )
+from symjac.model.io import load_robot
 from symjac.symbolic.nested import lambdify_cse
 
 pytestmark = pytest.mark.external

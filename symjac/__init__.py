@@ -10,8 +10,9 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 (:func:`singularities`, :func:`determinant`, :func:`jacobian_spaces`), joint rates (:func:`inverse_rates`,
 :func:`damped_least_squares`), representation Jacobians (:func:`representation_jacobian`), dynamics
 (:func:`newton_euler`, :func:`mass_matrix`, :func:`coriolis_matrix`, :func:`gravity_torques`, :func:`euler_lagrange`,
-under a :class:`Gravity`); print them (:func:`latex`) and generate fast numeric modules from them (:func:`generate`,
-:func:`write_module`), or compile one in memory (:func:`numeric_model`, :func:`numeric_jacobian`).
+under a :class:`Gravity`; in regressor form, :func:`regressor`); print them (:func:`latex`) and generate fast numeric
+modules from them (:func:`generate`, :func:`write_module`), or compile one in memory (:func:`numeric_model`,
+:func:`numeric_jacobian`).
 
 Every name is imported on first use (PEP 562), so ``import symjac`` costs nothing until a name is asked for and
 ``symjac --version`` does not load SymPy; ``from symjac import jacobian``, ``symjac.jacobian`` and ``dir(symjac)``
@@ -73,6 +74,7 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.analysis.dynamics.lagrange import gravity_torques as gravity_torques
     from symjac.analysis.dynamics.lagrange import mass_matrix as mass_matrix
     from symjac.analysis.dynamics.newton_euler import newton_euler as newton_euler
+    from symjac.analysis.identification.regressor import regressor as regressor
     from symjac.analysis.inverse_rates import damped_least_squares as damped_least_squares
     from symjac.analysis.inverse_rates import inverse_rates as inverse_rates
     from symjac.analysis.inverse_rates import rates_along_path as rates_along_path

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
-from collection import example_robots
+from pinocchio_arms import ARMS, FOLDER, PinocchioArm, close, pin, states
 
 from symjac.analysis.dynamics import (
     coriolis_matrix,
@@ -32,43 +32,17 @@ from symjac.analysis.dynamics import (
     newton_euler,
     newton_euler_mass_matrix,
 )
-from symjac.model.io import load_robot
 from symjac.symbolic.nested import lambdify_cse
 
 pytestmark = pytest.mark.external
-pin = pytest.importorskip("pinocchio", reason="pinocchio is not installed (pip install pin, or the [compare] extra)")
 
 
-FOLDER = example_robots()
-
-ARMS = {  # name: (file, tip link)
-    "ur5": ("ur_description/urdf/ur5_robot.urdf", "tool0"),
-    "panda": ("panda_description/urdf/panda.urdf", "panda_link8"),
-    "xarm7": ("xarm_description/urdf/xarm7.urdf", "link7"),
-    "talos-left-arm": ("talos_data/robots/talos_left_arm.urdf", "arm_left_7_link"),
-    "z1": ("z1_description/urdf/z1.urdf", "link06"),
-    "kinova": ("kinova_description/robots/kinova.urdf", "j2s6s200_end_effector"),
-    "so100": ("so_arm_description/urdf/so100.urdf", "jaw"),
-    "ur10": ("ur_description/urdf/ur10_robot.urdf", "tool0"),
-}
-
-
-class Pair:
+class Pair(PinocchioArm):
     """One arm read by both libraries, and symjac's results compiled to numeric functions of (q, qd, qdd)."""
 
     def __init__(self, name: str):
-        self.name = name
-        path, tip = ARMS[name]
-        self.robot = arm = load_robot(str(FOLDER / path), tip_link=tip)
-        full = pin.buildModelFromUrdf(str(FOLDER / path))
-        ids = [full.getJointId(joint.name) for joint in arm.joints]
-        locked = [i for i in range(1, full.njoints) if i not in ids]
-        self.locked = [full.names[i] for i in locked]
-        # (reduced only when needed: pinocchio refuses to reduce the SO-100's model, two of whose frames share a name)
-        self.model = pin.buildReducedModel(full, locked, pin.neutral(full)) if locked else full
-        self.data = self.model.createData()
-        self.joints = [self.model.joints[self.model.getJointId(joint.name)] for joint in arm.joints]
-        assert [j.idx_v for j in self.joints] == list(range(arm.n_joints)) == list(range(self.model.nv))
+        super().__init__(name)
+        arm = self.robot
         numbers = {s: float(v) for s, v in dynamics_defaults(arm).items()}
         args = [*arm.q, *arm.coordinate_rates, *arm.coordinate_accelerations, *numbers]
 
@@ -82,30 +56,10 @@ class Pair:
         self.g = compiled(gravity_torques(arm))
         self.C = compiled(coriolis_matrix(arm))
 
-    def configuration(self, q: np.ndarray) -> np.ndarray:
-        """pinocchio's configuration vector for the chain's angles (a continuous joint stores cos and sin)."""
-        out = pin.neutral(self.model)
-        for joint, value in zip(self.joints, q, strict=True):
-            if joint.nq == 2:
-                out[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
-            else:
-                out[joint.idx_q] = value
-        return out
-
 
 @pytest.fixture(scope="module", params=sorted(ARMS))
 def pair(request) -> Pair:
     return Pair(request.param)
-
-
-def _states(n: int, count: int = 3):
-    rng = np.random.default_rng(44)
-    return [tuple(rng.uniform(-2, 2, n) for _ in range(3)) for _ in range(count)]
-
-
-def _close(got: np.ndarray, expected: np.ndarray, tolerance: float = 1e-10) -> None:
-    scale = max(1.0, float(np.abs(expected).max()))
-    assert np.abs(got - expected).max() <= tolerance * scale, np.abs(got - expected).max()
 
 
 LOCKED = {"panda": ["panda_finger_joint1", "panda_finger_joint2"],  # the joints off the chain, held at zero
@@ -124,14 +78,14 @@ def test_the_off_chain_joints_are_locked_and_their_bodies_count(pair):
         bare.inertias[bare.getJointId(joint)] = pin.Inertia.Zero()
     ids = [bare.getJointId(joint.name) for joint in pair.robot.joints]
     bare = pin.buildReducedModel(bare, [i for i in range(1, bare.njoints) if i not in ids], pin.neutral(bare))
-    q, _, _ = _states(pair.robot.n_joints, 1)[0]
+    q, _, _ = states(pair.robot.n_joints, 1)[0]
     g = pin.computeGeneralizedGravity(pair.model, pair.data, pair.configuration(q))
     assert np.abs(pin.computeGeneralizedGravity(bare, bare.createData(), pair.configuration(q)) - g).max() > 1e-3
 
 
 def test_inverse_dynamics_mass_matrix_gravity_coriolis_and_forward_dynamics_equal_pinocchios(pair):
     model, data = pair.model, pair.data
-    for q, qd, qdd in _states(pair.robot.n_joints):
+    for q, qd, qdd in states(pair.robot.n_joints):
         args = (*q, *qd, *qdd)
         Q = pair.configuration(q)
         tau = pin.rnea(model, data, Q, qd, qdd)
@@ -139,31 +93,31 @@ def test_inverse_dynamics_mass_matrix_gravity_coriolis_and_forward_dynamics_equa
         M = np.triu(M) + np.triu(M, 1).T
         g = pin.computeGeneralizedGravity(model, data, Q)
         C = pin.computeCoriolisMatrix(model, data, Q, qd)
-        _close(pair.tau(*args).ravel(), tau)
-        _close(pair.M(*args), M)
-        _close(pair.M_ne(*args), M)
-        _close(pair.g(*args).ravel(), g)
-        _close(pair.C(*args) @ qd, C @ qd)
-        _close(pair.C(*args), C)  # both the Christoffel form
+        close(pair.tau(*args).ravel(), tau)
+        close(pair.M(*args), M)
+        close(pair.M_ne(*args), M)
+        close(pair.g(*args).ravel(), g)
+        close(pair.C(*args) @ qd, C @ qd)
+        close(pair.C(*args), C)  # both the Christoffel form
         assert np.abs(tau).max() > 0.1  # real torques: the comparison can fail
         # forward dynamics: symjac's M solved against the torques, pinocchio's articulated-body algorithm
         torques = np.random.default_rng(7).uniform(-1, 1, len(q)) * np.abs(g).max()
         solved = np.linalg.solve(pair.M(*args), torques - pair.C(*args) @ qd - pair.g(*args).ravel())
-        _close(solved, pin.aba(model, data, Q, qd, torques), 1e-9)
-        _close(np.linalg.solve(pair.M(*args), pair.tau(*args).ravel() - pair.tau(*q, *qd, *0 * qdd).ravel()), qdd,
-               1e-9)
+        close(solved, pin.aba(model, data, Q, qd, torques), 1e-9)
+        close(np.linalg.solve(pair.M(*args), pair.tau(*args).ravel() - pair.tau(*q, *qd, *0 * qdd).ravel()), qdd,
+              1e-9)
 
 
 def test_mdot_minus_twice_c_is_skew_and_the_routes_add_up(pair):
     n = pair.robot.n_joints
     h = 1e-6
-    for q, qd, qdd in _states(n, 2):
+    for q, qd, qdd in states(n, 2):
         args = (*q, *qd, *qdd)
         M_dot = (pair.M(*(q + h * qd), *qd, *qdd) - pair.M(*(q - h * qd), *qd, *qdd)) / (2 * h)
         N = M_dot - 2 * pair.C(*args)
-        _close(N, -N.T, 1e-7)
+        close(N, -N.T, 1e-7)
         total = pair.M(*args) @ qdd + pair.C(*args) @ qd + pair.g(*args).ravel()
-        _close(pair.tau(*args).ravel(), total)
+        close(pair.tau(*args).ravel(), total)
         assert np.all(np.linalg.eigvalsh(pair.M(*args)) > 0)
 
 
@@ -179,7 +133,7 @@ def test_gravity_compensation_three_ways(pair):
         static -= J_v.T * body.mass * sp.Matrix([0, 0, -sp.Symbol("g", positive=True)])
     static = sp.lambdify([*arm.q, *numbers], static, cse=lambdify_cse)
     zero = np.zeros(arm.n_joints)
-    for q, _, _ in _states(arm.n_joints, 2):
+    for q, _, _ in states(arm.n_joints, 2):
         held = pin.rnea(pair.model, pair.data, pair.configuration(q), zero, zero)
-        _close(pair.g(*q, *zero, *zero).ravel(), held)
-        _close(np.array(static(*q, *numbers.values()), dtype=float).ravel(), held)
+        close(pair.g(*q, *zero, *zero).ravel(), held)
+        close(np.array(static(*q, *numbers.values()), dtype=float).ravel(), held)

@@ -24,6 +24,7 @@ from symjac.analysis.identification import regressor
 from symjac.analysis.identification.base import base_parameters
 from symjac.cli.main import main
 from symjac.codegen import ModuleRequest, describe, generate, render_files
+from symjac.kinematics.chain import chain_of
 from symjac.model.inertial_parameters import with_symbolic_inertials
 from symjac.model.io import load_robot
 
@@ -240,3 +241,20 @@ def test_the_command_line_and_the_header_say_identification(tmp_path):
     assert main(["codegen", "planar2r", "--identification", "--target", "numpy", "-o", str(path)]) == 0
     module = _import(path)
     assert module.BASE_PARAMETERS == ("ZZR1", "ZZR2", "MXR2", "MY2") and module.selftest() <= 1e-6
+
+
+def test_a_coupled_robots_base_regressor_has_full_rank_in_its_coordinates(tmp_path):
+    """The palletizer's parallelogram (theta4 = -(theta2 + theta3)) groups more parameters than its joints would."""
+    robot = load_robot("palletizer")
+    path = tmp_path / "palletizer.py"
+    path.write_text(generate(robot, "numpy", identification=True))
+    module = _import(path)
+    assert module.selftest() <= 1e-6
+    in_coordinates = base_parameters(regressor(robot))  # of C^T Y: fewer than the joints' own base parameters
+    assert tuple(s.name for s in in_coordinates.symbols) == module.BASE_PARAMETERS
+    assert len(in_coordinates.symbols) < len(base_parameters(regressor(chain_of(robot).joint_chain)).symbols)
+    rng = np.random.default_rng(2)
+    n = robot.n_coordinates
+    samples = [rng.uniform(-1.0, 1.0, (60, n)) for _ in range(3)]
+    W = np.vstack([module.base_regressor(*(s[k] for s in samples)) for k in range(60)])
+    assert np.linalg.matrix_rank(W) == len(module.BASE_PARAMETERS) < len(module.REGRESSOR_PARAMETERS)

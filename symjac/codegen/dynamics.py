@@ -258,14 +258,17 @@ def _carries(chain: Chain, field: str) -> bool:
     return any(sp.sympify(getattr(drive, field)) != 0 for drive in drives)
 
 
-def identification_regressor(chain: Chain) -> Regressor:
-    """The regressor generated code computes: the link parameters, and the drive parameters the robot's model has."""
-    return regressor(chain.joint_chain, EARTH, armature=_carries(chain, "armature"),
+def identification_regressor(chain: Chain, joints: bool = False) -> Regressor:
+    """The regressor generated code computes: the link parameters, and the drive parameters the robot's model has.
+
+    In the robot's coordinates (:math:`C^T Y` for coupled joints), or with ``joints`` on the chain of its joints.
+    """
+    return regressor(chain.joint_chain if joints else chain, EARTH, armature=_carries(chain, "armature"),
                      viscous=_carries(chain, "viscous"), coulomb=_carries(chain, "coulomb"))
 
 
 def identification_base(chain: Chain) -> BaseParameters:
-    """The base parameters of :func:`identification_regressor`."""
+    """The base parameters of :func:`identification_regressor`, in the coordinates (coupling can group more)."""
     from symjac.analysis.identification.base import base_parameters
 
     return base_parameters(identification_regressor(chain))
@@ -281,13 +284,19 @@ def _regressor_function(chain: Chain, matrix: sp.MatrixBase, origin: str) -> Low
 @memoized()
 def lowered_regressor(chain: Chain) -> LoweredFunction:
     r"""``regressor(q, qdot, qddot)``: :math:`Y` with :math:`\tau = Y\pi`, n x p (row-major), p standard parameters."""
-    return _regressor_function(chain, identification_regressor(chain).matrix, "regressor, Newton-Euler per column")
+    matrix = identification_regressor(chain, joints=True).matrix
+    return _regressor_function(chain, matrix, "regressor, Newton-Euler per column")
 
 
 @memoized()
 def lowered_base_regressor(chain: Chain) -> LoweredFunction:
-    r"""``base_regressor(q, qdot, qddot)``: :math:`Y_b` with :math:`\tau = Y_b\pi_b`, n x b (row-major)."""
-    return _regressor_function(chain, identification_base(chain).matrix, "base regressor")
+    r"""``base_regressor(q, qdot, qddot)``: :math:`Y_b` with :math:`\tau = Y_b\pi_b`, n x b (row-major).
+
+    The kept columns of the joints' regressor, moved to the coordinates as the regressor is (:math:`C^T Y_b`).
+    """
+    Y = identification_regressor(chain, joints=True)
+    kept = [Y.parameters.index(symbol) for symbol in identification_base(chain).standard]
+    return _regressor_function(chain, Y.matrix.extract(list(range(Y.matrix.rows)), kept), "base regressor")
 
 
 def _values_function(chain: Chain, values: Sequence[sp.Expr], origin: str) -> LoweredFunction:
@@ -298,7 +307,7 @@ def _values_function(chain: Chain, values: Sequence[sp.Expr], origin: str) -> Lo
 @memoized()
 def lowered_standard_values(chain: Chain) -> LoweredFunction:
     r"""``_standard_values(q)``: the robot's own standard parameters :math:`\pi` (q unused), for the self-test."""
-    Y = identification_regressor(chain)
+    Y = identification_regressor(chain, joints=True)
     values = standard_values(chain.joint_chain)
     return _values_function(chain, [values.get(p, sp.S.Zero) for p in Y.parameters], "the robot's inertial data")
 
@@ -306,7 +315,7 @@ def lowered_standard_values(chain: Chain) -> LoweredFunction:
 @memoized()
 def lowered_base_values(chain: Chain) -> LoweredFunction:
     r"""``_base_values(q)``: the robot's own base parameters :math:`\pi_b` (q unused), for the self-test."""
-    Y = identification_regressor(chain)
+    Y = identification_regressor(chain, joints=True)
     values = standard_values(chain.joint_chain)
     full = {p: values.get(p, sp.S.Zero) for p in Y.parameters}
     return _values_function(chain, [sp.sympify(e).xreplace(full) for e in identification_base(chain).expressions],

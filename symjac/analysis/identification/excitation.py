@@ -146,24 +146,12 @@ def excitation_condition(
 
 @dataclass(frozen=True)
 class Excitation:
-    r"""The result of :func:`optimise_excitation`.
+    r"""The result of :func:`optimise_excitation`: the optimised trajectory and its condition numbers.
 
-    Attributes
-    ----------
-    coefficients : numpy.ndarray, shape (n, 2, L)
-        The optimised Fourier coefficients.
-    q0 : numpy.ndarray, shape (n,)
-        The offsets (optimised unless given).
-    base_frequency : float
-        :math:`\omega_f` in rad/s.
-    condition_number : float
-        The condition number along the optimised trajectory at the sample times.
-    initial_condition_number : float
-        The same at the starting point.
-    success : bool
-        Whether SciPy reported convergence.
-    message : str
-        SciPy's message.
+    ``coefficients`` are the Fourier coefficients (n x 2 x L), ``q0`` the offsets (optimised unless they were given),
+    ``base_frequency`` :math:`\omega_f` in rad/s; ``condition_number`` is the stacked regressor's along the optimised
+    trajectory at the sample times and ``initial_condition_number`` the same at the start; ``success`` and
+    ``message`` are SciPy's.
     """
 
     coefficients: np.ndarray

@@ -116,28 +116,14 @@ def stack(
 class Identification:
     r"""The result of :func:`identify`: the estimated parameters and how far to trust them.
 
-    Attributes
-    ----------
-    parameters : numpy.ndarray, shape (b,)
-        The least-squares estimate :math:`\hat\pi`.
-    standard_deviations : numpy.ndarray, shape (b,)
-        :math:`\sigma_{\hat\pi_i}`, the square roots of the diagonal of :math:`\hat\sigma^2 (W_s^T W W_s)^{-1}`.
-    relative_deviations : numpy.ndarray, shape (b,)
-        :math:`100\, \sigma_{\hat\pi_i} / |\hat\pi_i|`, in percent (infinite where the estimate is exactly 0).
-    covariance : numpy.ndarray, shape (b, b)
-        :math:`\hat\sigma^2 (W_s^T W W_s)^{-1}`.
-    residual_variance : float
-        :math:`\hat\sigma^2 = \hat\rho^T W \hat\rho / (r - b)` (0 when there are no more rows than parameters).
-    residual_rms : float
-        The root mean square of the unweighted residual :math:`\tau_s - W_s \hat\pi`.
-    residuals : numpy.ndarray, shape (r,)
-        The unweighted residual, in the rows' order.
-    condition_number : float
-        The 2-norm condition number of the weighted stacked regressor :math:`W^{1/2} W_s`.
-    rank : int
-        Its numeric rank (always b: a rank-deficient system is refused).
-    names : tuple of str, optional
-        The parameters' names, in order, when given.
+    ``parameters`` is the least-squares estimate :math:`\hat\pi` (b values); ``covariance`` is
+    :math:`\hat\sigma^2 (W_s^T W W_s)^{-1}` (b x b), ``standard_deviations`` the square roots of its diagonal and
+    ``relative_deviations`` :math:`100\, \sigma_{\hat\pi_i} / |\hat\pi_i|` in percent (infinite where an estimate is
+    exactly 0). ``residual_variance`` is :math:`\hat\sigma^2 = \hat\rho^T W \hat\rho / (r - b)` (0 with no more rows
+    than parameters); ``residuals`` the unweighted residual :math:`\tau_s - W_s \hat\pi` in the rows' order and
+    ``residual_rms`` its root mean square. ``condition_number`` is the 2-norm condition number of the weighted stacked
+    regressor :math:`W^{1/2} W_s`, ``rank`` its numeric rank (always b: a rank-deficient system is refused), and
+    ``names`` the parameters' names in order, when given.
     """
 
     parameters: np.ndarray

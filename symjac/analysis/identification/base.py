@@ -28,6 +28,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 import sympy as sp
@@ -43,6 +44,7 @@ from symjac.analysis.identification.regressor import Regressor
 from symjac.errors import SymjacError
 from symjac.model.robot import JointType, Robot
 from symjac.symbolic.layout import expanded_expr
+from symjac.symbolic.nested import has_intermediates, lambdify_cse
 
 __all__ = ["BaseParameters", "base_name", "base_parameters", "preferred_order"]
 
@@ -89,9 +91,8 @@ class BaseParameters:
     standard: tuple[sp.Symbol, ...]
 
     def values(self, standard_values: Mapping[sp.Symbol, sp.Expr]) -> dict[sp.Symbol, sp.Expr]:
-        """The base parameters' values for values of the standard ones (missing ones count as zero)."""
-        zeros = {s: sp.S.Zero for e in self.expressions for s in e.free_symbols if s not in standard_values}
-        given = {**zeros, **standard_values}
+        """The base parameters' values for values of the standard ones (those missing count as zero)."""
+        given = {**{p: sp.S.Zero for p in (*self.standard, *self.grouped)}, **standard_values}
         return {b: sp.expand(e.xreplace(given)) for b, e in zip(self.symbols, self.expressions, strict=True)}
 
 
@@ -138,21 +139,26 @@ def _motion_symbols(regressor: Regressor) -> frozenset[sp.Symbol]:
     return frozenset((*robot.coordinates, *robot.coordinate_rates, *robot.coordinate_accelerations, *gravity))
 
 
-def _sample_sets(table: ColumnTable, regressor: Regressor, seed: int) -> list[np.ndarray]:
-    """The generators' values at 2p random motions, for the robot's geometric values and for random ones."""
+def _motion_samples(regressor: Regressor, rng: np.random.Generator, count: int) -> dict[sp.Symbol, np.ndarray]:
+    """Random values of the motion: angles in (-pi, pi), lengths in (-1, 1), rates and accelerations N(0, 1)."""
     robot = regressor.robot
-    rng = np.random.default_rng(seed)
-    count = max(2 * len(regressor.parameters), 8)
-    motion: dict[sp.Symbol, np.ndarray | float] = {}
+    motion: dict[sp.Symbol, np.ndarray] = {}
     for q, kind in zip(robot.coordinates, robot.coordinate_types, strict=True):
         motion[q] = rng.uniform(-np.pi, np.pi, count) if kind is JointType.REVOLUTE else rng.uniform(-1, 1, count)
     for symbol in (*robot.coordinate_rates, *robot.coordinate_accelerations):
         motion[symbol] = rng.normal(size=count)
     for symbol in sp.sympify(regressor.gravity.magnitude).free_symbols:
         motion[symbol] = rng.uniform(5, 15, count)
+    return motion
+
+
+def _sample_sets(table: ColumnTable, regressor: Regressor, seed: int) -> list[np.ndarray]:
+    """The generators' values at 2p random motions, for the robot's geometric values and for random ones."""
+    rng = np.random.default_rng(seed)
+    motion = _motion_samples(regressor, rng, max(2 * len(regressor.parameters), 8))
     geometry = sorted(set().union(*(table.image.back(i).free_symbols for i in range(len(table.image.gens))))
                       - set(motion), key=sp.default_sort_key)
-    defaults = robot.defaults
+    defaults = regressor.robot.defaults
     chosen, scattered = {}, {}
     for symbol in geometry:
         default = float(defaults[symbol]) if symbol in defaults else None
@@ -167,11 +173,21 @@ def _unit_columns(matrix: np.ndarray) -> np.ndarray:
     return matrix / np.where(norms > 0, norms, 1.0)
 
 
-def _greedy(matrix: np.ndarray, order: Sequence[int], table: ColumnTable) -> list[int]:
-    """The columns kept by the greedy scan on numbers alone (to compare the two sample sets)."""
+def _greedy_basis(units: np.ndarray, kept: Sequence[int]) -> np.ndarray:
+    """An orthonormal basis of the kept columns by Gram-Schmidt in their order (twice, for the digits)."""
+    basis = np.zeros((units.shape[0], 0))
+    for k in kept:
+        v = units[:, k] - basis @ (basis.T @ units[:, k])
+        v = v - basis @ (basis.T @ v)
+        basis = np.column_stack([basis, v / np.linalg.norm(v)])
+    return basis
+
+
+def _greedy(matrix: np.ndarray, order: Sequence[int], zero: Sequence[int]) -> list[int]:
+    """The columns kept by the greedy scan on numbers alone."""
     units, basis, kept = _unit_columns(matrix), np.zeros((matrix.shape[0], 0)), []
     for j in order:
-        if table.is_zero(j):
+        if j in zero:
             continue
         v = units[:, j] - basis @ (basis.T @ units[:, j])
         v = v - basis @ (basis.T @ v)
@@ -181,15 +197,16 @@ def _greedy(matrix: np.ndarray, order: Sequence[int], table: ColumnTable) -> lis
     return kept
 
 
-def _scan(table: ColumnTable, samples: Samples, order: Sequence[int]
-          ) -> tuple[list[int], list[int], dict[int, dict[int, tuple[object, object]]]]:
+Dependence = dict[int, dict[int, sp.Expr]]  # dependent column -> {kept column: coefficient}
+
+
+def _scan(table: ColumnTable, samples: Samples, order: Sequence[int]) -> tuple[list[int], list[int], Dependence]:
     """Kept columns, zero columns, and each dependent column's exact coefficients on the kept ones."""
     units = _unit_columns(samples.matrix)
-    gram = units.T @ units
     basis = np.zeros((units.shape[0], 0))
     kept: list[int] = []
     zero: list[int] = []
-    dependent: dict[int, dict[int, tuple[object, object]]] = {}
+    dependent: Dependence = {}
     for j in order:
         if table.is_zero(j):
             zero.append(j)
@@ -197,8 +214,8 @@ def _scan(table: ColumnTable, samples: Samples, order: Sequence[int]
         v = units[:, j] - basis @ (basis.T @ units[:, j])
         v = v - basis @ (basis.T @ v)
         found = None
-        if np.linalg.norm(v) <= _INDEPENDENT and kept:  # normal equations: small, and LAPACK's lstsq is slow
-            weights = np.linalg.solve(gram[np.ix_(kept, kept)], gram[kept, j])  # on a loaded machine (0.4 s)
+        if np.linalg.norm(v) <= _INDEPENDENT and kept:  # kept columns = basis R, R triangular: solve R w = basis^T u
+            weights = np.linalg.solve(basis.T @ units[:, kept], basis.T @ units[:, j])  # (lstsq: 0.4 s when loaded)
             support = sorted(k for k, w in zip(kept, weights, strict=True) if abs(w) > _SUPPORT)
             found = exact_combination(table, samples, j, support)
             if found is None and len(support) < len(kept):  # a coefficient that vanishes at these values
@@ -207,8 +224,64 @@ def _scan(table: ColumnTable, samples: Samples, order: Sequence[int]
             basis = np.column_stack([basis, v / max(np.linalg.norm(v), 1e-300)])
             kept.append(j)
         else:
-            dependent[j] = found
+            dependent[j] = {k: sp.factor_terms(expanded_expr(table.in_image(numerator), table.image)
+                                               / expanded_expr(table.in_image(denominator), table.image))
+                            for k, (numerator, denominator) in found.items()}
     return kept, zero, dependent
+
+
+def _exact(regressor: Regressor, order: Sequence[int], seed: int) -> tuple[list[int], list[int], Dependence, int]:
+    """Kept, zero and dependent columns and the numeric rank, with exact coefficients (module docstring)."""
+    robot = regressor.robot
+    table = column_table(regressor.matrix, [q for q, kind in zip(robot.coordinates, robot.coordinate_types,
+                                                                  strict=True) if kind is JointType.REVOLUTE],
+                         _motion_symbols(regressor))
+    sets = [Samples(table, values) for values in _sample_sets(table, regressor, seed)]
+    zero = [j for j in range(len(table.columns)) if table.is_zero(j)]
+    counts = [len(_greedy(s.matrix, order, zero)) for s in sets]
+    samples = sets[int(np.argmax(counts))]  # the robot's values unless they are special (a lower rank)
+    kept, zero, dependent = _scan(table, samples, order)
+    return kept, zero, dependent, int(np.linalg.matrix_rank(_unit_columns(samples.matrix)))  # no vectors: fast
+
+
+def _number(value: float) -> sp.Expr:
+    """A coefficient found in floating point: an exact rational where one with a small denominator is that close."""
+    fraction = Fraction(value).limit_denominator(10_000)
+    if abs(float(fraction) - value) <= 1e-9 * max(1.0, abs(value)):
+        return sp.Rational(fraction.numerator, fraction.denominator)
+    return sp.Float(value, 12)
+
+
+def _floating(regressor: Regressor, order: Sequence[int], seed: int
+              ) -> tuple[list[int], list[int], Dependence, int]:
+    """:func:`_exact` for a nested regressor (generic geometry, its numbers floats): coefficients by least squares.
+
+    Its columns are numbers times functions of the motion; their combinations are found at 2p random motions and
+    written as exact rationals where they are (:func:`_number`), else as floats.
+    """
+    rng = np.random.default_rng(seed)
+    count = max(2 * len(regressor.parameters), 8)
+    motion = _motion_samples(regressor, rng, count)
+    defaults = regressor.robot.defaults
+    geometry = sorted(regressor.matrix.free_symbols - set(motion), key=sp.default_sort_key)
+    f = sp.lambdify([*motion, *geometry], regressor.matrix, "numpy", cse=lambdify_cse)
+    fixed = [float(defaults.get(symbol, 1)) for symbol in geometry]
+    stacked = np.vstack([np.array(f(*(values[i] for values in motion.values()), *fixed), dtype=float)
+                         for i in range(count)])
+    norms = np.linalg.norm(stacked, axis=0)
+    zero = [j for j in range(stacked.shape[1])
+            if all(e == 0 for e in regressor.matrix[:, j]) or norms[j] <= 1e-11 * norms.max()]
+    kept = _greedy(stacked, order, zero)
+    units = _unit_columns(stacked)
+    Q = _greedy_basis(units, kept)
+    R = Q.T @ units[:, kept]
+    dependent: Dependence = {}
+    for j in sorted(set(range(stacked.shape[1])) - set(kept) - set(zero)):
+        weights = np.linalg.solve(R, Q.T @ units[:, j])
+        dependent[j] = {k: _number(w * norms[j] / norms[k]) for k, w in zip(kept, weights, strict=True)
+                        if abs(w) > _SUPPORT}
+    nonzero = sorted(set(range(units.shape[1])) - set(zero))  # float junk (1e-19 qdot^2) is no effect
+    return kept, zero, dependent, int(np.linalg.matrix_rank(units[:, nonzero]))
 
 
 def base_parameters(regressor: Regressor, *, seed: int = 0) -> BaseParameters:
@@ -243,33 +316,19 @@ def base_parameters(regressor: Regressor, *, seed: int = 0) -> BaseParameters:
     """
     robot = regressor.robot
     names = regressor.names
-    table = column_table(regressor.matrix, [q for q, kind in zip(robot.coordinates, robot.coordinate_types,
-                                                                  strict=True) if kind is JointType.REVOLUTE],
-                         _motion_symbols(regressor))
     order = preferred_order(names, robot)
-    sets = [Samples(table, values) for values in _sample_sets(table, regressor, seed)]
-    counts = [len(_greedy(s.matrix, order, table)) for s in sets]
-    samples = sets[int(np.argmax(counts))]  # the robot's values unless they are special (a lower rank)
-    kept, zero, dependent = _scan(table, samples, order)
-    rank = int(np.linalg.matrix_rank(_unit_columns(samples.matrix)))  # singular values only: fast
+    route = _floating if has_intermediates(regressor.matrix) or regressor.matrix.has(sp.Float) else _exact
+    kept, zero, dependent, rank = route(regressor, order, seed)
     if rank != len(kept):
         raise SymjacError(f"{robot.name}: the regressor's numeric rank is {rank} but {len(kept)} columns came out "
-                          f"independent exactly; try another seed")
+                          f"independent; try another seed")
     kept.sort()
-    image = table.image
     parameters = regressor.parameters
-
-    def coefficient(pair: tuple[object, object]) -> sp.Expr:
-        numerator, denominator = pair
-        return sp.factor_terms(expanded_expr(table.in_image(numerator), image)
-                               / expanded_expr(table.in_image(denominator), image))
-
     additions: dict[int, list[sp.Expr]] = {k: [] for k in kept}
     grouped: dict[sp.Symbol, sp.Expr] = {}
     for d in sorted(dependent):
         terms = []
-        for k, pair in sorted(dependent[d].items()):
-            c = coefficient(pair)
+        for k, c in sorted(dependent[d].items()):
             additions[k].append(c * parameters[d])
             terms.append(c * parameters[k])
         grouped[parameters[d]] = sp.Add(*terms)

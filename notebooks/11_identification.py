@@ -57,13 +57,17 @@ OUTPUT.mkdir(parents=True, exist_ok=True)
 # ## The regressor and the base parameters
 #
 # Each link has ten standard parameters, its inertia tensor about the origin of its frame $\{i\}$ (`XX`, `XY`,
-# `XZ`, `YY`, `YZ`, `ZZ`), its first moments $m\,c$ (`MX`, `MY`, `MZ`) and its mass `M`: 60 for the PUMA. Many of
-# them never act on the torques (the first link only turns about the vertical), and others act only in fixed
-# combinations. symjac finds those combinations in closed form:
+# `XZ`, `YY`, `YZ`, `ZZ`), its first moments $m\,c$ (`MX`, `MY`, `MZ`) and its mass `M`: 60 for the PUMA. Where
+# the robot's model has drive data, each joint adds its motor inertia `Ia`, viscous friction `Fv` and Coulomb
+# friction `Fc` (we ask for the columns the model carries, as generated code does). Many parameters never act on the
+# torques (the first link only turns about the vertical), and others act only in fixed combinations. symjac finds
+# those combinations in closed form:
 
 # %%
 puma = symjac.load_robot("puma560")
-Y = regressor(puma)
+drives = [drive for drive in getattr(puma, "drives", ()) if drive is not None]
+carried = {field: any(getattr(drive, field) != 0 for drive in drives) for field in ("armature", "viscous", "coulomb")}
+Y = regressor(puma, **carried)
 base = base_parameters(Y)
 print(f"{len(Y.parameters)} standard parameters, {len(base.symbols)} base parameters, "
       f"{len(base.unidentifiable)} that act on nothing")
@@ -96,6 +100,7 @@ spec = importlib.util.spec_from_file_location("puma_identification", folder / "p
 arm = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(arm)
 print("self-test error:", arm.selftest())
+assert tuple(symbol.name for symbol in base.symbols) == arm.BASE_PARAMETERS
 print(arm.BASE_PARAMETERS[:8])
 
 # %% [markdown]
@@ -205,13 +210,14 @@ for k in order[:5]:
 # Replace each `...` with your answer and run the cell: `check` compares it with what symjac derives. Worked
 # answers: `notebooks/solutions.py`. To see an answer, add `reveal=True` to the cell's `check(...)`.
 #
-# 1. How many base parameters does the PUMA 560 have? (The published count for this arm is the same.)
+# 1. How many base parameters of the PUMA 560 group parameters of its links (leave out the drives' `Ia`, `Fv`, `Fc`
+#    columns, if any)? The published count for this arm is the same.
 # 2. The planar 2R arm (`planar2r`) turns in a horizontal plane. Its base parameter `MXR2` groups link 2's first
 #    moment `MX2` with a mass: write `MXR2` in the standard parameters and the link length `L2`.
 
 # %%
 answer_1 = ...  # your answer here
-check(answer_1, len(base.symbols))
+check(answer_1, sum(not symbol.name.startswith(("Ia", "Fv", "Fc")) for symbol in base.standard))
 
 # %%
 planar_base = base_parameters(regressor(symjac.load_robot("planar2r")))

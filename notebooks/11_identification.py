@@ -169,8 +169,10 @@ assert np.all(error <= 1e-6 * np.maximum(1.0, np.abs(true_base)))
 #
 # Now each joint's torque carries white noise, stronger on the big joints 2 and 3 (0.5 N m) than on the others
 # (0.05 N m). The covariance $\hat\sigma^2 (W_s^T W W_s)^{-1}$ gives each estimate a standard deviation. Ordinary
-# least squares treats every row alike; weighting each joint's rows by the inverse of its own noise variance
-# (estimated from the data, `joint_weights`) sharpens the parameters the quiet joints see.
+# least squares treats every row alike and pools the noise into one $\hat\sigma^2$, so its deviations are right
+# only when every joint is equally noisy; weighting each joint's rows by the inverse of its own noise variance
+# (estimated from the data, `joint_weights`) makes the model of the noise right, and sharpens the parameters the
+# quiet joints see.
 
 # %%
 noise_level = np.array([0.05, 0.5, 0.5, 0.05, 0.05, 0.05])
@@ -181,10 +183,10 @@ for name, result in (("ordinary", ordinary), ("weighted", weighted)):
     within = np.abs(result.parameters - true_base) / result.standard_deviations
     print(f"{name}: residual RMS {result.residual_rms:.3f} N m, condition number {result.condition_number:.1f}, "
           f"{np.mean(within <= 2):.0%} within 2 sigma, largest deviation {within.max():.2f} sigma")
-    assert within.max() <= 4.0
+assert within.max() <= 4.0  # the weighted estimate, whose noise model is right, within its stated confidence
 
 # %% [markdown]
-# The estimates land within their stated confidence. Parameters that move the torques a lot (`ZZR1`, `MXR2`,
+# The weighted estimates land within their stated confidence. Parameters that move the torques a lot (`ZZR1`, `MXR2`,
 # `XXR2`: the big inertias and first moments of links 1 to 3) are found to a fraction of a percent; those of the
 # small wrist links, a few grams and thousandths of kg m², drown in the noise: their relative deviations say so, and
 # an experiment would excite the wrist harder, or measure longer, before trusting them.

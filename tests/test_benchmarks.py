@@ -36,6 +36,7 @@ pytestmark = pytest.mark.slow  # seconds per script
     "poe.py",
     "regressor.py planar2r --limit 120",
     "base_parameters.py planar2r --limit 120",
+    "identification.py planar2r -n 100 --targets python numpy",
     "urdf_vs_dh.py",
 ])
 def test_a_benchmark_script_runs_and_prints_its_table(command, tmp_path):

@@ -119,7 +119,7 @@ class Shim:
     def __init__(self, folder: Path, robot, files: dict[str, str]):
         for name, text in files.items():
             (folder / name).write_text(text)
-        assignments = "\n".join(f"        values.{p.name} = p[{k}];" for k, p in enumerate(robot.parameters))
+        assignments = "\n".join(f"        values.{p.name} = p[{k}];" for k, p in enumerate(robot.geometric_parameters))
         square = robot.n_coordinates == 6
         (folder / "shim.cpp").write_text(SHIM.format(robot=robot.name, assignments=assignments,
                                                      determinant=DETERMINANT if square else ""))

@@ -45,7 +45,8 @@ def with_symbolic_inertials(robot: Robot, values: Sequence[Inertial | None] | No
     taken = {parameter.name for parameter in parameters}
     for link in chosen:
         symbolic = symbolic_inertial(link)
-        if inertials[link - 1] is not None and _same_symbols(inertials[link - 1], symbolic):
+        known = inertials[link - 1]
+        if known is not None and _same_symbols(known, symbolic):
             continue  # symbolic already (a catalog file's ``inertials = "symbolic"``): its defaults stay
         default = given[link - 1] or PLACEHOLDER
         pairs = [(symbolic.mass, default.mass), *zip(symbolic.com, default.com, strict=True),

@@ -384,9 +384,9 @@ def robot_to_mapping(robot: Robot) -> dict[str, Any]:
         data["inertials"] = "symbolic"
     # a link left to ``"symbolic"`` needs only the defaults that are not the placeholder's
     placeholders = placeholder_defaults(symbolic)
-    written = [p for p in robot.parameters if placeholders.get(p.name, p.default + 1) != p.default]
-    if written:
-        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in written}
+    given = [p for p in robot.parameters if placeholders.get(p.name, p.default + 1) != p.default]
+    if given:
+        data["parameters"] = {parameter.name: expression_text(parameter.default) for parameter in given}
     spec = plugin(robot.convention)
     data.update(spec.write_settings(robot))
     joints = []

@@ -22,10 +22,10 @@ from reference import frames
 from reference_dynamics import NumericDynamics
 from strategies import general_robots, robots
 
-from symjac import load_robot, regressor
+from symjac import load_robot, regressor, robot_from_mapping
 from symjac.analysis.dynamics import Gravity, dynamics_defaults, newton_euler
 from symjac.analysis.identification import standard_parameters, standard_values
-from symjac.errors import ArgumentError
+from symjac.errors import ArgumentError, NoInertialDataError
 from symjac.kinematics.chain import Chain
 from symjac.model.inertia import Inertial, combined_inertial
 from symjac.symbolic.angles import AngleBasis
@@ -113,6 +113,15 @@ def test_a_coupled_robots_drive_terms_are_moved_to_the_coordinates():
     columns = [Y.names.index(f"Fv{j}") for j in range(1, arm.n_joints + 1)]
     rates = C * sp.Matrix(arm.coordinate_rates)
     assert (Y.matrix[:, columns] - C.T * sp.diag(*rates)).applyfunc(sp.expand) == sp.zeros(len(arm.q), arm.n_joints)
+
+
+def test_no_inertial_data_is_needed_but_standard_values_names_what_is_missing():
+    arm = robot_from_mapping({"name": "bare", "convention": "modified",
+                              "joints": [{"type": "revolute"}, {"type": "prismatic", "alpha": "pi/2"}]})
+    Y = regressor(arm)
+    assert Y.matrix[1, Y.names.index("M2")] != 0
+    with pytest.raises(NoInertialDataError, match="bare: links 1, 2 have no inertial data"):
+        standard_values(arm)
 
 
 def test_bad_options_and_name_clashes_are_refused():

@@ -247,9 +247,10 @@ def regressor(robot: Robot | Chain, gravity: Gravity = EARTH, *, armature: bool 
     chain = as_chain(robot)
     check_gravity(chain.robot, gravity)
     asked = (armature, viscous, coulomb, offset)
-    epsilon = None if smooth is None else sp.nsimplify(smooth, rational=True) if isinstance(smooth, float) else \
-        sp.sympify(smooth)
-    if epsilon is not None and (not coulomb or epsilon.is_positive is False or not epsilon.is_real):  # type: ignore
+    epsilon: sp.Expr | None = None
+    if smooth is not None:  # a float such as 0.01 becomes the exact 1/100, as gravity's magnitude does
+        epsilon = sp.nsimplify(smooth, rational=True) if isinstance(smooth, float) else sp.sympify(smooth)
+    if epsilon is not None and (not coulomb or epsilon.is_positive is False):  # a plain symbol may be positive
         raise ArgumentError(f"smooth is the epsilon > 0 of the smooth Coulomb friction tanh(qdot/epsilon), given with "
                             f"coulomb=True; got smooth={smooth!r} with coulomb={coulomb}")
     parameters = standard_parameters(chain, armature=armature, viscous=viscous, coulomb=coulomb, offset=offset)

@@ -62,16 +62,24 @@ def numeric_rank(Y, geometry: dict | None = None, seed: int = 1) -> int:
 
 
 def check_torques_numerically(Y, base: BaseParameters, seed: int = 2, points: int = 4) -> None:
-    """Y_b pi_b = Y pi at random motions, for random standard parameters, at the robot's geometry."""
+    """Y_b pi_b = Y pi at random motions, for random standard parameters, at the robot's geometry.
+
+    Y_b is checked to be the kept columns of Y exactly, so both sides are evaluated from one lambdified Y.
+    """
     rng = np.random.default_rng(seed)
+    kept = [Y.parameters.index(p) for p in base.standard]
+    assert base.matrix == Y.matrix[:, kept]
     standard = {p: sp.Rational(int(v), 7) for p, v in zip(Y.parameters, rng.integers(-20, 21, len(Y.parameters)),
                                                           strict=True)}
+    fixed = _fixed(Y)
+    pi = np.array([float(standard[p]) for p in Y.parameters])
     based = base.values(standard)
-    f = _function(Y, Y.matrix * sp.Matrix([standard[p] for p in Y.parameters]))
-    g = _function(Y, base.matrix * sp.Matrix([based[b] for b in base.symbols]))
+    pi_b = np.array([float(sp.sympify(based[b]).xreplace(fixed)) for b in base.symbols])
+    f = _function(Y, Y.matrix)
+    n, p = Y.matrix.shape
     for _ in range(points):
-        x = rng.uniform(-2, 2, len(_motion(Y)))
-        a, b = f(x), g(x)
+        values = f(rng.uniform(-2, 2, len(_motion(Y)))).reshape(n, p)
+        a, b = values @ pi, values[:, kept] @ pi_b
         assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * (1 + np.abs(a).max()))
 
 
@@ -148,7 +156,8 @@ def test_puma560_count_is_the_published_one():
     a spherical wrist; their example is the Staubli RX-90) the base parameters are ZZR1 and seven per link 2..6
     (XXR2, XY2, XZR2, YZ2, ZZR2, MXR2, MY2, and so on), 36 in all. The PUMA's offsets d3 and a3 change the
     expressions, not the count. What is counted: rigid-body parameters only; the motor inertias Ia and the friction
-    (Fv, Fs) that Khalil and Dombre add for identification are not in this count. The closed forms follow Khalil's
+    (Fv, Fs) that Khalil and Dombre add for identification are not in this count (with them it is 52:
+    test_puma560_with_motor_inertia_and_friction). The closed forms follow Khalil's
     grouping rules (Khalil's d_j is the modified-DH a_j), e.g. MXR3 = MX3 + a3 (M4 + M5 + M6), MYR5 = MY5 + MZ6,
     XXR6 = XX6 - YY6.
     """
@@ -199,4 +208,19 @@ def test_random_chains(arm):
     base = base_parameters(Y)
     assert len(base.symbols) == base.rank == numeric_rank(Y)
     assert len(set(base.symbols)) == len(base.symbols)
+    check_torques_numerically(Y, base, points=2)
+
+
+@pytest.mark.slow  # the planar 2R drive test covers the grouping of drive parameters in the fast loop
+def test_puma560_with_motor_inertia_and_friction():
+    """With each joint's armature, viscous and Coulomb friction: 36 + 4 + 12 = 52. Ia1 and Ia2 have the columns of
+    ZZ1 and ZZ2 (joint 2 is perpendicular to joint 1, so ZZ2 acts on joint 2 alone) and are grouped into ZZR1 and
+    ZZR2, as Khalil's rules group them; Ia3 .. Ia6 and the friction parameters stay on their own."""
+    Y = regressor(load_robot("puma560"), armature=True, viscous=True, coulomb=True)
+    base = base_parameters(Y)
+    names = [b.name for b in base.symbols]
+    assert len(names) == base.rank == numeric_rank(Y) == 52
+    assert {"Ia3", "Ia4", "Ia5", "Ia6"} <= set(names) and not {"Ia1", "Ia2"} & set(names)
+    named = dict(zip(names, base.expressions, strict=True))
+    assert named["ZZR1"].coeff(_p("Ia1")) == 1 and named["ZZR2"].coeff(_p("Ia2")) == 1
     check_torques_numerically(Y, base, points=2)

@@ -62,17 +62,18 @@ _SUPPORT = 1e-8  # a least-squares coefficient (columns scaled to unit size) bel
 class BaseParameters:
     r"""The base parameters of a regressor (module docstring): :math:`Y\pi = Y_b\pi_b` exactly.
 
-    Attributes
+    Parameters
     ----------
     symbols : tuple of sympy.Symbol
         The base parameters, in the order of the standard parameters they extend (``XXR2``, or ``XY2`` when nothing
         was added).
     expressions : tuple of sympy.Expr
         Each base parameter as a combination of standard parameters, coefficients in the geometric parameters.
-    matrix : sympy.ImmutableMatrix, shape (n_coordinates, len(symbols))
-        The base regressor :math:`Y_b`: the kept columns of :math:`Y`.
+    matrix : sympy.ImmutableMatrix
+        The base regressor :math:`Y_b`, one row per coordinate and one column per base parameter: the kept columns
+        of :math:`Y`.
     rank : int
-        The numeric rank of :math:`Y` stacked over random samples: equal to ``len(symbols)``.
+        The numeric rank of :math:`Y` stacked over random samples: equal to the number of base parameters.
     unidentifiable : tuple of sympy.Symbol
         The standard parameters whose columns are identically zero (no effect on any torque).
     grouped : dict

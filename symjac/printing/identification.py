@@ -51,7 +51,7 @@ def identification_document(robot: Robot, regressor: Regressor, base: BaseParame
     >>> from symjac import load_robot
     >>> from symjac.analysis.identification import regressor
     >>> document = identification_document(load_robot("planar2r"), regressor(load_robot("planar2r")))
-    >>> document.blocks[0].caption[0][:46]
+    >>> document.blocks[0].caption[0][:47]
     'Regressor of tau = Y(q, qdot, qddot) pi, link 1'
     >>> document.facts["regressor_parameters"][:3]
     ['XX1', 'XY1', 'XZ1']

@@ -57,4 +57,8 @@ SOLUTIONS: dict[str, dict[str, str]] = {
         "answer_2": "answer_2 = m2 * g_symbol * lc2 * sp.cos(theta1 + theta2)",
         "answer_3": "answer_3 = 0  # joint 1 turns about the vertical",
     },
+    "11_identification": {
+        "answer_1": "answer_1 = 36",
+        "answer_2": "answer_2 = MX2 + L2 * M2",
+    },
 }

@@ -35,6 +35,8 @@ pytestmark = pytest.mark.slow  # seconds per script
     "growth.py --family planar --sizes 2 3 --limit 10",
     "poe.py",
     "regressor.py planar2r --limit 120",
+    "base_parameters.py planar2r --limit 120",
+    "identification.py planar2r -n 100 --targets python numpy",
     "urdf_vs_dh.py",
 ])
 def test_a_benchmark_script_runs_and_prints_its_table(command, tmp_path):

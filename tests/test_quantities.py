@@ -22,7 +22,7 @@ from symjac.quantities import MEMBERS, QUANTITIES, LawName, Quantity
 from symjac.quantities.spec import entry_point
 
 ROOT = Path(__file__).resolve().parent.parent
-DYNAMICS = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "gravity_torques")
+DYNAMICS = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "gravity_torques", "regressor", "base_regressor")
 
 
 @pytest.mark.parametrize("name", list(QUANTITIES))
@@ -143,7 +143,7 @@ def test_a_screw_jacobian_refuses_the_options_it_ignores_in_one_line(capsys, ext
     assert err.count("\n") == 1 and err.startswith(f"symjac: error: --kind space does not take {named}: ")
 
 
-@pytest.mark.parametrize("name", ["mass_matrix", "gravity_torques"])
+@pytest.mark.parametrize("name", ["mass_matrix", "gravity_torques", "regressor"])
 def test_a_dynamics_specs_law_moves_the_joints_result_to_the_coordinates(name):
     """What code generation does with a spec's law (derive on the joints, move) gives the coupled robot's result."""
     from symjac.kinematics.chain import as_chain

@@ -30,8 +30,9 @@ BUILT_IN = ("forward_kinematics", "jacobian", "hessian", "bias_acceleration", "j
 def test_the_kinds_table_is_the_quantities_kinds_then_codegens_own():
     own = [q.codegen.name for q in QUANTITIES.values() if q.codegen is not None]
     assert list(KINDS)[:len(own)] == own
-    assert list(KINDS)[len(own):] == ["kinematics", "bias_forces", "forward_dynamics", "potential_energy", "scalar",
-                                      "jacobian_determinant", "manipulability_gradient"]
+    assert list(KINDS)[len(own):] == ["kinematics", "bias_forces", "forward_dynamics", "potential_energy",
+                                      "standard_values", "base_values", "scalar", "jacobian_determinant",
+                                      "manipulability_gradient"]
     for name in own:
         assert quantity_of(name).kind == name and KINDS[name] is quantity_of(name).codegen
     assert quantity_of("kinematics") is None

@@ -55,6 +55,9 @@ def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--dynamics", action="store_true",
                      help="also generate inverse_dynamics, mass_matrix, coriolis_matrix, bias_forces, gravity_torques "
                           "and forward_dynamics (the robot needs inertial data on every link)")
+    sub.add_argument("--identification", action="store_true",
+                     help="also generate regressor and base_regressor (tau = Y pi = Y_b pi_b; the parameters' names "
+                          "in order as REGRESSOR_PARAMETERS, BASE_PARAMETERS); implies --dynamics")
     sub.add_argument("--name", default=None,
                      help="the module's name: file names, C prefix, C++ namespace (default: the robot's name)")
 

@@ -161,8 +161,10 @@ class Check:
     ``routine`` is ``"pose"`` (the forward kinematics is a rigid transform), ``"jacobian"`` (a Jacobian against
     central differences of its kinematics, its torques against J^T F), ``"acceleration"`` (the Hessian, bias
     acceleration and manipulability gradient against central differences) or ``"dynamics"`` (inverse dynamics, M,
-    C, the bias forces, g and forward dynamics against each other); ``functions`` are the names it calls, in
-    the routine's order; ``rows`` the Jacobian's task rows (none for the pose). The checks run in the order given.
+    C, the bias forces, g and forward dynamics against each other) or ``"identification"`` (a regressor times the
+    robot's own parameters against inverse dynamics); ``functions`` are the names it calls, in the routine's order;
+    ``rows`` the Jacobian's task rows (none for the pose; for ``"identification"`` the regressor's column count).
+    The checks run in the order given.
     """
 
     routine: str
@@ -288,7 +290,8 @@ class ModuleDescription:
     and ``accelerations`` name the entries of ``qdot`` and ``qddot`` when functions take them.
     ``joint_entries`` describe the entries of ``q`` as the robot's source names them (name, identifier-safe variant,
     type, limits: :class:`~symjac.codegen.joint_table.JointEntry`), ``tip_frame`` names the frame the chain ends at
-    and ``origin`` says where the robot came from (``URDF file ur5.urdf``).
+    and ``origin`` says where the robot came from (``URDF file ur5.urdf``). ``name_lists`` are module constants
+    holding names in order (``REGRESSOR_PARAMETERS``: the regressor's columns), each (constant, names).
     """
 
     target: str
@@ -318,6 +321,7 @@ class ModuleDescription:
     joint_entries: tuple[JointEntry, ...] = ()
     tip_frame: str = ""
     origin: str = ""
+    name_lists: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
     @property
     def joint_names(self) -> tuple[str, ...]:

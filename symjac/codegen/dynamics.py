@@ -27,6 +27,7 @@ is added.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
@@ -34,6 +35,8 @@ from symjac.analysis.dynamics.drives import coulomb_law
 from symjac.analysis.dynamics.gravity import EARTH, Gravity
 from symjac.analysis.dynamics.lagrange import coriolis_matrix, gravity_torques, mass_matrix
 from symjac.analysis.dynamics.newton_euler import newton_euler, newton_euler_mass_matrix, recursion
+from symjac.analysis.identification.parameters import standard_values
+from symjac.analysis.identification.regressor import Regressor, regressor
 from symjac.codegen.cse import eliminate_common
 from symjac.codegen.lower import Inputs, LoweredFunction, angle_expansion
 from symjac.codegen.recursions import (
@@ -48,13 +51,22 @@ from symjac.kinematics.chain import Chain
 from symjac.kinematics.coupling import coupling_matrix
 from symjac.kinematics.memo import memoized
 
+if TYPE_CHECKING:
+    from symjac.analysis.identification.base import BaseParameters
+
 __all__ = [
+    "identification_base",
+    "identification_regressor",
+    "lowered_base_regressor",
+    "lowered_base_values",
     "lowered_bias_forces",
     "lowered_coriolis_matrix",
     "lowered_gravity_torques",
     "lowered_inverse_dynamics",
     "lowered_mass_matrix",
     "lowered_potential_energy",
+    "lowered_regressor",
+    "lowered_standard_values",
     "numeric_gravity",
 ]
 
@@ -271,3 +283,73 @@ def lowered_coriolis_matrix(chain: Chain, strategy: str) -> LoweredFunction:
     return _finished(space, trace, [e for row in C for e in row], (n, n), inputs,
                      "Christoffel symbols of the composite-body M, by forward differentiation")
 
+
+
+def _carries(chain: Chain, field: str) -> bool:
+    """Whether the robot's own dynamics carry this drive parameter (armature, viscous, coulomb) on some joint."""
+    drives = [drive for drive in getattr(chain.robot, "drives", None) or () if drive is not None]
+    return any(sp.sympify(getattr(drive, field)) != 0 for drive in drives)
+
+
+def identification_regressor(chain: Chain, joints: bool = False) -> Regressor:
+    """The regressor generated code computes: the link parameters, and the drive parameters the robot's model has.
+
+    In the robot's coordinates (:math:`C^T Y` for coupled joints), or with ``joints`` on the chain of its joints.
+    """
+    return regressor(chain.joint_chain if joints else chain, EARTH, armature=_carries(chain, "armature"),
+                     viscous=_carries(chain, "viscous"), coulomb=_carries(chain, "coulomb"))
+
+
+def identification_base(chain: Chain) -> BaseParameters:
+    """The base parameters of :func:`identification_regressor`, in the coordinates (coupling can group more)."""
+    from symjac.analysis.identification.base import base_parameters
+
+    return base_parameters(identification_regressor(chain))
+
+
+def _regressor_function(chain: Chain, matrix: sp.MatrixBase, origin: str) -> LoweredFunction:
+    space = _Space(chain)
+    combined = space.C.T * sp.Matrix(matrix) if space.coupled else sp.Matrix(matrix)
+    return _symbolic(space, list(combined), (combined.rows, combined.cols), space.inputs("q", "qdot", "qddot"),
+                     origin)
+
+
+@memoized()
+def lowered_regressor(chain: Chain) -> LoweredFunction:
+    r"""``regressor(q, qdot, qddot)``: :math:`Y` with :math:`\tau = Y\pi`, n x p (row-major), p standard parameters."""
+    matrix = identification_regressor(chain, joints=True).matrix
+    return _regressor_function(chain, matrix, "regressor, Newton-Euler per column")
+
+
+@memoized()
+def lowered_base_regressor(chain: Chain) -> LoweredFunction:
+    r"""``base_regressor(q, qdot, qddot)``: :math:`Y_b` with :math:`\tau = Y_b\pi_b`, n x b (row-major).
+
+    The kept columns of the joints' regressor, moved to the coordinates as the regressor is (:math:`C^T Y_b`).
+    """
+    Y = identification_regressor(chain, joints=True)
+    kept = [Y.parameters.index(symbol) for symbol in identification_base(chain).standard]
+    return _regressor_function(chain, Y.matrix.extract(list(range(Y.matrix.rows)), kept), "base regressor")
+
+
+def _values_function(chain: Chain, values: Sequence[sp.Expr], origin: str) -> LoweredFunction:
+    space = _Space(chain)
+    return _symbolic(space, [sp.sympify(v) for v in values], (len(values),), space.inputs("q"), origin)
+
+
+@memoized()
+def lowered_standard_values(chain: Chain) -> LoweredFunction:
+    r"""``_standard_values(q)``: the robot's own standard parameters :math:`\pi` (q unused), for the self-test."""
+    Y = identification_regressor(chain, joints=True)
+    values = standard_values(chain.joint_chain)
+    return _values_function(chain, [values.get(p, sp.S.Zero) for p in Y.parameters], "the robot's inertial data")
+
+
+@memoized()
+def lowered_base_values(chain: Chain) -> LoweredFunction:
+    r"""``_base_values(q)``: the robot's own base parameters :math:`\pi_b` (q unused), for the self-test."""
+    Y = identification_regressor(chain, joints=True)
+    values = standard_values(chain.joint_chain)
+    full = {p: values.get(p, sp.S.Zero) for p in Y.parameters}
+    return _values_function(chain, [sp.sympify(e).xreplace(full) for e in identification_base(chain).expressions],
+                            "the robot's inertial data, grouped")

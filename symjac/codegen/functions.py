@@ -101,11 +101,12 @@ def input_arguments(chain: Chain, selected: tuple[int, ...] = ()) -> dict[str, A
 
 
 def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], strategy: Strategy, acceleration: bool,
-                          dynamics: bool = False) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
+                          dynamics: bool = False, identification: bool = False
+                          ) -> tuple[list[FunctionDescription], list[JacobianInfo]]:
     """The module-scoped functions, then per Jacobian request its functions (:func:`generated_kinds` order).
 
     With ``dynamics`` the module-scoped functions include the dynamics' lowered kinds (forward dynamics, derived,
-    is :func:`dynamics_functions`'s).
+    is :func:`dynamics_functions`'s), with ``identification`` the regressors and their self-test's values.
     """
     model = chain.robot
     q_argument = Argument("q", tuple(s.name for s in model.q), _q_words(model))
@@ -123,7 +124,7 @@ def function_descriptions(chain: Chain, requests: Sequence[JacobianRequest], str
                             (q_argument, *(inputs[i] for i in kind.inputs)), returns)
         functions.append(FunctionDescription(spec, function))
 
-    for kind in generated_kinds("module", acceleration, dynamics):
+    for kind in generated_kinds("module", acceleration, dynamics, identification):
         if not kind.derived:
             add(lowered(kind, chain, strategy), kind.base, kind, (), end=end_words(model))
     infos: list[JacobianInfo] = []

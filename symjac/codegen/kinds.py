@@ -23,8 +23,8 @@ from symjac.errors import CodegenError
 from symjac.quantities import QUANTITIES, Quantity
 from symjac.quantities.spec import Generated, Scope
 
-__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "DYNAMICS_CHECKED", "KINDS", "SCALAR", "generated_kinds", "kind_spec",
-           "quantity_of"]
+__all__ = ["CHECK_WORDS", "COUPLED_WORDS", "DYNAMICS_CHECKED", "IDENTIFICATION_CHECKED", "KINDS", "SCALAR",
+           "generated_kinds", "kind_spec", "quantity_of"]
 
 SCALAR = Generated("scalar", "The value of the expression.", "A scalar function of the joint values.",
                    scope="module")
@@ -59,12 +59,31 @@ _DYNAMICS_OWN = (
 """Code generation's own dynamics kinds: no quantity. Forward dynamics is derived (a Cholesky solve of the runtime
 from the mass matrix and the bias forces); the potential energy exists for the self-test only (g = dV/dq)."""
 
+IDENTIFICATION_CHECKED = (("regressor", "standard_values"), ("base_regressor", "base_values"))
+"""With ``identification=True``: each regressor kind and the self-test-only kind of its parameters' values (the
+robot's own), checked against inverse dynamics (Y(q, qdot, qddot) pi = tau)."""
+
+_IDENTIFICATION_OWN = (
+    Generated("standard_values", "The robot's own standard parameters, in the order of ``REGRESSOR_PARAMETERS``.",
+              output="pi",
+              scope="module", identification=True, selftest_only=True, function="_standard_values",
+              summary="The robot's standard parameters pi (the self-test checks regressor pi = tau with them)",
+              lowering="symjac.codegen.dynamics:lowered_standard_values"),
+    Generated("base_values", "The robot's own base parameters, in the order of ``BASE_PARAMETERS``.",
+              output="pi_b",
+              scope="module", identification=True, selftest_only=True, function="_base_values",
+              summary="The robot's base parameters pi_b (the self-test checks base_regressor pi_b = tau with them)",
+              lowering="symjac.codegen.dynamics:lowered_base_values"),
+)
+"""Code generation's own identification kinds: the parameters' values the self-test multiplies the regressors by."""
+
 _OWN = (
     Generated("kinematics", "Point position, ^0_nR and ^0_kR, row by row.", output="out", selftest_only=True,
               function="_kinematics",
               summary="Point position, ^0_nR and ^0_kR (the self-test differentiates them numerically)",
               lowering="symjac.codegen.coupled:coordinate_kinematics"),
     *_DYNAMICS_OWN,
+    *_IDENTIFICATION_OWN,
     SCALAR,
     Generated("jacobian_determinant", "det J, LU with partial pivoting.", "det J of that (square) Jacobian.",
               output="det", routine="determinant", sources=("jacobian",), square_only=True,
@@ -100,16 +119,18 @@ def quantity_of(kind: str) -> Quantity | None:
     return _QUANTITY_OF.get(kind)
 
 
-def generated_kinds(scope: Scope, acceleration: bool, dynamics: bool = False) -> tuple[Generated, ...]:
+def generated_kinds(scope: Scope, acceleration: bool, dynamics: bool = False, identification: bool = False
+                    ) -> tuple[Generated, ...]:
     """The kinds a module generates once per module or once per request, in the order it defines their functions.
 
     Lowered kinds first, in :data:`KINDS` order with those needing ``acceleration`` last (after the self-test's
     kinematics): within a request, the velocity level, then the acceleration level. Then the derived kinds, in
     :data:`KINDS` order. Scalar functions are asked for by name and are not among them; the dynamics' kinds only
-    with ``dynamics``.
+    with ``dynamics``, the identification's (regressors) only with ``identification``.
     """
     wanted = [kind for kind in KINDS.values() if kind.scope == scope and kind is not SCALAR
-              and (acceleration or not kind.acceleration) and (dynamics or not kind.dynamics)]
+              and (acceleration or not kind.acceleration) and (dynamics or not kind.dynamics)
+              and (identification or not kind.identification)]
     lowered = [kind for kind in wanted if not kind.derived]
     lowered.sort(key=lambda kind: 2 if kind.acceleration else 1 if kind.selftest_only else 0)
     return (*lowered, *(kind for kind in wanted if kind.derived))
@@ -125,6 +146,8 @@ CHECK_WORDS: Mapping[str, str] = MappingProxyType({
                 "and the columns of M are inverse dynamics at rest, tau = M qddot + C qdot + g, the bias forces are "
                 "C qdot + g, forward dynamics inverts inverse dynamics, and g is the gradient of the potential energy "
                 "(central differences)",
+    "identification": "that the regressor times the robot's standard parameters, and the base regressor times its "
+                      "base parameters, give inverse dynamics",
 })
 """What each check of the self-test (:class:`~symjac.codegen.description.Check`) checks, for docstrings."""
 

@@ -18,10 +18,12 @@ from symjac.codegen.coupled import (
     coupling_lines,
 )
 from symjac.codegen.description import (
+    Check,
     FunctionDescription,
     JacobianInfo,
     ModuleDescription,
 )
+from symjac.codegen.dynamics import identification_base, identification_regressor
 from symjac.codegen.functions import (
     defined_names,
     derived_functions,
@@ -33,7 +35,7 @@ from symjac.codegen.functions import (
     self_checks,
 )
 from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
-from symjac.codegen.kinds import DYNAMICS_CHECKED
+from symjac.codegen.kinds import DYNAMICS_CHECKED, IDENTIFICATION_CHECKED
 from symjac.codegen.printers import float_literal
 from symjac.codegen.provenance import catalog_files, names_relative_file, robot_loader
 from symjac.codegen.request import (
@@ -89,6 +91,7 @@ class ModuleRequest:
     acceleration: bool = False
     name: str | None = None
     dynamics: bool = False
+    identification: bool = False
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -116,10 +119,11 @@ def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescri
     requests = requests_from(chain, request.frames, request.points, request.rows, request.jacobians)
     if not requests:
         raise CodegenError("at least one Jacobian (frame and point) must be requested")
-    if request.dynamics:
+    dynamics = request.dynamics or request.identification
+    if dynamics:
         check_dynamics(chain)
-    functions, infos = function_descriptions(chain, requests, request.strategy, request.acceleration,
-                                             request.dynamics)
+    functions, infos = function_descriptions(chain, requests, request.strategy, request.acceleration, dynamics,
+                                             request.identification)
     functions += scalar_descriptions(chain, request.scalars or {}, functions, infos, spec.identifiers)
     return module_header(request, chain, requests, functions, infos)
 
@@ -140,7 +144,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     if command is None:
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
-                              request.acceleration, request.name, request.dynamics)
+                              request.acceleration, request.name, request.dynamics, request.identification)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
@@ -148,16 +152,19 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     # names, tip frame and source take no part in a robot's equality: read them from the robot given, not the one
     # a cached chain was first built for
     given = request.robot if isinstance(request.robot, Robot) else model
-    dynamics = dynamics_functions(chain, functions) if request.dynamics else []
+    with_dynamics = request.dynamics or request.identification
+    dynamics = dynamics_functions(chain, functions) if with_dynamics else []
     derived = [*dynamics, *derived_functions(infos, n, coupled)]
     exports |= {d.name for d in dynamics}
     kinds = {f.kind: f.name for f in functions} | {d.kind: d.name for d in dynamics}
-    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if request.dynamics and not friction else []
+    checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if with_dynamics and not friction else []
+    name_lists, identification_checks = _identification(chain, functions) if request.identification else ((), ())
+    exports |= {constant for constant, _ in name_lists}
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
     symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()
     # symbolic inertial parameters are arguments of dynamics modules only
-    parameters = model.parameters if request.dynamics else model.geometric_parameters
+    parameters = model.parameters if with_dynamics else model.geometric_parameters
     return ModuleDescription(
         target=request.target, version=__version__, robot=request.name or model.name,
         convention=model.convention.value,
@@ -168,16 +175,34 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         functions=tuple(functions), jacobians=tuple(infos),
         scalars=tuple(f.name for f in functions if f.kind == "scalar"),
         exports=tuple(_sorted_exports(exports)), command=command, shell_command=shell, command_note=command_note,
-        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration or request.dynamics else (),
-        accelerations=tuple(s.name for s in model.coordinate_accelerations) if request.dynamics else (),
+        rates=tuple(s.name for s in joint_rate_symbols(chain)) if request.acceleration or with_dynamics else (),
+        accelerations=tuple(s.name for s in model.coordinate_accelerations) if with_dynamics else (),
         coordinate_symbols=tuple(model.q),
         parameter_symbols=(*(p.symbol for p in parameters), *((GRAVITY_SYMBOL,) if symbolic_gravity else ())),
         derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
-        checks=self_checks(infos, checked),
+        checks=(*self_checks(infos, checked), *identification_checks),
         request_lines=request_lines(infos),
         joint_entries=joint_entries(given, spec.identifiers), tip_frame=tip_frame(given),
         origin=source_words(given, catalog_files()),
+        name_lists=name_lists,
     )
+
+
+def _identification(chain: Chain, functions: Sequence[FunctionDescription]
+                    ) -> tuple[tuple[tuple[str, tuple[str, ...]], ...], tuple[Check, ...]]:
+    """The regressors' column names as module constants, and the self-test's checks of the regressors.
+
+    Each regressor times the robot's own parameters (a self-test-only function) must give inverse dynamics; the
+    check is told the regressor's column count (its ``rows``).
+    """
+    by_kind = {f.kind: f for f in functions}
+    lists = [("REGRESSOR_PARAMETERS", identification_regressor(chain).names)]
+    if "base_regressor" in by_kind:
+        lists.append(("BASE_PARAMETERS", tuple(s.name for s in identification_base(chain).symbols)))
+    checks = tuple(Check("identification", (by_kind["inverse_dynamics"].name, by_kind[kind].name,
+                                            by_kind[values].name), (by_kind[kind].shape[1],))
+                   for kind, values in IDENTIFICATION_CHECKED if kind in by_kind and values in by_kind)
+    return tuple(lists), checks
 
 
 def check_dynamics(chain: Chain) -> None:
@@ -218,6 +243,7 @@ def generate(
     acceleration: bool = False,
     name: str | None = None,
     dynamics: bool = False,
+    identification: bool = False,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -268,6 +294,12 @@ def generate(
         checked by ``selftest`` against each other. Gravity's magnitude ``g`` (default 9.81, along -z of {0}) joins
         the parameters, as do symbolic inertial parameters (``m2``, ``cx2``, ``Ixx2``, ...). The robot needs
         inertial data on every link (else a ``NoInertialDataError`` names the links without).
+    identification : bool
+        Also generate the dynamics linear in their parameters (and the dynamics, as ``dynamics=True``):
+        ``regressor(q, qdot, qddot)`` (n x p, tau = Y pi, the columns named in order by the module constant
+        ``REGRESSOR_PARAMETERS``: ten per link, ``XX1 XY1 XZ1 YY1 YZ1 ZZ1 MX1 MY1 MZ1 M1 XX2 ...``, about the link
+        origin) and ``base_regressor(q, qdot, qddot)`` (n x b, tau = Y_b pi_b, ``BASE_PARAMETERS``); ``selftest``
+        checks both against inverse dynamics with the robot's own parameters.
 
     Returns
     -------
@@ -296,7 +328,7 @@ def generate(
     """
     request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
                             strategy=strategy, command=command, acceleration=acceleration, name=name,
-                            dynamics=dynamics)
+                            dynamics=dynamics, identification=identification)
     return primary(render_files(describe(request)))
 
 

@@ -215,6 +215,7 @@ def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[s
 def python_call(
     robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
     loader: str, acceleration: bool = False, name: str | None = None, dynamics: bool = False,
+    identification: bool = False,
 ) -> str:
     """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
 
@@ -237,7 +238,9 @@ def python_call(
         parts.append(f'strategy="{strategy}"')
     if acceleration:
         parts.append("acceleration=True")
-    if dynamics:
+    if identification:
+        parts.append("identification=True")
+    elif dynamics:
         parts.append("dynamics=True")
     if name is not None:
         parts.append(f'name="{name}"')

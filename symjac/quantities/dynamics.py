@@ -122,6 +122,9 @@ def command(request: Request) -> Document:
     from symjac.printing.dynamics import DynamicsParts, dynamics_document
 
     args = request.args
+    if getattr(args, "regressor", False) or getattr(args, "base_parameters", False):
+        raise ArgumentError("--regressor and --base-parameters print the parameters' side of the dynamics; ask for "
+                            "the other parts (--mass-matrix, --coriolis, --gravity-torques, --energy) separately")
     robot, gravity = _robot(request), gravity_setting(args.gravity)
     asked = {part for part in PARTS if getattr(args, part)}
     if args.steps and args.method != "newton-euler":

@@ -226,6 +226,9 @@ class Generated:
     dynamics : bool
         Generated only with ``dynamics=True`` (inverse and forward dynamics, M, C, the bias forces, g): once per
         module, and only for a robot with inertial data on every link.
+    identification : bool
+        Generated only with ``identification=True`` (the regressor and the base regressor, which imply the
+        dynamics): once per module.
     lowering : str
         The entry point ``"module:function"`` of its lowering into straight-line code: called with the chain and
         those of ``frame``, ``point``, ``rows`` (the request's) and ``strategy`` it takes by name, it returns a
@@ -268,6 +271,7 @@ class Generated:
     scope: Scope = "request"
     acceleration: bool = False
     dynamics: bool = False
+    identification: bool = False
     lowering: str = ""
     inputs: tuple[Input, ...] = ()
     task_rows: bool = False
@@ -292,7 +296,7 @@ class Generated:
         if self.routine and (self.lowering or not self.sources or (self.scope != "request" and not self.dynamics)):
             raise ArgumentError(f"{where}: a derived kind has sources, no lowering, and one function per request "
                                 f"(or, with dynamics, per module)")
-        if self.dynamics and (self.scope != "module" or self.acceleration):
+        if (self.dynamics or self.identification) and (self.scope != "module" or self.acceleration):
             raise ArgumentError(f"{where}: a dynamics kind has one function per module and no acceleration level")
 
     @property

@@ -474,6 +474,37 @@ static inline int sj_check_dynamics(int n, int size, const int *rows, sj_map_wit
     return failures;
 }
 
+/* ---- runtime section: identification; needs: dynamics ---- */
+
+/* A regressor times the robot's own parameters against inverse dynamics: Y(q, qdot, qddot) pi = tau(q, qdot,
+ * qddot). rows[0] is the regressor's column count p (size is 1); pi comes from values(q). */
+static inline int sj_check_identification(int n, int size, const int *rows, sj_map_with2 inverse_dynamics,
+                                          sj_map_with2 regressor, sj_map values, const real *q, real h,
+                                          real tolerance)
+{
+    const int p = rows[0];
+    real Y[SJ_DIM * p], parameters[p];
+    real qdot[SJ_DIM], qddot[SJ_DIM], tau[SJ_DIM];
+    int failures = 0;
+    (void)size;
+    (void)h;
+    for (int k = 0; k < n; k++) {
+        qdot[k] = (real)0.7 - (real)0.3 * (real)k;
+        qddot[k] = (real)0.5 - (real)0.25 * (real)k + (real)0.3 * qdot[k];
+    }
+    inverse_dynamics(q, NULL, qdot, qddot, tau);
+    regressor(q, NULL, qdot, qddot, Y);
+    values(q, NULL, parameters);
+    for (int i = 0; i < n; i++) {
+        real value = 0;
+        for (int j = 0; j < p; j++) {
+            value += Y[i * p + j] * parameters[j];
+        }
+        failures += sj_differs(value, tau[i], tolerance);
+    }
+    return failures;
+}
+
 /* ---- runtime section: core ---- */
 
 /* q[i] = the position of joint_names[i] in names and positions (count entries; other names are ignored, the first

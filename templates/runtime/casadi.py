@@ -171,6 +171,16 @@ def _dynamics_error(functions: tuple[ca.Function, ...], q: ca.DM, qdot: ca.DM, p
     return max(worst, error(forward_dynamics(q, qdot, tau, p), qddot))
 
 
+# ---- runtime section: identification ----
+
+
+def _identification_error(functions: tuple[ca.Function, ...], q: ca.DM, qdot: ca.DM, p: ca.DM) -> float:
+    """Largest relative error of a regressor times the robot's own parameters against inverse dynamics."""
+    inverse_dynamics, regressor, values = functions
+    qddot = ca.DM([0.5 - 0.25 * k + 0.3 * float(qdot[k]) for k in range(q.numel())])
+    return _relative_error(ca.mtimes(regressor(q, qdot, qddot, p), values(q, p)), inverse_dynamics(q, qdot, qddot, p))
+
+
 # ---- runtime section: core ----
 
 

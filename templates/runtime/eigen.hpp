@@ -117,6 +117,8 @@ Eigen::Matrix<Scalar, N, 1> forward_dynamics(const Eigen::Matrix<Scalar, N, N>& 
 
 // ---- runtime section: dynamics ----
 
+// ---- runtime section: identification ----
+
 // ---- runtime section: acceleration ----
 
 // ---- runtime section: core ----

@@ -174,6 +174,19 @@ def _dynamics_error(functions: tuple[Callable[..., Array], ...], q: Array, qdot:
     return max(worst, error(forward_dynamics(q, qdot, tau), qddot))
 
 
+# ---- runtime section: identification ----
+
+
+def _identification_error(functions: tuple[Callable[..., Array], ...], q: Array, qdot: Array,
+                          error: Callable[[ArrayLike, ArrayLike], float],
+                          central: Callable[[Callable[[Array], Array], Array, Array], Array]) -> float:
+    """Largest relative error of a regressor times the robot's own parameters against inverse dynamics."""
+    del central
+    inverse_dynamics, regressor, values = functions
+    qddot = 0.5 - 0.25 * jnp.arange(q.shape[0]) + 0.3 * qdot
+    return error(regressor(q, qdot, qddot) @ values(q), inverse_dynamics(q, qdot, qddot))
+
+
 # ---- runtime section: core ----
 
 

@@ -98,6 +98,23 @@ def _acceleration_error(
     return max(worst, error(hessian_function(q[0]), H[0]))
 
 
+# ---- runtime section: identification ----
+
+
+def _identification_error(
+    inverse_dynamics: Callable[..., np.ndarray],
+    regressor: Callable[..., np.ndarray],
+    values: Callable[..., np.ndarray],
+    q: np.ndarray,
+    qdot: np.ndarray,
+) -> float:
+    """Largest relative error of a regressor times the robot's own parameters against inverse dynamics (a batch)."""
+    qddot = 0.5 - 0.25 * np.arange(q.shape[-1]) + 0.3 * qdot
+    expected = inverse_dynamics(q, qdot, qddot)
+    value = np.einsum("...ij,...j->...i", regressor(q, qdot, qddot), values(q))
+    return float(np.max(np.abs(value - expected) / (1.0 + np.abs(expected))))
+
+
 # ---- runtime section: core ----
 
 

@@ -321,6 +321,26 @@ def _dynamics_error(
     return worst
 
 
+# ---- runtime section: identification ----
+
+
+def _identification_error(
+    inverse_dynamics: Callable[..., Sequence[float]],
+    regressor: Callable[..., Sequence[Sequence[float]]],
+    values: Callable[..., Sequence[float]],
+    q: Sequence[float],
+    qdot: Sequence[float],
+) -> float:
+    """Largest relative error of a regressor times the robot's own parameters against inverse dynamics."""
+    qddot = [0.5 - 0.25 * k + 0.3 * v for k, v in enumerate(qdot)]
+    Y, parameters = regressor(q, qdot, qddot), values(q)
+    worst = 0.0
+    for row, expected in zip(Y, inverse_dynamics(q, qdot, qddot), strict=True):
+        value = sum(y * p for y, p in zip(row, parameters, strict=True))
+        worst = max(worst, abs(value - expected) / (1.0 + abs(expected)))
+    return worst
+
+
 # ---- runtime section: core ----
 
 

@@ -221,6 +221,8 @@ class PythonModule:
                  *tuple_lines("LOWER = ", (_bound(entry.lower) for entry in entries)),
                  *tuple_lines("UPPER = ", (_bound(entry.upper) for entry in entries)),
                  f'TIP_FRAME = "{self.description.tip_frame}"']
+        for constant, names in self.description.name_lists:  # the regressors' columns, in order
+            lines += tuple_lines(f"{constant} = ", (f'"{name}"' for name in names))
         return tuple(lines)
 
     @property

@@ -14,7 +14,7 @@ import pytest
 import sympy as sp
 from hypothesis import given, settings
 from marks import marked
-from strategies import robots
+from strategies import general_robots, robots
 
 from symjac import load_robot, regressor, robot_from_mapping
 from symjac.analysis.dynamics import Gravity
@@ -204,6 +204,17 @@ def test_special_default_values_do_not_lower_the_count():
 @given(robots(max_joints=4))
 def test_random_chains(arm):
     """Random standard and modified DH chains with prismatic joints: count = numeric rank, Y_b pi_b = Y pi."""
+    check_chain(arm)
+
+
+@settings(max_examples=5, deadline=None)
+@given(general_robots(max_joints=3))
+def test_random_general_chains(arm):
+    """Random URDF-style chains (axes such as (-2, 1, 2), origins turned by 0.3 rad: the least-squares route)."""
+    check_chain(arm)
+
+
+def check_chain(arm) -> None:
     Y = regressor(arm)
     base = base_parameters(Y)
     assert len(base.symbols) == base.rank == numeric_rank(Y)

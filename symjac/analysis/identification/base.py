@@ -33,6 +33,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
+from symjac.analysis.dynamics.bodies import result_bases
 from symjac.analysis.identification.dependence import (
     ColumnTable,
     Samples,
@@ -42,7 +43,9 @@ from symjac.analysis.identification.dependence import (
 )
 from symjac.analysis.identification.regressor import Regressor
 from symjac.errors import SymjacError
+from symjac.kinematics.chain import as_chain
 from symjac.model.robot import JointType, Robot
+from symjac.symbolic.angles import AngleBasis
 from symjac.symbolic.layout import expanded_expr
 from symjac.symbolic.nested import has_intermediates, lambdify_cse
 
@@ -234,9 +237,11 @@ def _scan(table: ColumnTable, samples: Samples, order: Sequence[int]) -> tuple[l
 def _exact(regressor: Regressor, order: Sequence[int], seed: int) -> tuple[list[int], list[int], Dependence, int]:
     """Kept, zero and dependent columns and the numeric rank, with exact coefficients (module docstring)."""
     robot = regressor.robot
-    table = column_table(regressor.matrix, [q for q, kind in zip(robot.coordinates, robot.coordinate_types,
-                                                                  strict=True) if kind is JointType.REVOLUTE],
-                         _motion_symbols(regressor))
+    # the angles the regressor is laid out in (theta2 + theta3 of the PUMA as one angle): fewer terms than theta_i
+    bases = result_bases(as_chain(robot))
+    revolute = [q for q, kind in zip(robot.coordinates, robot.coordinate_types, strict=True)
+                if kind is JointType.REVOLUTE]
+    table = column_table(regressor.matrix, bases[0] if bases else AngleBasis.of(revolute), _motion_symbols(regressor))
     sets = [Samples(table, values) for values in _sample_sets(table, regressor, seed)]
     zero = [j for j in range(len(table.columns)) if table.is_zero(j)]
     counts = [len(_greedy(s.matrix, order, zero)) for s in sets]

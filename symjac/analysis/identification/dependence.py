@@ -83,15 +83,16 @@ def _exact_entries(matrix: sp.MatrixBase) -> list[sp.Expr]:
     return [sp.nsimplify(e, rational=True) if e.has(sp.Float) else sp.sympify(e) for e in entries]
 
 
-def column_table(matrix: sp.MatrixBase, angles: Sequence[sp.Symbol], motion: frozenset[sp.Symbol]) -> ColumnTable:
+def column_table(matrix: sp.MatrixBase, basis: AngleBasis, motion: frozenset[sp.Symbol]) -> ColumnTable:
     """The table of every column of ``matrix`` (module docstring).
 
-    ``angles`` are the revolute coordinates (each its own basis angle); ``motion`` every symbol of the motion
-    (coordinates, rates, accelerations, gravity's magnitude). A generator whose expression holds one of them belongs to
-    the motion, the others (constant angles, lengths, numbers such as sqrt(2)) to the geometry.
+    ``basis`` holds the angles of the revolute coordinates (any unimodular basis: the normal form is unique in each);
+    ``motion`` every symbol of the motion (coordinates, rates, accelerations, gravity's magnitude). A generator whose
+    expression holds one of them belongs to the motion, the others (constant angles, lengths, numbers such as
+    sqrt(2)) to the geometry.
     """
     rows, cols = matrix.shape
-    image, polys = image_of(_exact_entries(matrix), AngleBasis.of(angles))
+    image, polys = image_of(_exact_entries(matrix), basis)
     count = len(image.gens)
     moving = tuple(i for i in range(count) if image.back(i).free_symbols & motion)
     geometry = tuple(i for i in range(count) if i not in set(moving))

@@ -12,17 +12,25 @@ compile with -Wall -Wextra -Werror.
 
 from __future__ import annotations
 
-import ctypes
 import dataclasses
-import importlib.util
 import shutil
 import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
-import sympy as sp
-from reference_dynamics import NumericDynamics
+from generated_dynamics import (
+    COMPILED,
+    GRAVITY,
+    PYTHON_FAMILY,
+    CompiledModule,
+    PythonModule,
+    close,
+    elbow,
+    import_module,
+    inertials,
+    reference,
+)
 
 from symjac import robot_from_mapping
 from symjac.cli.main import main
@@ -30,151 +38,55 @@ from symjac.codegen import ModuleRequest, describe, render_files
 from symjac.errors import NoInertialDataError
 from symjac.model.inertial_parameters import with_symbolic_inertials
 from symjac.model.io import load_robot, robot_to_toml
-from symjac.model.robot import Parameter
 
 REPO = Path(__file__).resolve().parent.parent
-PYTHON_FAMILY = ("python", "numpy", "lambdify", "c", "jax", "casadi")
-COMPILED = ("c99", "cpp")
 FUNCTIONS = ("inverse_dynamics", "mass_matrix", "coriolis_matrix", "bias_forces", "gravity_torques",
              "forward_dynamics")
-GRAVITY = 9.81
 
 
-def _elbow():
-    """A spatial 3R arm (standard DH) whose gravity torques are not zero, with symbolic inertial parameters."""
-    robot = robot_from_mapping({
-        "name": "elbow", "convention": "standard", "parameters": {"d1": 0.3, "a2": 0.4, "a3": 0.35},
-        "joints": [{"type": "revolute", "alpha": "pi/2", "d": "d1"}, {"type": "revolute", "a": "a2"},
-                   {"type": "revolute", "a": "a3"}]})
-    return with_symbolic_inertials(robot)
-
-
-ROBOTS = {"elbow": _elbow, "planar2r": lambda: with_symbolic_inertials(load_robot("planar2r")),
+ROBOTS = {"elbow": elbow, "planar2r": lambda: with_symbolic_inertials(load_robot("planar2r")),
           "puma560": lambda: dataclasses.replace(load_robot("puma560"), drives=())}
 """Symbolic inertial parameters (a spatial 3R arm, the planar 2R arm) and published numbers (the PUMA 560's rigid
 bodies: its motors' friction would drop the self-test's dynamics check; drives are tested in test_drives)."""
 
 
-def _inertials(n: int) -> dict[str, float]:
-    """Physical inertial parameters other than the defaults: mass, centre, inertia about it (positive definite)."""
-    values: dict[str, float] = {}
-    for k in range(1, n + 1):
-        values |= {f"m{k}": 1.5 + 0.7 * k, f"cx{k}": -0.12 + 0.02 * k, f"cy{k}": 0.03 * k, f"cz{k}": 0.01 - 0.02 * k,
-                   f"Ixx{k}": 0.05 + 0.01 * k, f"Iyy{k}": 0.06 + 0.01 * k, f"Izz{k}": 0.07 + 0.005 * k,
-                   f"Ixy{k}": 0.002, f"Ixz{k}": -0.003, f"Iyz{k}": 0.001 * k}
-    return values
-
-
-def reference(robot, values: dict[str, float], gravity: float = GRAVITY) -> NumericDynamics:
-    """The numeric Newton-Euler of ``robot`` with its parameters at ``values`` (the others at their defaults)."""
-    parameters = tuple(Parameter(p.name, sp.nsimplify(values[p.name], rational=True)) if p.name in values else p
-                       for p in robot.parameters)
-    return NumericDynamics(dataclasses.replace(robot, parameters=parameters), gravity)
-
-
 # --- the modules, one per robot and target ----------------------------------------------------------------------------
 
-def _import(path: Path):
-    spec = importlib.util.spec_from_file_location(f"dynamics_{path.stem}_{id(path)}", path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-class Python:
-    """A Python-family module: keyword parameters (CasADi: the parameter vector), NumPy out."""
-
-    def __init__(self, folder: Path, robot, target: str):
-        if target == "jax":
-            jax = pytest.importorskip("jax")
-            jax.config.update("jax_enable_x64", True)
-        if target == "casadi":
-            pytest.importorskip("casadi")
-        self.target = target
-        self.files = render_files(describe(ModuleRequest(robot, target, dynamics=True)))
-        path = folder / f"{robot.name}_{target}.py"
-        path.write_text(next(iter(self.files.values())))
-        self.path, self.module = path, _import(path)
-
-    def call(self, name: str, *inputs, parameters: dict[str, float]) -> np.ndarray:
-        function = getattr(self.module, name)
-        if self.target == "casadi":
-            vector = [parameters.get(p, d) for p, d in zip(self.module.PARAMETER_NAMES,
-                                                           self.module.PARAMETER_DEFAULTS, strict=True)]
-            return np.asarray(function(*inputs, vector), dtype=float).ravel()
-        return np.asarray(function(*inputs, **parameters), dtype=float).ravel()
-
-
-CPP_SHIM = """#include "{robot}.hpp"
-using namespace symjac::{robot};
-using V = Eigen::Matrix<double, {n}, 1>;
-static V vector(const double *x) {{ return V(Eigen::Map<const V>(x)); }}
-static Params<double> parameters(const double *p) {{ Params<double> values; {assignments} return values; }}
-template <class M> static void store(const M& m, double *out)
-{{
-    for (int i = 0; i < m.rows(); i++) {{
-        for (int j = 0; j < m.cols(); j++) {{
-            out[i * m.cols() + j] = m(i, j);
-        }}
-    }}
-}}
-extern "C" {{
+DYNAMICS_SHIM = """\
 void inverse_dynamics_(const double *q, const double *p, const double *a, const double *b, double *out)
-{{ store(inverse_dynamics(vector(q), vector(a), vector(b), parameters(p)), out); }}
+{ store(inverse_dynamics(vector(q), vector(a), vector(b), parameters(p)), out); }
 void forward_dynamics_(const double *q, const double *p, const double *a, const double *b, double *out)
-{{ store(forward_dynamics(vector(q), vector(a), vector(b), parameters(p)), out); }}
+{ store(forward_dynamics(vector(q), vector(a), vector(b), parameters(p)), out); }
 void coriolis_matrix_(const double *q, const double *p, const double *a, double *out)
-{{ store(coriolis_matrix(vector(q), vector(a), parameters(p)), out); }}
+{ store(coriolis_matrix(vector(q), vector(a), parameters(p)), out); }
 void bias_forces_(const double *q, const double *p, const double *a, double *out)
-{{ store(bias_forces(vector(q), vector(a), parameters(p)), out); }}
+{ store(bias_forces(vector(q), vector(a), parameters(p)), out); }
 void mass_matrix_(const double *q, const double *p, double *out)
-{{ store(mass_matrix(vector(q), parameters(p)), out); }}
+{ store(mass_matrix(vector(q), parameters(p)), out); }
 void gravity_torques_(const double *q, const double *p, double *out)
-{{ store(gravity_torques(vector(q), parameters(p)), out); }}
-}}
+{ store(gravity_torques(vector(q), parameters(p)), out); }
 """
 
-C_FLAGS = ["-Wall", "-Wextra", "-Werror", "-O1", "-fPIC", "-shared"]
-EIGEN = Path("/usr/include/eigen3")
 
-
-class Compiled:
-    """A c99 pair, or a cpp header behind a C-ABI shim, compiled with warnings as errors and called through ctypes."""
+class Python(PythonModule):
+    """A Python-family dynamics module, results flattened."""
 
     def __init__(self, folder: Path, robot, target: str):
-        compiler = "gcc" if target == "c99" else "g++"
-        if shutil.which(compiler) is None or (target == "cpp" and not (EIGEN / "Eigen" / "Dense").is_file()):
-            pytest.skip(f"{compiler} (or Eigen's headers) is not installed")
-        self.files = render_files(describe(ModuleRequest(robot, target, dynamics=True)))
-        for name, text in self.files.items():
-            (folder / name).write_text(text)
-        self.defaults = dict(describe(ModuleRequest(robot, "python", dynamics=True)).parameters)
-        self.names = list(self.defaults)  # the robot's parameters, then gravity's magnitude g
-        n = robot.n_coordinates
-        if target == "c99":
-            command = [compiler, "-std=c99", "-pedantic", *C_FLAGS, f"{robot.name}.c", "-o", "lib.so", "-lm"]
-            self.prefix, self.suffix = f"{robot.name}_", ""
-        else:
-            assignments = " ".join(f"values.{name} = p[{k}];" for k, name in enumerate(self.names))
-            (folder / "shim.cpp").write_text(CPP_SHIM.format(robot=robot.name, n=n, assignments=assignments))
-            command = [compiler, "-std=c++17", f"-I{EIGEN}", *C_FLAGS, "shim.cpp", "-o", "lib.so"]
-            self.prefix, self.suffix = "", "_"
-        subprocess.run(command, cwd=folder, check=True, capture_output=True, text=True)
-        self.library = ctypes.CDLL(str(folder / "lib.so"))
-        self.n = n
+        super().__init__(folder, robot, target, dynamics=True)
 
     def call(self, name: str, *inputs, parameters: dict[str, float]) -> np.ndarray:
-        values = np.array([parameters.get(p, self.defaults[p]) for p in self.names])
-        arrays = [np.ascontiguousarray(a, dtype=float) for a in inputs]
+        return super().call(name, *inputs, parameters=parameters).ravel()
+
+
+class Compiled(CompiledModule):
+    """A c99 or cpp dynamics module (``CPP_SHIM`` with the dynamics functions), results flattened."""
+
+    def __init__(self, folder: Path, robot, target: str):
+        super().__init__(folder, robot, target, DYNAMICS_SHIM, dynamics=True)
+
+    def call(self, name: str, *inputs, parameters: dict[str, float]) -> np.ndarray:
         size = self.n * self.n if name in ("mass_matrix", "coriolis_matrix") else self.n
-        out = np.zeros(size)
-        pointer = ctypes.POINTER(ctypes.c_double)
-        first, *rest = arrays
-        function = getattr(self.library, f"{self.prefix}{name}{self.suffix}")
-        function(first.ctypes.data_as(pointer), values.ctypes.data_as(pointer),
-                 *(a.ctypes.data_as(pointer) for a in rest), out.ctypes.data_as(pointer))
-        return out
+        return self.run(name, inputs, parameters, size)
 
     def selftest(self) -> int:
         return int(self.library[f"{self.prefix}selftest"]()) if self.prefix else 0
@@ -196,30 +108,24 @@ def modules(tmp_path_factory):
     return get
 
 
-def _close(got, expected, tolerance: float = 1e-9) -> None:
-    expected = np.asarray(expected, dtype=float).ravel()
-    scale = max(1.0, float(np.abs(expected).max()))
-    assert np.abs(np.asarray(got, dtype=float).ravel() - expected).max() <= tolerance * scale
-
-
 @pytest.mark.parametrize("target", PYTHON_FAMILY + COMPILED)
 @pytest.mark.parametrize("name", sorted(ROBOTS))
 def test_every_function_agrees_with_a_numeric_newton_euler(modules, name, target):
     module, robot = modules(name, target)
     n = robot.n_coordinates
-    values = _inertials(n) if robot.parameters and name != "puma560" else {}
+    values = inertials(n) if robot.parameters and name != "puma560" else {}
     exact = reference(robot, values)
     rng = np.random.default_rng(44)
     for _ in range(3):
         q, qdot, qddot = (rng.uniform(-1.5, 1.5, n) for _ in range(3))
         tau, g = exact.tau(q, qdot, qddot), exact.g(q)
-        _close(module.call("inverse_dynamics", q, qdot, qddot, parameters=values), tau)
-        _close(module.call("mass_matrix", q, parameters=values), exact.M(q))
-        _close(module.call("gravity_torques", q, parameters=values), g)
-        _close(module.call("bias_forces", q, qdot, parameters=values), exact.C_qd(q, qdot) + g)
+        close(module.call("inverse_dynamics", q, qdot, qddot, parameters=values), tau)
+        close(module.call("mass_matrix", q, parameters=values), exact.M(q))
+        close(module.call("gravity_torques", q, parameters=values), g)
+        close(module.call("bias_forces", q, qdot, parameters=values), exact.C_qd(q, qdot) + g)
         C = module.call("coriolis_matrix", q, qdot, parameters=values).reshape(n, n)
-        _close(C @ qdot, exact.C_qd(q, qdot))
-        _close(module.call("forward_dynamics", q, qdot, tau, parameters=values), qddot)
+        close(C @ qdot, exact.C_qd(q, qdot))
+        close(module.call("forward_dynamics", q, qdot, tau, parameters=values), qddot)
 
 
 @pytest.mark.parametrize("target", ("python", "numpy", "c"))
@@ -230,11 +136,11 @@ def test_the_self_tests_potential_energy_agrees_with_a_numeric_one(modules, name
     The planar 2R arm moves in a horizontal plane (V constant: its centres' heights); the elbow and the PUMA do not.
     """
     module, robot = modules(name, target)
-    values = _inertials(robot.n_coordinates) if name != "puma560" else {}
+    values = inertials(robot.n_coordinates) if name != "puma560" else {}
     exact = reference(robot, values)
     for q in np.random.default_rng(7).uniform(-1.5, 1.5, (3, robot.n_coordinates)):
-        _close(module.call("_potential_energy", q, parameters=values), exact.V(q))
-        _close(module.call("_potential_energy", q, parameters={**values, "g": 2 * GRAVITY}), 2 * exact.V(q))
+        close(module.call("_potential_energy", q, parameters=values), exact.V(q))
+        close(module.call("_potential_energy", q, parameters={**values, "g": 2 * GRAVITY}), 2 * exact.V(q))
 
 
 @pytest.mark.parametrize("target", ("python", "numpy"))
@@ -242,11 +148,11 @@ def test_gravity_is_a_parameter(modules, target):
     module, _ = modules("elbow", target)
     assert module.module.PARAMETERS["g"] == GRAVITY
     q = np.array([0.3, -0.7, 1.1])
-    values = _inertials(3)
+    values = inertials(3)
     earth = module.call("gravity_torques", q, parameters=values)
     assert np.abs(earth).max() > 1.0
-    _close(module.call("gravity_torques", q, parameters={**values, "g": 2 * GRAVITY}), 2 * earth)
-    _close(module.call("gravity_torques", q, parameters={**values, "g": 0.0}), np.zeros(3))
+    close(module.call("gravity_torques", q, parameters={**values, "g": 2 * GRAVITY}), 2 * earth)
+    close(module.call("gravity_torques", q, parameters={**values, "g": 0.0}), np.zeros(3))
 
 
 @pytest.mark.parametrize("target", PYTHON_FAMILY)
@@ -339,15 +245,15 @@ def test_the_ur5_agrees_with_pinocchio(tmp_path):
         module = (Compiled if target in COMPILED else Python)(tmp_path, robot, target)
         for _ in range(2):
             q, qdot, qddot = (rng.uniform(-1.5, 1.5, 6) for _ in range(3))
-            _close(module.call("inverse_dynamics", q, qdot, qddot, parameters={}),
+            close(module.call("inverse_dynamics", q, qdot, qddot, parameters={}),
                    pin.rnea(model, data, q, qdot, qddot))
             M = pin.crba(model, data, q)
-            _close(module.call("mass_matrix", q, parameters={}), np.triu(M) + np.triu(M, 1).T)
-            _close(module.call("gravity_torques", q, parameters={}), pin.computeGeneralizedGravity(model, data, q))
-            _close(module.call("coriolis_matrix", q, qdot, parameters={}),
+            close(module.call("mass_matrix", q, parameters={}), np.triu(M) + np.triu(M, 1).T)
+            close(module.call("gravity_torques", q, parameters={}), pin.computeGeneralizedGravity(model, data, q))
+            close(module.call("coriolis_matrix", q, qdot, parameters={}),
                    pin.computeCoriolisMatrix(model, data, q, qdot))
             tau = rng.uniform(-5, 5, 6)
-            _close(module.call("forward_dynamics", q, qdot, tau, parameters={}),
+            close(module.call("forward_dynamics", q, qdot, tau, parameters={}),
                    pin.aba(model, data, q, qdot, tau), 1e-8)
 
 
@@ -364,15 +270,15 @@ def test_a_coupled_robot_is_in_its_coordinates():
         exec(compile(next(iter(render_files(describe(ModuleRequest(robot, "python", dynamics=True))).values())),
                      name, "exec"), modules[name])
     C = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, -1, -1]], dtype=float)
-    values = _inertials(4)
+    values = inertials(4)
     rng = np.random.default_rng(3)
     for _ in range(3):
         q, qdot, qddot = (rng.uniform(-1.5, 1.5, 3) for _ in range(3))
         tau = np.array(modules["free"]["inverse_dynamics"](C @ q, C @ qdot, C @ qddot, **values))
-        _close(modules["coupled"]["inverse_dynamics"](q, qdot, qddot, **values), C.T @ tau)
+        close(modules["coupled"]["inverse_dynamics"](q, qdot, qddot, **values), C.T @ tau)
         M = np.array(modules["free"]["mass_matrix"](C @ q, **values))
-        _close(modules["coupled"]["mass_matrix"](q, **values), C.T @ M @ C)
-        _close(modules["coupled"]["forward_dynamics"](q, qdot, C.T @ tau, **values), qddot)
+        close(modules["coupled"]["mass_matrix"](q, **values), C.T @ M @ C)
+        close(modules["coupled"]["forward_dynamics"](q, qdot, C.T @ tau, **values), qddot)
     assert modules["coupled"]["selftest"]() <= 1e-6
 
 
@@ -412,10 +318,10 @@ def test_the_command_line_writes_a_dynamics_module(tmp_path, capsys):
     (tmp_path / "arm2.toml").write_text(ARM_FILE)
     output = tmp_path / "arm2.py"
     assert main(["codegen", str(tmp_path / "arm2.toml"), "--dynamics", "-o", str(output)]) == 0
-    module = _import(output)
+    module = import_module(output)
     assert "--dynamics" in output.read_text().split('"""', 1)[0]  # the header's command regenerates it
     assert module.selftest() <= 1e-6 and set(module.PARAMETERS) - {"g"} == {"L1", "L2", "m2"}
     q, zero = np.array([0.2, -0.4]), np.zeros(2)
     heavier = np.array(module.mass_matrix(q, m2=3.0)) - np.array(module.mass_matrix(q))
     assert np.abs(heavier).max() > 1e-3  # the mass is a parameter, not a number baked in
-    _close(module.inverse_dynamics(q, zero, zero), module.gravity_torques(q))
+    close(module.inverse_dynamics(q, zero, zero), module.gravity_torques(q))

@@ -18,7 +18,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
-from test_codegen_dynamics import EIGEN, _close, _elbow, _import, _inertials, reference
+from generated_dynamics import (
+    COMPILED,
+    PYTHON_FAMILY,
+    CompiledModule,
+    PythonModule,
+    close,
+    elbow,
+    import_module,
+    inertials,
+    reference,
+)
 
 from symjac.analysis.identification import regressor
 from symjac.analysis.identification.base import base_parameters
@@ -29,9 +39,7 @@ from symjac.model.inertial_parameters import with_symbolic_inertials
 from symjac.model.io import load_robot
 
 REPO = Path(__file__).resolve().parent.parent
-PYTHON_FAMILY = ("python", "numpy", "lambdify", "c", "jax", "casadi")
-COMPILED = ("c99", "cpp")
-ROBOTS = {"elbow": _elbow, "planar2r": lambda: with_symbolic_inertials(load_robot("planar2r"))}
+ROBOTS = {"elbow": elbow, "planar2r": lambda: with_symbolic_inertials(load_robot("planar2r"))}
 
 
 def standard_vector(robot, values: dict[str, float]) -> np.ndarray:
@@ -56,77 +64,31 @@ def base_vector(robot, values: dict[str, float]) -> np.ndarray:
     return np.array([float(sp.sympify(e).xreplace(pi).xreplace(geometry)) for e in base.expressions])
 
 
-class Python:
+class Python(PythonModule):
+    """A Python-family identification module and its column names (regressor, base regressor)."""
+
     def __init__(self, folder: Path, robot, target: str):
-        if target == "jax":
-            pytest.importorskip("jax").config.update("jax_enable_x64", True)
-        if target == "casadi":
-            pytest.importorskip("casadi")
-        self.target = target
-        self.files = render_files(describe(ModuleRequest(robot, target, identification=True)))
-        self.path = folder / f"{robot.name}_{target}.py"
-        self.path.write_text(next(iter(self.files.values())))
-        self.module = _import(self.path)
+        super().__init__(folder, robot, target, identification=True)
         self.names = (tuple(self.module.REGRESSOR_PARAMETERS), tuple(self.module.BASE_PARAMETERS))
 
-    def call(self, name: str, *inputs, parameters: dict[str, float]) -> np.ndarray:
-        function = getattr(self.module, name)
-        if self.target == "casadi":
-            vector = [parameters.get(p, d) for p, d in zip(self.module.PARAMETER_NAMES,
-                                                           self.module.PARAMETER_DEFAULTS, strict=True)]
-            return np.asarray(function(*inputs, vector), dtype=float)
-        return np.asarray(function(*inputs, **parameters), dtype=float)
 
-
-CPP_SHIM = """#include "{robot}.hpp"
-using namespace symjac::{robot};
-using V = Eigen::Matrix<double, {n}, 1>;
-static V vector(const double *x) {{ return V(Eigen::Map<const V>(x)); }}
-static Params<double> parameters(const double *p) {{ Params<double> values; {assignments} return values; }}
-template <class M> static void store(const M& m, double *out)
-{{
-    for (int i = 0; i < m.rows(); i++) {{
-        for (int j = 0; j < m.cols(); j++) {{
-            out[i * m.cols() + j] = m(i, j);
-        }}
-    }}
-}}
-extern "C" {{
+IDENTIFICATION_SHIM = """\
 void regressor_(const double *q, const double *p, const double *a, const double *b, double *out)
-{{ store(regressor(vector(q), vector(a), vector(b), parameters(p)), out); }}
+{ store(regressor(vector(q), vector(a), vector(b), parameters(p)), out); }
 void base_regressor_(const double *q, const double *p, const double *a, const double *b, double *out)
-{{ store(base_regressor(vector(q), vector(a), vector(b), parameters(p)), out); }}
-const char *regressor_name_(int k) {{ return regressor_parameters[k]; }}
-const char *base_name_(int k) {{ return base_parameters[k]; }}
-int regressor_count_(void) {{ return static_cast<int>(regressor_parameters.size()); }}
-int base_count_(void) {{ return static_cast<int>(base_parameters.size()); }}
-}}
+{ store(base_regressor(vector(q), vector(a), vector(b), parameters(p)), out); }
+const char *regressor_name_(int k) { return regressor_parameters[k]; }
+const char *base_name_(int k) { return base_parameters[k]; }
+int regressor_count_(void) { return static_cast<int>(regressor_parameters.size()); }
+int base_count_(void) { return static_cast<int>(base_parameters.size()); }
 """
 
 
-class Compiled:
+class Compiled(CompiledModule):
+    """A c99 or cpp identification module and its column names (read from the library)."""
+
     def __init__(self, folder: Path, robot, target: str):
-        compiler = "gcc" if target == "c99" else "g++"
-        if shutil.which(compiler) is None or (target == "cpp" and not (EIGEN / "Eigen" / "Dense").is_file()):
-            pytest.skip(f"{compiler} (or Eigen's headers) is not installed")
-        self.files = render_files(describe(ModuleRequest(robot, target, identification=True)))
-        for name, text in self.files.items():
-            (folder / name).write_text(text)
-        self.defaults = dict(describe(ModuleRequest(robot, "python", dynamics=True)).parameters)
-        self.parameter_names = list(self.defaults)
-        flags = ["-Wall", "-Wextra", "-Werror", "-O1", "-fPIC", "-shared"]
-        if target == "c99":
-            command = [compiler, "-std=c99", "-pedantic", *flags, f"{robot.name}.c", "-o", "lib.so", "-lm"]
-            self.prefix, self.suffix = f"{robot.name}_", ""
-        else:
-            assignments = " ".join(f"values.{name} = p[{k}];" for k, name in enumerate(self.parameter_names))
-            (folder / "shim.cpp").write_text(CPP_SHIM.format(robot=robot.name, n=robot.n_coordinates,
-                                                             assignments=assignments))
-            command = [compiler, "-std=c++17", f"-I{EIGEN}", *flags, "shim.cpp", "-o", "lib.so"]
-            self.prefix, self.suffix = "", "_"
-        result = subprocess.run(command, cwd=folder, capture_output=True, text=True, check=False)
-        assert result.returncode == 0, result.stderr
-        self.library, self.n, self.target = ctypes.CDLL(str(folder / "lib.so")), robot.n_coordinates, target
+        super().__init__(folder, robot, target, IDENTIFICATION_SHIM, identification=True)
         Y = regressor(robot)
         self.names = (self._names("regressor", len(Y.names)),
                       self._names("base", len(base_parameters(Y).symbols)))
@@ -141,15 +103,8 @@ class Compiled:
         return tuple(getter(k).decode() for k in range(counter()))
 
     def call(self, name: str, *inputs, parameters: dict[str, float]) -> np.ndarray:
-        values = np.array([parameters.get(p, self.defaults[p]) for p in self.parameter_names])
         columns = len(self.names[0] if name == "regressor" else self.names[1])
-        out = np.zeros(self.n * columns)
-        pointer = ctypes.POINTER(ctypes.c_double)
-        first, *rest = (np.ascontiguousarray(a, dtype=float) for a in inputs)
-        function = getattr(self.library, f"{self.prefix}{name}{self.suffix}")
-        function(first.ctypes.data_as(pointer), values.ctypes.data_as(pointer),
-                 *(a.ctypes.data_as(pointer) for a in rest), out.ctypes.data_as(pointer))
-        return out.reshape(self.n, columns)
+        return self.run(name, inputs, parameters, self.n * columns).reshape(self.n, columns)
 
 
 @pytest.fixture(scope="module")
@@ -175,7 +130,7 @@ def test_the_regressors_times_the_parameters_give_a_numeric_newton_euler(modules
     base = base_parameters(Y)
     assert module.names == (Y.names, tuple(s.name for s in base.symbols))
     n = robot.n_coordinates
-    values = _inertials(n)
+    values = inertials(n)
     exact = reference(robot, values)
     pi, pi_b = standard_vector(robot, values), base_vector(robot, values)
     rng = np.random.default_rng(45)
@@ -184,8 +139,8 @@ def test_the_regressors_times_the_parameters_give_a_numeric_newton_euler(modules
         tau = exact.tau(q, qdot, qddot)
         Y_q = module.call("regressor", q, qdot, qddot, parameters=values).reshape(n, len(pi))
         Y_b = module.call("base_regressor", q, qdot, qddot, parameters=values).reshape(n, len(pi_b))
-        _close(Y_q @ pi, tau)
-        _close(Y_b @ pi_b, tau)
+        close(Y_q @ pi, tau)
+        close(Y_b @ pi_b, tau)
     # the regressors do not read the inertial parameters: other values give the same matrices
     assert np.array_equal(module.call("regressor", q, qdot, qddot, parameters=values),
                           module.call("regressor", q, qdot, qddot, parameters={}))
@@ -239,7 +194,7 @@ def test_the_command_line_and_the_header_say_identification(tmp_path):
     assert "def regressor(" not in generate(robot, "python", dynamics=True)
     path = tmp_path / "arm.py"
     assert main(["codegen", "planar2r", "--identification", "--target", "numpy", "-o", str(path)]) == 0
-    module = _import(path)
+    module = import_module(path)
     assert module.BASE_PARAMETERS == ("ZZR1", "ZZR2", "MXR2", "MY2") and module.selftest() <= 1e-6
 
 
@@ -248,7 +203,7 @@ def test_a_coupled_robots_base_regressor_has_full_rank_in_its_coordinates(tmp_pa
     robot = load_robot("palletizer")
     path = tmp_path / "palletizer.py"
     path.write_text(generate(robot, "numpy", identification=True))
-    module = _import(path)
+    module = import_module(path)
     assert module.selftest() <= 1e-6
     in_coordinates = base_parameters(regressor(robot))  # of C^T Y: fewer than the joints' own base parameters
     assert tuple(s.name for s in in_coordinates.symbols) == module.BASE_PARAMETERS

@@ -1,0 +1,179 @@
+r"""Numeric inverse kinematics: Levenberg-Marquardt on a compiled forward kinematics and Jacobian.
+
+The solver works on any object with ``fk(q)`` (a 4 x 4 pose of the tool point in the base frame) and
+``jacobian(q)`` (6 x n, linear velocity of that point then angular velocity, both in the base frame), such as
+:func:`symjac.codegen.numeric_model.numeric_model` of the robot with its default frame and point. The error is
+``[w_p (p* - p); w_o log(R* R^T)]`` (the rotation vector of the remaining rotation, in the base frame), the step
+is damped least squares ``(J^T J + lambda I) dq = J^T e`` with ``lambda`` divided by 3 after an accepted step and
+multiplied by 4 after a rejected one. Joints with limits are clipped to them, revolute joints without limits are
+wrapped to (-pi, pi]. Restarts from seeds drawn uniformly within limits (from ``rng``, so the result is
+deterministic) collect the distinct solutions.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+import sympy
+
+from symjac.errors import ArgumentError
+from symjac.model.robot import Robot
+
+__all__ = ["KinematicModel", "NumericSolution", "solve_numeric"]
+
+
+class KinematicModel(Protocol):
+    """What the solver needs: the tool pose and the base-frame Jacobian at that point."""
+
+    def fk(self, q: Any) -> Any: ...
+
+    def jacobian(self, q: Any) -> Any: ...
+
+
+@dataclass(frozen=True)
+class NumericSolution:
+    """One converged configuration with its final error norms and the iterations it took."""
+
+    q: np.ndarray
+    position_error: float
+    orientation_error: float
+    iterations: int
+
+
+def _rotation_vector(r: np.ndarray) -> np.ndarray:
+    """The axis times angle of the rotation matrix ``r`` (robust near 0 and pi)."""
+    cos = min(1.0, max(-1.0, (np.trace(r) - 1.0) / 2.0))
+    skew = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
+    angle = float(np.arccos(cos))
+    if angle < 1e-6:
+        return skew / 2.0
+    if np.pi - angle > 1e-4:
+        return skew * (angle / (2.0 * np.sin(angle)))
+    b = (r + np.eye(3)) / 2.0  # near pi: the axis from the symmetric part
+    axis = b[int(np.argmax(np.diag(b)))]
+    axis = axis / np.linalg.norm(axis)
+    if axis @ skew < 0:
+        axis = -axis
+    return axis * angle
+
+
+def _pose(pose: Any) -> np.ndarray:
+    try:
+        t = np.asarray(pose, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ArgumentError(f"solve_numeric: the pose is not a numeric 4 x 4 matrix ({exc})") from None
+    if t.shape != (4, 4):
+        raise ArgumentError(f"solve_numeric: the pose must be 4 x 4, got shape {t.shape}")
+    if not np.all(np.isfinite(t)):
+        raise ArgumentError("solve_numeric: the pose contains NaN or infinite entries")
+    r = t[:3, :3]
+    if (not np.allclose(t[3], [0, 0, 0, 1], atol=1e-9) or not np.allclose(r @ r.T, np.eye(3), atol=1e-6)
+            or np.linalg.det(r) < 0):
+        raise ArgumentError("solve_numeric: the pose is not a rigid transform (rotation block not orthonormal "
+                            "with determinant +1, or last row not [0, 0, 0, 1])")
+    return t
+
+
+def _float(value: Any, robot: Robot) -> float:
+    expr = sympy.sympify(value)
+    return float(expr.subs(robot.defaults) if expr.free_symbols else expr)
+
+
+def _limits(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Lower and upper bounds per joint (-inf/inf when free) and which joints wrap (revolute without limits)."""
+    lower, upper, wrap = [], [], []
+    for joint in robot.joints:
+        limits = None if joint.continuous else joint.limits
+        if limits is None:
+            lower.append(-np.inf)
+            upper.append(np.inf)
+            wrap.append(bool(joint.is_revolute))
+        else:
+            lower.append(_float(limits[0], robot))
+            upper.append(_float(limits[1], robot))
+            wrap.append(False)
+    return np.array(lower), np.array(upper), np.array(wrap)
+
+
+def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any = None, rng: int = 0,
+                  restarts: int = 8, position_weight: float = 1.0, orientation_weight: float = 1.0,
+                  tolerance: float = 1e-10, max_iterations: int = 200,
+                  respect_limits: bool = True, until_found: int = 40) -> list[NumericSolution]:
+    r"""Configurations of ``robot`` whose tool reaches ``pose`` (4 x 4), found by Levenberg-Marquardt.
+
+    ``model`` gives ``fk`` and ``jacobian`` (base frame, at the tool point), for example
+    ``numeric_model(robot)``. The first start is ``seed`` when given, then ``restarts`` seeds drawn within the
+    limits (+-pi for free revolute joints, +-1 for free prismatic ones) from ``numpy.random.default_rng(rng)``.
+    When none of these converges, further seeds are drawn until one does or ``until_found`` starts in all
+    have been tried. A start converges when both the weighted position and orientation error norms fall below ``tolerance``;
+    solutions closer than 1e-6 (rad or m) to an earlier one are dropped. An unreachable pose gives an empty list.
+    """
+    target = _pose(pose)
+    n = len(robot.joints)
+    lower, upper, wrap = _limits(robot)
+    if not respect_limits:
+        lower, upper = np.full(n, -np.inf), np.full(n, np.inf)
+    generator = np.random.default_rng(rng)
+    low = np.where(np.isfinite(lower), lower, np.where(wrap, -np.pi, -1.0))
+    high = np.where(np.isfinite(upper), upper, np.where(wrap, np.pi, 1.0))
+    starts = [] if seed is None else [np.asarray(seed, dtype=float).reshape(n)]
+    starts += [generator.uniform(low, high) for _ in range(restarts)]
+    primary = len(starts)
+    starts += [generator.uniform(low, high) for _ in range(max(0, until_found - primary))]
+    weights = np.array([position_weight] * 3 + [orientation_weight] * 3)
+
+    def error(q: np.ndarray) -> np.ndarray:
+        t = np.asarray(model.fk(q), dtype=float)
+        return weights * np.concatenate([target[:3, 3] - t[:3, 3], _rotation_vector(target[:3, :3] @ t[:3, :3].T)])
+
+    def project(q: np.ndarray) -> np.ndarray:
+        q = np.clip(q, lower, upper)
+        return np.where(wrap, np.pi - np.mod(np.pi - q, 2 * np.pi), q)
+
+    found: list[NumericSolution] = []
+    for index, start in enumerate(starts):
+        if found and index >= primary:
+            break
+        q, e = project(start), error(project(start))
+        damping, cost = 1.0, float(e @ e)
+        iterations = 0
+        while iterations < max_iterations and max(np.linalg.norm(e[:3]), np.linalg.norm(e[3:])) > tolerance:
+            iterations += 1
+            j = weights[:, None] * np.asarray(model.jacobian(q), dtype=float)
+            step = _step(j, e, damping, q, lower, upper)
+            trial = project(q + step)
+            e_trial = error(trial)
+            c_trial = float(e_trial @ e_trial)
+            if c_trial < cost:
+                q, e, cost, damping = trial, e_trial, c_trial, max(damping / 3.0, 1e-12)
+            else:
+                damping *= 4.0
+                if damping > 1e8:
+                    break
+        if max(np.linalg.norm(e[:3]), np.linalg.norm(e[3:])) <= tolerance:
+            if all(np.max(np.abs(_difference(q, s.q, wrap))) > 1e-6 for s in found):
+                found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])),
+                                             iterations))
+    return found
+
+
+def _step(j: np.ndarray, e: np.ndarray, damping: float, q: np.ndarray, lower: np.ndarray,
+          upper: np.ndarray) -> np.ndarray:
+    """The damped least-squares step, with the joints that sit at a limit and would be pushed past it held still."""
+    free = np.ones(len(q), dtype=bool)
+    for _ in range(len(q)):
+        step = np.zeros(len(q))
+        jf = j[:, free]
+        step[free] = np.linalg.solve(jf.T @ jf + damping * np.eye(int(free.sum())), jf.T @ e)
+        blocked = free & (((q <= lower) & (step < 0)) | ((q >= upper) & (step > 0)))
+        if not blocked.any():
+            return step
+        free &= ~blocked
+    return step
+
+
+def _difference(a: np.ndarray, b: np.ndarray, wrap: np.ndarray) -> np.ndarray:
+    d = a - b
+    return np.where(wrap, np.pi - np.mod(np.pi - d, 2 * np.pi), d)

@@ -27,9 +27,11 @@ __all__ = ["KinematicModel", "NumericSolution", "solve_numeric"]
 class KinematicModel(Protocol):
     """What the solver needs: the tool pose and the base-frame Jacobian at that point."""
 
-    def fk(self, q: Any) -> Any: ...
+    def fk(self, q: Any) -> Any:
+        """The 4 x 4 pose of the tool point in the base frame at ``q``."""
 
-    def jacobian(self, q: Any) -> Any: ...
+    def jacobian(self, q: Any) -> Any:
+        """The 6 x n Jacobian at ``q``: linear velocity of the tool point, then angular velocity, base frame."""
 
 
 @dataclass(frozen=True)
@@ -107,8 +109,9 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
     ``numeric_model(robot)``. The first start is ``seed`` when given, then ``restarts`` seeds drawn within the
     limits (+-pi for free revolute joints, +-1 for free prismatic ones) from ``numpy.random.default_rng(rng)``.
     When none of these converges, further seeds are drawn until one does or ``until_found`` starts in all
-    have been tried. A start converges when both the weighted position and orientation error norms fall below ``tolerance``;
-    solutions closer than 1e-6 (rad or m) to an earlier one are dropped. An unreachable pose gives an empty list.
+    have been tried. A start converges when both the weighted position and orientation error norms fall below
+    ``tolerance``; solutions closer than 1e-6 (rad or m) to an earlier one are dropped.
+    An unreachable pose gives an empty list.
     """
     target = _pose(pose)
     n = len(robot.joints)
@@ -152,10 +155,9 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
                 damping *= 4.0
                 if damping > 1e8:
                     break
-        if max(np.linalg.norm(e[:3]), np.linalg.norm(e[3:])) <= tolerance:
-            if all(np.max(np.abs(_difference(q, s.q, wrap))) > 1e-6 for s in found):
-                found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])),
-                                             iterations))
+        converged = max(np.linalg.norm(e[:3]), np.linalg.norm(e[3:])) <= tolerance
+        if converged and all(np.max(np.abs(_difference(q, s.q, wrap))) > 1e-6 for s in found):
+            found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])), iterations))
     return found
 
 

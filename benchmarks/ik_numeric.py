@@ -1,0 +1,68 @@
+r"""Numeric inverse-kinematics benchmark: ``python benchmarks/ik_numeric.py [ROBOT ...] [-n POSES]``.
+
+For each robot (default: the Panda, the iiwa 7 and the PUMA 560) it draws ``POSES`` configurations uniformly within
+the joint limits (seeded, so every run sees the same poses), takes their tool poses from the compiled forward
+kinematics (:func:`symjac.codegen.numeric_model.numeric_model`) and solves them with
+:func:`symjac.analysis.inverse_kinematics.numeric.solve_numeric` twice: from one random seed only (``restarts=1``,
+no further starts: the issue's "success from one random seed") and with the defaults (8 seeds, more until one
+converges, all distinct solutions kept). It prints the success rate (every solution checked against the pose to
+1e-9), mean iterations of the converged starts, mean distinct solutions and wall time per solve. It asserts
+nothing, so it never flakes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+import sympy as sp
+
+from symjac.analysis.inverse_kinematics import solve_numeric
+from symjac.codegen.numeric_model import numeric_model
+from symjac.model.io import load_robot
+from symjac.model.robot import Robot
+
+
+def bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
+    """Sampling bounds: the joint limits, +-pi for free revolute joints, +-1 for free prismatic ones."""
+    lower, upper = [], []
+    for joint in robot.joints:
+        if joint.limits is None or joint.continuous:
+            lower.append(-np.pi if joint.is_revolute else -1.0)
+            upper.append(np.pi if joint.is_revolute else 1.0)
+        else:
+            lower.append(float(sp.sympify(joint.limits[0]).subs(robot.defaults)))
+            upper.append(float(sp.sympify(joint.limits[1]).subs(robot.defaults)))
+    return np.array(lower), np.array(upper)
+
+
+def main() -> None:
+    """Solve the poses of each robot in both modes and print one row per robot and mode."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("robots", nargs="*", default=["panda", "iiwa7", "puma560"])
+    parser.add_argument("-n", "--poses", type=int, default=500)
+    arguments = parser.parse_args()
+    print(f"{'robot':10} {'mode':12} {'success':>9} {'iterations':>10} {'solutions':>9} {'ms/solve':>9}")
+    for name in arguments.robots:
+        robot = load_robot(name)
+        model = numeric_model(robot)
+        lower, upper = bounds(robot)
+        generator = np.random.default_rng(2026)
+        poses = [np.asarray(model.fk(generator.uniform(lower, upper)), dtype=float) for _ in range(arguments.poses)]
+        for mode, options in (("one seed", {"restarts": 1, "until_found": 1}), ("defaults", {})):
+            solved, iterations, counts = 0, [], []
+            start = time.perf_counter()
+            results = [solve_numeric(robot, pose, model, rng=k, **options) for k, pose in enumerate(poses)]
+            elapsed = time.perf_counter() - start
+            for pose, solutions in zip(poses, results, strict=True):
+                exact = all(np.abs(np.asarray(model.fk(s.q)) - pose).max() < 1e-9 for s in solutions)
+                solved += bool(solutions) and exact
+                iterations += [s.iterations for s in solutions]
+                counts.append(len(solutions))
+            print(f"{name:10} {mode:12} {100 * solved / len(poses):8.1f}% {np.mean(iterations or [0]):10.1f} "
+                  f"{np.mean(counts):9.2f} {1e3 * elapsed / len(poses):9.2f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -50,10 +50,11 @@ def main() -> None:
         lower, upper = bounds(robot)
         generator = np.random.default_rng(2026)
         poses = [np.asarray(model.fk(generator.uniform(lower, upper)), dtype=float) for _ in range(arguments.poses)]
-        for mode, options in (("one seed", {"restarts": 1, "until_found": 1}), ("defaults", {})):
+        for mode, restarts, until_found in (("one seed", 1, 1), ("defaults", 8, 40)):
             solved, iterations, counts = 0, [], []
             start = time.perf_counter()
-            results = [solve_numeric(robot, pose, model, rng=k, **options) for k, pose in enumerate(poses)]
+            results = [solve_numeric(robot, pose, model, rng=k, restarts=restarts,
+                                     until_found=until_found) for k, pose in enumerate(poses)]
             elapsed = time.perf_counter() - start
             for pose, solutions in zip(poses, results, strict=True):
                 exact = all(np.abs(np.asarray(model.fk(s.q)) - pose).max() < 1e-9 for s in solutions)

@@ -145,8 +145,11 @@ SYMBOLIC = {
 @settings(max_examples=60, deadline=None)
 @given(axes, axes, points, points, angles, angles)
 def test_symbolic_forms_equal_the_numeric_ones(k1, k2, p, r, theta1, theta2):
-    if np.linalg.norm(np.cross(k1, k2)) < 0.1 or np.linalg.norm(np.cross(k1, p - r)) < 1e-2 \
-            or np.linalg.norm(np.cross(k2, p - r)) < 1e-2:
+    if (
+        np.linalg.norm(np.cross(k1, k2)) < 0.1
+        or np.linalg.norm(np.cross(k1, p - r)) < 1e-2
+        or np.linalg.norm(np.cross(k2, p - r)) < 1e-2
+    ):
         return
     q1 = rotate(k1, theta1, p, r)
     values = [*k1, *k2, *p, *q1, *r, 0.0]

@@ -59,8 +59,11 @@ class AngleSolutions:
 
 @dataclass(frozen=True)
 class Subproblem:
-    """A subproblem solved symbolically: each solution a tuple of SymPy expressions, and the conditions (SymPy
-    relations ``Eq(a, b)`` or ``a >= 0``) under which the solutions exist."""
+    """A subproblem solved symbolically.
+
+    ``solutions`` holds one tuple of SymPy expressions per solution; ``conditions`` the SymPy relations
+    (``Eq(a, b)`` or ``a >= 0``) under which the solutions exist.
+    """
 
     solutions: tuple[tuple[sympy.Expr, ...], ...]
     conditions: tuple[sympy.Basic, ...]
@@ -79,8 +82,9 @@ def _vector(value: Any, name: str) -> np.ndarray:
 def _axis(value: Any, name: str) -> np.ndarray:
     axis = _vector(value, name)
     if abs(np.linalg.norm(axis) - 1.0) > 1e-9:
-        raise ArgumentError(f"subproblem argument {name}: the axis must be a unit vector, its norm is "
-                            f"{np.linalg.norm(axis):.12g}")
+        raise ArgumentError(
+            f"subproblem argument {name}: the axis must be a unit vector, its norm is {np.linalg.norm(axis):.12g}"
+        )
     return axis
 
 
@@ -99,8 +103,10 @@ def _scale(*vectors: np.ndarray) -> float:
 
 
 def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, tolerance: float = 1e-9) -> AngleSolutions:
-    """Subproblem 1: the angle ``theta`` of the rotation about the unit axis ``k`` through ``point_on_axis`` that takes
-    ``p`` to ``q``: ``theta = atan2(k.(u x v), u.v - (k.u)(k.v))`` with ``u = p - r``, ``v = q - r``.
+    """Subproblem 1: the angle of the rotation about ``k`` taking ``p`` to ``q``.
+
+    The axis ``k`` is a unit vector through ``r = point_on_axis``;
+    ``theta = atan2(k.(u x v), u.v - (k.u)(k.v))`` with ``u = p - r``, ``v = q - r``.
 
     Solvable when ``k.u = k.v`` and ``|u'| = |v'|`` (to ``tolerance`` times the larger of 1 and the lengths).
     """
@@ -118,9 +124,12 @@ def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, toleran
     return AngleSolutions(((_angle_across(k, u, v),),))
 
 
-def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None,
-                           tolerance: float = 1e-9) -> AngleSolutions:
-    """Subproblem 2: the angles ``(theta1, theta2)`` with ``rot(k1, theta1) rot(k2, theta2) (p - r) = q - r`` for unit
+def two_rotations_to_point(
+    k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None, tolerance: float = 1e-9
+) -> AngleSolutions:
+    """Subproblem 2: two rotations about axes that meet, taking ``p`` to ``q``.
+
+    The angles ``(theta1, theta2)`` satisfy ``rot(k1, theta1) rot(k2, theta2) (p - r) = q - r`` for unit
     axes ``k1``, ``k2`` meeting at ``r = intersection``: first ``theta2`` about ``k2``, then ``theta1`` about ``k1``.
 
     The middle point is ``c = alpha k1 + beta k2 + gamma (k1 x k2)`` (formulas in the module docstring); there are two
@@ -130,16 +139,20 @@ def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any =
     k1, k2 = _axis(k1, "k1"), _axis(k2, "k2")
     normal = np.cross(k1, k2)
     if np.linalg.norm(normal) <= 1e-9:
-        raise ArgumentError("two rotations to a point: the axes k1 and k2 are parallel; the subproblem needs axes "
-                            "that meet in one point")
+        raise ArgumentError(
+            "two rotations to a point: the axes k1 and k2 are parallel; the subproblem needs axes "
+            "that meet in one point"
+        )
     u, v = _relative(p, q, intersection)
     scale = tolerance * _scale(u, v)
     if abs(np.linalg.norm(u) - np.linalg.norm(v)) > scale:
-        return AngleSolutions((), f"p and q lie at distances {np.linalg.norm(u):.6g} and {np.linalg.norm(v):.6g} "
-                                  "from the intersection")
+        return AngleSolutions(
+            (), f"p and q lie at distances {np.linalg.norm(u):.6g} and {np.linalg.norm(v):.6g} from the intersection"
+        )
     if np.linalg.norm(u) <= scale:
-        return AngleSolutions(((0.0, 0.0),), "p is the intersection point: every pair of angles works",
-                              every_angle=True)
+        return AngleSolutions(
+            ((0.0, 0.0),), "p is the intersection point: every pair of angles works", every_angle=True
+        )
     w = float(k1 @ k2)
     alpha = (k1 @ v - w * (k2 @ u)) / (1.0 - w * w)
     beta = (k2 @ u - w * (k1 @ v)) / (1.0 - w * w)
@@ -154,8 +167,9 @@ def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any =
     return AngleSolutions(tuple(solutions))
 
 
-def rotation_to_distance(k: Any, p: Any, q: Any, delta: float, point_on_axis: Any = None,
-                         tolerance: float = 1e-9) -> AngleSolutions:
+def rotation_to_distance(
+    k: Any, p: Any, q: Any, delta: float, point_on_axis: Any = None, tolerance: float = 1e-9
+) -> AngleSolutions:
     """Subproblem 3: the angles ``theta`` with ``|rot(k, theta) (p - r) - (q - r)| = delta``.
 
     ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` with ``theta0`` the angle from ``u'`` to ``v'`` and
@@ -174,8 +188,9 @@ def rotation_to_distance(k: Any, p: Any, q: Any, delta: float, point_on_axis: An
         return AngleSolutions((), f"p and q differ along the axis by more than delta = {delta:.6g}")
     if across_u_squared <= scale**2 or across_v_squared <= scale**2:
         if abs(across_u_squared + across_v_squared - delta_across_squared) <= scale:
-            return AngleSolutions(((0.0,),), "p or q lies on the axis: every angle gives the same distance",
-                                  every_angle=True)
+            return AngleSolutions(
+                ((0.0,),), "p or q lies on the axis: every angle gives the same distance", every_angle=True
+            )
         return AngleSolutions((), "p or q lies on the axis and the distance is not delta")
     product = 2.0 * np.sqrt(across_u_squared * across_v_squared)
     c = (across_u_squared + across_v_squared - max(delta_across_squared, 0.0)) / product
@@ -208,19 +223,27 @@ def _angle_across_symbolic(k: sympy.Matrix, u: sympy.Matrix, v: sympy.Matrix) ->
 
 
 def rotation_to_point_symbolic(k: Any, p: Any, q: Any, point_on_axis: Any = None) -> Subproblem:
-    """Subproblem 1 in symbols: ``theta = atan2(k.(u x v), u.v - (k.u)(k.v))`` under the conditions ``k.u = k.v`` and
-    ``|u'|^2 = |v'|^2`` (``|u'|^2 = u.u - (k.u)^2``); ``k`` is taken to be a unit vector."""
+    """Subproblem 1 in symbols.
+
+    ``theta = atan2(k.(u x v), u.v - (k.u)(k.v))`` under the conditions ``k.u = k.v`` and
+    ``|u'|^2 = |v'|^2`` (``|u'|^2 = u.u - (k.u)^2``); ``k`` is taken to be a unit vector.
+    """
     k = _matrix(k, "k")
     u, v = _relative_symbolic(p, q, point_on_axis)
-    conditions = (sympy.Eq(k.dot(u), k.dot(v), evaluate=False),
-                  sympy.Eq(u.dot(u) - k.dot(u) ** 2, v.dot(v) - k.dot(v) ** 2, evaluate=False))
+    conditions = (
+        sympy.Eq(k.dot(u), k.dot(v), evaluate=False),
+        sympy.Eq(u.dot(u) - k.dot(u) ** 2, v.dot(v) - k.dot(v) ** 2, evaluate=False),
+    )
     return Subproblem(((_angle_across_symbolic(k, u, v),),), conditions)
 
 
 def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None) -> Subproblem:
-    """Subproblem 2 in symbols: two solutions ``(theta1, theta2)``, one for each sign of
+    """Subproblem 2 in symbols.
+
+    Two solutions ``(theta1, theta2)``, one for each sign of
     ``gamma = +-sqrt(gamma^2)``, under the conditions ``|u|^2 = |v|^2`` and ``gamma^2 >= 0`` (formulas in the module
-    docstring); ``k1`` and ``k2`` are unit vectors that are not parallel."""
+    docstring); ``k1`` and ``k2`` are unit vectors that are not parallel.
+    """
     k1, k2 = _matrix(k1, "k1"), _matrix(k2, "k2")
     u, v = _relative_symbolic(p, q, intersection)
     normal = k1.cross(k2)
@@ -237,8 +260,11 @@ def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersecti
 
 
 def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_axis: Any = None) -> Subproblem:
-    """Subproblem 3 in symbols: ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` under the conditions
-    ``delta'^2 >= 0`` and ``1 - c^2 >= 0`` (formulas in the module docstring); ``k`` is a unit vector."""
+    """Subproblem 3 in symbols.
+
+    ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` under the conditions
+    ``delta'^2 >= 0`` and ``1 - c^2 >= 0`` (formulas in the module docstring); ``k`` is a unit vector.
+    """
     k = _matrix(k, "k")
     u, v = _relative_symbolic(p, q, point_on_axis)
     delta = sympy.sympify(delta)
@@ -246,7 +272,8 @@ def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_a
     across_u_squared = u.dot(u) - k.dot(u) ** 2
     across_v_squared = v.dot(v) - k.dot(v) ** 2
     c = (across_u_squared + across_v_squared - delta_across_squared) / (
-        2 * sympy.sqrt(across_u_squared) * sympy.sqrt(across_v_squared))
+        2 * sympy.sqrt(across_u_squared) * sympy.sqrt(across_v_squared)
+    )
     theta0 = _angle_across_symbolic(k, u, v)
     half = sympy.atan2(sympy.sqrt(1 - c**2), c)
     conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(1 - c**2, 0, evaluate=False))

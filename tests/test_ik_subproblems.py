@@ -124,21 +124,22 @@ DELTA = sympy.Symbol("delta", positive=True)
 ARGS = [*K1, *K2, *P, *Q, *R, DELTA]
 
 
-def _evaluate(subproblem, values):
-    with np.errstate(invalid="ignore"):  # sqrt(gamma^2) of a rounding-negative gamma^2 where two solutions merge
-        return _lambdified(subproblem, values)
-
-
-def _lambdified(subproblem, values):
-    solutions = sympy.lambdify(ARGS, [list(s) for s in subproblem.solutions], "numpy")(*values)
-    conditions = sympy.lambdify(ARGS, [c.lhs - c.rhs for c in subproblem.conditions], "numpy")(*values)
+def _compiled(subproblem):
+    """The solutions and the conditions' two sides' differences as NumPy functions, made once."""
+    solutions = sympy.lambdify(ARGS, [list(s) for s in subproblem.solutions], "numpy")
+    conditions = sympy.lambdify(ARGS, [c.lhs - c.rhs for c in subproblem.conditions], "numpy")
     return solutions, conditions
 
 
+def _evaluate(compiled, values):
+    with np.errstate(invalid="ignore"):  # sqrt(gamma^2) of a rounding-negative gamma^2 where two solutions merge
+        return compiled[0](*values), compiled[1](*values)
+
+
 SYMBOLIC = {
-    "point": rotation_to_point_symbolic(K1, P, Q, R),
-    "two": two_rotations_to_point_symbolic(K1, K2, P, Q, R),
-    "distance": rotation_to_distance_symbolic(K1, P, Q, DELTA, R),
+    "point": _compiled(rotation_to_point_symbolic(K1, P, Q, R)),
+    "two": _compiled(two_rotations_to_point_symbolic(K1, K2, P, Q, R)),
+    "distance": _compiled(rotation_to_distance_symbolic(K1, P, Q, DELTA, R)),
 }
 
 

@@ -1,5 +1,28 @@
-"""Inverse kinematics (issue 46): numeric solver."""
+"""Inverse kinematics (issue 46, in progress): the geometric subproblems closed forms are built from, and a numeric
+solver for every arm."""
 
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, solve_numeric
+from symjac.analysis.inverse_kinematics.subproblems import (
+    AngleSolutions,
+    Subproblem,
+    rotation_to_distance,
+    rotation_to_distance_symbolic,
+    rotation_to_point,
+    rotation_to_point_symbolic,
+    two_rotations_to_point,
+    two_rotations_to_point_symbolic,
+)
 
-__all__ = ["KinematicModel", "NumericSolution", "solve_numeric"]
+__all__ = [
+    "AngleSolutions",
+    "KinematicModel",
+    "NumericSolution",
+    "Subproblem",
+    "rotation_to_distance",
+    "rotation_to_distance_symbolic",
+    "rotation_to_point",
+    "rotation_to_point_symbolic",
+    "solve_numeric",
+    "two_rotations_to_point",
+    "two_rotations_to_point_symbolic",
+]

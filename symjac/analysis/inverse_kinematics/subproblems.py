@@ -1,0 +1,280 @@
+"""The Paden-Kahan subproblems: the geometric steps closed-form inverse kinematics is built from.
+
+Each rotation is about a unit axis ``k`` through a point ``r`` (the origin unless given). With ``u = p - r`` and
+``v = q - r``, the parts of ``u`` and ``v`` across the axis are ``u' = u - k (k.u)`` and ``v' = v - k (k.v)``; two
+identities keep the formulas short: ``u'.v' = u.v - (k.u)(k.v)`` and ``k.(u' x v') = k.(u x v)``.
+
+- **Rotation to a point** (subproblem 1): the angle ``theta`` with ``rot(k, theta) u = v``,
+  ``theta = atan2(k.(u x v), u.v - (k.u)(k.v))``, when ``k.u = k.v`` and ``|u'| = |v'|``; every angle works when ``p``
+  lies on the axis.
+- **Two rotations to a point** (subproblem 2): ``rot(k1, theta1) rot(k2, theta2) u = v`` for axes meeting at ``r``.
+  The middle point ``c = rot(k2, theta2) u`` is ``alpha k1 + beta k2 + gamma (k1 x k2)`` with
+  ``alpha = (k1.v - w k2.u) / (1 - w^2)``, ``beta = (k2.u - w k1.v) / (1 - w^2)``, ``w = k1.k2`` and
+  ``gamma^2 = (|u|^2 - alpha^2 - beta^2 - 2 alpha beta w) / |k1 x k2|^2``; zero, one or two solutions by the sign of
+  ``gamma^2`` (and ``|u| = |v|``), each then two rotations to a point. Parallel axes are refused.
+- **Rotation to a distance** (subproblem 3): ``|rot(k, theta) u - v| = delta``. Across the axis the distance is
+  ``delta'^2 = delta^2 - (k.(u - v))^2``, and ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` with ``theta0`` the angle
+  from ``u'`` to ``v'`` and ``c = (|u'|^2 + |v'|^2 - delta'^2) / (2 |u'| |v'|)``; zero, one or two solutions.
+
+Each comes as a numeric function (NumPy floats, all solutions, a tolerance for the existence test, one solution where
+two merge) and a ``_symbolic`` function returning a :class:`Subproblem`: the solutions as SymPy expressions with
+``atan2`` and the conditions under which they exist, for a derivation to print step by step.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import sympy
+
+from symjac.errors import ArgumentError
+
+__all__ = [
+    "AngleSolutions",
+    "Subproblem",
+    "rotation_to_distance",
+    "rotation_to_distance_symbolic",
+    "rotation_to_point",
+    "rotation_to_point_symbolic",
+    "two_rotations_to_point",
+    "two_rotations_to_point_symbolic",
+]
+
+
+@dataclass(frozen=True)
+class AngleSolutions:
+    """Numeric solutions of a subproblem.
+
+    ``solutions`` holds one tuple of angles per solution (``(theta,)``, or ``(theta1, theta2)`` for two rotations),
+    empty when there is none; ``reason`` then says why. ``every_angle`` is true when the point lies on the axis, so
+    that any angle works (the solutions list ``0`` as a representative).
+    """
+
+    solutions: tuple[tuple[float, ...], ...]
+    reason: str = ""
+    every_angle: bool = False
+
+
+@dataclass(frozen=True)
+class Subproblem:
+    """A subproblem solved symbolically.
+
+    ``solutions`` holds one tuple of SymPy expressions per solution; ``conditions`` the SymPy relations
+    (``Eq(a, b)`` or ``a >= 0``) under which the solutions exist.
+    """
+
+    solutions: tuple[tuple[sympy.Expr, ...], ...]
+    conditions: tuple[sympy.Basic, ...]
+
+
+# ---------------------------------------------------------------- numeric
+
+
+def _vector(value: Any, name: str) -> np.ndarray:
+    array = np.asarray(value, dtype=float)
+    if array.shape != (3,) or not np.all(np.isfinite(array)):
+        raise ArgumentError(f"subproblem argument {name}: expected 3 finite numbers, got {value!r}")
+    return array
+
+
+def _axis(value: Any, name: str) -> np.ndarray:
+    axis = _vector(value, name)
+    if abs(np.linalg.norm(axis) - 1.0) > 1e-9:
+        raise ArgumentError(
+            f"subproblem argument {name}: the axis must be a unit vector, its norm is {np.linalg.norm(axis):.12g}"
+        )
+    return axis
+
+
+def _relative(p: Any, q: Any, point: Any) -> tuple[np.ndarray, np.ndarray]:
+    r = np.zeros(3) if point is None else _vector(point, "point on the axis")
+    return _vector(p, "p") - r, _vector(q, "q") - r
+
+
+def _angle_across(k: np.ndarray, u: np.ndarray, v: np.ndarray) -> float:
+    """The angle about ``k`` from ``u'`` to ``v'``: ``atan2(k.(u x v), u.v - (k.u)(k.v))``."""
+    return float(np.arctan2(k @ np.cross(u, v), u @ v - (k @ u) * (k @ v)))
+
+
+def _scale(*vectors: np.ndarray) -> float:
+    return max(1.0, *(float(np.linalg.norm(x)) for x in vectors))
+
+
+def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, tolerance: float = 1e-9) -> AngleSolutions:
+    """Subproblem 1: the angle of the rotation about ``k`` taking ``p`` to ``q``.
+
+    The axis ``k`` is a unit vector through ``r = point_on_axis``;
+    ``theta = atan2(k.(u x v), u.v - (k.u)(k.v))`` with ``u = p - r``, ``v = q - r``.
+
+    Solvable when ``k.u = k.v`` and ``|u'| = |v'|`` (to ``tolerance`` times the larger of 1 and the lengths).
+    """
+    k = _axis(k, "k")
+    u, v = _relative(p, q, point_on_axis)
+    scale = tolerance * _scale(u, v)
+    if abs(k @ u - k @ v) > scale:
+        return AngleSolutions((), f"p and q differ along the axis by {k @ v - k @ u:.6g}")
+    across_u = float(np.sqrt(max(u @ u - (k @ u) ** 2, 0.0)))
+    across_v = float(np.sqrt(max(v @ v - (k @ v) ** 2, 0.0)))
+    if abs(across_u - across_v) > scale:
+        return AngleSolutions((), f"p and q lie at distances {across_u:.6g} and {across_v:.6g} from the axis")
+    if across_u <= scale:
+        return AngleSolutions(((0.0,),), "p lies on the axis: every angle works", every_angle=True)
+    return AngleSolutions(((_angle_across(k, u, v),),))
+
+
+def two_rotations_to_point(
+    k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None, tolerance: float = 1e-9
+) -> AngleSolutions:
+    """Subproblem 2: two rotations about axes that meet, taking ``p`` to ``q``.
+
+    The angles ``(theta1, theta2)`` satisfy ``rot(k1, theta1) rot(k2, theta2) (p - r) = q - r`` for unit
+    axes ``k1``, ``k2`` meeting at ``r = intersection``: first ``theta2`` about ``k2``, then ``theta1`` about ``k1``.
+
+    The middle point is ``c = alpha k1 + beta k2 + gamma (k1 x k2)`` (formulas in the module docstring); there are two
+    solutions when ``gamma^2 > 0``, one when ``gamma^2 = 0`` (within ``tolerance``), none otherwise or when
+    ``|p - r| != |q - r|``. Parallel axes raise :class:`~symjac.errors.ArgumentError`.
+    """
+    k1, k2 = _axis(k1, "k1"), _axis(k2, "k2")
+    normal = np.cross(k1, k2)
+    if np.linalg.norm(normal) <= 1e-9:
+        raise ArgumentError(
+            "two rotations to a point: the axes k1 and k2 are parallel; the subproblem needs axes "
+            "that meet in one point"
+        )
+    u, v = _relative(p, q, intersection)
+    scale = tolerance * _scale(u, v)
+    if abs(np.linalg.norm(u) - np.linalg.norm(v)) > scale:
+        return AngleSolutions(
+            (), f"p and q lie at distances {np.linalg.norm(u):.6g} and {np.linalg.norm(v):.6g} from the intersection"
+        )
+    if np.linalg.norm(u) <= scale:
+        return AngleSolutions(
+            ((0.0, 0.0),), "p is the intersection point: every pair of angles works", every_angle=True
+        )
+    w = float(k1 @ k2)
+    alpha = (k1 @ v - w * (k2 @ u)) / (1.0 - w * w)
+    beta = (k2 @ u - w * (k1 @ v)) / (1.0 - w * w)
+    gamma_squared = (u @ u - alpha**2 - beta**2 - 2.0 * alpha * beta * w) / (normal @ normal)
+    if gamma_squared < -scale * _scale(u):
+        return AngleSolutions((), f"no middle point: gamma^2 = {gamma_squared:.6g} < 0")
+    gammas = (0.0,) if gamma_squared <= scale * _scale(u) else (np.sqrt(gamma_squared), -np.sqrt(gamma_squared))
+    solutions = []
+    for gamma in gammas:
+        middle = alpha * k1 + beta * k2 + gamma * normal
+        solutions.append((_angle_across(k1, middle, v), _angle_across(k2, u, middle)))
+    return AngleSolutions(tuple(solutions))
+
+
+def rotation_to_distance(
+    k: Any, p: Any, q: Any, delta: float, point_on_axis: Any = None, tolerance: float = 1e-9
+) -> AngleSolutions:
+    """Subproblem 3: the angles ``theta`` with ``|rot(k, theta) (p - r) - (q - r)| = delta``.
+
+    ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` with ``theta0`` the angle from ``u'`` to ``v'`` and
+    ``c = (|u'|^2 + |v'|^2 - delta'^2) / (2 |u'| |v'|)``, ``delta'^2 = delta^2 - (k.(u - v))^2``: two solutions when
+    ``|c| < 1``, one when ``|c| = 1`` (within ``tolerance``), none otherwise.
+    """
+    k = _axis(k, "k")
+    u, v = _relative(p, q, point_on_axis)
+    if not np.isfinite(delta) or delta < 0:
+        raise ArgumentError(f"rotation to a distance: delta must be a finite distance >= 0, got {delta!r}")
+    scale = tolerance * _scale(u, v, np.array([delta]))
+    delta_across_squared = delta**2 - float(k @ (u - v)) ** 2
+    across_u_squared = max(u @ u - (k @ u) ** 2, 0.0)
+    across_v_squared = max(v @ v - (k @ v) ** 2, 0.0)
+    if delta_across_squared < -scale:
+        return AngleSolutions((), f"p and q differ along the axis by more than delta = {delta:.6g}")
+    if across_u_squared <= scale**2 or across_v_squared <= scale**2:
+        if abs(across_u_squared + across_v_squared - delta_across_squared) <= scale:
+            return AngleSolutions(
+                ((0.0,),), "p or q lies on the axis: every angle gives the same distance", every_angle=True
+            )
+        return AngleSolutions((), "p or q lies on the axis and the distance is not delta")
+    product = 2.0 * np.sqrt(across_u_squared * across_v_squared)
+    c = (across_u_squared + across_v_squared - max(delta_across_squared, 0.0)) / product
+    if abs(c) > 1.0 + scale:
+        return AngleSolutions((), f"delta = {delta:.6g} is out of the range the rotation reaches (cos = {c:.6g})")
+    theta0 = _angle_across(k, u, v)
+    if abs(c) >= 1.0 - scale:
+        return AngleSolutions(((float(theta0 - np.arctan2(0.0, np.sign(c))),),))
+    half = float(np.arctan2(np.sqrt(1.0 - c * c), c))
+    return AngleSolutions(((theta0 - half,), (theta0 + half,)))
+
+
+# ---------------------------------------------------------------- symbolic
+
+
+def _matrix(value: Any, name: str) -> sympy.Matrix:
+    matrix = sympy.Matrix(value)
+    if matrix.shape not in ((3, 1), (1, 3)):
+        raise ArgumentError(f"subproblem argument {name}: expected 3 entries, got shape {matrix.shape}")
+    return matrix.reshape(3, 1)
+
+
+def _relative_symbolic(p: Any, q: Any, point: Any) -> tuple[sympy.Matrix, sympy.Matrix]:
+    r = sympy.zeros(3, 1) if point is None else _matrix(point, "point on the axis")
+    return _matrix(p, "p") - r, _matrix(q, "q") - r
+
+
+def _angle_across_symbolic(k: sympy.Matrix, u: sympy.Matrix, v: sympy.Matrix) -> sympy.Expr:
+    return sympy.atan2(k.dot(u.cross(v)), u.dot(v) - k.dot(u) * k.dot(v))
+
+
+def rotation_to_point_symbolic(k: Any, p: Any, q: Any, point_on_axis: Any = None) -> Subproblem:
+    """Subproblem 1 in symbols.
+
+    ``theta = atan2(k.(u x v), u.v - (k.u)(k.v))`` under the conditions ``k.u = k.v`` and
+    ``|u'|^2 = |v'|^2`` (``|u'|^2 = u.u - (k.u)^2``); ``k`` is taken to be a unit vector.
+    """
+    k = _matrix(k, "k")
+    u, v = _relative_symbolic(p, q, point_on_axis)
+    conditions = (
+        sympy.Eq(k.dot(u), k.dot(v), evaluate=False),
+        sympy.Eq(u.dot(u) - k.dot(u) ** 2, v.dot(v) - k.dot(v) ** 2, evaluate=False),
+    )
+    return Subproblem(((_angle_across_symbolic(k, u, v),),), conditions)
+
+
+def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None) -> Subproblem:
+    """Subproblem 2 in symbols.
+
+    Two solutions ``(theta1, theta2)``, one for each sign of
+    ``gamma = +-sqrt(gamma^2)``, under the conditions ``|u|^2 = |v|^2`` and ``gamma^2 >= 0`` (formulas in the module
+    docstring); ``k1`` and ``k2`` are unit vectors that are not parallel.
+    """
+    k1, k2 = _matrix(k1, "k1"), _matrix(k2, "k2")
+    u, v = _relative_symbolic(p, q, intersection)
+    normal = k1.cross(k2)
+    w = k1.dot(k2)
+    alpha = (k1.dot(v) - w * k2.dot(u)) / (1 - w**2)
+    beta = (k2.dot(u) - w * k1.dot(v)) / (1 - w**2)
+    gamma_squared = (u.dot(u) - alpha**2 - beta**2 - 2 * alpha * beta * w) / normal.dot(normal)
+    solutions = []
+    for sign in (1, -1):
+        middle = alpha * k1 + beta * k2 + sign * sympy.sqrt(gamma_squared) * normal
+        solutions.append((_angle_across_symbolic(k1, middle, v), _angle_across_symbolic(k2, u, middle)))
+    conditions = (sympy.Eq(u.dot(u), v.dot(v), evaluate=False), sympy.Ge(gamma_squared, 0, evaluate=False))
+    return Subproblem(tuple(solutions), conditions)
+
+
+def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_axis: Any = None) -> Subproblem:
+    """Subproblem 3 in symbols.
+
+    ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` under the conditions
+    ``delta'^2 >= 0`` and ``1 - c^2 >= 0`` (formulas in the module docstring); ``k`` is a unit vector.
+    """
+    k = _matrix(k, "k")
+    u, v = _relative_symbolic(p, q, point_on_axis)
+    delta = sympy.sympify(delta)
+    delta_across_squared = delta**2 - k.dot(u - v) ** 2
+    across_u_squared = u.dot(u) - k.dot(u) ** 2
+    across_v_squared = v.dot(v) - k.dot(v) ** 2
+    c = (across_u_squared + across_v_squared - delta_across_squared) / (
+        2 * sympy.sqrt(across_u_squared) * sympy.sqrt(across_v_squared)
+    )
+    theta0 = _angle_across_symbolic(k, u, v)
+    half = sympy.atan2(sympy.sqrt(1 - c**2), c)
+    conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(1 - c**2, 0, evaluate=False))
+    return Subproblem(((theta0 - half,), (theta0 + half,)), conditions)

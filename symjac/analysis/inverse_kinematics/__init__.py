@@ -1,5 +1,4 @@
-"""Inverse kinematics (issue 46, in progress): the geometric subproblems closed forms are built from, and a numeric
-solver for every arm."""
+"""Inverse kinematics, in progress: the geometric subproblems closed forms are built from, and a numeric solver."""
 
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, solve_numeric
 from symjac.analysis.inverse_kinematics.subproblems import (

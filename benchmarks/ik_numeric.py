@@ -16,25 +16,10 @@ import argparse
 import time
 
 import numpy as np
-import sympy as sp
 
-from symjac.analysis.inverse_kinematics import solve_numeric
+from symjac.analysis.inverse_kinematics import seed_bounds, solve_numeric
 from symjac.codegen.numeric_model import numeric_model
 from symjac.model.io import load_robot
-from symjac.model.robot import Robot
-
-
-def bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
-    """Sampling bounds: the joint limits, +-pi for free revolute joints, +-1 for free prismatic ones."""
-    lower, upper = [], []
-    for joint in robot.joints:
-        if joint.limits is None or joint.continuous:
-            lower.append(-np.pi if joint.is_revolute else -1.0)
-            upper.append(np.pi if joint.is_revolute else 1.0)
-        else:
-            lower.append(float(sp.sympify(joint.limits[0]).subs(robot.defaults)))
-            upper.append(float(sp.sympify(joint.limits[1]).subs(robot.defaults)))
-    return np.array(lower), np.array(upper)
 
 
 def main() -> None:
@@ -47,7 +32,7 @@ def main() -> None:
     for name in arguments.robots:
         robot = load_robot(name)
         model = numeric_model(robot)
-        lower, upper = bounds(robot)
+        lower, upper = seed_bounds(robot)
         generator = np.random.default_rng(2026)
         poses = [np.asarray(model.fk(generator.uniform(lower, upper)), dtype=float) for _ in range(arguments.poses)]
         for mode, restarts, until_found in (("one seed", 1, 1), ("defaults", 8, 40)):

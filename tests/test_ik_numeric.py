@@ -7,7 +7,7 @@ import pytest
 import sympy as sp
 
 from symjac import load_robot
-from symjac.analysis.inverse_kinematics import NumericSolution, solve_numeric
+from symjac.analysis.inverse_kinematics import NumericSolution, seed_bounds, solve_numeric
 from symjac.codegen.numeric_model import numeric_model
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import forward_kinematics
@@ -22,23 +22,11 @@ def _independent_fk(robot):
     return sp.lambdify([list(robot.joint_variables)], pose, "numpy")
 
 
-def _bounds(robot):
-    lower, upper = [], []
-    for joint in robot.joints:
-        if joint.limits is None or joint.continuous:
-            lower.append(-np.pi if joint.is_revolute else -1.0)
-            upper.append(np.pi if joint.is_revolute else 1.0)
-        else:
-            lower.append(float(sp.sympify(joint.limits[0]).subs(robot.defaults)))
-            upper.append(float(sp.sympify(joint.limits[1]).subs(robot.defaults)))
-    return np.array(lower), np.array(upper)
-
-
 @pytest.mark.parametrize("name", ARMS)
 def test_round_trip_reproduces_the_pose(name):
     robot = load_robot(name)
     model, fk = numeric_model(robot), _independent_fk(robot)
-    lower, upper = _bounds(robot)
+    lower, upper = seed_bounds(robot)
     generator = np.random.default_rng(46)
     solved = 0
     for _ in range(POSES):

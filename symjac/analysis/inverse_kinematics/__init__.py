@@ -1,6 +1,6 @@
 """Inverse kinematics, in progress: the geometric subproblems closed forms are built from, and a numeric solver."""
 
-from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, solve_numeric
+from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
 from symjac.analysis.inverse_kinematics.subproblems import (
     AngleSolutions,
     Subproblem,
@@ -21,6 +21,7 @@ __all__ = [
     "rotation_to_distance_symbolic",
     "rotation_to_point",
     "rotation_to_point_symbolic",
+    "seed_bounds",
     "solve_numeric",
     "two_rotations_to_point",
     "two_rotations_to_point_symbolic",

@@ -21,7 +21,7 @@ import sympy
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
-__all__ = ["KinematicModel", "NumericSolution", "solve_numeric"]
+__all__ = ["KinematicModel", "NumericSolution", "seed_bounds", "solve_numeric"]
 
 
 class KinematicModel(Protocol):
@@ -97,6 +97,13 @@ def _limits(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             upper.append(_float(limits[1], robot))
             wrap.append(False)
     return np.array(lower), np.array(upper), np.array(wrap)
+
+
+def seed_bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
+    """Where seeds are drawn: the joint limits, +-pi for free revolute joints, +-1 for free prismatic ones."""
+    lower, upper, wrap = _limits(robot)
+    return (np.where(np.isfinite(lower), lower, np.where(wrap, -np.pi, -1.0)),
+            np.where(np.isfinite(upper), upper, np.where(wrap, np.pi, 1.0)))
 
 
 def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any = None, rng: int = 0,

@@ -10,9 +10,9 @@ import re
 from pathlib import Path
 
 import numpy as np
-from scipy.optimize import brentq
 import pytest
 import sympy as sp
+from scipy.optimize import brentq
 
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics.closed_form import solve_plan

@@ -37,6 +37,7 @@ __all__ = ["WRIST", "three_parallel_axes_plan"]
 
 WRIST = ("wrist down", "wrist up")
 _WRIST_POINT = sympy.symbols("w_x w_y w_z", real=True)
+_ORIGIN = sympy.zeros(3, 1)
 
 
 def _expand(m: sympy.Matrix) -> sympy.Matrix:
@@ -90,7 +91,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
     wrist = Step(
         (4,),
         "rotation_to_distance",
-        {"k": h[4], "p": h[5], "q": h[1], "delta": length(_expand(seen * h[5] - h[1])), "point_on_axis": sympy.zeros(3, 1)},
+        {"k": h[4], "p": h[5], "q": h[1], "delta": length(_expand(seen * h[5] - h[1])), "point_on_axis": _ORIGIN},
         f"{t5} tilts the direction of axis 6 to the distance from the parallel axes' direction that the target "
         f"rotation seen from link 1 gives it, a rotation to a distance ({DISTANCE_RULE}: {WRIST[0]}, then "
         f"{WRIST[1]}).",
@@ -99,7 +100,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
     roll = Step(
         (5,),
         "rotation_to_point",
-        {"k": h[5], "p": _expand(seen.T * h[1]), "q": _expand(rotation(h[4], -t5) * h[1]), "point_on_axis": sympy.zeros(3, 1)},
+        {"k": h[5], "p": _expand(seen.T * h[1]), "q": _expand(rotation(h[4], -t5) * h[1]), "point_on_axis": _ORIGIN},
         f"{t6} turns the parallel axes' direction, seen from the tool, onto where joint 5 leaves it, a rotation to a "
         "point.",
     )
@@ -124,7 +125,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
     last = Step(
         (3,),
         "rotation_to_point",
-        {"k": h[3], "p": h[4], "q": _expand(r23 * seen * r6_back * h[4]), "point_on_axis": sympy.zeros(3, 1)},
+        {"k": h[3], "p": h[4], "q": _expand(r23 * seen * r6_back * h[4]), "point_on_axis": _ORIGIN},
         f"{t4} turns the direction of axis 5 to where the rest of the target rotation puts it, a rotation to a point.",
     )
     reasons = (

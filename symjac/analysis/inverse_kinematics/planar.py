@@ -37,8 +37,8 @@ __all__ = [
     "articulated_plan",
     "length",
     "perpendicular",
-    "plane_step",
     "planar_plan",
+    "plane_step",
     "rotation",
     "scara_plan",
     "turned",
@@ -46,7 +46,7 @@ __all__ = [
 
 ELBOW = ("elbow down", "elbow up")
 SHOULDER = ("shoulder right", "shoulder left")
-DISTANCE_RULE = "the first solution is theta0 - psi, the second theta0 + psi"
+DISTANCE_RULE = "the first solution is phi - psi, the second phi + psi"
 
 
 def rotation(axis: sympy.Matrix, angle: sympy.Expr) -> sympy.Matrix:
@@ -190,8 +190,8 @@ def planar_plan(geometry: ArmGeometry) -> Plan | None:
         if not _apart(geometry, 1, tool):
             return None
         _, p = _pose()
-        steps = _two_link(geometry, 0, 1, tool, _in_plane(h, p, tool))
-        return Plan(geometry.robot, "planar 2R", reasons, (), steps, "the position in the plane across the axes")
+        pair = _two_link(geometry, 0, 1, tool, _in_plane(h, p, tool))
+        return Plan(geometry.robot, "planar 2R", reasons, (), pair, "the position in the plane across the axes")
     if not _apart(geometry, 1, points[2]):
         return None
     wrist = _in_plane(h, _link_point(geometry, points[2]), points[2])
@@ -217,10 +217,11 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
     wrist = _link_point(geometry, points[3])
     planar = _in_plane(h, wrist, points[3])
     elbow, swing = _two_link(geometry, 0, 1, points[3], planar)
+    along = geometry.axes[2]
     slide = Step(
         (2,),
         "slide_to_point",
-        {"k": geometry.axes[2], "p": points[3], "q": points[3] + geometry.axes[2] * geometry.axes[2].dot(wrist - points[3])},
+        {"k": along, "p": points[3], "q": points[3] + along * along.dot(wrist - points[3])},
         f"{names[2]} slides the wrist along the axes to the target's height, {names[2]} = h3.(w - p4).",
     )
     reasons = ("the axes of joints 1, 2, 3 and 4 are parallel", "joint 3 slides along them")
@@ -244,7 +245,7 @@ def articulated_plan(geometry: ArmGeometry) -> Plan | None:
         return None
     _, p = _pose()
     offset = sympy.simplify(h[1].dot(tool - points[0]))
-    waist = plane_step(0, geometry, h[1], p, offset, f"the direction of axis 2 about axis 1")
+    waist = plane_step(0, geometry, h[1], p, offset, "the direction of axis 2 about axis 1")
     seen = turned(h[0], points[0], -robot.joint_variables[0], p).applyfunc(sympy.expand)
     elbow, swing = _two_link(geometry, 1, 2, tool, seen)
     reasons = ("the axes of joints 2 and 3 are parallel", "the axis of joint 1 is not parallel to them")

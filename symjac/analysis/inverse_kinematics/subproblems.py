@@ -344,8 +344,9 @@ def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersecti
 def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_axis: Any = None) -> Subproblem:
     """Subproblem 3 in symbols.
 
-    ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` under the conditions
-    ``delta'^2 >= 0`` and ``1 - c^2 >= 0`` (formulas in the module docstring); ``k`` is a unit vector.
+    ``theta = theta0 -+ atan2(sqrt(D), N)`` with ``N = |u'|^2 + |v'|^2 - delta'^2`` and ``D = 4 |u'|^2 |v'|^2 - N^2``
+    (the module docstring's ``c = N / (2 |u'| |v'|)``, both atan2 arguments scaled by ``2 |u'| |v'|``), under the
+    conditions ``delta'^2 >= 0`` and ``D >= 0``; ``k`` is a unit vector.
     """
     k = _matrix(k, "k")
     u, v = _relative_symbolic(p, q, point_on_axis)
@@ -353,12 +354,11 @@ def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_a
     delta_across_squared = delta**2 - k.dot(u - v) ** 2
     across_u_squared = u.dot(u) - k.dot(u) ** 2
     across_v_squared = v.dot(v) - k.dot(v) ** 2
-    c = (across_u_squared + across_v_squared - delta_across_squared) / (
-        2 * sympy.sqrt(across_u_squared) * sympy.sqrt(across_v_squared)
-    )
+    n = across_u_squared + across_v_squared - delta_across_squared
+    d = 4 * across_u_squared * across_v_squared - n**2
     theta0 = _angle_across_symbolic(k, u, v)
-    half = sympy.atan2(sympy.sqrt(1 - c**2), c)
-    conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(1 - c**2, 0, evaluate=False))
+    half = sympy.atan2(sympy.sqrt(d), n)
+    conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(d, 0, evaluate=False))
     return Subproblem(((theta0 - half,), (theta0 + half,)), conditions)
 
 

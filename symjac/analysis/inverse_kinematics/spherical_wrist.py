@@ -23,10 +23,11 @@ Eight solutions in general.
 
 Branch names follow fixed geometric rules. Shoulder: with axes b and c parallel, "shoulder right" is the solution
 where the wrist centre lies on the positive side of ``h_a x h_b`` (``h_b`` turned by ``q_a``); where axes a and b
-meet, "shoulder right" is the middle point on the positive side of ``h_a x h_b``. Elbow: "elbow up" is the elbow turned
-negatively about its axis from the direction of the shoulder point (``theta_0 - atan2(sqrt(1 - c^2), c)``); for a
-prismatic joint c the two slides are "shorter slide" and "longer slide". Wrist: "no flip" is the solution with ``q_5 >= 0`` when axes 4 and 6 are parallel at
-home, else "wrist flip" is the middle point on the positive side of ``h_4 x h_5``.
+meet, "shoulder right" is the middle point on the positive side of ``h_a x h_b``. Elbow: "elbow up" is the elbow
+turned negatively about its axis from the direction of the shoulder point (``theta_0 - atan2(sqrt(1 - c^2), c)``);
+for a prismatic joint c the two slides are "shorter slide" and "longer slide". Wrist: "no flip" is the solution with
+``q_5 >= 0`` when axes 4 and 6 are parallel at home, else "wrist flip" is the middle point on the positive side of
+``h_4 x h_5``.
 """
 
 from __future__ import annotations

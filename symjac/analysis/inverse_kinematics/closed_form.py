@@ -113,7 +113,7 @@ class _CompiledStep:
 class _Compiled:
     definitions: Callable[..., Any]
     steps: tuple[_CompiledStep, ...]
-    variables: tuple[sympy.Symbol, ...]
+    positions: tuple[int, ...]  # the robot joint of each solved value, in the order the steps solve them
     limits: tuple[tuple[float, float] | None, ...]
     revolute: tuple[bool, ...]
     axes: tuple[tuple[np.ndarray, np.ndarray, str], ...]  # (h, p, kind) of every robot joint at home, numbers
@@ -147,7 +147,7 @@ def _compile(plan: Plan) -> _Compiled:
             entries = list(value) if isinstance(value, sympy.MatrixBase) else [value]
             layout.append((name, len(entries)))
             flat.extend(sympy.sympify(e).xreplace(numbers) for e in entries)
-        function = sympy.lambdify(inputs + definitions + solved, flat, modules="math")
+        function = sympy.lambdify(inputs + definitions + solved, flat, modules="math", cse=True)
         steps.append(_CompiledStep(step, function, tuple(layout), getattr(subproblems, step.subproblem)))
         solved.extend(variables[j] for j in step.joints)
     limits = tuple(None if joint.limits is None else (float(joint.limits[0].subs(numbers)),
@@ -155,7 +155,7 @@ def _compile(plan: Plan) -> _Compiled:
     geometry = arm_geometry(robot)
     axes = tuple((np.array(h.subs(numbers), dtype=float).ravel(), np.array(p.subs(numbers), dtype=float).ravel(), kind)
                  for h, p, kind in zip(geometry.axes, geometry.points, geometry.kinds, strict=True))
-    return _Compiled(define, tuple(steps), tuple(solved),
+    return _Compiled(define, tuple(steps), tuple(variables.index(symbol) for symbol in solved),
                      limits, tuple(kind == "revolute" for kind in geometry.kinds), axes)
 
 
@@ -174,7 +174,8 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
     """The step's solutions, and whether its first joint is free (a continuum: its value is the representative 0)."""
     if compiled.step.subproblem == "two_rotations_to_point":
         k1, q = arguments["k1"], arguments["q"] - _point(arguments, "intersection")
-        if np.linalg.norm(np.cross(k1, q)) <= tolerance * max(1.0, float(np.linalg.norm(q))):
+        across = q - k1 * float(k1 @ q)
+        if math.sqrt(float(across @ across)) <= tolerance * max(1.0, math.sqrt(float(q @ q))):
             # the target is on the first axis: that angle is free; the second alone takes p to q
             second = subproblems.rotation_to_point(arguments["k2"], arguments["p"], arguments["q"],
                                                    arguments.get("intersection"), tolerance)
@@ -289,9 +290,7 @@ def _solution(plan: Plan, compiled: _Compiled, values: list[float], names: tuple
               singular: tuple[int, ...], free: list[float]) -> Solution:
     robot = plan.robot
     q = np.zeros(robot.n_joints)
-    variables = robot.joint_variables
-    for symbol, value in zip(compiled.variables, values, strict=True):
-        q[variables.index(symbol)] = value
+    q[list(compiled.positions)] = values
     if plan.free_joint is not None:
         q[plan.free_joint] = free[0]
     inside = True

@@ -5,7 +5,7 @@ builders in :data:`FAMILIES` in order; :func:`solve_plan` runs a plan on a numer
 evaluated (compiled once per plan with ``lambdify``), the numeric subproblem returns all its solutions, and every
 branch goes on to the next step. Where a subproblem leaves an angle free (a point on the axis: a singular pose) the
 angle is set to 0 and :attr:`Solution.singular` says which combination of joints is fixed instead. The symbolic
-executor, :func:`~symjac.analysis.inverse_kinematics.programs.branch_programs`, writes the same steps as formulas.
+executor, :func:`branch_programs` (from :mod:`.programs`), writes the same steps as formulas.
 
 Angles are wrapped to ``(-pi, pi]``; when that value is outside the joint's limits but a ``2 pi`` shift is inside,
 the shifted value is reported. Solutions outside the limits are kept with ``within_limits=False``.
@@ -26,11 +26,13 @@ import sympy
 from symjac.analysis.inverse_kinematics import subproblems
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, exponential, reduced_geometry
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step
+from symjac.analysis.inverse_kinematics.programs import BranchProgram, branch_programs
 from symjac.analysis.inverse_kinematics.spherical_wrist import spherical_wrist_plan
 from symjac.errors import ArgumentError, NoClosedFormError
 from symjac.model.robot import Robot
 
-__all__ = ["FAMILIES", "ClosedFormResult", "Solution", "closed_form_plan", "solve_plan"]
+__all__ = ["FAMILIES", "BranchProgram", "ClosedFormResult", "Solution", "branch_programs", "closed_form_plan",
+           "solve_plan"]
 
 FAMILIES: tuple[Callable[[ArmGeometry], Plan | None], ...] = (
     spherical_wrist_plan,
@@ -93,12 +95,18 @@ class Solution:
 
 @dataclass(frozen=True)
 class ClosedFormResult:
-    """Every solution of a plan at one pose; without one, ``unreachable`` says why and ``distance`` how far out."""
+    """Every solution of a plan at one pose; without one, ``unreachable`` says why and ``distance`` how far out.
+
+    For a plan that controls less than the whole pose, ``uncontrolled`` says how far the pose the solutions reach is
+    from the target when it differs (``uncontrolled_distance``: the position error, in length units).
+    """
 
     plan: Plan
     solutions: tuple[Solution, ...]
     unreachable: str = ""
     distance: float = 0.0
+    uncontrolled: str = ""
+    uncontrolled_distance: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -117,6 +125,7 @@ class _Compiled:
     limits: tuple[tuple[float, float] | None, ...]
     revolute: tuple[bool, ...]
     axes: tuple[tuple[np.ndarray, np.ndarray, str], ...]  # (h, p, kind) of every robot joint at home, numbers
+    home: np.ndarray
 
 
 _COMPILED: weakref.WeakKeyDictionary[Plan, _Compiled] = weakref.WeakKeyDictionary()
@@ -156,7 +165,8 @@ def _compile(plan: Plan) -> _Compiled:
     axes = tuple((np.array(h.subs(numbers), dtype=float).ravel(), np.array(p.subs(numbers), dtype=float).ravel(), kind)
                  for h, p, kind in zip(geometry.axes, geometry.points, geometry.kinds, strict=True))
     return _Compiled(define, tuple(steps), tuple(variables.index(symbol) for symbol in solved),
-                     limits, tuple(kind == "revolute" for kind in geometry.kinds), axes)
+                     limits, tuple(kind == "revolute" for kind in geometry.kinds), axes,
+                     np.array(geometry.home.subs(numbers), dtype=float))
 
 
 def _arguments(compiled: _CompiledStep, values: Sequence[float]) -> dict[str, Any]:
@@ -230,7 +240,7 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     Raises
     ------
     ArgumentError
-        For a pose that is not 4 x 4 (or 3 x 4) finite numbers, or a missing ``free_value``.
+        For a pose that is not 4 x 4 (or 3 x 4) finite numbers with a rotation block, or a missing ``free_value``.
     """
     robot = plan.robot
     matrix = np.asarray(pose, dtype=float)
@@ -241,6 +251,10 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
         bad = [f"({i + 1}, {j + 1})" for i, j in zip(*np.nonzero(~np.isfinite(matrix[:3])), strict=True)]
         raise ArgumentError(f"inverse kinematics of {robot.name}: the pose has entries that are not finite numbers "
                             f"at {', '.join(bad)}")
+    deviation = float(np.abs(matrix[:3, :3] @ matrix[:3, :3].T - np.eye(3)).max())
+    if deviation > 1e-6 or np.linalg.det(matrix[:3, :3]) < 0:
+        raise ArgumentError(f"inverse kinematics of {robot.name}: the pose's rotation block is not a rotation "
+                            f"(R R^T differs from I by {deviation:.3g}, or det R < 0)")
     free: list[float] = []
     if plan.free_joint is not None:
         if free_value is None or not math.isfinite(free_value):
@@ -271,7 +285,29 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
         distance, why = failure or (0.0, "no branch")
         return ClosedFormResult(plan, (), f"unreachable: {why}; the target is {distance:.6g} out of reach", distance)
     solutions = tuple(_solution(plan, compiled, values, names, singular, free) for values, names, singular in branches)
-    return ClosedFormResult(plan, solutions)
+    if plan.controlled == "the whole pose":
+        return ClosedFormResult(plan, solutions)
+    return ClosedFormResult(plan, solutions, *_uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance))
+
+
+def _forward(compiled: _Compiled, q: np.ndarray) -> np.ndarray:
+    """The tool pose at ``q`` by the product of exponentials about the numeric axes at home."""
+    motion = np.eye(4)
+    for (h, p, kind), value in zip(compiled.axes, q, strict=True):
+        motion = motion @ _motion(h, p, kind, float(value))
+    return motion @ compiled.home
+
+
+def _uncontrolled(plan: Plan, compiled: _Compiled, q: np.ndarray, target: np.ndarray,
+                  tolerance: float) -> tuple[str, float]:
+    reached = _forward(compiled, q)
+    position = float(np.linalg.norm(reached[:3, 3] - target[:3, 3]))
+    cosine = (np.trace(reached[:3, :3].T @ target[:3, :3]) - 1.0) / 2.0
+    angle = math.degrees(math.acos(min(1.0, max(-1.0, cosine))))
+    if position <= tolerance * max(1.0, float(np.linalg.norm(target[:3, 3]))) and angle <= math.degrees(tolerance):
+        return "", 0.0
+    return (f"the arm controls {plan.controlled} only: the target differs from what it reaches by {position:.6g} in "
+            f"position and {angle:.6g} deg in orientation", position)
 
 
 def _wrapped(value: float, limits: tuple[float, float] | None) -> tuple[float, bool]:

@@ -287,7 +287,8 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     solutions = tuple(_solution(plan, compiled, values, names, singular, free) for values, names, singular in branches)
     if plan.controlled == "the whole pose":
         return ClosedFormResult(plan, solutions)
-    return ClosedFormResult(plan, solutions, *_uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance))
+    uncontrolled, distance = _uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance)
+    return ClosedFormResult(plan, solutions, uncontrolled=uncontrolled, uncontrolled_distance=distance)
 
 
 def _forward(compiled: _Compiled, q: np.ndarray) -> np.ndarray:

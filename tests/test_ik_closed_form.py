@@ -30,7 +30,8 @@ def _arm(name):
 
 
 def test_pose_symbols_and_matrix():
-    assert [str(s) for s in POSE_SYMBOLS] == "r11 r12 r13 r21 r22 r23 r31 r32 r33 px py pz".split()
+    assert [str(s) for s in POSE_SYMBOLS] == ["r11", "r12", "r13", "r21", "r22", "r23", "r31", "r32", "r33", "px", "py",
+                                              "pz"]
     assert all(s.is_real for s in POSE_SYMBOLS)
     assert pose_matrix()[1, 3] == POSE_SYMBOLS[10] and pose_matrix()[3, :] == sympy.Matrix([[0, 0, 0, 1]])
 
@@ -53,7 +54,7 @@ def test_bad_poses_get_one_line_errors():
 
 
 def test_a_wrist_centre_just_beyond_reach_is_unreachable_by_that_much():
-    robot, plan, model = _arm("puma560")
+    robot, plan, _ = _arm("puma560")
     a2, a3, d3, d4 = (float(robot.defaults[sympy.Symbol(n, real=True)]) for n in ("a2", "a3", "d3", "d4"))
     reach = math.hypot(d3, a2 + math.hypot(a3, d4))  # the farthest wrist centre from the shoulder
     direction = np.array([0.6, 0.0, 0.8])
@@ -80,7 +81,7 @@ def test_a_wrist_centre_inside_the_shoulder_cylinder_is_unreachable():
 
 
 def test_the_wrist_singularity_is_a_continuum_with_theta4_plus_theta6_fixed():
-    robot, plan, model = _arm("puma560")
+    _, plan, model = _arm("puma560")
     q = np.array([0.4, -0.8, 0.6, 0.9, 0.0, -0.3])
     pose = model.fk(q)
     result = solve_plan(plan, pose)
@@ -92,7 +93,7 @@ def test_the_wrist_singularity_is_a_continuum_with_theta4_plus_theta6_fixed():
     for solution in singular:
         assert solution.q[3] == 0.0
         assert "theta4 + theta6 = " in solution.singular or "theta4 - theta6 = " in solution.singular
-    fixed = [s for s in singular if np.allclose(s.q[:3], q[:3])][0]
+    fixed = next(s for s in singular if np.allclose(s.q[:3], q[:3]))
     assert "theta4 + theta6" in fixed.singular  # axes 4 and 6 point the same way at theta5 = 0
     value = float(fixed.singular.split("= ")[1].split(" ")[0])
     assert value == pytest.approx(math.remainder(q[3] + q[5], 2 * math.pi), abs=1e-6)
@@ -136,7 +137,7 @@ def test_a_configuration_outside_the_limits_is_kept_and_flagged():
 
 
 def test_a_plan_controlling_less_than_the_pose_says_how_far_the_rest_is():
-    robot, plan, model = _arm("puma560")
+    _, plan, model = _arm("puma560")
     position_only = dataclasses.replace(plan, steps=plan.steps[:3], controlled="the position of the wrist centre")
     q = np.array([0.3, -0.5, 0.4, 0.2, 0.6, 0.1])
     result = solve_plan(position_only, model.fk(q))
@@ -193,7 +194,7 @@ def test_the_puma_programs_read_like_the_textbook():
     w_x, w_y = sympy.symbols("w_x w_y", real=True)
     d3 = sympy.Symbol("d3", real=True)
     theta1 = assignments[load_robot("puma560").joint_variables[0]]
-    delta = [s for s in program.conditions if s in theta1.free_symbols][0]
+    delta = next(s for s in program.conditions if s in theta1.free_symbols)
     assert sympy.expand(assignments[delta] - (w_x**2 + w_y**2 - d3**2)) == 0
     assert theta1 == sympy.atan2(-w_x, w_y) - sympy.atan2(sympy.sqrt(delta), d3)
     assert all(sympy.count_ops(e) < 200 for _, e in program.assignments)

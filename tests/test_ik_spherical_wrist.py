@@ -127,7 +127,7 @@ def test_plans_say_why_they_apply():
 
 
 def test_branch_names_follow_their_rules_on_the_puma():
-    robot, plan, model, revolute, _ = _setup("puma560")
+    robot, plan, model, _, _ = _setup("puma560")
     generator = np.random.default_rng(5)
     for _ in range(50):
         result = solve_plan(plan, model.fk(generator.uniform(*seed_bounds(robot))))
@@ -159,5 +159,5 @@ def test_the_panda_has_no_closed_form_with_any_joint_given():
     for joint in range(7):
         with pytest.raises(NoClosedFormError, match=rf"panda with joint {joint + 1} given: no closed-form family"):
             closed_form_plan(load_robot("panda"), free_joint=joint)
-    with pytest.raises(NoClosedFormError, match="the axes of joints 5 and 7 are parallel, 0.088 apart"):
+    with pytest.raises(NoClosedFormError, match=r"the axes of joints 5 and 7 are parallel, 0\.088 apart"):
         closed_form_plan(load_robot("panda"), free_joint=2)

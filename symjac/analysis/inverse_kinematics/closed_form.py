@@ -151,7 +151,8 @@ def _compile(plan: Plan) -> _Compiled:
     steps = []
     solved: list[sympy.Symbol] = []
     for step in plan.steps:
-        layout, flat = [], []
+        layout: list[tuple[str, int]] = []
+        flat: list[sympy.Expr] = []
         for name, value in step.arguments.items():
             entries = list(value) if isinstance(value, sympy.MatrixBase) else [value]
             layout.append((name, len(entries)))

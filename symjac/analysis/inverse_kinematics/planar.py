@@ -168,7 +168,7 @@ def _orientation_step(geometry: ArmGeometry, joint: int, before: list[int]) -> S
 
 
 def _all_parallel(geometry: ArmGeometry) -> bool:
-    return all(geometry.parallel(0, j) for j in range(1, len(geometry.axes)))
+    return geometry.free_joint is None and all(geometry.parallel(0, j) for j in range(1, len(geometry.axes)))
 
 
 def _apart(geometry: ArmGeometry, i: int, x: sympy.Matrix) -> bool:
@@ -237,7 +237,7 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
 
 def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     """Articulated 3R: a waist across a shoulder and an elbow with parallel axes; the position of the tool point."""
-    if geometry.kinds != ("revolute",) * 3 or not geometry.parallel(1, 2) or geometry.parallel(0, 1):
+    if geometry.free_joint is not None or geometry.kinds != ("revolute",) * 3 or not geometry.parallel(1, 2) or geometry.parallel(0, 1):
         return None
     h, points, robot = geometry.axes, geometry.points, geometry.robot
     tool = geometry.home[:3, 3]

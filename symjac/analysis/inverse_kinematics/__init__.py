@@ -11,7 +11,9 @@ from symjac.analysis.inverse_kinematics.closed_form import (
 )
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, reduced_geometry
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
+from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
+from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
 from symjac.analysis.inverse_kinematics.subproblems import (
     AngleSolutions,
     Subproblem,
@@ -43,8 +45,10 @@ __all__ = [
     "Step",
     "Subproblem",
     "arm_geometry",
+    "articulated_plan",
     "branch_programs",
     "closed_form_plan",
+    "planar_plan",
     "pose_matrix",
     "reduced_geometry",
     "rotation_to_distance",
@@ -53,6 +57,7 @@ __all__ = [
     "rotation_to_plane_symbolic",
     "rotation_to_point",
     "rotation_to_point_symbolic",
+    "scara_plan",
     "seed_bounds",
     "slide_to_distance",
     "slide_to_distance_symbolic",
@@ -60,6 +65,7 @@ __all__ = [
     "slide_to_point_symbolic",
     "solve_numeric",
     "solve_plan",
+    "three_parallel_axes_plan",
     "two_rotations_to_point",
     "two_rotations_to_point_symbolic",
 ]

@@ -109,10 +109,13 @@ def test_planar_2r_ignores_what_it_does_not_control():
     tilted[2, 3] = 0.3  # out of the plane
     tilted[:3, :3] = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
     plan = planar_plan(arm_geometry(robot))
-    same = [s.q for s in solve_plan(plan, pose).solutions]
-    other = [s.q for s in solve_plan(plan, tilted).solutions]
+    reached, target = solve_plan(plan, pose), solve_plan(plan, tilted)
+    same, other = [s.q for s in reached.solutions], [s.q for s in target.solutions]
     assert len(same) == len(other) == 2
     assert np.allclose(same, other, atol=1e-12)
+    assert reached.uncontrolled == ""
+    assert target.uncontrolled.startswith("the arm controls the position in the plane across the axes only")
+    assert target.uncontrolled_distance == pytest.approx(0.3, abs=1e-9)
 
 
 def test_unreachable_2r_says_how_far():

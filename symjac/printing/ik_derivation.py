@@ -126,8 +126,8 @@ def _formulas(plan: Plan, step: Step) -> StepFormulas:
         (across,) = _simplified(plan, u.dot(u) - k.dot(u) ** 2)
         root, named = sp.symbols(f"sigma{index} E{index}", real=True)
         delta = sp.sympify(args["delta"])
-        intermediates = ((named, delta**2 - across), (root, sp.sqrt(named)))
-        return StepFormulas(step, intermediates, ((along - root,), (along + root,)),
+        slide = ((named, delta**2 - across), (root, sp.sqrt(named)))
+        return StepFormulas(step, slide, ((along - root,), (along + root,)),
                             (sp.Ge(named, 0, evaluate=False),), _TWO)
     if kind == "two_rotations_to_point":
         return _two_rotations(plan, step)

@@ -237,7 +237,9 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
 
 def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     """Articulated 3R: a waist across a shoulder and an elbow with parallel axes; the position of the tool point."""
-    if geometry.free_joint is not None or geometry.kinds != ("revolute",) * 3 or not geometry.parallel(1, 2) or geometry.parallel(0, 1):
+    if geometry.free_joint is not None or geometry.kinds != ("revolute",) * 3:
+        return None
+    if not geometry.parallel(1, 2) or geometry.parallel(0, 1):
         return None
     h, points, robot = geometry.axes, geometry.points, geometry.robot
     tool = geometry.home[:3, 3]

@@ -113,7 +113,7 @@ def test_planar_2r_ignores_what_it_does_not_control():
     same, other = [s.q for s in reached.solutions], [s.q for s in target.solutions]
     assert len(same) == len(other) == 2
     assert np.allclose(same, other, atol=1e-12)
-    assert reached.uncontrolled == ""
+    assert reached.uncontrolled_distance < 1e-12  # the orientation may differ: a 2R arm does not control it
     assert target.uncontrolled.startswith("the arm controls the position in the plane across the axes only")
     assert target.uncontrolled_distance == pytest.approx(0.3, abs=1e-9)
 

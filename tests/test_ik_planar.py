@@ -12,8 +12,9 @@ import sympy as sp
 
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics import solve_numeric
-from symjac.analysis.inverse_kinematics.closed_form import solve_plan
+from symjac.analysis.inverse_kinematics.closed_form import branch_programs, closed_form_plan, solve_plan
 from symjac.analysis.inverse_kinematics.geometry import arm_geometry
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS
 from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
 from symjac.codegen.numeric_model import numeric_model
 from symjac.kinematics.chain import forward_kinematics
@@ -174,3 +175,40 @@ def test_planar_3r_count_equals_eaik():
         reference = eaik.IK(pose)
         expected = len(_distinct([q for q, ls in zip(reference.Q, reference.is_LS, strict=True) if not ls]))
         assert len(_distinct([s.q for s in solve_plan(plan, pose).solutions])) == expected
+
+
+def _program_values(program, functions, pose):
+    """One branch program run in order; None when one of its conditions is negative (no such branch here)."""
+    inputs = [*np.asarray(pose)[:3, :3].ravel(), *np.asarray(pose)[:3, 3]]
+    values = dict.fromkeys((s for s, _ in program.assignments), 0.0)
+    for (symbol, _), function in zip(program.assignments, functions, strict=True):
+        value = float(function(*inputs, *values.values()))
+        if symbol in program.conditions:
+            if value < -1e-9:
+                return None
+            value = max(value, 0.0)
+        values[symbol] = value
+    return values
+
+
+@pytest.mark.parametrize("name", ["planar2r", "planar3r", "scara", "articulated3r", "ur5"])
+def test_branch_programs_agree_with_the_executor(name):
+    """The symbolic programs code generation prints, against the numeric executor, branch by branch."""
+    robot = load_robot(name)
+    plan, fk = closed_form_plan(robot), _fk(robot)
+    programs = branch_programs(plan)
+    assert len(programs) == plan.max_solutions
+    functions = [[sp.lambdify([*POSE_SYMBOLS, *(s for s, _ in p.assignments)], e.subs(robot.defaults), "math")
+                  for _, e in p.assignments] for p in programs]
+    rng = np.random.default_rng(8)
+    for _ in range(20):
+        pose = np.asarray(fk(_sample(robot, rng)), dtype=float)
+        numeric = {s.branch: s.q for s in solve_plan(plan, pose).solutions}
+        for program, compiled in zip(programs, functions, strict=True):
+            values = _program_values(program, compiled, pose)
+            if values is None:
+                assert program.branch not in numeric
+                continue
+            change = np.array([values[v] for v in robot.joint_variables]) - numeric[program.branch]
+            difference = np.where([j.is_revolute for j in robot.joints], np.angle(np.exp(1j * change)), change)
+            assert np.abs(difference).max() < 1e-8, program.branch

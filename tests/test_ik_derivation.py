@@ -109,7 +109,7 @@ def test_unknown_subproblem_is_a_clear_error():
 
 @pytest.mark.external
 @pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed (Debian: texlive-latex-base); .ci/run has it")
-@pytest.mark.parametrize("name", ["planar2r", "scara", "ur5"])
+@pytest.mark.parametrize("name", ["planar2r", "scara", "ur5", "palletizer", "puma560"])
 def test_latex_compiles(name, tmp_path):
     source = render(ik_derivation_document(_plan(name)), "latex", standalone=True)
     (tmp_path / "derivation.tex").write_text(source)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from scipy.optimize import least_squares
 
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics import solve_numeric
@@ -212,3 +213,32 @@ def test_branch_programs_agree_with_the_executor(name):
             change = np.array([values[v] for v in robot.joint_variables]) - numeric[program.branch]
             difference = np.where([j.is_revolute for j in robot.joints], np.angle(np.exp(1j * change)), change)
             assert np.abs(difference).max() < 1e-8, program.branch
+
+
+def test_palletizer_keeps_the_coupling_and_reaches_the_flange_pose():
+    """Coupled theta4 = -theta2 - theta3: every solution keeps it, reaches the pose, and matches the numeric count."""
+    robot = load_robot("palletizer")
+    plan = closed_form_plan(robot)
+    assert plan.family == "palletizer" and "keeps link 4 level" in plan.reasons[1]
+    assert all(b(arm_geometry(robot)) is None for b in set(BUILDERS.values()))
+    uncoupled = robot.uncoupled
+    fk = _fk(uncoupled)
+    rng = np.random.default_rng(21)
+    for trial in range(200):
+        c = rng.uniform(-np.pi, np.pi, 4)
+        q = np.array([c[0], c[1], c[2], -c[1] - c[2], c[3]])
+        pose = np.asarray(fk(q), dtype=float)
+        result = solve_plan(plan, pose)
+        for s in result.solutions:
+            assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-10
+            assert abs(np.angle(np.exp(1j * (s.q[3] + s.q[1] + s.q[2])))) < 1e-12
+        assert min(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() for s in result.solutions) < 1e-7
+        if trial < 5:  # SciPy's least squares from 60 starts, on the coordinates theta1, theta2, theta3, theta5
+            def residual(c, pose=pose):
+                return (np.asarray(fk([c[0], c[1], c[2], -c[1] - c[2], c[3]]), dtype=float) - pose)[:3].ravel()
+
+            starts = np.random.default_rng(trial).uniform(-np.pi, np.pi, (60, 4))
+            fits = [least_squares(residual, start, xtol=1e-15, ftol=1e-15, gtol=1e-15) for start in starts]
+            numeric = [f.x for f in fits if np.abs(f.fun).max() < 1e-10]
+            coordinates = [s.q[[0, 1, 2, 4]] for s in result.solutions]
+            assert len(_distinct(coordinates)) == len(_distinct(numeric, 1e-5))

@@ -13,7 +13,7 @@ from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometr
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
-from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
+from symjac.analysis.inverse_kinematics.planar import articulated_plan, palletizer_plan, planar_plan, scara_plan
 from symjac.analysis.inverse_kinematics.subproblems import (
     AngleSolutions,
     Subproblem,
@@ -48,6 +48,7 @@ __all__ = [
     "articulated_plan",
     "branch_programs",
     "closed_form_plan",
+    "palletizer_plan",
     "planar_plan",
     "pose_matrix",
     "reduced_geometry",

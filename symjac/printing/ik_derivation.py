@@ -206,7 +206,7 @@ def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]
             tex, text = _name(plan, joint)
             suffix = f" ({branch})" if branch else ""
             math.append(Equation(tex + (rf"\ \text{{({branch})}}" if branch else ""), text + suffix, value))
-    blocks = [Block((f"Step {number}: {step.statement}",), tuple(math))]
+    blocks = [Block((f"Step {number}: {step.statement.rstrip('.')}.",), tuple(math))]
     condition: tuple[str | sp.Basic | Inline, ...] = (f"Existence: {formulas.note}",)
     if formulas.conditions:
         condition = (*condition, ": ", *formulas.conditions)

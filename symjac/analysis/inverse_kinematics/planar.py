@@ -101,7 +101,7 @@ def plane_step(
         "rotation_to_distance",
         {"k": axis, "p": point + scale * direction, "q": target, "delta": distance, "point_on_axis": point},
         f"{name} turns {what} so that the target lies at the offset {offset} along it, a rotation to a distance "
-        f"({DISTANCE_RULE}: {SHOULDER[0]}, then {SHOULDER[1]}).",
+        f"({DISTANCE_RULE}: {SHOULDER[0]}, then {SHOULDER[1]})",
         SHOULDER,
     )
 
@@ -136,7 +136,7 @@ def _two_link(geometry: ArmGeometry, first: int, second: int, point: sympy.Matri
         "rotation_to_distance",
         {"k": h[second], "p": point, "q": p_first, "delta": length(target - p_first), "point_on_axis": p_second},
         f"{names[second]} bends the elbow until the point is as far from axis {first + 1} as the target, a rotation "
-        f"to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]}).",
+        f"to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]})",
         ELBOW,
     )
     moved = turned(h[second], p_second, names[second], point).applyfunc(sympy.expand)
@@ -144,7 +144,7 @@ def _two_link(geometry: ArmGeometry, first: int, second: int, point: sympy.Matri
         (first,),
         "rotation_to_point",
         {"k": h[first], "p": moved, "q": target, "point_on_axis": p_first},
-        f"{names[first]} swings that point onto the target about axis {first + 1}, a rotation to a point.",
+        f"{names[first]} swings that point onto the target about axis {first + 1}, a rotation to a point",
     )
     return elbow, swing
 
@@ -164,7 +164,7 @@ def _orientation_step(geometry: ArmGeometry, joint: int, before: list[int]) -> S
         "rotation_to_point",
         {"k": h, "p": length(target) * v, "q": target, "point_on_axis": sympy.zeros(3, 1)},
         f"{name} turns the tool to the target's rotation about the axes, read from a vector across them "
-        f"(the part of the target rotation that tilts out of the plane is not controlled), a rotation to a point.",
+        f"(the part of the target rotation that tilts out of the plane is not controlled), a rotation to a point",
     )
 
 
@@ -228,7 +228,7 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
         (2,),
         "slide_to_point",
         {"k": along, "p": points[3], "q": points[3] + along * along.dot(wrist - points[3])},
-        f"{names[2]} slides the wrist along the axes to the target's height, {names[2]} = h3.(w - p4).",
+        f"{names[2]} slides the wrist along the axes to the target's height, {names[2]} = h3.(w - p4)",
     )
     reasons = ("the axes of joints 1, 2, 3 and 4 are parallel", "joint 3 slides along them")
     return Plan(
@@ -292,7 +292,7 @@ def palletizer_plan(geometry: ArmGeometry) -> Plan | None:
         (3,),
         "rotation_to_point",
         {"k": h[3], "p": v, "q": rotation(h[3], coupled[3]) * v, "point_on_axis": sympy.zeros(3, 1)},
-        f"{names[3]} follows the coupling {names[3]} = {coupled[3]}, which keeps link 4 level.",
+        f"{names[3]} follows the coupling {names[3]} = {coupled[3]}, which keeps link 4 level",
     )
     reasons = ("the axes of joints 2, 3 and 4 are parallel", f"the coupling {names[3]} = {coupled[3]} keeps link 4 "
                "level", "the axis of joint 1 is not parallel to them")

@@ -93,8 +93,10 @@ def plane_step(
     :math:`\sqrt{|x - r|^2 + 1}` when ``d`` is identically zero).
     """
     axis, point = geometry.axes[joint], geometry.points[joint]
-    scale = sympy.Integer(1) if _zero(offset) else 2 * offset
-    distance = length(target - point) if scale != 1 else sympy.sqrt(sum((e**2 for e in target - point), sympy.S.One))
+    through_axis = _zero(offset)
+    scale = sympy.Integer(1) if through_axis else 2 * offset
+    squares = sum(((e**2 for e in target - point)), sympy.S.One if through_axis else sympy.S.Zero)
+    distance = sympy.sqrt(squares)
     name = geometry.robot.joint_variables[joint]
     return Step(
         (joint,),

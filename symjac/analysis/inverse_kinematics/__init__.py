@@ -13,7 +13,13 @@ from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometr
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
-from symjac.analysis.inverse_kinematics.planar import articulated_plan, palletizer_plan, planar_plan, scara_plan
+from symjac.analysis.inverse_kinematics.planar import (
+    articulated_plan,
+    palletizer_plan,
+    planar_plan,
+    scara_plan,
+    spherical_arm_plan,
+)
 from symjac.analysis.inverse_kinematics.subproblems import (
     AngleSolutions,
     Subproblem,
@@ -66,6 +72,7 @@ __all__ = [
     "slide_to_point_symbolic",
     "solve_numeric",
     "solve_plan",
+    "spherical_arm_plan",
     "three_parallel_axes_plan",
     "two_rotations_to_point",
     "two_rotations_to_point_symbolic",

@@ -42,6 +42,7 @@ __all__ = [
     "plane_step",
     "rotation",
     "scara_plan",
+    "spherical_arm_plan",
     "turned",
 ]
 
@@ -260,6 +261,44 @@ def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     elbow, swing = _two_link(geometry, 1, 2, tool, seen)
     reasons = ("the axes of joints 2 and 3 are parallel", "the axis of joint 1 is not parallel to them")
     return Plan(robot, "articulated 3R", reasons, (), (waist, elbow, swing), "the position of the tool point")
+
+
+def spherical_arm_plan(geometry: ArmGeometry) -> Plan | None:
+    """Spherical (polar) arm: a waist, a revolute joint across it, a slide across that: the tool point's position.
+
+    ``theta1`` as for the articulated 3R (the slide keeps the component along axis 2 because it is across it), then
+    the slide from the distance to the point ``p2`` on axis 2 (two solutions, the shorter and the longer slide), then
+    ``theta2`` turns the slid point onto the target.
+    """
+    if not _plain(geometry) or geometry.kinds != ("revolute", "revolute", "prismatic"):
+        return None
+    h, points, robot = geometry.axes, geometry.points, geometry.robot
+    if geometry.parallel(0, 1) or not _zero(h[1].dot(h[2])):
+        return None
+    tool = geometry.home[:3, 3]
+    if not _apart(geometry, 1, tool) and all(_zero(e) for e in across(h[1], h[2])):
+        return None
+    _, p = _pose()
+    waist = plane_step(0, geometry, h[1], p, sympy.simplify(h[1].dot(tool - points[0])),
+                       "the direction of axis 2 about axis 1")
+    seen = turned(h[0], points[0], -robot.joint_variables[0], p).applyfunc(sympy.expand)
+    name = robot.joint_variables[2]
+    slide = Step(
+        (2,),
+        "slide_to_distance",
+        {"k": h[2], "p": tool, "q": points[1], "delta": length(seen - points[1])},
+        f"{name} slides the tool point to the target's distance from axis 2, a slide to a distance (the first "
+        "solution is the shorter slide, the second the longer)",
+        ("shorter slide", "longer slide"),
+    )
+    swing = Step(
+        (1,),
+        "rotation_to_point",
+        {"k": h[1], "p": tool + h[2] * name, "q": seen, "point_on_axis": points[1]},
+        f"{robot.joint_variables[1]} swings the slid tool point onto the target about axis 2, a rotation to a point",
+    )
+    reasons = ("the axis of joint 1 is not parallel to axis 2", "joint 3 slides across axis 2")
+    return Plan(robot, "spherical arm", reasons, (), (waist, slide, swing), "the position of the tool point")
 
 
 def palletizer_plan(geometry: ArmGeometry) -> Plan | None:

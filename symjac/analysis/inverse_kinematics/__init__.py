@@ -15,6 +15,7 @@ from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
 from symjac.analysis.inverse_kinematics.planar import (
     articulated_plan,
+    cylindrical_plan,
     palletizer_plan,
     planar_plan,
     scara_plan,
@@ -54,6 +55,7 @@ __all__ = [
     "articulated_plan",
     "branch_programs",
     "closed_form_plan",
+    "cylindrical_plan",
     "palletizer_plan",
     "planar_plan",
     "pose_matrix",

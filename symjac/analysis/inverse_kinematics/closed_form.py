@@ -29,6 +29,7 @@ from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step
 from symjac.analysis.inverse_kinematics.planar import (
     articulated_plan,
+    cylindrical_plan,
     palletizer_plan,
     planar_plan,
     scara_plan,
@@ -50,6 +51,7 @@ FAMILIES: tuple[Callable[[ArmGeometry], Plan | None], ...] = (
     articulated_plan,
     palletizer_plan,
     spherical_arm_plan,
+    cylindrical_plan,
 )
 """The family builders :func:`closed_form_plan` tries in order: each returns a plan, or None when the arm is not of
 its family."""

@@ -35,6 +35,7 @@ from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
 __all__ = [
     "across",
     "articulated_plan",
+    "cylindrical_plan",
     "length",
     "palletizer_plan",
     "perpendicular",
@@ -299,6 +300,41 @@ def spherical_arm_plan(geometry: ArmGeometry) -> Plan | None:
     )
     reasons = ("the axis of joint 1 is not parallel to axis 2", "joint 3 slides across axis 2")
     return Plan(robot, "spherical arm", reasons, (), (waist, slide, swing), "the position of the tool point")
+
+
+def cylindrical_plan(geometry: ArmGeometry) -> Plan | None:
+    """Cylindrical arm: a waist, a slide along it, a slide across it; the tool point's position.
+
+    ``theta1`` puts the target in the plane the two slides span (its component along ``n = h1 x h3`` fixed), as for
+    the articulated 3R; seen from link 1 the target is ``t + d2 h2 + d3 h3``: the slide across first, from the target
+    moved along ``h2`` to the tool's level, then the slide along.
+    """
+    if not _plain(geometry) or geometry.kinds != ("revolute", "prismatic", "prismatic"):
+        return None
+    h, points, robot = geometry.axes, geometry.points, geometry.robot
+    if not geometry.parallel(0, 1) or not _zero(h[1].dot(h[2])):
+        return None
+    normal = h[0].cross(h[2]).applyfunc(sympy.simplify)
+    tool = geometry.home[:3, 3]
+    _, p = _pose()
+    waist = plane_step(0, geometry, normal, p, sympy.simplify(normal.dot(tool - points[0])),
+                       "the plane of the two slides about axis 1")
+    seen = turned(h[0], points[0], -robot.joint_variables[0], p).applyfunc(sympy.expand)
+    names = robot.joint_variables
+    reach = Step(
+        (2,),
+        "slide_to_point",
+        {"k": h[2], "p": tool, "q": _in_plane(h[1], seen, tool)},
+        f"{names[2]} slides the tool point across axis 1 to the target's distance from it, a slide to a point",
+    )
+    lift = Step(
+        (1,),
+        "slide_to_point",
+        {"k": h[1], "p": tool + h[2] * names[2], "q": seen},
+        f"{names[1]} slides the tool point along axis 1 to the target's level, a slide to a point",
+    )
+    reasons = ("joint 2 slides along the axis of joint 1", "joint 3 slides across it")
+    return Plan(robot, "cylindrical", reasons, (), (waist, reach, lift), "the position of the tool point")
 
 
 def palletizer_plan(geometry: ArmGeometry) -> Plan | None:

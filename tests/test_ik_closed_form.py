@@ -196,7 +196,9 @@ def test_the_puma_programs_read_like_the_textbook():
     theta1 = assignments[load_robot("puma560").joint_variables[0]]
     delta = next(s for s in program.conditions if s in theta1.free_symbols)
     assert sympy.expand(assignments[delta] - (w_x**2 + w_y**2 - d3**2)) == 0
-    assert theta1 == sympy.atan2(-w_x, w_y) - sympy.atan2(sympy.sqrt(delta), d3)
+    assert theta1 == sympy.atan2(w_y, w_x) - sympy.atan2(d3, -sympy.sqrt(delta))  # shoulder right
+    assert dict(branch_programs(plan)[4].assignments)[load_robot("puma560").joint_variables[0]] == (
+        sympy.atan2(w_y, w_x) - sympy.atan2(d3, sympy.sqrt(delta)))  # shoulder left
     assert all(sympy.count_ops(e) < 200 for _, e in program.assignments)
 
 

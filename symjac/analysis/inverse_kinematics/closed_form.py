@@ -75,6 +75,9 @@ def _why_none(geometry: ArmGeometry) -> str:
     if len(joints) >= 3:
         facts.append(geometry.why_not_meet(*joints[-3:]))
         facts.append(geometry.why_not_meet(*joints[:3]))
+        if geometry.intersection(*joints[:3]) is not None:
+            facts[-1] += (" as well, so they cannot change the distance from that point to the wrist: the arm has a "
+                          "continuum of solutions or none")
     return (f"{robot.name}{given}: no closed-form family fits ({', '.join(f.__name__ for f in FAMILIES)}): "
             + "; ".join(facts) + "; use the numeric solver")
 

@@ -47,6 +47,11 @@ def _s(matrix: sympy.Matrix) -> sympy.Matrix:
     return matrix.applyfunc(lambda e: sympy.simplify(sympy.expand(e)))
 
 
+def _on_line(point: sympy.Matrix, axis: sympy.Matrix, through: sympy.Matrix) -> bool:
+    """Whether ``point`` lies on the line through ``through`` along ``axis``, as an identity."""
+    return all(sympy.simplify(sympy.expand(e)) == 0 for e in (point - through).cross(axis))
+
+
 def _rotation(geometry: ArmGeometry, joint: int) -> sympy.Matrix:
     return geometry.motion(joint)
 
@@ -85,7 +90,10 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
     p_a, p_b, p_c = geometry.point(a), geometry.point(b), geometry.point(c)
     name = geometry.robot.joint_variables
     shoulder = ("shoulder right", "shoulder left")
-    if geometry.kind(c) == "revolute" and geometry.parallel(b, c) and not geometry.parallel(a, b):
+    if geometry.kind(c) == "revolute" and _on_line(centre, h_c, p_c):
+        return None  # joint c does not move the wrist centre: the position joints cannot reach around it
+    if geometry.kind(c) == "revolute" and geometry.parallel(b, c) and not geometry.parallel(a, b) \
+            and not _on_line(p_b, h_c, p_c):
         reasons.append(f"the axes of joints {b + 1} and {c + 1} are parallel")
         turn_a = _rotation(geometry, a)
         back = _s(turn_a[:3, :3].T * (w - p_a) + p_a)  # the wrist centre with joint a undone
@@ -105,8 +113,8 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
                  f"(rotation to a point)"),
         ]
     meet = geometry.intersection(a, b)
-    if meet is None:
-        return None
+    if meet is None or (geometry.kind(c) == "revolute" and _on_line(meet, h_c, p_c)):
+        return None  # axis c through the meeting point: joint c cannot change the wrist centre's distance from it
     reasons.append(f"the axes of joints {a + 1} and {b + 1} meet at ({', '.join(str(e) for e in meet)})")
     delta = sympy.sqrt((w - meet).dot(w - meet))
     if geometry.kind(c) == "prismatic":

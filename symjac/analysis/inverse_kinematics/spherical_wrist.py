@@ -21,13 +21,16 @@ The wrist turns ``R_w = (R_a R_b R_c)^T R R_M^T = R_4 R_5 R_6``: ``R_4 R_5 h_6 =
 rotations to a point, two solutions) and ``R_6 v = R_5^T R_4^T R_w v`` for a ``v`` across ``h_6`` gives ``q_6``.
 Eight solutions in general.
 
-Branch names follow fixed geometric rules. Shoulder: with axes b and c parallel, "shoulder right" is the solution
-where the wrist centre lies on the positive side of ``h_a x h_b`` (``h_b`` turned by ``q_a``); where axes a and b
-meet, "shoulder right" is the middle point on the positive side of ``h_a x h_b``. Elbow: "elbow up" is the elbow
-turned negatively about its axis from the direction of the shoulder point (``theta_0 - atan2(sqrt(1 - c^2), c)``);
-for a prismatic joint c the two slides are "shorter slide" and "longer slide". Wrist: "no flip" is the solution with
-``q_5 >= 0`` when axes 4 and 6 are parallel at home, else "wrist flip" is the middle point on the positive side of
-``h_4 x h_5``.
+Branch names follow fixed geometric rules, each a choice of sign in a subproblem. Shoulder: with axes b and c
+parallel, "shoulder right" is the solution where the wrist centre lies on the positive side of h_a x h_b (h_b turned
+by q_a); where axes a and b meet, "shoulder right" is the middle point on the positive side of h_a x h_b. Elbow:
+"elbow up" is the solution where, seen along the elbow axis h_c, the wrist centre lies at a negative angle from the
+shoulder point (theta_0 - atan2(sqrt(D), N)); on the PUMA 560 and the IRB 140 that is the bend of the home posture,
+the elbow above the line from shoulder to wrist while the upper arm faces the wrist (with the other shoulder
+solution the whole arm is turned over, and the same bend puts the elbow below it). A prismatic joint c has "shorter
+slide" and "longer slide" (the smaller and the larger displacement). Wrist: "no flip" is the solution with q_5 >= 0
+when axes 4 and 6 are parallel at home (the home posture of these arms), else "wrist flip" is the middle point on
+the positive side of h_4 x h_5.
 """
 
 from __future__ import annotations

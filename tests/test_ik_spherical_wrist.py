@@ -126,12 +126,13 @@ def test_plans_say_why_they_apply():
     assert "joint 3 is prismatic" in stanford.reasons and stanford.steps[0].subproblem == "slide_to_distance"
 
 
-def test_branch_names_follow_their_rules_on_the_puma():
-    robot, plan, model, _, _ = _setup("puma560")
+@pytest.mark.parametrize("name", ARMS)
+def test_branch_names_follow_their_rules(name):
+    robot, plan, model, _, _ = _setup(name)
     generator = np.random.default_rng(5)
     for _ in range(50):
         result = solve_plan(plan, model.fk(generator.uniform(*seed_bounds(robot))))
-        assert len({s.branch for s in result.solutions}) == len(result.solutions) == 8
+        assert len({s.branch for s in result.solutions}) == len(result.solutions) >= 4  # the IRB's offset: 4 or 8
         for solution in result.solutions:
             assert ("no flip" in solution.branch) == (solution.q[4] >= 0)
 

@@ -105,12 +105,14 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
         return [
             Step((a,), "rotation_to_plane", {"k": h_a, "p": h_b, "h": w - p_a, "d": _s(h_b.T * (centre - p_a))[0]},
                  f"{name[a]}: joints {b + 1} and {c + 1} keep the wrist centre's component along their common axis, "
-                 f"so turning that axis about axis {a + 1} must give it the target's (rotation to a plane)",
+                 f"so turning that axis about axis {a + 1} must give it the target's (rotation to a plane); shoulder "
+                 f"right: the wrist centre on the positive side of h{a + 1} x h{b + 1}",
                  shoulder),
             Step((c,), "rotation_to_distance", {"k": h_c, "p": centre, "q": p_b, "point_on_axis": p_c,
                                                 "delta": sympy.sqrt((w - elbow_at).dot(w - elbow_at))},
                  f"{name[c]}: joint {c + 1} sets the wrist centre's distance from axis {b + 1}'s point, which must "
-                 f"equal the target's (rotation to a distance)", ("elbow up", "elbow down")),
+                 f"equal the target's (rotation to a distance); elbow up: seen along axis {c + 1}, the wrist centre at "
+                 f"a negative angle from that point", ("elbow up", "elbow down")),
             Step((b,), "rotation_to_point", {"k": h_b, "p": wrist_at, "q": back, "point_on_axis": p_b},
                  f"{name[b]}: joint {b + 1} turns the wrist centre onto the target's, joint {a + 1} undone "
                  f"(rotation to a point)"),
@@ -124,19 +126,21 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
         reasons.append(f"joint {c + 1} is prismatic")
         first = Step((c,), "slide_to_distance", {"k": h_c, "p": centre, "q": meet, "delta": delta},
                      f"{name[c]}: the slide sets the wrist centre's distance from the point where axes {a + 1} and "
-                     f"{b + 1} meet, which must equal the target's (slide to a distance)",
+                     f"{b + 1} meet, which must equal the target's (slide to a distance); the shorter slide first",
                      ("shorter slide", "longer slide"))
         moved = _s(centre + h_c * name[c])
     else:
         first = Step((c,), "rotation_to_distance", {"k": h_c, "p": centre, "q": meet, "point_on_axis": p_c,
                                                     "delta": delta},
                      f"{name[c]}: joint {c + 1} sets the wrist centre's distance from the point where axes {a + 1} "
-                     f"and {b + 1} meet, which must equal the target's (rotation to a distance)",
+                     f"and {b + 1} meet, which must equal the target's (rotation to a distance); elbow up: seen along "
+                     f"axis {c + 1}, the wrist centre at a negative angle from that point",
                      ("elbow up", "elbow down"))
         moved = _s(_rotation(geometry, c)[:3, :3] * (centre - p_c) + p_c)
     second = Step((a, b), "two_rotations_to_point", {"k1": h_a, "k2": h_b, "p": moved, "q": w, "intersection": meet},
                   f"{name[a]}, {name[b]}: joints {a + 1} and {b + 1} turn the wrist centre onto the target's about "
-                  f"the point where their axes meet (two rotations to a point)", shoulder)
+                  f"the point where their axes meet (two rotations to a point); shoulder right: the middle point on "
+                  f"the positive side of h{a + 1} x h{b + 1}", shoulder)
     return [first, second]
 
 
@@ -150,11 +154,14 @@ def _orientation(geometry: ArmGeometry, joints: tuple[int, ...], rotation: sympy
     h4, h5, h6 = geometry.axis(j4), geometry.axis(j5), geometry.axis(j6)
     across = _s(h5 - h6 * h6.dot(h5))
     turned = _s(_rotation(geometry, j5)[:3, :3].T * _rotation(geometry, j4)[:3, :3].T)
-    flip = ("no flip", "wrist flip") if _s(h4.T * h6)[0].could_extract_minus_sign() else ("wrist flip", "no flip")
+    alignment = _s(h4.T * h6)[0]
+    flip = ("no flip", "wrist flip") if alignment.could_extract_minus_sign() else ("wrist flip", "no flip")
+    flip_rule = (f"no flip: {name[j5]} >= 0" if alignment != 0 else
+                 f"wrist flip: the middle point on the positive side of h{j4 + 1} x h{j5 + 1}")
     return [
         Step((j4, j5), "two_rotations_to_point", {"k1": h4, "k2": h5, "p": h6, "q": wrist * h6},
              f"{name[j4]}, {name[j5]}: joints {j4 + 1} and {j5 + 1} turn axis {j6 + 1} onto the direction the target "
-             f"orientation gives it (two rotations to a point)", flip),
+             f"orientation gives it (two rotations to a point); {flip_rule}", flip),
         Step((j6,), "rotation_to_point", {"k": h6, "p": across, "q": turned * wrist * across},
              f"{name[j6]}: joint {j6 + 1} turns a direction across its axis onto the target's (rotation to a point)"),
     ]

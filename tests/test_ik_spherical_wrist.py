@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from eaik.IK_Homogeneous import HomogeneousRobot
 
-from symjac import load_robot
+from symjac import load_robot, robot_from_toml
 from symjac.analysis.inverse_kinematics import closed_form_plan, seed_bounds, solve_numeric, solve_plan
 from symjac.codegen.numeric_model import numeric_model
 from symjac.errors import NoClosedFormError
@@ -126,33 +126,40 @@ def test_plans_say_why_they_apply():
     assert "joint 3 is prismatic" in stanford.reasons and stanford.steps[0].subproblem == "slide_to_distance"
 
 
-def test_branch_names_follow_their_rules_on_the_puma():
-    robot, plan, model, _, _ = _setup("puma560")
+@pytest.mark.parametrize("name", ARMS)
+def test_branch_names_follow_their_rules(name):
+    robot, plan, model, _, _ = _setup(name)
     generator = np.random.default_rng(5)
     for _ in range(50):
         result = solve_plan(plan, model.fk(generator.uniform(*seed_bounds(robot))))
-        assert len({s.branch for s in result.solutions}) == len(result.solutions) == 8
+        assert len({s.branch for s in result.solutions}) == len(result.solutions) >= 4  # the IRB's offset: 4 or 8
         for solution in result.solutions:
             assert ("no flip" in solution.branch) == (solution.q[4] >= 0)
 
 
-def test_the_iiwa_with_joint_3_given_round_trips_and_matches_eaik():
+@pytest.mark.parametrize("given", [0, 1, 2])
+def test_the_iiwa_with_one_joint_given_round_trips_and_matches_eaik(given):
     robot = load_robot("iiwa7")
-    plan = closed_form_plan(robot, free_joint=2)
-    assert plan.free_joint == 2 and "joint 3 is given" in " ".join(plan.reasons)
+    plan = closed_form_plan(robot, free_joint=given)
+    assert plan.free_joint == given and f"joint {given + 1} is given" in " ".join(plan.reasons)
     model = numeric_model(robot, backend="numpy")
     revolute = np.ones(7, dtype=bool)
     generator = np.random.default_rng(11)
-    for _ in range(30):
+    for _ in range(12):
         q = generator.uniform(*seed_bounds(robot))
         pose = model.fk(q)
-        solutions = np.array([s.q for s in solve_plan(plan, pose, free_value=q[2]).solutions])
+        solutions = np.array([s.q for s in solve_plan(plan, pose, free_value=q[given]).solutions])
         assert np.abs(model.fk(solutions) - pose).max() < 1e-10
-        assert np.allclose(solutions[:, 2], q[2])
+        assert np.allclose(solutions[:, given], q[given])
         assert any(same(s, q, revolute) for s in solutions)
-        found = eaik_robot(robot, fixed=[(2, q[2])]).IK(pose)
+        found = eaik_robot(robot, fixed=[(given, q[given])]).IK(pose)
         exact = [s for s, ls in zip(found.Q, found.is_LS, strict=True) if not ls]
         assert len(distinct(exact, np.ones(len(exact[0]), dtype=bool))) == len(distinct(solutions, revolute))
+
+
+def test_the_iiwa_with_its_elbow_given_has_no_closed_form():
+    with pytest.raises(NoClosedFormError, match="joints 1, 2 and 3 meet in one point as well, so they cannot change"):
+        closed_form_plan(load_robot("iiwa7"), free_joint=3)
 
 
 def test_the_panda_has_no_closed_form_with_any_joint_given():
@@ -161,3 +168,27 @@ def test_the_panda_has_no_closed_form_with_any_joint_given():
             closed_form_plan(load_robot("panda"), free_joint=joint)
     with pytest.raises(NoClosedFormError, match=r"the axes of joints 5 and 7 are parallel, 0\.088 apart"):
         closed_form_plan(load_robot("panda"), free_joint=2)
+
+
+def _six_r(name, rows):
+    """A 6R arm in standard DH from rows (d, a, alpha), no limits."""
+    joints = "".join(f'[[joints]]\ntype = "revolute"\nd = {d}\na = {a}\nalpha = "{alpha}"\n\n' for d, a, alpha in rows)
+    return robot_from_toml(f'name = "{name}"\nconvention = "standard"\n\n{joints}')
+
+
+OTHER_ARMS = {  # the spherical-wrist arms the catalog lacks: shoulder and elbow offsets, other signs of the twists
+    "kr_like": [(0.4, 0.025, "-pi/2"), (0, 0.455, "0"), (0, 0.035, "-pi/2"), (0.42, 0, "pi/2"), (0, 0, "-pi/2"),
+                (0.08, 0, "0")],
+    "fanuc_like": [(0.33, 0.05, "pi/2"), (0, 0.33, "0"), (0, 0.035, "pi/2"), (-0.335, 0, "-pi/2"), (0, 0, "pi/2"),
+                   (-0.08, 0, "0")],
+}
+
+
+@pytest.mark.parametrize("name", sorted(OTHER_ARMS))
+def test_other_spherical_wrist_arms_round_trip_and_match_eaik(name):
+    robot = _six_r(name, OTHER_ARMS[name])
+    plan = closed_form_plan(robot)
+    assert plan.family == "spherical wrist" and "the axes of joints 2 and 3 are parallel" in plan.reasons
+    configurations = np.random.default_rng(9).uniform(-np.pi, np.pi, (300, 6))
+    model = numeric_model(robot, backend="numpy")
+    assert round_trip(plan, configurations, model, np.ones(6, dtype=bool), eaik_robot(robot)) == []

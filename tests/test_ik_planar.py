@@ -178,12 +178,13 @@ def test_planar_3r_count_equals_eaik():
         assert len(_distinct([s.q for s in solve_plan(plan, pose).solutions])) == expected
 
 
-def _program_values(program, functions, pose):
+def _program_values(program, compiled, pose):
     """One branch program run in order; None when one of its conditions is negative (no such branch here)."""
-    inputs = [*np.asarray(pose)[:3, :3].ravel(), *np.asarray(pose)[:3, 3]]
-    values = dict.fromkeys((s for s, _ in program.assignments), 0.0)
-    for (symbol, _), function in zip(program.assignments, functions, strict=True):
-        value = float(function(*inputs, *values.values()))
+    pose = np.asarray(pose)
+    values = dict(zip(POSE_SYMBOLS, [*pose[:3, :3].ravel(), *pose[:3, 3]], strict=True))
+    for symbol, expr in program.assignments:
+        arguments, function = compiled(expr)
+        value = float(function(*(values[a] for a in arguments)))
         if symbol in program.conditions:
             if value < -1e-9:
                 return None
@@ -199,13 +200,19 @@ def test_branch_programs_agree_with_the_executor(name):
     plan, fk = closed_form_plan(robot), _fk(robot)
     programs = branch_programs(plan)
     assert len(programs) == plan.max_solutions
-    functions = [[sp.lambdify([*POSE_SYMBOLS, *(s for s, _ in p.assignments)], e.subs(robot.defaults), "math")
-                  for _, e in p.assignments] for p in programs]
+    cache = {}
+
+    def compiled(expr):  # the branches share most assignments: each distinct one is compiled once
+        if expr not in cache:
+            arguments = sorted(expr.free_symbols - set(robot.defaults), key=str)
+            cache[expr] = (arguments, sp.lambdify(arguments, expr.subs(robot.defaults), "math"))
+        return cache[expr]
+
     rng = np.random.default_rng(8)
     for _ in range(20):
         pose = np.asarray(fk(_sample(robot, rng)), dtype=float)
         numeric = {s.branch: s.q for s in solve_plan(plan, pose).solutions}
-        for program, compiled in zip(programs, functions, strict=True):
+        for program in programs:
             values = _program_values(program, compiled, pose)
             if values is None:
                 assert program.branch not in numeric

@@ -45,11 +45,20 @@ def same(a, b, revolute, tolerance=1e-7):
     return bool(differences([a], [b], revolute)[0, 0] < tolerance)
 
 
+NEAR_SINGULAR = 1e-5
+"""Configurations whose Jacobian's smallest singular value is below this are near a singular one. There the
+subproblems take two solutions whose square root is within their tolerance as one (gamma^2 <= 1e-9), and single
+angles are ill-conditioned (near theta5 = 0 only theta4 + theta6 is): every solution must still reproduce the pose,
+but the generating configuration and EAIK's count are not compared (0.02-0.4 % of the poses)."""
+
+
 def round_trip(plan, configurations, model, revolute, eaik=None):
     """Failures of the round trip: FK of every solution, the generating configuration found, the count vs EAIK."""
     failures = []
     poses = model.fk(configurations)
-    for q, pose in zip(configurations, poses, strict=True):
+    smallest = np.linalg.svd(model.jacobian(configurations), compute_uv=False)[:, -1]
+    assert (smallest < NEAR_SINGULAR).mean() < 0.01  # a few at most: the checks below are not skipped wholesale
+    for q, pose, near in zip(configurations, poses, smallest < NEAR_SINGULAR, strict=True):
         result = solve_plan(plan, pose)
         solutions = np.array([s.q for s in result.solutions])
         if not len(solutions):
@@ -58,9 +67,9 @@ def round_trip(plan, configurations, model, revolute, eaik=None):
         error = np.abs(model.fk(solutions) - pose).max()
         if error > 1e-10:
             failures.append(f"{q}: a solution misses the pose by {error:.3g}")
-        if not (differences(solutions, [q], revolute) < 1e-7).any():
+        if not near and not (differences(solutions, [q], revolute) < 1e-7).any():
             failures.append(f"{q}: the generating configuration is not among the solutions")
-        if eaik is not None:
+        if eaik is not None and not near:
             found = eaik.IK(pose)
             exact = [s for s, ls in zip(found.Q, found.is_LS, strict=True) if not ls]
             theirs, ours = len(distinct(exact, revolute)), len(distinct(solutions, revolute))

@@ -162,6 +162,8 @@ def test_the_iiwa_with_one_joint_given_round_trips_and_matches_eaik(given):
 
 
 def test_the_iiwa_with_its_elbow_given_has_no_closed_form():
+    with pytest.raises(NoClosedFormError, match=r"7 joints remain \(give one joint's value, free_joint=k"):
+        closed_form_plan(load_robot("iiwa7"))
     with pytest.raises(NoClosedFormError, match="joints 1, 2 and 3 meet in one point as well, so they cannot change"):
         closed_form_plan(load_robot("iiwa7"), free_joint=3)
 

@@ -211,9 +211,9 @@ def _axes_from_the_jacobian(model, n):
 
 
 def _solvable(axes, points):
-    """The family's conditions for a 6R arm, numerically: axis 6 through the point where axes 4 and 5 meet (the wrist centre), which
-    is off axis 3, and axes 2 and 3 parallel and apart (axis 1 not parallel to them), or axes 1 and 2 meeting off
-    axis 3."""
+    """The family's conditions for a 6R arm, numerically: axis 6 through the point where axes 4 and 5 meet (the wrist
+    centre), which is off axis 3, and axes 2 and 3 parallel and apart (axis 1 not parallel to them), or axes 1
+    and 2 meeting off axis 3."""
     def on_line(x, h, p):
         return np.linalg.norm(np.cross(x - p, h)) < 1e-9
 

@@ -45,11 +45,20 @@ def same(a, b, revolute, tolerance=1e-7):
     return bool(differences([a], [b], revolute)[0, 0] < tolerance)
 
 
+NEAR_SINGULAR = 1e-5
+"""Configurations whose Jacobian's smallest singular value is below this are near a singular one. There the
+subproblems take two solutions whose square root is within their tolerance as one (gamma^2 <= 1e-9), and single
+angles are ill-conditioned (near theta5 = 0 only theta4 + theta6 is): every solution must still reproduce the pose,
+but the generating configuration and EAIK's count are not compared (0.02-0.4 % of the poses)."""
+
+
 def round_trip(plan, configurations, model, revolute, eaik=None):
     """Failures of the round trip: FK of every solution, the generating configuration found, the count vs EAIK."""
     failures = []
     poses = model.fk(configurations)
-    for q, pose in zip(configurations, poses, strict=True):
+    smallest = np.linalg.svd(model.jacobian(configurations), compute_uv=False)[:, -1]
+    assert (smallest < NEAR_SINGULAR).mean() < 0.01  # a few at most: the checks below are not skipped wholesale
+    for q, pose, near in zip(configurations, poses, smallest < NEAR_SINGULAR, strict=True):
         result = solve_plan(plan, pose)
         solutions = np.array([s.q for s in result.solutions])
         if not len(solutions):
@@ -58,9 +67,9 @@ def round_trip(plan, configurations, model, revolute, eaik=None):
         error = np.abs(model.fk(solutions) - pose).max()
         if error > 1e-10:
             failures.append(f"{q}: a solution misses the pose by {error:.3g}")
-        if not (differences(solutions, [q], revolute) < 1e-7).any():
+        if not near and not (differences(solutions, [q], revolute) < 1e-7).any():
             failures.append(f"{q}: the generating configuration is not among the solutions")
-        if eaik is not None:
+        if eaik is not None and not near:
             found = eaik.IK(pose)
             exact = [s for s, ls in zip(found.Q, found.is_LS, strict=True) if not ls]
             theirs, ours = len(distinct(exact, revolute)), len(distinct(solutions, revolute))
@@ -153,6 +162,8 @@ def test_the_iiwa_with_one_joint_given_round_trips_and_matches_eaik(given):
 
 
 def test_the_iiwa_with_its_elbow_given_has_no_closed_form():
+    with pytest.raises(NoClosedFormError, match=r"7 joints remain \(give one joint's value, free_joint=k"):
+        closed_form_plan(load_robot("iiwa7"))
     with pytest.raises(NoClosedFormError, match="joints 1, 2 and 3 meet in one point as well, so they cannot change"):
         closed_form_plan(load_robot("iiwa7"), free_joint=3)
 
@@ -187,3 +198,61 @@ def test_other_spherical_wrist_arms_round_trip_and_match_eaik(name):
     configurations = np.random.default_rng(9).uniform(-np.pi, np.pi, (300, 6))
     model = numeric_model(robot, backend="numpy")
     assert round_trip(plan, configurations, model, np.ones(6, dtype=bool), eaik_robot(robot)) == []
+
+
+def _axes_from_the_jacobian(model, n):
+    """Joint axes and points on them at q = 0 from the numeric Jacobian at the tool point: independent of the arm
+    geometry the family is decided on. A column is (v, h) with v = h x (tool - p), so h x v = -(tool - p) across h and
+    tool + h x v lies on the axis."""
+    jacobian = model.jacobian(np.zeros(n))
+    tool = model.fk(np.zeros(n))[:3, 3]
+    axes = jacobian[3:].T
+    return axes, [tool + np.cross(h, v) for v, h in zip(jacobian[:3].T, axes, strict=True)]
+
+
+def _solvable(axes, points):
+    """The family's conditions for a 6R arm, numerically: axis 6 through the point where axes 4 and 5 meet (the wrist
+    centre), which is off axis 3, and axes 2 and 3 parallel and apart (axis 1 not parallel to them), or axes 1
+    and 2 meeting off axis 3."""
+    def on_line(x, h, p):
+        return np.linalg.norm(np.cross(x - p, h)) < 1e-9
+
+    h4, h5, p4, p5 = axes[3], axes[4], points[3], points[4]
+    normal = np.cross(h4, h5)  # the wrist centre: where axes 4 and 5 meet
+    centre = p4 + h4 * (np.cross(p5 - p4, h5) @ normal) / (normal @ normal)
+    if not on_line(centre, axes[5], points[5]) or on_line(centre, axes[2], points[2]):
+        return False
+    parallel_23 = np.linalg.norm(np.cross(axes[1], axes[2])) < 1e-9
+    if parallel_23 and not on_line(points[1], axes[2], points[2]) and np.linalg.norm(np.cross(axes[0], axes[1])) > 1e-9:
+        return True
+    normal = np.cross(axes[0], axes[1])
+    if np.linalg.norm(normal) < 1e-9 or abs((points[1] - points[0]) @ normal) > 1e-9:
+        return False
+    meet = points[0] + axes[0] * (np.cross(points[1] - points[0], axes[1]) @ normal) / (normal @ normal)
+    return not on_line(meet, axes[2], points[2])
+
+
+def test_random_arms_with_a_spherical_wrist_are_decided_exactly():
+    generator = np.random.default_rng(21)
+    decided = {True: 0, False: 0}
+    for index in range(12):
+        length = lambda: 0 if generator.random() < 0.4 else round(float(generator.uniform(0.05, 0.5)), 3)  # noqa: E731
+        twist = lambda *choices: choices[generator.integers(len(choices))]  # noqa: E731
+        rows = [(length(), length(), twist("pi/2", "-pi/2")), (length(), length(), twist("0", "pi/2", "-pi/2")),
+                (length(), length(), twist("pi/2", "-pi/2")), (round(float(generator.uniform(0.2, 0.5)), 3), 0,
+                                                               twist("pi/2", "-pi/2")),
+                (0, 0, twist("pi/2", "-pi/2")), (round(float(generator.uniform(0.05, 0.2)), 3), 0, "0")]
+        robot = _six_r(f"random{index}", rows)
+        model = numeric_model(robot, backend="numpy")
+        solvable = _solvable(*_axes_from_the_jacobian(model, 6))
+        try:
+            plan = closed_form_plan(robot)
+        except NoClosedFormError as error:
+            decided[False] += 1
+            assert not solvable, f"{rows}: {error}"
+            continue
+        decided[True] += 1
+        assert solvable, rows
+        configurations = generator.uniform(-np.pi, np.pi, (100, 6))
+        assert round_trip(plan, configurations, model, np.ones(6, dtype=bool), eaik_robot(robot)) == [], rows
+    assert decided[True] >= 3 and decided[False] >= 3, decided  # both outcomes were met

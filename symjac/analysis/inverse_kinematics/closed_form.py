@@ -88,6 +88,8 @@ def _why_none(geometry: ArmGeometry) -> str:
     robot, joints = geometry.robot, geometry.joints
     given = "" if geometry.free_joint is None else f" with joint {geometry.free_joint + 1} given"
     facts = [f"{len(joints)} joints remain"] if len(joints) != 6 else []
+    if len(joints) == 7:
+        facts[0] += " (give one joint's value, free_joint=k, to solve the six that remain)"
     if len(joints) >= 3:
         facts.append(geometry.why_not_meet(*joints[-3:]))
         facts.append(geometry.why_not_meet(*joints[:3]))

@@ -80,8 +80,10 @@ def _angles(request: Request, text: str, option: str) -> list[float]:
 
 
 def requested_pose(request: Request) -> Any:
-    """The target pose the options give, checked (one of ``--pose``, ``--position`` + ``--rpy``/``--quaternion``,
-    ``--q``), as a 4 x 4 NumPy array."""
+    """The target pose the options give (``--pose``, ``--position`` with ``--rpy`` or ``--quaternion``, or ``--q``).
+
+    Checked, as a 4 x 4 NumPy array.
+    """
     from symjac.analysis.inverse_kinematics.poses import pose_from_matrix, pose_from_quaternion, pose_from_rpy
 
     args = request.args

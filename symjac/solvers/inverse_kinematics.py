@@ -1,5 +1,7 @@
-r"""Inverse kinematics in one call: :func:`inverse_kinematics` picks the closed form where the arm's geometry has one,
-else the numeric solver, and returns every solution checked by forward kinematics.
+r"""Inverse kinematics in one call: the closed form where the geometry has one, else numeric, every solution checked.
+
+:func:`inverse_kinematics` picks the closed form where the arm's geometry has one, else the numeric solver, and
+returns every solution checked by forward kinematics.
 
 This is the front end the Python API, ``symjac ik``, the report and ``symjac draw --ik-pose`` share. It sits above
 code generation (its numeric solver runs on :func:`~symjac.codegen.numeric_model.numeric_model`, the robot compiled
@@ -88,7 +90,7 @@ class InverseKinematicsResult:
     distance : float
         How far out (metres) when the closed form knows it; NaN when the numeric solver found nothing; 0 otherwise.
     controlled : Controlled
-        Which pose components the arm sets and which it cannot (:func:`~symjac.solvers.controlled.controlled_components`).
+        Which pose components the arm sets and which it cannot (:func:`.controlled_components`).
     plan : object
         The closed form's plan (``None`` for the numeric solver): its steps, for the derivation.
     """
@@ -191,7 +193,8 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
                             f"got {free_joint}")
     model = numeric_model(model_robot)
     controlled = controlled_components(model_robot)
-    plan, why = None, ""
+    plan: Any = None
+    why = ""
     if method != "numeric":
         try:
             plan, why = _closed_form(model_robot, free_joint)

@@ -1,5 +1,4 @@
-r"""Target poses for inverse kinematics: a 4 x 4 transform from a matrix, or a position with roll-pitch-yaw angles or a
-unit quaternion, checked.
+r"""Target poses for inverse kinematics, checked: from a 4 x 4 matrix, or a position with rpy angles or a quaternion.
 
 A pose is the homogeneous transform of the end of the chain (the tool frame when the robot has one, else frame
 {n}) in frame {0}, as ``numeric_model(robot).fk(q)`` returns it: ``[[R, p], [0, 0, 0, 1]]`` with ``R`` a rotation

@@ -1,0 +1,90 @@
+r"""The report's inverse-kinematics section: the family, and every solution at one example pose, tabled and drawn.
+
+Where the arm has no closed form, the section says why, and the numeric solver's solutions follow.
+
+The example pose is the arm's own at :func:`example_configuration` (a generic configuration inside the limits), so
+it is reachable and the configuration that made it is among the solutions. The solutions come from
+:func:`symjac.solvers.inverse_kinematics.inverse_kinematics` with its defaults (closed form where the geometry has
+one, else numeric; within the joint limits), one row each, then one drawing per branch.
+"""
+
+from __future__ import annotations
+
+import html
+
+import numpy as np
+
+from symjac.analysis.inverse_kinematics.numeric import seed_bounds
+from symjac.analysis.inverse_kinematics.poses import rpy_from_pose
+from symjac.codegen.numeric_model import numeric_model
+from symjac.drawing.solutions import panel_title
+from symjac.errors import SymjacError
+from symjac.model.robot import Robot
+from symjac.printing.inverse_kinematics import solution_words
+from symjac.report.figures import arm_svg
+from symjac.solvers.inverse_kinematics import InverseKinematicsResult, inverse_kinematics
+
+__all__ = ["EXAMPLE_FRACTIONS", "example_configuration", "inverse_kinematics_html"]
+
+EXAMPLE_FRACTIONS = (0.55, 0.35, 0.62, 0.45, 0.68, 0.4, 0.58)
+"""Where each joint of the example configuration sits between its lower and upper seed bound (then repeating)."""
+
+MOST_DRAWN = 8
+"""Solutions drawn at most (the PUMA's eight postures)."""
+
+
+def example_configuration(robot: Robot) -> np.ndarray:
+    """A generic configuration inside the limits: each joint at a fixed fraction of its range (+-pi when free)."""
+    lower, upper = seed_bounds(robot)
+    fractions = np.resize(np.array(EXAMPLE_FRACTIONS), len(lower))
+    return lower + fractions * (upper - lower)  # type: ignore[no-any-return]
+
+
+def _numbers(values: np.ndarray) -> str:
+    return ", ".join(f"{value + 0.0:.4g}" for value in values)  # + 0.0: no "-0"
+
+
+def _table(robot: Robot, result: InverseKinematicsResult) -> str:
+    names = "".join(f"<th>{html.escape(str(name))}</th>" for name in robot.q)
+    rows = "".join(
+        f"<tr><td>{number}</td>" + "".join(f"<td>{value:.4f}</td>" for value in solution.q)
+        + f"<td>{html.escape(solution_words(solution))}</td></tr>"
+        for number, solution in enumerate(result.solutions, start=1))
+    return (f'<table class="solutions"><thead><tr><th>#</th>{names}<th>branch, limits</th></tr></thead>'
+            f"<tbody>{rows}</tbody></table>")
+
+
+def _figures(robot: Robot, result: InverseKinematicsResult) -> str:
+    figures = []
+    for number, solution in enumerate(result.solutions[:MOST_DRAWN], start=1):
+        svg = arm_svg(robot, solution.q.tolist(), f"arm-ik-{number}")
+        figures.append(f'<figure class="arm">{svg}<figcaption>{html.escape(panel_title(number, solution))}'
+                       "</figcaption></figure>")
+    return f'<div class="arms">{"".join(figures)}</div>' if figures else ""
+
+
+def inverse_kinematics_html(robot: Robot) -> str:
+    """The section's body: method and reasons, what the arm controls, the example pose, the solutions and drawings."""
+    q = example_configuration(robot)
+    try:
+        pose = np.asarray(numeric_model(robot).fk(q), dtype=float)
+        result = inverse_kinematics(robot, pose)
+    except SymjacError as error:  # a coupled arm: said in one sentence
+        return f'<p class="note">No inverse kinematics: {html.escape(str(error))}.</p>\n'
+    if result.method == "closed_form":
+        intro = (f"Closed form, family {result.family}: {'; '.join(result.reasons)}. Each step is a subproblem "
+                 f"solved with atan2; symjac ik {robot.name} --derivation prints the steps in LaTeX.")
+    else:
+        intro = f"No closed form: {result.why.removeprefix('numeric: ')}. The numeric solver finds the solutions."
+    controlled = f"The arm sets {result.controlled.sets}"
+    controlled += f"; it does not set {result.controlled.not_set}." if result.controlled.not_set else "."
+    example = (f"At the example pose (the arm's own at q = ({_numbers(q)}): position ({_numbers(pose[:3, 3])}) m, "
+               f"roll, pitch, yaw ({_numbers(rpy_from_pose(pose))}) rad), {len(result.solutions)} solution"
+               f"{'s' if len(result.solutions) != 1 else ''} within the joint limits"
+               + (f" ({result.outside_limits} more outside them)" if result.outside_limits else "") + ":")
+    parts = [f"<p>{html.escape(intro)}</p>", f"<p>{html.escape(controlled)}</p>", f"<p>{html.escape(example)}</p>"]
+    if result.solutions:
+        parts += [_table(robot, result), _figures(robot, result)]
+    else:
+        parts.append(f'<p class="note">{html.escape(result.unreachable)}</p>')
+    return "\n".join(parts) + "\n"

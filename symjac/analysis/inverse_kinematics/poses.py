@@ -50,7 +50,7 @@ def _numbers(values: Any, shape: tuple[int, ...], name: str, what: str) -> np.nd
     except (TypeError, ValueError) as error:
         raise ArgumentError(f"{name}: {what} must be numbers, got {values!r} ({error})") from None
     if array.shape != shape:
-        size = " x ".join(map(str, shape))
+        size = " x ".join(map(str, shape)) + (" (or its top 3 x 4 rows)" if shape == (4, 4) else "")
         raise ArgumentError(f"{name}: {what} must have shape {size}, got shape "
                             f"{' x '.join(map(str, array.shape)) or 'scalar'}")
     bad = np.argwhere(~np.isfinite(array))
@@ -75,7 +75,8 @@ def pose_from_matrix(matrix: Any, *, name: str = "pose") -> np.ndarray:
         rows = np.shape(matrix)[0] if len(np.shape(matrix)) == 2 else 0
     except ValueError:  # ragged rows: _numbers says so
         rows = 0
-    T = _numbers(matrix, (3, 4) if rows == 3 else (4, 4), name, "the pose matrix")
+    what = "the pose matrix" if rows != 3 else "the pose matrix (its top 3 x 4 rows)"
+    T = _numbers(matrix, (3, 4) if rows == 3 else (4, 4), name, what)
     if rows == 3:
         T = np.vstack([T, [0.0, 0.0, 0.0, 1.0]])
     last = np.abs(T[3] - [0.0, 0.0, 0.0, 1.0]).max()

@@ -55,7 +55,7 @@ def test_a_matrix_is_checked_and_kept_as_given():
 
 
 @pytest.mark.parametrize(("call", "message"), [
-    (lambda: pose_from_matrix(np.full((4, 4), np.nan)), r"pose: the pose matrix entry \[0, 0\] is nan: entries must be"),
+    (lambda: pose_from_matrix(np.full((4, 4), np.nan)), r"pose: the pose matrix entry \[0, 0\] is nan: entries"),
     (lambda: pose_from_matrix(np.eye(3)), r"pose: the pose matrix \(its top 3 x 4 rows\) must have shape 3 x 4, got "
                                           r"shape 3 x 3"),
     (lambda: pose_from_matrix(np.eye(5)), r"pose: the pose matrix must have shape 4 x 4 \(or its top 3 x 4 rows\), got "

@@ -129,10 +129,7 @@ def _errors(model: NumericModel, q: np.ndarray, target: np.ndarray) -> tuple[flo
 
 def _closed_form(robot: Robot, free_joint: int | None) -> tuple[Any, str]:
     """The plan and the sentence saying why it applies; :class:`NoClosedFormError` with the reason when none does."""
-    try:  # TEMPORARY until wt/ikcore is merged
-        from symjac.analysis.inverse_kinematics.plan import closed_form_plan
-    except ModuleNotFoundError:
-        raise NoClosedFormError("the closed-form planner is not merged yet") from None
+    from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan
 
     plan = closed_form_plan(robot, free_joint=free_joint)
     return plan, f"closed form ({plan.family}): {'; '.join(plan.reasons)}"

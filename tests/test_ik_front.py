@@ -149,3 +149,54 @@ def test_the_front_ends_check_uses_the_compiled_model():
         T = model.fk(solution.q)
         assert solution.position_error == pytest.approx(np.linalg.norm(T[:3, 3] - pose[:3, 3]), abs=1e-15)
         assert solution.orientation_error < 1e-9
+
+
+# --- the closed form, where the geometry has one ---------------------------------------------------------------------
+
+PUMA_Q = [0.4, -0.6, 0.3, 0.5, 0.7, -0.2]
+
+
+def test_the_puma_is_solved_in_closed_form_with_its_eight_postures():
+    robot = load_robot("puma560")
+    pose = independent_fk(robot, PUMA_Q)
+    result = inverse_kinematics(robot, pose, within_limits=False)
+    assert result.method == "closed_form" and result.family == "spherical wrist"
+    assert result.why.startswith("closed form (spherical wrist): the axes of joints 4, 5 and 6 meet at the wrist")
+    assert result.reasons and result.plan is not None and result.controlled.whole_pose
+    assert len(result.solutions) == 8 and len({s.branch for s in result.solutions}) == 8
+    assert_reaches(robot, result)
+    assert any(np.allclose(s.q, PUMA_Q, atol=1e-9) for s in result.solutions)
+    inside = inverse_kinematics(robot, pose)
+    assert len(inside.solutions) + inside.outside_limits == 8
+    assert all(s.within_limits for s in inside.solutions)
+
+
+def test_auto_says_why_there_is_no_closed_form_and_closed_form_refuses():
+    from symjac.errors import NoClosedFormError
+
+    robot = load_robot("panda")
+    pose = independent_fk(robot, [0.1, 0.2, 0.3, -1.5, 0.2, 1.0, 0.3])
+    result = inverse_kinematics(robot, pose)
+    assert result.method == "numeric" and result.why.startswith("numeric, as there is no closed form: panda: ")
+    with pytest.raises(NoClosedFormError, match=r"^panda: no closed-form family fits") as raised:
+        inverse_kinematics(robot, pose, method="closed_form")
+    assert "\n" not in str(raised.value)
+
+
+def test_a_redundant_arm_in_closed_form_with_its_free_joint_given():
+    robot = load_robot("iiwa7")
+    q = [0.1, 0.2, 0.3, -1.5, 0.2, 1.0, 0.3]
+    pose = independent_fk(robot, q)
+    result = inverse_kinematics(robot, pose, free_value=0.3, free_joint=2, within_limits=False)
+    assert result.method == "closed_form" and "joint 3 is given" in result.why
+    assert_reaches(robot, result)
+    assert any(np.allclose(s.q, q, atol=1e-9) for s in result.solutions)
+    assert inverse_kinematics(robot, pose).method == "numeric"  # no free_value: numeric
+
+
+def test_a_pose_out_of_reach_says_how_far():
+    robot = load_robot("puma560")
+    pose = pose_from_rpy([3.0, 0.0, 0.5], [0.0, 0.0, 0.0])
+    result = inverse_kinematics(robot, pose)
+    assert result.method == "closed_form" and result.solutions == ()
+    assert result.unreachable and result.distance > 1.0

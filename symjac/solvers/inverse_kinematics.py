@@ -127,12 +127,30 @@ def _errors(model: NumericModel, q: np.ndarray, target: np.ndarray) -> tuple[flo
     return float(np.linalg.norm(T[:3, 3] - target[:3, 3])), float(angle)
 
 
-def _closed_form(robot: Robot, free_joint: int | None) -> tuple[Any, str]:
-    """The plan and the sentence saying why it applies; :class:`NoClosedFormError` with the reason when none does."""
+def _closed_form(robot: Robot, free_joint: int | None, free_value: float | None) -> tuple[Any, str]:
+    """The plan and the sentence saying why it applies; :class:`NoClosedFormError` with the reason when none does.
+
+    A redundant arm given ``free_value`` without ``free_joint`` takes the first joint whose value leaves a six-joint
+    arm with a closed form.
+    """
     from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan
 
-    plan = closed_form_plan(robot, free_joint=free_joint)
-    return plan, f"closed form ({plan.family}): {'; '.join(plan.reasons)}"
+    candidates: list[int | None] = [free_joint]
+    if free_joint is None and free_value is not None and robot.n_joints > 6:
+        candidates = list(range(robot.n_joints))
+    first: NoClosedFormError | None = None
+    for candidate in candidates:
+        try:
+            plan = closed_form_plan(robot, free_joint=candidate)
+        except NoClosedFormError as error:
+            first = first or error
+            continue
+        return plan, f"closed form ({plan.family}): {'; '.join(plan.reasons)}"
+    assert first is not None
+    if len(candidates) > 1:
+        raise NoClosedFormError(reason=f"{robot.name}: no joint given as free_value leaves a six-joint arm with a "
+                                       f"closed form ({first})")
+    raise first
 
 
 def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto", seed: Any = None, rng: int = 0,
@@ -194,11 +212,11 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     why = ""
     if method != "numeric":
         try:
-            plan, why = _closed_form(model_robot, free_joint)
+            plan, why = _closed_form(model_robot, free_joint, free_value)
         except NoClosedFormError as error:
             if method == "closed_form":
                 raise
-            why = f"numeric: no closed form, {error}"
+            why = f"numeric, as there is no closed form: {error}"
         if plan is not None and plan.free_joint is not None and free_value is None:
             if method == "closed_form":
                 raise ArgumentError(f"inverse_kinematics: {model_robot.name} is redundant; its closed form takes "

@@ -50,7 +50,7 @@ def _method_words(result: Any) -> str:
 
 
 def _notes(result: Any) -> list[str]:
-    notes = [f"Why: {result.why}."]
+    notes = [f"Why: {'; '.join(result.reasons) if result.method == 'closed_form' else result.why}."]
     if result.controlled.not_set:
         notes.append(f"The arm sets {result.controlled.sets}; it does not set {result.controlled.not_set}.")
     if result.outside_limits:

@@ -75,7 +75,8 @@ def inverse_kinematics_html(robot: Robot) -> str:
         intro = (f"Closed form, family {result.family}: {'; '.join(result.reasons)}. Each step is a subproblem "
                  f"solved with atan2; symjac ik {robot.name} --derivation prints the steps in LaTeX.")
     else:
-        intro = f"No closed form: {result.why.removeprefix('numeric: ')}. The numeric solver finds the solutions."
+        reason = result.why.removeprefix("numeric, as there is no closed form: ")
+        intro = f"No closed form: {reason}. The numeric solver finds the solutions."
     controlled = f"The arm sets {result.controlled.sets}"
     controlled += f"; it does not set {result.controlled.not_set}." if result.controlled.not_set else "."
     example = (f"At the example pose (the arm's own at q = ({_numbers(q)}): position ({_numbers(pose[:3, 3])}) m, "

@@ -35,7 +35,7 @@ METHODS: tuple[str, ...] = get_args(Method)
 
 @dataclass(frozen=True)
 class InverseKinematicsSolution:
-    """One configuration reaching the pose.
+    r"""One configuration reaching the pose.
 
     Parameters
     ----------
@@ -51,8 +51,8 @@ class InverseKinematicsSolution:
         At a singular pose, the continuum this solution stands for ("theta4 + theta6 = 0.73 is fixed; theta4 shown
         at 0"); empty elsewhere.
     position_error, orientation_error : float
-        |p(q) - p*| in metres and the angle of R(q) R*^T in radians, from the compiled forward kinematics: over the
-        whole pose, also for an arm that controls only part of it.
+        :math:`\|p(q) - p^*\|` in metres and the angle of :math:`R(q) R^{*T}` in radians, from the compiled
+        forward kinematics: over the whole pose, also for an arm that controls only part of it.
     """
 
     q: np.ndarray

@@ -138,9 +138,9 @@ def command(request: Request) -> Document:
         options["free_joint"] = None if args.free_joint is None else args.free_joint - 1
     result = request.progress(f"inverse kinematics of {robot.name}", lambda: QUANTITY.derive(robot, pose, **options))
     if args.derivation:
-        from symjac.printing.ik_derivation import derivation_document
+        from symjac.printing.ik_derivation import ik_derivation_document
 
-        return derivation_document(result.plan)  # type: ignore[no-any-return]
+        return ik_derivation_document(result.plan)
     return inverse_kinematics_document(robot, result, args.digits)  # numbers always: --digits needs no --numeric
 
 

@@ -65,6 +65,9 @@ def test_an_arm_that_places_a_point_finds_both_elbows():
     assert result.controlled.position_only and result.controlled.not_set.endswith("(it follows from the position)")
     assert len(result.solutions) == 2
     assert_reaches(robot, result, position_only=True)
+    turned = sum(result.solutions[0].q) - 1.0  # the 2R arm's tool turns by theta1 + theta2 about z
+    assert result.uncontrolled == (f"the orientation reached differs from the target's by "
+                                   f"{abs(np.angle(np.exp(1j * turned))):.4g} rad (the arm does not set it)")
     elbows = sorted(np.sign(s.q[1]) for s in result.solutions)
     assert elbows == [-1.0, 1.0]  # elbow down and up
     L1, L2 = 0.5, 0.4  # the defaults: theta2 = +-acos((x^2 + y^2 - L1^2 - L2^2) / (2 L1 L2))

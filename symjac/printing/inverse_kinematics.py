@@ -3,7 +3,7 @@ r"""The solutions of inverse kinematics as a document (``symjac ik``): the pose,
 The document reads an :class:`~symjac.solvers.inverse_kinematics.InverseKinematicsResult` by its fields (it sits
 below the solvers, so it names no solver type): ``robot``, ``pose``, ``method``, ``why``, ``family``, ``reasons``,
 ``solutions`` (each ``q``, ``branch``, ``within_limits``, ``singular``, ``position_error``, ``orientation_error``),
-``outside_limits``, ``unreachable``, ``distance`` and ``controlled`` (``sets``, ``not_set``).
+``outside_limits``, ``unreachable``, ``distance``, ``uncontrolled`` and ``controlled`` (``sets``, ``not_set``).
 
 LaTeX and pretty text print the target pose :math:`T`, then the solutions as one matrix :math:`Q`, one row per
 solution and one column per joint, then a line per row (its branch, limits, singular note, and the error of its
@@ -53,6 +53,8 @@ def _notes(result: Any) -> list[str]:
     notes = [f"Why: {'; '.join(result.reasons) if result.method == 'closed_form' else result.why}."]
     if result.controlled.not_set:
         notes.append(f"The arm sets {result.controlled.sets}; it does not set {result.controlled.not_set}.")
+    if result.uncontrolled:
+        notes.append(f"Not set: {result.uncontrolled}.")
     if result.outside_limits:
         notes.append(f"{result.outside_limits} more solution{'s' if result.outside_limits != 1 else ''} leave the "
                      "joint limits (shown with --no-within-limits).")
@@ -94,6 +96,7 @@ def inverse_kinematics_data(result: Any) -> dict[str, Any]:
         "reasons": list(result.reasons),
         "controlled": result.controlled.sets,
         "not_controlled": result.controlled.not_set,
+        "uncontrolled": result.uncontrolled,
         "solutions": [{"q": np.asarray(s.q, dtype=float).tolist(), "branch": list(s.branch),
                        "within_limits": bool(s.within_limits), "singular": s.singular,
                        "position_error": s.position_error, "orientation_error": s.orientation_error}

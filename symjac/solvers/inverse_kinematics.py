@@ -91,6 +91,9 @@ class InverseKinematicsResult:
         How far out (metres) when the closed form knows it; NaN when the numeric solver found nothing; 0 otherwise.
     controlled : Controlled
         Which pose components the arm sets and which it cannot (:func:`.controlled_components`).
+    uncontrolled : str
+        For an arm that does not set the whole pose: how far the pose its solutions reach is from the target in
+        what it does not set (empty when they agree).
     plan : object
         The closed form's plan (``None`` for the numeric solver): its steps, for the derivation.
     """
@@ -106,6 +109,7 @@ class InverseKinematicsResult:
     outside_limits: int = 0
     unreachable: str = ""
     distance: float = 0.0
+    uncontrolled: str = ""
     plan: Any = field(default=None, repr=False, compare=False)
 
 
@@ -245,7 +249,7 @@ def _from_plan(robot: Robot, model: NumericModel, plan: Any, target: np.ndarray,
         unreachable = f"all {len(solutions)} solutions leave the joint limits (within_limits=False shows them)"
     return InverseKinematicsResult(robot.name, target, "closed_form", why, kept, controlled, plan.family,
                                    tuple(plan.reasons), len(solutions) - len(kept), unreachable,
-                                   float(solved.distance), plan)
+                                   float(solved.distance), getattr(solved, "uncontrolled", ""), plan)
 
 
 def _numeric(robot: Robot, model: NumericModel, target: np.ndarray, why: str, controlled: Controlled, *, seed: Any,
@@ -270,5 +274,10 @@ def _numeric(robot: Robot, model: NumericModel, target: np.ndarray, why: str, co
     unreachable = "" if solutions else (
         f"none of the numeric solver's {restarts + (seed is not None)} or more starts converged: the pose is probably "
         "out of reach (the numeric solver cannot say how far)")
+    uncontrolled = ""
+    if solutions and controlled.position_only and solutions[0].orientation_error > 1e-6:
+        uncontrolled = (f"the orientation reached differs from the target's by {solutions[0].orientation_error:.4g} "
+                        "rad (the arm does not set it)")
     return InverseKinematicsResult(robot.name, target, "numeric", why, tuple(solutions), controlled,
-                                   unreachable=unreachable, distance=0.0 if solutions else float("nan"))
+                                   unreachable=unreachable, distance=0.0 if solutions else float("nan"),
+                                   uncontrolled=uncontrolled)

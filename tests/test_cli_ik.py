@@ -116,3 +116,17 @@ def test_the_standalone_latex_compiles(cli, tmp_path):
         path = tmp_path / f"{name}_ik.tex"
         path.write_text(cli.ok("ik", name, "--q", q, "--standalone"), encoding="utf-8")
         assert compile_tex(path) == [], name
+
+
+def test_derivation_prints_the_closed_forms_steps(cli):
+    from symjac.analysis.inverse_kinematics import closed_form_plan
+    from symjac.printing import render
+    from symjac.printing.ik_derivation import ik_derivation_document
+
+    out = cli.ok("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--derivation")
+    assert out == render(ik_derivation_document(closed_form_plan(load_robot("puma560"))), "latex")
+
+
+def test_derivation_of_an_arm_without_a_closed_form_says_why(cli):
+    line = cli.one_line_error("ik", "panda", "--q", "0.1,0.2,0.3,-1.5,0.2,1,0.3", "--derivation")
+    assert line.startswith("symjac: error: panda: no closed-form family fits")

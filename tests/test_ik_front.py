@@ -203,3 +203,17 @@ def test_a_pose_out_of_reach_says_how_far():
     result = inverse_kinematics(robot, pose)
     assert result.method == "closed_form" and result.solutions == ()
     assert result.unreachable and result.distance > 1.0
+
+
+def test_a_wrist_singularity_is_described_not_divided_by(cli):
+    robot = load_robot("puma560")
+    q = [0.4, -0.6, 0.3, 0.5, 0.0, -0.2]  # theta5 = 0: axes 4 and 6 line up
+    result = inverse_kinematics(robot, independent_fk(robot, q), within_limits=False)
+    assert_reaches(robot, result)
+    (singular,) = [s for s in result.solutions if s.singular]
+    assert singular.singular == "theta4 + theta6 = 0.3 is fixed; theta4 shown at 0"
+    assert abs(singular.q[3] + singular.q[5] - (q[3] + q[5])) < 1e-9
+    data = cli.json("ik", "puma560", "--q", ",".join(map(str, q)), "--no-within-limits")
+    assert [s["singular"] for s in data["solutions"] if s["singular"]] == [singular.singular]
+    text = cli.ok("ik", "puma560", "--q", ",".join(map(str, q)), "--no-within-limits", "--format", "pretty")
+    assert "singular: theta4 + theta6 = 0.3 is fixed; theta4 shown at 0" in text

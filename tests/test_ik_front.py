@@ -217,3 +217,23 @@ def test_a_wrist_singularity_is_described_not_divided_by(cli):
     assert [s["singular"] for s in data["solutions"] if s["singular"]] == [singular.singular]
     text = cli.ok("ik", "puma560", "--q", ",".join(map(str, q)), "--no-within-limits", "--format", "pretty")
     assert "singular: theta4 + theta6 = 0.3 is fixed; theta4 shown at 0" in text
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "irb140"])
+def test_random_reachable_poses_round_trip(name):
+    """Poses from random configurations within the limits: the one that made each pose is among its solutions."""
+    from symjac.analysis.inverse_kinematics import seed_bounds
+
+    robot = load_robot(name)
+    lower, upper = seed_bounds(robot)
+    generator = np.random.default_rng(46)
+    for q in generator.uniform(lower, upper, size=(12, robot.n_coordinates)):
+        pose = independent_fk(robot, q)
+        result = inverse_kinematics(robot, pose)
+        assert result.method == "closed_form"
+        assert_reaches(robot, result)
+        # revolute joints compare modulo 2 pi: a joint with limits wider than 2 pi reports one of its aliases
+        revolute = np.array([joint.is_revolute for joint in robot.joints])
+        same = [np.allclose(np.where(revolute, np.angle(np.exp(1j * (s.q - q))), s.q - q), 0.0, atol=1e-8)
+                for s in result.solutions]
+        assert any(same), (q, [s.q for s in result.solutions])

@@ -112,7 +112,8 @@ def test_a_nan_pose_is_one_line(cli):
 def test_the_standalone_latex_compiles(cli, tmp_path):
     from tests.test_latex_compile import compile_tex
 
-    for name, q in (("puma560", "0.3,-0.5,0.4,0.2,0.6,-0.1"), ("planar2r", "0.2,0.9")):
+    for name, q in (("puma560", "0.3,-0.5,0.4,0.2,0.6,-0.1"), ("planar2r", "0.2,0.9"),
+                    ("panda", "0.1,0.2,0.3,-1.5,0.2,1,0.3")):
         path = tmp_path / f"{name}_ik.tex"
         path.write_text(cli.ok("ik", name, "--q", q, "--standalone"), encoding="utf-8")
         assert compile_tex(path) == [], name

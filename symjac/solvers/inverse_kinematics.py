@@ -249,7 +249,7 @@ def _from_plan(robot: Robot, model: NumericModel, plan: Any, target: np.ndarray,
         unreachable = f"all {len(solutions)} solutions leave the joint limits (within_limits=False shows them)"
     return InverseKinematicsResult(robot.name, target, "closed_form", why, kept, controlled, plan.family,
                                    tuple(plan.reasons), len(solutions) - len(kept), unreachable,
-                                   float(solved.distance), getattr(solved, "uncontrolled", ""), plan)
+                                   float(solved.distance), solved.uncontrolled, plan)
 
 
 def _numeric(robot: Robot, model: NumericModel, target: np.ndarray, why: str, controlled: Controlled, *, seed: Any,

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from eaik.IK_Homogeneous import HomogeneousRobot
 
-from symjac import load_robot
+from symjac import load_robot, robot_from_toml
 from symjac.analysis.inverse_kinematics import closed_form_plan, seed_bounds, solve_numeric, solve_plan
 from symjac.codegen.numeric_model import numeric_model
 from symjac.errors import NoClosedFormError
@@ -161,3 +161,27 @@ def test_the_panda_has_no_closed_form_with_any_joint_given():
             closed_form_plan(load_robot("panda"), free_joint=joint)
     with pytest.raises(NoClosedFormError, match=r"the axes of joints 5 and 7 are parallel, 0\.088 apart"):
         closed_form_plan(load_robot("panda"), free_joint=2)
+
+
+def _six_r(name, rows):
+    """A 6R arm in standard DH from rows (d, a, alpha), no limits."""
+    joints = "".join(f'[[joints]]\ntype = "revolute"\nd = {d}\na = {a}\nalpha = "{alpha}"\n\n' for d, a, alpha in rows)
+    return robot_from_toml(f'name = "{name}"\nconvention = "standard"\n\n{joints}')
+
+
+OTHER_ARMS = {  # the spherical-wrist arms the catalog lacks: shoulder and elbow offsets, other signs of the twists
+    "kr_like": [(0.4, 0.025, "-pi/2"), (0, 0.455, "0"), (0, 0.035, "-pi/2"), (0.42, 0, "pi/2"), (0, 0, "-pi/2"),
+                (0.08, 0, "0")],
+    "fanuc_like": [(0.33, 0.05, "pi/2"), (0, 0.33, "0"), (0, 0.035, "pi/2"), (-0.335, 0, "-pi/2"), (0, 0, "pi/2"),
+                   (-0.08, 0, "0")],
+}
+
+
+@pytest.mark.parametrize("name", sorted(OTHER_ARMS))
+def test_other_spherical_wrist_arms_round_trip_and_match_eaik(name):
+    robot = _six_r(name, OTHER_ARMS[name])
+    plan = closed_form_plan(robot)
+    assert plan.family == "spherical wrist" and "the axes of joints 2 and 3 are parallel" in plan.reasons
+    configurations = np.random.default_rng(9).uniform(-np.pi, np.pi, (300, 6))
+    model = numeric_model(robot, backend="numpy")
+    assert round_trip(plan, configurations, model, np.ones(6, dtype=bool), eaik_robot(robot)) == []

@@ -216,8 +216,13 @@ def _shortfall(subproblem: str, a: dict[str, Any]) -> float:
         reach = math.hypot(float(h @ across), float(h @ np.cross(k, u)))
         return max(abs(a["d"] - h @ r - (k @ u) * (k @ h)) - reach, 0.0) / size
     u, v = a["p"] - r, a["q"] - r
-    if subproblem == "two_rotations_to_point":
-        return abs(float(np.linalg.norm(u) - np.linalg.norm(v))) or float(np.linalg.norm(u - v)) * 0.0
+    if subproblem == "two_rotations_to_point":  # different radii, or the two circles of reach miss each other
+        k1, k2 = a["k1"], a["k2"]
+        w = float(k1 @ k2)
+        alpha = (k1 @ v - w * (k2 @ u)) / (1.0 - w * w)
+        beta = (k2 @ u - w * (k1 @ v)) / (1.0 - w * w)
+        middle = float(np.sqrt(max(alpha**2 + beta**2 + 2.0 * alpha * beta * w, 0.0)))
+        return max(abs(float(np.linalg.norm(u) - np.linalg.norm(v))), middle - float(np.linalg.norm(u)), 0.0)
     k = a["k"]
     along = float(k @ (u - v))
     ru, rv = (float(np.linalg.norm(x - k * (k @ x))) for x in (u, v))

@@ -17,7 +17,8 @@ identities keep the formulas short: ``u'.v' = u.v - (k.u)(k.v)`` and ``k.(u' x v
   from ``u'`` to ``v'`` and ``c = (|u'|^2 + |v'|^2 - delta'^2) / (2 |u'| |v'|)``; zero, one or two solutions.
 - **Rotation to a plane** (subproblem 4): ``h.(r + rot(k, theta) u) = d``. With ``A = h.u'``, ``B = h.(k x u)`` and
   ``C = d - h.r - (k.u)(k.h)`` it reads ``A cos(theta) + B sin(theta) = C``, so
-  ``theta = atan2(B, A) -+ atan2(sqrt(A^2 + B^2 - C^2), C)``; zero, one or two solutions.
+  ``theta = atan2(A, -B) - atan2(C, -+sqrt(A^2 + B^2 - C^2))`` (``sin(theta - phi) = ...`` with ``phi`` the angle of
+  ``(-B, A)``: the textbook form); zero, one or two solutions.
 - **Slide to a point**: ``p + s k = q`` for a prismatic joint along ``k``: ``s = k.(q - p)`` when ``q - p`` is along
   ``k``.
 - **Slide to a distance**: ``|p + s k - q| = delta``, a quadratic in ``s``: with ``u = p - q``,
@@ -232,7 +233,7 @@ def rotation_to_plane(
     """Subproblem 4: the angles ``theta`` with ``h.(r + rot(k, theta) (p - r)) = d``.
 
     ``A cos(theta) + B sin(theta) = C`` with ``A = h.u'``, ``B = h.(k x u)``, ``C = d - h.r - (k.u)(k.h)``, so
-    ``theta = atan2(B, A) -+ atan2(sqrt(A^2 + B^2 - C^2), C)``: two solutions when ``C^2 < A^2 + B^2``, one when they
+    ``theta = atan2(A, -B) - atan2(C, -+sqrt(A^2 + B^2 - C^2))``: two solutions when ``C^2 < A^2 + B^2``, one when they
     are equal (within ``tolerance``), none otherwise; every angle when ``A = B = C = 0``. ``h`` need not be a unit
     vector.
     """
@@ -252,14 +253,13 @@ def rotation_to_plane(
             return AngleSolutions(((0.0,),), "p lies on the axis and the plane holds it: every angle works",
                                   every_angle=True)
         return AngleSolutions((), f"the rotation does not move p across the plane, which it misses by {c:.6g}")
-    theta0 = float(np.arctan2(b, a))
+    theta0 = math.atan2(a, -b)
     if abs(c) > radius + tolerance * size:
         return AngleSolutions((), f"the plane is out of reach: |C| = {abs(c):.6g} > sqrt(A^2 + B^2) = {radius:.6g}")
     if abs(c) >= radius - tolerance * size:
-        return AngleSolutions(((float(theta0 - np.arctan2(0.0, c)),),))
-    excess = c * c - radius * radius
-    half = float(np.arctan2(np.sqrt(-excess), c))
-    return AngleSolutions(((theta0 - half,), (theta0 + half,)))
+        return AngleSolutions(((theta0 - math.atan2(c, 0.0),),))
+    root = math.sqrt(radius * radius - c * c)
+    return AngleSolutions(((theta0 - math.atan2(c, -root),), (theta0 - math.atan2(c, root),)))
 
 
 def slide_to_point(k: Any, p: Any, q: Any, tolerance: float = 1e-9) -> AngleSolutions:
@@ -375,7 +375,7 @@ def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_a
 def rotation_to_plane_symbolic(k: Any, p: Any, h: Any, d: Any, point_on_axis: Any = None) -> Subproblem:
     """Subproblem 4 in symbols.
 
-    ``theta = atan2(B, A) -+ atan2(sqrt(A^2 + B^2 - C^2), C)`` under the condition
+    ``theta = atan2(A, -B) - atan2(C, -+sqrt(A^2 + B^2 - C^2))`` under the condition
     ``A^2 + B^2 - C^2 >= 0`` (``A``, ``B``, ``C`` as in the module docstring); ``k`` is a unit vector.
     """
     k, h = _matrix(k, "k"), _matrix(h, "h")
@@ -384,9 +384,10 @@ def rotation_to_plane_symbolic(k: Any, p: Any, h: Any, d: Any, point_on_axis: An
     a = h.dot(u) - k.dot(u) * k.dot(h)
     b = h.dot(k.cross(u))
     c = sympy.sympify(d) - h.dot(r) - k.dot(u) * k.dot(h)
-    half = sympy.atan2(sympy.sqrt(a**2 + b**2 - c**2), c)
-    theta0 = sympy.atan2(b, a)
-    return Subproblem(((theta0 - half,), (theta0 + half,)), (sympy.Ge(a**2 + b**2 - c**2, 0, evaluate=False),))
+    root = sympy.sqrt(a**2 + b**2 - c**2)
+    theta0 = sympy.atan2(a, -b)
+    return Subproblem(((theta0 - sympy.atan2(c, -root),), (theta0 - sympy.atan2(c, root),)),
+                      (sympy.Ge(a**2 + b**2 - c**2, 0, evaluate=False),))
 
 
 def slide_to_point_symbolic(k: Any, p: Any, q: Any) -> Subproblem:

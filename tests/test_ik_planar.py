@@ -9,11 +9,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from scipy.optimize import least_squares
 
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics import solve_numeric
-from symjac.analysis.inverse_kinematics.closed_form import solve_plan
+from symjac.analysis.inverse_kinematics.closed_form import branch_programs, closed_form_plan, solve_plan
 from symjac.analysis.inverse_kinematics.geometry import arm_geometry
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS
 from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
 from symjac.codegen.numeric_model import numeric_model
 from symjac.kinematics.chain import forward_kinematics
@@ -109,10 +111,13 @@ def test_planar_2r_ignores_what_it_does_not_control():
     tilted[2, 3] = 0.3  # out of the plane
     tilted[:3, :3] = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
     plan = planar_plan(arm_geometry(robot))
-    same = [s.q for s in solve_plan(plan, pose).solutions]
-    other = [s.q for s in solve_plan(plan, tilted).solutions]
+    reached, target = solve_plan(plan, pose), solve_plan(plan, tilted)
+    same, other = [s.q for s in reached.solutions], [s.q for s in target.solutions]
     assert len(same) == len(other) == 2
     assert np.allclose(same, other, atol=1e-12)
+    assert reached.uncontrolled_distance < 1e-12  # the orientation may differ: a 2R arm does not control it
+    assert target.uncontrolled.startswith("the arm controls the position in the plane across the axes only")
+    assert target.uncontrolled_distance == pytest.approx(0.3, abs=1e-9)
 
 
 def test_unreachable_2r_says_how_far():
@@ -171,3 +176,69 @@ def test_planar_3r_count_equals_eaik():
         reference = eaik.IK(pose)
         expected = len(_distinct([q for q, ls in zip(reference.Q, reference.is_LS, strict=True) if not ls]))
         assert len(_distinct([s.q for s in solve_plan(plan, pose).solutions])) == expected
+
+
+def _program_values(program, functions, pose):
+    """One branch program run in order; None when one of its conditions is negative (no such branch here)."""
+    inputs = [*np.asarray(pose)[:3, :3].ravel(), *np.asarray(pose)[:3, 3]]
+    values = dict.fromkeys((s for s, _ in program.assignments), 0.0)
+    for (symbol, _), function in zip(program.assignments, functions, strict=True):
+        value = float(function(*inputs, *values.values()))
+        if symbol in program.conditions:
+            if value < -1e-9:
+                return None
+            value = max(value, 0.0)
+        values[symbol] = value
+    return values
+
+
+@pytest.mark.parametrize("name", ["planar2r", "planar3r", "scara", "articulated3r", "ur5"])
+def test_branch_programs_agree_with_the_executor(name):
+    """The symbolic programs code generation prints, against the numeric executor, branch by branch."""
+    robot = load_robot(name)
+    plan, fk = closed_form_plan(robot), _fk(robot)
+    programs = branch_programs(plan)
+    assert len(programs) == plan.max_solutions
+    functions = [[sp.lambdify([*POSE_SYMBOLS, *(s for s, _ in p.assignments)], e.subs(robot.defaults), "math")
+                  for _, e in p.assignments] for p in programs]
+    rng = np.random.default_rng(8)
+    for _ in range(20):
+        pose = np.asarray(fk(_sample(robot, rng)), dtype=float)
+        numeric = {s.branch: s.q for s in solve_plan(plan, pose).solutions}
+        for program, compiled in zip(programs, functions, strict=True):
+            values = _program_values(program, compiled, pose)
+            if values is None:
+                assert program.branch not in numeric
+                continue
+            change = np.array([values[v] for v in robot.joint_variables]) - numeric[program.branch]
+            difference = np.where([j.is_revolute for j in robot.joints], np.angle(np.exp(1j * change)), change)
+            assert np.abs(difference).max() < 1e-8, program.branch
+
+
+def test_palletizer_keeps_the_coupling_and_reaches_the_flange_pose():
+    """Coupled theta4 = -theta2 - theta3: every solution keeps it, reaches the pose, and matches the numeric count."""
+    robot = load_robot("palletizer")
+    plan = closed_form_plan(robot)
+    assert plan.family == "palletizer" and "keeps link 4 level" in plan.reasons[1]
+    assert all(b(arm_geometry(robot)) is None for b in set(BUILDERS.values()))
+    uncoupled = robot.uncoupled
+    fk = _fk(uncoupled)
+    rng = np.random.default_rng(21)
+    for trial in range(200):
+        c = rng.uniform(-np.pi, np.pi, 4)
+        q = np.array([c[0], c[1], c[2], -c[1] - c[2], c[3]])
+        pose = np.asarray(fk(q), dtype=float)
+        result = solve_plan(plan, pose)
+        for s in result.solutions:
+            assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-10
+            assert abs(np.angle(np.exp(1j * (s.q[3] + s.q[1] + s.q[2])))) < 1e-12
+        assert min(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() for s in result.solutions) < 1e-7
+        if trial < 5:  # SciPy's least squares from 60 starts, on the coordinates theta1, theta2, theta3, theta5
+            def residual(c, pose=pose):
+                return (np.asarray(fk([c[0], c[1], c[2], -c[1] - c[2], c[3]]), dtype=float) - pose)[:3].ravel()
+
+            starts = np.random.default_rng(trial).uniform(-np.pi, np.pi, (60, 4))
+            fits = [least_squares(residual, start, xtol=1e-15, ftol=1e-15, gtol=1e-15) for start in starts]
+            numeric = [f.x for f in fits if np.abs(f.fun).max() < 1e-10]
+            coordinates = [s.q[[0, 1, 2, 4]] for s in result.solutions]
+            assert len(_distinct(coordinates)) == len(_distinct(numeric, 1e-5))

@@ -97,24 +97,56 @@ def _angle_terms(plan: Plan, k: sp.Matrix, u: sp.Matrix, v: sp.Matrix) -> sp.Exp
     return _constant_angle(plan, sp.atan2(y, x))
 
 
+_EXISTS = "it exists whenever the steps before it did; where the point lies on the axis every angle works"
+_TWO = "two solutions where the condition holds strictly, one where they merge, none beyond"
+
+
+def _origin(args: Mapping[str, Any], name: str) -> sp.Matrix:
+    return _vector(args[name]) if args.get(name) is not None else sp.zeros(3, 1)
+
+
+def _split(index: int, angle: sp.Expr, cosine: sp.Expr, radius: sp.Expr | None = None,
+           letter: str = "D") -> tuple[tuple[tuple[sp.Symbol, sp.Expr], ...], sp.Basic]:
+    """``phi = angle``, ``D = cosine`` and ``psi = atan2(sqrt(radius^2 - D^2), D)`` (radius 1 unless given)."""
+    phi, psi, named = sp.symbols(f"phi{index} psi{index} {letter}{index}", real=True)
+    square = sp.Integer(1) if radius is None else radius
+    return ((phi, angle), (named, cosine), (psi, sp.atan2(sp.sqrt(square - named**2), named))), sp.Ge(
+        square - named**2, 0, evaluate=False)
+
+
 def _formulas(plan: Plan, step: Step) -> StepFormulas:
     args: Mapping[str, Any] = step.arguments
-    joint = step.joints[0]
-    index = joint + 1
-    if step.subproblem == "slide_to_point":
-        k = _vector(args["k"])
-        (d,) = _simplified(plan, k.dot(_vector(args["q"]) - _vector(args["p"])))
-        return StepFormulas(step, (), ((d,),), (), "it exists whenever the steps before it did")
-    if step.subproblem not in ("rotation_to_point", "rotation_to_distance"):
-        raise ArgumentError(f"IK derivation: step for joint {index} uses {step.subproblem!r}, which it cannot print")
-    k = _vector(args["k"])
-    r = _vector(args["point_on_axis"]) if args.get("point_on_axis") is not None else sp.zeros(3, 1)
-    u, v = _vector(args["p"]) - r, _vector(args["q"]) - r
+    index = step.joints[0] + 1
+    kind = step.subproblem
+    if kind.startswith("slide"):
+        k, u = _vector(args["k"]), _vector(args["q"]) - _vector(args["p"])
+        (along,) = _simplified(plan, k.dot(u))
+        if kind == "slide_to_point":
+            return StepFormulas(step, (), ((along,),), (), "it exists whenever the steps before it did")
+        (across,) = _simplified(plan, u.dot(u) - k.dot(u) ** 2)
+        root, named = sp.symbols(f"sigma{index} E{index}", real=True)
+        delta = sp.sympify(args["delta"])
+        slide = ((named, delta**2 - across), (root, sp.sqrt(named)))
+        return StepFormulas(step, slide, ((along - root,), (along + root,)),
+                            (sp.Ge(named, 0, evaluate=False),), _TWO)
+    if kind == "two_rotations_to_point":
+        return _two_rotations(plan, step)
+    if kind not in ("rotation_to_point", "rotation_to_distance", "rotation_to_plane"):
+        raise ArgumentError(f"IK derivation: step for joint {index} uses {kind!r}, which it cannot print")
+    k, r = _vector(args["k"]), _origin(args, "point_on_axis")
+    u = _vector(args["p"]) - r
+    if kind == "rotation_to_plane":
+        h = _vector(args["h"])
+        a, b, c = _simplified(plan, h.dot(u) - k.dot(u) * k.dot(h), h.dot(k.cross(u)),
+                              sp.sympify(args["d"]) - h.dot(r) - k.dot(u) * k.dot(h))
+        (square,) = _simplified(plan, a**2 + b**2)
+        intermediates, condition = _split(index, _constant_angle(plan, sp.atan2(b, a)), c, square, "C")
+        phi, _, psi = (s for s, _ in intermediates)
+        return StepFormulas(step, intermediates, ((phi - psi,), (phi + psi,)), (condition,), _TWO)
+    v = _vector(args["q"]) - r
     angle = _angle_terms(plan, k, u, v)
-    if step.subproblem == "rotation_to_point":
-        note = "it exists whenever the steps before it did; where the point lies on the axis every angle works"
-        return StepFormulas(step, (), ((angle,),), (), note)
-    phi, psi, cosine = sp.symbols(f"phi{index} psi{index} D{index}", real=True)
+    if kind == "rotation_to_point":
+        return StepFormulas(step, (), ((angle,),), (), _EXISTS)
     delta = sp.sympify(args["delta"])
     across_u, across_v, numerator = _simplified(
         plan,
@@ -123,18 +155,28 @@ def _formulas(plan: Plan, step: Step) -> StepFormulas:
         u.dot(u) - k.dot(u) ** 2 + v.dot(v) - k.dot(v) ** 2 - delta**2 + k.dot(u - v) ** 2,
     )
     value = numerator / (2 * sp.sqrt(across_u) * sp.sqrt(across_v))
-    intermediates = (
-        (phi, angle),
-        (cosine, value),
-        (psi, sp.atan2(sp.sqrt(1 - cosine**2), cosine)),
-    )
-    return StepFormulas(
-        step,
-        intermediates,
-        ((phi - psi,), (phi + psi,)),
-        (sp.Ge(1 - cosine**2, 0, evaluate=False),),
-        "two solutions where the condition holds strictly, one where they merge, none beyond",
-    )
+    intermediates, condition = _split(index, angle, value)
+    phi, _, psi = (s for s, _ in intermediates)
+    return StepFormulas(step, intermediates, ((phi - psi,), (phi + psi,)), (condition,), _TWO)
+
+
+def _two_rotations(plan: Plan, step: Step) -> StepFormulas:
+    """Two rotations to a point: the middle point ``c = alpha k1 + beta k2 +- gamma (k1 x k2)``, then two angles."""
+    args = step.arguments
+    k1, k2, r = _vector(args["k1"]), _vector(args["k2"]), _origin(args, "intersection")
+    u, v = _vector(args["p"]) - r, _vector(args["q"]) - r
+    index = step.joints[0] + 1
+    alpha, beta, square, gamma = sp.symbols(f"alpha{index} beta{index} G{index} gamma{index}", real=True)
+    w = sp.simplify(k1.dot(k2))
+    normal = k1.cross(k2)
+    a, b = _simplified(plan, (k1.dot(v) - w * k2.dot(u)) / (1 - w**2), (k2.dot(u) - w * k1.dot(v)) / (1 - w**2))
+    (g,) = _simplified(plan, (u.dot(u) - alpha**2 - beta**2 - 2 * alpha * beta * w) / sp.simplify(normal.dot(normal)))
+    intermediates = ((alpha, a), (beta, b), (square, g), (gamma, sp.sqrt(square)))
+    solutions = []
+    for sign in (1, -1):
+        middle = alpha * k1 + beta * k2 + sign * gamma * normal
+        solutions.append((_angle_terms(plan, k1, middle, v), _angle_terms(plan, k2, u, middle)))
+    return StepFormulas(step, intermediates, tuple(solutions), (sp.Ge(square, 0, evaluate=False),), _TWO)
 
 
 def step_formulas(plan: Plan) -> tuple[StepFormulas, ...]:
@@ -159,7 +201,7 @@ def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]
     step = formulas.step
     math: list[Equation] = [Equation(latex(s), str(s), e) for s, e in formulas.intermediates]
     branches = step.branches or ("",)
-    for branch, values in zip(branches, formulas.solutions, strict=False):
+    for branch, values in zip(branches, formulas.solutions, strict=False):  # one solution: no branch name
         for joint, value in zip(step.joints, values, strict=True):
             tex, text = _name(plan, joint)
             suffix = f" ({branch})" if branch else ""

@@ -11,7 +11,9 @@ from symjac.analysis.inverse_kinematics.closed_form import (
 )
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, reduced_geometry
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
+from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
+from symjac.analysis.inverse_kinematics.planar import articulated_plan, palletizer_plan, planar_plan, scara_plan
 from symjac.analysis.inverse_kinematics.poses import (
     pose_from_matrix,
     pose_from_quaternion,
@@ -50,8 +52,11 @@ __all__ = [
     "Step",
     "Subproblem",
     "arm_geometry",
+    "articulated_plan",
     "branch_programs",
     "closed_form_plan",
+    "palletizer_plan",
+    "planar_plan",
     "pose_from_matrix",
     "pose_from_quaternion",
     "pose_from_rpy",
@@ -65,6 +70,7 @@ __all__ = [
     "rotation_to_point",
     "rotation_to_point_symbolic",
     "rpy_from_pose",
+    "scara_plan",
     "seed_bounds",
     "slide_to_distance",
     "slide_to_distance_symbolic",
@@ -72,6 +78,7 @@ __all__ = [
     "slide_to_point_symbolic",
     "solve_numeric",
     "solve_plan",
+    "three_parallel_axes_plan",
     "two_rotations_to_point",
     "two_rotations_to_point_symbolic",
 ]

@@ -46,7 +46,9 @@ def _expand(m: sympy.Matrix) -> sympy.Matrix:
 
 def _conditions(geometry: ArmGeometry) -> tuple[sympy.Matrix, sympy.Matrix] | None:
     """The points ``c`` (axes 5, 6 meet) and ``b`` (axes 4, 5 meet) when the arm is of the family, else None."""
-    if len(geometry.kinds) != 6 or any(kind != "revolute" for kind in geometry.kinds):
+    if geometry.free_joint is not None or len(geometry.kinds) != 6 or any(k != "revolute" for k in geometry.kinds):
+        return None
+    if geometry.robot.coupling is not None:
         return None
     if not (geometry.parallel(1, 2) and geometry.parallel(2, 3)) or geometry.parallel(0, 1):
         return None

@@ -36,6 +36,7 @@ __all__ = [
     "across",
     "articulated_plan",
     "length",
+    "palletizer_plan",
     "perpendicular",
     "planar_plan",
     "plane_step",
@@ -167,8 +168,13 @@ def _orientation_step(geometry: ArmGeometry, joint: int, before: list[int]) -> S
     )
 
 
+def _plain(geometry: ArmGeometry) -> bool:
+    """A whole arm without coupled joints (every joint its own coordinate)."""
+    return geometry.free_joint is None and geometry.robot.coupling is None
+
+
 def _all_parallel(geometry: ArmGeometry) -> bool:
-    return all(geometry.parallel(0, j) for j in range(1, len(geometry.axes)))
+    return _plain(geometry) and all(geometry.parallel(0, j) for j in range(1, len(geometry.axes)))
 
 
 def _apart(geometry: ArmGeometry, i: int, x: sympy.Matrix) -> bool:
@@ -237,7 +243,9 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
 
 def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     """Articulated 3R: a waist across a shoulder and an elbow with parallel axes; the position of the tool point."""
-    if geometry.kinds != ("revolute",) * 3 or not geometry.parallel(1, 2) or geometry.parallel(0, 1):
+    if not _plain(geometry) or geometry.kinds != ("revolute",) * 3:
+        return None
+    if not geometry.parallel(1, 2) or geometry.parallel(0, 1):
         return None
     h, points, robot = geometry.axes, geometry.points, geometry.robot
     tool = geometry.home[:3, 3]
@@ -250,3 +258,44 @@ def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     elbow, swing = _two_link(geometry, 1, 2, tool, seen)
     reasons = ("the axes of joints 2 and 3 are parallel", "the axis of joint 1 is not parallel to them")
     return Plan(robot, "articulated 3R", reasons, (), (waist, elbow, swing), "the position of the tool point")
+
+
+def palletizer_plan(geometry: ArmGeometry) -> Plan | None:
+    r"""Palletizer: a waist, three parallel joints the last of which is coupled to keep link 4 level, a flange joint.
+
+    The coupling makes :math:`\sum_{j=2}^{4} (h_j \cdot h_2)\, \theta_j = 0`, so the flange point ``f`` (on axis 5)
+    sits at the fixed offset ``f - p4`` from the point ``p4`` on axis 4: ``theta1`` as for the articulated 3R, then
+    ``theta3`` and ``theta2`` place ``p4`` at ``rot(h1, -theta1)(f_w - p1) + p1 - (f - p4)``, ``theta4`` follows the
+    coupling and ``theta5`` turns the flange about its axis.
+    """
+    robot = geometry.robot
+    if geometry.free_joint is not None or robot.coupling is None or geometry.kinds != ("revolute",) * 5:
+        return None
+    h, points, names = geometry.axes, geometry.points, robot.joint_variables
+    if not (geometry.parallel(1, 2) and geometry.parallel(2, 3)) or geometry.parallel(0, 1):
+        return None
+    coupled = robot.coupling.values
+    if coupled[:3] != names[:3] or coupled[4] != names[4] or not _zero(
+        sum((h[j].dot(h[1]) * coupled[j] for j in (1, 2, 3)), sympy.S.Zero)
+    ):
+        return None
+    flange = points[4]
+    if not _apart(geometry, 1, points[2]) or not _apart(geometry, 2, points[3]):
+        return None
+    target = _link_point(geometry, flange)
+    waist = plane_step(0, geometry, h[1], target, sympy.simplify(h[1].dot(flange - points[0])),
+                       "the direction of axes 2 to 4 about axis 1")
+    seen = (turned(h[0], points[0], -names[0], target) - (flange - points[3])).applyfunc(sympy.expand)
+    elbow, swing = _two_link(geometry, 1, 2, points[3], seen)
+    v = perpendicular(h[3])
+    follow = Step(
+        (3,),
+        "rotation_to_point",
+        {"k": h[3], "p": v, "q": rotation(h[3], coupled[3]) * v, "point_on_axis": sympy.zeros(3, 1)},
+        f"{names[3]} follows the coupling {names[3]} = {coupled[3]}, which keeps link 4 level.",
+    )
+    reasons = ("the axes of joints 2, 3 and 4 are parallel", f"the coupling {names[3]} = {coupled[3]} keeps link 4 "
+               "level", "the axis of joint 1 is not parallel to them")
+    steps = (waist, elbow, swing, follow, _orientation_step(geometry, 4, [0, 1, 2, 3]))
+    return Plan(robot, "palletizer", reasons, (), steps, "the position of the flange point and its rotation about "
+                "axis 5")

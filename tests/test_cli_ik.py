@@ -60,7 +60,8 @@ def test_rpy_in_degrees_and_with_pi(cli):
 def test_pretty_and_latex_print_the_table_and_the_notes(cli):
     pretty = cli.ok("ik", "planar2r", "--position", "0.6,0.3,0", "--rpy", "0,0,0", "--format", "pretty")
     assert "Inverse kinematics of planar2r: 2 solutions" in pretty and "Q =" in pretty
-    assert "Row 1: within the joint limits; forward kinematics misses the position by" in pretty
+    assert "2 solutions in closed form (planar 2R). Why: the axes of joints 1 and 2 are parallel." in pretty
+    assert "Row 1: elbow down; within the joint limits; forward kinematics misses the position by" in pretty
     assert "it does not set z (fixed by the arm's geometry); the orientation" in pretty
     latex = cli.ok("ik", "planar2r", "--position", "0.6,0.3,0", "--rpy", "0,0,0", "--digits", "3")
     assert r"Q = \begin{bmatrix}" in latex and latex.count("% Row ") == 2
@@ -74,7 +75,9 @@ def test_without_limits_every_solution_is_kept_and_flagged(cli):
 
 def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
     data = cli.json("ik", "planar2r", "--position", "2,0,0", "--rpy", "0,0,0")
-    assert data["solutions"] == [] and data["unreachable"] and data["distance"] is None
+    assert data["solutions"] == [] and data["unreachable"] and data["distance"] == pytest.approx(2.0 - 0.9)
+    numeric = cli.json("ik", "planar2r", "--position", "2,0,0", "--rpy", "0,0,0", "--method", "numeric")
+    assert numeric["solutions"] == [] and numeric["unreachable"] and numeric["distance"] is None
 
 
 @pytest.mark.parametrize(("argv", "message"), [
@@ -95,7 +98,7 @@ def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
     (["planar2r", "--q", "0,0", "--free-joint", "2"], "--free-joint needs --free-value (the value of that joint)"),
     (["planar2r", "--q", "0,0", "--restarts", "-1"], "--restarts must be 0 or more, got -1"),
     (["planar2r", "--q", "0,0", "--derivation", "--method", "numeric"], "--derivation prints a closed form"),
-    (["palletizer", "--q", "0,0,0,0"], "palletizer's joints are coupled"),
+    (["palletizer", "--q", "0.3,0.4,0.5,0.2", "--method", "numeric"], "palletizer's joints are coupled"),
 ])
 def test_each_mistake_is_one_line(cli, argv, message):
     line = cli.one_line_error("ik", *argv)

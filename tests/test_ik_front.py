@@ -133,7 +133,8 @@ def test_the_components_follow_the_jacobians_rows():
      r"seed must be 2 finite numbers for planar2r"),
     (lambda: inverse_kinematics("planar2r", np.eye(4), free_joint=5), ArgumentError,
      r"free_joint is 0-based, 0 to 1 for planar2r, got 5"),
-    (lambda: inverse_kinematics("palletizer", np.eye(4)), ArgumentError, r"palletizer's joints are coupled"),
+    (lambda: inverse_kinematics("palletizer", np.eye(4), method="numeric"), ArgumentError,
+     r"palletizer's joints are coupled and the numeric solver works joint by joint \(numeric: asked for"),
     (lambda: inverse_kinematics(3, np.eye(4)), ArgumentError, r"robot must be a Robot or a robot's name, got int"),
 ])
 def test_each_bad_argument_is_one_line(call, error, message):
@@ -237,3 +238,15 @@ def test_random_reachable_poses_round_trip(name):
         same = [np.allclose(np.where(revolute, np.angle(np.exp(1j * (s.q - q))), s.q - q), 0.0, atol=1e-8)
                 for s in result.solutions]
         assert any(same), (q, [s.q for s in result.solutions])
+
+
+def test_a_coupled_arm_is_solved_in_its_coordinates():
+    """The palletizer (theta4 = -theta2 - theta3 keeps link 4 level): solutions give its four coordinates."""
+    robot = load_robot("palletizer")
+    q = [0.3, 0.4, 0.5, 0.2]
+    pose = independent_fk(robot, q)
+    result = inverse_kinematics(robot, pose, within_limits=False)
+    assert result.method == "closed_form" and result.family == "palletizer"
+    assert all(s.q.shape == (4,) for s in result.solutions)
+    assert_reaches(robot, result)
+    assert any(np.allclose(s.q, q, atol=1e-9) for s in result.solutions)

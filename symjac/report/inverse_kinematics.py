@@ -14,7 +14,6 @@ import html
 
 import numpy as np
 
-from symjac.analysis.inverse_kinematics.numeric import seed_bounds
 from symjac.analysis.inverse_kinematics.poses import rpy_from_pose
 from symjac.codegen.numeric_model import numeric_model
 from symjac.drawing.solutions import panel_title
@@ -22,6 +21,7 @@ from symjac.errors import SymjacError
 from symjac.model.robot import Robot
 from symjac.printing.inverse_kinematics import solution_words
 from symjac.report.figures import arm_svg
+from symjac.solvers.controlled import coordinate_bounds
 from symjac.solvers.inverse_kinematics import InverseKinematicsResult, inverse_kinematics
 
 __all__ = ["EXAMPLE_FRACTIONS", "example_configuration", "inverse_kinematics_html"]
@@ -35,7 +35,7 @@ MOST_DRAWN = 8
 
 def example_configuration(robot: Robot) -> np.ndarray:
     """A generic configuration inside the limits: each joint at a fixed fraction of its range (+-pi when free)."""
-    lower, upper = seed_bounds(robot)
+    lower, upper = coordinate_bounds(robot)
     fractions = np.resize(np.array(EXAMPLE_FRACTIONS), len(lower))
     return lower + fractions * (upper - lower)  # type: ignore[no-any-return]
 

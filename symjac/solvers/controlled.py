@@ -19,7 +19,7 @@ from symjac.codegen.numeric_model import numeric_model
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
-__all__ = ["COMPONENTS", "Controlled", "controlled_components", "refuse_coupled"]
+__all__ = ["COMPONENTS", "Controlled", "controlled_components", "coordinate_bounds", "coordinate_joints"]
 
 COMPONENTS = ("x", "y", "z", "the rotation about x", "the rotation about y", "the rotation about z")
 """The six pose components, as the Jacobian's rows (frame {0}): position, then rotation."""
@@ -78,11 +78,26 @@ def _joined(words: list[str]) -> str:
     return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
 
 
-def refuse_coupled(robot: Robot, where: str) -> None:
-    """A one-line error for a robot whose joints are coupled (the solvers work joint by joint)."""
-    if robot.coupling is not None:
-        raise ArgumentError(f"{where}: {robot.name}'s joints are coupled ({robot.n_joints} joints driven by "
-                            f"{robot.n_coordinates} coordinates); inverse kinematics of coupled arms is not supported")
+def coordinate_joints(robot: Robot, where: str) -> list[int]:
+    """The joint (0-based) each coordinate is, in order: all of them without a coupling.
+
+    A coupled robot whose coordinates are some of its joint variables (the palletizer's theta1, theta2, theta3,
+    theta5) gives those joints; one whose coordinates are new symbols is refused in one line naming ``where``.
+    """
+    variables = list(robot.joint_variables)
+    if robot.coupling is None:
+        return list(range(len(variables)))
+    if not all(symbol in variables for symbol in robot.q):
+        raise ArgumentError(f"{where}: {robot.name}'s coordinates are not among its joint variables; inverse "
+                            "kinematics of such a coupled arm is not supported")
+    return [variables.index(symbol) for symbol in robot.q]
+
+
+def coordinate_bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
+    """Where each coordinate is drawn from: its joint's seed bounds (limits, +-pi or +-1 when free)."""
+    lower, upper = seed_bounds(robot)
+    joints = coordinate_joints(robot, "coordinate_bounds")
+    return lower[joints], upper[joints]
 
 
 def controlled_components(robot: Robot) -> Controlled:
@@ -97,9 +112,8 @@ def controlled_components(robot: Robot) -> Controlled:
     >>> controlled_components(load_robot("puma560")).sets
     'the whole pose'
     """
-    refuse_coupled(robot, "controlled_components")
     model = numeric_model(robot)
-    lower, upper = seed_bounds(robot)
+    lower, upper = coordinate_bounds(robot)
     generator = np.random.default_rng(46)
     samples = [np.asarray(model.jacobian(generator.uniform(lower, upper)), dtype=float) for _ in range(SAMPLES)]
     scale = max(1.0, max(float(np.abs(J).max()) for J in samples))

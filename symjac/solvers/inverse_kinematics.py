@@ -23,7 +23,7 @@ from symjac.analysis.inverse_kinematics.poses import pose_from_matrix
 from symjac.codegen.numeric_model import NumericModel, numeric_model
 from symjac.errors import ArgumentError, NoClosedFormError
 from symjac.model.robot import Robot
-from symjac.solvers.controlled import Controlled, controlled_components, refuse_coupled
+from symjac.solvers.controlled import Controlled, controlled_components, coordinate_joints
 
 __all__ = ["METHODS", "InverseKinematicsResult", "InverseKinematicsSolution", "Method", "inverse_kinematics"]
 
@@ -202,7 +202,7 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     True
     """
     model_robot = _robot(robot)
-    refuse_coupled(model_robot, "inverse_kinematics")
+    joints = coordinate_joints(model_robot, "inverse_kinematics")
     target = pose_from_matrix(pose)
     if method not in METHODS:
         raise ArgumentError(f"inverse_kinematics: method must be one of {', '.join(METHODS)}, got {method!r}")
@@ -228,21 +228,27 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
             plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint + 1} as given and no "
                                "free_value was passed")
     if plan is not None:
-        return _from_plan(model_robot, model, plan, target, why, controlled, free_value, within_limits)
+        return _from_plan(model_robot, model, plan, target, why, controlled, free_value, within_limits, joints)
     if free_value is not None:
         raise ArgumentError("inverse_kinematics: free_value applies to a redundant arm's closed form only")
     why = why or "numeric: asked for (method='numeric')"
+    if model_robot.coupling is not None:
+        raise ArgumentError(f"inverse_kinematics: {model_robot.name}'s joints are coupled and the numeric solver works "
+                            f"joint by joint ({why})")
     return _numeric(model_robot, model, target, why, controlled, seed=seed, rng=rng, restarts=restarts,
                     tolerance=tolerance, within_limits=within_limits)
 
 
 def _from_plan(robot: Robot, model: NumericModel, plan: Any, target: np.ndarray, why: str, controlled: Controlled,
-               free_value: float | None, within_limits: bool) -> InverseKinematicsResult:
+               free_value: float | None, within_limits: bool, joints: list[int]) -> InverseKinematicsResult:
     from symjac.analysis.inverse_kinematics.closed_form import solve_plan
 
     solved = solve_plan(plan, target, free_value=free_value)
-    solutions = tuple(InverseKinematicsSolution(np.asarray(s.q, dtype=float), tuple(s.branch), bool(s.within_limits),
-                                                s.singular, *_errors(model, s.q, target)) for s in solved.solutions)
+    solutions = []
+    for s in solved.solutions:
+        q = np.asarray(s.q, dtype=float)[joints]  # a coupled arm's coordinates: the joints that are coordinates
+        solutions.append(InverseKinematicsSolution(q, tuple(s.branch), bool(s.within_limits), s.singular,
+                                                   *_errors(model, q, target)))
     kept = tuple(s for s in solutions if s.within_limits or not within_limits)
     unreachable = solved.unreachable
     if not kept and solutions:

@@ -180,9 +180,9 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     rng : int
         Numeric solver: the seed of the random starts (the result is deterministic).
     free_value, free_joint : optional
-        A 7-joint arm's redundancy parameter: the value of joint ``free_joint`` (0-based; default the plan's
-        choice) given as input, so the 6 joints left are solved in closed form. Without ``free_value`` such an
-        arm is solved numerically under ``"auto"``.
+        A 7-joint arm's redundancy parameter: the value of joint ``free_joint`` (0-based; default the first joint
+        whose value leaves a closed form) given as input, so the 6 joints left are solved in closed form. Without
+        ``free_value`` such an arm is solved numerically under ``"auto"``.
     within_limits : bool
         Keep only solutions within the joint limits (default); ``False`` keeps all, each flagged.
     restarts, tolerance : int, float

@@ -126,6 +126,9 @@ def command(request: Request) -> Document:
         raise ArgumentError(f"--restarts must be 0 or more, got {args.restarts}")
     if args.free_joint is not None and args.free_value is None:
         raise ArgumentError("--free-joint needs --free-value (the value of that joint)")
+    if args.free_joint is not None and not 1 <= args.free_joint <= robot.n_joints:
+        raise ArgumentError(f"--free-joint is a joint number, 1 to {robot.n_joints} for {robot.name}, got "
+                            f"{args.free_joint}")
     options: dict[str, Any] = {"method": "closed_form" if args.derivation else args.method, "rng": args.rng,
                                "restarts": args.restarts, "within_limits": args.within_limits}
     if args.derivation and args.method == "numeric":

@@ -227,10 +227,13 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
                                     f"joint {plan.free_joint + 1} as given: pass free_value")
             plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint + 1} as given and no "
                                "free_value was passed")
+    if free_value is not None and (plan is None or plan.free_joint is None):
+        instead = ("its closed form takes no joint as given" if plan is not None
+                   else f"there is none: {why.removeprefix('numeric, as there is no closed form: ')}")
+        raise ArgumentError(f"inverse_kinematics: free_value applies to a redundant arm's closed form only, and "
+                            f"for {model_robot.name} {instead}")
     if plan is not None:
         return _from_plan(model_robot, model, plan, target, why, controlled, free_value, within_limits, joints)
-    if free_value is not None:
-        raise ArgumentError("inverse_kinematics: free_value applies to a redundant arm's closed form only")
     why = why or "numeric: asked for (method='numeric')"
     if model_robot.coupling is not None:
         raise ArgumentError(f"inverse_kinematics: {model_robot.name}'s joints are coupled and the numeric solver works "

@@ -52,7 +52,7 @@ def ik_options(sub: argparse.ArgumentParser) -> None:
     sub.add_argument("--free-value", default=None, metavar="V",
                      help="a 7-joint arm's closed form: the value of its free joint (radians or metres)")
     sub.add_argument("--free-joint", type=int, default=None, metavar="K",
-                     help="with --free-value: which joint is given, 1..n (default: the first that leaves a closed form)")
+                     help="with --free-value: which joint is given, 1..n (default: the first leaving a closed form)")
     sub.add_argument("--within-limits", action=argparse.BooleanOptionalAction, default=True,
                      help="keep only solutions within the joint limits (default); --no-within-limits keeps all")
     sub.add_argument("--derivation", action="store_true",

@@ -228,8 +228,9 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
             plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint + 1} as given and no "
                                "free_value was passed")
     if free_value is not None and (plan is None or plan.free_joint is None):
+        reason = why.removeprefix("numeric, as there is no closed form: ")
         instead = ("its closed form takes no joint as given" if plan is not None
-                   else f"there is none: {why.removeprefix('numeric, as there is no closed form: ')}")
+                   else "method='numeric' was asked for" if method == "numeric" else f"there is none: {reason}")
         raise ArgumentError(f"inverse_kinematics: free_value applies to a redundant arm's closed form only, and "
                             f"for {model_robot.name} {instead}")
     if plan is not None:

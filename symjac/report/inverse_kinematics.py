@@ -4,8 +4,9 @@ Where the arm has no closed form, the section says why, and the numeric solver's
 
 The example pose is the arm's own at :func:`example_configuration` (a generic configuration inside the limits), so
 it is reachable and the configuration that made it is among the solutions. The solutions come from
-:func:`symjac.solvers.inverse_kinematics.inverse_kinematics` with its defaults (closed form where the geometry has
-one, else numeric; within the joint limits), one row each, then one drawing per branch.
+:func:`symjac.solvers.inverse_kinematics.inverse_kinematics` (closed form where the geometry has one, else numeric)
+with ``within_limits=False``: every one, each flagged within or outside the joint limits, one row each, then one
+drawing per branch.
 """
 
 from __future__ import annotations
@@ -68,21 +69,22 @@ def inverse_kinematics_html(robot: Robot) -> str:
     q = example_configuration(robot)
     try:
         pose = np.asarray(numeric_model(robot).fk(q), dtype=float)
-        result = inverse_kinematics(robot, pose)
+        result = inverse_kinematics(robot, pose, within_limits=False)
     except SymjacError as error:  # a coupled arm: said in one sentence
         return f'<p class="note">No inverse kinematics: {html.escape(str(error))}.</p>\n'
     if result.method == "closed_form":
+        command = f"symjac ik {robot.name} --q {','.join(f'{value:.4g}' for value in q)} --derivation"
         intro = (f"Closed form, family {result.family}: {'; '.join(result.reasons)}. Each step is a subproblem "
-                 f"solved with atan2; symjac ik {robot.name} --derivation prints the steps in LaTeX.")
+                 f"solved with atan2; {command} prints the steps in LaTeX.")
     else:
         reason = result.why.removeprefix("numeric, as there is no closed form: ")
         intro = f"No closed form: {reason}. The numeric solver finds the solutions."
     controlled = f"The arm sets {result.controlled.sets}"
     controlled += f"; it does not set {result.controlled.not_set}." if result.controlled.not_set else "."
+    inside = sum(solution.within_limits for solution in result.solutions)
     example = (f"At the example pose (the arm's own at q = ({_numbers(q)}): position ({_numbers(pose[:3, 3])}) m, "
                f"roll, pitch, yaw ({_numbers(rpy_from_pose(pose))}) rad), {len(result.solutions)} solution"
-               f"{'s' if len(result.solutions) != 1 else ''} within the joint limits"
-               + (f" ({result.outside_limits} more outside them)" if result.outside_limits else "") + ":")
+               f"{'s' if len(result.solutions) != 1 else ''}, {inside} of them within the joint limits:")
     parts = [f"<p>{html.escape(intro)}</p>", f"<p>{html.escape(controlled)}</p>", f"<p>{html.escape(example)}</p>"]
     if result.solutions:
         parts += [_table(robot, result), _figures(robot, result)]

@@ -5,33 +5,39 @@ Where the arm has no closed form, the section says why, and the numeric solver's
 The example pose is the arm's own at :func:`example_configuration` (a generic configuration inside the limits), so
 it is reachable and the configuration that made it is among the solutions. The solutions come from
 :func:`symjac.solvers.inverse_kinematics.inverse_kinematics` (closed form where the geometry has one, else numeric)
-with ``within_limits=False``: every one, each flagged within or outside the joint limits, one row each, then one
-drawing per branch.
+with ``within_limits=False``: every one, each flagged within or outside the joint limits, one row each, then every
+branch drawn in one picture (:func:`~symjac.drawing.solutions.draw_solutions`, an inline PNG).
 """
 
 from __future__ import annotations
 
+import base64
+import dataclasses
 import html
+import io
 
 import numpy as np
 
 from symjac.analysis.inverse_kinematics.poses import rpy_from_pose
 from symjac.codegen.numeric_model import numeric_model
-from symjac.drawing.solutions import panel_title
+from symjac.drawing.solutions import draw_solutions, panel_title
 from symjac.errors import SymjacError
 from symjac.model.robot import Robot
 from symjac.printing.inverse_kinematics import solution_words
-from symjac.report.figures import arm_svg
 from symjac.solvers.controlled import coordinate_bounds
 from symjac.solvers.inverse_kinematics import InverseKinematicsResult, inverse_kinematics
 
-__all__ = ["EXAMPLE_FRACTIONS", "example_configuration", "inverse_kinematics_html"]
+__all__ = ["DPI", "EXAMPLE_FRACTIONS", "MOST_DRAWN", "example_configuration", "inverse_kinematics_html",
+           "solutions_png"]
 
 EXAMPLE_FRACTIONS = (0.55, 0.35, 0.62, 0.45, 0.68, 0.4, 0.58)
 """Where each joint of the example configuration sits between its lower and upper seed bound (then repeating)."""
 
 MOST_DRAWN = 8
 """Solutions drawn at most (the PUMA's eight postures)."""
+
+DPI = 80
+"""Resolution of the picture of the branches (four panels a row, 12 inches wide: 960 pixels)."""
 
 
 def example_configuration(robot: Robot) -> np.ndarray:
@@ -55,13 +61,21 @@ def _table(robot: Robot, result: InverseKinematicsResult) -> str:
             f"<tbody>{rows}</tbody></table>")
 
 
-def _figures(robot: Robot, result: InverseKinematicsResult) -> str:
-    figures = []
-    for number, solution in enumerate(result.solutions[:MOST_DRAWN], start=1):
-        svg = arm_svg(robot, solution.q.tolist(), f"arm-ik-{number}")
-        figures.append(f'<figure class="arm">{svg}<figcaption>{html.escape(panel_title(number, solution))}'
-                       "</figcaption></figure>")
-    return f'<div class="arms">{"".join(figures)}</div>' if figures else ""
+def solutions_png(robot: Robot, result: InverseKinematicsResult) -> bytes:
+    """Every solution (up to :data:`MOST_DRAWN`) side by side, titled by branch: one PNG, the same bytes each time."""
+    shown = dataclasses.replace(result, solutions=result.solutions[:MOST_DRAWN])
+    figure = draw_solutions(robot, shown, title="")
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=DPI, metadata={"Software": None})
+    return buffer.getvalue()
+
+
+def _figure(robot: Robot, result: InverseKinematicsResult) -> str:
+    """One picture of every branch, inline as a data URI (nothing fetched; the arm figures above stay SVG)."""
+    data = base64.b64encode(solutions_png(robot, result)).decode("ascii")
+    words = "; ".join(f"{number}: {panel_title(number, s)}" for number, s in enumerate(result.solutions, start=1))
+    return (f'<figure class="ik-solutions"><img src="data:image/png;base64,{data}" alt="{html.escape(words)}" '
+            f'style="max-width: 100%; height: auto"><figcaption>{html.escape(words)}</figcaption></figure>')
 
 
 def inverse_kinematics_html(robot: Robot) -> str:
@@ -87,7 +101,7 @@ def inverse_kinematics_html(robot: Robot) -> str:
                f"{'s' if len(result.solutions) != 1 else ''}, {inside} of them within the joint limits:")
     parts = [f"<p>{html.escape(intro)}</p>", f"<p>{html.escape(controlled)}</p>", f"<p>{html.escape(example)}</p>"]
     if result.solutions:
-        parts += [_table(robot, result), _figures(robot, result)]
+        parts += [_table(robot, result), _figure(robot, result)]
     else:
         parts.append(f'<p class="note">{html.escape(result.unreachable)}</p>')
     return "\n".join(parts) + "\n"

@@ -82,6 +82,9 @@ def _why_none(geometry: ArmGeometry) -> str:
     if len(joints) >= 3:
         facts.append(geometry.why_not_meet(*joints[-3:]))
         facts.append(geometry.why_not_meet(*joints[:3]))
+        if geometry.intersection(*joints[:3]) is not None:
+            facts[-1] += (" as well, so they cannot change the distance from that point to the wrist: the arm has a "
+                          "continuum of solutions or none")
     return (f"{robot.name}{given}: no closed-form family fits ({', '.join(f.__name__ for f in FAMILIES)}): "
             + "; ".join(facts) + "; use the numeric solver")
 
@@ -182,7 +185,7 @@ def _arguments(compiled: _CompiledStep, values: Sequence[float]) -> dict[str, An
     arguments: dict[str, Any] = {}
     at = 0
     for name, size in compiled.layout:
-        arguments[name] = flat[at] if size == 1 else np.array(flat[at:at + size], dtype=float)
+        arguments[name] = flat[at] if size == 1 else tuple(flat[at:at + size])  # tuples: the subproblems' fast path
         at += size
     return arguments
 
@@ -191,9 +194,11 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
                                                                                         bool]:
     """The step's solutions, and whether its first joint is free (a continuum: its value is the representative 0)."""
     if compiled.step.subproblem == "two_rotations_to_point":
-        k1, q = arguments["k1"], arguments["q"] - _point(arguments, "intersection")
-        across = q - k1 * float(k1 @ q)
-        if math.sqrt(float(across @ across)) <= tolerance * max(1.0, math.sqrt(float(q @ q))):
+        k1, r = arguments["k1"], arguments.get("intersection") or (0.0, 0.0, 0.0)
+        q = [a - b for a, b in zip(arguments["q"], r, strict=True)]
+        length_squared = q[0] ** 2 + q[1] ** 2 + q[2] ** 2
+        across_squared = length_squared - (k1[0] * q[0] + k1[1] * q[1] + k1[2] * q[2]) ** 2
+        if math.sqrt(max(across_squared, 0.0)) <= tolerance * max(1.0, math.sqrt(length_squared)):
             # the target is on the first axis: that angle is free; the second alone takes p to q
             second = subproblems.rotation_to_point(arguments["k2"], arguments["p"], arguments["q"],
                                                    arguments.get("intersection"), tolerance)
@@ -206,11 +211,13 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
 
 def _point(arguments: dict[str, Any], name: str) -> np.ndarray:
     value = arguments.get(name)
-    return np.zeros(3) if value is None else value
+    return np.zeros(3) if value is None else np.array(value)
 
 
-def _shortfall(subproblem: str, a: dict[str, Any]) -> float:
+def _shortfall(subproblem: str, arguments: dict[str, Any]) -> float:
     """How far the failed subproblem's target is from what it can reach (a length)."""
+    a: dict[str, Any] = {name: np.array(value) if isinstance(value, tuple) else value
+                         for name, value in arguments.items()}
     if subproblem.startswith("slide"):
         u = a["p"] - a["q"]
         across = float(np.linalg.norm(u - a["k"] * (a["k"] @ u)))

@@ -150,11 +150,11 @@ def test_wrist_singularity_is_described():
     assert result.solutions
     for s in result.solutions:
         assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-9
-    assert any(s.singular for s in result.solutions)
-    # the continuum: theta2 + theta3 + theta4 + theta6 is what the pose fixes (axes 2, 3, 4 and 6 line up)
-    sums = {round(float(np.angle(np.exp(1j * (s.q[1] + s.q[2] + s.q[3] - s.q[5])))), 8) for s in result.solutions
-            if abs(np.angle(np.exp(1j * s.q[4]))) < 1e-9}
-    assert sums
+    singular = [s for s in result.solutions if s.singular]
+    assert singular and all("theta6" in s.singular for s in singular)
+    # the continuum: axes 2, 3, 4 and 6 are parallel there, and the pose fixes only theta2 + theta3 + theta4 + theta6
+    fixed = q[1] + q[2] + q[3] + q[5]
+    assert any(abs(np.angle(np.exp(1j * (s.q[1] + s.q[2] + s.q[3] + s.q[5] - fixed)))) < 1e-9 for s in singular)
 
 
 def test_shoulder_singularity_merges_the_shoulder_branches():

@@ -16,7 +16,7 @@ from symjac.analysis.inverse_kinematics import solve_numeric
 from symjac.analysis.inverse_kinematics.closed_form import branch_programs, closed_form_plan, solve_plan
 from symjac.analysis.inverse_kinematics.geometry import arm_geometry
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS
-from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
+from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan, spherical_arm_plan
 from symjac.codegen.numeric_model import numeric_model
 from symjac.kinematics.chain import forward_kinematics
 
@@ -242,3 +242,114 @@ def test_palletizer_keeps_the_coupling_and_reaches_the_flange_pose():
             numeric = [f.x for f in fits if np.abs(f.fun).max() < 1e-10]
             coordinates = [s.q[[0, 1, 2, 4]] for s in result.solutions]
             assert len(_distinct(coordinates)) == len(_distinct(numeric, 1e-5))
+
+
+POLAR = """
+name = "polar"
+description = "Spherical arm: the Stanford arm's first three joints, the tool point at the end of the slide"
+convention = "modified"
+
+[parameters]
+d2 = 0.154
+
+[[joints]]
+type = "revolute"
+alpha = 0
+a = 0
+d = 0
+theta = 0
+
+[[joints]]
+type = "revolute"
+alpha = "-pi/2"
+a = 0
+d = "d2"
+theta = 0
+
+[[joints]]
+type = "prismatic"
+alpha = "pi/2"
+a = 0
+d = 0
+theta = 0
+limits = [0.3, 1.3]
+"""
+
+
+def test_spherical_arm_round_trips_and_count(tmp_path):
+    """The Stanford arm's first three joints: four solutions (two slides, two shoulders), two within the limits."""
+    (tmp_path / "polar.toml").write_text(POLAR)
+    robot = load_robot(tmp_path / "polar.toml")
+    plan = closed_form_plan(robot)
+    assert plan.family == "spherical arm" and plan.max_solutions == 4
+    assert spherical_arm_plan(arm_geometry(load_robot("stanford"))) is None
+    fk, model = _fk(robot), numeric_model(robot)
+    rng = np.random.default_rng(5)
+    for trial in range(300):
+        q = _sample(robot, rng)
+        pose = np.asarray(fk(q), dtype=float)
+        result = solve_plan(plan, pose)
+        for s in result.solutions:
+            assert np.abs(np.asarray(fk(s.q), dtype=float)[:3, 3] - pose[:3, 3]).max() < 1e-10
+        inside = [s.q for s in result.solutions if s.within_limits]
+        assert len(inside) == 2
+        assert min(np.abs(np.angle(np.exp(1j * (x - q)))).max() for x in inside) < 1e-7
+        if trial < 5:
+            numeric = solve_numeric(robot, pose, model, rng=5, restarts=60, orientation_weight=0.0)
+            assert len(_distinct(inside)) == len(_distinct([s.q for s in numeric], 1e-5))
+
+
+CYLINDRICAL = """
+name = "cylindrical"
+description = "Cylindrical arm: a waist, a vertical slide, a radial slide offset c from the waist axis"
+convention = "modified"
+
+[parameters]
+d1 = 0.3
+c = 0.1
+
+[[joints]]
+type = "revolute"
+alpha = 0
+a = 0
+d = "d1"
+theta = 0
+
+[[joints]]
+type = "prismatic"
+alpha = 0
+a = 0
+d = 0
+theta = 0
+limits = [0.0, 0.8]
+
+[[joints]]
+type = "prismatic"
+alpha = "-pi/2"
+a = "c"
+d = 0
+theta = 0
+limits = [0.2, 0.9]
+"""
+
+
+def test_cylindrical_arm_round_trips(tmp_path):
+    """Two solutions (the waist and its half turn with the radial slide negated), one within the limits."""
+    (tmp_path / "cylindrical.toml").write_text(CYLINDRICAL)
+    robot = load_robot(tmp_path / "cylindrical.toml")
+    plan = closed_form_plan(robot)
+    assert plan.family == "cylindrical" and plan.max_solutions == 2
+    fk, model = _fk(robot), numeric_model(robot)
+    rng = np.random.default_rng(6)
+    for trial in range(300):
+        q = _sample(robot, rng)
+        pose = np.asarray(fk(q), dtype=float)
+        result = solve_plan(plan, pose)
+        assert len(result.solutions) == 2
+        for s in result.solutions:
+            assert np.abs(np.asarray(fk(s.q), dtype=float)[:3, 3] - pose[:3, 3]).max() < 1e-10
+        inside = [s.q for s in result.solutions if s.within_limits]
+        assert len(inside) == 1 and np.abs(np.angle(np.exp(1j * (inside[0] - q)))).max() < 1e-9
+        if trial < 5:
+            numeric = solve_numeric(robot, pose, model, rng=5, restarts=60, orientation_weight=0.0)
+            assert len(_distinct([s.q for s in numeric], 1e-5)) == 1

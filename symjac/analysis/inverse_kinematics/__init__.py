@@ -13,7 +13,14 @@ from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometr
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
-from symjac.analysis.inverse_kinematics.planar import articulated_plan, palletizer_plan, planar_plan, scara_plan
+from symjac.analysis.inverse_kinematics.planar import (
+    articulated_plan,
+    cylindrical_plan,
+    palletizer_plan,
+    planar_plan,
+    scara_plan,
+    spherical_arm_plan,
+)
 from symjac.analysis.inverse_kinematics.poses import (
     pose_from_matrix,
     pose_from_quaternion,
@@ -55,6 +62,7 @@ __all__ = [
     "articulated_plan",
     "branch_programs",
     "closed_form_plan",
+    "cylindrical_plan",
     "palletizer_plan",
     "planar_plan",
     "pose_from_matrix",
@@ -78,6 +86,7 @@ __all__ = [
     "slide_to_point_symbolic",
     "solve_numeric",
     "solve_plan",
+    "spherical_arm_plan",
     "three_parallel_axes_plan",
     "two_rotations_to_point",
     "two_rotations_to_point_symbolic",

@@ -27,7 +27,14 @@ from symjac.analysis.inverse_kinematics import subproblems
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, exponential, reduced_geometry
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step
-from symjac.analysis.inverse_kinematics.planar import articulated_plan, palletizer_plan, planar_plan, scara_plan
+from symjac.analysis.inverse_kinematics.planar import (
+    articulated_plan,
+    cylindrical_plan,
+    palletizer_plan,
+    planar_plan,
+    scara_plan,
+    spherical_arm_plan,
+)
 from symjac.analysis.inverse_kinematics.programs import BranchProgram, branch_programs
 from symjac.analysis.inverse_kinematics.spherical_wrist import spherical_wrist_plan
 from symjac.errors import ArgumentError, NoClosedFormError
@@ -43,6 +50,8 @@ FAMILIES: tuple[Callable[[ArmGeometry], Plan | None], ...] = (
     scara_plan,
     articulated_plan,
     palletizer_plan,
+    spherical_arm_plan,
+    cylindrical_plan,
 )
 """The family builders :func:`closed_form_plan` tries in order: each returns a plan, or None when the arm is not of
 its family."""

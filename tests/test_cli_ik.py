@@ -137,3 +137,13 @@ def test_derivation_prints_the_closed_forms_steps(cli):
 def test_derivation_of_an_arm_without_a_closed_form_says_why(cli):
     line = cli.one_line_error("ik", "panda", "--q", "0.1,0.2,0.3,-1.5,0.2,1,0.3", "--derivation")
     assert line.startswith("symjac: error: panda: no closed-form family fits")
+
+
+def test_seed_rng_and_restarts_reach_the_numeric_solver(cli):
+    near = cli.json("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--method", "numeric", "--restarts", "0",
+                    "--seed", "0.41,-0.59,0.31,0.49,0.71,-0.21")
+    assert len(near["solutions"]) == 1  # one start, from the seed, converging to the configuration beside it
+    assert np.allclose(near["solutions"][0]["q"], [0.4, -0.6, 0.3, 0.5, 0.7, -0.2], atol=1e-9)
+    first = cli.json("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--method", "numeric", "--rng", "5")
+    again = cli.json("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--method", "numeric", "--rng", "5")
+    assert first["solutions"] == again["solutions"] and first["why"] == "numeric: asked for (method='numeric')"

@@ -97,6 +97,7 @@ def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
     (["no_such_robot", "--q", "0,0"], "no_such_robot"),
     (["planar2r", "--q", "0,0", "--free-joint", "2"], "--free-joint needs --free-value (the value of that joint)"),
     (["planar2r", "--q", "0,0", "--restarts", "-1"], "--restarts must be 0 or more, got -1"),
+    (["planar2r", "--q", "0,0", "--numeric"], "--numeric does not apply to ik: the solutions are numbers already"),
     (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3", "--free-joint", "8"],
      "--free-joint is a joint number, 1 to 7 for iiwa7, got 8"),
     (["puma560", "--q", "0,0,0,0,0,0", "--free-value", "0.3"], "free_value applies to a redundant arm's closed form"),

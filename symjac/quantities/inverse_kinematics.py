@@ -121,6 +121,8 @@ def command(request: Request) -> Document:
     from symjac.printing.inverse_kinematics import inverse_kinematics_document
 
     args, robot = request.args, request.robot
+    if args.numeric:
+        raise ArgumentError("--numeric does not apply to ik: the solutions are numbers already (--digits rounds them)")
     pose = requested_pose(request)
     if args.restarts < 0:
         raise ArgumentError(f"--restarts must be 0 or more, got {args.restarts}")

@@ -21,6 +21,13 @@ from symjac.analysis.inverse_kinematics.planar import (
     scara_plan,
     spherical_arm_plan,
 )
+from symjac.analysis.inverse_kinematics.poses import (
+    pose_from_matrix,
+    pose_from_quaternion,
+    pose_from_rpy,
+    quaternion_from_pose,
+    rpy_from_pose,
+)
 from symjac.analysis.inverse_kinematics.subproblems import (
     AngleSolutions,
     Subproblem,
@@ -58,7 +65,11 @@ __all__ = [
     "cylindrical_plan",
     "palletizer_plan",
     "planar_plan",
+    "pose_from_matrix",
+    "pose_from_quaternion",
+    "pose_from_rpy",
     "pose_matrix",
+    "quaternion_from_pose",
     "reduced_geometry",
     "rotation_to_distance",
     "rotation_to_distance_symbolic",
@@ -66,6 +77,7 @@ __all__ = [
     "rotation_to_plane_symbolic",
     "rotation_to_point",
     "rotation_to_point_symbolic",
+    "rpy_from_pose",
     "scara_plan",
     "seed_bounds",
     "slide_to_distance",

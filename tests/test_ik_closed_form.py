@@ -219,3 +219,17 @@ def test_the_stanford_wrist_centre_at_the_shoulder_is_out_of_reach_by_its_offset
     result = solve_plan(plan, np.eye(4))  # the wrist centre (the flange) at the shoulder point
     assert result.solutions == () and "slide to a distance" in result.unreachable
     assert result.distance == pytest.approx(d2, rel=1e-12)
+
+
+def test_the_stretched_elbow_has_one_elbow_solution_per_shoulder():
+    robot, plan, model = _arm("puma560")
+    a3, d4 = (float(robot.defaults[sympy.Symbol(n, real=True)]) for n in ("a3", "d4"))
+    theta3 = math.atan2(a3, d4) - math.pi / 2  # the forearm (a3, -d4 in frame 3) along the upper arm: full reach
+    q = np.array([0.3, -0.4, theta3, 0.2, 0.6, 0.1])
+    pose = model.fk(q)
+    farther = model.fk(q + np.array([0, 0, 1e-3, 0, 0, 0]))[:3, 3]
+    assert np.linalg.norm(farther) < np.linalg.norm(pose[:3, 3])  # the reach is largest there
+    result = solve_plan(plan, pose)
+    assert len(result.solutions) == 4 and {s.branch[1] for s in result.solutions} == {"elbow up"}
+    assert np.abs(model.fk(np.array([s.q for s in result.solutions])) - pose).max() < 1e-9
+    assert any(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() < 1e-6 for s in result.solutions)

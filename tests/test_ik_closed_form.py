@@ -191,14 +191,14 @@ def test_the_puma_programs_read_like_the_textbook():
     plan = closed_form_plan(load_robot("puma560"))
     program = branch_programs(plan)[0]
     assignments = dict(program.assignments)
-    w_x, w_y = sympy.symbols("w_x w_y", real=True)
+    px, py = POSE_SYMBOLS[9], POSE_SYMBOLS[10]
     d3 = sympy.Symbol("d3", real=True)
     theta1 = assignments[load_robot("puma560").joint_variables[0]]
     delta = next(s for s in program.conditions if s in theta1.free_symbols)
-    assert sympy.expand(assignments[delta] - (w_x**2 + w_y**2 - d3**2)) == 0
-    assert theta1 == sympy.atan2(w_y, w_x) - sympy.atan2(d3, -sympy.sqrt(delta))  # shoulder right
+    assert sympy.expand(assignments[delta] - (px**2 + py**2 - d3**2)) == 0
+    assert theta1 == sympy.atan2(py, px) - sympy.atan2(d3, -sympy.sqrt(delta))  # shoulder right
     assert dict(branch_programs(plan)[4].assignments)[load_robot("puma560").joint_variables[0]] == (
-        sympy.atan2(w_y, w_x) - sympy.atan2(d3, sympy.sqrt(delta)))  # shoulder left
+        sympy.atan2(py, px) - sympy.atan2(d3, sympy.sqrt(delta)))  # shoulder left
     assert all(sympy.count_ops(e) < 200 for _, e in program.assignments)
 
 

@@ -106,15 +106,17 @@ def test_round_trips_and_eaik_count(name):
     assert counts.get(8, 0) > POSES // 2  # eight solutions in general
 
 
-@pytest.mark.xfail(strict=True, reason="rotation_to_distance merges its two solutions while 1 - |cos| <= tolerance, "
-                   "an angle up to sqrt(2e-9) = 4.5e-5 rad; the next step then finds no solution (NOTES-46, ikcore)")
 def test_near_the_wrist_singularity_every_branch_stays():
     """theta5 = 8.5e-6 rad: the shoulder-left branches must not vanish (they did: 2 solutions, both shoulder right)."""
     robot = load_robot("ur5")
     plan, fk = three_parallel_axes_plan(arm_geometry(robot)), _fk(robot)
     q = np.array([0.324479228, -0.232598535, -0.325325165, -0.114640407, 8.53447211e-06, -2.70449509])
     pose = np.asarray(fk(q), dtype=float)
-    solved = [s.q for s in solve_plan(plan, pose).solutions]
+    result = solve_plan(plan, pose)
+    solved = [s.q for s in result.solutions]
+    assert {s.branch[0] for s in result.solutions} == {"shoulder right", "shoulder left"}
+    assert len(solved) == 4  # theta5 = -8.5e-6 (theta6 turned by pi) leaves the elbow out of reach: |cos| = 1.26
+    assert max(np.abs(np.asarray(fk(x), dtype=float) - pose).max() for x in solved) < 1e-10
     assert min(np.abs(np.angle(np.exp(1j * (x - q)))).max() for x in solved) < 1e-6
 
 

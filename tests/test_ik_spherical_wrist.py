@@ -47,9 +47,9 @@ def same(a, b, revolute, tolerance=1e-7):
 
 NEAR_SINGULAR = 1e-5
 """Configurations whose Jacobian's smallest singular value is below this are near a singular one. There the
-subproblems take two solutions whose square root is within their tolerance as one (gamma^2 <= 1e-9), and single
-angles are ill-conditioned (near theta5 = 0 only theta4 + theta6 is): every solution must still reproduce the pose,
-but the generating configuration and EAIK's count are not compared (0.02-0.4 % of the poses)."""
+single angles are ill-conditioned (near theta5 = 0 only theta4 + theta6 is): every solution must still reproduce the
+pose and the generating configuration must be among them within a tolerance that grows like 1 / (smallest singular
+value); EAIK's count is not compared there (it merges nearby solutions by its own rule)."""
 
 
 def round_trip(plan, configurations, model, revolute, eaik=None):
@@ -58,7 +58,8 @@ def round_trip(plan, configurations, model, revolute, eaik=None):
     poses = model.fk(configurations)
     smallest = np.linalg.svd(model.jacobian(configurations), compute_uv=False)[:, -1]
     assert (smallest < NEAR_SINGULAR).mean() < 0.01  # a few at most: the checks below are not skipped wholesale
-    for q, pose, near in zip(configurations, poses, smallest < NEAR_SINGULAR, strict=True):
+    for q, pose, sigma in zip(configurations, poses, smallest, strict=True):
+        near = sigma < NEAR_SINGULAR
         result = solve_plan(plan, pose)
         solutions = np.array([s.q for s in result.solutions])
         if not len(solutions):
@@ -67,7 +68,7 @@ def round_trip(plan, configurations, model, revolute, eaik=None):
         error = np.abs(model.fk(solutions) - pose).max()
         if error > 1e-10:
             failures.append(f"{q}: a solution misses the pose by {error:.3g}")
-        if not near and not (differences(solutions, [q], revolute) < 1e-7).any():
+        if not (differences(solutions, [q], revolute) < max(1e-7, 1e-12 / sigma)).any():
             failures.append(f"{q}: the generating configuration is not among the solutions")
         if eaik is not None and not near:
             found = eaik.IK(pose)

@@ -30,6 +30,7 @@ merge) and a ``_symbolic`` function returning a :class:`Subproblem`: the solutio
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from typing import Any
 
@@ -147,6 +148,12 @@ def _angle_across(k: Vector, u: Vector, v: Vector) -> float:
     return math.atan2(_dot(k, _cross(u, v)), _dot(u, v) - _dot(k, u) * _dot(k, v))
 
 
+_ROUNDING = 256 * sys.float_info.epsilon
+"""A cosine this close to +-1 is one merged solution: its half angle, below sqrt(2 * 256 eps) = 3.4e-7 rad, is what
+rounding in the cosine alone produces. Farther out the two solutions are kept apart (the old test, 1 - |c| <=
+tolerance, merged half angles up to 4.5e-5 rad and lost branches after a nearly singular step)."""
+
+
 def _scale(*lengths: float) -> float:
     return max(1.0, *lengths)
 
@@ -204,7 +211,8 @@ def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any =
     if gamma_squared < -scale * _scale(length_u):
         return AngleSolutions((), f"no middle point: gamma^2 = {gamma_squared:.6g} < 0")
     root = math.sqrt(max(gamma_squared, 0.0))
-    gammas = (0.0,) if gamma_squared <= scale * _scale(length_u) else (root, -root)
+    merged = root <= scale or gamma_squared <= _ROUNDING * length_u**2  # the middle points coincide, to rounding
+    gammas = (0.0,) if merged else (root, -root)
     solutions = []
     for gamma in gammas:
         middle = _combination((alpha, k1), (beta, k2), (gamma, normal))
@@ -239,9 +247,10 @@ def rotation_to_distance(k: Any, p: Any, q: Any, delta: float, point_on_axis: An
     if abs(c) > 1.0 + scale:
         return AngleSolutions((), f"delta = {delta:.6g} is out of the range the rotation reaches (cos = {c:.6g})")
     theta0 = _angle_across(k, u, v)
-    if abs(c) >= 1.0 - scale:
+    sine = math.sqrt(max(1.0 - c * c, 0.0))
+    if sine <= scale or 1.0 - abs(c) <= _ROUNDING:  # they coincide, to what rounding in c can resolve
         return AngleSolutions(((theta0 - math.atan2(0.0, math.copysign(1.0, c)),),))
-    half = math.atan2(math.sqrt(1.0 - c * c), c)
+    half = math.atan2(sine, c)
     return AngleSolutions(((theta0 - half,), (theta0 + half,)))
 
 
@@ -273,9 +282,9 @@ def rotation_to_plane(k: Any, p: Any, h: Any, d: float, point_on_axis: Any = Non
     theta0 = math.atan2(a, -b)
     if abs(c) > radius + tolerance * size:
         return AngleSolutions((), f"the plane is out of reach: |C| = {abs(c):.6g} > sqrt(A^2 + B^2) = {radius:.6g}")
-    if abs(c) >= radius - tolerance * size:
+    root = math.sqrt(max(radius * radius - c * c, 0.0))
+    if root <= tolerance * size or radius - abs(c) <= _ROUNDING * radius:  # they coincide, to rounding
         return AngleSolutions(((theta0 - math.atan2(c, 0.0),),))
-    root = math.sqrt(radius * radius - c * c)
     return AngleSolutions(((theta0 - math.atan2(c, -root),), (theta0 - math.atan2(c, root),)))
 
 

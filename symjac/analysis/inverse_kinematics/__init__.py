@@ -1,5 +1,6 @@
 """Inverse kinematics, in progress: the geometric subproblems closed forms are built from, and a numeric solver."""
 
+from symjac.analysis.inverse_kinematics.null_space import NULL_SPACE_TASKS, refine_in_null_space
 from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
 from symjac.analysis.inverse_kinematics.subproblems import (
     AngleSolutions,
@@ -13,10 +14,12 @@ from symjac.analysis.inverse_kinematics.subproblems import (
 )
 
 __all__ = [
+    "NULL_SPACE_TASKS",
     "AngleSolutions",
     "KinematicModel",
     "NumericSolution",
     "Subproblem",
+    "refine_in_null_space",
     "rotation_to_distance",
     "rotation_to_distance_symbolic",
     "rotation_to_point",

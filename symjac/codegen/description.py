@@ -322,6 +322,7 @@ class ModuleDescription:
     tip_frame: str = ""
     origin: str = ""
     name_lists: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    numeric_ik: str = ""
 
     @property
     def joint_names(self) -> tuple[str, ...]:
@@ -350,7 +351,8 @@ class ModuleDescription:
         :func:`~symjac.codegen.runtime.runtime_source` adds the sections they need and the core (which holds the
         pose and Jacobian checks): what the backends copy into the module.
         """
-        return frozenset(d.routine for d in self.derived) | frozenset(check.routine for check in self.checks)
+        return (frozenset(d.routine for d in self.derived) | frozenset(check.routine for check in self.checks)
+                | frozenset(("ik_numeric",) if self.numeric_ik else ()))
 
     @property
     def check_words(self) -> str:

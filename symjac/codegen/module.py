@@ -34,6 +34,7 @@ from symjac.codegen.functions import (
     scalar_descriptions,
     self_checks,
 )
+from symjac.codegen.ik_numeric import numeric_ik_jacobian
 from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
 from symjac.codegen.kinds import DYNAMICS_CHECKED, IDENTIFICATION_CHECKED
 from symjac.codegen.printers import float_literal
@@ -92,6 +93,7 @@ class ModuleRequest:
     name: str | None = None
     dynamics: bool = False
     identification: bool = False
+    numeric_ik: bool = False
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -185,6 +187,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         joint_entries=joint_entries(given, spec.identifiers), tip_frame=tip_frame(given),
         origin=source_words(given, catalog_files()),
         name_lists=name_lists,
+        numeric_ik=numeric_ik_jacobian(request.target, infos, coupled) if request.numeric_ik else "",
     )
 
 

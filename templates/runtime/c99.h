@@ -505,6 +505,227 @@ static inline int sj_check_identification(int n, int size, const int *rows, sj_m
     return failures;
 }
 
+/* ---- runtime section: ik_numeric ---- */
+
+/* splitmix64 (Steele, Lea and Flood 2014): the numeric solver's seeds, the same sequence on every platform. */
+static inline unsigned long long sj_splitmix64(unsigned long long *state)
+{
+    unsigned long long z = (*state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+/* The rotation vector (axis times angle) of the row-major rotation r, robust near 0 and pi. */
+static inline void sj_rotation_vector(const real *r, real *w)
+{
+    const real pi = (real)3.14159265358979323846;
+    real cosine = (r[0] + r[4] + r[8] - 1) / 2;
+    cosine = cosine > 1 ? 1 : (cosine < -1 ? -1 : cosine);
+    const real angle = acos(cosine);
+    w[0] = r[7] - r[5];
+    w[1] = r[2] - r[6];
+    w[2] = r[3] - r[1];
+    if (angle < (real)1e-6) {
+        for (int k = 0; k < 3; k++) {
+            w[k] /= 2;
+        }
+    } else if (pi - angle > (real)1e-4) {
+        const real scale = angle / (2 * sin(angle));
+        for (int k = 0; k < 3; k++) {
+            w[k] *= scale;
+        }
+    } else { /* near pi: the axis from the symmetric part (r + I) / 2, its largest diagonal entry's row */
+        int m = 0;
+        for (int k = 1; k < 3; k++) {
+            m = r[4 * k] > r[4 * m] ? k : m;
+        }
+        real axis[3];
+        real norm = 0;
+        real dot = 0;
+        for (int k = 0; k < 3; k++) {
+            axis[k] = (r[3 * m + k] + (k == m ? 1 : 0)) / 2;
+            norm += axis[k] * axis[k];
+            dot += axis[k] * w[k];
+        }
+        norm = (dot < 0 ? -angle : angle) / sqrt(norm);
+        for (int k = 0; k < 3; k++) {
+            w[k] = axis[k] * norm;
+        }
+    }
+}
+
+/* e = [p* - p; log(R* R^T)] of the pose T (row-major 4 x 4) against the target; returns e^T e. */
+static inline real sj_ik_error(const real *target, const real *T, real *e)
+{
+    real r[9];
+    for (int i = 0; i < 3; i++) {
+        e[i] = target[4 * i + 3] - T[4 * i + 3];
+        for (int j = 0; j < 3; j++) {
+            r[3 * i + j] = 0;
+            for (int k = 0; k < 3; k++) {
+                r[3 * i + j] += target[4 * i + k] * T[4 * j + k];
+            }
+        }
+    }
+    sj_rotation_vector(r, e + 3);
+    real cost = 0;
+    for (int i = 0; i < 6; i++) {
+        cost += e[i] * e[i];
+    }
+    return cost;
+}
+
+/* Clip q to [lower, upper] and wrap the joints marked in wrap to (-pi, pi]. */
+static inline void sj_ik_project(int n, const real *lower, const real *upper, const int *wrap, real *q)
+{
+    const real pi = (real)3.14159265358979323846;
+    for (int k = 0; k < n; k++) {
+        if (wrap[k]) {
+            q[k] = pi - fmod(fmod(pi - q[k], 2 * pi) + 2 * pi, 2 * pi);
+        } else {
+            q[k] = q[k] < lower[k] ? lower[k] : (q[k] > upper[k] ? upper[k] : q[k]);
+        }
+    }
+}
+
+/* Solve a x = b in place (a n x n symmetric positive definite, row-major) by Cholesky: b becomes x. */
+static inline void sj_ik_cholesky(real *a, real *b, int n)
+{
+    for (int j = 0; j < n; j++) {
+        for (int k = 0; k < j; k++) {
+            for (int i = j; i < n; i++) {
+                a[i * n + j] -= a[i * n + k] * a[j * n + k];
+            }
+        }
+        const real d = sqrt(a[j * n + j]);
+        for (int i = j; i < n; i++) {
+            a[i * n + j] /= d;
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < i; k++) {
+            b[i] -= a[i * n + k] * b[k];
+        }
+        b[i] /= a[i * n + i];
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        for (int k = i + 1; k < n; k++) {
+            b[i] -= a[k * n + i] * b[k];
+        }
+        b[i] /= a[i * n + i];
+    }
+}
+
+/* One damped least-squares step (J^T J + lambda I) dq = J^T e, the joints at a limit that it would push past held
+ * still (their rows and columns replaced by the identity's, the step solved again). J is 6 x n, row-major. */
+static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, const real *q, const real *lower,
+                              const real *upper, real *step)
+{
+    int held[SJ_DIM] = {0};
+    for (int round = 0; round < n; round++) {
+        real a[SJ_DIM * SJ_DIM];
+        for (int i = 0; i < n; i++) {
+            step[i] = 0;
+            for (int r = 0; r < 6; r++) {
+                step[i] += held[i] ? 0 : J[r * n + i] * e[r];
+            }
+            for (int j = 0; j < n; j++) {
+                real s = 0;
+                for (int r = 0; r < 6; r++) {
+                    s += J[r * n + i] * J[r * n + j];
+                }
+                a[i * n + j] = (held[i] || held[j]) ? (i == j ? 1 : 0) : s + (i == j ? lambda : 0);
+            }
+        }
+        sj_ik_cholesky(a, step, n);
+        int more = 0;
+        for (int i = 0; i < n; i++) {
+            if (!held[i] && ((q[i] <= lower[i] && step[i] < 0) || (q[i] >= upper[i] && step[i] > 0))) {
+                held[i] = more = 1;
+            }
+        }
+        if (!more) {
+            return;
+        }
+    }
+}
+
+/* Numeric inverse kinematics by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e,
+ * e = [p* - p(q); log(R* R(q)^T)]; mu halves after an accepted step and grows 4 times after a rejected one. Starts
+ * from `start` (when not NULL), then from seeds drawn uniformly in [low, high] by splitmix64 from `seed`; a start
+ * ends after 100 steps or 6 steps without the cost falling by 10 % (while E > 1e-10), at most 64 starts. Converged
+ * when both error norms are at most 1e-10 (1e-4 in single precision). Writes q (the best found on failure) and
+ * the steps taken in all (when iterations is not NULL); returns 1 when it converged, else 0. */
+static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
+                                const real *lower, const real *upper, const int *wrap, const real *low,
+                                const real *high, const real *target, const real *start, unsigned long long seed,
+                                real *q, int *iterations)
+{
+    const real tolerance = sizeof(real) < sizeof(double) ? (real)1e-4 : (real)1e-10;
+    const real squared = tolerance * tolerance;
+    unsigned long long state = seed;
+    real best[SJ_DIM];
+    real best_cost = (real)HUGE_VAL;
+    int steps = 0;
+    int found = 0;
+    for (int attempt = 0; attempt < 64 && !found; attempt++) {
+        real x[SJ_DIM], trial[SJ_DIM], step[SJ_DIM], T[16], e[6], e_trial[6], J[6 * SJ_DIM];
+        for (int k = 0; k < n; k++) {
+            const real u = (real)((double)(sj_splitmix64(&state) >> 11) * (1.0 / 9007199254740992.0));
+            x[k] = (attempt == 0 && start != NULL) ? start[k] : low[k] + u * (high[k] - low[k]);
+        }
+        sj_ik_project(n, lower, upper, wrap, x);
+        forward_kinematics(x, params, T);
+        real cost = sj_ik_error(target, T, e);
+        real reference = cost;
+        real mu = 1;
+        int stalled = 0;
+        for (int it = 0; it <= 100; it++) {
+            if (e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= squared
+                && e[3] * e[3] + e[4] * e[4] + e[5] * e[5] <= squared) {
+                found = 1;
+                break;
+            }
+            if (it == 100) {
+                break;
+            }
+            steps++;
+            jacobian(x, params, J);
+            sj_ik_step(n, J, e, mu * (cost / 2 + (real)1e-3), x, lower, upper, step);
+            for (int k = 0; k < n; k++) {
+                trial[k] = x[k] + step[k];
+            }
+            sj_ik_project(n, lower, upper, wrap, trial);
+            forward_kinematics(trial, params, T);
+            const real c = sj_ik_error(target, T, e_trial);
+            if (c < cost) {
+                memcpy(x, trial, sizeof(real) * (size_t)n);
+                memcpy(e, e_trial, sizeof e);
+                cost = c;
+                mu = mu / 2 > (real)1e-6 ? mu / 2 : (real)1e-6;
+            } else {
+                mu *= 4;
+            }
+            if (cost < (real)0.9 * reference || cost < (real)1e-10) {
+                reference = cost;
+                stalled = 0;
+            } else if (++stalled >= 6) {
+                break;
+            }
+        }
+        if (found || cost < best_cost) {
+            best_cost = cost;
+            memcpy(best, x, sizeof(real) * (size_t)n);
+        }
+    }
+    memcpy(q, best, sizeof(real) * (size_t)n);
+    if (iterations != NULL) {
+        *iterations = steps;
+    }
+    return found;
+}
+
 /* ---- runtime section: core ---- */
 
 /* q[i] = the position of joint_names[i] in names and positions (count entries; other names are ignored, the first

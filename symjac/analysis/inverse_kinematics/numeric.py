@@ -17,11 +17,11 @@ damping shrinks with the error, so the last steps are Gauss-Newton steps and con
 with ``mu`` halved after an accepted step (the cost fell) and multiplied by 4 after a rejected one. Joints with
 limits are clipped to them, and a joint that sits at a limit and whose step would push it past is held still (the
 step is solved again without it); revolute joints without limits are wrapped to (-pi, pi]. A start that stalls (the
-cost has not fallen below 0.9 times its reference value for ``stall`` accepted or rejected steps) is abandoned early,
-and the solver restarts from a seed drawn uniformly within the limits (from ``rng``, as TRAC-IK restarts, so the
-result is deterministic). The restarts also collect several distinct solutions; for redundant arms a null-space
-task (:mod:`symjac.analysis.inverse_kinematics.null_space`) may then move each solution away from the joint limits
-or towards more manipulability without changing the pose.
+cost has not fallen below 0.9 times its reference value for ``stall`` accepted or rejected steps while ``E > 1e-10``)
+is abandoned early, and the solver restarts from a seed drawn uniformly within the limits (from ``rng``, as
+TRAC-IK restarts, so the result is deterministic). The restarts also collect several distinct solutions; for
+redundant arms a null-space task (:mod:`symjac.analysis.inverse_kinematics.null_space`) may then move each solution
+away from the joint limits or towards more manipulability without changing the pose.
 """
 
 from __future__ import annotations
@@ -206,7 +206,7 @@ def _descend(q: np.ndarray, error: Any, jacobian: Any, project: Any, converged: 
             q, e, cost, mu = trial, e_trial, c_trial, max(mu / 2.0, 1e-6)
         else:
             mu *= 4.0
-        if cost < 0.9 * reference:
+        if cost < 0.9 * reference or cost < 1e-10:  # near a solution slow progress is no stall
             reference, stalled = cost, 0
         else:
             stalled += 1

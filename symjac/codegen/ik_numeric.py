@@ -43,9 +43,13 @@ def numeric_ik_jacobian(target: str, infos: Sequence[JacobianInfo], coupled: boo
 
 @dataclass(frozen=True)
 class NumericIkTables:
-    """What the templates write: the Jacobian's name and, per joint, whether it wraps and where seeds are drawn."""
+    """What the templates write: the C names of the functions it runs on, per joint whether it wraps and its seeds' box.
 
-    jacobian: str
+    ``pose_function`` is the forward kinematics, ``velocity_function`` the Jacobian.
+    """
+
+    pose_function: str
+    velocity_function: str
     wrap: tuple[str, ...]
     low: tuple[str, ...]
     high: tuple[str, ...]
@@ -63,4 +67,6 @@ def numeric_ik_tables(description: ModuleDescription) -> NumericIkTables | None:
         wrap.append("1" if wraps else "0")
         low.append(float_literal(entry.lower if limited else -span))
         high.append(float_literal(entry.upper if limited else span))
-    return NumericIkTables(description.numeric_ik, tuple(wrap), tuple(low), tuple(high))
+    prefix = description.robot
+    return NumericIkTables(f"{prefix}_forward_kinematics", f"{prefix}_{description.numeric_ik}", tuple(wrap),
+                           tuple(low), tuple(high))

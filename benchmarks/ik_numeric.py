@@ -9,7 +9,8 @@ restart from further seeds drawn from it, as TRAC-IK does):
 - ``python``: :func:`symjac.analysis.inverse_kinematics.numeric.solve_numeric` with ``restarts=1`` (the first
   solution found);
 - ``c99``: the generated ``<robot>_inverse_kinematics_numeric`` (``ModuleRequest(..., numeric_ik=True)``), compiled
-  with ``gcc -O2`` and timed in C by a small driver (no Python in the loop);
+  with ``gcc -O2`` and timed in C by a small driver (no Python in the loop; the best of three runs);
+- ``cpp``: the generated header's ``inverse_kinematics_numeric`` (Eigen, ``g++ -O2``), timed the same way;
 - ``ik_LM``: the Robotics Toolbox's Levenberg-Marquardt on its own model of the arm (DH models of the Panda, UR5 and
   PUMA, the URDF LBR for the iiwa, a DHRobot of the same generic chain), poses from its own forward kinematics at the
   same configurations, its defaults (tolerance 1e-6 on its error, symjac's is 1e-10 per norm).
@@ -55,6 +56,27 @@ double sj_bench(const double *poses, int count, double *qs, int *found, int *ite
 """
 
 
+CPP_DRIVER = r"""
+#include <chrono>
+#include "{robot}.hpp"
+
+// Solve count poses (16 entries each, row-major); returns the seconds it took.
+extern "C" double sj_bench(const double *poses, int count, double *qs, int *found, int *iterations)
+{{
+    using Matrix = Eigen::Matrix<double, 4, 4, Eigen::RowMajor>;
+    const auto begin = std::chrono::steady_clock::now();
+    for (int k = 0; k < count; k++) {{
+        const Eigen::Matrix4d pose = Eigen::Map<const Matrix>(poses + 16 * k);
+        Eigen::Matrix<double, {n}, 1> q;
+        found[k] = symjac::{robot}::inverse_kinematics_numeric<double>(pose, (unsigned long long)k, q,
+                                                                        iterations + k);
+        Eigen::Map<Eigen::Matrix<double, {n}, 1>>(qs + {n} * k) = q;
+    }}
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+}}
+"""
+
+
 def generic_dh(n: int = 7, seed: int = 41) -> list[tuple[float, float, float]]:
     """Standard-DH (alpha, a, d) of an ``n``-joint chain: twists in (-pi, pi), a in (0.05, 0.3), d in (-0.1, 0.1)."""
     rng = np.random.default_rng(seed + 1000 + n)
@@ -76,15 +98,21 @@ def _robot(name: str):
     return robot_from_toml(generic_chain(), "generic7") if name == "generic7" else load_robot(name)
 
 
-def _c_solver(robot, folder: Path):
-    files = render_files(describe(ModuleRequest(robot, "c99", numeric_ik=True)))
+def _compiled_solver(robot, folder: Path, target: str):
+    """The generated solver of ``target`` (c99 or cpp) with a driver that times it, compiled: its ``sj_bench``."""
+    files = render_files(describe(ModuleRequest(robot, target, numeric_ik=True)))
     for file, text in files.items():
         (folder / file).write_text(text)
-    (folder / "driver.c").write_text(DRIVER.format(robot=robot.name, n=robot.n_joints))
-    source = next(file for file in files if file.endswith(".c"))
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "-fPIC", "-shared", source, "driver.c",
-                    "-o", "libik.so", "-lm"], cwd=folder, check=True, capture_output=True)
-    bench = ctypes.CDLL(str(folder / "libik.so")).sj_bench
+    if target == "c99":
+        (folder / "driver.c").write_text(DRIVER.format(robot=robot.name, n=robot.n_joints))
+        source = next(file for file in files if file.endswith(".c"))
+        command = ["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", source, "driver.c", "-lm"]
+    else:
+        (folder / "driver.cpp").write_text(CPP_DRIVER.format(robot=robot.name, n=robot.n_joints))
+        command = ["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O2", "-I/usr/include/eigen3", "driver.cpp"]
+    subprocess.run([*command, "-fPIC", "-shared", "-o", f"lib{target}.so"], cwd=folder, check=True,
+                   capture_output=True)
+    bench = ctypes.CDLL(str(folder / f"lib{target}.so")).sj_bench
     bench.restype = ctypes.c_double
     return bench
 
@@ -137,17 +165,18 @@ def main() -> None:
         _row(name, "python", solved / len(poses), np.mean([s[0].iterations for s in results if s] or [0]),
              np.mean([s[0].start + 1 for s in results if s] or [0]), elapsed)
 
-        with tempfile.TemporaryDirectory() as folder:
-            bench = _c_solver(robot, Path(folder))
-            flat = np.ascontiguousarray(np.stack(poses), dtype=float)
-            qs, found = np.zeros((len(poses), robot.n_joints)), np.zeros(len(poses), dtype=np.int32)
-            steps = np.zeros(len(poses), dtype=np.int32)
-            pointer = ctypes.POINTER(ctypes.c_double)
-            seconds = min(bench(flat.ctypes.data_as(pointer), len(poses), qs.ctypes.data_as(pointer),
-                                found.ctypes.data_as(ctypes.POINTER(ctypes.c_int)),
-                                steps.ctypes.data_as(ctypes.POINTER(ctypes.c_int))) for _ in range(3))
-        solved = sum(bool(f) and good(q, pose) for f, q, pose in zip(found, qs, poses, strict=True))
-        _row(name, "c99", solved / len(poses), float(steps.mean()), math.nan, seconds / len(poses))
+        for target in ("c99", "cpp"):
+            with tempfile.TemporaryDirectory() as folder:
+                bench = _compiled_solver(robot, Path(folder), target)
+                flat = np.ascontiguousarray(np.stack(poses), dtype=float)
+                qs, found = np.zeros((len(poses), robot.n_joints)), np.zeros(len(poses), dtype=np.int32)
+                steps = np.zeros(len(poses), dtype=np.int32)
+                pointer = ctypes.POINTER(ctypes.c_double)
+                seconds = min(bench(flat.ctypes.data_as(pointer), len(poses), qs.ctypes.data_as(pointer),
+                                    found.ctypes.data_as(ctypes.POINTER(ctypes.c_int)),
+                                    steps.ctypes.data_as(ctypes.POINTER(ctypes.c_int))) for _ in range(3))
+            solved = sum(bool(f) and good(q, pose) for f, q, pose in zip(found, qs, poses, strict=True))
+            _row(name, target, solved / len(poses), float(steps.mean()), math.nan, seconds / len(poses))
 
         toolbox = None if arguments.no_toolbox else _toolbox(name, robot)
         if toolbox is not None:

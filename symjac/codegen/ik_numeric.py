@@ -55,8 +55,11 @@ class NumericIkTables:
     high: tuple[str, ...]
 
 
-def numeric_ik_tables(description: ModuleDescription) -> NumericIkTables | None:
-    """The solver's tables for a module that has it (``description.numeric_ik``), else None."""
+def numeric_ik_tables(description: ModuleDescription, prefixed: bool = True) -> NumericIkTables | None:
+    """The solver's tables for a module that has it (``description.numeric_ik``), else None.
+
+    ``prefixed``: function names start with ``<robot>_`` (C), else they are bare (C++, in the robot's namespace).
+    """
     if not description.numeric_ik:
         return None
     wrap, low, high = [], [], []
@@ -67,6 +70,6 @@ def numeric_ik_tables(description: ModuleDescription) -> NumericIkTables | None:
         wrap.append("1" if wraps else "0")
         low.append(float_literal(entry.lower if limited else -span))
         high.append(float_literal(entry.upper if limited else span))
-    prefix = description.robot
-    return NumericIkTables(f"{prefix}_forward_kinematics", f"{prefix}_{description.numeric_ik}", tuple(wrap),
+    prefix = f"{description.robot}_" if prefixed else ""
+    return NumericIkTables(f"{prefix}forward_kinematics", f"{prefix}{description.numeric_ik}", tuple(wrap),
                            tuple(low), tuple(high))

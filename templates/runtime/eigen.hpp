@@ -121,6 +121,167 @@ Eigen::Matrix<Scalar, N, 1> forward_dynamics(const Eigen::Matrix<Scalar, N, N>& 
 
 // ---- runtime section: acceleration ----
 
+// ---- runtime section: ik_numeric ----
+
+// splitmix64 (Steele, Lea and Flood 2014): the numeric solver's seeds, the same sequence on every platform.
+inline unsigned long long splitmix64(unsigned long long& state)
+{
+    unsigned long long z = (state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+// The rotation vector (axis times angle) of the rotation r, robust near 0 and pi.
+template <class Scalar>
+Eigen::Matrix<Scalar, 3, 1> rotation_vector(const Eigen::Matrix<Scalar, 3, 3>& r)
+{
+    using std::acos;
+    using std::sin;
+    const Scalar pi = Scalar(3.14159265358979323846);
+    const Scalar cosine = std::min(Scalar(1), std::max(Scalar(-1), (r.trace() - Scalar(1)) / Scalar(2)));
+    const Scalar angle = acos(cosine);
+    Eigen::Matrix<Scalar, 3, 1> w(r(2, 1) - r(1, 2), r(0, 2) - r(2, 0), r(1, 0) - r(0, 1));
+    if (angle < Scalar(1e-6)) {
+        return w / Scalar(2);
+    }
+    if (pi - angle > Scalar(1e-4)) {
+        return w * (angle / (Scalar(2) * sin(angle)));
+    }
+    int m = 0;  // near pi: the axis from the symmetric part (r + I) / 2, its largest diagonal entry's row
+    for (int k = 1; k < 3; k++) {
+        m = r(k, k) > r(m, m) ? k : m;
+    }
+    Eigen::Matrix<Scalar, 3, 1> axis = (r.row(m).transpose() + Eigen::Matrix<Scalar, 3, 1>::Unit(m)) / Scalar(2);
+    axis.normalize();
+    return (axis.dot(w) < Scalar(0) ? -angle : angle) * axis;
+}
+
+// A per-joint table of N entries (N an int, as Eigen's sizes are).
+template <class T, int N>
+using Table = std::array<T, static_cast<std::size_t>(N)>;
+
+// Numeric inverse kinematics by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e,
+// e = [p* - p(q); log(R* R(q)^T)], as the c99 runtime's sj_ik_numeric (the same seeds, steps and budget: 100 steps
+// or 6 stalled steps per start, at most 64 starts; converged when both error norms are at most 1e-10, 1e-4 in
+// single precision). Joints at a limit that a step would push past are held still; joints with wrap[k] wrap to
+// (-pi, pi]. Writes q (the best found on failure) and the steps taken; returns 1 when it converged, else 0.
+template <class Scalar, int N, class PoseOf, class VelocityOf>
+int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table<double, N>& lower,
+               const Table<double, N>& upper, const Table<int, N>& wrap, const Table<double, N>& low,
+               const Table<double, N>& high, const Eigen::Matrix<Scalar, 4, 4>& target,
+               const Eigen::Matrix<Scalar, N, 1>* start, unsigned long long seed, Eigen::Matrix<Scalar, N, 1>& q,
+               int* iterations)
+{
+    using std::fmod;
+    using Vector = Eigen::Matrix<Scalar, N, 1>;
+    const Scalar pi = Scalar(3.14159265358979323846);
+    const Scalar tolerance = sizeof(Scalar) < sizeof(double) ? Scalar(1e-4) : Scalar(1e-10);
+    const Scalar squared = tolerance * tolerance;
+    auto project = [&](Vector& x) {
+        for (int k = 0; k < N; k++) {
+            if (wrap[k]) {
+                x[k] = pi - fmod(fmod(pi - x[k], Scalar(2) * pi) + Scalar(2) * pi, Scalar(2) * pi);
+            } else {
+                x[k] = std::min(Scalar(upper[k]), std::max(Scalar(lower[k]), x[k]));
+            }
+        }
+    };
+    auto error = [&](const Vector& x, Eigen::Matrix<Scalar, 6, 1>& e) {
+        const Eigen::Matrix<Scalar, 4, 4> T = pose_of(x);
+        e.template head<3>() = target.template block<3, 1>(0, 3) - T.template block<3, 1>(0, 3);
+        e.template tail<3>() = rotation_vector<Scalar>(
+            Eigen::Matrix<Scalar, 3, 3>(target.template block<3, 3>(0, 0) * T.template block<3, 3>(0, 0).transpose()));
+        return e.squaredNorm();
+    };
+    unsigned long long state = seed;
+    Vector best = Vector::Zero();
+    Scalar best_cost = std::numeric_limits<Scalar>::infinity();
+    int steps = 0;
+    int found = 0;
+    for (int attempt = 0; attempt < 64 && !found; attempt++) {
+        Vector x;
+        for (int k = 0; k < N; k++) {
+            const double u = double(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
+            x[k] = (attempt == 0 && start != nullptr) ? (*start)[k] : Scalar(low[k] + u * (high[k] - low[k]));
+        }
+        project(x);
+        Eigen::Matrix<Scalar, 6, 1> e;
+        Eigen::Matrix<Scalar, 6, 1> e_trial;
+        Scalar cost = error(x, e);
+        Scalar reference = cost;
+        Scalar mu = 1;
+        int stalled = 0;
+        for (int it = 0; it <= 100; it++) {
+            if (e.template head<3>().squaredNorm() <= squared && e.template tail<3>().squaredNorm() <= squared) {
+                found = 1;
+                break;
+            }
+            if (it == 100) {
+                break;
+            }
+            steps++;
+            const Eigen::Matrix<Scalar, 6, N> J = velocity_of(x);
+            const Eigen::Matrix<Scalar, N, N> normal = J.transpose() * J;
+            const Vector gradient = J.transpose() * e;
+            const Scalar lambda = mu * (cost / Scalar(2) + Scalar(1e-3));
+            Table<bool, N> held{};
+            Vector step;
+            for (int round = 0; round < N; round++) {
+                Eigen::Matrix<Scalar, N, N> a = normal;
+                Vector b = gradient;
+                for (int k = 0; k < N; k++) {
+                    a(k, k) += lambda;
+                    if (held[k]) {
+                        a.row(k).setZero();
+                        a.col(k).setZero();
+                        a(k, k) = Scalar(1);
+                        b[k] = Scalar(0);
+                    }
+                }
+                step = a.llt().solve(b);
+                bool more = false;
+                for (int k = 0; k < N; k++) {
+                    const bool outward = (x[k] <= Scalar(lower[k]) && step[k] < 0)
+                                         || (x[k] >= Scalar(upper[k]) && step[k] > 0);
+                    if (!held[k] && outward) {
+                        held[k] = more = true;
+                    }
+                }
+                if (!more) {
+                    break;
+                }
+            }
+            Vector trial = x + step;
+            project(trial);
+            const Scalar c = error(trial, e_trial);
+            if (c < cost) {
+                x = trial;
+                e = e_trial;
+                cost = c;
+                mu = std::max(mu / Scalar(2), Scalar(1e-6));
+            } else {
+                mu *= Scalar(4);
+            }
+            if (cost < Scalar(0.9) * reference || cost < Scalar(1e-10)) {
+                reference = cost;
+                stalled = 0;
+            } else if (++stalled >= 6) {
+                break;
+            }
+        }
+        if (found || cost < best_cost) {
+            best_cost = cost;
+            best = x;
+        }
+    }
+    q = best;
+    if (iterations != nullptr) {
+        *iterations = steps;
+    }
+    return found;
+}
+
 // ---- runtime section: core ----
 
 // q[i] = the position of joint_names[i] in names and positions (other names are ignored, the first of a repeated

@@ -6,6 +6,7 @@ from __future__ import annotations
 import ctypes
 import shutil
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -98,3 +99,44 @@ def test_only_c_targets_and_a_base_frame_jacobian_have_it():
         describe(ModuleRequest(robot, "c99", frames=(1,), numeric_ik=True))
     plain = "".join(render_files(describe(ModuleRequest(robot, "c99"))).values())
     assert "inverse_kinematics_numeric" not in plain and "sj_ik_" not in plain
+
+
+SHIM = """
+#include "{robot}.hpp"
+
+extern "C" int solve(const double *pose, unsigned long long seed, double *q, int *iterations)
+{{
+    using Matrix = Eigen::Matrix<double, 4, 4, Eigen::RowMajor>;
+    Eigen::Matrix<double, {n}, 1> x;
+    const int found = symjac::{robot}::inverse_kinematics_numeric<double>(
+        Eigen::Matrix4d(Eigen::Map<const Matrix>(pose)), seed, x, iterations);
+    Eigen::Map<Eigen::Matrix<double, {n}, 1>> out(q);
+    out = x;
+    Eigen::Matrix<float, {n}, 1> single;  // single precision compiles and converges to its own tolerance
+    return found + 2 * symjac::{robot}::inverse_kinematics_numeric<float>(
+        Eigen::Matrix4d(Eigen::Map<const Matrix>(pose)).cast<float>().eval(), seed, single);
+}}
+"""
+
+
+@pytest.mark.skipif(shutil.which("g++") is None or not (Path("/usr/include/eigen3/Eigen/Dense")).is_file(),
+                    reason="g++ or Eigen's headers (Debian libeigen3-dev) are missing")
+@pytest.mark.parametrize("name", ["iiwa7", "ur5"])
+def test_generated_cpp_solver_reaches_every_pose(tmp_path, name):
+    robot = load_robot(name)
+    for file, text in render_files(describe(ModuleRequest(robot, "cpp", numeric_ik=True))).items():
+        (tmp_path / file).write_text(text)
+    (tmp_path / "shim.cpp").write_text(SHIM.format(robot=name, n=robot.n_joints))
+    subprocess.run(["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O1", "-I/usr/include/eigen3", "-fPIC",
+                    "-shared", "shim.cpp", "-o", "libshim.so"], cwd=tmp_path, check=True, capture_output=True)
+    solve = ctypes.CDLL(str(tmp_path / "libshim.so")).solve
+    solve.argtypes = [P, ctypes.c_ulonglong, P, ctypes.POINTER(ctypes.c_int)]
+    fk, (lower, upper) = _independent_fk(robot), seed_bounds(robot)
+    generator = np.random.default_rng(47)
+    for k in range(POSES // 2):
+        pose = np.ascontiguousarray(fk(generator.uniform(lower, upper)), dtype=float)
+        q, iterations = np.zeros(robot.n_joints), ctypes.c_int(-1)
+        found = solve(pose.ctypes.data_as(P), k, q.ctypes.data_as(P), ctypes.byref(iterations))
+        assert found == 3 and iterations.value > 0
+        assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
+        assert np.all(q >= lower - 1e-12) and np.all(q <= upper + 1e-12)

@@ -43,14 +43,15 @@ def numeric_ik_jacobian(target: str, infos: Sequence[JacobianInfo], coupled: boo
 
 @dataclass(frozen=True)
 class NumericIkTables:
-    """What the templates write: the C names of the functions it runs on, per joint whether it wraps and its seeds' box.
+    """What the templates write: the C names of the functions it runs on, per joint its kind and its seeds' box.
 
-    ``pose_function`` is the forward kinematics, ``velocity_function`` the Jacobian.
+    ``pose_function`` is the forward kinematics, ``velocity_function`` the Jacobian; a joint's kind is 0 for a
+    prismatic joint, 1 for a revolute joint with limits (shifted by 2 pi into them), 2 for one without (wrapped).
     """
 
     pose_function: str
     velocity_function: str
-    wrap: tuple[str, ...]
+    kind: tuple[str, ...]
     low: tuple[str, ...]
     high: tuple[str, ...]
 
@@ -62,14 +63,14 @@ def numeric_ik_tables(description: ModuleDescription, prefixed: bool = True) -> 
     """
     if not description.numeric_ik:
         return None
-    wrap, low, high = [], [], []
+    kind, low, high = [], [], []
     for entry in description.joint_entries:
         limited = math.isfinite(entry.lower) and math.isfinite(entry.upper)
         wraps = not limited and entry.type != "prismatic"
         span = math.pi if wraps else 1.0
-        wrap.append("1" if wraps else "0")
+        kind.append("0" if entry.type == "prismatic" else "2" if wraps else "1")
         low.append(float_literal(entry.lower if limited else -span))
         high.append(float_literal(entry.upper if limited else span))
     prefix = f"{description.robot}_" if prefixed else ""
-    return NumericIkTables(f"{prefix}forward_kinematics", f"{prefix}{description.numeric_ik}", tuple(wrap),
+    return NumericIkTables(f"{prefix}forward_kinematics", f"{prefix}{description.numeric_ik}", tuple(kind),
                            tuple(low), tuple(high))

@@ -576,17 +576,47 @@ static inline real sj_ik_error(const real *target, const real *T, real *e)
     return cost;
 }
 
-/* Clip q to [lower, upper] and wrap the joints marked in wrap to (-pi, pi]. */
-static inline void sj_ik_project(int n, const real *lower, const real *upper, const int *wrap, real *q)
+/* The angle x wrapped to (-pi, pi] (unchanged when it is in already). */
+static inline real sj_ik_wrap_angle(real x)
 {
     const real pi = (real)3.14159265358979323846;
+    return (x > pi || x <= -pi) ? pi - fmod(fmod(pi - x, 2 * pi) + 2 * pi, 2 * pi) : x;
+}
+
+/* Joint kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped to (-pi, pi]). Clip q to [lower,
+ * upper] (no clipping when lower is NULL) and wrap the joints of kind 2. */
+static inline void sj_ik_project(int n, const real *lower, const real *upper, const int *kind, real *q)
+{
     for (int k = 0; k < n; k++) {
-        if (wrap[k]) {
-            q[k] = pi - fmod(fmod(pi - q[k], 2 * pi) + 2 * pi, 2 * pi);
-        } else {
+        if (kind[k] == 2) {
+            q[k] = sj_ik_wrap_angle(q[k]);
+        } else if (lower != NULL) {
             q[k] = q[k] < lower[k] ? lower[k] : (q[k] > upper[k] ? upper[k] : q[k]);
         }
     }
+}
+
+/* Shift each angle by 2 pi k (the same pose) into its limits where a shift fits, else clip it: 1 when all fitted. */
+static inline int sj_ik_into_limits(int n, const real *lower, const real *upper, const int *kind, real *q)
+{
+    const real pi = (real)3.14159265358979323846;
+    int inside = 1;
+    for (int k = 0; k < n; k++) {
+        const real value = kind[k] ? sj_ik_wrap_angle(q[k]) : q[k];
+        int fits = 0;
+        for (int shift = 0; shift < (kind[k] ? 5 : 1) && !fits; shift++) {
+            const real x = value + (real)((shift + 1) / 2 * (shift % 2 ? 1 : -1)) * 2 * pi;
+            if (lower[k] <= x && x <= upper[k]) {
+                q[k] = x;
+                fits = 1;
+            }
+        }
+        if (!fits) {
+            q[k] = value < lower[k] ? lower[k] : (value > upper[k] ? upper[k] : value);
+            inside = 0;
+        }
+    }
+    return inside;
 }
 
 /* Solve a x = b in place (a n x n symmetric positive definite, row-major) by Cholesky: b becomes x. */
@@ -641,7 +671,8 @@ static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, 
         sj_ik_cholesky(a, step, n);
         int more = 0;
         for (int i = 0; i < n; i++) {
-            if (!held[i] && ((q[i] <= lower[i] && step[i] < 0) || (q[i] >= upper[i] && step[i] > 0))) {
+            if (lower != NULL && !held[i]
+                && ((q[i] <= lower[i] && step[i] < 0) || (q[i] >= upper[i] && step[i] > 0))) {
                 held[i] = more = 1;
             }
         }
@@ -651,70 +682,89 @@ static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, 
     }
 }
 
-/* Numeric inverse kinematics by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e,
- * e = [p* - p(q); log(R* R(q)^T)]; mu halves after an accepted step and grows 4 times after a rejected one. Starts
- * from `start` (when not NULL), then from seeds drawn uniformly in [low, high] by splitmix64 from `seed`; a start
- * ends after 100 steps or 6 steps without the cost falling by 10 % (while E > 1e-10), at most 64 starts. Converged
- * when both error norms are at most 1e-10 (1e-4 in single precision). Writes q (the best found on failure) and
- * the steps taken in all (when iterations is not NULL); returns 1 when it converged, else 0. */
+/* Both error norms within the tolerance: 1e-10 (1e-4 in single precision). */
+static inline int sj_ik_converged(const real *e)
+{
+    const real tolerance = sizeof(real) < sizeof(double) ? (real)1e-4 : (real)1e-10;
+    return e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= tolerance * tolerance
+           && e[3] * e[3] + e[4] * e[4] + e[5] * e[5] <= tolerance * tolerance;
+}
+
+/* One start of Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
+ * log(R* R(q)^T)]: mu halves after an accepted step and grows 4 times after a rejected one; the start ends after 100
+ * steps or 6 steps without the cost falling by 10 % (while E > 1e-10). Limits when lower is not NULL. x is
+ * overwritten by the configuration reached and e by its error; *steps counts the steps; returns the cost E. */
+static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
+                                 const real *lower, const real *upper, const int *kind, const real *target, real *x,
+                                 real *e, int *steps)
+{
+    real trial[SJ_DIM], step[SJ_DIM], T[16], e_trial[6], J[6 * SJ_DIM];
+    sj_ik_project(n, lower, upper, kind, x);
+    forward_kinematics(x, params, T);
+    real cost = sj_ik_error(target, T, e);
+    real reference = cost;
+    real mu = 1;
+    int stalled = 0;
+    for (int it = 0; it < 100 && !sj_ik_converged(e); it++) {
+        ++*steps;
+        jacobian(x, params, J);
+        sj_ik_step(n, J, e, mu * (cost / 2 + (real)1e-3), x, lower, upper, step);
+        for (int k = 0; k < n; k++) {
+            trial[k] = x[k] + step[k];
+        }
+        sj_ik_project(n, lower, upper, kind, trial);
+        forward_kinematics(trial, params, T);
+        const real c = sj_ik_error(target, T, e_trial);
+        if (c < cost) {
+            memcpy(x, trial, sizeof(real) * (size_t)n);
+            memcpy(e, e_trial, sizeof e_trial);
+            cost = c;
+            mu = mu / 2 > (real)1e-6 ? mu / 2 : (real)1e-6;
+        } else {
+            mu *= 4;
+        }
+        if (cost < (real)0.9 * reference || cost < (real)1e-10) {
+            reference = cost;
+            stalled = 0;
+        } else if (++stalled >= 6) {
+            break;
+        }
+    }
+    return cost;
+}
+
+/* Numeric inverse kinematics, as symjac's solve_numeric: each start descends without limits first; a solution it
+ * reaches is shifted by 2 pi into the limits, and when a joint does not fit, the descent goes on from the clipped
+ * configuration with the limits respected (a joint at a limit that a step would push past is held still). Starts
+ * from `start` (when not NULL), then from seeds drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64
+ * starts. Writes q (the best found on failure) and the steps taken in all (when iterations is not NULL); returns 1
+ * when it converged, else 0. */
 static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
-                                const real *lower, const real *upper, const int *wrap, const real *low,
+                                const real *lower, const real *upper, const int *kind, const real *low,
                                 const real *high, const real *target, const real *start, unsigned long long seed,
                                 real *q, int *iterations)
 {
-    const real tolerance = sizeof(real) < sizeof(double) ? (real)1e-4 : (real)1e-10;
-    const real squared = tolerance * tolerance;
     unsigned long long state = seed;
     real best[SJ_DIM];
     real best_cost = (real)HUGE_VAL;
     int steps = 0;
     int found = 0;
     for (int attempt = 0; attempt < 64 && !found; attempt++) {
-        real x[SJ_DIM], trial[SJ_DIM], step[SJ_DIM], T[16], e[6], e_trial[6], J[6 * SJ_DIM];
+        real x[SJ_DIM], e[6];
         for (int k = 0; k < n; k++) {
             const real u = (real)((double)(sj_splitmix64(&state) >> 11) * (1.0 / 9007199254740992.0));
             x[k] = (attempt == 0 && start != NULL) ? start[k] : low[k] + u * (high[k] - low[k]);
         }
-        sj_ik_project(n, lower, upper, wrap, x);
-        forward_kinematics(x, params, T);
-        real cost = sj_ik_error(target, T, e);
-        real reference = cost;
-        real mu = 1;
-        int stalled = 0;
-        for (int it = 0; it <= 100; it++) {
-            if (e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= squared
-                && e[3] * e[3] + e[4] * e[4] + e[5] * e[5] <= squared) {
-                found = 1;
-                break;
-            }
-            if (it == 100) {
-                break;
-            }
-            steps++;
-            jacobian(x, params, J);
-            sj_ik_step(n, J, e, mu * (cost / 2 + (real)1e-3), x, lower, upper, step);
-            for (int k = 0; k < n; k++) {
-                trial[k] = x[k] + step[k];
-            }
-            sj_ik_project(n, lower, upper, wrap, trial);
-            forward_kinematics(trial, params, T);
-            const real c = sj_ik_error(target, T, e_trial);
-            if (c < cost) {
-                memcpy(x, trial, sizeof(real) * (size_t)n);
-                memcpy(e, e_trial, sizeof e);
-                cost = c;
-                mu = mu / 2 > (real)1e-6 ? mu / 2 : (real)1e-6;
-            } else {
-                mu *= 4;
-            }
-            if (cost < (real)0.9 * reference || cost < (real)1e-10) {
-                reference = cost;
-                stalled = 0;
-            } else if (++stalled >= 6) {
-                break;
-            }
+        real cost = sj_ik_descend(n, forward_kinematics, jacobian, params, NULL, NULL, kind, target, x, e, &steps);
+        found = sj_ik_converged(e);
+        if (found && !sj_ik_into_limits(n, lower, upper, kind, x)) {
+            cost = sj_ik_descend(n, forward_kinematics, jacobian, params, lower, upper, kind, target, x, e, &steps);
+            found = sj_ik_converged(e);
+        } else if (!found) {
+            sj_ik_into_limits(n, lower, upper, kind, x);
+            cost = (real)HUGE_VAL;
         }
-        if (found || cost < best_cost) {
+        if (found || cost < best_cost || attempt == 0) {
             best_cost = cost;
             memcpy(best, x, sizeof(real) * (size_t)n);
         }

@@ -161,65 +161,76 @@ Eigen::Matrix<Scalar, 3, 1> rotation_vector(const Eigen::Matrix<Scalar, 3, 3>& r
 template <class T, int N>
 using Table = std::array<T, static_cast<std::size_t>(N)>;
 
-// Numeric inverse kinematics by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e,
-// e = [p* - p(q); log(R* R(q)^T)], as the c99 runtime's sj_ik_numeric (the same seeds, steps and budget: 100 steps
-// or 6 stalled steps per start, at most 64 starts; converged when both error norms are at most 1e-10, 1e-4 in
-// single precision). Joints at a limit that a step would push past are held still; joints with wrap[k] wrap to
-// (-pi, pi]. Writes q (the best found on failure) and the steps taken; returns 1 when it converged, else 0.
+// Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds, steps and budget): each start
+// descends by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
+// log(R* R(q)^T)], without limits first (100 steps, or 6 without the cost falling 10 % while E > 1e-10); a solution
+// is shifted by 2 pi into the limits, and when a joint does not fit, the descent goes on from the clipped
+// configuration with the limits respected (a joint at a limit that a step would push past is held still). Kinds: 0
+// prismatic, 1 revolute with limits, 2 revolute without (wrapped to (-pi, pi]). At most 64 starts; converged when
+// both error norms are at most 1e-10 (1e-4 in single precision). Writes q (the best found on failure) and the
+// steps taken; returns 1 when it converged, else 0.
 template <class Scalar, int N, class PoseOf, class VelocityOf>
 int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table<double, N>& lower,
-               const Table<double, N>& upper, const Table<int, N>& wrap, const Table<double, N>& low,
+               const Table<double, N>& upper, const Table<int, N>& kind, const Table<double, N>& low,
                const Table<double, N>& high, const Eigen::Matrix<Scalar, 4, 4>& target,
                const Eigen::Matrix<Scalar, N, 1>* start, unsigned long long seed, Eigen::Matrix<Scalar, N, 1>& q,
                int* iterations)
 {
     using std::fmod;
     using Vector = Eigen::Matrix<Scalar, N, 1>;
+    using Error = Eigen::Matrix<Scalar, 6, 1>;
     const Scalar pi = Scalar(3.14159265358979323846);
     const Scalar tolerance = sizeof(Scalar) < sizeof(double) ? Scalar(1e-4) : Scalar(1e-10);
-    const Scalar squared = tolerance * tolerance;
-    auto project = [&](Vector& x) {
+    auto wrapped = [&](Scalar x) {  // to (-pi, pi], unchanged when it is in already
+        return (x > pi || x <= -pi) ? pi - fmod(fmod(pi - x, Scalar(2) * pi) + Scalar(2) * pi, Scalar(2) * pi) : x;
+    };
+    auto converged = [&](const Error& e) {
+        return e.template head<3>().squaredNorm() <= tolerance * tolerance
+               && e.template tail<3>().squaredNorm() <= tolerance * tolerance;
+    };
+    auto project = [&](Vector& x, bool limited) {
         for (int k = 0; k < N; k++) {
-            if (wrap[k]) {
-                x[k] = pi - fmod(fmod(pi - x[k], Scalar(2) * pi) + Scalar(2) * pi, Scalar(2) * pi);
-            } else {
+            if (kind[k] == 2) {
+                x[k] = wrapped(x[k]);
+            } else if (limited) {
                 x[k] = std::min(Scalar(upper[k]), std::max(Scalar(lower[k]), x[k]));
             }
         }
     };
-    auto error = [&](const Vector& x, Eigen::Matrix<Scalar, 6, 1>& e) {
+    auto into_limits = [&](Vector& x) {
+        bool inside = true;
+        for (int k = 0; k < N; k++) {
+            const Scalar value = kind[k] ? wrapped(x[k]) : x[k];
+            bool fits = false;
+            for (int shift = 0; shift < (kind[k] ? 5 : 1) && !fits; shift++) {
+                const Scalar y = value + Scalar((shift + 1) / 2 * (shift % 2 ? 1 : -1)) * Scalar(2) * pi;
+                if (Scalar(lower[k]) <= y && y <= Scalar(upper[k])) {
+                    x[k] = y;
+                    fits = true;
+                }
+            }
+            if (!fits) {
+                x[k] = std::min(Scalar(upper[k]), std::max(Scalar(lower[k]), value));
+                inside = false;
+            }
+        }
+        return inside;
+    };
+    auto error = [&](const Vector& x, Error& e) {
         const Eigen::Matrix<Scalar, 4, 4> T = pose_of(x);
         e.template head<3>() = target.template block<3, 1>(0, 3) - T.template block<3, 1>(0, 3);
         e.template tail<3>() = rotation_vector<Scalar>(
             Eigen::Matrix<Scalar, 3, 3>(target.template block<3, 3>(0, 0) * T.template block<3, 3>(0, 0).transpose()));
         return e.squaredNorm();
     };
-    unsigned long long state = seed;
-    Vector best = Vector::Zero();
-    Scalar best_cost = std::numeric_limits<Scalar>::infinity();
     int steps = 0;
-    int found = 0;
-    for (int attempt = 0; attempt < 64 && !found; attempt++) {
-        Vector x;
-        for (int k = 0; k < N; k++) {
-            const double u = double(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
-            x[k] = (attempt == 0 && start != nullptr) ? (*start)[k] : Scalar(low[k] + u * (high[k] - low[k]));
-        }
-        project(x);
-        Eigen::Matrix<Scalar, 6, 1> e;
-        Eigen::Matrix<Scalar, 6, 1> e_trial;
+    auto descend = [&](Vector& x, Error& e, bool limited) {
+        project(x, limited);
         Scalar cost = error(x, e);
         Scalar reference = cost;
         Scalar mu = 1;
         int stalled = 0;
-        for (int it = 0; it <= 100; it++) {
-            if (e.template head<3>().squaredNorm() <= squared && e.template tail<3>().squaredNorm() <= squared) {
-                found = 1;
-                break;
-            }
-            if (it == 100) {
-                break;
-            }
+        for (int it = 0; it < 100 && !converged(e); it++) {
             steps++;
             const Eigen::Matrix<Scalar, 6, N> J = velocity_of(x);
             const Eigen::Matrix<Scalar, N, N> normal = J.transpose() * J;
@@ -241,7 +252,7 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
                 }
                 step = a.llt().solve(b);
                 bool more = false;
-                for (int k = 0; k < N; k++) {
+                for (int k = 0; k < N && limited; k++) {
                     const bool outward = (x[k] <= Scalar(lower[k]) && step[k] < 0)
                                          || (x[k] >= Scalar(upper[k]) && step[k] > 0);
                     if (!held[k] && outward) {
@@ -253,7 +264,8 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
                 }
             }
             Vector trial = x + step;
-            project(trial);
+            project(trial, limited);
+            Error e_trial;
             const Scalar c = error(trial, e_trial);
             if (c < cost) {
                 x = trial;
@@ -270,7 +282,29 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
                 break;
             }
         }
-        if (found || cost < best_cost) {
+        return cost;
+    };
+    unsigned long long state = seed;
+    Vector best = Vector::Zero();
+    Scalar best_cost = std::numeric_limits<Scalar>::infinity();
+    int found = 0;
+    for (int attempt = 0; attempt < 64 && !found; attempt++) {
+        Vector x;
+        for (int k = 0; k < N; k++) {
+            const double u = double(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
+            x[k] = (attempt == 0 && start != nullptr) ? (*start)[k] : Scalar(low[k] + u * (high[k] - low[k]));
+        }
+        Error e;
+        Scalar cost = descend(x, e, false);
+        found = converged(e);
+        if (found && !into_limits(x)) {
+            cost = descend(x, e, true);
+            found = converged(e);
+        } else if (!found) {
+            into_limits(x);
+            cost = std::numeric_limits<Scalar>::infinity();
+        }
+        if (found || cost < best_cost || attempt == 0) {
             best_cost = cost;
             best = x;
         }

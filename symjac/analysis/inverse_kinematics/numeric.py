@@ -165,19 +165,30 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
         return weights[:, None] * np.asarray(model.jacobian(q), dtype=float)
 
     def project(q: np.ndarray) -> np.ndarray:
-        q = np.clip(q, lower, upper)
-        return np.where(wrap, np.pi - np.mod(np.pi - q, 2 * np.pi), q)
+        return np.where(wrap, _wrapped(q), np.clip(q, lower, upper))
 
     def converged(e: np.ndarray) -> bool:
         return max(float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))) <= tolerance
+
+    revolute = np.array([bool(joint.is_revolute) for joint in robot.joints])
+    unbounded = np.full(n, np.inf)
+
+    def free(q: np.ndarray) -> np.ndarray:
+        return np.where(wrap, _wrapped(q), q)
 
     found: list[NumericSolution] = []
     for index in range(max(primary, until_found)):
         if found and index >= primary:
             break
         start = starts[index] if index < len(starts) else generator.uniform(low, high)
-        q, e, iterations = _descend(project(start), error, jacobian, project, converged, lower, upper,
+        q, e, iterations = _descend(free(start), error, jacobian, free, converged, -unbounded, unbounded,
                                     max_iterations, stall)
+        if converged(e):
+            q, inside = _into_limits(q, lower, upper, revolute)
+            if not inside:  # a solution outside the limits: go on from it clipped into them, the limits respected
+                q, e, more = _descend(project(q), error, jacobian, project, converged, lower, upper,
+                                      max_iterations, stall)
+                iterations += more
         if not converged(e):
             continue
         if null_space is not None and n > 6:
@@ -213,6 +224,27 @@ def _descend(q: np.ndarray, error: Any, jacobian: Any, project: Any, converged: 
             if stalled >= stall:
                 return q, e, iteration + 1
     return q, e, max_iterations
+
+
+def _wrapped(q: Any) -> Any:
+    """Angles wrapped to (-pi, pi], those already in it unchanged (no rounding)."""
+    return np.where((q > np.pi) | (q <= -np.pi), np.pi - np.mod(np.pi - q, 2 * np.pi), q)
+
+
+def _into_limits(q: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                 revolute: np.ndarray) -> tuple[np.ndarray, bool]:
+    """``q`` with each angle wrapped and shifted by 2 pi k into its limits, and whether every joint fitted.
+
+    A shift changes no pose; an angle no shift fits is clipped to its limits.
+    """
+    out, inside = q.copy(), True
+    for i in range(len(q)):
+        value = float(_wrapped(q[i])) if revolute[i] else q[i]
+        shifts = (0.0, 2 * np.pi, -2 * np.pi, 4 * np.pi, -4 * np.pi) if revolute[i] else (0.0,)
+        fits = [value + shift for shift in shifts if lower[i] <= value + shift <= upper[i]]
+        inside &= bool(fits)
+        out[i] = fits[0] if fits else min(max(value, lower[i]), upper[i])
+    return out, inside
 
 
 def _step(j: np.ndarray, e: np.ndarray, damping: float, q: np.ndarray, lower: np.ndarray,

@@ -647,28 +647,37 @@ static inline void sj_ik_cholesky(real *a, real *b, int n)
     }
 }
 
-/* One damped least-squares step (J^T J + lambda I) dq = J^T e, the joints at a limit that it would push past held
- * still (their rows and columns replaced by the identity's, the step solved again). J is 6 x n, row-major. */
-static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, const real *q, const real *lower,
-                              const real *upper, real *step)
+/* x = (J^T J + lambda I)^-1 J^T r over the joints not held (x = 0 for those: their rows and columns are the
+ * identity's). J is 6 x n, row-major. */
+static inline void sj_ik_solve(int n, const real *J, const real *r, real lambda, const int *held, real *x)
 {
-    int held[SJ_DIM] = {0};
-    for (int round = 0; round < n; round++) {
-        real a[SJ_DIM * SJ_DIM];
-        for (int i = 0; i < n; i++) {
-            step[i] = 0;
-            for (int r = 0; r < 6; r++) {
-                step[i] += held[i] ? 0 : J[r * n + i] * e[r];
-            }
-            for (int j = 0; j < n; j++) {
-                real s = 0;
-                for (int r = 0; r < 6; r++) {
-                    s += J[r * n + i] * J[r * n + j];
-                }
-                a[i * n + j] = (held[i] || held[j]) ? (i == j ? 1 : 0) : s + (i == j ? lambda : 0);
-            }
+    real a[SJ_DIM * SJ_DIM];
+    for (int i = 0; i < n; i++) {
+        x[i] = 0;
+        for (int k = 0; k < 6; k++) {
+            x[i] += held[i] ? 0 : J[k * n + i] * r[k];
         }
-        sj_ik_cholesky(a, step, n);
+        for (int j = 0; j < n; j++) {
+            real s = 0;
+            for (int k = 0; k < 6; k++) {
+                s += J[k * n + i] * J[k * n + j];
+            }
+            a[i * n + j] = (held[i] || held[j]) ? (i == j ? 1 : 0) : s + (i == j ? lambda : 0);
+        }
+    }
+    sj_ik_cholesky(a, x, n);
+}
+
+/* One damped least-squares step (J^T J + lambda I) dq = J^T e, the joints at a limit that it would push past held
+ * still (held[i] = 1) and the step solved again (no limits when lower is NULL). */
+static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, const real *q, const real *lower,
+                              const real *upper, real *step, int *held)
+{
+    for (int i = 0; i < n; i++) {
+        held[i] = 0;
+    }
+    for (int round = 0; round < n; round++) {
+        sj_ik_solve(n, J, e, lambda, held, step);
         int more = 0;
         for (int i = 0; i < n; i++) {
             if (lower != NULL && !held[i]
@@ -682,6 +691,40 @@ static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, 
     }
 }
 
+/* Transtrum and Sethna's geodesic acceleration of the step v, once E < 1e-6: f_vv = (2 / h) ((f(q + h v) - f(q)) / h
+ * - J v) with h = 0.1 (from the error e = f* - f), (J^T J + lambda I) a = -J^T f_vv, and v += a / 2 when
+ * 2 |a| <= 0.75 |v|: it follows the curved valleys of the cost near a singular solution. */
+static inline void sj_ik_accelerate(int n, sj_map forward_kinematics, const real *params, const real *target,
+                                    const real *J, const real *e, real lambda, const int *held, const real *x,
+                                    real *step)
+{
+    real probe[SJ_DIM], acceleration[SJ_DIM], T[16], e_probe[6], curvature[6];
+    for (int k = 0; k < n; k++) {
+        probe[k] = x[k] + (real)0.1 * step[k];
+    }
+    forward_kinematics(probe, params, T);
+    sj_ik_error(target, T, e_probe);
+    for (int r = 0; r < 6; r++) {
+        real moved = 0;
+        for (int k = 0; k < n; k++) {
+            moved += J[r * n + k] * step[k];
+        }
+        curvature[r] = 20 * ((e_probe[r] - e[r]) / (real)0.1 + moved); /* -f_vv */
+    }
+    sj_ik_solve(n, J, curvature, lambda, held, acceleration);
+    real a2 = 0;
+    real v2 = 0;
+    for (int k = 0; k < n; k++) {
+        a2 += acceleration[k] * acceleration[k];
+        v2 += step[k] * step[k];
+    }
+    if (4 * a2 <= (real)0.5625 * v2) {
+        for (int k = 0; k < n; k++) {
+            step[k] += acceleration[k] / 2;
+        }
+    }
+}
+
 /* Both error norms within the tolerance: 1e-10 (1e-4 in single precision). */
 static inline int sj_ik_converged(const real *e)
 {
@@ -691,14 +734,16 @@ static inline int sj_ik_converged(const real *e)
 }
 
 /* One start of Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
- * log(R* R(q)^T)]: mu halves after an accepted step and grows 4 times after a rejected one; the start ends after 100
- * steps or 6 steps without the cost falling by 10 % (while E > 1e-10). Limits when lower is not NULL. x is
- * overwritten by the configuration reached and e by its error; *steps counts the steps; returns the cost E. */
+ * log(R* R(q)^T)], and geodesic acceleration once E < 1e-6: mu halves after an accepted step and grows 4 times
+ * after a rejected one; the start ends after 100 steps or 6 steps without the cost falling by 10 % (while
+ * E > 1e-10). Limits when lower is not NULL. x is overwritten by the configuration reached and e by its error;
+ * *steps counts the steps; returns the cost E. */
 static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
                                  const real *lower, const real *upper, const int *kind, const real *target, real *x,
                                  real *e, int *steps)
 {
     real trial[SJ_DIM], step[SJ_DIM], T[16], e_trial[6], J[6 * SJ_DIM];
+    int held[SJ_DIM];
     sj_ik_project(n, lower, upper, kind, x);
     forward_kinematics(x, params, T);
     real cost = sj_ik_error(target, T, e);
@@ -708,7 +753,11 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
     for (int it = 0; it < 100 && !sj_ik_converged(e); it++) {
         ++*steps;
         jacobian(x, params, J);
-        sj_ik_step(n, J, e, mu * (cost / 2 + (real)1e-3), x, lower, upper, step);
+        const real lambda = mu * (cost / 2 + (real)1e-3);
+        sj_ik_step(n, J, e, lambda, x, lower, upper, step, held);
+        if (cost < (real)1e-6) {
+            sj_ik_accelerate(n, forward_kinematics, params, target, J, e, lambda, held, x, step);
+        }
         for (int k = 0; k < n; k++) {
             trial[k] = x[k] + step[k];
         }

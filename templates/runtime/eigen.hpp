@@ -163,12 +163,12 @@ using Table = std::array<T, static_cast<std::size_t>(N)>;
 
 // Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds, steps and budget): each start
 // descends by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
-// log(R* R(q)^T)], without limits first (100 steps, or 6 without the cost falling 10 % while E > 1e-10); a solution
-// is shifted by 2 pi into the limits, and when a joint does not fit, the descent goes on from the clipped
-// configuration with the limits respected (a joint at a limit that a step would push past is held still). Kinds: 0
-// prismatic, 1 revolute with limits, 2 revolute without (wrapped to (-pi, pi]). At most 64 starts; converged when
-// both error norms are at most 1e-10 (1e-4 in single precision). Writes q (the best found on failure) and the
-// steps taken; returns 1 when it converged, else 0.
+// log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 6 without the
+// cost falling 10 % while E > 1e-10); a solution is shifted by 2 pi into the limits, and when a joint does not
+// fit, the descent goes on from the clipped configuration with the limits respected (a joint at a limit that a
+// step would push past is held still). Kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped
+// to (-pi, pi]). At most 64 starts; converged when both error norms are at most 1e-10 (1e-4 in single precision).
+// Writes q (the best found on failure) and the steps taken; returns 1 when it converged, else 0.
 template <class Scalar, int N, class PoseOf, class VelocityOf>
 int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table<double, N>& lower,
                const Table<double, N>& upper, const Table<int, N>& kind, const Table<double, N>& low,
@@ -234,13 +234,11 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
             steps++;
             const Eigen::Matrix<Scalar, 6, N> J = velocity_of(x);
             const Eigen::Matrix<Scalar, N, N> normal = J.transpose() * J;
-            const Vector gradient = J.transpose() * e;
             const Scalar lambda = mu * (cost / Scalar(2) + Scalar(1e-3));
             Table<bool, N> held{};
-            Vector step;
-            for (int round = 0; round < N; round++) {
+            auto solve = [&](const Error& r) {  // (J^T J + lambda I)^-1 J^T r over the joints not held
                 Eigen::Matrix<Scalar, N, N> a = normal;
-                Vector b = gradient;
+                Vector b = J.transpose() * r;
                 for (int k = 0; k < N; k++) {
                     a(k, k) += lambda;
                     if (held[k]) {
@@ -250,7 +248,11 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
                         b[k] = Scalar(0);
                     }
                 }
-                step = a.llt().solve(b);
+                return Vector(a.llt().solve(b));
+            };
+            Vector step;
+            for (int round = 0; round < N; round++) {
+                step = solve(e);
                 bool more = false;
                 for (int k = 0; k < N && limited; k++) {
                     const bool outward = (x[k] <= Scalar(lower[k]) && step[k] < 0)
@@ -261,6 +263,14 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
                 }
                 if (!more) {
                     break;
+                }
+            }
+            if (cost < Scalar(1e-6)) {  // geodesic acceleration: -f_vv from the error at q + 0.1 v
+                Error e_probe;
+                error(Vector(x + Scalar(0.1) * step), e_probe);
+                const Vector acceleration = solve(Error(Scalar(20) * ((e_probe - e) / Scalar(0.1) + J * step)));
+                if (Scalar(2) * acceleration.norm() <= Scalar(0.75) * step.norm()) {
+                    step += acceleration / Scalar(2);
                 }
             }
             Vector trial = x + step;

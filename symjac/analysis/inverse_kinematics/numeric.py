@@ -14,9 +14,18 @@ damping shrinks with the error, so the last steps are Gauss-Newton steps and con
 
     (J_W^T J_W + lambda I) dq = J_W^T e,    J_W = W J,    lambda = mu (E / 2 + 1e-3)
 
-with ``mu`` halved after an accepted step (the cost fell) and multiplied by 4 after a rejected one. Joints with
-limits are clipped to them, and a joint that sits at a limit and whose step would push it past is held still (the
-step is solved again without it); revolute joints without limits are wrapped to (-pi, pi]. A start that stalls (the
+with ``mu`` halved after an accepted step (the cost fell) and multiplied by 4 after a rejected one. Once
+``E < 1e-6`` the step ``v`` gains Transtrum and Sethna's geodesic acceleration, which follows the curved valleys of
+the cost near a singular solution::
+
+    f_vv = (2 / h) ((f(q + h v) - f(q)) / h - J v),  h = 0.1;    (J_W^T J_W + lambda I) a = -J_W^T f_vv
+    dq = v + a / 2      (only when 2 |a| <= 0.75 |v|)
+
+Each start descends without limits first (revolute joints without limits wrapped to (-pi, pi]); a solution it
+reaches is shifted by 2 pi k into the limits (the same pose), and when a joint does not fit, the descent goes on from
+the configuration clipped into them with the limits respected: joints clipped to them after each step, and a joint
+that sits at a limit and whose step would push it past held still (the step solved again without it). A start that
+stalls (the
 cost has not fallen below 0.9 times its reference value for ``stall`` accepted or rejected steps while ``E > 1e-10``)
 is abandoned early, and the solver restarts from a seed drawn uniformly within the limits (from ``rng``, as
 TRAC-IK restarts, so the result is deterministic). The restarts also collect several distinct solutions; for
@@ -209,7 +218,14 @@ def _descend(q: np.ndarray, error: Any, jacobian: Any, project: Any, converged: 
     for iteration in range(max_iterations):
         if converged(e):
             return q, e, iteration
-        step = _step(jacobian(q), e, mu * (0.5 * cost + 1e-3), q, lower, upper)
+        j, damping = jacobian(q), mu * (0.5 * cost + 1e-3)
+        step, free = _step(j, e, damping, q, lower, upper)
+        if cost < 1e-6:  # the end-game: geodesic acceleration, for the curved valleys near a singular solution
+            curvature = -20.0 * ((error(q + 0.1 * step) - e) / 0.1 + j @ step)  # f_vv, step h = 0.1
+            jf, acceleration = j[:, free], np.zeros(len(q))
+            acceleration[free] = np.linalg.solve(jf.T @ jf + damping * np.eye(int(free.sum())), -jf.T @ curvature)
+            if 2.0 * np.linalg.norm(acceleration) <= 0.75 * np.linalg.norm(step):
+                step = step + acceleration / 2.0
         trial = project(q + step)
         e_trial = error(trial)
         c_trial = float(e_trial @ e_trial)
@@ -248,8 +264,8 @@ def _into_limits(q: np.ndarray, lower: np.ndarray, upper: np.ndarray,
 
 
 def _step(j: np.ndarray, e: np.ndarray, damping: float, q: np.ndarray, lower: np.ndarray,
-          upper: np.ndarray) -> np.ndarray:
-    """The damped least-squares step, with the joints that sit at a limit and would be pushed past it held still."""
+          upper: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The damped least-squares step and which joints are free: those at a limit it would push past are held still."""
     free = np.ones(len(q), dtype=bool)
     step = np.zeros(len(q))
     for _ in range(len(q)):
@@ -258,9 +274,9 @@ def _step(j: np.ndarray, e: np.ndarray, damping: float, q: np.ndarray, lower: np
         step[free] = np.linalg.solve(jf.T @ jf + damping * np.eye(int(free.sum())), jf.T @ e)
         blocked = free & (((q <= lower) & (step < 0)) | ((q >= upper) & (step > 0)))
         if not blocked.any():
-            return step
+            return step, free
         free &= ~blocked
-    return step
+    return step, free
 
 
 def _difference(a: np.ndarray, b: np.ndarray, wrap: np.ndarray) -> np.ndarray:

@@ -230,10 +230,15 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
         Scalar reference = cost;
         Scalar mu = 1;
         int stalled = 0;
+        Eigen::Matrix<Scalar, 6, N> J;
+        Eigen::Matrix<Scalar, N, N> normal;
+        bool moved = true;  // J and J^T J are those of x unless it moved
         for (int it = 0; it < 100 && !converged(e); it++) {
             steps++;
-            const Eigen::Matrix<Scalar, 6, N> J = velocity_of(x);
-            const Eigen::Matrix<Scalar, N, N> normal = J.transpose() * J;
+            if (moved) {
+                J = velocity_of(x);
+                normal = J.transpose() * J;
+            }
             const Scalar lambda = mu * (cost / Scalar(2) + Scalar(1e-3));
             Table<bool, N> held{};
             auto solve = [&](const Error& r) {  // (J^T J + lambda I)^-1 J^T r over the joints not held
@@ -277,7 +282,8 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
             project(trial, limited);
             Error e_trial;
             const Scalar c = error(trial, e_trial);
-            if (c < cost) {
+            moved = c < cost;
+            if (moved) {
                 x = trial;
                 e = e_trial;
                 cost = c;

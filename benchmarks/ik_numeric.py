@@ -160,7 +160,7 @@ def main() -> None:
                         and np.all(q >= lower - 1e-12) and np.all(q <= upper + 1e-12))
 
         start = time.perf_counter()
-        results = [solve_numeric(robot, pose, model, rng=k, restarts=1, until_found=64) for k, pose in enumerate(poses)]
+        results = [solve_numeric(robot, pose, model, rng=k, restarts=1) for k, pose in enumerate(poses)]
         elapsed = (time.perf_counter() - start) / len(poses)
         solved = sum(bool(s) and good(s[0].q, pose) for s, pose in zip(results, poses, strict=True))
         _row(name, "python", solved / len(poses), np.mean([s[0].iterations for s in results if s] or [0]),

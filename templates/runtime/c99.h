@@ -745,7 +745,7 @@ static inline int sj_ik_converged(const real *e)
 
 /* One start of Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
  * log(R* R(q)^T)], and geodesic acceleration once E < 1e-6: mu halves after an accepted step and grows 4 times
- * after a rejected one; the start ends after 100 steps or 6 steps without the cost falling by 10 % (while
+ * after a rejected one; the start ends after 100 steps or 4 steps without the cost falling by 10 % (while
  * E > 1e-10). Limits when lower is not NULL. x is overwritten by the configuration reached and e by its error;
  * *steps counts the steps; returns the cost E. */
 static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
@@ -799,7 +799,7 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
         if (cost < (real)0.9 * reference || cost < (real)1e-10) {
             reference = cost;
             stalled = 0;
-        } else if (++stalled >= 6) {
+        } else if (++stalled >= 4) {
             break;
         }
     }

@@ -163,7 +163,7 @@ using Table = std::array<T, static_cast<std::size_t>(N)>;
 
 // Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds, steps and budget): each start
 // descends by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
-// log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 6 without the
+// log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 4 without the
 // cost falling 10 % while E > 1e-10); a solution is shifted by 2 pi into the limits, and when a joint does not
 // fit, the descent goes on from the clipped configuration with the limits respected (a joint at a limit that a
 // step would push past is held still). Kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped
@@ -294,7 +294,7 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
             if (cost < Scalar(0.9) * reference || cost < Scalar(1e-10)) {
                 reference = cost;
                 stalled = 0;
-            } else if (++stalled >= 6) {
+            } else if (++stalled >= 4) {
                 break;
             }
         }

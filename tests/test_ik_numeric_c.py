@@ -99,6 +99,9 @@ def test_only_c_targets_and_a_base_frame_jacobian_have_it():
         describe(ModuleRequest(robot, "c99", frames=(1,), numeric_ik=True))
     plain = "".join(render_files(describe(ModuleRequest(robot, "c99"))).values())
     assert "inverse_kinematics_numeric" not in plain and "sj_ik_" not in plain
+    header = render_files(describe(ModuleRequest(robot, "c99", numeric_ik=True)))["planar2r.h"]
+    assert 'symjac.generate(symjac.load_robot("planar2r"), "c99", jacobians=[symjac.JacobianRequest(0)], ' \
+           "numeric_ik=True)" in header  # the header's command regenerates it with the solver
 
 
 SHIM = """

@@ -146,7 +146,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     if command is None:
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
-                              request.acceleration, request.name, request.dynamics, request.identification)
+                              request.acceleration, request.name, request.dynamics, request.identification,
+                              request.numeric_ik)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
@@ -247,6 +248,7 @@ def generate(
     name: str | None = None,
     dynamics: bool = False,
     identification: bool = False,
+    numeric_ik: bool = False,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -303,6 +305,9 @@ def generate(
         ``REGRESSOR_PARAMETERS``: ten per link, ``XX1 XY1 XZ1 YY1 YZ1 ZZ1 MX1 MY1 MZ1 M1 XX2 ...``, about the link
         origin) and ``base_regressor(q, qdot, qddot)`` (n x b, tau = Y_b pi_b, ``BASE_PARAMETERS``); ``selftest``
         checks both against inverse dynamics with the robot's own parameters.
+    numeric_ik : bool
+        Also generate ``inverse_kinematics_numeric`` (c99 and cpp targets), Levenberg-Marquardt on the module's forward
+        kinematics and its first six-row frame-{0} Jacobian (:mod:`symjac.codegen.ik_numeric`).
 
     Returns
     -------
@@ -331,7 +336,7 @@ def generate(
     """
     request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
                             strategy=strategy, command=command, acceleration=acceleration, name=name,
-                            dynamics=dynamics, identification=identification)
+                            dynamics=dynamics, identification=identification, numeric_ik=numeric_ik)
     return primary(render_files(describe(request)))
 
 

@@ -52,7 +52,7 @@ def _independent_fk(robot):
     return sp.lambdify([list(robot.joint_variables)], pose, "numpy")
 
 
-@pytest.mark.parametrize("name", ["panda", "puma560", "ur5"])
+@pytest.mark.parametrize("name", ["panda", "puma560", "ur5", "stanford"])
 def test_generated_solver_reaches_every_pose_within_the_limits(tmp_path, name):
     robot = load_robot(name)
     solve, fk = _solver(tmp_path, robot), _independent_fk(robot)

@@ -143,3 +143,27 @@ def test_generated_cpp_solver_reaches_every_pose(tmp_path, name):
         assert found == 3 and iterations.value > 0
         assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
         assert np.all(q >= lower - 1e-12) and np.all(q <= upper + 1e-12)
+
+
+@pytest.mark.parametrize("name", ["panda", "stanford"])
+def test_generated_python_solver_agrees_with_the_c99_one(tmp_path, name):
+    import types
+
+    robot = load_robot(name)
+    source = next(iter(render_files(describe(ModuleRequest(robot, "python", numeric_ik=True))).values()))
+    module = types.ModuleType(f"{name}_ik")
+    exec(compile(source, f"{name}_ik.py", "exec"), module.__dict__)  # our own generated module
+    solve_c, fk = _solver(tmp_path, robot), _independent_fk(robot)
+    lower, upper = seed_bounds(robot)
+    generator = np.random.default_rng(48)
+    same = 0
+    for k in range(10):
+        pose = np.asarray(fk(generator.uniform(lower, upper)), dtype=float)
+        q, found, iterations = module.inverse_kinematics_numeric(pose.tolist(), seed=k)
+        assert found and iterations > 0
+        assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
+        assert np.all(np.asarray(q) >= lower - 1e-12) and np.all(np.asarray(q) <= upper + 1e-12)
+        assert module.inverse_kinematics_numeric(pose.tolist(), seed=k) == (q, found, iterations)  # deterministic
+        found_c, q_c, iterations_c = solve_c(pose, k)
+        same += found_c == 1 and iterations_c == iterations and np.abs(q_c - np.asarray(q)).max() < 1e-8
+    assert same >= 8  # the same seeds and steps: the same path, unless rounding sends one start elsewhere

@@ -306,8 +306,8 @@ def generate(
         origin) and ``base_regressor(q, qdot, qddot)`` (n x b, tau = Y_b pi_b, ``BASE_PARAMETERS``); ``selftest``
         checks both against inverse dynamics with the robot's own parameters.
     numeric_ik : bool
-        Also generate ``inverse_kinematics_numeric`` (c99 and cpp targets), Levenberg-Marquardt on the module's forward
-        kinematics and its first six-row frame-{0} Jacobian (:mod:`symjac.codegen.ik_numeric`).
+        Also generate ``inverse_kinematics_numeric`` (c99, cpp, python), Levenberg-Marquardt on the module's forward
+        kinematics and its first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``).
 
     Returns
     -------

@@ -149,6 +149,7 @@ class PythonModule:
     imports: tuple[str, ...]
     extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     runtime: str = ""  # the runtime's text, copied into the module at its end
+    ik_text: str = ""  # the closed-form inverse kinematics (symjac.codegen.ik_printing), or nothing
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__"):
@@ -243,6 +244,16 @@ def _bound(value: float) -> str:
     return repr(value) if math.isfinite(value) else f'float("{value}")'
 
 
+def _inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str]) -> Any:
+    """The module's closed-form inverse kinematics printed for ``target`` (python, else NumPy), or empty text."""
+    from symjac.codegen.backends.numpy.printer import NumPyPrinter
+    from symjac.codegen.backends.python.printer import PythonPrinter
+    from symjac.codegen.ik_printing import python_inverse_kinematics
+
+    printer = PythonPrinter if target == "python" else NumPyPrinter
+    return python_inverse_kinematics(description, "python" if target == "python" else "numpy", taken, printer)
+
+
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),
                            sections: Iterable[str] = ()) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
     """The ``render`` of a Python-family backend: print each function with ``emit``, fill ``backend.template``.
@@ -258,10 +269,12 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
     def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
         taken = frozenset(RESERVED) | set(description.parameter_names)
         functions = tuple(emit(description, f, taken) for f in description.functions)
+        ik = _inverse_kinematics(description, backend.name, taken)
         module = PythonModule(
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,
-            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always))),
+            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always) | set(ik.uses))),
+            ik_text=ik.text,
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
             runtime=runtime_source(backend.runtime, description.runtime_sections | own) if backend.runtime else "",

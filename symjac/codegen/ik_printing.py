@@ -1,0 +1,181 @@
+"""The closed-form ``inverse_kinematics`` of a generated module, printed for each target family.
+
+:mod:`symjac.codegen.inverse_kinematics` lowers the closed form to one straight line (conditions, then every branch's
+joint values); here each family's printer writes that line and the templates ``templates/ik/`` lay the function out
+around it: the selection of valid branches, the wrapping of angles and the fixed-size result. One printer per target
+gains ``atan2``, ``max`` and the inverse trigonometric functions the closed form uses (:func:`ik_printer`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import sympy as sp
+
+from symjac.codegen.backends._c_family import c_statements, comment
+from symjac.codegen.description import ModuleDescription
+from symjac.codegen.inverse_kinematics import IK_TOLERANCE, InverseKinematics
+from symjac.codegen.lower import SymbolNames, symbol_names
+from symjac.codegen.printers import float_literal
+from symjac.codegen.source_layout import entry_names, temporary_lines, tuple_lines, wrap_statement
+from symjac.resources import render_template
+
+__all__ = ["IKText", "c_inverse_kinematics", "ik_printer", "python_inverse_kinematics"]
+
+_FUNCTIONS: Mapping[str, Mapping[str, str]] = {
+    "python": {"atan2": "atan2", "Max": "max", "atan": "atan", "asin": "asin", "acos": "acos", "Abs": "abs"},
+    "numpy": {"atan2": "np.arctan2", "Max": "np.maximum", "atan": "np.arctan", "asin": "np.arcsin",
+              "acos": "np.arccos", "Abs": "np.abs"},
+    "jax": {"atan2": "jnp.arctan2", "Max": "jnp.maximum", "atan": "jnp.arctan", "asin": "jnp.arcsin",
+            "acos": "jnp.arccos", "Abs": "jnp.abs"},
+    "casadi": {"atan2": "ca.atan2", "Max": "ca.fmax", "atan": "ca.atan", "asin": "ca.asin", "acos": "ca.acos",
+               "Abs": "ca.fabs"},
+    "c": {"atan2": "atan2", "Max": "fmax", "atan": "atan", "asin": "asin", "acos": "acos", "Abs": "fabs"},
+}
+"""What each family calls the functions of a closed form (the python family imports the bare names from math)."""
+
+_IMPORTED = frozenset(("atan2", "atan", "asin", "acos"))
+"""Names the python target imports from ``math`` when its inverse kinematics calls them."""
+
+
+def ik_printer(base: type, family: str) -> type:
+    """``base`` (a target's printer class) with the closed form's functions as ``family`` writes them."""
+    names = _FUNCTIONS[family]
+
+    class IKPrinter(base):  # type: ignore[valid-type,misc]
+        def _call(self, kind: str, args: tuple[sp.Basic, ...]) -> str:
+            name = names[kind]
+            if name in _IMPORTED:
+                self.used.add(name)
+            return f"{name}({', '.join(self._print(a) for a in args)})"
+
+        def _print_atan2(self, expr: sp.Expr) -> str:
+            return self._call("atan2", expr.args)
+
+        def _print_atan(self, expr: sp.Expr) -> str:
+            return self._call("atan", expr.args)
+
+        def _print_asin(self, expr: sp.Expr) -> str:
+            return self._call("asin", expr.args)
+
+        def _print_acos(self, expr: sp.Expr) -> str:
+            return self._call("acos", expr.args)
+
+        def _print_Abs(self, expr: sp.Expr) -> str:
+            return self._call("Abs", expr.args)
+
+        def _print_Max(self, expr: sp.Expr) -> str:
+            first, *rest = sorted(expr.args, key=lambda a: a.is_Number)  # the value first: max(nan, 0) stays NaN
+            text = self._print(first)
+            for other in rest:
+                text = f"{names['Max']}({text}, {self._print(other)})"
+            return text
+
+    IKPrinter.__name__ = IKPrinter.__qualname__ = f"IK{base.__name__}"
+    return IKPrinter
+
+
+@dataclass(frozen=True)
+class IKText:
+    """A module's inverse kinematics as printed text: ``text`` (what the template inserts), ``uses`` (imports)."""
+
+    text: str
+    uses: tuple[str, ...] = ()
+    header: str = ""
+
+
+def _names(description: ModuleDescription, ik: InverseKinematics, taken: frozenset[str]) -> SymbolNames:
+    names = symbol_names(description.symbols, ik.lowered, taken)
+    for _, symbols in ik.lowered.inputs:
+        for symbol in symbols:
+            names.fresh(symbol, symbol.name)
+    for k, (symbol, _) in enumerate(ik.lowered.temporaries):
+        names.fresh(symbol, f"x{k}")
+    return names
+
+
+def _facts(description: ModuleDescription, ik: InverseKinematics) -> dict[str, Any]:
+    return {"module": description, "ik": ik, "tolerance": float_literal(IK_TOLERANCE),
+            "branches": ik.branch_names, "n": ik.n, "m": ik.max_solutions,
+            "conditions": ik.branch_conditions, "n_conditions": ik.n_conditions,
+            "family": ik.family or "closed form", "op_count": ik.lowered.op_count}
+
+
+_PYTHON_LOCALS = frozenset(("pose", "tolerance", "values", "poses", "rows", "batch", "count", "solutions", "np",
+                            "math", "parameters", "out", "q"))
+
+
+def python_inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str],
+                              printer_base: type) -> IKText:
+    """The python or numpy target's ``inverse_kinematics`` (and its helpers) as module text, or nothing."""
+    ik = description.inverse_kinematics
+    if ik is None:
+        return IKText("")
+    family = "python" if target == "python" else "numpy"
+    names = _names(description, ik, taken | _PYTHON_LOCALS)
+    printer = ik_printer(printer_base, family)(names.mapping)
+    indent = "        "
+    lowered = ik.lowered
+    (_, pose), = lowered.inputs
+    entries = entry_names(lowered, names, pose)
+    unpack = [f"{indent}{', '.join(entries[4 * r:4 * r + 4])} = {'pose' if family == 'python' else 'rows'}"
+              f"[{r}]{'[:4]' if family == 'python' else ''}" for r in range(3)]
+    parameters = entry_names(lowered, names, description.parameter_symbols)
+    body = temporary_lines(lowered, names, printer, indent)
+    values = [printer.doprint(e) for e in lowered.outputs]
+    value_lines = tuple_lines(f"{indent}values = ", values) if family == "python" else \
+        tuple_lines(f"{indent}values = ", values)
+    data = {**_facts(description, ik), "unpack": unpack, "body": body, "value_lines": value_lines,
+            "parameter_line": (f"{indent}{', '.join(parameters)}{',' if len(parameters) == 1 else ''} = parameters"
+                               if parameters else ""),
+            "branch_lines": tuple_lines("IK_BRANCHES = ", (f'"{name}"' for name in ik.branch_names)),
+            "condition_lines": tuple_lines("_IK_CONDITIONS = ", (
+                "(" + "".join(f"{k}, " for k in ks).rstrip(" ") + ")" for ks in ik.branch_conditions))}
+    text = render_template(f"ik/{family}.py.j2", **data)
+    uses = {"atan2", "ceil", "isfinite", "pi"} | set(printer.used) if family == "python" else set()
+    return IKText(text, tuple(sorted(uses)))
+
+
+_C_LOCALS = frozenset(("pose", "tolerance", "v", "count", "q", "p", "params", "solutions", "real", "row", "value",
+                       "lower", "upper", "i"))
+
+
+def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: frozenset[str],
+                         printer_base: type) -> IKText:
+    """The c99 target's (header declaration and source) or the cpp target's ``inverse_kinematics``, or nothing."""
+    ik = description.inverse_kinematics
+    if ik is None:
+        return IKText("")
+    names = _names(description, ik, reserved | _C_LOCALS)
+    mapping = dict(names.mapping)
+    lowered = ik.lowered
+    (_, pose), = lowered.inputs
+    used = lowered.used_symbols
+    reads = []
+    for k, symbol in enumerate(pose):
+        if symbol in used:
+            place = f"pose[{4 * (k // 4) + k % 4}]" if target == "c99" else f"pose({k // 4}, {k % 4})"
+            reads.append(f"    const real {mapping[symbol]} = {place};")
+    for k, symbol in enumerate(description.parameter_symbols):
+        mapping[symbol] = f"p[{k}]" if target == "c99" else f"p.{symbol.name}"
+    printer = ik_printer(printer_base, "c")(mapping)
+    statements = c_statements(lowered, mapping, printer, "    ", "real", lambda k: f"v[{k}]")
+    selection = []
+    for b, conditions in enumerate(ik.branch_conditions):
+        start = ik.joint_output(b, 0)
+        store = (f"count += sj_ik_store(v + {start}, q + count * {ik.n});" if target == "c99" else
+                 f"count += detail::ik_store(&v[{start}], solutions[count]);")
+        test = " && ".join(f"v[{k}] >= -tolerance" for k in conditions)
+        selection += wrap_statement(f"    if ({test}) ", store, language="c") if test else [f"    {store}"]
+    data = {**_facts(description, ik), "reads": reads,
+            "body": (*statements.temporaries, *statements.outputs), "selection": selection,
+            "size": len(lowered.outputs), "prefix": description.robot, "macro": description.robot.upper(),
+            "revolute": ", ".join("1" if r else "0" for r in ik.revolute),
+            "branch_literals": [f'"{comment(name)}"' for name in ik.branch_names],
+            "summary": comment(f"Closed-form inverse kinematics ({ik.family or 'closed form'})")}
+    if target == "c99":
+        return IKText(render_template("ik/c99_source.c.j2", **data), (),
+                      render_template("ik/c99_header.h.j2", **data))
+    return IKText(render_template("ik/cpp.hpp.j2", **data))

@@ -1,0 +1,195 @@
+r"""Closed-form inverse kinematics for generated code: every branch program as one straight-line function.
+
+The closed form of an arm (:func:`~symjac.analysis.inverse_kinematics.closed_form.branch_programs`) is a tuple of
+branch programs, each an ordered list of assignments ``symbol = expression`` in the pose symbols, the robot's
+parameters and earlier symbols, with the *conditions*: assigned symbols that must not be negative (each is the
+argument of a square root). Generated code evaluates all of them at once:
+
+1. **Shared across branches.** The branches are walked in order; every assignment's value, with the symbols before it
+   replaced by the shared names already given, gets one name for all branches that compute the same value (the
+   wrist centre, the shoulder angle both elbow branches share). One CSE then runs over everything
+   (:func:`~symjac.codegen.cse.eliminate_common`).
+2. **Conditions clamped.** A condition's raw value is an output of its own; what later assignments read is
+   ``max(value, 0)``, so a square root never sees a negative number. At run time a branch whose condition lies
+   below ``-tolerance`` is dropped, one within the tolerance is kept with the value clamped to 0 (the two branches
+   of a square root then coincide).
+3. **Selection** (written by each target around the straight line): a branch is kept when its conditions pass and
+   every joint value is finite (a NaN pose, a division by zero at a singular pose), revolute angles are wrapped to
+   (-pi, pi], and an angle outside the joint's limits is replaced by its 2 pi shift when that one is inside; the kept
+   solutions are written in branch order into a fixed array of :attr:`InverseKinematics.max_solutions` rows, and
+   their count is returned.
+
+The outputs of the lowered function (:class:`~symjac.codegen.lower.LoweredFunction`, input ``pose``: the first three
+rows of the 4 x 4 pose, row-major) are the distinct condition values first, then each branch's joint values.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Protocol
+
+import sympy as sp
+
+from symjac.codegen.cse import eliminate_common
+from symjac.codegen.lower import LoweredFunction
+from symjac.errors import CodegenError
+from symjac.kinematics.chain import Chain, as_chain
+from symjac.kinematics.memo import memoized
+from symjac.model.robot import Robot
+
+__all__ = [
+    "IK_EXPORTS",
+    "IK_TOLERANCE",
+    "POSE_ENTRIES",
+    "BranchProgramLike",
+    "InverseKinematics",
+    "inverse_kinematics_of",
+    "lower_branch_programs",
+    "lowered_inverse_kinematics",
+]
+
+IK_TOLERANCE = 1e-9
+"""The default ``tolerance`` of every generated ``inverse_kinematics``: how far below 0 a condition may lie and
+still count as 0 (as :func:`~symjac.analysis.inverse_kinematics.closed_form.solve_plan`'s default)."""
+
+IK_EXPORTS = ("IK_BRANCHES", "IK_MAX_SOLUTIONS", "IK_TOLERANCE", "inverse_kinematics")
+"""The names a Python-family module with inverse kinematics exports besides its other functions."""
+
+POSE_ENTRIES = ("r11", "r12", "r13", "px", "r21", "r22", "r23", "py", "r31", "r32", "r33", "pz")
+"""The pose symbols in the order of the first twelve entries of a row-major 4 x 4 pose (the last row is ignored)."""
+
+
+class BranchProgramLike(Protocol):
+    """What lowering reads of a branch program (:class:`~symjac.analysis.inverse_kinematics.closed_form.BranchProgram`)."""
+
+    @property
+    def branch(self) -> tuple[str, ...]: ...  # noqa: D102
+
+    @property
+    def assignments(self) -> tuple[tuple[sp.Symbol, sp.Expr], ...]: ...  # noqa: D102
+
+    @property
+    def conditions(self) -> tuple[sp.Symbol, ...]: ...  # noqa: D102
+
+
+@dataclass(frozen=True)
+class InverseKinematics:
+    """The closed form of a robot's inverse kinematics as one lowered function, with what selection needs.
+
+    ``lowered`` has the input ``pose`` (:data:`POSE_ENTRIES`) and the outputs: the ``n_conditions`` distinct
+    condition values, then each branch's ``n`` joint values. ``branch_conditions[b]`` indexes the condition values
+    branch ``b`` needs; ``branches`` name the branches (``("shoulder left", "elbow up")``); ``revolute`` says which
+    joints are angles (wrapped to (-pi, pi]).
+    """
+
+    lowered: LoweredFunction
+    family: str
+    branches: tuple[tuple[str, ...], ...]
+    branch_conditions: tuple[tuple[int, ...], ...]
+    n_conditions: int
+    n: int
+    revolute: tuple[bool, ...]
+
+    @property
+    def max_solutions(self) -> int:
+        """The number of branches: the most solutions a pose can have, the rows of the solutions array."""
+        return len(self.branches)
+
+    @property
+    def branch_names(self) -> tuple[str, ...]:
+        """Each branch's names joined: ``"shoulder left, elbow up"`` (``"the only branch"`` for none)."""
+        return tuple(", ".join(names) or "the only branch" for names in self.branches)
+
+    def joint_output(self, branch: int, joint: int) -> int:
+        """The index among the lowered outputs of ``joint``'s value in ``branch``."""
+        return self.n_conditions + branch * self.n + joint
+
+
+def pose_symbols() -> tuple[sp.Symbol, ...]:
+    """The pose symbols in :data:`POSE_ENTRIES` order (real symbols, equal to the plan's ``POSE_SYMBOLS``)."""
+    return tuple(sp.Symbol(name, real=True) for name in POSE_ENTRIES)
+
+
+def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequence[sp.Symbol],
+                          parameters: Sequence[sp.Symbol], revolute: Sequence[bool], family: str = ""
+                          ) -> InverseKinematics:
+    """Lower ``programs`` (one per branch) to one straight-line function of the pose and the ``parameters``.
+
+    ``joints`` are the joint variables every program must assign (their last assignment is the branch's value).
+    An expression reading a symbol that is neither a pose symbol, a parameter nor assigned before it is refused.
+    """
+    if not programs:
+        raise CodegenError("inverse kinematics: the closed form has no branch")
+    known = set(pose_symbols()) | set(parameters)
+    definitions: list[tuple[sp.Symbol, sp.Expr]] = []
+    by_value: dict[sp.Expr, sp.Expr] = {}
+    names = sp.numbered_symbols("_ik", real=True)
+
+    def share(value: sp.Expr) -> sp.Expr:
+        if value.is_Symbol or value.is_Number:
+            return value
+        if value not in by_value:
+            symbol = next(names)
+            definitions.append((symbol, value))
+            by_value[value] = symbol
+        return by_value[value]
+
+    condition_values: list[sp.Expr] = []
+    branch_conditions: list[tuple[int, ...]] = []
+    joint_values: list[sp.Expr] = []
+    for program in programs:
+        values: dict[sp.Symbol, sp.Expr] = {}
+        indices: list[int] = []
+        for symbol, expr in program.assignments:
+            expr = sp.sympify(expr)
+            unknown = sorted(str(s) for s in expr.free_symbols - known - set(values))
+            if unknown:
+                raise CodegenError(f"inverse kinematics, branch {', '.join(program.branch) or '(only)'}: "
+                                   f"{symbol} = {expr} reads {', '.join(unknown)}, neither a pose symbol, a "
+                                   "parameter nor assigned before")
+            value = share(expr.xreplace(values))
+            if symbol in program.conditions:
+                if value not in condition_values:
+                    condition_values.append(value)
+                indices.append(condition_values.index(value))
+                value = share(sp.Max(value, sp.S.Zero))
+            values[symbol] = value
+        missing = [str(j) for j in joints if j not in values]
+        if missing:
+            raise CodegenError(f"inverse kinematics, branch {', '.join(program.branch) or '(only)'}: no value for "
+                               f"{', '.join(missing)}")
+        branch_conditions.append(tuple(sorted(set(indices))))
+        joint_values += [values[j] for j in joints]
+    flat = [*condition_values, *joint_values]
+    temporaries, reduced = eliminate_common(flat, definitions)
+    op_count = sum(int(sp.count_ops(e)) for _, e in temporaries) + sum(int(sp.count_ops(e)) for e in reduced)
+    lowered = LoweredFunction((("pose", pose_symbols()),), (), tuple(temporaries), tuple(reduced),
+                              tuple(flat), (len(flat),), op_count, f"closed form ({family})" if family else
+                              "closed form")
+    return InverseKinematics(lowered, family, tuple(tuple(p.branch) for p in programs), tuple(branch_conditions),
+                             len(condition_values), len(joints), tuple(revolute))
+
+
+@memoized()
+def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
+    """The robot's closed form (its plan's branch programs) lowered; NoClosedFormError for an arm without one."""
+    from symjac.analysis.inverse_kinematics.closed_form import branch_programs
+    from symjac.analysis.inverse_kinematics.plan import closed_form_plan
+
+    robot = chain.robot
+    if robot.coupling is not None:
+        raise CodegenError(f"inverse kinematics: {robot.name} has coupled joints; generated closed forms solve "
+                           "independent joints only")
+    plan = closed_form_plan(robot)
+    if plan.free_joint is not None:
+        raise CodegenError(f"inverse kinematics: the closed form of {robot.name} takes joint {plan.free_joint + 1} "
+                           "as a parameter, which generated code does not take yet")
+    revolute = tuple(kind.value == "revolute" for kind in robot.coordinate_types)
+    return lower_branch_programs(branch_programs(plan), robot.q, tuple(p.symbol for p in robot.geometric_parameters),
+                                 revolute, plan.family)
+
+
+def inverse_kinematics_of(robot: Robot | Chain) -> InverseKinematics:
+    """:func:`lowered_inverse_kinematics` of a robot or chain."""
+    return lowered_inverse_kinematics(as_chain(robot))

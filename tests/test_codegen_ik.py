@@ -1,0 +1,99 @@
+"""Generated closed-form inverse kinematics in every target: solutions, selection, unreachable and NaN poses."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from ik_generated import ik_files, ik_solvers
+from ik_programs import planar_2r_programs
+
+import symjac.codegen.module as codegen_module
+from symjac.codegen.inverse_kinematics import lower_branch_programs
+from symjac.codegen.numeric_model import numeric_model
+from symjac.model.io import load_robot
+
+TARGETS = ("python", "numpy", "c", "c99", "cpp")
+
+
+@pytest.fixture(scope="module")
+def planar(tmp_path_factory):
+    """The planar 2R arm with its hand-written elbow-up/down programs, every target's solver."""
+    robot = load_robot("planar2r")
+    ik = lower_branch_programs(planar_2r_programs(robot), robot.q,
+                               [p.symbol for p in robot.geometric_parameters], (True, True), "planar 2R")
+    patch = pytest.MonkeyPatch()
+    patch.setattr(codegen_module, "inverse_kinematics_of", lambda chain: ik)
+    folder = tmp_path_factory.mktemp("ik_planar")
+    yield robot, ik_solvers(folder, robot, TARGETS), folder
+    patch.undo()
+
+
+def _poses(robot, count: int, seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
+    q = np.random.default_rng(seed).uniform(-np.pi, np.pi, (count, robot.n_joints))
+    return q, numeric_model(robot, backend="numpy").fk(q)
+
+
+def test_every_target_finds_both_elbows_and_they_reproduce_the_pose(planar):
+    robot, solvers, _ = planar
+    q, poses = _poses(robot, 50)
+    fk = numeric_model(robot, backend="numpy").fk
+    reference = solvers["python"](poses)
+    for target, solve in solvers.items():
+        found = solve(poses)
+        for k, (solutions, expected) in enumerate(zip(found, reference, strict=True)):
+            assert solutions.shape == (2, 2), (target, k)
+            np.testing.assert_allclose(solutions, expected, atol=1e-12, err_msg=target)
+            np.testing.assert_allclose(fk(solutions)[:, :3, 3], np.repeat(poses[k:k + 1, :3, 3], 2, 0), atol=1e-10)
+            assert np.min(np.abs(solutions - q[k]).max(axis=1)) < 1e-9, (target, k)  # the pose's own configuration
+            assert np.all((solutions > -np.pi) & (solutions <= np.pi))
+
+
+def test_elbow_up_comes_first_with_a_positive_elbow(planar):
+    robot, solvers, _ = planar
+    _, poses = _poses(robot, 20, seed=1)
+    for solve in solvers.values():
+        for solutions in solve(poses):
+            assert solutions[0, 1] > 0 > solutions[1, 1]
+
+
+def test_unreachable_and_nan_poses_give_no_solution(planar):
+    robot, solvers, _ = planar
+    far = np.eye(4)
+    far[0, 3] = 2.0  # beyond L1 + L2 = 0.9
+    near = np.eye(4)
+    near[0, 3] = 0.05  # inside |L1 - L2| = 0.1
+    nan = np.full((4, 4), np.nan)
+    for target, solve in solvers.items():
+        assert [len(s) for s in solve(np.array([far, near, nan]))] == [0, 0, 0], target
+
+
+def test_a_pose_at_full_stretch_keeps_the_branch_within_the_tolerance(planar):
+    robot, solvers, _ = planar
+    pose = np.eye(4)
+    pose[0, 3] = 0.9 * (1 + 1e-12)  # c2 = 1 + a few 1e-12: the condition is clamped, not failed
+    for target, solve in solvers.items():
+        (solutions,) = solve(pose[None])
+        assert solutions.shape == (2, 2), target
+        np.testing.assert_allclose(solutions, 0.0, atol=1e-5, err_msg=target)
+
+
+def test_generation_is_deterministic(planar):
+    robot, _, _ = planar
+    for target in TARGETS:
+        assert ik_files(robot, target) == ik_files(robot, target), target
+
+
+def test_the_numpy_target_keeps_batch_shapes(planar):
+    robot, _, folder = planar
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("ik_numpy_shape", folder / "numpy" / "numpy_planar2r.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    _, poses = _poses(robot, 6)
+    solutions, count = module.inverse_kinematics(poses.reshape(2, 3, 4, 4))
+    assert solutions.shape == (2, 3, module.IK_MAX_SOLUTIONS, 2) and count.shape == (2, 3)
+    single, one = module.inverse_kinematics(poses[0])
+    assert single.shape == (2, 2) and one.shape == () and int(one) == 2
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., 4, 4\)"):
+        module.inverse_kinematics(np.zeros((3, 4)))

@@ -40,6 +40,28 @@ def _python(folder: Path, robot, target: str) -> Solver:
     if target == "python":
         return lambda poses: [np.array(module.inverse_kinematics(pose)[0]).reshape(-1, robot.n_joints)
                               for pose in poses]
+    if target == "jax":
+        import jax
+
+        jax.config.update("jax_enable_x64", True)
+        solve = jax.jit(jax.vmap(module.inverse_kinematics))
+
+        def masked(poses: np.ndarray) -> list[np.ndarray]:
+            solutions, valid = (np.asarray(a) for a in solve(poses))
+            return [rows[ok] for rows, ok in zip(solutions, valid, strict=True)]
+
+        return masked
+    if target == "casadi":
+        defaults = np.array([value for value in module.PARAMETER_DEFAULTS], dtype=float)
+
+        def function(poses: np.ndarray) -> list[np.ndarray]:
+            found = []
+            for pose in poses:
+                solutions, valid = (np.asarray(a) for a in module.inverse_kinematics(pose, defaults))
+                found.append(solutions[valid.ravel() > 0.5])
+            return found
+
+        return function
 
     def batched(poses: np.ndarray) -> list[np.ndarray]:
         solutions, count = module.inverse_kinematics(poses)

@@ -12,7 +12,7 @@ from symjac.codegen.inverse_kinematics import lower_branch_programs
 from symjac.codegen.numeric_model import numeric_model
 from symjac.model.io import load_robot
 
-TARGETS = ("python", "numpy", "c", "c99", "cpp")
+TARGETS = ("python", "numpy", "c", "lambdify", "jax", "casadi", "c99", "cpp")
 
 
 @pytest.fixture(scope="module")

@@ -107,30 +107,37 @@ _PYTHON_LOCALS = frozenset(("pose", "tolerance", "values", "poses", "rows", "bat
                             "math", "parameters", "out", "q"))
 
 
-def python_inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str],
+def python_inverse_kinematics(description: ModuleDescription, family: str, taken: frozenset[str],
                               printer_base: type) -> IKText:
-    """The python or numpy target's ``inverse_kinematics`` (and its helpers) as module text, or nothing."""
+    """``inverse_kinematics`` and its helpers as module text for a Python ``family`` (python, numpy, jax, casadi).
+
+    Empty text when the module has no inverse kinematics.
+    """
     ik = description.inverse_kinematics
     if ik is None:
         return IKText("")
-    family = "python" if target == "python" else "numpy"
     names = _names(description, ik, taken | _PYTHON_LOCALS)
     printer = ik_printer(printer_base, family)(names.mapping)
-    indent = "        "
+    indent = "        " if family in ("python", "numpy") else "    "
     lowered = ik.lowered
     (_, pose), = lowered.inputs
     entries = entry_names(lowered, names, pose)
-    unpack = [f"{indent}{', '.join(entries[4 * r:4 * r + 4])} = {'pose' if family == 'python' else 'rows'}"
-              f"[{r}]{'[:4]' if family == 'python' else ''}" for r in range(3)]
-    parameters = entry_names(lowered, names, description.parameter_symbols)
-    body = temporary_lines(lowered, names, printer, indent)
+    if family in ("python", "numpy"):
+        source = "pose[{r}][:4]" if family == "python" else "rows[{r}]"
+        unpack = [f"{indent}{', '.join(entries[4 * r:4 * r + 4])} = {source.format(r=r)}" for r in range(3)]
+    else:
+        unpack = [f"{indent}{names.mapping[s]} = pose[{k // 4}, {k % 4}]" for k, s in enumerate(pose)
+                  if s in lowered.used_symbols]
+    parameter_line = ""
+    if family == "casadi" and description.parameter_symbols:
+        parameters = entry_names(lowered, names, description.parameter_symbols)
+        parameter_line = f"{indent}{', '.join(parameters)}{',' if len(parameters) == 1 else ''} = ca.vertsplit(p)"
     values = [printer.doprint(e) for e in lowered.outputs]
-    value_lines = tuple_lines(f"{indent}values = ", values) if family == "python" else \
-        tuple_lines(f"{indent}values = ", values)
-    data = {**_facts(description, ik), "unpack": unpack, "body": body, "value_lines": value_lines,
-            "parameter_line": (f"{indent}{', '.join(parameters)}{',' if len(parameters) == 1 else ''} = parameters"
-                               if parameters else ""),
+    data = {**_facts(description, ik), "unpack": unpack, "parameter_line": parameter_line,
+            "body": temporary_lines(lowered, names, printer, indent),
+            "value_lines": tuple_lines(f"{indent}values = ", values),
             "branch_lines": tuple_lines("IK_BRANCHES = ", (f'"{name}"' for name in ik.branch_names)),
+            "revolute_lines": tuple_lines("_IK_REVOLUTE = ", (str(r) for r in ik.revolute)),
             "condition_lines": tuple_lines("_IK_CONDITIONS = ", (
                 "(" + "".join(f"{k}, " for k in ks).rstrip(" ") + ")" for ks in ik.branch_conditions))}
     text = render_template(f"ik/{family}.py.j2", **data)

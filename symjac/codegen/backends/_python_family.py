@@ -245,13 +245,19 @@ def _bound(value: float) -> str:
 
 
 def _inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str]) -> Any:
-    """The module's closed-form inverse kinematics printed for ``target`` (python, else NumPy), or empty text."""
+    """The module's closed-form inverse kinematics printed for ``target``'s family, or empty text.
+
+    The c and lambdify targets carry the NumPy version (batched over poses, as their other functions).
+    """
+    from symjac.codegen.backends.casadi.printer import CasadiPrinter
+    from symjac.codegen.backends.jax.printer import JaxPrinter
     from symjac.codegen.backends.numpy.printer import NumPyPrinter
     from symjac.codegen.backends.python.printer import PythonPrinter
     from symjac.codegen.ik_printing import python_inverse_kinematics
 
-    printer = PythonPrinter if target == "python" else NumPyPrinter
-    return python_inverse_kinematics(description, "python" if target == "python" else "numpy", taken, printer)
+    family = target if target in ("python", "jax", "casadi") else "numpy"
+    printer = {"python": PythonPrinter, "jax": JaxPrinter, "casadi": CasadiPrinter}.get(family, NumPyPrinter)
+    return python_inverse_kinematics(description, family, taken, printer)
 
 
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),

@@ -15,6 +15,13 @@ identities keep the formulas short: ``u'.v' = u.v - (k.u)(k.v)`` and ``k.(u' x v
 - **Rotation to a distance** (subproblem 3): ``|rot(k, theta) u - v| = delta``. Across the axis the distance is
   ``delta'^2 = delta^2 - (k.(u - v))^2``, and ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` with ``theta0`` the angle
   from ``u'`` to ``v'`` and ``c = (|u'|^2 + |v'|^2 - delta'^2) / (2 |u'| |v'|)``; zero, one or two solutions.
+- **Rotation to a plane** (subproblem 4): ``h.(r + rot(k, theta) u) = d``. With ``A = h.u'``, ``B = h.(k x u)`` and
+  ``C = d - h.r - (k.u)(k.h)`` it reads ``A cos(theta) + B sin(theta) = C``, so
+  ``theta = atan2(B, A) -+ atan2(sqrt(A^2 + B^2 - C^2), C)``; zero, one or two solutions.
+- **Slide to a point**: ``p + s k = q`` for a prismatic joint along ``k``: ``s = k.(q - p)`` when ``q - p`` is along
+  ``k``.
+- **Slide to a distance**: ``|p + s k - q| = delta``, a quadratic in ``s``: with ``u = p - q``,
+  ``s = -k.u -+ sqrt(delta^2 - |u'|^2)``; zero, one or two solutions.
 
 Each comes as a numeric function (NumPy floats, all solutions, a tolerance for the existence test, one solution where
 two merge) and a ``_symbolic`` function returning a :class:`Subproblem`: the solutions as SymPy expressions with
@@ -36,8 +43,14 @@ __all__ = [
     "Subproblem",
     "rotation_to_distance",
     "rotation_to_distance_symbolic",
+    "rotation_to_plane",
+    "rotation_to_plane_symbolic",
     "rotation_to_point",
     "rotation_to_point_symbolic",
+    "slide_to_distance",
+    "slide_to_distance_symbolic",
+    "slide_to_point",
+    "slide_to_point_symbolic",
     "two_rotations_to_point",
     "two_rotations_to_point_symbolic",
 ]
@@ -203,6 +216,75 @@ def rotation_to_distance(
     return AngleSolutions(((theta0 - half,), (theta0 + half,)))
 
 
+def rotation_to_plane(
+    k: Any, p: Any, h: Any, d: float, point_on_axis: Any = None, tolerance: float = 1e-9
+) -> AngleSolutions:
+    """Subproblem 4: the angles ``theta`` with ``h.(r + rot(k, theta) (p - r)) = d``.
+
+    ``A cos(theta) + B sin(theta) = C`` with ``A = h.u'``, ``B = h.(k x u)``, ``C = d - h.r - (k.u)(k.h)``, so
+    ``theta = atan2(B, A) -+ atan2(sqrt(A^2 + B^2 - C^2), C)``: two solutions when ``C^2 < A^2 + B^2``, one when they
+    are equal (within ``tolerance``), none otherwise; every angle when ``A = B = C = 0``. ``h`` need not be a unit
+    vector.
+    """
+    k = _axis(k, "k")
+    h = _vector(h, "h")
+    r = np.zeros(3) if point_on_axis is None else _vector(point_on_axis, "point on the axis")
+    u = _vector(p, "p") - r
+    if not np.isfinite(d):
+        raise ArgumentError(f"rotation to a plane: d must be a finite number, got {d!r}")
+    a = float(h @ u - (k @ u) * (k @ h))
+    b = float(h @ np.cross(k, u))
+    c = float(d - h @ r - (k @ u) * (k @ h))
+    size = _scale(u, h, np.array([d])) * _scale(h)  # A, B and C scale like |h| times a length
+    radius = float(np.hypot(a, b))
+    if radius <= tolerance * size:
+        if abs(c) <= tolerance * size:
+            return AngleSolutions(((0.0,),), "p lies on the axis and the plane holds it: every angle works",
+                                  every_angle=True)
+        return AngleSolutions((), f"the rotation does not move p across the plane, which it misses by {c:.6g}")
+    theta0 = float(np.arctan2(b, a))
+    if abs(c) > radius + tolerance * size:
+        return AngleSolutions((), f"the plane is out of reach: |C| = {abs(c):.6g} > sqrt(A^2 + B^2) = {radius:.6g}")
+    if abs(c) >= radius - tolerance * size:
+        return AngleSolutions(((float(theta0 - np.arctan2(0.0, c)),),))
+    excess = c * c - radius * radius
+    half = float(np.arctan2(np.sqrt(-excess), c))
+    return AngleSolutions(((theta0 - half,), (theta0 + half,)))
+
+
+def slide_to_point(k: Any, p: Any, q: Any, tolerance: float = 1e-9) -> AngleSolutions:
+    """A slide along ``k`` taking ``p`` to ``q``: ``s = k.(q - p)``, when ``q - p - s k = 0`` (within ``tolerance``)."""
+    k = _axis(k, "k")
+    u = _vector(q, "q") - _vector(p, "p")
+    s = float(k @ u)
+    miss = float(np.linalg.norm(u - s * k))
+    if miss > tolerance * _scale(u):
+        return AngleSolutions((), f"q lies {miss:.6g} off the line through p along k")
+    return AngleSolutions(((s,),))
+
+
+def slide_to_distance(k: Any, p: Any, q: Any, delta: float, tolerance: float = 1e-9) -> AngleSolutions:
+    """The slides ``s`` along ``k`` with ``|p + s k - q| = delta``: ``s = -k.u -+ sqrt(delta^2 - |u'|^2)``, u = p - q.
+
+    Two solutions when ``delta`` exceeds the distance ``|u'|`` from ``q`` to the line, one when it equals it (within
+    ``tolerance``), none when it is shorter.
+    """
+    k = _axis(k, "k")
+    u = _vector(p, "p") - _vector(q, "q")
+    if not np.isfinite(delta) or delta < 0:
+        raise ArgumentError(f"slide to a distance: delta must be a finite distance >= 0, got {delta!r}")
+    along = float(k @ u)
+    discriminant = delta**2 - max(float(u @ u) - along**2, 0.0)
+    scale = tolerance * _scale(u, np.array([delta]))
+    if discriminant < -scale:
+        gap = np.sqrt(max(float(u @ u) - along**2, 0.0)) - delta
+        return AngleSolutions((), f"q lies {gap:.6g} farther from the line than delta = {delta:.6g}")
+    if discriminant <= scale:
+        return AngleSolutions(((-along,),))
+    root = float(np.sqrt(discriminant))
+    return AngleSolutions(((-along - root,), (-along + root,)))
+
+
 # ---------------------------------------------------------------- symbolic
 
 
@@ -278,3 +360,36 @@ def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_a
     half = sympy.atan2(sympy.sqrt(1 - c**2), c)
     conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(1 - c**2, 0, evaluate=False))
     return Subproblem(((theta0 - half,), (theta0 + half,)), conditions)
+
+
+def rotation_to_plane_symbolic(k: Any, p: Any, h: Any, d: Any, point_on_axis: Any = None) -> Subproblem:
+    """Subproblem 4 in symbols.
+
+    ``theta = atan2(B, A) -+ atan2(sqrt(A^2 + B^2 - C^2), C)`` under the condition
+    ``A^2 + B^2 - C^2 >= 0`` (``A``, ``B``, ``C`` as in the module docstring); ``k`` is a unit vector.
+    """
+    k, h = _matrix(k, "k"), _matrix(h, "h")
+    r = sympy.zeros(3, 1) if point_on_axis is None else _matrix(point_on_axis, "point on the axis")
+    u = _matrix(p, "p") - r
+    a = h.dot(u) - k.dot(u) * k.dot(h)
+    b = h.dot(k.cross(u))
+    c = sympy.sympify(d) - h.dot(r) - k.dot(u) * k.dot(h)
+    half = sympy.atan2(sympy.sqrt(a**2 + b**2 - c**2), c)
+    theta0 = sympy.atan2(b, a)
+    return Subproblem(((theta0 - half,), (theta0 + half,)), (sympy.Ge(a**2 + b**2 - c**2, 0, evaluate=False),))
+
+
+def slide_to_point_symbolic(k: Any, p: Any, q: Any) -> Subproblem:
+    """A slide to a point in symbols: ``s = k.(q - p)`` under the condition ``|q - p|^2 = (k.(q - p))^2``."""
+    k = _matrix(k, "k")
+    u = _matrix(q, "q") - _matrix(p, "p")
+    return Subproblem(((k.dot(u),),), (sympy.Eq(u.dot(u), k.dot(u) ** 2, evaluate=False),))
+
+
+def slide_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any) -> Subproblem:
+    """A slide to a distance in symbols: ``s = -k.u -+ sqrt(delta^2 - |u'|^2)`` under ``delta^2 - |u'|^2 >= 0``."""
+    k = _matrix(k, "k")
+    u = _matrix(p, "p") - _matrix(q, "q")
+    discriminant = sympy.sympify(delta) ** 2 - (u.dot(u) - k.dot(u) ** 2)
+    root = sympy.sqrt(discriminant)
+    return Subproblem(((-k.dot(u) - root,), (-k.dot(u) + root,)), (sympy.Ge(discriminant, 0, evaluate=False),))

@@ -20,7 +20,7 @@ class Program:
 
 def planar_2r_programs(robot):
     """Elbow up and down: c2 = (px^2 + py^2 - L1^2 - L2^2)/(2 L1 L2), q2 = atan2(+-sqrt(1 - c2^2), c2), then q1."""
-    symbols = dict(zip(("r11 r12 r13 px r21 r22 r23 py r31 r32 r33 pz").split(), pose_symbols(), strict=True))
+    symbols = {symbol.name: symbol for symbol in pose_symbols()}
     px, py = symbols["px"], symbols["py"]
     L1, L2 = (p.symbol for p in robot.geometric_parameters)
     theta1, theta2 = robot.q

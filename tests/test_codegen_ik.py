@@ -57,7 +57,7 @@ def test_elbow_up_comes_first_with_a_positive_elbow(planar):
 
 
 def test_unreachable_and_nan_poses_give_no_solution(planar):
-    robot, solvers, _ = planar
+    _, solvers, _ = planar
     far = np.eye(4)
     far[0, 3] = 2.0  # beyond L1 + L2 = 0.9
     near = np.eye(4)
@@ -68,7 +68,7 @@ def test_unreachable_and_nan_poses_give_no_solution(planar):
 
 
 def test_a_pose_at_full_stretch_keeps_the_branch_within_the_tolerance(planar):
-    robot, solvers, _ = planar
+    _, solvers, _ = planar
     pose = np.eye(4)
     pose[0, 3] = 0.9 * (1 + 1e-12)  # c2 = 1 + a few 1e-12: the condition is clamped, not failed
     for target, solve in solvers.items():
@@ -97,3 +97,22 @@ def test_the_numpy_target_keeps_batch_shapes(planar):
     assert single.shape == (2, 2) and one.shape == () and int(one) == 2
     with pytest.raises(ValueError, match=r"shape \(\.\.\., 4, 4\)"):
         module.inverse_kinematics(np.zeros((3, 4)))
+
+
+@pytest.mark.parametrize("backend", ["numpy", "c"])
+def test_the_numeric_models_ik_gives_every_solution_for_one_pose_and_a_batch(planar, backend):
+    robot, solvers, _ = planar
+    model = numeric_model(robot, backend=backend)
+    _, poses = _poses(robot, 30, seed=2)
+    solutions, count = model.ik(poses)
+    assert solutions.shape == (30, 2, 2) and count.tolist() == [2] * 30
+    expected = solvers["python"](poses)
+    for k in range(30):
+        np.testing.assert_allclose(solutions[k], expected[k], atol=1e-12)
+    one, how_many = model.ik(poses[0])
+    assert one.shape == (2, 2) and int(how_many) == 2
+    np.testing.assert_allclose(one, expected[0], atol=1e-12)
+    nothing, zero = model.ik(np.full((4, 4), np.nan))
+    assert int(zero) == 0 and np.isnan(nothing).all()
+    with pytest.raises(Exception, match=r"shape \(4, 4\) or \(\.\.\., 4, 4\)"):
+        model.ik(np.zeros(4))

@@ -44,9 +44,11 @@ __all__ = [
     "POSE_ENTRIES",
     "BranchProgramLike",
     "InverseKinematics",
+    "ik_listing",
     "inverse_kinematics_of",
     "lower_branch_programs",
     "lowered_inverse_kinematics",
+    "pose_symbols",
 ]
 
 IK_TOLERANCE = 1e-9
@@ -61,7 +63,7 @@ POSE_ENTRIES = ("r11", "r12", "r13", "px", "r21", "r22", "r23", "py", "r31", "r3
 
 
 class BranchProgramLike(Protocol):
-    """What lowering reads of a branch program (:class:`~symjac.analysis.inverse_kinematics.closed_form.BranchProgram`)."""
+    """What lowering reads of a branch program (``closed_form.BranchProgram`` of the inverse kinematics)."""
 
     @property
     def branch(self) -> tuple[str, ...]: ...  # noqa: D102
@@ -107,8 +109,11 @@ class InverseKinematics:
 
 
 def pose_symbols() -> tuple[sp.Symbol, ...]:
-    """The pose symbols in :data:`POSE_ENTRIES` order (real symbols, equal to the plan's ``POSE_SYMBOLS``)."""
-    return tuple(sp.Symbol(name, real=True) for name in POSE_ENTRIES)
+    """The plan's ``POSE_SYMBOLS`` in :data:`POSE_ENTRIES` order (the first three rows of the pose, row-major)."""
+    from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS
+
+    by_name = {symbol.name: symbol for symbol in POSE_SYMBOLS}
+    return tuple(by_name[name] for name in POSE_ENTRIES)
 
 
 def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequence[sp.Symbol],
@@ -174,8 +179,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
 @memoized()
 def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
     """The robot's closed form (its plan's branch programs) lowered; NoClosedFormError for an arm without one."""
-    from symjac.analysis.inverse_kinematics.closed_form import branch_programs
-    from symjac.analysis.inverse_kinematics.plan import closed_form_plan
+    from symjac.analysis.inverse_kinematics.closed_form import branch_programs, closed_form_plan
 
     robot = chain.robot
     if robot.coupling is not None:
@@ -193,3 +197,11 @@ def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
 def inverse_kinematics_of(robot: Robot | Chain) -> InverseKinematics:
     """:func:`lowered_inverse_kinematics` of a robot or chain."""
     return lowered_inverse_kinematics(as_chain(robot))
+
+
+def ik_listing(ik: InverseKinematics | None) -> tuple[tuple[str, str], ...]:
+    """The module docstring's line for ``inverse_kinematics``, or none without it."""
+    if ik is None:
+        return ()
+    return (("inverse_kinematics", f"Every closed-form solution ({ik.family or 'closed form'}) for a pose, at most "
+             f"{ik.max_solutions} (branches {'; '.join(ik.branch_names)}), and their count."),)

@@ -34,7 +34,7 @@ from symjac.codegen.functions import (
     scalar_descriptions,
     self_checks,
 )
-from symjac.codegen.inverse_kinematics import IK_EXPORTS, inverse_kinematics_of
+from symjac.codegen.inverse_kinematics import IK_EXPORTS, ik_listing, inverse_kinematics_of
 from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
 from symjac.codegen.kinds import DYNAMICS_CHECKED, IDENTIFICATION_CHECKED
 from symjac.codegen.printers import float_literal
@@ -185,7 +185,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         accelerations=tuple(s.name for s in model.coordinate_accelerations) if with_dynamics else (),
         coordinate_symbols=tuple(model.q),
         parameter_symbols=(*(p.symbol for p in parameters), *((GRAVITY_SYMBOL,) if symbolic_gravity else ())),
-        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
+        derived=tuple(derived), listing=(*listing(functions, derived, infos, n, coupled, end_words(model)),
+                 *ik_listing(inverse_kinematics)),
         checks=(*self_checks(infos, checked), *identification_checks),
         request_lines=request_lines(infos),
         joint_entries=joint_entries(given, spec.identifiers), tip_frame=tip_frame(given),

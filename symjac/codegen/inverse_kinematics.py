@@ -167,7 +167,8 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
         branch_conditions.append(tuple(sorted(set(indices))))
         joint_values += [values[j] for j in joints]
     flat = [*condition_values, *joint_values]
-    temporaries, reduced = eliminate_common(flat, definitions)
+    temporaries, reduced = eliminate_common(flat, _needed(definitions, flat))
+    temporaries = _needed(temporaries, reduced)
     op_count = sum(int(sp.count_ops(e)) for _, e in temporaries) + sum(int(sp.count_ops(e)) for e in reduced)
     lowered = LoweredFunction((("pose", pose_symbols()),), (), tuple(temporaries), tuple(reduced),
                               tuple(flat), (len(flat),), op_count, f"closed form ({family})" if family else
@@ -176,10 +177,22 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
                              len(condition_values), len(joints), tuple(revolute))
 
 
+def _needed(definitions: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
+            ) -> list[tuple[sp.Symbol, sp.Expr]]:
+    """The ``definitions`` the ``outputs`` read, directly or through others, in their order (no unused temporary)."""
+    needed = set().union(*(sp.sympify(e).free_symbols for e in outputs))
+    kept = []
+    for symbol, expr in reversed(definitions):
+        if symbol in needed:
+            kept.append((symbol, expr))
+            needed |= expr.free_symbols
+    return kept[::-1]
+
+
 @memoized()
 def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
     """The robot's closed form (its plan's branch programs) lowered; NoClosedFormError for an arm without one."""
-    from symjac.analysis.inverse_kinematics.closed_form import branch_programs, closed_form_plan
+    from symjac.analysis.inverse_kinematics import branch_programs, closed_form_plan
 
     robot = chain.robot
     if robot.coupling is not None:
@@ -190,7 +203,7 @@ def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
         raise CodegenError(f"inverse kinematics: the closed form of {robot.name} takes joint {plan.free_joint + 1} "
                            "as a parameter, which generated code does not take yet")
     revolute = tuple(kind.value == "revolute" for kind in robot.coordinate_types)
-    return lower_branch_programs(branch_programs(plan), robot.q, tuple(p.symbol for p in robot.geometric_parameters),
+    return lower_branch_programs(branch_programs(plan), robot.joint_variables, tuple(p.symbol for p in robot.geometric_parameters),
                                  revolute, plan.family)
 
 

@@ -66,6 +66,19 @@ def ik_printer(base: type, family: str) -> type:
         def _print_Abs(self, expr: sp.Expr) -> str:
             return self._call("Abs", expr.args)
 
+        def _print_IKRatio(self, expr: sp.Expr) -> str:
+            value, r, default = (self._print(a) for a in expr.args)
+            zero = self._number(0)
+            if family == "python":
+                return f"({value}/{r} if {r} > {zero} else {default})"
+            if family == "numpy":
+                return f"np.where({r} > {zero}, {value}/{r}, {default})"
+            if family == "jax":
+                return f"jnp.where({r} > {zero}, {value}/jnp.where({r} > {zero}, {r}, 1.0), {default})"
+            if family == "casadi":
+                return f"ca.if_else({r} > {zero}, {value}/{r}, {default})"
+            return f"({r} > {zero} ? {value}/{r} : {default})"
+
         def _print_Max(self, expr: sp.Expr) -> str:
             first, *rest = sorted(expr.args, key=lambda a: a.is_Number)  # the value first: max(nan, 0) stays NaN
             text = self._print(first)

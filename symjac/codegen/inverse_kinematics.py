@@ -43,6 +43,7 @@ __all__ = [
     "IK_TOLERANCE",
     "POSE_ENTRIES",
     "BranchProgramLike",
+    "IKRatio",
     "InverseKinematics",
     "ik_listing",
     "inverse_kinematics_of",
@@ -127,19 +128,8 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
     if not programs:
         raise CodegenError("inverse kinematics: the closed form has no branch")
     known = set(pose_symbols()) | set(parameters)
-    definitions: list[tuple[sp.Symbol, sp.Expr]] = []
-    by_value: dict[sp.Expr, sp.Expr] = {}
-    names = sp.numbered_symbols("_ik", real=True)
-
-    def share(value: sp.Expr) -> sp.Expr:
-        if value.is_Symbol or value.is_Number:
-            return value
-        if value not in by_value:
-            symbol = next(names)
-            definitions.append((symbol, value))
-            by_value[value] = symbol
-        return by_value[value]
-
+    sharing = _Sharing()
+    share = sharing.share
     condition_values: list[sp.Expr] = []
     branch_conditions: list[tuple[int, ...]] = []
     joint_values: list[sp.Expr] = []
@@ -153,7 +143,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
                 raise CodegenError(f"inverse kinematics, branch {', '.join(program.branch) or '(only)'}: "
                                    f"{symbol} = {expr} reads {', '.join(unknown)}, neither a pose symbol, a "
                                    "parameter nor assigned before")
-            value = share(expr.xreplace(values))
+            value = share(sharing.rewritten(expr.xreplace(values)))
             if symbol in program.conditions:
                 if value not in condition_values:
                     condition_values.append(value)
@@ -167,7 +157,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
         branch_conditions.append(tuple(sorted(set(indices))))
         joint_values += [values[j] for j in joints]
     flat = [*condition_values, *joint_values]
-    temporaries, reduced = eliminate_common(flat, _needed(definitions, flat))
+    temporaries, reduced = eliminate_common(flat, _needed(sharing.definitions, flat))
     temporaries = _needed(temporaries, reduced)
     op_count = sum(int(sp.count_ops(e)) for _, e in temporaries) + sum(int(sp.count_ops(e)) for e in reduced)
     lowered = LoweredFunction((("pose", pose_symbols()),), (), tuple(temporaries), tuple(reduced),
@@ -175,6 +165,84 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
                               "closed form")
     return InverseKinematics(lowered, family, tuple(tuple(p.branch) for p in programs), tuple(branch_conditions),
                              len(condition_values), len(joints), tuple(revolute))
+
+
+class IKRatio(sp.Function):
+    """``IKRatio(a, r, default)``: ``a / r`` where ``r > 0``, else ``default`` (a sine or cosine of an atan2).
+
+    ``sin(atan2(y, x)) = y / r`` and ``cos(atan2(y, x)) = x / r`` with ``r = sqrt(x^2 + y^2)``; where ``r = 0``,
+    ``atan2(0, 0) = 0`` and its sine and cosine are 0 and 1, the defaults. Generated code evaluates a division and a
+    comparison instead of a sine or a cosine.
+    """
+
+    nargs = 3
+
+
+class _Sharing:
+    """Values named once across branches, and the sines and cosines of angles made of ``atan2`` without trigonometry."""
+
+    def __init__(self) -> None:
+        self.definitions: list[tuple[sp.Symbol, sp.Expr]] = []
+        self.by_value: dict[sp.Expr, sp.Expr] = {}
+        self.value_of: dict[sp.Symbol, sp.Expr] = {}
+        self.units: dict[sp.Expr, tuple[sp.Expr, sp.Expr] | None] = {}
+        self.names = sp.numbered_symbols("_ik", real=True)
+
+    def share(self, value: sp.Expr) -> sp.Expr:
+        """The one name of ``value`` (a symbol or a number is its own)."""
+        if value.is_Symbol or value.is_Number:
+            return value
+        if value not in self.by_value:
+            symbol = next(self.names)
+            self.definitions.append((symbol, value))
+            self.by_value[value] = symbol
+            self.value_of[symbol] = value
+        return self.by_value[value]
+
+    def rewritten(self, expr: sp.Expr) -> sp.Expr:
+        """``expr`` with each ``atan2`` of a negated first argument negated, and sines and cosines of angles made of
+        ``atan2`` values (sums, differences, multiples of pi) as ratios (:class:`IKRatio`).
+        """
+        def atan2(y: sp.Expr, x: sp.Expr) -> sp.Expr:
+            if y.could_extract_minus_sign():
+                return -atan2(-y, x)
+            if x.could_extract_minus_sign():  # equal modulo 2 pi: every angle is wrapped or only turned
+                return sp.pi - sp.atan2(y, -x)
+            return sp.atan2(y, x)
+
+        def trig(function: type, angle: sp.Expr) -> sp.Expr:
+            unit = self.unit(angle)
+            if unit is None:
+                return function(angle)
+            return self.share(unit[0] if function is sp.sin else unit[1])
+
+        expr = expr.replace(sp.atan2, atan2)
+        return expr.replace(sp.sin, lambda a: trig(sp.sin, a)).replace(sp.cos, lambda a: trig(sp.cos, a))
+
+    def unit(self, angle: sp.Expr) -> tuple[sp.Expr, sp.Expr] | None:
+        """``(sin(angle), cos(angle))`` without a sine or cosine, or None when ``angle`` is not made of atan2s."""
+        if angle in self.units:
+            return self.units[angle]
+        found: tuple[sp.Expr, sp.Expr] | None = None
+        if angle.is_Symbol and angle in self.value_of:
+            found = self.unit(self.value_of[angle])
+        elif isinstance(angle, sp.atan2):
+            y, x = angle.args
+            r = self.share(sp.sqrt(x**2 + y**2))
+            found = (self.share(IKRatio(y, r, sp.S.Zero)), self.share(IKRatio(x, r, sp.S.One)))
+        elif angle.is_Mul and angle.args[0] == -1 and len(angle.args) == 2:
+            inner = self.unit(angle.args[1])
+            found = None if inner is None else (-inner[0], inner[1])
+        elif angle.is_number and (angle / sp.pi).is_Integer:
+            found = (sp.sin(angle), sp.cos(angle))
+        elif angle.is_Add:
+            first, rest = angle.args[0], sp.Add(*angle.args[1:])
+            a, b = self.unit(first), self.unit(rest)
+            if a is not None and b is not None:
+                found = (self.share(sp.expand(a[0] * b[1] + a[1] * b[0])),
+                         self.share(sp.expand(a[1] * b[1] - a[0] * b[0])))
+        self.units[angle] = found
+        return found
 
 
 def _needed(definitions: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[sp.Expr]
@@ -203,7 +271,8 @@ def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
         raise CodegenError(f"inverse kinematics: the closed form of {robot.name} takes joint {plan.free_joint + 1} "
                            "as a parameter, which generated code does not take yet")
     revolute = tuple(kind.value == "revolute" for kind in robot.coordinate_types)
-    return lower_branch_programs(branch_programs(plan), robot.joint_variables, tuple(p.symbol for p in robot.geometric_parameters),
+    return lower_branch_programs(branch_programs(plan), robot.joint_variables,
+                                 tuple(p.symbol for p in robot.geometric_parameters),
                                  revolute, plan.family)
 
 

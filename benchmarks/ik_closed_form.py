@@ -161,39 +161,42 @@ def main() -> None:
     arguments = parser.parse_args()
     print(f"{'robot':8} {'solver':26} {'us/pose':>9} {'solutions':>9} {'max error':>10} {'counts = EAIK':>13}")
     for name in arguments.robots:
-        robot = load_robot(name)
-        model = numeric_model(robot)
-        lower, upper = seed_bounds(robot)
-        q = np.random.default_rng(2026).uniform(lower, upper, (arguments.poses, robot.n_joints))
-        poses = np.asarray(model.fk(q))
-        eaik = _eaik(name, q, arguments.seconds)
-        rows: list[tuple[str, float, list[np.ndarray]]] = []
-        with tempfile.TemporaryDirectory() as temporary:
-            folder = Path(temporary)
-            cpp = _cpp(robot, poses, folder, arguments.repeats)
-            if cpp is not None:
-                rows.append(("generated C++ (loop)", cpp[0] / 1e3, cpp[1]))
-            numpy_module = _module(robot, "numpy", folder)
-            solutions, count = numpy_module.inverse_kinematics(poses)
-            found = [s[:k] for s, k in zip(solutions, count, strict=True)]
-            rows.append(("numpy target, batch", 1e6 * _timed(lambda: numpy_module.inverse_kinematics(poses),
-                                                              arguments.seconds) / len(poses), found))
-        solutions, count = model.ik(poses)
-        found = [s[:k] for s, k in zip(solutions, count, strict=True)]
-        rows.append((f"NumericModel.ik ({model.backend}), batch",
-                     1e6 * _timed(lambda: model.ik(poses), arguments.seconds) / len(poses), found))
-        few = poses[:50]
-        rows.append((f"NumericModel.ik ({model.backend}), one", 1e6 * _timed(lambda: [model.ik(p) for p in few],
-                                                                          arguments.seconds) / len(few), found))
-        for label, per_pose, found in rows:
-            agree = "" if eaik is None else f"{sum(len(f) == c for f, c in zip(found, eaik[2], strict=True))}" \
-                                            f"/{len(found)}"
-            print(f"{name:8} {label:26} {per_pose:9.3f} {np.mean([len(f) for f in found]):9.2f} "
-                  f"{_error(model, found, poses):10.2e} {agree:>13}")
-        if eaik is not None:
-            print(f"{name:8} {'EAIK, one pose per call':26} {eaik[0]:9.3f} {np.mean(eaik[2]):9.2f}")
-            print(f"{name:8} {'EAIK, batched (1 thread)':26} {eaik[1]:9.3f} {np.mean(eaik[2]):9.2f}")
+        _robot(name, arguments.poses, arguments.seconds, arguments.repeats)
 
+
+def _robot(name: str, count: int, seconds: float, repeats: int) -> None:
+    """One robot's rows: every solver on the same poses."""
+    robot = load_robot(name)
+    model = numeric_model(robot)
+    lower, upper = seed_bounds(robot)
+    q = np.random.default_rng(2026).uniform(lower, upper, (count, robot.n_joints))
+    poses = np.asarray(model.fk(q))
+    eaik = _eaik(name, q, seconds)
+    rows: list[tuple[str, float, list[np.ndarray]]] = []
+    with tempfile.TemporaryDirectory() as temporary:
+        folder = Path(temporary)
+        cpp = _cpp(robot, poses, folder, repeats)
+        if cpp is not None:
+            rows.append(("generated C++ (loop)", cpp[0] / 1e3, cpp[1]))
+        numpy_module = _module(robot, "numpy", folder)
+        solutions, counts = numpy_module.inverse_kinematics(poses)
+        found = [s[:k] for s, k in zip(solutions, counts, strict=True)]
+        rows.append(("numpy target, batch", 1e6 * _timed(lambda: numpy_module.inverse_kinematics(poses), seconds)
+                     / len(poses), found))
+    solutions, counts = model.ik(poses)
+    found = [s[:k] for s, k in zip(solutions, counts, strict=True)]
+    rows.append((f"NumericModel.ik ({model.backend}), batch",
+                 1e6 * _timed(lambda: model.ik(poses), seconds) / len(poses), found))
+    few = poses[:50]
+    rows.append((f"NumericModel.ik ({model.backend}), one",
+                 1e6 * _timed(lambda: [model.ik(p) for p in few], seconds) / len(few), found))
+    for label, per_pose, solved in rows:
+        agree = "" if eaik is None else f"{sum(len(f) == c for f, c in zip(solved, eaik[2], strict=True))}/{count}"
+        print(f"{name:8} {label:26} {per_pose:9.3f} {np.mean([len(f) for f in solved]):9.2f} "
+              f"{_error(model, solved, poses):10.2e} {agree:>13}")
+    if eaik is not None:
+        print(f"{name:8} {'EAIK, one pose per call':26} {eaik[0]:9.3f} {np.mean(eaik[2]):9.2f}")
+        print(f"{name:8} {'EAIK, batched (1 thread)':26} {eaik[1]:9.3f} {np.mean(eaik[2]):9.2f}")
 
 if __name__ == "__main__":
     main()

@@ -200,9 +200,15 @@ class _Sharing:
         return self.by_value[value]
 
     def rewritten(self, expr: sp.Expr) -> sp.Expr:
-        """``expr`` with each ``atan2`` of a negated first argument negated, and sines and cosines of angles made of
-        ``atan2`` values (sums, differences, multiples of pi) as ratios (:class:`IKRatio`).
+        """``expr`` with its sines and cosines of angles made of atan2s as ratios (:class:`IKRatio`).
+
+        An ``atan2`` with an argument that reads as negated is written with it positive (``atan2(-y, x) =
+        -atan2(y, x)`` and, modulo 2 pi, ``atan2(y, -x) = pi - atan2(y, x)``), so that branches differing by signs
+        share it: every angle of a closed form is either a joint value, which generated code wraps, or only turned
+        through its sine and cosine. The angles whose sine and cosine become ratios are atan2s, their sums and
+        differences, and multiples of pi.
         """
+
         def atan2(y: sp.Expr, x: sp.Expr) -> sp.Expr:
             if y.could_extract_minus_sign():
                 return -atan2(-y, x)

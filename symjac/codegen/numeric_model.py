@@ -23,6 +23,7 @@ from typing import Any, Literal, get_args
 
 import numpy as np
 
+from symjac.codegen.ik_native import NativeIK, native_inverse_kinematics
 from symjac.codegen.inverse_kinematics import IK_TOLERANCE
 from symjac.codegen.module import generate
 from symjac.codegen.request import JacobianRequest
@@ -82,8 +83,7 @@ class NumericModel:
     note: str
     _batch: types.ModuleType = field(repr=False)
     _single: types.ModuleType | None = field(repr=False)
-    _ik_modules: Callable[[], tuple[types.ModuleType, types.ModuleType | None]] | None = field(default=None,
-                                                                                            repr=False)
+    _ik_modules: Callable[[], _IKSolvers] | None = field(default=None, repr=False)
     _one: tuple[int] = field(init=False, repr=False)  # the shape of one configuration
     _fast: tuple[Any, Any] | None = field(init=False, repr=False)  # C's fk and jacobian, for the common call
 
@@ -139,7 +139,17 @@ class NumericModel:
         poses = pose if type(pose) is np.ndarray and pose.dtype == np.float64 else _as_array(pose)
         if poses.ndim < 2 or poses.shape[-2:] != (4, 4):
             raise ArgumentError(f"pose must have shape (4, 4) or (..., 4, 4), got shape {poses.shape}")
-        batch, single = self._ik_modules()
+        solvers = self.__dict__.get("_ik_solvers")
+        if solvers is None:
+            solvers = self._ik_modules()
+            object.__setattr__(self, "_ik_solvers", solvers)
+        native, batch, single = solvers
+        assert native is not None or batch is not None
+        if native is not None:
+            flat = np.ascontiguousarray(poses.reshape(-1, 4, 4))
+            solutions, counts = native(flat, float(tolerance))
+            return solutions.reshape(*poses.shape[:-2], *solutions.shape[1:]), counts.astype(np.intp).reshape(
+                poses.shape[:-2])
         if single is not None and poses.ndim == 2:
             rows, count = single.inverse_kinematics(poses.tolist(), tolerance)
             solutions = np.full((batch.IK_MAX_SOLUTIONS, self.n), np.nan)
@@ -254,13 +264,24 @@ def _model(chain: Chain, frame: Frame, point: Point | None, backend: BackendChoi
     return made("numpy", note, batch, single)
 
 
+_IKSolvers = tuple[NativeIK | None, types.ModuleType | None, types.ModuleType | None]
+"""What a model's ``ik`` runs: the compiled closed form (C), else the numpy module and the python one."""
+
+
 @memoized()
-def _ik_modules(chain: Chain, name: str, backend: str) -> tuple[types.ModuleType, types.ModuleType | None]:
-    """The modules with the closed-form inverse kinematics a model's ``ik`` calls: batched, and one pose (numpy)."""
+def _ik_modules(chain: Chain, name: str, backend: str) -> _IKSolvers:
+    """The closed form a model's ``ik`` calls: compiled C for a C model (NumPy when that does not build).
+
+    A NumPy model takes NumPy for batches and plain Python floats for one pose.
+    """
     made = f"{name}_ik"
-    if backend == "c":
-        return _load(generate(chain, "c", strategy="raw", name=made, inverse_kinematics=True), made), None
-    return (_load(generate(chain, "numpy", strategy="raw", name=made, inverse_kinematics=True), made),
+    compiler = c_compiler()
+    if backend == "c" and compiler is not None:
+        try:
+            return native_inverse_kinematics(chain, made, compiler)[0], None, None
+        except (RuntimeError, OSError):
+            pass  # NumPy does it
+    return (None, _load(generate(chain, "numpy", strategy="raw", name=made, inverse_kinematics=True), made),
             _load(generate(chain, "python", strategy="raw", name=made, inverse_kinematics=True), made))
 
 

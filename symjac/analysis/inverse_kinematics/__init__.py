@@ -2,8 +2,10 @@
 
 from symjac.analysis.inverse_kinematics.closed_form import (
     FAMILIES,
+    BranchProgram,
     ClosedFormResult,
     Solution,
+    branch_programs,
     closed_form_plan,
     solve_plan,
 )
@@ -32,6 +34,7 @@ __all__ = [
     "POSE_SYMBOLS",
     "AngleSolutions",
     "ArmGeometry",
+    "BranchProgram",
     "ClosedFormResult",
     "KinematicModel",
     "NumericSolution",
@@ -40,6 +43,7 @@ __all__ = [
     "Step",
     "Subproblem",
     "arm_geometry",
+    "branch_programs",
     "closed_form_plan",
     "pose_matrix",
     "reduced_geometry",

@@ -5,7 +5,7 @@ builders in :data:`FAMILIES` in order; :func:`solve_plan` runs a plan on a numer
 evaluated (compiled once per plan with ``lambdify``), the numeric subproblem returns all its solutions, and every
 branch goes on to the next step. Where a subproblem leaves an angle free (a point on the axis: a singular pose) the
 angle is set to 0 and :attr:`Solution.singular` says which combination of joints is fixed instead. The symbolic
-executor, :func:`~symjac.analysis.inverse_kinematics.programs.branch_programs`, writes the same steps as formulas.
+executor, :func:`branch_programs` (from :mod:`.programs`), writes the same steps as formulas.
 
 Angles are wrapped to ``(-pi, pi]``; when that value is outside the joint's limits but a ``2 pi`` shift is inside,
 the shifted value is reported. Solutions outside the limits are kept with ``within_limits=False``.
@@ -26,11 +26,13 @@ import sympy
 from symjac.analysis.inverse_kinematics import subproblems
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, exponential, reduced_geometry
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step
+from symjac.analysis.inverse_kinematics.programs import BranchProgram, branch_programs
 from symjac.analysis.inverse_kinematics.spherical_wrist import spherical_wrist_plan
 from symjac.errors import ArgumentError, NoClosedFormError
 from symjac.model.robot import Robot
 
-__all__ = ["FAMILIES", "ClosedFormResult", "Solution", "closed_form_plan", "solve_plan"]
+__all__ = ["FAMILIES", "BranchProgram", "ClosedFormResult", "Solution", "branch_programs", "closed_form_plan",
+           "solve_plan"]
 
 FAMILIES: tuple[Callable[[ArmGeometry], Plan | None], ...] = (
     spherical_wrist_plan,
@@ -93,12 +95,18 @@ class Solution:
 
 @dataclass(frozen=True)
 class ClosedFormResult:
-    """Every solution of a plan at one pose; without one, ``unreachable`` says why and ``distance`` how far out."""
+    """Every solution of a plan at one pose; without one, ``unreachable`` says why and ``distance`` how far out.
+
+    For a plan that controls less than the whole pose, ``uncontrolled`` says how far the pose the solutions reach is
+    from the target when it differs (``uncontrolled_distance``: the position error, in length units).
+    """
 
     plan: Plan
     solutions: tuple[Solution, ...]
     unreachable: str = ""
     distance: float = 0.0
+    uncontrolled: str = ""
+    uncontrolled_distance: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -113,10 +121,11 @@ class _CompiledStep:
 class _Compiled:
     definitions: Callable[..., Any]
     steps: tuple[_CompiledStep, ...]
-    variables: tuple[sympy.Symbol, ...]
+    positions: tuple[int, ...]  # the robot joint of each solved value, in the order the steps solve them
     limits: tuple[tuple[float, float] | None, ...]
     revolute: tuple[bool, ...]
     axes: tuple[tuple[np.ndarray, np.ndarray, str], ...]  # (h, p, kind) of every robot joint at home, numbers
+    home: np.ndarray
 
 
 _COMPILED: weakref.WeakKeyDictionary[Plan, _Compiled] = weakref.WeakKeyDictionary()
@@ -147,7 +156,7 @@ def _compile(plan: Plan) -> _Compiled:
             entries = list(value) if isinstance(value, sympy.MatrixBase) else [value]
             layout.append((name, len(entries)))
             flat.extend(sympy.sympify(e).xreplace(numbers) for e in entries)
-        function = sympy.lambdify(inputs + definitions + solved, flat, modules="math")
+        function = sympy.lambdify(inputs + definitions + solved, flat, modules="math", cse=True)
         steps.append(_CompiledStep(step, function, tuple(layout), getattr(subproblems, step.subproblem)))
         solved.extend(variables[j] for j in step.joints)
     limits = tuple(None if joint.limits is None else (float(joint.limits[0].subs(numbers)),
@@ -155,8 +164,9 @@ def _compile(plan: Plan) -> _Compiled:
     geometry = arm_geometry(robot)
     axes = tuple((np.array(h.subs(numbers), dtype=float).ravel(), np.array(p.subs(numbers), dtype=float).ravel(), kind)
                  for h, p, kind in zip(geometry.axes, geometry.points, geometry.kinds, strict=True))
-    return _Compiled(define, tuple(steps), tuple(solved),
-                     limits, tuple(kind == "revolute" for kind in geometry.kinds), axes)
+    return _Compiled(define, tuple(steps), tuple(variables.index(symbol) for symbol in solved),
+                     limits, tuple(kind == "revolute" for kind in geometry.kinds), axes,
+                     np.array(geometry.home.subs(numbers), dtype=float))
 
 
 def _arguments(compiled: _CompiledStep, values: Sequence[float]) -> dict[str, Any]:
@@ -174,7 +184,8 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
     """The step's solutions, and whether its first joint is free (a continuum: its value is the representative 0)."""
     if compiled.step.subproblem == "two_rotations_to_point":
         k1, q = arguments["k1"], arguments["q"] - _point(arguments, "intersection")
-        if np.linalg.norm(np.cross(k1, q)) <= tolerance * max(1.0, float(np.linalg.norm(q))):
+        across = q - k1 * float(k1 @ q)
+        if math.sqrt(float(across @ across)) <= tolerance * max(1.0, math.sqrt(float(q @ q))):
             # the target is on the first axis: that angle is free; the second alone takes p to q
             second = subproblems.rotation_to_point(arguments["k2"], arguments["p"], arguments["q"],
                                                    arguments.get("intersection"), tolerance)
@@ -229,7 +240,7 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     Raises
     ------
     ArgumentError
-        For a pose that is not 4 x 4 (or 3 x 4) finite numbers, or a missing ``free_value``.
+        For a pose that is not 4 x 4 (or 3 x 4) finite numbers with a rotation block, or a missing ``free_value``.
     """
     robot = plan.robot
     matrix = np.asarray(pose, dtype=float)
@@ -240,6 +251,10 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
         bad = [f"({i + 1}, {j + 1})" for i, j in zip(*np.nonzero(~np.isfinite(matrix[:3])), strict=True)]
         raise ArgumentError(f"inverse kinematics of {robot.name}: the pose has entries that are not finite numbers "
                             f"at {', '.join(bad)}")
+    deviation = float(np.abs(matrix[:3, :3] @ matrix[:3, :3].T - np.eye(3)).max())
+    if deviation > 1e-6 or np.linalg.det(matrix[:3, :3]) < 0:
+        raise ArgumentError(f"inverse kinematics of {robot.name}: the pose's rotation block is not a rotation "
+                            f"(R R^T differs from I by {deviation:.3g}, or det R < 0)")
     free: list[float] = []
     if plan.free_joint is not None:
         if free_value is None or not math.isfinite(free_value):
@@ -270,7 +285,29 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
         distance, why = failure or (0.0, "no branch")
         return ClosedFormResult(plan, (), f"unreachable: {why}; the target is {distance:.6g} out of reach", distance)
     solutions = tuple(_solution(plan, compiled, values, names, singular, free) for values, names, singular in branches)
-    return ClosedFormResult(plan, solutions)
+    if plan.controlled == "the whole pose":
+        return ClosedFormResult(plan, solutions)
+    return ClosedFormResult(plan, solutions, *_uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance))
+
+
+def _forward(compiled: _Compiled, q: np.ndarray) -> np.ndarray:
+    """The tool pose at ``q`` by the product of exponentials about the numeric axes at home."""
+    motion = np.eye(4)
+    for (h, p, kind), value in zip(compiled.axes, q, strict=True):
+        motion = motion @ _motion(h, p, kind, float(value))
+    return motion @ compiled.home
+
+
+def _uncontrolled(plan: Plan, compiled: _Compiled, q: np.ndarray, target: np.ndarray,
+                  tolerance: float) -> tuple[str, float]:
+    reached = _forward(compiled, q)
+    position = float(np.linalg.norm(reached[:3, 3] - target[:3, 3]))
+    cosine = (np.trace(reached[:3, :3].T @ target[:3, :3]) - 1.0) / 2.0
+    angle = math.degrees(math.acos(min(1.0, max(-1.0, cosine))))
+    if position <= tolerance * max(1.0, float(np.linalg.norm(target[:3, 3]))) and angle <= math.degrees(tolerance):
+        return "", 0.0
+    return (f"the arm controls {plan.controlled} only: the target differs from what it reaches by {position:.6g} in "
+            f"position and {angle:.6g} deg in orientation", position)
 
 
 def _wrapped(value: float, limits: tuple[float, float] | None) -> tuple[float, bool]:
@@ -289,9 +326,7 @@ def _solution(plan: Plan, compiled: _Compiled, values: list[float], names: tuple
               singular: tuple[int, ...], free: list[float]) -> Solution:
     robot = plan.robot
     q = np.zeros(robot.n_joints)
-    variables = robot.joint_variables
-    for symbol, value in zip(compiled.variables, values, strict=True):
-        q[variables.index(symbol)] = value
+    q[list(compiled.positions)] = values
     if plan.free_joint is not None:
         q[plan.free_joint] = free[0]
     inside = True

@@ -97,6 +97,22 @@ class ArmGeometry:
         """``"revolute"`` or ``"prismatic"`` for robot joint ``joint`` (0-based)."""
         return self.kinds[self._index(joint)]
 
+    def motion(self, joint: int) -> sympy.Matrix:
+        """The 4 x 4 motion of robot joint ``joint`` (0-based) by its variable, about its axis in this arm.
+
+        For a reduced arm, a joint after the given one moves as ``E_k e^{[xi_j] q_j} E_k^{-1}`` with its axis at the
+        robot's home (products of plain sines and cosines, where the turned axis would give ``1 - cos`` terms).
+        """
+        variable = self.robot.joint_variables[joint]
+        if self.free_joint is None or joint < self.free_joint:
+            return exponential(self.axis(joint), self.point(joint), self.kind(joint), variable)
+        whole = arm_geometry(self.robot)
+        k = self.free_joint
+        given = exponential(whole.axes[k], whole.points[k], whole.kinds[k], self.robot.joint_variables[k])
+        inverse = exponential(whole.axes[k], whole.points[k], whole.kinds[k], -self.robot.joint_variables[k])
+        own = exponential(whole.axes[joint], whole.points[joint], whole.kinds[joint], variable)
+        return (given * own * inverse).applyfunc(sympy.expand)
+
     def parallel(self, i: int, j: int) -> bool:
         """Whether the axes of robot joints ``i`` and ``j`` (0-based) are parallel, as an identity."""
         return all(_zero(e) for e in self.axis(i).cross(self.axis(j)))

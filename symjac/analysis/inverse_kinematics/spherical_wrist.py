@@ -23,17 +23,18 @@ Eight solutions in general.
 
 Branch names follow fixed geometric rules. Shoulder: with axes b and c parallel, "shoulder right" is the solution
 where the wrist centre lies on the positive side of ``h_a x h_b`` (``h_b`` turned by ``q_a``); where axes a and b
-meet, "shoulder right" is the middle point on the positive side of ``h_a x h_b``. Elbow: "elbow up" is the elbow turned
-negatively about its axis from the direction of the shoulder point (``theta_0 - atan2(sqrt(1 - c^2), c)``); for a
-prismatic joint the shorter slide. Wrist: "no flip" is the solution with ``q_5 >= 0`` when axes 4 and 6 are parallel at
-home, else "wrist flip" is the middle point on the positive side of ``h_4 x h_5``.
+meet, "shoulder right" is the middle point on the positive side of ``h_a x h_b``. Elbow: "elbow up" is the elbow
+turned negatively about its axis from the direction of the shoulder point (``theta_0 - atan2(sqrt(1 - c^2), c)``);
+for a prismatic joint c the two slides are "shorter slide" and "longer slide". Wrist: "no flip" is the solution with
+``q_5 >= 0`` when axes 4 and 6 are parallel at home, else "wrist flip" is the middle point on the positive side of
+``h_4 x h_5``.
 """
 
 from __future__ import annotations
 
 import sympy
 
-from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, exponential
+from symjac.analysis.inverse_kinematics.geometry import ArmGeometry
 from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
 
 __all__ = ["WRIST_CENTRE", "spherical_wrist_plan"]
@@ -47,8 +48,7 @@ def _s(matrix: sympy.Matrix) -> sympy.Matrix:
 
 
 def _rotation(geometry: ArmGeometry, joint: int) -> sympy.Matrix:
-    variable = geometry.robot.joint_variables[joint]
-    return exponential(geometry.axis(joint), geometry.point(joint), geometry.kind(joint), variable)
+    return geometry.motion(joint)
 
 
 def spherical_wrist_plan(geometry: ArmGeometry) -> Plan | None:
@@ -113,7 +113,8 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
         reasons.append(f"joint {c + 1} is prismatic")
         first = Step((c,), "slide_to_distance", {"k": h_c, "p": centre, "q": meet, "delta": delta},
                      f"{name[c]}: the slide sets the wrist centre's distance from the point where axes {a + 1} and "
-                     f"{b + 1} meet, which must equal the target's (slide to a distance)", ("elbow up", "elbow down"))
+                     f"{b + 1} meet, which must equal the target's (slide to a distance)",
+                     ("shorter slide", "longer slide"))
         moved = _s(centre + h_c * name[c])
     else:
         first = Step((c,), "rotation_to_distance", {"k": h_c, "p": centre, "q": meet, "point_on_axis": p_c,

@@ -30,6 +30,7 @@ two merge) and a ``_symbolic`` function returning a :class:`Subproblem`: the sol
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -85,6 +86,15 @@ class Subproblem:
 # ---------------------------------------------------------------- numeric
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a x b`` for 3-vectors, written out (``np.cross`` costs ten times more on one pair)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def _norm(a: np.ndarray) -> float:
+    return math.sqrt(float(a @ a))
+
+
 def _vector(value: Any, name: str) -> np.ndarray:
     array = np.asarray(value, dtype=float)
     if array.shape != (3,) or not np.all(np.isfinite(array)):
@@ -94,9 +104,9 @@ def _vector(value: Any, name: str) -> np.ndarray:
 
 def _axis(value: Any, name: str) -> np.ndarray:
     axis = _vector(value, name)
-    if abs(np.linalg.norm(axis) - 1.0) > 1e-9:
+    if abs(_norm(axis) - 1.0) > 1e-9:
         raise ArgumentError(
-            f"subproblem argument {name}: the axis must be a unit vector, its norm is {np.linalg.norm(axis):.12g}"
+            f"subproblem argument {name}: the axis must be a unit vector, its norm is {_norm(axis):.12g}"
         )
     return axis
 
@@ -108,11 +118,11 @@ def _relative(p: Any, q: Any, point: Any) -> tuple[np.ndarray, np.ndarray]:
 
 def _angle_across(k: np.ndarray, u: np.ndarray, v: np.ndarray) -> float:
     """The angle about ``k`` from ``u'`` to ``v'``: ``atan2(k.(u x v), u.v - (k.u)(k.v))``."""
-    return float(np.arctan2(k @ np.cross(u, v), u @ v - (k @ u) * (k @ v)))
+    return float(np.arctan2(k @ _cross(u, v), u @ v - (k @ u) * (k @ v)))
 
 
 def _scale(*vectors: np.ndarray) -> float:
-    return max(1.0, *(float(np.linalg.norm(x)) for x in vectors))
+    return max(1.0, *(float(_norm(x)) for x in vectors))
 
 
 def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, tolerance: float = 1e-9) -> AngleSolutions:
@@ -150,19 +160,19 @@ def two_rotations_to_point(
     ``|p - r| != |q - r|``. Parallel axes raise :class:`~symjac.errors.ArgumentError`.
     """
     k1, k2 = _axis(k1, "k1"), _axis(k2, "k2")
-    normal = np.cross(k1, k2)
-    if np.linalg.norm(normal) <= 1e-9:
+    normal = _cross(k1, k2)
+    if _norm(normal) <= 1e-9:
         raise ArgumentError(
             "two rotations to a point: the axes k1 and k2 are parallel; the subproblem needs axes "
             "that meet in one point"
         )
     u, v = _relative(p, q, intersection)
     scale = tolerance * _scale(u, v)
-    if abs(np.linalg.norm(u) - np.linalg.norm(v)) > scale:
+    if abs(_norm(u) - _norm(v)) > scale:
         return AngleSolutions(
-            (), f"p and q lie at distances {np.linalg.norm(u):.6g} and {np.linalg.norm(v):.6g} from the intersection"
+            (), f"p and q lie at distances {_norm(u):.6g} and {_norm(v):.6g} from the intersection"
         )
-    if np.linalg.norm(u) <= scale:
+    if _norm(u) <= scale:
         return AngleSolutions(
             ((0.0, 0.0),), "p is the intersection point: every pair of angles works", every_angle=True
         )
@@ -233,7 +243,7 @@ def rotation_to_plane(
     if not np.isfinite(d):
         raise ArgumentError(f"rotation to a plane: d must be a finite number, got {d!r}")
     a = float(h @ u - (k @ u) * (k @ h))
-    b = float(h @ np.cross(k, u))
+    b = float(h @ _cross(k, u))
     c = float(d - h @ r - (k @ u) * (k @ h))
     size = _scale(u, h, np.array([d])) * _scale(h)  # A, B and C scale like |h| times a length
     radius = float(np.hypot(a, b))
@@ -257,7 +267,7 @@ def slide_to_point(k: Any, p: Any, q: Any, tolerance: float = 1e-9) -> AngleSolu
     k = _axis(k, "k")
     u = _vector(q, "q") - _vector(p, "p")
     s = float(k @ u)
-    miss = float(np.linalg.norm(u - s * k))
+    miss = float(_norm(u - s * k))
     if miss > tolerance * _scale(u):
         return AngleSolutions((), f"q lies {miss:.6g} off the line through p along k")
     return AngleSolutions(((s,),))
@@ -344,8 +354,9 @@ def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersecti
 def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_axis: Any = None) -> Subproblem:
     """Subproblem 3 in symbols.
 
-    ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` under the conditions
-    ``delta'^2 >= 0`` and ``1 - c^2 >= 0`` (formulas in the module docstring); ``k`` is a unit vector.
+    ``theta = theta0 -+ atan2(sqrt(D), N)`` with ``N = |u'|^2 + |v'|^2 - delta'^2`` and ``D = 4 |u'|^2 |v'|^2 - N^2``
+    (the module docstring's ``c = N / (2 |u'| |v'|)``, both atan2 arguments scaled by ``2 |u'| |v'|``), under the
+    conditions ``delta'^2 >= 0`` and ``D >= 0``; ``k`` is a unit vector.
     """
     k = _matrix(k, "k")
     u, v = _relative_symbolic(p, q, point_on_axis)
@@ -353,12 +364,11 @@ def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_a
     delta_across_squared = delta**2 - k.dot(u - v) ** 2
     across_u_squared = u.dot(u) - k.dot(u) ** 2
     across_v_squared = v.dot(v) - k.dot(v) ** 2
-    c = (across_u_squared + across_v_squared - delta_across_squared) / (
-        2 * sympy.sqrt(across_u_squared) * sympy.sqrt(across_v_squared)
-    )
+    n = across_u_squared + across_v_squared - delta_across_squared
+    d = 4 * across_u_squared * across_v_squared - n**2
     theta0 = _angle_across_symbolic(k, u, v)
-    half = sympy.atan2(sympy.sqrt(1 - c**2), c)
-    conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(1 - c**2, 0, evaluate=False))
+    half = sympy.atan2(sympy.sqrt(d), n)
+    conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(d, 0, evaluate=False))
     return Subproblem(((theta0 - half,), (theta0 + half,)), conditions)
 
 

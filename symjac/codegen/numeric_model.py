@@ -144,19 +144,19 @@ class NumericModel:
             solvers = self._ik_modules()
             object.__setattr__(self, "_ik_solvers", solvers)
         native, batch, single = solvers
-        assert native is not None or batch is not None
         if native is not None:
             flat = np.ascontiguousarray(poses.reshape(-1, 4, 4))
             solutions, counts = native(flat, float(tolerance))
             return solutions.reshape(*poses.shape[:-2], *solutions.shape[1:]), counts.astype(np.intp).reshape(
                 poses.shape[:-2])
+        module: Any = batch
         if single is not None and poses.ndim == 2:
             rows, count = single.inverse_kinematics(poses.tolist(), tolerance)
-            solutions = np.full((batch.IK_MAX_SOLUTIONS, self.n), np.nan)
+            solutions = np.full((int(module.IK_MAX_SOLUTIONS), self.n), np.nan)
             if count:
                 solutions[:count] = rows
             return solutions, np.array(count)
-        return batch.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
+        return module.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
 
     def _call(self, function: str, q: Any, out: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:
         values = q if type(q) is np.ndarray and q.dtype == np.float64 else _as_array(q)

@@ -5,7 +5,7 @@ limits (seeded, so every run sees the same poses), takes their tool poses from t
 solves every pose for all its solutions with:
 
 - the generated C++ (``symjac codegen --target cpp --inverse-kinematics``), compiled with ``g++ -O2`` into one
-  program that times a loop over the poses (no Python in the loop), and the generated C99 the same way;
+  program that times a loop over the poses (no Python in the loop; the best of 25 short rounds);
 - the numpy target's ``inverse_kinematics`` on the whole batch, and :meth:`NumericModel.ik
   <symjac.codegen.numeric_model.NumericModel.ik>` on the batch and on one pose at a time;
 - EAIK (PyPI ``EAIK``, subproblem decomposition after IK-Geo) on the same arm from its standard DH parameters, one
@@ -70,18 +70,21 @@ int main(int argc, char** argv)
     }}
     std::fclose(out);
     const long repeats = std::stol(argv[4]);
-    double checksum = 0.0;
+    double checksum = 0.0, best = 1e300;
     long total = 0;
-    const auto start = std::chrono::steady_clock::now();
-    for (long r = 0; r < repeats; ++r) {{
-        for (const auto& pose : poses) {{
-            const int count = inverse_kinematics(pose, solutions);
-            total += count;
-            checksum += solutions[0](0);
+    for (int round = 0; round < 25; ++round) {{  // the best of 25 short rounds: the machine may be shared
+        const auto start = std::chrono::steady_clock::now();
+        for (long r = 0; r < repeats; ++r) {{
+            for (const auto& pose : poses) {{
+                const int count = inverse_kinematics(pose, solutions);
+                total += count;
+                checksum += solutions[0](0);
+            }}
         }}
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        best = seconds < best ? seconds : best;
     }}
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("%.6g %ld %.6g\\n", 1e9 * seconds / (repeats * poses.size()), total, checksum);
+    std::printf("%.6g %ld %.6g\\n", 1e9 * best / (repeats * poses.size()), total, checksum);
     return 0;
 }}
 """
@@ -157,7 +160,7 @@ def main() -> None:
     parser.add_argument("robots", nargs="*", default=["puma560", "ur5"])
     parser.add_argument("-n", "--poses", type=int, default=2000)
     parser.add_argument("--seconds", type=float, default=1.0, help="time per measurement from Python")
-    parser.add_argument("--repeats", type=int, default=200, help="passes over the poses in the C++ loop")
+    parser.add_argument("--repeats", type=int, default=3, help="passes over the poses per round of the C++ loop")
     arguments = parser.parse_args()
     print(f"{'robot':8} {'solver':26} {'us/pose':>9} {'solutions':>9} {'max error':>10} {'counts = EAIK':>13}")
     for name in arguments.robots:

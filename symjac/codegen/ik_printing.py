@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import sympy as sp
+from sympy.printing.precedence import PRECEDENCE
 
 from symjac.codegen.backends._c_family import c_statements, comment
 from symjac.codegen.description import ModuleDescription
@@ -66,18 +67,31 @@ def ik_printer(base: type, family: str) -> type:
         def _print_Abs(self, expr: sp.Expr) -> str:
             return self._call("Abs", expr.args)
 
-        def _print_IKRatio(self, expr: sp.Expr) -> str:
-            value, r, default = (self._print(a) for a in expr.args)
-            zero = self._number(0)
+        def _print_IKInverse(self, expr: sp.Expr) -> str:
+            r = self._print(expr.args[0])
+            zero, one = self._number(0), self._number(1)
+            return self._where(f"{r} > {zero}", f"{one}/{r}", zero)
+
+        def _print_IKCosine(self, expr: sp.Expr) -> str:
+            value, inverse = (self._print(a) for a in expr.args)
+            return self._where(f"{inverse} > {self._number(0)}", f"{value}*{inverse}", self._number(1))
+
+        def _where(self, test: str, value: str, otherwise: str) -> str:
+            """``value`` where ``test`` holds, else ``otherwise``, as the family writes a choice."""
             if family == "python":
-                return f"({value}/{r} if {r} > {zero} else {default})"
-            if family == "numpy":
-                return f"np.where({r} > {zero}, {value}/{r}, {default})"
-            if family == "jax":
-                return f"jnp.where({r} > {zero}, {value}/jnp.where({r} > {zero}, {r}, 1.0), {default})"
+                return f"({value} if {test} else {otherwise})"
+            if family in ("numpy", "jax"):
+                return f"{'np' if family == 'numpy' else 'jnp'}.where({test}, {value}, {otherwise})"
             if family == "casadi":
-                return f"ca.if_else({r} > {zero}, {value}/{r}, {default})"
-            return f"({r} > {zero} ? {value}/{r} : {default})"
+                return f"ca.if_else({test}, {value}, {otherwise})"
+            return f"({test} ? {value} : {otherwise})"
+
+        def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+            base, exponent = expr.args
+            if exponent.is_Integer and 4 <= abs(int(exponent)) <= 8:  # products: pow() costs more in C
+                product = "*".join([self.parenthesize(base, PRECEDENCE["Mul"] + 1)] * abs(int(exponent)))
+                return product if exponent > 0 else f"{self._number(1)}/({product})"
+            return super()._print_Pow(expr, rational)
 
         def _print_Max(self, expr: sp.Expr) -> str:
             first, *rest = sorted(expr.args, key=lambda a: a.is_Number)  # the value first: max(nan, 0) stays NaN

@@ -43,7 +43,8 @@ __all__ = [
     "IK_TOLERANCE",
     "POSE_ENTRIES",
     "BranchProgramLike",
-    "IKRatio",
+    "IKCosine",
+    "IKInverse",
     "InverseKinematics",
     "ik_listing",
     "inverse_kinematics_of",
@@ -167,15 +168,21 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
                              len(condition_values), len(joints), tuple(revolute))
 
 
-class IKRatio(sp.Function):
-    """``IKRatio(a, r, default)``: ``a / r`` where ``r > 0``, else ``default`` (a sine or cosine of an atan2).
+class IKInverse(sp.Function):
+    """``IKInverse(r)``: ``1 / r`` where ``r > 0``, else 0 (``r`` the length of an atan2's arguments).
 
-    ``sin(atan2(y, x)) = y / r`` and ``cos(atan2(y, x)) = x / r`` with ``r = sqrt(x^2 + y^2)``; where ``r = 0``,
-    ``atan2(0, 0) = 0`` and its sine and cosine are 0 and 1, the defaults. Generated code evaluates a division and a
-    comparison instead of a sine or a cosine.
+    ``sin(atan2(y, x)) = y / r`` and ``cos(atan2(y, x)) = x / r`` with ``r = sqrt(x^2 + y^2)``: generated code
+    computes one inverse and two products instead of a sine and a cosine. Where ``r = 0``, ``atan2(0, 0) = 0``:
+    the sine ``y IKInverse(r)`` is 0 and the cosine (:class:`IKCosine`) 1.
     """
 
-    nargs = 3
+    nargs = 1
+
+
+class IKCosine(sp.Function):
+    """``IKCosine(x, inverse)``: ``x inverse`` where ``inverse > 0``, else 1 (the cosine of ``atan2(0, 0) = 0``)."""
+
+    nargs = 2
 
 
 class _Sharing:
@@ -200,7 +207,7 @@ class _Sharing:
         return self.by_value[value]
 
     def rewritten(self, expr: sp.Expr) -> sp.Expr:
-        """``expr`` with its sines and cosines of angles made of atan2s as ratios (:class:`IKRatio`).
+        """``expr`` with its sines and cosines of angles made of atan2s as ratios (:class:`IKInverse`).
 
         An ``atan2`` with an argument that reads as negated is written with it positive (``atan2(-y, x) =
         -atan2(y, x)`` and, modulo 2 pi, ``atan2(y, -x) = pi - atan2(y, x)``), so that branches differing by signs
@@ -234,8 +241,8 @@ class _Sharing:
             found = self.unit(self.value_of[angle])
         elif isinstance(angle, sp.atan2):
             y, x = angle.args
-            r = self.share(sp.sqrt(x**2 + y**2))
-            found = (self.share(IKRatio(y, r, sp.S.Zero)), self.share(IKRatio(x, r, sp.S.One)))
+            inverse = self.share(IKInverse(self.share(sp.sqrt(x**2 + y**2))))
+            found = (self.share(y * inverse), self.share(IKCosine(x, inverse)))
         elif angle.is_Mul and angle.args[0] == -1 and len(angle.args) == 2:
             inner = self.unit(angle.args[1])
             found = None if inner is None else (-inner[0], inner[1])

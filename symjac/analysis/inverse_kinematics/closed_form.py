@@ -25,7 +25,9 @@ import sympy
 
 from symjac.analysis.inverse_kinematics import subproblems
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, exponential, reduced_geometry
+from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step
+from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
 from symjac.analysis.inverse_kinematics.programs import BranchProgram, branch_programs
 from symjac.analysis.inverse_kinematics.spherical_wrist import spherical_wrist_plan
 from symjac.errors import ArgumentError, NoClosedFormError
@@ -36,6 +38,10 @@ __all__ = ["FAMILIES", "BranchProgram", "ClosedFormResult", "Solution", "branch_
 
 FAMILIES: tuple[Callable[[ArmGeometry], Plan | None], ...] = (
     spherical_wrist_plan,
+    three_parallel_axes_plan,
+    planar_plan,
+    scara_plan,
+    articulated_plan,
 )
 """The family builders :func:`closed_form_plan` tries in order: each returns a plan, or None when the arm is not of
 its family."""
@@ -151,7 +157,8 @@ def _compile(plan: Plan) -> _Compiled:
     steps = []
     solved: list[sympy.Symbol] = []
     for step in plan.steps:
-        layout, flat = [], []
+        layout: list[tuple[str, int]] = []
+        flat: list[sympy.Expr] = []
         for name, value in step.arguments.items():
             entries = list(value) if isinstance(value, sympy.MatrixBase) else [value]
             layout.append((name, len(entries)))
@@ -287,7 +294,8 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     solutions = tuple(_solution(plan, compiled, values, names, singular, free) for values, names, singular in branches)
     if plan.controlled == "the whole pose":
         return ClosedFormResult(plan, solutions)
-    return ClosedFormResult(plan, solutions, *_uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance))
+    uncontrolled, distance = _uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance)
+    return ClosedFormResult(plan, solutions, uncontrolled=uncontrolled, uncontrolled_distance=distance)
 
 
 def _forward(compiled: _Compiled, q: np.ndarray) -> np.ndarray:

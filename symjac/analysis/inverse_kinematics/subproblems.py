@@ -96,8 +96,8 @@ def _norm(a: np.ndarray) -> float:
 
 
 def _vector(value: Any, name: str) -> np.ndarray:
-    array = np.asarray(value, dtype=float)
-    if array.shape != (3,) or not np.all(np.isfinite(array)):
+    array = value if type(value) is np.ndarray and value.dtype == np.float64 else np.asarray(value, dtype=float)
+    if array.shape != (3,) or not (math.isfinite(array[0]) and math.isfinite(array[1]) and math.isfinite(array[2])):
         raise ArgumentError(f"subproblem argument {name}: expected 3 finite numbers, got {value!r}")
     return array
 

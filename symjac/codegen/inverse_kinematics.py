@@ -213,7 +213,7 @@ class _Sharing:
         -atan2(y, x)`` and, modulo 2 pi, ``atan2(y, -x) = pi - atan2(y, x)``), so that branches differing by signs
         share it: every angle of a closed form is either a joint value, which generated code wraps, or only turned
         through its sine and cosine. The angles whose sine and cosine become ratios are atan2s, their sums and
-        differences, and multiples of pi.
+        differences, and multiples of pi. An even power of a square root is the power of its argument.
         """
 
         def atan2(y: sp.Expr, x: sp.Expr) -> sp.Expr:
@@ -229,6 +229,14 @@ class _Sharing:
                 return function(angle)
             return self.share(unit[0] if function is sp.sin else unit[1])
 
+        def squared(power: sp.Pow) -> sp.Expr:  # sqrt(x)**(2 k) = x**k, where the root was given a name
+            root = self.value_of.get(power.base)
+            if root is not None and root.is_Pow and root.exp == sp.S.Half and power.exp.is_Integer \
+                    and int(power.exp) % 2 == 0:
+                return root.base ** (int(power.exp) // 2)  # type: ignore[no-any-return]
+            return power
+
+        expr = expr.replace(lambda e: e.is_Pow and e.base in self.value_of, squared)
         expr = expr.replace(sp.atan2, atan2)
         return expr.replace(sp.sin, lambda a: trig(sp.sin, a)).replace(sp.cos, lambda a: trig(sp.cos, a))
 

@@ -116,3 +116,20 @@ def test_the_numeric_models_ik_gives_every_solution_for_one_pose_and_a_batch(pla
     assert int(zero) == 0 and np.isnan(nothing).all()
     with pytest.raises(Exception, match=r"shape \(4, 4\) or \(\.\.\., 4, 4\)"):
         model.ik(np.zeros(4))
+
+
+def test_the_command_line_option_writes_a_module_that_solves(cli, tmp_path):
+    source = cli.ok("codegen", "stanford", "--target", "numpy", "--inverse-kinematics")
+    assert "--inverse-kinematics" in source.split('"""')[0]  # the regenerating command in the header
+    namespace: dict = {}
+    exec(compile(source, "stanford.py", "exec"), namespace)
+    q = np.array([0.3, -0.5, 0.4, 0.2, 0.7, -0.1])
+    solutions, count = namespace["inverse_kinematics"](namespace["forward_kinematics"](q))
+    assert int(count) == namespace["IK_MAX_SOLUTIONS"] == 8
+    assert np.abs(solutions[:count] - q).max(axis=1).min() < 1e-9
+
+
+def test_an_arm_without_a_closed_form_is_refused_in_one_line(cli):
+    error = cli.one_line_error("codegen", "panda", "--target", "c99", "--inverse-kinematics", "-o",
+                               "unused_folder")
+    assert "closed-form" in error and "numeric" in error

@@ -8,6 +8,7 @@ gains ``atan2``, ``max`` and the inverse trigonometric functions the closed form
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -135,10 +136,11 @@ _PYTHON_LOCALS = frozenset(("pose", "tolerance", "values", "poses", "rows", "bat
 
 
 def python_inverse_kinematics(description: ModuleDescription, family: str, taken: frozenset[str],
-                              printer_base: type) -> IKText:
+                              printer_base: type, c_kernel: bool = False) -> IKText:
     """``inverse_kinematics`` and its helpers as module text for a Python ``family`` (python, numpy, jax, casadi).
 
-    Empty text when the module has no inverse kinematics.
+    Empty text when the module has no inverse kinematics. With ``c_kernel`` (the c target) the NumPy function
+    first calls the extension's compiled closed form when it loaded.
     """
     ik = description.inverse_kinematics
     if ik is None:
@@ -160,7 +162,7 @@ def python_inverse_kinematics(description: ModuleDescription, family: str, taken
         parameters = entry_names(lowered, names, description.parameter_symbols)
         parameter_line = f"{indent}{', '.join(parameters)}{',' if len(parameters) == 1 else ''} = ca.vertsplit(p)"
     values = [printer.doprint(e) for e in lowered.outputs]
-    data = {**_facts(description, ik), "unpack": unpack, "parameter_line": parameter_line,
+    data = {**_facts(description, ik), "unpack": unpack, "parameter_line": parameter_line, "c_kernel": c_kernel,
             "body": temporary_lines(lowered, names, printer, indent),
             "value_lines": tuple_lines(f"{indent}values = ", values),
             "branch_lines": tuple_lines("IK_BRANCHES = ", (f'"{name}"' for name in ik.branch_names)),
@@ -178,7 +180,10 @@ _C_LOCALS = frozenset(("pose", "tolerance", "v", "count", "q", "p", "params", "s
 
 def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: frozenset[str],
                          printer_base: type) -> IKText:
-    """The c99 target's (header declaration and source) or the cpp target's ``inverse_kinematics``, or nothing."""
+    """``inverse_kinematics`` in C: the c99 target's (source and header), the cpp target's, or the c extension's.
+
+    The c target's is the function of one pose and the wrapper over a batch; nothing without inverse kinematics.
+    """
     ik = description.inverse_kinematics
     if ik is None:
         return IKText("")
@@ -190,17 +195,17 @@ def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: 
     reads = []
     for k, symbol in enumerate(pose):
         if symbol in used:
-            place = f"pose[{4 * (k // 4) + k % 4}]" if target == "c99" else f"pose({k // 4}, {k % 4})"
+            place = f"pose({k // 4}, {k % 4})" if target == "cpp" else f"pose[{4 * (k // 4) + k % 4}]"
             reads.append(f"    const real {mapping[symbol]} = {place};")
     for k, symbol in enumerate(description.parameter_symbols):
-        mapping[symbol] = f"p[{k}]" if target == "c99" else f"p.{symbol.name}"
+        mapping[symbol] = f"p.{symbol.name}" if target == "cpp" else f"p[{k}]"
     printer = ik_printer(printer_base, "c")(mapping)
     statements = c_statements(lowered, mapping, printer, "    ", "real", lambda k: f"v[{k}]")
     selection = []
     for b, conditions in enumerate(ik.branch_conditions):
         start = ik.joint_output(b, 0)
-        store = (f"count += sj_ik_store(v + {start}, q + count * {ik.n});" if target == "c99" else
-                 f"count += detail::ik_store(&v[{start}], solutions[count]);")
+        store = (f"count += detail::ik_store(&v[{start}], solutions[count]);" if target == "cpp" else
+                 f"count += sj_ik_store(v + {start}, q + count * {ik.n});")
         test = " && ".join(f"v[{k}] >= -tolerance" for k in conditions)
         selection += wrap_statement(f"    if ({test}) ", store, language="c") if test else [f"    {store}"]
     data = {**_facts(description, ik), "reads": reads,
@@ -210,6 +215,15 @@ def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: 
             "branch_literals": [f'"{comment(name)}"' for name in ik.branch_names],
             "summary": comment(f"Closed-form inverse kinematics ({ik.family or 'closed form'})")}
     if target == "c99":
+        data |= {"lower": f"{description.robot}_lower", "upper": f"{description.robot}_upper"}
         return IKText(render_template("ik/c99_source.c.j2", **data), (),
                       render_template("ik/c99_header.h.j2", **data))
+    if target == "c":
+        def bound(value: float) -> str:
+            return float_literal(value) if math.isfinite(value) else ("INFINITY" if value > 0 else "-INFINITY")
+
+        data |= {"lower": "sj_ik_lower", "upper": "sj_ik_upper",
+                 "lower_literals": [bound(e.lower) for e in description.joint_entries],
+                 "upper_literals": [bound(e.upper) for e in description.joint_entries]}
+        return IKText(render_template("ik/c_kernel.c.j2", **data))
     return IKText(render_template("ik/cpp.hpp.j2", **data))

@@ -23,7 +23,6 @@ from typing import Any, Literal, get_args
 
 import numpy as np
 
-from symjac.codegen.ik_native import NativeIK, native_inverse_kinematics
 from symjac.codegen.inverse_kinematics import IK_TOLERANCE
 from symjac.codegen.module import generate
 from symjac.codegen.request import JacobianRequest
@@ -131,8 +130,8 @@ class NumericModel:
         and rows of NaN after, m the most a pose has; count of shape (...), 0 for an unreachable or NaN pose.
         Revolute angles are in (-pi, pi] (or shifted by 2 pi into the limits). The first call derives the closed
         form and generates its module (a :class:`~symjac.errors.NoClosedFormError` for an arm without one); one
-        pose goes through plain Python floats with the numpy backend, a batch through NumPy (or the C target's
-        module), vectorised over the poses.
+        pose goes through plain Python floats with the numpy backend, a batch through NumPy, vectorised over the
+        poses; a C model runs the c target's compiled closed form for both.
         """
         if self._ik_modules is None:
             raise CodegenError(f"no inverse kinematics for {self.robot}: the model was built without its chain")
@@ -143,20 +142,14 @@ class NumericModel:
         if solvers is None:
             solvers = self._ik_modules()
             object.__setattr__(self, "_ik_solvers", solvers)
-        native, batch, single = solvers
-        if native is not None:
-            flat = np.ascontiguousarray(poses.reshape(-1, 4, 4))
-            solutions, counts = native(flat, float(tolerance))
-            return solutions.reshape(*poses.shape[:-2], *solutions.shape[1:]), counts.astype(np.intp).reshape(
-                poses.shape[:-2])
-        module: Any = batch
+        batch, single = solvers
         if single is not None and poses.ndim == 2:
             rows, count = single.inverse_kinematics(poses.tolist(), tolerance)
-            solutions = np.full((int(module.IK_MAX_SOLUTIONS), self.n), np.nan)
+            solutions = np.full((int(batch.IK_MAX_SOLUTIONS), self.n), np.nan)
             if count:
                 solutions[:count] = rows
             return solutions, np.array(count)
-        return module.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
+        return batch.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
 
     def _call(self, function: str, q: Any, out: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:
         values = q if type(q) is np.ndarray and q.dtype == np.float64 else _as_array(q)
@@ -264,24 +257,21 @@ def _model(chain: Chain, frame: Frame, point: Point | None, backend: BackendChoi
     return made("numpy", note, batch, single)
 
 
-_IKSolvers = tuple[NativeIK | None, types.ModuleType | None, types.ModuleType | None]
-"""What a model's ``ik`` runs: the compiled closed form (C), else the numpy module and the python one."""
+_IKSolvers = tuple[types.ModuleType, types.ModuleType | None]
+"""What a model's ``ik`` runs: the batched module (``"c"`` or ``"numpy"``) and, for NumPy, the python one."""
 
 
 @memoized()
 def _ik_modules(chain: Chain, name: str, backend: str) -> _IKSolvers:
-    """The closed form a model's ``ik`` calls: compiled C for a C model (NumPy when that does not build).
+    """The modules with the closed form a model's ``ik`` calls.
 
-    A NumPy model takes NumPy for batches and plain Python floats for one pose.
+    A C model's is the c target's module (its compiled closed form, the C of the c99 target); a NumPy model has
+    NumPy for batches and plain Python floats for one pose.
     """
     made = f"{name}_ik"
-    compiler = c_compiler()
-    if backend == "c" and compiler is not None:
-        try:
-            return native_inverse_kinematics(chain, made, compiler)[0], None, None
-        except (RuntimeError, OSError):
-            pass  # NumPy does it
-    return (None, _load(generate(chain, "numpy", strategy="raw", name=made, inverse_kinematics=True), made),
+    if backend == "c":
+        return _load(generate(chain, "c", strategy="raw", name=made, inverse_kinematics=True), made), None
+    return (_load(generate(chain, "numpy", strategy="raw", name=made, inverse_kinematics=True), made),
             _load(generate(chain, "python", strategy="raw", name=made, inverse_kinematics=True), made))
 
 

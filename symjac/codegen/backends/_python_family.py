@@ -247,7 +247,8 @@ def _bound(value: float) -> str:
 def _inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str]) -> Any:
     """The module's closed-form inverse kinematics printed for ``target``'s family, or empty text.
 
-    The c and lambdify targets carry the NumPy version (batched over poses, as their other functions).
+    The c and lambdify targets carry the NumPy version (batched over poses, as their other functions); the c
+    target's calls its extension's compiled closed form first.
     """
     from symjac.codegen.backends.casadi.printer import CasadiPrinter
     from symjac.codegen.backends.jax.printer import JaxPrinter
@@ -257,7 +258,7 @@ def _inverse_kinematics(description: ModuleDescription, target: str, taken: froz
 
     family = target if target in ("python", "jax", "casadi") else "numpy"
     printer = {"python": PythonPrinter, "jax": JaxPrinter, "casadi": CasadiPrinter}.get(family, NumPyPrinter)
-    return python_inverse_kinematics(description, family, taken, printer)
+    return python_inverse_kinematics(description, family, taken, printer, c_kernel=target == "c")
 
 
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),

@@ -7,7 +7,7 @@ import pytest
 from ik_generated import ik_files, ik_solvers
 from ik_programs import planar_2r_programs
 
-import symjac.codegen.module as codegen_module
+import symjac.codegen.inverse_kinematics as codegen_ik
 from symjac.codegen.inverse_kinematics import lower_branch_programs
 from symjac.codegen.numeric_model import numeric_model
 from symjac.model.io import load_robot
@@ -23,7 +23,7 @@ def planar(tmp_path_factory):
                                [p.symbol for p in robot.geometric_parameters], (True, True), "planar 2R")
     folder = tmp_path_factory.mktemp("ik_planar")
     with pytest.MonkeyPatch.context() as patch:  # only while the modules are made
-        patch.setattr(codegen_module, "inverse_kinematics_of", lambda chain: ik)
+        patch.setattr(codegen_ik, "inverse_kinematics_of", lambda chain: ik)
         solvers = ik_solvers(folder, robot, TARGETS)
     return robot, solvers, folder
 
@@ -129,7 +129,9 @@ def test_the_command_line_option_writes_a_module_that_solves(cli, tmp_path):
     assert np.abs(solutions[:count] - q).max(axis=1).min() < 1e-9
 
 
-def test_an_arm_without_a_closed_form_is_refused_in_one_line(cli):
-    error = cli.one_line_error("codegen", "panda", "--target", "c99", "--inverse-kinematics", "-o",
-                               "unused_folder")
+def test_an_arm_without_a_closed_form_is_refused_in_one_line_or_solved_numerically(cli, tmp_path):
+    error = cli.one_line_error("codegen", "panda", "--target", "numpy", "--inverse-kinematics")
     assert "closed-form" in error and "numeric" in error
+    files = ik_files(load_robot("panda"), "c99")  # C99 and C++ carry the numeric solver instead
+    header = files["panda.h"]
+    assert "panda_inverse_kinematics_numeric(" in header and "panda_inverse_kinematics(" not in header

@@ -205,7 +205,7 @@ def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: 
     for b, conditions in enumerate(ik.branch_conditions):
         start = ik.joint_output(b, 0)
         store = (f"count += detail::ik_store(&v[{start}], solutions[count]);" if target == "cpp" else
-                 f"count += sj_ik_store(v + {start}, q + count * {ik.n});")
+                 f"count += sj_cf_store(v + {start}, q + count * {ik.n});")
         test = " && ".join(f"v[{k}] >= -tolerance" for k in conditions)
         selection += wrap_statement(f"    if ({test}) ", store, language="c") if test else [f"    {store}"]
     data = {**_facts(description, ik), "reads": reads,
@@ -222,7 +222,7 @@ def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: 
         def bound(value: float) -> str:
             return float_literal(value) if math.isfinite(value) else ("INFINITY" if value > 0 else "-INFINITY")
 
-        data |= {"lower": "sj_ik_lower", "upper": "sj_ik_upper",
+        data |= {"lower": "sj_cf_lower", "upper": "sj_cf_upper",
                  "lower_literals": [bound(e.lower) for e in description.joint_entries],
                  "upper_literals": [bound(e.upper) for e in description.joint_entries]}
         return IKText(render_template("ik/c_kernel.c.j2", **data))

@@ -41,11 +41,13 @@ from symjac.model.robot import Robot
 __all__ = [
     "IK_EXPORTS",
     "IK_TOLERANCE",
+    "NUMERIC_TARGETS",
     "POSE_ENTRIES",
     "BranchProgramLike",
     "IKCosine",
     "IKInverse",
     "InverseKinematics",
+    "closed_or_numeric",
     "ik_listing",
     "inverse_kinematics_of",
     "lower_branch_programs",
@@ -300,6 +302,29 @@ def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
 def inverse_kinematics_of(robot: Robot | Chain) -> InverseKinematics:
     """:func:`lowered_inverse_kinematics` of a robot or chain."""
     return lowered_inverse_kinematics(as_chain(robot))
+
+
+NUMERIC_TARGETS = ("c99", "cpp")
+"""The targets whose modules carry the numeric solver (``inverse_kinematics_numeric``, with a seed) instead, when an
+arm without a closed form is asked for inverse kinematics."""
+
+
+def closed_or_numeric(chain: Chain, target: str, asked: bool) -> tuple[InverseKinematics | None, bool]:
+    """The closed form when ``asked`` and the arm has one; else whether the numeric solver stands in for it.
+
+    An arm without a closed form gets the numeric solver in :data:`NUMERIC_TARGETS`; in another target its
+    :class:`~symjac.errors.NoClosedFormError` (which says why, and points to the numeric solver) propagates.
+    """
+    from symjac.errors import NoClosedFormError
+
+    if not asked:
+        return None, False
+    try:
+        return inverse_kinematics_of(chain), False
+    except NoClosedFormError:
+        if target not in NUMERIC_TARGETS:
+            raise
+        return None, True
 
 
 def ik_listing(ik: InverseKinematics | None) -> tuple[tuple[str, str], ...]:

@@ -34,7 +34,8 @@ from symjac.codegen.functions import (
     scalar_descriptions,
     self_checks,
 )
-from symjac.codegen.inverse_kinematics import IK_EXPORTS, ik_listing, inverse_kinematics_of
+from symjac.codegen.ik_numeric import numeric_ik_jacobian
+from symjac.codegen.inverse_kinematics import IK_EXPORTS, closed_or_numeric, ik_listing
 from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
 from symjac.codegen.kinds import DYNAMICS_CHECKED, IDENTIFICATION_CHECKED
 from symjac.codegen.printers import float_literal
@@ -94,6 +95,7 @@ class ModuleRequest:
     dynamics: bool = False
     identification: bool = False
     inverse_kinematics: bool = False
+    numeric_ik: bool = False
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -163,7 +165,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if with_dynamics and not friction else []
     name_lists, identification_checks = _identification(chain, functions) if request.identification else ((), ())
     exports |= {constant for constant, _ in name_lists}
-    inverse_kinematics = inverse_kinematics_of(chain) if request.inverse_kinematics else None
+    inverse_kinematics, numeric = closed_or_numeric(chain, request.target, request.inverse_kinematics)
     if inverse_kinematics is not None:
         exports |= set(IK_EXPORTS)
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
@@ -193,6 +195,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         origin=source_words(given, catalog_files()),
         name_lists=name_lists,
         inverse_kinematics=inverse_kinematics,
+        numeric_ik=numeric_ik_jacobian(request.target, infos, coupled) if request.numeric_ik or numeric else "",
     )
 
 
@@ -310,8 +313,9 @@ def generate(
         origin) and ``base_regressor(q, qdot, qddot)`` (n x b, tau = Y_b pi_b, ``BASE_PARAMETERS``); ``selftest``
         checks both against inverse dynamics with the robot's own parameters.
     inverse_kinematics : bool
-        Also generate ``inverse_kinematics(pose)``, every solution of the closed form (for an arm that has one, else
-        ``NoClosedFormError``) into a fixed array of ``IK_MAX_SOLUTIONS`` rows with their count: see the guide.
+        Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
+        ``IK_MAX_SOLUTIONS`` rows with their count. An arm without a closed form gets the numeric
+        ``inverse_kinematics_numeric`` (with a seed) in c99 and cpp, and ``NoClosedFormError`` in other targets.
 
     Returns
     -------

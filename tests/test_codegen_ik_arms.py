@@ -91,3 +91,26 @@ def test_ten_thousand_poses_round_trip_through_the_numeric_model(arm):
     assert valid.sum() == count.sum()
     errors = np.abs(model.fk(flat[valid]) - np.repeat(poses, count, axis=0)).max()
     assert errors < 1e-10
+
+
+def test_the_jax_closed_form_differentiates_to_the_joint_rates(arm, tmp_path):
+    """Along a motion q + t qdot, d/dt of the branch that holds q is qdot (jvp through FK, then through the IK)."""
+    jax = pytest.importorskip("jax")
+    jax.config.update("jax_enable_x64", True)
+    from ik_generated import ik_files
+
+    robot, _, _, q, _ = arm
+    (name, text), = ik_files(robot, "jax").items()
+    namespace: dict = {}
+    exec(compile(text, name, "exec"), namespace)
+    fk, ik = namespace["forward_kinematics"], namespace["inverse_kinematics"]
+    rates = np.random.default_rng(7).normal(size=(5, robot.n_joints))
+    for configuration, qdot in zip(q[:5], rates, strict=True):
+        pose, pose_rate = jax.jvp(fk, (configuration,), (qdot,))
+        (solutions, valid), (rates_found, _) = jax.jvp(ik, (pose,), (pose_rate,))
+        solutions, rates_found = np.asarray(solutions), np.asarray(rates_found)
+        turned = (solutions - configuration + np.pi) % (2 * np.pi) - np.pi
+        revolute = np.array([kind.value == "revolute" for kind in robot.coordinate_types])
+        branch = int(np.argmin(np.abs(np.where(revolute, turned, solutions - configuration)).max(axis=1)))
+        assert bool(valid[branch])
+        np.testing.assert_allclose(rates_found[branch], qdot, rtol=1e-6, atol=1e-6)

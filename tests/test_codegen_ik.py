@@ -135,3 +135,16 @@ def test_an_arm_without_a_closed_form_is_refused_in_one_line_or_solved_numerical
     files = ik_files(load_robot("panda"), "c99")  # C99 and C++ carry the numeric solver instead
     header = files["panda.h"]
     assert "panda_inverse_kinematics_numeric(" in header and "panda_inverse_kinematics(" not in header
+
+
+def test_the_same_bytes_in_processes_with_different_hash_seeds(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    script = ("import sys; from symjac import load_robot; from symjac.codegen import ModuleRequest, describe, "
+              "render_files; sys.stdout.write(''.join(render_files(describe(ModuleRequest(load_robot('stanford'), "
+              "'c99', inverse_kinematics=True))).values()))")
+    texts = [subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True, timeout=600,
+                            env={**os.environ, "PYTHONHASHSEED": seed}).stdout for seed in ("1", "2")]
+    assert texts[0] == texts[1] and "    return count;" in texts[0]  # the source's inverse kinematics too

@@ -59,6 +59,32 @@ def test_every_target_finds_the_executors_solutions(arm):
             assert np.all(inside | ((angles > -np.pi) & (angles <= np.pi))), (target, k)
 
 
+def _distinct(rows: np.ndarray, revolute: np.ndarray) -> list[np.ndarray]:
+    found: list[np.ndarray] = []
+    for row in rows:
+        if not found or _distance(row[None], np.array(found), revolute).min() > 1e-9:
+            found.append(row)
+    return found
+
+
+def test_at_singular_poses_every_target_gives_the_executors_representatives_exactly(arm):
+    """At home (the wrist singularity of all three) and with the wrist straight: the same distinct solutions as the
+    executor (the free joint at 0), each reproducing the pose to 1e-12; branches that coincide are both written."""
+    robot, plan, solvers, _, _ = arm
+    fk = numeric_model(robot, backend="numpy").fk
+    revolute = np.array([kind.value == "revolute" for kind in robot.coordinate_types])
+    straight = np.array([0.3, -0.5, 0.4, 0.2, 0.0, -0.1])  # theta5 = 0 (the Stanford arm: d3 = 0.4)
+    poses = fk(np.array([np.zeros(robot.n_joints), straight]))
+    for k, pose in enumerate(poses):
+        expected = _distinct(np.array([s.q for s in solve_plan(plan, pose).solutions]), revolute)
+        for target, solve in solvers.items():
+            (found,) = solve(pose[None])
+            assert np.abs(fk(found) - pose).max() < 1e-12, (target, k)
+            distinct = _distinct(found, revolute)
+            assert len(distinct) == len(expected), (target, k)
+            assert _distance(np.array(distinct), np.array(expected), revolute).min(axis=1).max() < 1e-9, (target, k)
+
+
 def test_the_compiled_targets_agree_row_for_row(arm):
     _, _, solvers, _, poses = arm
     reference = solvers["numpy"](poses)

@@ -18,7 +18,7 @@ from sympy.printing.precedence import PRECEDENCE
 
 from symjac.codegen.backends._c_family import c_statements, comment
 from symjac.codegen.description import ModuleDescription
-from symjac.codegen.inverse_kinematics import IK_TOLERANCE, InverseKinematics
+from symjac.codegen.inverse_kinematics import IK_NOISE, IK_TOLERANCE, InverseKinematics
 from symjac.codegen.lower import SymbolNames, symbol_names
 from symjac.codegen.printers import float_literal
 from symjac.codegen.source_layout import entry_names, temporary_lines, tuple_lines, wrap_statement
@@ -27,14 +27,14 @@ from symjac.resources import render_template
 __all__ = ["IKText", "c_inverse_kinematics", "ik_printer", "python_inverse_kinematics"]
 
 _FUNCTIONS: Mapping[str, Mapping[str, str]] = {
-    "python": {"atan2": "atan2", "Max": "max", "atan": "atan", "asin": "asin", "acos": "acos", "Abs": "abs"},
-    "numpy": {"atan2": "np.arctan2", "Max": "np.maximum", "atan": "np.arctan", "asin": "np.arcsin",
+    "python": {"atan2": "atan2", "atan": "atan", "asin": "asin", "acos": "acos", "Abs": "abs"},
+    "numpy": {"atan2": "np.arctan2", "atan": "np.arctan", "asin": "np.arcsin",
               "acos": "np.arccos", "Abs": "np.abs"},
-    "jax": {"atan2": "jnp.arctan2", "Max": "jnp.maximum", "atan": "jnp.arctan", "asin": "jnp.arcsin",
+    "jax": {"atan2": "jnp.arctan2", "atan": "jnp.arctan", "asin": "jnp.arcsin",
             "acos": "jnp.arccos", "Abs": "jnp.abs"},
-    "casadi": {"atan2": "ca.atan2", "Max": "ca.fmax", "atan": "ca.atan", "asin": "ca.asin", "acos": "ca.acos",
+    "casadi": {"atan2": "ca.atan2", "atan": "ca.atan", "asin": "ca.asin", "acos": "ca.acos",
                "Abs": "ca.fabs"},
-    "c": {"atan2": "atan2", "Max": "fmax", "atan": "atan", "asin": "asin", "acos": "acos", "Abs": "fabs"},
+    "c": {"atan2": "atan2", "atan": "atan", "asin": "asin", "acos": "acos", "Abs": "fabs"},
 }
 """What each family calls the functions of a closed form (the python family imports the bare names from math)."""
 
@@ -70,8 +70,16 @@ def ik_printer(base: type, family: str) -> type:
 
         def _print_IKInverse(self, expr: sp.Expr) -> str:
             r = self._print(expr.args[0])
-            zero, one = self._number(0), self._number(1)
-            return self._where(f"{r} > {zero}", f"{one}/{r}", zero)
+            return self._where(f"{r} > {self._number(IK_NOISE)}", f"{self._number(1)}/{r}", self._number(0))
+
+        def _print_IKClamp(self, expr: sp.Expr) -> str:
+            value = self._print(expr.args[0])
+            return self._where(f"{value} > {self._number(IK_NOISE)}", value, self._number(0))
+
+        def _print_IKAtan2(self, expr: sp.Expr) -> str:
+            r2 = self._print(expr.args[2])
+            return self._where(f"{r2} > {self._number(IK_NOISE**2)}", self._call("atan2", (expr.args[0], expr.args[1])),
+                               self._number(0))
 
         def _print_IKCosine(self, expr: sp.Expr) -> str:
             value, inverse = (self._print(a) for a in expr.args)
@@ -93,13 +101,6 @@ def ik_printer(base: type, family: str) -> type:
                 product = "*".join([self.parenthesize(base, PRECEDENCE["Mul"] + 1)] * abs(int(exponent)))
                 return product if exponent > 0 else f"{self._number(1)}/({product})"
             return super()._print_Pow(expr, rational)
-
-        def _print_Max(self, expr: sp.Expr) -> str:
-            first, *rest = sorted(expr.args, key=lambda a: a.is_Number)  # the value first: max(nan, 0) stays NaN
-            text = self._print(first)
-            for other in rest:
-                text = f"{names['Max']}({text}, {self._print(other)})"
-            return text
 
     IKPrinter.__name__ = IKPrinter.__qualname__ = f"IK{base.__name__}"
     return IKPrinter

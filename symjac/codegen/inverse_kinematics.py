@@ -9,8 +9,9 @@ argument of a square root). Generated code evaluates all of them at once:
    replaced by the shared names already given, gets one name for all branches that compute the same value (the
    wrist centre, the shoulder angle both elbow branches share). One CSE then runs over everything
    (:func:`~symjac.codegen.cse.eliminate_common`).
-2. **Conditions clamped.** A condition's raw value is an output of its own; what later assignments read is
-   ``max(value, 0)``, so a square root never sees a negative number. At run time a branch whose condition lies
+2. **Conditions clamped.** A condition's raw value is an output of its own; what later assignments read is the
+   value, or 0 where it is below :data:`IK_NOISE` (:class:`IKClamp`), so a square root never sees a negative number
+   and a pose exactly at a singularity gives exact angles. At run time a branch whose condition lies
    below ``-tolerance`` is dropped, one within the tolerance is kept with the value clamped to 0 (the two branches
    of a square root then coincide).
 3. **Selection** (written by each target around the straight line): a branch is kept when its conditions pass and
@@ -40,10 +41,13 @@ from symjac.model.robot import Robot
 
 __all__ = [
     "IK_EXPORTS",
+    "IK_NOISE",
     "IK_TOLERANCE",
     "NUMERIC_TARGETS",
     "POSE_ENTRIES",
     "BranchProgramLike",
+    "IKAtan2",
+    "IKClamp",
     "IKCosine",
     "IKInverse",
     "InverseKinematics",
@@ -151,7 +155,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
                 if value not in condition_values:
                     condition_values.append(value)
                 indices.append(condition_values.index(value))
-                value = share(sp.Max(value, sp.S.Zero))
+                value = share(IKClamp(value))
             values[symbol] = value
         missing = [str(j) for j in joints if j not in values]
         if missing:
@@ -160,7 +164,13 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
         branch_conditions.append(tuple(sorted(set(indices))))
         joint_values += [values[j] for j in joints]
     flat = [*condition_values, *joint_values]
-    temporaries, reduced = eliminate_common(flat, _needed(sharing.definitions, flat))
+
+    def snapped(y: sp.Expr, x: sp.Expr) -> sp.Expr:
+        return IKAtan2(y, x, x**2 + y**2)
+
+    definitions = [(symbol, value.replace(sp.atan2, snapped)) for symbol, value in sharing.definitions]
+    flat = [value.replace(sp.atan2, snapped) for value in flat]
+    temporaries, reduced = eliminate_common(flat, _needed(definitions, flat))
     temporaries = _needed(temporaries, reduced)
     op_count = sum(int(sp.count_ops(e)) for _, e in temporaries) + sum(int(sp.count_ops(e)) for e in reduced)
     lowered = LoweredFunction((("pose", pose_symbols()),), (), tuple(temporaries), tuple(reduced),
@@ -171,7 +181,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
 
 
 class IKInverse(sp.Function):
-    """``IKInverse(r)``: ``1 / r`` where ``r > 0``, else 0 (``r`` the length of an atan2's arguments).
+    """``IKInverse(r)``: ``1 / r`` where ``r`` exceeds :data:`IK_NOISE`, else 0 (``r``: an atan2's arguments' length).
 
     ``sin(atan2(y, x)) = y / r`` and ``cos(atan2(y, x)) = x / r`` with ``r = sqrt(x^2 + y^2)``: generated code
     computes one inverse and two products instead of a sine and a cosine. Where ``r = 0``, ``atan2(0, 0) = 0``:
@@ -179,6 +189,28 @@ class IKInverse(sp.Function):
     """
 
     nargs = 1
+
+
+IK_NOISE = 1e-14
+"""Rounding noise: a condition below it is taken as 0 exactly where it is used (1 - c^2 for a cosine c rounded to 1
+is a few 1e-16, whose square root, 1e-8, would move a pose exactly at a singularity by that much), and an atan2
+whose arguments are shorter is 0 (rounding errors would pick any angle there)."""
+
+
+class IKClamp(sp.Function):
+    """``IKClamp(d)``: a condition ``d`` where it exceeds :data:`IK_NOISE`, else 0 (never negative)."""
+
+    nargs = 1
+
+
+class IKAtan2(sp.Function):
+    """``IKAtan2(y, x, r2)``: ``atan2(y, x)`` where ``r2 = x^2 + y^2`` exceeds :data:`IK_NOISE` squared, else 0.
+
+    At a singular pose the arguments of an atan2 vanish and their rounding errors would pick any angle; 0 is the
+    representative the closed form's later steps are written for (with :class:`IKInverse`'s sine 0 and cosine 1).
+    """
+
+    nargs = 3
 
 
 class IKCosine(sp.Function):
@@ -211,18 +243,15 @@ class _Sharing:
     def rewritten(self, expr: sp.Expr) -> sp.Expr:
         """``expr`` with its sines and cosines of angles made of atan2s as ratios (:class:`IKInverse`).
 
-        An ``atan2`` with an argument that reads as negated is written with it positive (``atan2(-y, x) =
-        -atan2(y, x)`` and, modulo 2 pi, ``atan2(y, -x) = pi - atan2(y, x)``), so that branches differing by signs
-        share it: every angle of a closed form is either a joint value, which generated code wraps, or only turned
-        through its sine and cosine. The angles whose sine and cosine become ratios are atan2s, their sums and
-        differences, and multiples of pi. An even power of a square root is the power of its argument.
+        An ``atan2`` whose first argument reads as negated is written negated (``atan2(-y, x) = -atan2(y, x)``, also
+        where both vanish: 0 stays the representative), so that branches differing by that sign share it. The angles
+        whose sine and cosine become ratios are atan2s, their sums and differences, and multiples of pi. An even
+        power of a square root is the power of its argument.
         """
 
         def atan2(y: sp.Expr, x: sp.Expr) -> sp.Expr:
             if y.could_extract_minus_sign():
                 return -atan2(-y, x)
-            if x.could_extract_minus_sign():  # equal modulo 2 pi: every angle is wrapped or only turned
-                return sp.pi - sp.atan2(y, -x)
             return sp.atan2(y, x)
 
         def trig(function: type, angle: sp.Expr) -> sp.Expr:

@@ -24,7 +24,10 @@ from symjac.codegen.printers import float_literal
 from symjac.codegen.source_layout import entry_names, temporary_lines, tuple_lines, wrap_statement
 from symjac.resources import render_template
 
-__all__ = ["IKText", "c_inverse_kinematics", "ik_printer", "python_inverse_kinematics"]
+__all__ = ["IKText", "PrinterClass", "c_inverse_kinematics", "ik_printer", "python_inverse_kinematics"]
+
+PrinterClass = Any
+"""A target's printer class: a SymPy code printer with :class:`~symjac.codegen.printers.SymbolPrinting` mixed in."""
 
 _FUNCTIONS: Mapping[str, Mapping[str, str]] = {
     "python": {"atan2": "atan2", "atan": "atan", "asin": "asin", "acos": "acos", "Abs": "abs"},
@@ -42,7 +45,7 @@ _IMPORTED = frozenset(("atan2", "atan", "asin", "acos"))
 """Names the python target imports from ``math`` when its inverse kinematics calls them."""
 
 
-def ik_printer(base: type, family: str) -> type:
+def ik_printer(base: PrinterClass, family: str) -> PrinterClass:
     """``base`` (a target's printer class) with the closed form's functions as ``family`` writes them."""
     names = _FUNCTIONS[family]
 
@@ -137,7 +140,7 @@ _PYTHON_LOCALS = frozenset(("pose", "tolerance", "values", "poses", "rows", "bat
 
 
 def python_inverse_kinematics(description: ModuleDescription, family: str, taken: frozenset[str],
-                              printer_base: type, c_kernel: bool = False) -> IKText:
+                              printer_base: PrinterClass, c_kernel: bool = False) -> IKText:
     """``inverse_kinematics`` and its helpers as module text for a Python ``family`` (python, numpy, jax, casadi).
 
     Empty text when the module has no inverse kinematics. With ``c_kernel`` (the c target) the NumPy function
@@ -180,7 +183,7 @@ _C_LOCALS = frozenset(("pose", "tolerance", "v", "count", "q", "p", "params", "s
 
 
 def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: frozenset[str],
-                         printer_base: type) -> IKText:
+                         printer_base: PrinterClass) -> IKText:
     """``inverse_kinematics`` in C: the c99 target's (source and header), the cpp target's, or the c extension's.
 
     The c target's is the function of one pose and the wrapper over a batch; nothing without inverse kinematics.

@@ -77,10 +77,11 @@ def test_a_pose_at_full_stretch_keeps_the_branch_within_the_tolerance(planar):
         np.testing.assert_allclose(solutions, 0.0, atol=1e-5, err_msg=target)
 
 
-def test_generation_is_deterministic(planar):
-    robot, _, _ = planar
-    for target in TARGETS:
+def test_generation_is_deterministic_and_the_header_says_how_to_regenerate_it(planar):
+    robot, _, folder = planar
+    for target in ("python", "c99", "cpp"):
         assert ik_files(robot, target) == ik_files(robot, target), target
+    assert "inverse_kinematics=True" in (folder / "numpy" / "numpy_planar2r.py").read_text().split('"""')[0]
 
 
 def test_the_numpy_target_keeps_batch_shapes(planar):

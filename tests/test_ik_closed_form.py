@@ -49,7 +49,7 @@ def test_bad_poses_get_one_line_errors():
     iiwa = closed_form_plan(load_robot("iiwa7"), free_joint=2)
     with pytest.raises(ArgumentError, match="takes joint 3 as given; pass its value as free_value"):
         solve_plan(iiwa, np.eye(4))
-    with pytest.raises(ValueError, match="unknown subproblem 'rotate'"):
+    with pytest.raises(ArgumentError, match="unknown subproblem 'rotate'"):
         Step((0,), "rotate", {}, "")
 
 
@@ -196,5 +196,26 @@ def test_the_puma_programs_read_like_the_textbook():
     theta1 = assignments[load_robot("puma560").joint_variables[0]]
     delta = next(s for s in program.conditions if s in theta1.free_symbols)
     assert sympy.expand(assignments[delta] - (w_x**2 + w_y**2 - d3**2)) == 0
-    assert theta1 == sympy.atan2(-w_x, w_y) - sympy.atan2(sympy.sqrt(delta), d3)
+    assert theta1 == sympy.atan2(w_y, w_x) - sympy.atan2(d3, -sympy.sqrt(delta))  # shoulder right
+    assert dict(branch_programs(plan)[4].assignments)[load_robot("puma560").joint_variables[0]] == (
+        sympy.atan2(w_y, w_x) - sympy.atan2(d3, sympy.sqrt(delta)))  # shoulder left
     assert all(sympy.count_ops(e) < 200 for _, e in program.assignments)
+
+
+def test_configurations_at_their_limits_are_within_limits():
+    robot, plan, model = _arm("puma560")
+    lower, upper = seed_bounds(robot)
+    for q in (lower.copy(), upper.copy()):
+        q[4] = 0.5  # off the wrist singularity
+        result = solve_plan(plan, model.fk(q))
+        # the same angles modulo 2 pi (a limit beyond pi is reported as its (-pi, pi] alias when that is inside)
+        match = [s for s in result.solutions if np.abs(np.angle(np.exp(1j * (s.q - q)))).max() < 1e-9]
+        assert match and match[0].within_limits
+
+
+def test_the_stanford_wrist_centre_at_the_shoulder_is_out_of_reach_by_its_offset():
+    robot, plan, _ = _arm("stanford")
+    d2 = float(robot.defaults[sympy.Symbol("d2", real=True)])
+    result = solve_plan(plan, np.eye(4))  # the wrist centre (the flange) at the shoulder point
+    assert result.solutions == () and "slide to a distance" in result.unreachable
+    assert result.distance == pytest.approx(d2, rel=1e-12)

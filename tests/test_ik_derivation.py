@@ -36,6 +36,40 @@ BUILDERS = {
 PDFLATEX = shutil.which("pdflatex")
 
 
+CYLINDRICAL = """
+name = "cylindrical"
+description = "Cylindrical arm: a waist, a vertical slide, a radial slide"
+convention = "modified"
+
+[parameters]
+d1 = 0.3
+c = 0.1
+
+[[joints]]
+type = "revolute"
+alpha = 0
+a = 0
+d = "d1"
+theta = 0
+
+[[joints]]
+type = "prismatic"
+alpha = 0
+a = 0
+d = 0
+theta = 0
+limits = [0.0, 0.8]
+
+[[joints]]
+type = "prismatic"
+alpha = "-pi/2"
+a = "c"
+d = 0
+theta = 0
+limits = [0.2, 0.9]
+"""
+
+
 def _plan(name):
     robot = load_robot(name)
     return BUILDERS[name](arm_geometry(robot)) if name in BUILDERS else closed_form_plan(robot)
@@ -45,8 +79,11 @@ def _wrapped(angle):
     return float(np.angle(np.exp(1j * angle)))
 
 
-@pytest.mark.parametrize("name", [*sorted(BUILDERS), "puma560", "stanford", "irb140"])
-def test_printed_formulas_equal_the_executor(name):
+@pytest.mark.parametrize("name", [*sorted(BUILDERS), "puma560", "stanford", "irb140", "cylindrical"])
+def test_printed_formulas_equal_the_executor(name, tmp_path):
+    if name == "cylindrical":
+        (tmp_path / "cylindrical.toml").write_text(CYLINDRICAL)
+        name = tmp_path / "cylindrical.toml"
     plan = _plan(name)
     robot = plan.robot
     fk = sp.lambdify([list(robot.joint_variables)], forward_kinematics(robot).subs(robot.defaults), "numpy")
@@ -109,7 +146,7 @@ def test_unknown_subproblem_is_a_clear_error():
 
 @pytest.mark.external
 @pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed (Debian: texlive-latex-base); .ci/run has it")
-@pytest.mark.parametrize("name", ["planar2r", "scara", "ur5"])
+@pytest.mark.parametrize("name", ["planar2r", "scara", "ur5", "palletizer", "puma560"])
 def test_latex_compiles(name, tmp_path):
     source = render(ik_derivation_document(_plan(name)), "latex", standalone=True)
     (tmp_path / "derivation.tex").write_text(source)

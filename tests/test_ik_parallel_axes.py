@@ -22,8 +22,7 @@ from symjac.analysis.inverse_kinematics.planar import planar_plan
 from symjac.kinematics.chain import forward_kinematics
 
 ARMS = ["ur5", "ur5_poe"]
-FAST_POSES = 300
-SLOW_POSES = 10_000
+POSES = 10_000  # about 6 s per arm with EAIK's count and the independent FK
 
 
 def _fk(robot):
@@ -103,14 +102,20 @@ def test_planar_builder_refuses_the_ur5():
 
 @pytest.mark.parametrize("name", ARMS)
 def test_round_trips_and_eaik_count(name):
-    counts = _round_trips(name, FAST_POSES, 46)
-    assert counts.get(8, 0) > FAST_POSES // 2  # eight solutions in general
+    counts = _round_trips(name, POSES, 4646)  # seed 46 meets the near-singular pose of the test below
+    assert counts.get(8, 0) > POSES // 2  # eight solutions in general
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name", ARMS)
-def test_round_trips_ten_thousand(name):
-    _round_trips(name, SLOW_POSES, 4646)
+@pytest.mark.xfail(strict=True, reason="rotation_to_distance merges its two solutions while 1 - |cos| <= tolerance, "
+                   "an angle up to sqrt(2e-9) = 4.5e-5 rad; the next step then finds no solution (NOTES-46, ikcore)")
+def test_near_the_wrist_singularity_every_branch_stays():
+    """theta5 = 8.5e-6 rad: the shoulder-left branches must not vanish (they did: 2 solutions, both shoulder right)."""
+    robot = load_robot("ur5")
+    plan, fk = three_parallel_axes_plan(arm_geometry(robot)), _fk(robot)
+    q = np.array([0.324479228, -0.232598535, -0.325325165, -0.114640407, 8.53447211e-06, -2.70449509])
+    pose = np.asarray(fk(q), dtype=float)
+    solved = [s.q for s in solve_plan(plan, pose).solutions]
+    assert min(np.abs(np.angle(np.exp(1j * (x - q)))).max() for x in solved) < 1e-6
 
 
 def test_poe_copy_gives_the_same_solutions(tmp_path):
@@ -150,11 +155,11 @@ def test_wrist_singularity_is_described():
     assert result.solutions
     for s in result.solutions:
         assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-9
-    assert any(s.singular for s in result.solutions)
-    # the continuum: theta2 + theta3 + theta4 + theta6 is what the pose fixes (axes 2, 3, 4 and 6 line up)
-    sums = {round(float(np.angle(np.exp(1j * (s.q[1] + s.q[2] + s.q[3] - s.q[5])))), 8) for s in result.solutions
-            if abs(np.angle(np.exp(1j * s.q[4]))) < 1e-9}
-    assert sums
+    singular = [s for s in result.solutions if s.singular]
+    assert singular and all("theta6" in s.singular for s in singular)
+    # the continuum: axes 2, 3, 4 and 6 are parallel there, and the pose fixes only theta2 + theta3 + theta4 + theta6
+    fixed = q[1] + q[2] + q[3] + q[5]
+    assert any(abs(np.angle(np.exp(1j * (s.q[1] + s.q[2] + s.q[3] + s.q[5] - fixed)))) < 1e-9 for s in singular)
 
 
 def test_shoulder_singularity_merges_the_shoulder_branches():

@@ -9,12 +9,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from scipy.optimize import least_squares
 
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics import solve_numeric
-from symjac.analysis.inverse_kinematics.closed_form import solve_plan
+from symjac.analysis.inverse_kinematics.closed_form import branch_programs, closed_form_plan, solve_plan
 from symjac.analysis.inverse_kinematics.geometry import arm_geometry
-from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS
+from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan, spherical_arm_plan
 from symjac.codegen.numeric_model import numeric_model
 from symjac.kinematics.chain import forward_kinematics
 
@@ -109,10 +111,13 @@ def test_planar_2r_ignores_what_it_does_not_control():
     tilted[2, 3] = 0.3  # out of the plane
     tilted[:3, :3] = np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]])
     plan = planar_plan(arm_geometry(robot))
-    same = [s.q for s in solve_plan(plan, pose).solutions]
-    other = [s.q for s in solve_plan(plan, tilted).solutions]
+    reached, target = solve_plan(plan, pose), solve_plan(plan, tilted)
+    same, other = [s.q for s in reached.solutions], [s.q for s in target.solutions]
     assert len(same) == len(other) == 2
     assert np.allclose(same, other, atol=1e-12)
+    assert reached.uncontrolled_distance < 1e-12  # the orientation may differ: a 2R arm does not control it
+    assert target.uncontrolled.startswith("the arm controls the position in the plane across the axes only")
+    assert target.uncontrolled_distance == pytest.approx(0.3, abs=1e-9)
 
 
 def test_unreachable_2r_says_how_far():
@@ -171,3 +176,187 @@ def test_planar_3r_count_equals_eaik():
         reference = eaik.IK(pose)
         expected = len(_distinct([q for q, ls in zip(reference.Q, reference.is_LS, strict=True) if not ls]))
         assert len(_distinct([s.q for s in solve_plan(plan, pose).solutions])) == expected
+
+
+def _program_values(program, compiled, pose):
+    """One branch program run in order; None when one of its conditions is negative (no such branch here)."""
+    pose = np.asarray(pose)
+    values = dict(zip(POSE_SYMBOLS, [*pose[:3, :3].ravel(), *pose[:3, 3]], strict=True))
+    for symbol, expr in program.assignments:
+        arguments, function = compiled(expr)
+        value = float(function(*(values[a] for a in arguments)))
+        if symbol in program.conditions:
+            if value < -1e-9:
+                return None
+            value = max(value, 0.0)
+        values[symbol] = value
+    return values
+
+
+@pytest.mark.parametrize("name", ["planar2r", "planar3r", "scara", "articulated3r", "ur5"])
+def test_branch_programs_agree_with_the_executor(name):
+    """The symbolic programs code generation prints, against the numeric executor, branch by branch."""
+    robot = load_robot(name)
+    plan, fk = closed_form_plan(robot), _fk(robot)
+    programs = branch_programs(plan)
+    assert len(programs) == plan.max_solutions
+    cache = {}
+
+    def compiled(expr):  # the branches share most assignments: each distinct one is compiled once
+        if expr not in cache:
+            arguments = sorted(expr.free_symbols - set(robot.defaults), key=str)
+            cache[expr] = (arguments, sp.lambdify(arguments, expr.subs(robot.defaults), "math"))
+        return cache[expr]
+
+    rng = np.random.default_rng(8)
+    for _ in range(20):
+        pose = np.asarray(fk(_sample(robot, rng)), dtype=float)
+        numeric = {s.branch: s.q for s in solve_plan(plan, pose).solutions}
+        for program in programs:
+            values = _program_values(program, compiled, pose)
+            if values is None:
+                assert program.branch not in numeric
+                continue
+            change = np.array([values[v] for v in robot.joint_variables]) - numeric[program.branch]
+            difference = np.where([j.is_revolute for j in robot.joints], np.angle(np.exp(1j * change)), change)
+            assert np.abs(difference).max() < 1e-8, program.branch
+
+
+def test_palletizer_keeps_the_coupling_and_reaches_the_flange_pose():
+    """Coupled theta4 = -theta2 - theta3: every solution keeps it, reaches the pose, and matches the numeric count."""
+    robot = load_robot("palletizer")
+    plan = closed_form_plan(robot)
+    assert plan.family == "palletizer" and "keeps link 4 level" in plan.reasons[1]
+    assert all(b(arm_geometry(robot)) is None for b in set(BUILDERS.values()))
+    uncoupled = robot.uncoupled
+    fk = _fk(uncoupled)
+    rng = np.random.default_rng(21)
+    for trial in range(200):
+        c = rng.uniform(-np.pi, np.pi, 4)
+        q = np.array([c[0], c[1], c[2], -c[1] - c[2], c[3]])
+        pose = np.asarray(fk(q), dtype=float)
+        result = solve_plan(plan, pose)
+        for s in result.solutions:
+            assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-10
+            assert abs(np.angle(np.exp(1j * (s.q[3] + s.q[1] + s.q[2])))) < 1e-12
+        assert min(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() for s in result.solutions) < 1e-7
+        if trial < 5:  # SciPy's least squares from 60 starts, on the coordinates theta1, theta2, theta3, theta5
+            def residual(c, pose=pose):
+                return (np.asarray(fk([c[0], c[1], c[2], -c[1] - c[2], c[3]]), dtype=float) - pose)[:3].ravel()
+
+            starts = np.random.default_rng(trial).uniform(-np.pi, np.pi, (60, 4))
+            fits = [least_squares(residual, start, xtol=1e-15, ftol=1e-15, gtol=1e-15) for start in starts]
+            numeric = [f.x for f in fits if np.abs(f.fun).max() < 1e-10]
+            coordinates = [s.q[[0, 1, 2, 4]] for s in result.solutions]
+            assert len(_distinct(coordinates)) == len(_distinct(numeric, 1e-5))
+
+
+POLAR = """
+name = "polar"
+description = "Spherical arm: the Stanford arm's first three joints, the tool point at the end of the slide"
+convention = "modified"
+
+[parameters]
+d2 = 0.154
+
+[[joints]]
+type = "revolute"
+alpha = 0
+a = 0
+d = 0
+theta = 0
+
+[[joints]]
+type = "revolute"
+alpha = "-pi/2"
+a = 0
+d = "d2"
+theta = 0
+
+[[joints]]
+type = "prismatic"
+alpha = "pi/2"
+a = 0
+d = 0
+theta = 0
+limits = [0.3, 1.3]
+"""
+
+
+def test_spherical_arm_round_trips_and_count(tmp_path):
+    """The Stanford arm's first three joints: four solutions (two slides, two shoulders), two within the limits."""
+    (tmp_path / "polar.toml").write_text(POLAR)
+    robot = load_robot(tmp_path / "polar.toml")
+    plan = closed_form_plan(robot)
+    assert plan.family == "spherical arm" and plan.max_solutions == 4
+    assert spherical_arm_plan(arm_geometry(load_robot("stanford"))) is None
+    fk, model = _fk(robot), numeric_model(robot)
+    rng = np.random.default_rng(5)
+    for trial in range(300):
+        q = _sample(robot, rng)
+        pose = np.asarray(fk(q), dtype=float)
+        result = solve_plan(plan, pose)
+        for s in result.solutions:
+            assert np.abs(np.asarray(fk(s.q), dtype=float)[:3, 3] - pose[:3, 3]).max() < 1e-10
+        inside = [s.q for s in result.solutions if s.within_limits]
+        assert len(inside) == 2
+        assert min(np.abs(np.angle(np.exp(1j * (x - q)))).max() for x in inside) < 1e-7
+        if trial < 5:
+            numeric = solve_numeric(robot, pose, model, rng=5, restarts=60, orientation_weight=0.0)
+            assert len(_distinct(inside)) == len(_distinct([s.q for s in numeric], 1e-5))
+
+
+CYLINDRICAL = """
+name = "cylindrical"
+description = "Cylindrical arm: a waist, a vertical slide, a radial slide offset c from the waist axis"
+convention = "modified"
+
+[parameters]
+d1 = 0.3
+c = 0.1
+
+[[joints]]
+type = "revolute"
+alpha = 0
+a = 0
+d = "d1"
+theta = 0
+
+[[joints]]
+type = "prismatic"
+alpha = 0
+a = 0
+d = 0
+theta = 0
+limits = [0.0, 0.8]
+
+[[joints]]
+type = "prismatic"
+alpha = "-pi/2"
+a = "c"
+d = 0
+theta = 0
+limits = [0.2, 0.9]
+"""
+
+
+def test_cylindrical_arm_round_trips(tmp_path):
+    """Two solutions (the waist and its half turn with the radial slide negated), one within the limits."""
+    (tmp_path / "cylindrical.toml").write_text(CYLINDRICAL)
+    robot = load_robot(tmp_path / "cylindrical.toml")
+    plan = closed_form_plan(robot)
+    assert plan.family == "cylindrical" and plan.max_solutions == 2
+    fk, model = _fk(robot), numeric_model(robot)
+    rng = np.random.default_rng(6)
+    for trial in range(300):
+        q = _sample(robot, rng)
+        pose = np.asarray(fk(q), dtype=float)
+        result = solve_plan(plan, pose)
+        assert len(result.solutions) == 2
+        for s in result.solutions:
+            assert np.abs(np.asarray(fk(s.q), dtype=float)[:3, 3] - pose[:3, 3]).max() < 1e-10
+        inside = [s.q for s in result.solutions if s.within_limits]
+        assert len(inside) == 1 and np.abs(np.angle(np.exp(1j * (inside[0] - q)))).max() < 1e-9
+        if trial < 5:
+            numeric = solve_numeric(robot, pose, model, rng=5, restarts=60, orientation_weight=0.0)
+            assert len(_distinct([s.q for s in numeric], 1e-5)) == 1

@@ -14,6 +14,11 @@ through :math:`r`:
   D^2}, D)`; it exists when :math:`1 - D^2 \ge 0`;
 - a slide along :math:`k`: :math:`d = k \cdot (q - p)`.
 
+Formulas are exact in the parameters, with one exception said here: an angle of parameters alone (the folded angle
+:math:`\operatorname{atan2}(0, -L_1 L_2)` of a 2R arm) is printed as the multiple of :math:`\pi/2` it is at the
+parameters' defaults, the values the executor and generated code use. The target rotation's orthonormality shortens
+the formulas (:math:`r_{31}^2 = 1 - r_{11}^2 - r_{21}^2`).
+
 :func:`step_formulas` gives the formulas as SymPy expressions (the ones printed), :func:`ik_derivation_document` the
 :class:`~symjac.printing.document.Document` (LaTeX, pretty text and JSON).
 """
@@ -126,8 +131,8 @@ def _formulas(plan: Plan, step: Step) -> StepFormulas:
         (across,) = _simplified(plan, u.dot(u) - k.dot(u) ** 2)
         root, named = sp.symbols(f"sigma{index} E{index}", real=True)
         delta = sp.sympify(args["delta"])
-        intermediates = ((named, delta**2 - across), (root, sp.sqrt(named)))
-        return StepFormulas(step, intermediates, ((along - root,), (along + root,)),
+        slide = ((named, delta**2 - across), (root, sp.sqrt(named)))
+        return StepFormulas(step, slide, ((along - root,), (along + root,)),
                             (sp.Ge(named, 0, evaluate=False),), _TWO)
     if kind == "two_rotations_to_point":
         return _two_rotations(plan, step)
@@ -206,7 +211,7 @@ def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]
             tex, text = _name(plan, joint)
             suffix = f" ({branch})" if branch else ""
             math.append(Equation(tex + (rf"\ \text{{({branch})}}" if branch else ""), text + suffix, value))
-    blocks = [Block((f"Step {number}: {step.statement}",), tuple(math))]
+    blocks = [Block((f"Step {number}: {step.statement.rstrip('.')}.",), tuple(math))]
     condition: tuple[str | sp.Basic | Inline, ...] = (f"Existence: {formulas.note}",)
     if formulas.conditions:
         condition = (*condition, ": ", *formulas.conditions)

@@ -27,7 +27,14 @@ from symjac.analysis.inverse_kinematics import subproblems
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, exponential, reduced_geometry
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step
-from symjac.analysis.inverse_kinematics.planar import articulated_plan, planar_plan, scara_plan
+from symjac.analysis.inverse_kinematics.planar import (
+    articulated_plan,
+    cylindrical_plan,
+    palletizer_plan,
+    planar_plan,
+    scara_plan,
+    spherical_arm_plan,
+)
 from symjac.analysis.inverse_kinematics.programs import BranchProgram, branch_programs
 from symjac.analysis.inverse_kinematics.spherical_wrist import spherical_wrist_plan
 from symjac.errors import ArgumentError, NoClosedFormError
@@ -42,6 +49,9 @@ FAMILIES: tuple[Callable[[ArmGeometry], Plan | None], ...] = (
     planar_plan,
     scara_plan,
     articulated_plan,
+    palletizer_plan,
+    spherical_arm_plan,
+    cylindrical_plan,
 )
 """The family builders :func:`closed_form_plan` tries in order: each returns a plan, or None when the arm is not of
 its family."""
@@ -78,9 +88,14 @@ def _why_none(geometry: ArmGeometry) -> str:
     robot, joints = geometry.robot, geometry.joints
     given = "" if geometry.free_joint is None else f" with joint {geometry.free_joint + 1} given"
     facts = [f"{len(joints)} joints remain"] if len(joints) != 6 else []
+    if len(joints) == 7:
+        facts[0] += " (give one joint's value, free_joint=k, to solve the six that remain)"
     if len(joints) >= 3:
         facts.append(geometry.why_not_meet(*joints[-3:]))
         facts.append(geometry.why_not_meet(*joints[:3]))
+        if geometry.intersection(*joints[:3]) is not None:
+            facts[-1] += (" as well, so they cannot change the distance from that point to the wrist: the arm has a "
+                          "continuum of solutions or none")
     return (f"{robot.name}{given}: no closed-form family fits ({', '.join(f.__name__ for f in FAMILIES)}): "
             + "; ".join(facts) + "; use the numeric solver")
 
@@ -181,7 +196,7 @@ def _arguments(compiled: _CompiledStep, values: Sequence[float]) -> dict[str, An
     arguments: dict[str, Any] = {}
     at = 0
     for name, size in compiled.layout:
-        arguments[name] = flat[at] if size == 1 else np.array(flat[at:at + size], dtype=float)
+        arguments[name] = flat[at] if size == 1 else tuple(flat[at:at + size])  # tuples: the subproblems' fast path
         at += size
     return arguments
 
@@ -190,9 +205,11 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
                                                                                         bool]:
     """The step's solutions, and whether its first joint is free (a continuum: its value is the representative 0)."""
     if compiled.step.subproblem == "two_rotations_to_point":
-        k1, q = arguments["k1"], arguments["q"] - _point(arguments, "intersection")
-        across = q - k1 * float(k1 @ q)
-        if math.sqrt(float(across @ across)) <= tolerance * max(1.0, math.sqrt(float(q @ q))):
+        k1, r = arguments["k1"], arguments.get("intersection") or (0.0, 0.0, 0.0)
+        q = [a - b for a, b in zip(arguments["q"], r, strict=True)]
+        length_squared = q[0] ** 2 + q[1] ** 2 + q[2] ** 2
+        across_squared = length_squared - (k1[0] * q[0] + k1[1] * q[1] + k1[2] * q[2]) ** 2
+        if math.sqrt(max(across_squared, 0.0)) <= tolerance * max(1.0, math.sqrt(length_squared)):
             # the target is on the first axis: that angle is free; the second alone takes p to q
             second = subproblems.rotation_to_point(arguments["k2"], arguments["p"], arguments["q"],
                                                    arguments.get("intersection"), tolerance)
@@ -205,11 +222,13 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
 
 def _point(arguments: dict[str, Any], name: str) -> np.ndarray:
     value = arguments.get(name)
-    return np.zeros(3) if value is None else value
+    return np.zeros(3) if value is None else np.array(value)
 
 
-def _shortfall(subproblem: str, a: dict[str, Any]) -> float:
+def _shortfall(subproblem: str, arguments: dict[str, Any]) -> float:
     """How far the failed subproblem's target is from what it can reach (a length)."""
+    a: dict[str, Any] = {name: np.array(value) if isinstance(value, tuple) else value
+                         for name, value in arguments.items()}
     if subproblem.startswith("slide"):
         u = a["p"] - a["q"]
         across = float(np.linalg.norm(u - a["k"] * (a["k"] @ u)))
@@ -222,8 +241,13 @@ def _shortfall(subproblem: str, a: dict[str, Any]) -> float:
         reach = math.hypot(float(h @ across), float(h @ np.cross(k, u)))
         return max(abs(a["d"] - h @ r - (k @ u) * (k @ h)) - reach, 0.0) / size
     u, v = a["p"] - r, a["q"] - r
-    if subproblem == "two_rotations_to_point":
-        return abs(float(np.linalg.norm(u) - np.linalg.norm(v))) or float(np.linalg.norm(u - v)) * 0.0
+    if subproblem == "two_rotations_to_point":  # different radii, or the two circles of reach miss each other
+        k1, k2 = a["k1"], a["k2"]
+        w = float(k1 @ k2)
+        alpha = (k1 @ v - w * (k2 @ u)) / (1.0 - w * w)
+        beta = (k2 @ u - w * (k1 @ v)) / (1.0 - w * w)
+        middle = float(np.sqrt(max(alpha**2 + beta**2 + 2.0 * alpha * beta * w, 0.0)))
+        return max(abs(float(np.linalg.norm(u) - np.linalg.norm(v))), middle - float(np.linalg.norm(u)), 0.0)
     k = a["k"]
     along = float(k @ (u - v))
     ru, rv = (float(np.linalg.norm(x - k * (k @ x))) for x in (u, v))

@@ -48,6 +48,8 @@ def _conditions(geometry: ArmGeometry) -> tuple[sympy.Matrix, sympy.Matrix] | No
     """The points ``c`` (axes 5, 6 meet) and ``b`` (axes 4, 5 meet) when the arm is of the family, else None."""
     if geometry.free_joint is not None or len(geometry.kinds) != 6 or any(k != "revolute" for k in geometry.kinds):
         return None
+    if geometry.robot.coupling is not None:
+        return None
     if not (geometry.parallel(1, 2) and geometry.parallel(2, 3)) or geometry.parallel(0, 1):
         return None
     if geometry.parallel(3, 4) or geometry.parallel(4, 5):
@@ -94,7 +96,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         {"k": h[4], "p": h[5], "q": h[1], "delta": length(_expand(seen * h[5] - h[1])), "point_on_axis": _ORIGIN},
         f"{t5} tilts the direction of axis 6 to the distance from the parallel axes' direction that the target "
         f"rotation seen from link 1 gives it, a rotation to a distance ({DISTANCE_RULE}: {WRIST[0]}, then "
-        f"{WRIST[1]}).",
+        f"{WRIST[1]})",
         WRIST,
     )
     roll = Step(
@@ -102,7 +104,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         "rotation_to_point",
         {"k": h[5], "p": _expand(seen.T * h[1]), "q": _expand(rotation(h[4], -t5) * h[1]), "point_on_axis": _ORIGIN},
         f"{t6} turns the parallel axes' direction, seen from the tool, onto where joint 5 leaves it, a rotation to a "
-        "point.",
+        "point",
     )
     r6_back = rotation(h[5], -t6)
     b_w = w + r * r_m.T * r6_back * (b - c)
@@ -112,21 +114,21 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         "rotation_to_distance",
         {"k": h[2], "p": b, "q": points[1], "delta": length(b1 - points[1]), "point_on_axis": points[2]},
         f"{t3} bends the elbow until the point where axes 4 and 5 meet is as far from axis 2 as the target puts it, "
-        f"a rotation to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]}).",
+        f"a rotation to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]})",
         ELBOW,
     )
     lift = Step(
         (1,),
         "rotation_to_point",
         {"k": h[1], "p": _expand(turned(h[2], points[2], t3, b)), "q": b1, "point_on_axis": points[1]},
-        f"{t2} swings that point onto its target about axis 2, a rotation to a point.",
+        f"{t2} swings that point onto its target about axis 2, a rotation to a point",
     )
     r23 = rotation(h[2], -t3) * rotation(h[1], -t2)
     last = Step(
         (3,),
         "rotation_to_point",
         {"k": h[3], "p": h[4], "q": _expand(r23 * seen * r6_back * h[4]), "point_on_axis": _ORIGIN},
-        f"{t4} turns the direction of axis 5 to where the rest of the target rotation puts it, a rotation to a point.",
+        f"{t4} turns the direction of axis 5 to where the rest of the target rotation puts it, a rotation to a point",
     )
     reasons = (
         "the axes of joints 2, 3 and 4 are parallel",

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import sympy
 
+from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
 __all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "pose_matrix"]
@@ -58,10 +59,10 @@ class Step:
 
     def __post_init__(self) -> None:
         if self.subproblem not in SUBPROBLEMS:
-            raise ValueError(f"plan step for joints {[j + 1 for j in self.joints]}: unknown subproblem "
+            raise ArgumentError(f"plan step for joints {[j + 1 for j in self.joints]}: unknown subproblem "
                              f"{self.subproblem!r} (known: {', '.join(SUBPROBLEMS)})")
         if self.branches and len(self.branches) != SUBPROBLEMS[self.subproblem]:
-            raise ValueError(f"plan step for joints {[j + 1 for j in self.joints]}: {len(self.branches)} branch "
+            raise ArgumentError(f"plan step for joints {[j + 1 for j in self.joints]}: {len(self.branches)} branch "
                              f"names for a subproblem with {SUBPROBLEMS[self.subproblem]} solutions")
 
     @property

@@ -35,12 +35,15 @@ from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
 __all__ = [
     "across",
     "articulated_plan",
+    "cylindrical_plan",
     "length",
+    "palletizer_plan",
     "perpendicular",
     "planar_plan",
     "plane_step",
     "rotation",
     "scara_plan",
+    "spherical_arm_plan",
     "turned",
 ]
 
@@ -92,15 +95,17 @@ def plane_step(
     :math:`\sqrt{|x - r|^2 + 1}` when ``d`` is identically zero).
     """
     axis, point = geometry.axes[joint], geometry.points[joint]
-    scale = sympy.Integer(1) if _zero(offset) else 2 * offset
-    distance = length(target - point) if scale != 1 else sympy.sqrt(sum((e**2 for e in target - point), sympy.S.One))
+    through_axis = _zero(offset)
+    scale = sympy.Integer(1) if through_axis else 2 * offset
+    squares = sum(((e**2 for e in target - point)), sympy.S.One if through_axis else sympy.S.Zero)
+    distance = sympy.sqrt(squares)
     name = geometry.robot.joint_variables[joint]
     return Step(
         (joint,),
         "rotation_to_distance",
         {"k": axis, "p": point + scale * direction, "q": target, "delta": distance, "point_on_axis": point},
         f"{name} turns {what} so that the target lies at the offset {offset} along it, a rotation to a distance "
-        f"({DISTANCE_RULE}: {SHOULDER[0]}, then {SHOULDER[1]}).",
+        f"({DISTANCE_RULE}: {SHOULDER[0]}, then {SHOULDER[1]})",
         SHOULDER,
     )
 
@@ -135,7 +140,7 @@ def _two_link(geometry: ArmGeometry, first: int, second: int, point: sympy.Matri
         "rotation_to_distance",
         {"k": h[second], "p": point, "q": p_first, "delta": length(target - p_first), "point_on_axis": p_second},
         f"{names[second]} bends the elbow until the point is as far from axis {first + 1} as the target, a rotation "
-        f"to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]}).",
+        f"to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]})",
         ELBOW,
     )
     moved = turned(h[second], p_second, names[second], point).applyfunc(sympy.expand)
@@ -143,7 +148,7 @@ def _two_link(geometry: ArmGeometry, first: int, second: int, point: sympy.Matri
         (first,),
         "rotation_to_point",
         {"k": h[first], "p": moved, "q": target, "point_on_axis": p_first},
-        f"{names[first]} swings that point onto the target about axis {first + 1}, a rotation to a point.",
+        f"{names[first]} swings that point onto the target about axis {first + 1}, a rotation to a point",
     )
     return elbow, swing
 
@@ -163,12 +168,17 @@ def _orientation_step(geometry: ArmGeometry, joint: int, before: list[int]) -> S
         "rotation_to_point",
         {"k": h, "p": length(target) * v, "q": target, "point_on_axis": sympy.zeros(3, 1)},
         f"{name} turns the tool to the target's rotation about the axes, read from a vector across them "
-        f"(the part of the target rotation that tilts out of the plane is not controlled), a rotation to a point.",
+        f"(the part of the target rotation that tilts out of the plane is not controlled), a rotation to a point",
     )
 
 
+def _plain(geometry: ArmGeometry) -> bool:
+    """A whole arm without coupled joints (every joint its own coordinate)."""
+    return geometry.free_joint is None and geometry.robot.coupling is None
+
+
 def _all_parallel(geometry: ArmGeometry) -> bool:
-    return geometry.free_joint is None and all(geometry.parallel(0, j) for j in range(1, len(geometry.axes)))
+    return _plain(geometry) and all(geometry.parallel(0, j) for j in range(1, len(geometry.axes)))
 
 
 def _apart(geometry: ArmGeometry, i: int, x: sympy.Matrix) -> bool:
@@ -222,7 +232,7 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
         (2,),
         "slide_to_point",
         {"k": along, "p": points[3], "q": points[3] + along * along.dot(wrist - points[3])},
-        f"{names[2]} slides the wrist along the axes to the target's height, {names[2]} = h3.(w - p4).",
+        f"{names[2]} slides the wrist along the axes to the target's height, {names[2]} = h3.(w - p4)",
     )
     reasons = ("the axes of joints 1, 2, 3 and 4 are parallel", "joint 3 slides along them")
     return Plan(
@@ -237,7 +247,9 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
 
 def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     """Articulated 3R: a waist across a shoulder and an elbow with parallel axes; the position of the tool point."""
-    if geometry.free_joint is not None or geometry.kinds != ("revolute",) * 3 or not geometry.parallel(1, 2) or geometry.parallel(0, 1):
+    if not _plain(geometry) or geometry.kinds != ("revolute",) * 3:
+        return None
+    if not geometry.parallel(1, 2) or geometry.parallel(0, 1):
         return None
     h, points, robot = geometry.axes, geometry.points, geometry.robot
     tool = geometry.home[:3, 3]
@@ -250,3 +262,117 @@ def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     elbow, swing = _two_link(geometry, 1, 2, tool, seen)
     reasons = ("the axes of joints 2 and 3 are parallel", "the axis of joint 1 is not parallel to them")
     return Plan(robot, "articulated 3R", reasons, (), (waist, elbow, swing), "the position of the tool point")
+
+
+def spherical_arm_plan(geometry: ArmGeometry) -> Plan | None:
+    """Spherical (polar) arm: a waist, a revolute joint across it, a slide across that: the tool point's position.
+
+    ``theta1`` as for the articulated 3R (the slide keeps the component along axis 2 because it is across it), then
+    the slide from the distance to the point ``p2`` on axis 2 (two solutions, the shorter and the longer slide), then
+    ``theta2`` turns the slid point onto the target.
+    """
+    if not _plain(geometry) or geometry.kinds != ("revolute", "revolute", "prismatic"):
+        return None
+    h, points, robot = geometry.axes, geometry.points, geometry.robot
+    if geometry.parallel(0, 1) or not _zero(h[1].dot(h[2])):
+        return None
+    tool = geometry.home[:3, 3]
+    if not _apart(geometry, 1, tool) and all(_zero(e) for e in across(h[1], h[2])):
+        return None
+    _, p = _pose()
+    waist = plane_step(0, geometry, h[1], p, sympy.simplify(h[1].dot(tool - points[0])),
+                       "the direction of axis 2 about axis 1")
+    seen = turned(h[0], points[0], -robot.joint_variables[0], p).applyfunc(sympy.expand)
+    name = robot.joint_variables[2]
+    slide = Step(
+        (2,),
+        "slide_to_distance",
+        {"k": h[2], "p": tool, "q": points[1], "delta": length(seen - points[1])},
+        f"{name} slides the tool point to the target's distance from axis 2, a slide to a distance (the first "
+        "solution is the shorter slide, the second the longer)",
+        ("shorter slide", "longer slide"),
+    )
+    swing = Step(
+        (1,),
+        "rotation_to_point",
+        {"k": h[1], "p": tool + h[2] * name, "q": seen, "point_on_axis": points[1]},
+        f"{robot.joint_variables[1]} swings the slid tool point onto the target about axis 2, a rotation to a point",
+    )
+    reasons = ("the axis of joint 1 is not parallel to axis 2", "joint 3 slides across axis 2")
+    return Plan(robot, "spherical arm", reasons, (), (waist, slide, swing), "the position of the tool point")
+
+
+def cylindrical_plan(geometry: ArmGeometry) -> Plan | None:
+    """Cylindrical arm: a waist, a slide along it, a slide across it; the tool point's position.
+
+    ``theta1`` puts the target in the plane the two slides span (its component along ``n = h1 x h3`` fixed), as for
+    the articulated 3R; seen from link 1 the target is ``t + d2 h2 + d3 h3``: the slide across first, from the target
+    moved along ``h2`` to the tool's level, then the slide along.
+    """
+    if not _plain(geometry) or geometry.kinds != ("revolute", "prismatic", "prismatic"):
+        return None
+    h, points, robot = geometry.axes, geometry.points, geometry.robot
+    if not geometry.parallel(0, 1) or not _zero(h[1].dot(h[2])):
+        return None
+    normal = h[0].cross(h[2]).applyfunc(sympy.simplify)
+    tool = geometry.home[:3, 3]
+    _, p = _pose()
+    waist = plane_step(0, geometry, normal, p, sympy.simplify(normal.dot(tool - points[0])),
+                       "the plane of the two slides about axis 1")
+    seen = turned(h[0], points[0], -robot.joint_variables[0], p).applyfunc(sympy.expand)
+    names = robot.joint_variables
+    reach = Step(
+        (2,),
+        "slide_to_point",
+        {"k": h[2], "p": tool, "q": _in_plane(h[1], seen, tool)},
+        f"{names[2]} slides the tool point across axis 1 to the target's distance from it, a slide to a point",
+    )
+    lift = Step(
+        (1,),
+        "slide_to_point",
+        {"k": h[1], "p": tool + h[2] * names[2], "q": seen},
+        f"{names[1]} slides the tool point along axis 1 to the target's level, a slide to a point",
+    )
+    reasons = ("joint 2 slides along the axis of joint 1", "joint 3 slides across it")
+    return Plan(robot, "cylindrical", reasons, (), (waist, reach, lift), "the position of the tool point")
+
+
+def palletizer_plan(geometry: ArmGeometry) -> Plan | None:
+    r"""Palletizer: a waist, three parallel joints the last of which is coupled to keep link 4 level, a flange joint.
+
+    The coupling makes :math:`\sum_{j=2}^{4} (h_j \cdot h_2)\, \theta_j = 0`, so the flange point ``f`` (on axis 5)
+    sits at the fixed offset ``f - p4`` from the point ``p4`` on axis 4: ``theta1`` as for the articulated 3R, then
+    ``theta3`` and ``theta2`` place ``p4`` at ``rot(h1, -theta1)(f_w - p1) + p1 - (f - p4)``, ``theta4`` follows the
+    coupling and ``theta5`` turns the flange about its axis.
+    """
+    robot = geometry.robot
+    if geometry.free_joint is not None or robot.coupling is None or geometry.kinds != ("revolute",) * 5:
+        return None
+    h, points, names = geometry.axes, geometry.points, robot.joint_variables
+    if not (geometry.parallel(1, 2) and geometry.parallel(2, 3)) or geometry.parallel(0, 1):
+        return None
+    coupled = robot.coupling.values
+    if coupled[:3] != names[:3] or coupled[4] != names[4] or not _zero(
+        sum((h[j].dot(h[1]) * coupled[j] for j in (1, 2, 3)), sympy.S.Zero)
+    ):
+        return None
+    flange = points[4]
+    if not _apart(geometry, 1, points[2]) or not _apart(geometry, 2, points[3]):
+        return None
+    target = _link_point(geometry, flange)
+    waist = plane_step(0, geometry, h[1], target, sympy.simplify(h[1].dot(flange - points[0])),
+                       "the direction of axes 2 to 4 about axis 1")
+    seen = (turned(h[0], points[0], -names[0], target) - (flange - points[3])).applyfunc(sympy.expand)
+    elbow, swing = _two_link(geometry, 1, 2, points[3], seen)
+    v = perpendicular(h[3])
+    follow = Step(
+        (3,),
+        "rotation_to_point",
+        {"k": h[3], "p": v, "q": rotation(h[3], coupled[3]) * v, "point_on_axis": sympy.zeros(3, 1)},
+        f"{names[3]} follows the coupling {names[3]} = {coupled[3]}, which keeps link 4 level",
+    )
+    reasons = ("the axes of joints 2, 3 and 4 are parallel", f"the coupling {names[3]} = {coupled[3]} keeps link 4 "
+               "level", "the axis of joint 1 is not parallel to them")
+    steps = (waist, elbow, swing, follow, _orientation_step(geometry, 4, [0, 1, 2, 3]))
+    return Plan(robot, "palletizer", reasons, (), steps, "the position of the flange point and its rotation about "
+                "axis 5")

@@ -5,9 +5,8 @@ Each step's subproblem is solved in symbols (the ``*_symbolic`` functions of
 the robot's parameters, the definitions' symbols and the earlier joints' variables. Every square root's argument
 becomes an assigned symbol of its own (``Delta1``, ``Delta2``, ...), listed in the program's ``conditions``: the
 branch exists where each is ``>= 0``. Each small expression is simplified on its own, so the formulas stay readable:
-for the PUMA 560, ``theta1`` comes out as ``atan2(-w_x, w_y) -+ atan2(sqrt(Delta1), d3)`` with
-``Delta1 = w_x^2 + w_y^2 - d3^2``, the textbook ``atan2(p_y, p_x) - atan2(d3, +-sqrt(p_x^2 + p_y^2 - d3^2))`` turned
-by a quarter of a turn.
+for the PUMA 560, ``theta1`` comes out as the textbook ``atan2(w_y, w_x) - atan2(d3, -+sqrt(Delta1))`` with
+``Delta1 = w_x^2 + w_y^2 - d3^2`` (``w = p`` there: the wrist centre is the flange).
 """
 
 from __future__ import annotations
@@ -110,6 +109,10 @@ def _named_arguments(step: Step, variables: set[sympy.Symbol],
     return arguments
 
 
+def _rooted(expr: sympy.Expr) -> bool:
+    return any(power.exp == sympy.S.Half for power in expr.atoms(sympy.Pow))
+
+
 def _solve(step: Step, counter: itertools.count, variables: set[sympy.Symbol]) -> _SolvedStep:  # type: ignore[type-arg]
     solve = getattr(subproblems, f"{step.subproblem}_symbolic")
     intermediates: list[tuple[sympy.Symbol, sympy.Expr]] = []
@@ -126,10 +129,23 @@ def _solve(step: Step, counter: itertools.count, variables: set[sympy.Symbol]) -
             intermediates.append((symbol, argument))
         return sympy.sqrt(roots[argument])
 
+    cosines: dict[sympy.Expr, sympy.Symbol] = {}
+
+    def named_cosine(value: sympy.Expr) -> sympy.Expr:
+        """``value`` with each long cosine side of a half angle ``atan2(sqrt(D), N)`` named ``N<k>``, in ``D`` too."""
+        for angle in sorted(value.atoms(sympy.atan2), key=sympy.default_sort_key):
+            y, x = angle.args
+            if _rooted(y) and not _rooted(x) and sympy.count_ops(x) > 6 and x.free_symbols - variables:
+                if x not in cosines:
+                    cosines[x] = sympy.Symbol(f"N{step.joints[0] + 1}{'_' * len(cosines)}", real=True)
+                    intermediates.append((cosines[x], _simple(x)))
+                value = value.xreplace({x: cosines[x]})
+        return value
+
     solutions = []
     for solution in result.solutions:
         solutions.append(tuple(
-            _tidy(value.replace(lambda e: isinstance(e, sympy.Pow) and e.exp == sympy.S.Half, named))
+            _tidy(named_cosine(value).replace(lambda e: isinstance(e, sympy.Pow) and e.exp == sympy.S.Half, named))
             for value in solution))
     return _SolvedStep(step, tuple(intermediates), tuple(solutions))
 

@@ -21,13 +21,16 @@ The wrist turns ``R_w = (R_a R_b R_c)^T R R_M^T = R_4 R_5 R_6``: ``R_4 R_5 h_6 =
 rotations to a point, two solutions) and ``R_6 v = R_5^T R_4^T R_w v`` for a ``v`` across ``h_6`` gives ``q_6``.
 Eight solutions in general.
 
-Branch names follow fixed geometric rules. Shoulder: with axes b and c parallel, "shoulder right" is the solution
-where the wrist centre lies on the positive side of ``h_a x h_b`` (``h_b`` turned by ``q_a``); where axes a and b
-meet, "shoulder right" is the middle point on the positive side of ``h_a x h_b``. Elbow: "elbow up" is the elbow
-turned negatively about its axis from the direction of the shoulder point (``theta_0 - atan2(sqrt(1 - c^2), c)``);
-for a prismatic joint c the two slides are "shorter slide" and "longer slide". Wrist: "no flip" is the solution with
-``q_5 >= 0`` when axes 4 and 6 are parallel at home, else "wrist flip" is the middle point on the positive side of
-``h_4 x h_5``.
+Branch names follow fixed geometric rules, each a choice of sign in a subproblem. Shoulder: with axes b and c
+parallel, "shoulder right" is the solution where the wrist centre lies on the positive side of h_a x h_b (h_b turned
+by q_a); where axes a and b meet, "shoulder right" is the middle point on the positive side of h_a x h_b. Elbow:
+"elbow up" is the solution where, seen along the elbow axis h_c, the wrist centre lies at a negative angle from the
+shoulder point (theta_0 - atan2(sqrt(D), N)); on the PUMA 560 and the IRB 140 that is the bend of the home posture,
+the elbow above the line from shoulder to wrist while the upper arm faces the wrist (with the other shoulder
+solution the whole arm is turned over, and the same bend puts the elbow below it). A prismatic joint c has "shorter
+slide" and "longer slide" (the smaller and the larger displacement). Wrist: "no flip" is the solution with q_5 >= 0
+when axes 4 and 6 are parallel at home (the home posture of these arms), else "wrist flip" is the middle point on
+the positive side of h_4 x h_5.
 """
 
 from __future__ import annotations
@@ -45,6 +48,11 @@ WRIST_CENTRE: tuple[sympy.Symbol, ...] = sympy.symbols("w_x w_y w_z", real=True)
 
 def _s(matrix: sympy.Matrix) -> sympy.Matrix:
     return matrix.applyfunc(lambda e: sympy.simplify(sympy.expand(e)))
+
+
+def _on_line(point: sympy.Matrix, axis: sympy.Matrix, through: sympy.Matrix) -> bool:
+    """Whether ``point`` lies on the line through ``through`` along ``axis``, as an identity."""
+    return all(sympy.simplify(sympy.expand(e)) == 0 for e in (point - through).cross(axis))
 
 
 def _rotation(geometry: ArmGeometry, joint: int) -> sympy.Matrix:
@@ -85,7 +93,10 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
     p_a, p_b, p_c = geometry.point(a), geometry.point(b), geometry.point(c)
     name = geometry.robot.joint_variables
     shoulder = ("shoulder right", "shoulder left")
-    if geometry.kind(c) == "revolute" and geometry.parallel(b, c) and not geometry.parallel(a, b):
+    if geometry.kind(c) == "revolute" and _on_line(centre, h_c, p_c):
+        return None  # joint c does not move the wrist centre: the position joints cannot reach around it
+    if geometry.kind(c) == "revolute" and geometry.parallel(b, c) and not geometry.parallel(a, b) \
+            and not _on_line(p_b, h_c, p_c):
         reasons.append(f"the axes of joints {b + 1} and {c + 1} are parallel")
         turn_a = _rotation(geometry, a)
         back = _s(turn_a[:3, :3].T * (w - p_a) + p_a)  # the wrist centre with joint a undone
@@ -94,38 +105,42 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
         return [
             Step((a,), "rotation_to_plane", {"k": h_a, "p": h_b, "h": w - p_a, "d": _s(h_b.T * (centre - p_a))[0]},
                  f"{name[a]}: joints {b + 1} and {c + 1} keep the wrist centre's component along their common axis, "
-                 f"so turning that axis about axis {a + 1} must give it the target's (rotation to a plane)",
+                 f"so turning that axis about axis {a + 1} must give it the target's (rotation to a plane); shoulder "
+                 f"right: the wrist centre on the positive side of h{a + 1} x h{b + 1}",
                  shoulder),
             Step((c,), "rotation_to_distance", {"k": h_c, "p": centre, "q": p_b, "point_on_axis": p_c,
                                                 "delta": sympy.sqrt((w - elbow_at).dot(w - elbow_at))},
                  f"{name[c]}: joint {c + 1} sets the wrist centre's distance from axis {b + 1}'s point, which must "
-                 f"equal the target's (rotation to a distance)", ("elbow up", "elbow down")),
+                 f"equal the target's (rotation to a distance); elbow up: seen along axis {c + 1}, the wrist centre at "
+                 f"a negative angle from that point", ("elbow up", "elbow down")),
             Step((b,), "rotation_to_point", {"k": h_b, "p": wrist_at, "q": back, "point_on_axis": p_b},
                  f"{name[b]}: joint {b + 1} turns the wrist centre onto the target's, joint {a + 1} undone "
                  f"(rotation to a point)"),
         ]
     meet = geometry.intersection(a, b)
-    if meet is None:
-        return None
+    if meet is None or (geometry.kind(c) == "revolute" and _on_line(meet, h_c, p_c)):
+        return None  # axis c through the meeting point: joint c cannot change the wrist centre's distance from it
     reasons.append(f"the axes of joints {a + 1} and {b + 1} meet at ({', '.join(str(e) for e in meet)})")
     delta = sympy.sqrt((w - meet).dot(w - meet))
     if geometry.kind(c) == "prismatic":
         reasons.append(f"joint {c + 1} is prismatic")
         first = Step((c,), "slide_to_distance", {"k": h_c, "p": centre, "q": meet, "delta": delta},
                      f"{name[c]}: the slide sets the wrist centre's distance from the point where axes {a + 1} and "
-                     f"{b + 1} meet, which must equal the target's (slide to a distance)",
+                     f"{b + 1} meet, which must equal the target's (slide to a distance); the shorter slide first",
                      ("shorter slide", "longer slide"))
         moved = _s(centre + h_c * name[c])
     else:
         first = Step((c,), "rotation_to_distance", {"k": h_c, "p": centre, "q": meet, "point_on_axis": p_c,
                                                     "delta": delta},
                      f"{name[c]}: joint {c + 1} sets the wrist centre's distance from the point where axes {a + 1} "
-                     f"and {b + 1} meet, which must equal the target's (rotation to a distance)",
+                     f"and {b + 1} meet, which must equal the target's (rotation to a distance); elbow up: seen along "
+                     f"axis {c + 1}, the wrist centre at a negative angle from that point",
                      ("elbow up", "elbow down"))
         moved = _s(_rotation(geometry, c)[:3, :3] * (centre - p_c) + p_c)
     second = Step((a, b), "two_rotations_to_point", {"k1": h_a, "k2": h_b, "p": moved, "q": w, "intersection": meet},
                   f"{name[a]}, {name[b]}: joints {a + 1} and {b + 1} turn the wrist centre onto the target's about "
-                  f"the point where their axes meet (two rotations to a point)", shoulder)
+                  f"the point where their axes meet (two rotations to a point); shoulder right: the middle point on "
+                  f"the positive side of h{a + 1} x h{b + 1}", shoulder)
     return [first, second]
 
 
@@ -139,11 +154,14 @@ def _orientation(geometry: ArmGeometry, joints: tuple[int, ...], rotation: sympy
     h4, h5, h6 = geometry.axis(j4), geometry.axis(j5), geometry.axis(j6)
     across = _s(h5 - h6 * h6.dot(h5))
     turned = _s(_rotation(geometry, j5)[:3, :3].T * _rotation(geometry, j4)[:3, :3].T)
-    flip = ("no flip", "wrist flip") if _s(h4.T * h6)[0].could_extract_minus_sign() else ("wrist flip", "no flip")
+    alignment = _s(h4.T * h6)[0]
+    flip = ("no flip", "wrist flip") if alignment.could_extract_minus_sign() else ("wrist flip", "no flip")
+    flip_rule = (f"no flip: {name[j5]} >= 0" if alignment != 0 else
+                 f"wrist flip: the middle point on the positive side of h{j4 + 1} x h{j5 + 1}")
     return [
         Step((j4, j5), "two_rotations_to_point", {"k1": h4, "k2": h5, "p": h6, "q": wrist * h6},
              f"{name[j4]}, {name[j5]}: joints {j4 + 1} and {j5 + 1} turn axis {j6 + 1} onto the direction the target "
-             f"orientation gives it (two rotations to a point)", flip),
+             f"orientation gives it (two rotations to a point); {flip_rule}", flip),
         Step((j6,), "rotation_to_point", {"k": h6, "p": across, "q": turned * wrist * across},
              f"{name[j6]}: joint {j6 + 1} turns a direction across its axis onto the target's (rotation to a point)"),
     ]

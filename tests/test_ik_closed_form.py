@@ -191,14 +191,14 @@ def test_the_puma_programs_read_like_the_textbook():
     plan = closed_form_plan(load_robot("puma560"))
     program = branch_programs(plan)[0]
     assignments = dict(program.assignments)
-    w_x, w_y = sympy.symbols("w_x w_y", real=True)
+    px, py = POSE_SYMBOLS[9], POSE_SYMBOLS[10]
     d3 = sympy.Symbol("d3", real=True)
     theta1 = assignments[load_robot("puma560").joint_variables[0]]
     delta = next(s for s in program.conditions if s in theta1.free_symbols)
-    assert sympy.expand(assignments[delta] - (w_x**2 + w_y**2 - d3**2)) == 0
-    assert theta1 == sympy.atan2(w_y, w_x) - sympy.atan2(d3, -sympy.sqrt(delta))  # shoulder right
+    assert sympy.expand(assignments[delta] - (px**2 + py**2 - d3**2)) == 0
+    assert theta1 == sympy.atan2(py, px) - sympy.atan2(d3, -sympy.sqrt(delta))  # shoulder right
     assert dict(branch_programs(plan)[4].assignments)[load_robot("puma560").joint_variables[0]] == (
-        sympy.atan2(w_y, w_x) - sympy.atan2(d3, sympy.sqrt(delta)))  # shoulder left
+        sympy.atan2(py, px) - sympy.atan2(d3, sympy.sqrt(delta)))  # shoulder left
     assert all(sympy.count_ops(e) < 200 for _, e in program.assignments)
 
 
@@ -219,3 +219,17 @@ def test_the_stanford_wrist_centre_at_the_shoulder_is_out_of_reach_by_its_offset
     result = solve_plan(plan, np.eye(4))  # the wrist centre (the flange) at the shoulder point
     assert result.solutions == () and "slide to a distance" in result.unreachable
     assert result.distance == pytest.approx(d2, rel=1e-12)
+
+
+def test_the_stretched_elbow_has_one_elbow_solution_per_shoulder():
+    robot, plan, model = _arm("puma560")
+    a3, d4 = (float(robot.defaults[sympy.Symbol(n, real=True)]) for n in ("a3", "d4"))
+    theta3 = math.atan2(a3, d4) - math.pi / 2  # the forearm (a3, -d4 in frame 3) along the upper arm: full reach
+    q = np.array([0.3, -0.4, theta3, 0.2, 0.6, 0.1])
+    pose = model.fk(q)
+    farther = model.fk(q + np.array([0, 0, 1e-3, 0, 0, 0]))[:3, 3]
+    assert np.linalg.norm(farther) < np.linalg.norm(pose[:3, 3])  # the reach is largest there
+    result = solve_plan(plan, pose)
+    assert len(result.solutions) == 4 and {s.branch[1] for s in result.solutions} == {"elbow up"}
+    assert np.abs(model.fk(np.array([s.q for s in result.solutions])) - pose).max() < 1e-9
+    assert any(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() < 1e-6 for s in result.solutions)

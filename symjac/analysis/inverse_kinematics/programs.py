@@ -5,8 +5,8 @@ Each step's subproblem is solved in symbols (the ``*_symbolic`` functions of
 the robot's parameters, the definitions' symbols and the earlier joints' variables. Every square root's argument
 becomes an assigned symbol of its own (``Delta1``, ``Delta2``, ...), listed in the program's ``conditions``: the
 branch exists where each is ``>= 0``. Each small expression is simplified on its own, so the formulas stay readable:
-for the PUMA 560, ``theta1`` comes out as the textbook ``atan2(w_y, w_x) - atan2(d3, -+sqrt(Delta1))`` with
-``Delta1 = w_x^2 + w_y^2 - d3^2`` (``w = p`` there: the wrist centre is the flange).
+for the PUMA 560, ``theta1`` comes out as the textbook ``atan2(py, px) - atan2(d3, -+sqrt(Delta1))`` with
+``Delta1 = px^2 + py^2 - d3^2``.
 """
 
 from __future__ import annotations

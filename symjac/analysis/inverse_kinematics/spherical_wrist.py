@@ -43,7 +43,8 @@ from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
 __all__ = ["WRIST_CENTRE", "spherical_wrist_plan"]
 
 WRIST_CENTRE: tuple[sympy.Symbol, ...] = sympy.symbols("w_x w_y w_z", real=True)
-"""The symbols of the target's wrist centre in a spherical-wrist plan's definitions."""
+"""The symbols of the target's wrist centre in a spherical-wrist plan's definitions (none when the tool point is the
+wrist centre: the position ``px, py, pz`` is then used as it is)."""
 
 
 def _s(matrix: sympy.Matrix) -> sympy.Matrix:
@@ -77,8 +78,11 @@ def spherical_wrist_plan(geometry: ArmGeometry) -> Plan | None:
     pose = pose_matrix()
     rotation, position = pose[:3, :3], pose[:3, 3]
     centre_in_tool = _s(home[:3, :3].T * (centre - home[:3, 3]))
-    w = sympy.Matrix(WRIST_CENTRE)
-    definitions = tuple(zip(WRIST_CENTRE, _s(rotation * centre_in_tool + position), strict=True))
+    if centre_in_tool == sympy.zeros(3, 1):  # the tool point is the wrist centre (the PUMA's flange): w = p
+        w, definitions = sympy.Matrix(position), ()
+    else:
+        w = sympy.Matrix(WRIST_CENTRE)
+        definitions = tuple(zip(WRIST_CENTRE, _s(rotation * centre_in_tool + position), strict=True))
     position_steps = _position(geometry, a, b, c, centre, w, reasons)
     if position_steps is None:
         return None

@@ -52,7 +52,7 @@ def _independent_fk(robot):
     return sp.lambdify([list(robot.joint_variables)], pose, "numpy")
 
 
-@pytest.mark.parametrize("name", ["panda", "puma560", "ur5"])
+@pytest.mark.parametrize("name", ["panda", "puma560", "ur5", "stanford"])
 def test_generated_solver_reaches_every_pose_within_the_limits(tmp_path, name):
     robot = load_robot(name)
     solve, fk = _solver(tmp_path, robot), _independent_fk(robot)
@@ -99,6 +99,9 @@ def test_only_c_targets_and_a_base_frame_jacobian_have_it():
         describe(ModuleRequest(robot, "c99", frames=(1,), numeric_ik=True))
     plain = "".join(render_files(describe(ModuleRequest(robot, "c99"))).values())
     assert "inverse_kinematics_numeric" not in plain and "sj_ik_" not in plain
+    header = render_files(describe(ModuleRequest(robot, "c99", numeric_ik=True)))["planar2r.h"]
+    assert 'symjac.generate(symjac.load_robot("planar2r"), "c99", jacobians=[symjac.JacobianRequest(0)], ' \
+           "numeric_ik=True)" in header  # the header's command regenerates it with the solver
 
 
 SHIM = """
@@ -140,3 +143,27 @@ def test_generated_cpp_solver_reaches_every_pose(tmp_path, name):
         assert found == 3 and iterations.value > 0
         assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
         assert np.all(q >= lower - 1e-12) and np.all(q <= upper + 1e-12)
+
+
+@pytest.mark.parametrize("name", ["panda", "stanford"])
+def test_generated_python_solver_agrees_with_the_c99_one(tmp_path, name):
+    import types
+
+    robot = load_robot(name)
+    source = next(iter(render_files(describe(ModuleRequest(robot, "python", numeric_ik=True))).values()))
+    module = types.ModuleType(f"{name}_ik")
+    exec(compile(source, f"{name}_ik.py", "exec"), module.__dict__)  # our own generated module
+    solve_c, fk = _solver(tmp_path, robot), _independent_fk(robot)
+    lower, upper = seed_bounds(robot)
+    generator = np.random.default_rng(48)
+    same = 0
+    for k in range(10):
+        pose = np.asarray(fk(generator.uniform(lower, upper)), dtype=float)
+        q, found, iterations = module.inverse_kinematics_numeric(pose.tolist(), seed=k)
+        assert found and iterations > 0
+        assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
+        assert np.all(np.asarray(q) >= lower - 1e-12) and np.all(np.asarray(q) <= upper + 1e-12)
+        assert module.inverse_kinematics_numeric(pose.tolist(), seed=k) == (q, found, iterations)  # deterministic
+        found_c, q_c, iterations_c = solve_c(pose, k)
+        same += found_c == 1 and iterations_c == iterations and np.abs(q_c - np.asarray(q)).max() < 1e-8
+    assert same >= 8  # the same seeds and steps: the same path, unless rounding sends one start elsewhere

@@ -1,11 +1,12 @@
 r"""The numeric inverse-kinematics solver in generated code: which functions it runs on and its joint tables.
 
-A module asked for it (``ModuleRequest(..., numeric_ik=True)``, the c99 and cpp targets) gets a function
+A module asked for it (``ModuleRequest(..., numeric_ik=True)``, the c99, cpp and python targets) gets a function
 ``inverse_kinematics_numeric`` that runs Levenberg-Marquardt with Sugihara's damping, as
 :func:`symjac.analysis.inverse_kinematics.numeric.solve_numeric` does, on the module's own forward kinematics and
 its first Jacobian in frame {0} with all six rows (which must be at the forward kinematics' point: the default
 point, the end of the chain). The solver itself is the runtime section ``ik_numeric`` (``templates/runtime/c99.h``,
-``eigen.hpp``); its emitted wrapper lives in ``templates/c99/ik_numeric.c.j2`` and ``templates/cpp/ik_numeric.hpp.j2``.
+``eigen.hpp``, ``python.py``); its emitted wrapper lives in ``templates/c99/ik_numeric.c.j2``,
+``templates/cpp/ik_numeric.hpp.j2`` and ``templates/python/ik_numeric.py.j2``.
 
 Seeds are drawn by splitmix64 from the caller's ``seed``, uniformly within the joint limits, in ``[-pi, pi]`` for a
 revolute joint without limits (which is also wrapped to ``(-pi, pi]``) and in ``[-1, 1]`` for a prismatic one.
@@ -23,7 +24,7 @@ from symjac.errors import CodegenError
 
 __all__ = ["NUMERIC_IK_TARGETS", "NumericIkTables", "numeric_ik_jacobian", "numeric_ik_tables"]
 
-NUMERIC_IK_TARGETS = ("c99", "cpp")
+NUMERIC_IK_TARGETS = ("c99", "cpp", "python")
 """The targets that generate ``inverse_kinematics_numeric``."""
 
 

@@ -43,7 +43,6 @@ __all__ = [
     "IK_EXPORTS",
     "IK_NOISE",
     "IK_TOLERANCE",
-    "NUMERIC_TARGETS",
     "POSE_ENTRIES",
     "BranchProgramLike",
     "IKAtan2",
@@ -333,17 +332,14 @@ def inverse_kinematics_of(robot: Robot | Chain) -> InverseKinematics:
     return lowered_inverse_kinematics(as_chain(robot))
 
 
-NUMERIC_TARGETS = ("c99", "cpp")
-"""The targets whose modules carry the numeric solver (``inverse_kinematics_numeric``, with a seed) instead, when an
-arm without a closed form is asked for inverse kinematics."""
-
-
 def closed_or_numeric(chain: Chain, target: str, asked: bool) -> tuple[InverseKinematics | None, bool]:
     """The closed form when ``asked`` and the arm has one; else whether the numeric solver stands in for it.
 
-    An arm without a closed form gets the numeric solver in :data:`NUMERIC_TARGETS`; in another target its
+    An arm without a closed form gets the numeric solver (``inverse_kinematics_numeric``, with a seed) in the
+    targets that have it (:data:`~symjac.codegen.ik_numeric.NUMERIC_IK_TARGETS`); in another target its
     :class:`~symjac.errors.NoClosedFormError` (which says why, and points to the numeric solver) propagates.
     """
+    from symjac.codegen.ik_numeric import NUMERIC_IK_TARGETS
     from symjac.errors import NoClosedFormError
 
     if not asked:
@@ -351,7 +347,7 @@ def closed_or_numeric(chain: Chain, target: str, asked: bool) -> tuple[InverseKi
     try:
         return inverse_kinematics_of(chain), False
     except NoClosedFormError:
-        if target not in NUMERIC_TARGETS:
+        if target not in NUMERIC_IK_TARGETS:
             raise
         return None, True
 

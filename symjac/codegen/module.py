@@ -149,7 +149,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
                               request.acceleration, request.name, request.dynamics, request.identification,
-                              request.inverse_kinematics)
+                              request.inverse_kinematics, request.numeric_ik)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
@@ -256,6 +256,7 @@ def generate(
     dynamics: bool = False,
     identification: bool = False,
     inverse_kinematics: bool = False,
+    numeric_ik: bool = False,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -315,7 +316,10 @@ def generate(
     inverse_kinematics : bool
         Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
         ``IK_MAX_SOLUTIONS`` rows with their count. An arm without a closed form gets the numeric
-        ``inverse_kinematics_numeric`` (with a seed) in c99 and cpp, and ``NoClosedFormError`` in other targets.
+        ``inverse_kinematics_numeric`` (with a seed) in c99, cpp and python, ``NoClosedFormError`` elsewhere.
+    numeric_ik : bool
+        Also generate ``inverse_kinematics_numeric`` (c99 and cpp targets), Levenberg-Marquardt on the module's forward
+        kinematics and its first six-row frame-{0} Jacobian (:mod:`symjac.codegen.ik_numeric`).
 
     Returns
     -------
@@ -344,7 +348,8 @@ def generate(
     """
     request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
                             strategy=strategy, command=command, acceleration=acceleration, name=name,
-                            dynamics=dynamics, identification=identification, inverse_kinematics=inverse_kinematics)
+                            dynamics=dynamics, identification=identification, inverse_kinematics=inverse_kinematics,
+                            numeric_ik=numeric_ik)
     return primary(render_files(describe(request)))
 
 

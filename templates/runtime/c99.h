@@ -619,65 +619,74 @@ static inline int sj_ik_into_limits(int n, const real *lower, const real *upper,
     return inside;
 }
 
-/* Solve a x = b in place (a n x n symmetric positive definite, row-major) by Cholesky: b becomes x. */
+/* Solve a x = b in place (a n x n symmetric positive definite, row-major; its lower triangle becomes L with
+ * a = L L^T) by Cholesky: b becomes x. One square root and one division per row. */
 static inline void sj_ik_cholesky(real *a, real *b, int n)
 {
+    real inverse[SJ_DIM];
     for (int j = 0; j < n; j++) {
+        real d = a[j * n + j];
         for (int k = 0; k < j; k++) {
-            for (int i = j; i < n; i++) {
-                a[i * n + j] -= a[i * n + k] * a[j * n + k];
-            }
+            d -= a[j * n + k] * a[j * n + k];
         }
-        const real d = sqrt(a[j * n + j]);
-        for (int i = j; i < n; i++) {
-            a[i * n + j] /= d;
+        inverse[j] = 1 / sqrt(d);
+        for (int i = j + 1; i < n; i++) {
+            real s = a[i * n + j];
+            for (int k = 0; k < j; k++) {
+                s -= a[i * n + k] * a[j * n + k];
+            }
+            a[i * n + j] = s * inverse[j];
         }
     }
     for (int i = 0; i < n; i++) {
         for (int k = 0; k < i; k++) {
             b[i] -= a[i * n + k] * b[k];
         }
-        b[i] /= a[i * n + i];
+        b[i] *= inverse[i];
     }
     for (int i = n - 1; i >= 0; i--) {
         for (int k = i + 1; k < n; k++) {
             b[i] -= a[k * n + i] * b[k];
         }
-        b[i] /= a[i * n + i];
+        b[i] *= inverse[i];
     }
 }
 
-/* x = (J^T J + lambda I)^-1 J^T r over the joints not held (x = 0 for those: their rows and columns are the
- * identity's). J is 6 x n, row-major. */
-static inline void sj_ik_solve(int n, const real *J, const real *r, real lambda, const int *held, real *x)
+/* J^T r, J 6 x n row-major. */
+static inline void sj_ik_transpose_times(int n, const real *J, const real *r, real *out)
+{
+    for (int i = 0; i < n; i++) {
+        out[i] = 0;
+        for (int k = 0; k < 6; k++) {
+            out[i] += J[k * n + i] * r[k];
+        }
+    }
+}
+
+/* x = (J^T J + lambda I)^-1 b over the joints not held (x = 0 for those: their rows and columns are the
+ * identity's), from the normal matrix J^T J (n x n, row-major). */
+static inline void sj_ik_solve(int n, const real *normal, const real *b, real lambda, const int *held, real *x)
 {
     real a[SJ_DIM * SJ_DIM];
     for (int i = 0; i < n; i++) {
-        x[i] = 0;
-        for (int k = 0; k < 6; k++) {
-            x[i] += held[i] ? 0 : J[k * n + i] * r[k];
-        }
+        x[i] = held[i] ? 0 : b[i];
         for (int j = 0; j < n; j++) {
-            real s = 0;
-            for (int k = 0; k < 6; k++) {
-                s += J[k * n + i] * J[k * n + j];
-            }
-            a[i * n + j] = (held[i] || held[j]) ? (i == j ? 1 : 0) : s + (i == j ? lambda : 0);
+            a[i * n + j] = (held[i] || held[j]) ? (i == j ? 1 : 0) : normal[i * n + j] + (i == j ? lambda : 0);
         }
     }
     sj_ik_cholesky(a, x, n);
 }
 
-/* One damped least-squares step (J^T J + lambda I) dq = J^T e, the joints at a limit that it would push past held
- * still (held[i] = 1) and the step solved again (no limits when lower is NULL). */
-static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, const real *q, const real *lower,
-                              const real *upper, real *step, int *held)
+/* One damped least-squares step (J^T J + lambda I) dq = J^T e (the gradient), the joints at a limit that it would
+ * push past held still (held[i] = 1) and the step solved again (no limits when lower is NULL). */
+static inline void sj_ik_step(int n, const real *normal, const real *gradient, real lambda, const real *q,
+                              const real *lower, const real *upper, real *step, int *held)
 {
     for (int i = 0; i < n; i++) {
         held[i] = 0;
     }
     for (int round = 0; round < n; round++) {
-        sj_ik_solve(n, J, e, lambda, held, step);
+        sj_ik_solve(n, normal, gradient, lambda, held, step);
         int more = 0;
         for (int i = 0; i < n; i++) {
             if (lower != NULL && !held[i]
@@ -695,10 +704,10 @@ static inline void sj_ik_step(int n, const real *J, const real *e, real lambda, 
  * - J v) with h = 0.1 (from the error e = f* - f), (J^T J + lambda I) a = -J^T f_vv, and v += a / 2 when
  * 2 |a| <= 0.75 |v|: it follows the curved valleys of the cost near a singular solution. */
 static inline void sj_ik_accelerate(int n, sj_map forward_kinematics, const real *params, const real *target,
-                                    const real *J, const real *e, real lambda, const int *held, const real *x,
-                                    real *step)
+                                    const real *J, const real *normal, const real *e, real lambda, const int *held,
+                                    const real *x, real *step)
 {
-    real probe[SJ_DIM], acceleration[SJ_DIM], T[16], e_probe[6], curvature[6];
+    real probe[SJ_DIM], acceleration[SJ_DIM], b[SJ_DIM], T[16], e_probe[6], curvature[6];
     for (int k = 0; k < n; k++) {
         probe[k] = x[k] + (real)0.1 * step[k];
     }
@@ -711,7 +720,8 @@ static inline void sj_ik_accelerate(int n, sj_map forward_kinematics, const real
         }
         curvature[r] = 20 * ((e_probe[r] - e[r]) / (real)0.1 + moved); /* -f_vv */
     }
-    sj_ik_solve(n, J, curvature, lambda, held, acceleration);
+    sj_ik_transpose_times(n, J, curvature, b);
+    sj_ik_solve(n, normal, b, lambda, held, acceleration);
     real a2 = 0;
     real v2 = 0;
     for (int k = 0; k < n; k++) {
@@ -735,15 +745,16 @@ static inline int sj_ik_converged(const real *e)
 
 /* One start of Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
  * log(R* R(q)^T)], and geodesic acceleration once E < 1e-6: mu halves after an accepted step and grows 4 times
- * after a rejected one; the start ends after 100 steps or 6 steps without the cost falling by 10 % (while
+ * after a rejected one; the start ends after 100 steps or 4 steps without the cost falling by 10 % (while
  * E > 1e-10). Limits when lower is not NULL. x is overwritten by the configuration reached and e by its error;
  * *steps counts the steps; returns the cost E. */
 static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
                                  const real *lower, const real *upper, const int *kind, const real *target, real *x,
                                  real *e, int *steps)
 {
-    real trial[SJ_DIM], step[SJ_DIM], T[16], e_trial[6], J[6 * SJ_DIM];
+    real trial[SJ_DIM], step[SJ_DIM], T[16], e_trial[6], J[6 * SJ_DIM], normal[SJ_DIM * SJ_DIM], gradient[SJ_DIM];
     int held[SJ_DIM];
+    int moved = 1; /* J, J^T J and J^T e are those of x unless it moved */
     sj_ik_project(n, lower, upper, kind, x);
     forward_kinematics(x, params, T);
     real cost = sj_ik_error(target, T, e);
@@ -752,11 +763,23 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
     int stalled = 0;
     for (int it = 0; it < 100 && !sj_ik_converged(e); it++) {
         ++*steps;
-        jacobian(x, params, J);
+        if (moved) {
+            jacobian(x, params, J);
+            for (int i = 0; i < n; i++) {
+                for (int j = 0; j <= i; j++) {
+                    real dot = 0;
+                    for (int k = 0; k < 6; k++) {
+                        dot += J[k * n + i] * J[k * n + j];
+                    }
+                    normal[i * n + j] = normal[j * n + i] = dot;
+                }
+            }
+            sj_ik_transpose_times(n, J, e, gradient);
+        }
         const real lambda = mu * (cost / 2 + (real)1e-3);
-        sj_ik_step(n, J, e, lambda, x, lower, upper, step, held);
+        sj_ik_step(n, normal, gradient, lambda, x, lower, upper, step, held);
         if (cost < (real)1e-6) {
-            sj_ik_accelerate(n, forward_kinematics, params, target, J, e, lambda, held, x, step);
+            sj_ik_accelerate(n, forward_kinematics, params, target, J, normal, e, lambda, held, x, step);
         }
         for (int k = 0; k < n; k++) {
             trial[k] = x[k] + step[k];
@@ -764,7 +787,8 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
         sj_ik_project(n, lower, upper, kind, trial);
         forward_kinematics(trial, params, T);
         const real c = sj_ik_error(target, T, e_trial);
-        if (c < cost) {
+        moved = c < cost;
+        if (moved) {
             memcpy(x, trial, sizeof(real) * (size_t)n);
             memcpy(e, e_trial, sizeof e_trial);
             cost = c;
@@ -775,7 +799,7 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
         if (cost < (real)0.9 * reference || cost < (real)1e-10) {
             reference = cost;
             stalled = 0;
-        } else if (++stalled >= 6) {
+        } else if (++stalled >= 4) {
             break;
         }
     }

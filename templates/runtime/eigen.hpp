@@ -163,7 +163,7 @@ using Table = std::array<T, static_cast<std::size_t>(N)>;
 
 // Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds, steps and budget): each start
 // descends by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
-// log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 6 without the
+// log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 4 without the
 // cost falling 10 % while E > 1e-10); a solution is shifted by 2 pi into the limits, and when a joint does not
 // fit, the descent goes on from the clipped configuration with the limits respected (a joint at a limit that a
 // step would push past is held still). Kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped
@@ -230,10 +230,15 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
         Scalar reference = cost;
         Scalar mu = 1;
         int stalled = 0;
+        Eigen::Matrix<Scalar, 6, N> J;
+        Eigen::Matrix<Scalar, N, N> normal;
+        bool moved = true;  // J and J^T J are those of x unless it moved
         for (int it = 0; it < 100 && !converged(e); it++) {
             steps++;
-            const Eigen::Matrix<Scalar, 6, N> J = velocity_of(x);
-            const Eigen::Matrix<Scalar, N, N> normal = J.transpose() * J;
+            if (moved) {
+                J = velocity_of(x);
+                normal = J.transpose() * J;
+            }
             const Scalar lambda = mu * (cost / Scalar(2) + Scalar(1e-3));
             Table<bool, N> held{};
             auto solve = [&](const Error& r) {  // (J^T J + lambda I)^-1 J^T r over the joints not held
@@ -277,7 +282,8 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
             project(trial, limited);
             Error e_trial;
             const Scalar c = error(trial, e_trial);
-            if (c < cost) {
+            moved = c < cost;
+            if (moved) {
                 x = trial;
                 e = e_trial;
                 cost = c;
@@ -288,7 +294,7 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
             if (cost < Scalar(0.9) * reference || cost < Scalar(1e-10)) {
                 reference = cost;
                 stalled = 0;
-            } else if (++stalled >= 6) {
+            } else if (++stalled >= 4) {
                 break;
             }
         }

@@ -136,7 +136,7 @@ def seed_bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
 def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any = None, rng: int = 0,
                   restarts: int = 8, position_weight: float = 1.0, orientation_weight: float = 1.0,
                   tolerance: float = 1e-10, max_iterations: int = 100, respect_limits: bool = True,
-                  until_found: int = 60, stall: int = 6, null_space: str | None = None) -> list[NumericSolution]:
+                  until_found: int = 64, stall: int = 4, null_space: str | None = None) -> list[NumericSolution]:
     r"""Configurations of ``robot`` whose tool reaches ``pose`` (4 x 4), found by Levenberg-Marquardt.
 
     ``model`` gives ``fk`` and ``jacobian`` (base frame, at the tool point), for example

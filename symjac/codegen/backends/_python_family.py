@@ -15,6 +15,7 @@ from types import MappingProxyType
 from typing import Any
 
 from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.ik_numeric import NumericIkTables, numeric_ik_tables
 from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import RESERVED
@@ -157,6 +158,11 @@ class PythonModule:
         return getattr(self.description, name)
 
     @property
+    def numeric_ik(self) -> NumericIkTables | None:
+        """The numeric inverse kinematics' tables when the module has it (``ModuleRequest(numeric_ik=True)``)."""
+        return numeric_ik_tables(self.description, prefixed=False)
+
+    @property
     def command_lines(self) -> tuple[str, ...]:
         """The regenerating command as header comment lines (a shell line continues with a backslash)."""
         return comment_lines(self.description.command, continuation=" \\" if self.description.shell_command else "")
@@ -280,7 +286,8 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
         module = PythonModule(
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,
-            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always) | set(ik.uses))),
+            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always) | set(ik.uses)
+                                 | ({"acos", "sin"} if description.numeric_ik else set()))),
             ik_text=ik.text,
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),

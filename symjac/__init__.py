@@ -12,7 +12,8 @@ iterations themselves with :func:`velocity_propagation` and :func:`force_propaga
 (:func:`newton_euler`, :func:`mass_matrix`, :func:`coriolis_matrix`, :func:`gravity_torques`, :func:`euler_lagrange`,
 under a :class:`Gravity`; in regressor form, :func:`regressor`); print them (:func:`latex`) and generate fast numeric
 modules from them (:func:`generate`, :func:`write_module`), or compile one in memory (:func:`numeric_model`,
-:func:`numeric_jacobian`).
+:func:`numeric_jacobian`); solve the inverse kinematics (:func:`inverse_kinematics`, of a pose from
+:func:`pose_from_rpy` or :func:`pose_from_quaternion`).
 
 Every name is imported on first use (PEP 562), so ``import symjac`` costs nothing until a name is asked for and
 ``symjac --version`` does not load SymPy; ``from symjac import jacobian``, ``symjac.jacobian`` and ``dir(symjac)``
@@ -75,6 +76,9 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.analysis.dynamics.lagrange import mass_matrix as mass_matrix
     from symjac.analysis.dynamics.newton_euler import newton_euler as newton_euler
     from symjac.analysis.identification.regressor import regressor as regressor
+    from symjac.analysis.inverse_kinematics.poses import pose_from_matrix as pose_from_matrix
+    from symjac.analysis.inverse_kinematics.poses import pose_from_quaternion as pose_from_quaternion
+    from symjac.analysis.inverse_kinematics.poses import pose_from_rpy as pose_from_rpy
     from symjac.analysis.inverse_rates import damped_least_squares as damped_least_squares
     from symjac.analysis.inverse_rates import inverse_rates as inverse_rates
     from symjac.analysis.inverse_rates import rates_along_path as rates_along_path
@@ -190,6 +194,9 @@ if _TYPE_CHECKING:  # the public API: its only list (read at run time by _public
     from symjac.model.urdf import robot_from_urdf as robot_from_urdf
     from symjac.printing import latex as latex
     from symjac.printing import pretty as pretty
+    from symjac.solvers.inverse_kinematics import InverseKinematicsResult as InverseKinematicsResult
+    from symjac.solvers.inverse_kinematics import InverseKinematicsSolution as InverseKinematicsSolution
+    from symjac.solvers.inverse_kinematics import inverse_kinematics as inverse_kinematics
     from symjac.sweeps.run import sweep as sweep
     from symjac.symbolic.angles import AngleBasis as AngleBasis
     from symjac.symbolic.nested import Intermediate as Intermediate

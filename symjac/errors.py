@@ -124,14 +124,22 @@ class ResultTooLargeError(SymjacError, ArithmeticError):
 
 
 class NoClosedFormError(SymjacError, ArithmeticError):
-    """A closed-form analysis was asked of a result built nested (generic geometry, see :mod:`symjac.symbolic.nested`).
+    """A closed form does not exist or is not available: generic geometry, or an arm no inverse-kinematics family fits.
+
+    Analyses of results built nested (generic geometry, see :mod:`symjac.symbolic.nested`) raise it with the
+    default message. Closed-form inverse kinematics raises it with ``reason=``, the one-line message saying why no
+    family fits (which axes miss, by how much at the defaults).
 
     Determinants, singular factors and trigonometric identities need the expressions written out; for generic
     geometry (calibrated twists, identified screw axes) those have no textbook form and grow exponentially with the
     chain, so symjac says so instead of working for hours.
     """
 
-    def __init__(self, what: str = "closed forms (determinants, singular sets, identities)"):
+    def __init__(self, what: str = "closed forms (determinants, singular sets, identities)", *,
+                 reason: str | None = None):
+        if reason is not None:  # closed-form inverse kinematics: the message is why no family fits
+            super().__init__(reason)
+            return
         super().__init__(
             f"{what} are not available for this robot: its geometry is generic (constant rotations between joint "
             "axes that are not multiples of pi/2), so its results are built nested, frame by frame, with named "

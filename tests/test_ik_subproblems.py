@@ -13,8 +13,14 @@ from scipy.spatial.transform import Rotation
 from symjac.analysis.inverse_kinematics import (
     rotation_to_distance,
     rotation_to_distance_symbolic,
+    rotation_to_plane,
+    rotation_to_plane_symbolic,
     rotation_to_point,
     rotation_to_point_symbolic,
+    slide_to_distance,
+    slide_to_distance_symbolic,
+    slide_to_point,
+    slide_to_point_symbolic,
     two_rotations_to_point,
     two_rotations_to_point_symbolic,
 )
@@ -178,3 +184,87 @@ def test_symbolic_forms_equal_the_numeric_ones(k1, k2, p, r, theta1, theta2):
         assert min(conditions) >= -1e-9
         for expected, found in zip(numeric, solutions, strict=True):
             assert same_angle(found[0], expected[0])
+
+
+# ---------------------------------------------------------------- rotation to a plane, the two slides
+
+
+@settings(max_examples=150, deadline=None)
+@given(axes, points, points, points, angles)
+def test_rotation_to_plane_recovers_the_angle(k, p, h, r, theta):
+    if np.linalg.norm(np.cross(k, p - r)) < 1e-2 or np.linalg.norm(h - k * (k @ h)) < 1e-2:
+        return
+    d = float(h @ rotate(k, theta, p, r))
+    result = rotation_to_plane(k, p, h, d, r)
+    assert 1 <= len(result.solutions) <= 2
+    for (angle,) in result.solutions:
+        assert abs(h @ rotate(k, angle, p, r) - d) < 1e-9
+    if len(result.solutions) == 2:
+        assert any(same_angle(angle, theta) for (angle,) in result.solutions)
+
+
+def test_rotation_to_plane_boundaries():
+    x, y, z = np.eye(3)
+    assert len(rotation_to_plane(z, x, x, 0.5).solutions) == 2  # cos(theta) = 1/2
+    assert len(rotation_to_plane(z, x, x, 1.0).solutions) == 1  # the plane touches the circle
+    assert rotation_to_plane(z, x, x, 1.5).solutions == ()
+    assert rotation_to_plane(z, z, x + z, 1.0).every_angle  # p on the axis, inside the plane
+    assert rotation_to_plane(z, z, x, 1.0).solutions == ()  # p on the axis, off the plane
+    with pytest.raises(ArgumentError, match="finite"):
+        rotation_to_plane(z, x, y, float("nan"))
+
+
+@settings(max_examples=100, deadline=None)
+@given(axes, points, st.floats(-2.0, 2.0), points)
+def test_slides_recover_the_displacement(k, p, s, q):
+    target = p + s * k
+    (found,), = slide_to_point(k, p, target).solutions
+    assert abs(found - s) < 1e-9
+    delta = float(np.linalg.norm(target - q))
+    if np.linalg.norm(np.cross(k, target - q)) < 1e-3 and abs(k @ (target - q)) < 1e-3:
+        return  # q within a millimetre of the line at the target: the tolerance (on squares) merges the two roots
+    result = slide_to_distance(k, p, q, delta)
+    for (value,) in result.solutions:
+        assert abs(np.linalg.norm(p + value * k - q) - delta) < 1e-9
+    assert any(abs(value - s) < 1e-6 for (value,) in result.solutions)
+
+
+def test_slide_boundaries():
+    x, y, z = np.eye(3)
+    assert slide_to_point(z, x, x + z).solutions == ((1.0,),)
+    assert slide_to_point(z, x, y).solutions == () and "off the line" in slide_to_point(z, x, y).reason
+    assert len(slide_to_distance(z, x, 0 * x, 2.0).solutions) == 2
+    assert slide_to_distance(z, x, 0 * x, 1.0).solutions == ((0.0,),)  # q as near as the line comes
+    assert slide_to_distance(z, x, 0 * x, 0.5).solutions == ()
+    with pytest.raises(ArgumentError, match="delta"):
+        slide_to_distance(z, x, y, -1.0)
+
+
+H, D = _symbols("h"), sympy.Symbol("d", real=True)
+NEW = {
+    "plane": (sympy.lambdify([*K1, *P, *H, D, *R], [list(s) for s in rotation_to_plane_symbolic(K1, P, H, D, R)
+                                                     .solutions]), rotation_to_plane),
+    "point": sympy.lambdify([*K1, *P, *Q], [list(s) for s in slide_to_point_symbolic(K1, P, Q).solutions]),
+    "distance": sympy.lambdify([*K1, *P, *Q, DELTA], [list(s) for s in slide_to_distance_symbolic(K1, P, Q, DELTA)
+                                                      .solutions]),
+}
+
+
+@settings(max_examples=60, deadline=None)
+@given(axes, points, points, points, angles, st.floats(-2.0, 2.0))
+def test_new_symbolic_forms_equal_the_numeric_ones(k, p, h, r, theta, s):
+    if np.linalg.norm(np.cross(k, p - r)) < 1e-2 or np.linalg.norm(h - k * (k @ h)) < 1e-2:
+        return
+    d = float(h @ rotate(k, theta, p, r))
+    numeric = rotation_to_plane(k, p, h, d, r).solutions
+    with np.errstate(invalid="ignore"):
+        symbolic = NEW["plane"][0](*k, *p, *h, d, *r)
+    if len(numeric) == 2:
+        for expected, found in zip(numeric, symbolic, strict=True):
+            assert same_angle(found[0], expected[0])
+    target = p + s * k
+    assert abs(NEW["point"](*k, *p, *target)[0][0] - s) < 1e-9
+    delta = float(np.linalg.norm(target - r))
+    numeric = slide_to_distance(k, p, r, delta).solutions
+    if len(numeric) == 2:
+        assert np.allclose(NEW["distance"](*k, *p, *r, delta), numeric, atol=1e-9)

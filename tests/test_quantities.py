@@ -35,7 +35,7 @@ def test_every_spec_names_what_exists(name):
     # the derivation applies the law the spec states (kinematics.memo), or is computed from J_q, which does, or (the
     # dynamics) moves its result to the coordinates in its own code, as the law says (tests/test_dynamics*.py)
     law = getattr(derived, "coupling_law", None)
-    assert law is not None or name in {"manipulability", "joint_torques", *DYNAMICS}, \
+    assert law is not None or name in {"manipulability", "joint_torques", "inverse_kinematics", *DYNAMICS}, \
         f"{quantity.derivation} applies no law"
     assert law is None or law.name == quantity.coupling, (name, law)
     assert quantity.kind is None or quantity.kind.isidentifier()

@@ -25,7 +25,7 @@ STAGES: list[tuple[str, ...]] = [
     ("analysis",),
     ("printing", "drawing"),
     ("quantities",),
-    ("report", "codegen", "teaching", "sweeps"),
+    ("report", "codegen", "solvers", "teaching", "sweeps"),
     ("cli",),
 ]
 

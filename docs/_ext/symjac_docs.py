@@ -55,6 +55,8 @@ STAGES: list[tuple[str, str, str]] = [
     ("codegen", "Code generation",
      "Numeric modules from the derived expressions: Python, NumPy, lambdify, a C extension, C99, C++/Eigen, JAX and "
      "CasADi."),
+    ("solvers", "Solvers", "Inverse kinematics: every configuration reaching a pose, in closed form where the "
+     "geometry has one, else numerically, each solution checked by forward kinematics."),
     ("report", "Report", "The derivation as one HTML page (extra ``report``)."),
     ("sweeps", "Design sweeps", "Singular and dexterity measures over parameter grids, on dask (extra ``sweep``)."),
     ("errors", "Errors and version", "Every error symjac raises derives from :class:`symjac.SymjacError`; each says "

@@ -86,12 +86,12 @@ def refuse_ignored_options(args: argparse.Namespace) -> None:
     if getattr(args, "standalone", False) and args.format != "latex":
         raise ArgumentError(f"--standalone applies to --format latex only, not --format {args.format}")
     if getattr(args, "digits", None) is not None:
-        if not (args.numeric or getattr(args, "q", None)):
+        if not (args.numeric or getattr(args, "q", None) or getattr(args, "command", None) == "ik"):
             raise ArgumentError("--digits needs --numeric (or torques --q): only numbers are rounded")
         if args.digits < 1:
             raise ArgumentError(f"--digits must be at least 1, got {args.digits}")
     representation = getattr(args, "representation", None)
-    if getattr(args, "position", None) is not None and representation is None:
+    if getattr(args, "position", None) is not None and hasattr(args, "representation") and representation is None:
         raise ArgumentError("--position needs --representation (it chooses the representation's position part)")
     method = getattr(args, "method", None)
     for option, given in (("--representation", representation is not None),

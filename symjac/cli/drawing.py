@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING, Any
 
-from symjac.cli.args import load, parse_configuration
+from symjac.cli.args import load, parse_configuration, parse_values
+from symjac.cli.output import progress
 from symjac.errors import ArgumentError
 
-__all__ = ["draw_command"]
+if TYPE_CHECKING:
+    from symjac.model.robot import Robot
+
+__all__ = ["draw_command", "ik_pose"]
 
 
 def draw_command(args: argparse.Namespace) -> str:
@@ -42,7 +47,9 @@ def draw_command(args: argparse.Namespace) -> str:
     configurations = [parse_configuration(text, robot) for text in args.q or []] or None
     view = DEFAULT_VIEW if args.view is None else _view(args.view)
     options = {"frames": args.frames, "ellipsoids": args.ellipsoid or (), "limits": args.limits, "view": view}
-    if args.path:
+    if args.ik_pose is not None:
+        data = _solutions_figure(args, robot, suffix, view)
+    elif args.path:
         if configurations is None or len(configurations) < 2:
             raise ArgumentError("--path needs two or more --q waypoints")
         motion = animate(robot, joint_path(configurations, args.path_steps), fps=args.fps, **options)
@@ -53,6 +60,38 @@ def draw_command(args: argparse.Namespace) -> str:
     write_bytes(args.output, data)
     args.output = None  # written: nothing left for stdout
     return ""
+
+
+def _solutions_figure(args: argparse.Namespace, robot: Robot, suffix: str, view: tuple[float, float]) -> bytes:
+    """``--ik-pose``: every solution reaching the pose, one panel each (:func:`.solutions.draw_solutions`)."""
+    from symjac.drawing.animation import figure_bytes
+    from symjac.drawing.solutions import draw_solutions
+    from symjac.solvers.inverse_kinematics import inverse_kinematics
+
+    refused = [option for option, given in (("--q", args.q), ("--path", args.path), ("--ellipsoid", args.ellipsoid))
+               if given]
+    if refused:
+        raise ArgumentError(f"--ik-pose draws the solutions it finds: {' and '.join(refused)} does not apply")
+    pose = ik_pose(args.ik_pose, robot)
+    result = progress(f"inverse kinematics of {robot.name}", lambda: inverse_kinematics(robot, pose))
+    figure = draw_solutions(robot, result, view=view, frames=args.frames or False, limits=args.limits)
+    return figure_bytes(figure, suffix)  # type: ignore[no-any-return]
+
+
+def ik_pose(text: str, robot: Robot) -> Any:
+    """``--ik-pose``: 6 numbers (position, URDF rpy), 7 (position, quaternion w first), or 12 or 16 (the matrix)."""
+    from symjac.analysis.inverse_kinematics.poses import pose_from_matrix, pose_from_quaternion, pose_from_rpy
+
+    count = len(text.split(","))
+    if count not in (6, 7, 12, 16):
+        raise ArgumentError(f"--ik-pose takes 6 numbers (x,y,z,roll,pitch,yaw), 7 (x,y,z,w,qx,qy,qz) or 12 or 16 "
+                            f"(the matrix row by row), got {count} in {text!r}")
+    values = [float(value) for value in parse_values(text, count, "--ik-pose", robot, parameters=False)]
+    if count == 6:
+        return pose_from_rpy(values[:3], values[3:], name="--ik-pose")
+    if count == 7:
+        return pose_from_quaternion(values[:3], values[3:], name="--ik-pose")
+    return pose_from_matrix([values[k:k + 4] for k in range(0, count, 4)], name="--ik-pose")
 
 
 def _view(text: str) -> tuple[float, float]:

@@ -230,7 +230,8 @@ def _codegen(args: argparse.Namespace) -> str:
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
     request = ModuleRequest(robot, args.target, jacobians=requests, strategy=args.strategy,
                             command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration,
-                            name=args.name, dynamics=args.dynamics, identification=args.identification)
+                            name=args.name, dynamics=args.dynamics, identification=args.identification,
+                            inverse_kinematics=args.inverse_kinematics)
     files = progress(f"{args.target} module for {robot.name}", lambda: render_files(describe(request)))
     text = single_or_written(files, args.output)  # several files are written here, all or none
     args.output = args.output if text is not None else None

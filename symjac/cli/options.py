@@ -58,6 +58,9 @@ def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--identification", action="store_true",
                      help="also generate regressor and base_regressor (tau = Y pi = Y_b pi_b; the parameters' names "
                           "in order as REGRESSOR_PARAMETERS, BASE_PARAMETERS); implies --dynamics")
+    sub.add_argument("--inverse-kinematics", action="store_true",
+                     help="also generate inverse_kinematics(pose): every closed-form solution (an arm with a closed "
+                          "form) into IK_MAX_SOLUTIONS rows and their count")
     sub.add_argument("--name", default=None,
                      help="the module's name: file names, C prefix, C++ namespace (default: the robot's name)")
 
@@ -96,6 +99,10 @@ def draw_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--path-steps", type=int, default=30, metavar="N",
                      help="with --path: frames per segment between waypoints (default 30)")
     sub.add_argument("--fps", type=int, default=20, help="with --path: frames per second (default 20)")
+    sub.add_argument("--ik-pose", default=None, metavar="POSE",
+                     help="draw every inverse-kinematics solution reaching this pose of the end of the chain in {0}, "
+                          "side by side: x,y,z,roll,pitch,yaw (URDF rpy, radians), x,y,z,w,qx,qy,qz (unit quaternion, "
+                          "scalar first), or the 4 x 4 matrix row by row (16 or the top 12 numbers)")
 
 
 def sweep_options(sub: argparse.ArgumentParser, name: str) -> None:

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from symjac.codegen.inverse_kinematics import InverseKinematics
 from symjac.codegen.joint_table import JointEntry, convention_words
 from symjac.codegen.kinds import CHECK_WORDS, COUPLED_WORDS, kind_spec
 from symjac.codegen.lower import LoweredFunction
@@ -322,6 +323,8 @@ class ModuleDescription:
     tip_frame: str = ""
     origin: str = ""
     name_lists: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    inverse_kinematics: InverseKinematics | None = None
+    """The closed-form inverse kinematics, lowered (:mod:`symjac.codegen.inverse_kinematics`), when asked for."""
     numeric_ik: str = ""
 
     @property

@@ -215,7 +215,7 @@ def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[s
 def python_call(
     robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
     loader: str, acceleration: bool = False, name: str | None = None, dynamics: bool = False,
-    identification: bool = False, numeric_ik: bool = False,
+    identification: bool = False, inverse_kinematics: bool = False, numeric_ik: bool = False,
 ) -> str:
     """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
 
@@ -242,6 +242,8 @@ def python_call(
         parts.append("identification=True")
     elif dynamics:
         parts.append("dynamics=True")
+    if inverse_kinematics:
+        parts.append("inverse_kinematics=True")
     if numeric_ik:
         parts.append("numeric_ik=True")
     if name is not None:

@@ -28,7 +28,8 @@ from symjac.quantities.spec import Generated, LawName, Quantity
 __all__ = ["MEMBERS", "QUANTITIES", "Generated", "LawName", "Quantity"]
 
 MEMBERS = ("forward_kinematics", "jacobian", "hessian", "bias_acceleration", "joint_torques", "manipulability",
-           "inverse_dynamics", "mass_matrix", "coriolis_matrix", "gravity_torques", "regressor", "base_regressor")
+           "inverse_dynamics", "mass_matrix", "coriolis_matrix", "gravity_torques", "regressor", "base_regressor",
+           "inverse_kinematics")
 """The quantity modules, in the order the command line lists their commands and generated modules their functions
 (within a Jacobian request, those that need ``acceleration`` after the others)."""
 

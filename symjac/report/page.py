@@ -5,10 +5,11 @@ where it is most compact, the exact comparison of the four derivation methods, t
 explanations, the arm drawn at home and at each solved singular configuration (with the direction it loses there),
 and two inline SVG pictures: the manipulability over two joints with the singular curves drawn from
 the solved factors, and the joint rates along a path through a singularity; then the dynamics (the mass matrix, the
-gravity torques and for a short arm the joint torques, or a sentence saying which links lack inertial data). Math is
-MathML Core (rendered natively by browsers); nothing is fetched when the page is viewed (no scripts, fonts, or images
-from elsewhere). Every string that comes from the user (robot name, description, file name) is HTML-escaped.
-Identical input gives identical bytes.
+gravity torques and for a short arm the joint torques, or a sentence saying which links lack inertial data), after
+the inverse kinematics (the closed form's family or why there is none, and every solution at an example pose,
+drawn). Math is MathML Core (rendered natively by browsers); nothing is fetched when the page is viewed (no
+scripts, fonts, or images from elsewhere). Every string that comes from the user (robot name, description, file
+name) is HTML-escaped. Identical input gives identical bytes.
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ from symjac.printing.results import (
 from symjac.report.content import Agreement, block_html, caption_html, method_agreement
 from symjac.report.dynamics import dynamics_html
 from symjac.report.figures import CURVE_COLOURS, arm_svg, map_svg, rates_svg
+from symjac.report.inverse_kinematics import inverse_kinematics_html
 from symjac.resources import render_template
 
 __all__ = ["Section", "derivation_report", "lost_arrow"]
@@ -233,6 +235,7 @@ def derivation_report(robot: Robot, source: str | None = None) -> str:
     if plane is not None:
         path = singular_path(robot, plane)
         sections += [_map_section(robot, report, plane, path), _rates_section(robot, report, path)]
+    sections.append(Section("inverse-kinematics", "Inverse kinematics", inverse_kinematics_html(robot)))
     sections.append(Section("dynamics", "Dynamics", dynamics_html(robot)))
     return render_template(TEMPLATE, version=__version__, robot=robot.name, source=source or robot.name,
                            description=robot.description, sections=sections)

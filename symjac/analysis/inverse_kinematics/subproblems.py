@@ -15,14 +15,21 @@ identities keep the formulas short: ``u'.v' = u.v - (k.u)(k.v)`` and ``k.(u' x v
 - **Rotation to a distance** (subproblem 3): ``|rot(k, theta) u - v| = delta``. Across the axis the distance is
   ``delta'^2 = delta^2 - (k.(u - v))^2``, and ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` with ``theta0`` the angle
   from ``u'`` to ``v'`` and ``c = (|u'|^2 + |v'|^2 - delta'^2) / (2 |u'| |v'|)``; zero, one or two solutions.
+- **Rotation to a plane** (subproblem 4): ``h.(r + rot(k, theta) u) = d``. With ``A = h.u'``, ``B = h.(k x u)`` and
+  ``C = d - h.r - (k.u)(k.h)`` it reads ``A cos(theta) + B sin(theta) = C``, so
+  ``theta = atan2(A, -B) - atan2(C, -+sqrt(A^2 + B^2 - C^2))`` (the textbook form); zero, one or two solutions.
+- **Slide to a point**: ``p + s k = q`` along ``k``: ``s = k.(q - p)`` when ``q - p`` is along ``k``.
+- **Slide to a distance**: ``|p + s k - q| = delta``, a quadratic in ``s``: with ``u = p - q``,
+  ``s = -k.u -+ sqrt(delta^2 - |u'|^2)``; zero, one or two solutions.
 
-Each comes as a numeric function (NumPy floats, all solutions, a tolerance for the existence test, one solution where
-two merge) and a ``_symbolic`` function returning a :class:`Subproblem`: the solutions as SymPy expressions with
+Each comes as a numeric function (floats, all solutions, a tolerance for the existence test, one solution where two
+merge) and a ``_symbolic`` function returning a :class:`Subproblem`: the solutions as SymPy expressions with
 ``atan2`` and the conditions under which they exist, for a derivation to print step by step.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -36,8 +43,14 @@ __all__ = [
     "Subproblem",
     "rotation_to_distance",
     "rotation_to_distance_symbolic",
+    "rotation_to_plane",
+    "rotation_to_plane_symbolic",
     "rotation_to_point",
     "rotation_to_point_symbolic",
+    "slide_to_distance",
+    "slide_to_distance_symbolic",
+    "slide_to_point",
+    "slide_to_point_symbolic",
     "two_rotations_to_point",
     "two_rotations_to_point_symbolic",
 ]
@@ -72,34 +85,70 @@ class Subproblem:
 # ---------------------------------------------------------------- numeric
 
 
-def _vector(value: Any, name: str) -> np.ndarray:
-    array = np.asarray(value, dtype=float)
-    if array.shape != (3,) or not np.all(np.isfinite(array)):
+Vector = tuple[float, float, float]  # the numeric subproblems work on tuples: a tenth of NumPy's cost on one 3-vector
+
+
+def _dot(a: Vector, b: Vector) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _cross(a: Vector, b: Vector) -> Vector:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _minus(a: Vector, b: Vector) -> Vector:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _combination(*terms: tuple[float, Vector]) -> Vector:
+    """``sum(c v)`` over ``(c, v)`` pairs."""
+    return (sum(c * v[0] for c, v in terms), sum(c * v[1] for c, v in terms), sum(c * v[2] for c, v in terms))
+
+
+def _norm(a: Vector) -> float:
+    return math.sqrt(_dot(a, a))
+
+
+def _vector(value: Any, name: str) -> Vector:
+    try:
+        x, y, z = value.tolist() if isinstance(value, np.ndarray) else value
+        vector = (float(x), float(y), float(z))
+    except (TypeError, ValueError):
+        vector = (math.nan, math.nan, math.nan)
+    if not (math.isfinite(vector[0]) and math.isfinite(vector[1]) and math.isfinite(vector[2])):
         raise ArgumentError(f"subproblem argument {name}: expected 3 finite numbers, got {value!r}")
-    return array
+    return vector
 
 
-def _axis(value: Any, name: str) -> np.ndarray:
+def _axis(value: Any, name: str) -> Vector:
     axis = _vector(value, name)
-    if abs(np.linalg.norm(axis) - 1.0) > 1e-9:
-        raise ArgumentError(
-            f"subproblem argument {name}: the axis must be a unit vector, its norm is {np.linalg.norm(axis):.12g}"
-        )
+    if abs(_norm(axis) - 1.0) > 1e-9:
+        raise ArgumentError(f"subproblem argument {name}: the axis must be a unit vector, norm {_norm(axis):.12g}")
     return axis
 
 
-def _relative(p: Any, q: Any, point: Any) -> tuple[np.ndarray, np.ndarray]:
-    r = np.zeros(3) if point is None else _vector(point, "point on the axis")
-    return _vector(p, "p") - r, _vector(q, "q") - r
+def _number(value: Any, what: str, distance: bool = False) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not math.isfinite(number) or (distance and number < 0):
+        raise ArgumentError(f"{what} must be a finite {'distance >= 0' if distance else 'number'}, got {value!r}")
+    return number
 
 
-def _angle_across(k: np.ndarray, u: np.ndarray, v: np.ndarray) -> float:
+def _relative(p: Any, q: Any, point: Any) -> tuple[Vector, Vector]:
+    r = (0.0, 0.0, 0.0) if point is None else _vector(point, "point on the axis")
+    return _minus(_vector(p, "p"), r), _minus(_vector(q, "q"), r)
+
+
+def _angle_across(k: Vector, u: Vector, v: Vector) -> float:
     """The angle about ``k`` from ``u'`` to ``v'``: ``atan2(k.(u x v), u.v - (k.u)(k.v))``."""
-    return float(np.arctan2(k @ np.cross(u, v), u @ v - (k @ u) * (k @ v)))
+    return math.atan2(_dot(k, _cross(u, v)), _dot(u, v) - _dot(k, u) * _dot(k, v))
 
 
-def _scale(*vectors: np.ndarray) -> float:
-    return max(1.0, *(float(np.linalg.norm(x)) for x in vectors))
+def _scale(*lengths: float) -> float:
+    return max(1.0, *lengths)
 
 
 def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, tolerance: float = 1e-9) -> AngleSolutions:
@@ -112,11 +161,12 @@ def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, toleran
     """
     k = _axis(k, "k")
     u, v = _relative(p, q, point_on_axis)
-    scale = tolerance * _scale(u, v)
-    if abs(k @ u - k @ v) > scale:
-        return AngleSolutions((), f"p and q differ along the axis by {k @ v - k @ u:.6g}")
-    across_u = float(np.sqrt(max(u @ u - (k @ u) ** 2, 0.0)))
-    across_v = float(np.sqrt(max(v @ v - (k @ v) ** 2, 0.0)))
+    scale = tolerance * _scale(_norm(u), _norm(v))
+    ku, kv = _dot(k, u), _dot(k, v)
+    if abs(ku - kv) > scale:
+        return AngleSolutions((), f"p and q differ along the axis by {kv - ku:.6g}")
+    across_u = math.sqrt(max(_dot(u, u) - ku**2, 0.0))
+    across_v = math.sqrt(max(_dot(v, v) - kv**2, 0.0))
     if abs(across_u - across_v) > scale:
         return AngleSolutions((), f"p and q lie at distances {across_u:.6g} and {across_v:.6g} from the axis")
     if across_u <= scale:
@@ -124,9 +174,8 @@ def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, toleran
     return AngleSolutions(((_angle_across(k, u, v),),))
 
 
-def two_rotations_to_point(
-    k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None, tolerance: float = 1e-9
-) -> AngleSolutions:
+def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None,
+                           tolerance: float = 1e-9) -> AngleSolutions:
     """Subproblem 2: two rotations about axes that meet, taking ``p`` to ``q``.
 
     The angles ``(theta1, theta2)`` satisfy ``rot(k1, theta1) rot(k2, theta2) (p - r) = q - r`` for unit
@@ -137,39 +186,34 @@ def two_rotations_to_point(
     ``|p - r| != |q - r|``. Parallel axes raise :class:`~symjac.errors.ArgumentError`.
     """
     k1, k2 = _axis(k1, "k1"), _axis(k2, "k2")
-    normal = np.cross(k1, k2)
-    if np.linalg.norm(normal) <= 1e-9:
-        raise ArgumentError(
-            "two rotations to a point: the axes k1 and k2 are parallel; the subproblem needs axes "
-            "that meet in one point"
-        )
+    normal = _cross(k1, k2)
+    if _norm(normal) <= 1e-9:
+        raise ArgumentError("two rotations to a point: the axes k1 and k2 are parallel; the subproblem needs axes "
+                            "that meet in one point")
     u, v = _relative(p, q, intersection)
-    scale = tolerance * _scale(u, v)
-    if abs(np.linalg.norm(u) - np.linalg.norm(v)) > scale:
-        return AngleSolutions(
-            (), f"p and q lie at distances {np.linalg.norm(u):.6g} and {np.linalg.norm(v):.6g} from the intersection"
-        )
-    if np.linalg.norm(u) <= scale:
-        return AngleSolutions(
-            ((0.0, 0.0),), "p is the intersection point: every pair of angles works", every_angle=True
-        )
-    w = float(k1 @ k2)
-    alpha = (k1 @ v - w * (k2 @ u)) / (1.0 - w * w)
-    beta = (k2 @ u - w * (k1 @ v)) / (1.0 - w * w)
-    gamma_squared = (u @ u - alpha**2 - beta**2 - 2.0 * alpha * beta * w) / (normal @ normal)
-    if gamma_squared < -scale * _scale(u):
+    length_u, length_v = _norm(u), _norm(v)
+    scale = tolerance * _scale(length_u, length_v)
+    if abs(length_u - length_v) > scale:
+        return AngleSolutions((), f"p and q lie at distances {length_u:.6g} and {length_v:.6g} from the meeting point")
+    if length_u <= scale:
+        return AngleSolutions(((0.0, 0.0),), "p is the intersection point: every pair of angles works", True)
+    w = _dot(k1, k2)
+    alpha = (_dot(k1, v) - w * _dot(k2, u)) / (1.0 - w * w)
+    beta = (_dot(k2, u) - w * _dot(k1, v)) / (1.0 - w * w)
+    gamma_squared = (_dot(u, u) - alpha**2 - beta**2 - 2.0 * alpha * beta * w) / _dot(normal, normal)
+    if gamma_squared < -scale * _scale(length_u):
         return AngleSolutions((), f"no middle point: gamma^2 = {gamma_squared:.6g} < 0")
-    gammas = (0.0,) if gamma_squared <= scale * _scale(u) else (np.sqrt(gamma_squared), -np.sqrt(gamma_squared))
+    root = math.sqrt(max(gamma_squared, 0.0))
+    gammas = (0.0,) if gamma_squared <= scale * _scale(length_u) else (root, -root)
     solutions = []
     for gamma in gammas:
-        middle = alpha * k1 + beta * k2 + gamma * normal
+        middle = _combination((alpha, k1), (beta, k2), (gamma, normal))
         solutions.append((_angle_across(k1, middle, v), _angle_across(k2, u, middle)))
     return AngleSolutions(tuple(solutions))
 
 
-def rotation_to_distance(
-    k: Any, p: Any, q: Any, delta: float, point_on_axis: Any = None, tolerance: float = 1e-9
-) -> AngleSolutions:
+def rotation_to_distance(k: Any, p: Any, q: Any, delta: float, point_on_axis: Any = None,
+                         tolerance: float = 1e-9) -> AngleSolutions:
     """Subproblem 3: the angles ``theta`` with ``|rot(k, theta) (p - r) - (q - r)| = delta``.
 
     ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` with ``theta0`` the angle from ``u'`` to ``v'`` and
@@ -178,29 +222,94 @@ def rotation_to_distance(
     """
     k = _axis(k, "k")
     u, v = _relative(p, q, point_on_axis)
-    if not np.isfinite(delta) or delta < 0:
-        raise ArgumentError(f"rotation to a distance: delta must be a finite distance >= 0, got {delta!r}")
-    scale = tolerance * _scale(u, v, np.array([delta]))
-    delta_across_squared = delta**2 - float(k @ (u - v)) ** 2
-    across_u_squared = max(u @ u - (k @ u) ** 2, 0.0)
-    across_v_squared = max(v @ v - (k @ v) ** 2, 0.0)
+    delta = _number(delta, "rotation to a distance: delta", distance=True)
+    scale = tolerance * _scale(_norm(u), _norm(v), delta)
+    ku, kv = _dot(k, u), _dot(k, v)
+    delta_across_squared = delta**2 - (ku - kv) ** 2
+    across_u_squared = max(_dot(u, u) - ku**2, 0.0)
+    across_v_squared = max(_dot(v, v) - kv**2, 0.0)
     if delta_across_squared < -scale:
         return AngleSolutions((), f"p and q differ along the axis by more than delta = {delta:.6g}")
     if across_u_squared <= scale**2 or across_v_squared <= scale**2:
         if abs(across_u_squared + across_v_squared - delta_across_squared) <= scale:
-            return AngleSolutions(
-                ((0.0,),), "p or q lies on the axis: every angle gives the same distance", every_angle=True
-            )
+            return AngleSolutions(((0.0,),), "p or q lies on the axis: every angle gives the same distance", True)
         return AngleSolutions((), "p or q lies on the axis and the distance is not delta")
-    product = 2.0 * np.sqrt(across_u_squared * across_v_squared)
+    product = 2.0 * math.sqrt(across_u_squared * across_v_squared)
     c = (across_u_squared + across_v_squared - max(delta_across_squared, 0.0)) / product
     if abs(c) > 1.0 + scale:
         return AngleSolutions((), f"delta = {delta:.6g} is out of the range the rotation reaches (cos = {c:.6g})")
     theta0 = _angle_across(k, u, v)
     if abs(c) >= 1.0 - scale:
-        return AngleSolutions(((float(theta0 - np.arctan2(0.0, np.sign(c))),),))
-    half = float(np.arctan2(np.sqrt(1.0 - c * c), c))
+        return AngleSolutions(((theta0 - math.atan2(0.0, math.copysign(1.0, c)),),))
+    half = math.atan2(math.sqrt(1.0 - c * c), c)
     return AngleSolutions(((theta0 - half,), (theta0 + half,)))
+
+
+def rotation_to_plane(k: Any, p: Any, h: Any, d: float, point_on_axis: Any = None,
+                      tolerance: float = 1e-9) -> AngleSolutions:
+    """Subproblem 4: the angles ``theta`` with ``h.(r + rot(k, theta) (p - r)) = d``.
+
+    ``A cos(theta) + B sin(theta) = C`` with ``A = h.u'``, ``B = h.(k x u)``, ``C = d - h.r - (k.u)(k.h)``, so
+    ``theta = atan2(A, -B) - atan2(C, -+sqrt(A^2 + B^2 - C^2))``: two solutions when ``C^2 < A^2 + B^2``, one when they
+    are equal (within ``tolerance``), none otherwise; every angle when ``A = B = C = 0``. ``h`` need not be a unit
+    vector.
+    """
+    k = _axis(k, "k")
+    h = _vector(h, "h")
+    r = (0.0, 0.0, 0.0) if point_on_axis is None else _vector(point_on_axis, "point on the axis")
+    u = _minus(_vector(p, "p"), r)
+    d = _number(d, "rotation to a plane: d")
+    ku, kh = _dot(k, u), _dot(k, h)
+    a = _dot(h, u) - ku * kh
+    b = _dot(h, _cross(k, u))
+    c = d - _dot(h, r) - ku * kh
+    size = _scale(_norm(u), _norm(h), abs(d)) * _scale(_norm(h))  # A, B and C scale like |h| times a length
+    radius = math.hypot(a, b)
+    if radius <= tolerance * size:
+        if abs(c) <= tolerance * size:
+            return AngleSolutions(((0.0,),), "p lies on the axis and the plane holds it: every angle works",
+                                  every_angle=True)
+        return AngleSolutions((), f"the rotation does not move p across the plane, which it misses by {c:.6g}")
+    theta0 = math.atan2(a, -b)
+    if abs(c) > radius + tolerance * size:
+        return AngleSolutions((), f"the plane is out of reach: |C| = {abs(c):.6g} > sqrt(A^2 + B^2) = {radius:.6g}")
+    if abs(c) >= radius - tolerance * size:
+        return AngleSolutions(((theta0 - math.atan2(c, 0.0),),))
+    root = math.sqrt(radius * radius - c * c)
+    return AngleSolutions(((theta0 - math.atan2(c, -root),), (theta0 - math.atan2(c, root),)))
+
+
+def slide_to_point(k: Any, p: Any, q: Any, tolerance: float = 1e-9) -> AngleSolutions:
+    """A slide along ``k`` taking ``p`` to ``q``: ``s = k.(q - p)``, when ``q - p - s k = 0`` (within ``tolerance``)."""
+    k = _axis(k, "k")
+    u = _minus(_vector(q, "q"), _vector(p, "p"))
+    s = _dot(k, u)
+    miss = _norm(_combination((1.0, u), (-s, k)))
+    if miss > tolerance * _scale(_norm(u)):
+        return AngleSolutions((), f"q lies {miss:.6g} off the line through p along k")
+    return AngleSolutions(((s,),))
+
+
+def slide_to_distance(k: Any, p: Any, q: Any, delta: float, tolerance: float = 1e-9) -> AngleSolutions:
+    """The slides ``s`` along ``k`` with ``|p + s k - q| = delta``: ``s = -k.u -+ sqrt(delta^2 - |u'|^2)``, u = p - q.
+
+    Two solutions when ``delta`` exceeds the distance ``|u'|`` from ``q`` to the line, one when it equals it (within
+    ``tolerance``), none when it is shorter.
+    """
+    k = _axis(k, "k")
+    u = _minus(_vector(p, "p"), _vector(q, "q"))
+    delta = _number(delta, "slide to a distance: delta", distance=True)
+    along = _dot(k, u)
+    across_squared = max(_dot(u, u) - along**2, 0.0)
+    discriminant = delta**2 - across_squared
+    scale = tolerance * _scale(_norm(u), delta)
+    if discriminant < -scale:
+        gap = math.sqrt(across_squared) - delta
+        return AngleSolutions((), f"q lies {gap:.6g} farther from the line than delta = {delta:.6g}")
+    if discriminant <= scale:
+        return AngleSolutions(((-along,),))
+    root = math.sqrt(discriminant)
+    return AngleSolutions(((-along - root,), (-along + root,)))
 
 
 # ---------------------------------------------------------------- symbolic
@@ -230,19 +339,16 @@ def rotation_to_point_symbolic(k: Any, p: Any, q: Any, point_on_axis: Any = None
     """
     k = _matrix(k, "k")
     u, v = _relative_symbolic(p, q, point_on_axis)
-    conditions = (
-        sympy.Eq(k.dot(u), k.dot(v), evaluate=False),
-        sympy.Eq(u.dot(u) - k.dot(u) ** 2, v.dot(v) - k.dot(v) ** 2, evaluate=False),
-    )
+    conditions = (sympy.Eq(k.dot(u), k.dot(v), evaluate=False),
+                  sympy.Eq(u.dot(u) - k.dot(u) ** 2, v.dot(v) - k.dot(v) ** 2, evaluate=False))
     return Subproblem(((_angle_across_symbolic(k, u, v),),), conditions)
 
 
 def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersection: Any = None) -> Subproblem:
     """Subproblem 2 in symbols.
 
-    Two solutions ``(theta1, theta2)``, one for each sign of
-    ``gamma = +-sqrt(gamma^2)``, under the conditions ``|u|^2 = |v|^2`` and ``gamma^2 >= 0`` (formulas in the module
-    docstring); ``k1`` and ``k2`` are unit vectors that are not parallel.
+    Two solutions ``(theta1, theta2)``, one for each sign of ``gamma = +-sqrt(gamma^2)``, under the conditions
+    ``|u|^2 = |v|^2`` and ``gamma^2 >= 0`` (module docstring); ``k1`` and ``k2`` are unit vectors, not parallel.
     """
     k1, k2 = _matrix(k1, "k1"), _matrix(k2, "k2")
     u, v = _relative_symbolic(p, q, intersection)
@@ -262,8 +368,9 @@ def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersecti
 def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_axis: Any = None) -> Subproblem:
     """Subproblem 3 in symbols.
 
-    ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` under the conditions
-    ``delta'^2 >= 0`` and ``1 - c^2 >= 0`` (formulas in the module docstring); ``k`` is a unit vector.
+    ``theta = theta0 -+ atan2(sqrt(D), N)`` with ``N = |u'|^2 + |v'|^2 - delta'^2`` and ``D = 4 |u'|^2 |v'|^2 - N^2``
+    (the module docstring's ``c = N / (2 |u'| |v'|)``, both atan2 arguments scaled by ``2 |u'| |v'|``), under the
+    conditions ``delta'^2 >= 0`` and ``D >= 0``; ``k`` is a unit vector.
     """
     k = _matrix(k, "k")
     u, v = _relative_symbolic(p, q, point_on_axis)
@@ -271,10 +378,43 @@ def rotation_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any, point_on_a
     delta_across_squared = delta**2 - k.dot(u - v) ** 2
     across_u_squared = u.dot(u) - k.dot(u) ** 2
     across_v_squared = v.dot(v) - k.dot(v) ** 2
-    c = (across_u_squared + across_v_squared - delta_across_squared) / (
-        2 * sympy.sqrt(across_u_squared) * sympy.sqrt(across_v_squared)
-    )
+    n = across_u_squared + across_v_squared - delta_across_squared
+    d = 4 * across_u_squared * across_v_squared - n**2
     theta0 = _angle_across_symbolic(k, u, v)
-    half = sympy.atan2(sympy.sqrt(1 - c**2), c)
-    conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(1 - c**2, 0, evaluate=False))
+    half = sympy.atan2(sympy.sqrt(d), n)
+    conditions = (sympy.Ge(delta_across_squared, 0, evaluate=False), sympy.Ge(d, 0, evaluate=False))
     return Subproblem(((theta0 - half,), (theta0 + half,)), conditions)
+
+
+def rotation_to_plane_symbolic(k: Any, p: Any, h: Any, d: Any, point_on_axis: Any = None) -> Subproblem:
+    """Subproblem 4 in symbols.
+
+    ``theta = atan2(A, -B) - atan2(C, -+sqrt(A^2 + B^2 - C^2))`` under the condition
+    ``A^2 + B^2 - C^2 >= 0`` (``A``, ``B``, ``C`` as in the module docstring); ``k`` is a unit vector.
+    """
+    k, h = _matrix(k, "k"), _matrix(h, "h")
+    r = sympy.zeros(3, 1) if point_on_axis is None else _matrix(point_on_axis, "point on the axis")
+    u = _matrix(p, "p") - r
+    a = h.dot(u) - k.dot(u) * k.dot(h)
+    b = h.dot(k.cross(u))
+    c = sympy.sympify(d) - h.dot(r) - k.dot(u) * k.dot(h)
+    root = sympy.sqrt(a**2 + b**2 - c**2)
+    theta0 = sympy.atan2(a, -b)
+    return Subproblem(((theta0 - sympy.atan2(c, -root),), (theta0 - sympy.atan2(c, root),)),
+                      (sympy.Ge(a**2 + b**2 - c**2, 0, evaluate=False),))
+
+
+def slide_to_point_symbolic(k: Any, p: Any, q: Any) -> Subproblem:
+    """A slide to a point in symbols: ``s = k.(q - p)`` under the condition ``|q - p|^2 = (k.(q - p))^2``."""
+    k = _matrix(k, "k")
+    u = _matrix(q, "q") - _matrix(p, "p")
+    return Subproblem(((k.dot(u),),), (sympy.Eq(u.dot(u), k.dot(u) ** 2, evaluate=False),))
+
+
+def slide_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any) -> Subproblem:
+    """A slide to a distance in symbols: ``s = -k.u -+ sqrt(delta^2 - |u'|^2)`` under ``delta^2 - |u'|^2 >= 0``."""
+    k = _matrix(k, "k")
+    u = _matrix(p, "p") - _matrix(q, "q")
+    discriminant = sympy.sympify(delta) ** 2 - (u.dot(u) - k.dot(u) ** 2)
+    root, along = sympy.sqrt(discriminant), k.dot(u)
+    return Subproblem(((-along - root,), (-along + root,)), (sympy.Ge(discriminant, 0, evaluate=False),))

@@ -150,6 +150,7 @@ class PythonModule:
     imports: tuple[str, ...]
     extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     runtime: str = ""  # the runtime's text, copied into the module at its end
+    ik_text: str = ""  # the closed-form inverse kinematics (symjac.codegen.ik_printing), or nothing
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__"):
@@ -249,6 +250,23 @@ def _bound(value: float) -> str:
     return repr(value) if math.isfinite(value) else f'float("{value}")'
 
 
+def _inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str]) -> Any:
+    """The module's closed-form inverse kinematics printed for ``target``'s family, or empty text.
+
+    The c and lambdify targets carry the NumPy version (batched over poses, as their other functions); the c
+    target's calls its extension's compiled closed form first.
+    """
+    from symjac.codegen.backends.casadi.printer import CasadiPrinter
+    from symjac.codegen.backends.jax.printer import JaxPrinter
+    from symjac.codegen.backends.numpy.printer import NumPyPrinter
+    from symjac.codegen.backends.python.printer import PythonPrinter
+    from symjac.codegen.ik_printing import python_inverse_kinematics
+
+    family = target if target in ("python", "jax", "casadi") else "numpy"
+    printer = {"python": PythonPrinter, "jax": JaxPrinter, "casadi": CasadiPrinter}.get(family, NumPyPrinter)
+    return python_inverse_kinematics(description, family, taken, printer, c_kernel=target == "c")
+
+
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),
                            sections: Iterable[str] = ()) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
     """The ``render`` of a Python-family backend: print each function with ``emit``, fill ``backend.template``.
@@ -264,11 +282,13 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
     def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
         taken = frozenset(RESERVED) | set(description.parameter_names)
         functions = tuple(emit(description, f, taken) for f in description.functions)
+        ik = _inverse_kinematics(description, backend.name, taken)
         module = PythonModule(
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,
-            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always)
+            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always) | set(ik.uses)
                                  | ({"acos", "sin"} if description.numeric_ik else set()))),
+            ik_text=ik.text,
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
             runtime=runtime_source(backend.runtime, description.runtime_sections | own) if backend.runtime else "",

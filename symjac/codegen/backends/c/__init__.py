@@ -15,6 +15,7 @@ from collections.abc import Mapping
 
 from symjac.codegen.backends._c_family import C_DIALECT, CFunction, block_comment, c_function
 from symjac.codegen.backends._python_family import kernel_name, python_module_renderer
+from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.backends.numpy import numpy_function
 from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, IdentifierRule, ModuleDescription
 from symjac.errors import CodegenError
@@ -55,7 +56,10 @@ def c_sources(description: ModuleDescription, taken: frozenset[str]) -> Mapping[
     del taken
     dialect = dataclasses.replace(C_DIALECT, reserved=C_KEYWORDS | _MATH)
     functions = tuple(c_function(description, f, dialect) for f in description.functions if not f.selftest_only)
+    from symjac.codegen.ik_printing import c_inverse_kinematics  # it prints with this package's printer
+
     data = {
+        "ik_kernel": c_inverse_kinematics(description, "c", C_KEYWORDS | _MATH, CPrinter).text,
         "module": description,
         "functions": functions,
         "kernel_names": {f.name: kernel_name(f.base) for f in functions},

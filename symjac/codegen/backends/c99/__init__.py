@@ -25,8 +25,10 @@ from symjac.codegen.backends._c_family import (
     header_comments,
 )
 from symjac.codegen.backends.c import C_KEYWORDS
+from symjac.codegen.backends.c.printer import RealPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.ik_numeric import numeric_ik_tables
+from symjac.codegen.ik_printing import c_inverse_kinematics
 from symjac.codegen.printers import float_literal
 from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
@@ -70,7 +72,10 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
     """The header and the source file: ``{"<robot>.h": ..., "<robot>.c": ...}``."""
     dialect = dataclasses.replace(C_DIALECT, reserved=C99_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES)
     functions = tuple(c_function(description, f, dialect) for f in description.functions)
+    ik = c_inverse_kinematics(description, "c99", dialect.reserved, RealPrinter)
     data = {
+        "ik_header": ik.header,
+        "ik_source": ik.text,
         "module": description,
         "functions": functions,
         "prefix": description.robot,

@@ -19,6 +19,7 @@ from symjac.codegen.backends.c99 import C99_KEYWORDS, LIBRARY_NAMES
 from symjac.codegen.backends.cpp.printer import CppPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
 from symjac.codegen.ik_numeric import numeric_ik_tables
+from symjac.codegen.ik_printing import c_inverse_kinematics
 from symjac.codegen.printers import float_literal
 from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
@@ -87,6 +88,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
     """The header: ``{"<robot>.hpp": ...}``."""
     functions = tuple(c_function(description, f, DIALECT) for f in description.functions if not f.name.startswith("_"))
     data = {
+        "ik": c_inverse_kinematics(description, "cpp", DIALECT.reserved, CppPrinter).text,
         "module": description,
         "functions": functions,
         "namespace": description.robot,

@@ -1,0 +1,100 @@
+r"""The plan of a closed-form inverse kinematics: what the families build and executors, printers and generators read.
+
+A :class:`Plan` lists named intermediates (``definitions``, e.g. the wrist centre from the target pose) and then
+:class:`Step` values in order: each solves one or two joints by one geometric subproblem (the function of that name in
+:mod:`~symjac.analysis.inverse_kinematics.subproblems`), its keyword arguments given as SymPy expressions in the target
+pose's entries (:data:`POSE_SYMBOLS`), the robot's parameters, the definitions' symbols and the variables of joints
+solved in earlier steps. A step with ``m`` solutions splits every branch into ``m``; the plan has at most the product
+of those counts.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import sympy
+
+from symjac.errors import ArgumentError
+from symjac.model.robot import Robot
+
+__all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "pose_matrix"]
+
+POSE_SYMBOLS: tuple[sympy.Symbol, ...] = sympy.symbols("r11 r12 r13 r21 r22 r23 r31 r32 r33 px py pz", real=True)
+"""The target pose's entries as real symbols: the rotation ``r11 .. r33`` row by row, then the position."""
+
+SUBPROBLEMS: dict[str, int] = {
+    "rotation_to_point": 1,
+    "two_rotations_to_point": 2,
+    "rotation_to_distance": 2,
+    "rotation_to_plane": 2,
+    "slide_to_point": 1,
+    "slide_to_distance": 2,
+}
+"""The subproblems a step may name, with the most solutions each has."""
+
+
+def pose_matrix() -> sympy.Matrix:
+    """The target pose as a 4 x 4 matrix of :data:`POSE_SYMBOLS` (last row ``0 0 0 1``)."""
+    r11, r12, r13, r21, r22, r23, r31, r32, r33, px, py, pz = POSE_SYMBOLS
+    return sympy.Matrix([[r11, r12, r13, px], [r21, r22, r23, py], [r31, r32, r33, pz], [0, 0, 0, 1]])
+
+
+@dataclass(frozen=True, eq=False)  # compared and hashed by identity: executors cache per plan
+class Step:
+    """One subproblem of a plan.
+
+    ``joints`` are the robot joints (0-based) it solves, one or two (two rotations to a point: first the joint
+    turned last, as the subproblem's ``theta1``); ``subproblem`` the numeric function's name; ``arguments`` its
+    keyword arguments as SymPy expressions or 3 x 1 matrices; ``statement`` one sentence saying what it solves and
+    how; ``branches`` the names of its solutions in the subproblem's order (empty for one solution).
+    """
+
+    joints: tuple[int, ...]
+    subproblem: str
+    arguments: Mapping[str, sympy.Expr | sympy.Matrix]
+    statement: str
+    branches: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.subproblem not in SUBPROBLEMS:
+            raise ArgumentError(f"plan step for joints {[j + 1 for j in self.joints]}: unknown subproblem "
+                             f"{self.subproblem!r} (known: {', '.join(SUBPROBLEMS)})")
+        if self.branches and len(self.branches) != SUBPROBLEMS[self.subproblem]:
+            raise ArgumentError(f"plan step for joints {[j + 1 for j in self.joints]}: {len(self.branches)} branch "
+                             f"names for a subproblem with {SUBPROBLEMS[self.subproblem]} solutions")
+
+    @property
+    def solution_count(self) -> int:
+        """The most solutions this step has."""
+        return SUBPROBLEMS[self.subproblem]
+
+
+@dataclass(frozen=True, eq=False)
+class Plan:
+    """A closed-form inverse kinematics of ``robot``: the family, why it applies, and the steps.
+
+    ``reasons`` are the exact facts that decide the family (sentences); ``definitions`` named intermediates
+    ``(symbol, expression)`` in pose symbols and parameters, evaluated first; ``controlled`` what of the pose the
+    plan reaches (``"the whole pose"``); ``free_joint`` the joint (0-based) whose value is an input, for a 7-joint
+    arm, else None.
+    """
+
+    robot: Robot
+    family: str
+    reasons: tuple[str, ...]
+    definitions: tuple[tuple[sympy.Symbol, sympy.Expr], ...]
+    steps: tuple[Step, ...]
+    controlled: str = "the whole pose"
+    free_joint: int | None = None
+
+    @property
+    def max_solutions(self) -> int:
+        """The product of the steps' solution counts: the most solutions one pose can have."""
+        return math.prod(step.solution_count for step in self.steps)
+
+    @property
+    def solved_joints(self) -> tuple[int, ...]:
+        """The joints (0-based) the steps solve, in the order they solve them."""
+        return tuple(j for step in self.steps for j in step.joints)

@@ -1,0 +1,293 @@
+r"""Inverse kinematics in one call: the closed form where the geometry has one, else numeric, every solution checked.
+
+:func:`inverse_kinematics` picks the closed form where the arm's geometry has one, else the numeric solver, and
+returns every solution checked by forward kinematics.
+
+This is the front end the Python API, ``symjac ik``, the report and ``symjac draw --ik-pose`` share. It sits above
+code generation (its numeric solver runs on :func:`~symjac.codegen.numeric_model.numeric_model`, the robot compiled
+for numbers) and below the command line.
+
+Each solution is checked against the compiled forward kinematics (not the solver's own), and its position and
+orientation errors are reported with it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Literal, get_args
+
+import numpy as np
+
+from symjac.analysis.inverse_kinematics.numeric import seed_bounds, solve_numeric
+from symjac.analysis.inverse_kinematics.poses import pose_from_matrix
+from symjac.codegen.numeric_model import NumericModel, numeric_model
+from symjac.errors import ArgumentError, NoClosedFormError
+from symjac.model.robot import Robot
+from symjac.solvers.controlled import Controlled, controlled_components, coordinate_joints
+
+__all__ = ["METHODS", "InverseKinematicsResult", "InverseKinematicsSolution", "Method", "inverse_kinematics"]
+
+Method = Literal["auto", "closed_form", "numeric"]
+"""How to solve: the closed form where the geometry has one, else numeric (``"auto"``); or one of them."""
+METHODS: tuple[str, ...] = get_args(Method)
+"""The values of :data:`Method`."""
+
+
+@dataclass(frozen=True)
+class InverseKinematicsSolution:
+    r"""One configuration reaching the pose.
+
+    Parameters
+    ----------
+    q : numpy.ndarray, shape (n,)
+        Every joint (coordinate), radians and metres; revolute joints wrapped to (-pi, pi] (or shifted by 2 pi into
+        their limits).
+    branch : tuple of str
+        The branch names along the closed form's steps ("shoulder left", "elbow up", ...); () from the numeric
+        solver.
+    within_limits : bool
+        Whether every joint is within its limits.
+    singular : str
+        At a singular pose, the continuum this solution stands for ("theta4 + theta6 = 0.73 is fixed; theta4 shown
+        at 0"); empty elsewhere.
+    position_error, orientation_error : float
+        :math:`\|p(q) - p^*\|` in metres and the angle of :math:`R(q) R^{*T}` in radians, from the compiled
+        forward kinematics: over the whole pose, also for an arm that controls only part of it.
+    """
+
+    q: np.ndarray
+    branch: tuple[str, ...] = ()
+    within_limits: bool = True
+    singular: str = ""
+    position_error: float = 0.0
+    orientation_error: float = 0.0
+
+
+@dataclass(frozen=True)
+class InverseKinematicsResult:
+    """Every solution found for one pose, how they were found and why that way.
+
+    Parameters
+    ----------
+    robot : str
+        The robot's name.
+    pose : numpy.ndarray, shape (4, 4)
+        The target: the end of the chain in frame {0}.
+    method : "closed_form" or "numeric"
+        What solved it.
+    why : str
+        One sentence: the family and its reasons for a closed form, or why there is none (or why it was not used).
+    family : str
+        The closed form's family ("spherical wrist", "planar 2R", ...); empty for the numeric solver.
+    reasons : tuple of str
+        The exact facts that decide the family.
+    solutions : tuple of InverseKinematicsSolution
+        In the closed form's branch order, or in the order the numeric solver found them.
+    outside_limits : int
+        Solutions dropped because they leave the joint limits (``within_limits=True``).
+    unreachable : str
+        Why there is no solution, with how far out the pose is when known; empty when there are solutions.
+    distance : float
+        How far out (metres) when the closed form knows it; NaN when the numeric solver found nothing; 0 otherwise.
+    controlled : Controlled
+        Which pose components the arm sets and which it cannot (:func:`.controlled_components`).
+    uncontrolled : str
+        For an arm that does not set the whole pose: how far the pose its solutions reach is from the target in
+        what it does not set (empty when they agree).
+    plan : object
+        The closed form's plan (``None`` for the numeric solver): its steps, for the derivation.
+    """
+
+    robot: str
+    pose: np.ndarray
+    method: Literal["closed_form", "numeric"]
+    why: str
+    solutions: tuple[InverseKinematicsSolution, ...]
+    controlled: Controlled
+    family: str = ""
+    reasons: tuple[str, ...] = ()
+    outside_limits: int = 0
+    unreachable: str = ""
+    distance: float = 0.0
+    uncontrolled: str = ""
+    plan: Any = field(default=None, repr=False, compare=False)
+
+
+def _robot(robot: Robot | str) -> Robot:
+    if isinstance(robot, Robot):
+        return robot
+    if isinstance(robot, str):
+        from symjac.model.io import load_robot
+
+        return load_robot(robot)
+    raise ArgumentError(f"inverse_kinematics: robot must be a Robot or a robot's name, got {type(robot).__name__}")
+
+
+def _errors(model: NumericModel, q: np.ndarray, target: np.ndarray) -> tuple[float, float]:
+    T = np.asarray(model.fk(np.asarray(q, dtype=float)), dtype=float)
+    R = T[:3, :3] @ target[:3, :3].T
+    sine = np.linalg.norm([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]) / 2.0
+    angle = np.arctan2(sine, (np.trace(R) - 1.0) / 2.0)  # accurate near 0, where arccos of the cosine is not
+    return float(np.linalg.norm(T[:3, 3] - target[:3, 3])), float(angle)
+
+
+def _closed_form(robot: Robot, free_joint: int | None, free_value: float | None) -> tuple[Any, str]:
+    """The plan and the sentence saying why it applies; :class:`NoClosedFormError` with the reason when none does.
+
+    A redundant arm given ``free_value`` without ``free_joint`` takes the first joint whose value leaves a six-joint
+    arm with a closed form.
+    """
+    from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan
+
+    candidates: list[int | None] = [free_joint]
+    if free_joint is None and free_value is not None and robot.n_joints > 6:
+        candidates = list(range(robot.n_joints))
+    first: NoClosedFormError | None = None
+    for candidate in candidates:
+        try:
+            plan = closed_form_plan(robot, free_joint=candidate)
+        except NoClosedFormError as error:
+            first = first or error
+            continue
+        return plan, f"closed form ({plan.family}): {'; '.join(plan.reasons)}"
+    assert first is not None
+    if len(candidates) > 1:
+        raise NoClosedFormError(reason=f"{robot.name}: no joint given as free_value leaves a six-joint arm with a "
+                                       f"closed form ({first})")
+    raise first
+
+
+def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto", seed: Any = None, rng: int = 0,
+                       free_value: float | None = None, free_joint: int | None = None, within_limits: bool = True,
+                       restarts: int = 8, tolerance: float = 1e-10) -> InverseKinematicsResult:
+    r"""Every configuration of ``robot`` whose end of the chain reaches ``pose``, and how they were found.
+
+    Parameters
+    ----------
+    robot : Robot or str
+        The robot, or a name :func:`~symjac.model.io.load_robot` knows.
+    pose : array_like, shape (4, 4) or (3, 4)
+        The end of the chain (the tool frame when the robot has one, else frame {n}) in frame {0}, as
+        ``numeric_model(robot).fk(q)`` returns it; build one with
+        :func:`~symjac.analysis.inverse_kinematics.poses.pose_from_rpy` or ``pose_from_quaternion``. Checked:
+        finite, rigid.
+    method : "auto", "closed_form" or "numeric"
+        ``"auto"`` (default): the closed form when the geometry has one (decided exactly on the symbolic model),
+        else the numeric solver; the result's ``why`` says which and why. ``"closed_form"`` raises
+        :class:`~symjac.errors.NoClosedFormError` (saying why) when there is none.
+    seed : array_like, shape (n,), optional
+        Numeric solver: the first start (then ``restarts`` random ones).
+    rng : int
+        Numeric solver: the seed of the random starts (the result is deterministic).
+    free_value, free_joint : optional
+        A 7-joint arm's redundancy parameter: the value of joint ``free_joint`` (0-based; default the first joint
+        whose value leaves a closed form) given as input, so the 6 joints left are solved in closed form. Without
+        ``free_value`` such an arm is solved numerically under ``"auto"``.
+    within_limits : bool
+        Keep only solutions within the joint limits (default); ``False`` keeps all, each flagged.
+    restarts, tolerance : int, float
+        Numeric solver: random starts, and the error (m and rad) a start must reach.
+
+    Returns
+    -------
+    InverseKinematicsResult
+
+    Examples
+    --------
+    >>> from symjac import load_robot, numeric_model
+    >>> robot = load_robot("planar3r")
+    >>> pose = numeric_model(robot).fk([0.3, 0.5, -0.2])
+    >>> result = inverse_kinematics(robot, pose, method="numeric")
+    >>> any(np.allclose(s.q, [0.3, 0.5, -0.2]) for s in result.solutions)
+    True
+    """
+    model_robot = _robot(robot)
+    joints = coordinate_joints(model_robot, "inverse_kinematics")
+    target = pose_from_matrix(pose)
+    if method not in METHODS:
+        raise ArgumentError(f"inverse_kinematics: method must be one of {', '.join(METHODS)}, got {method!r}")
+    n = model_robot.n_coordinates
+    if free_joint is not None and not 0 <= free_joint < n:
+        raise ArgumentError(f"inverse_kinematics: free_joint is 0-based, 0 to {n - 1} for {model_robot.name}, "
+                            f"got {free_joint}")
+    model = numeric_model(model_robot)
+    controlled = controlled_components(model_robot)
+    plan: Any = None
+    why = ""
+    if method != "numeric":
+        try:
+            plan, why = _closed_form(model_robot, free_joint, free_value)
+        except NoClosedFormError as error:
+            if method == "closed_form":
+                raise
+            why = f"numeric, as there is no closed form: {error}"
+        if plan is not None and plan.free_joint is not None and free_value is None:
+            if method == "closed_form":
+                raise ArgumentError(f"inverse_kinematics: {model_robot.name} is redundant; its closed form takes "
+                                    f"joint {plan.free_joint + 1} as given: pass free_value")
+            plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint + 1} as given and no "
+                               "free_value was passed")
+    if free_value is not None and (plan is None or plan.free_joint is None):
+        reason = why.removeprefix("numeric, as there is no closed form: ")
+        instead = ("its closed form takes no joint as given" if plan is not None
+                   else "method='numeric' was asked for" if method == "numeric" else f"there is none: {reason}")
+        raise ArgumentError(f"inverse_kinematics: free_value applies to a redundant arm's closed form only, and "
+                            f"for {model_robot.name} {instead}")
+    if plan is not None:
+        return _from_plan(model_robot, model, plan, target, why, controlled, free_value, within_limits, joints)
+    why = why or "numeric: asked for (method='numeric')"
+    if model_robot.coupling is not None:
+        raise ArgumentError(f"inverse_kinematics: {model_robot.name}'s joints are coupled and the numeric solver works "
+                            f"joint by joint ({why})")
+    return _numeric(model_robot, model, target, why, controlled, seed=seed, rng=rng, restarts=restarts,
+                    tolerance=tolerance, within_limits=within_limits)
+
+
+def _from_plan(robot: Robot, model: NumericModel, plan: Any, target: np.ndarray, why: str, controlled: Controlled,
+               free_value: float | None, within_limits: bool, joints: list[int]) -> InverseKinematicsResult:
+    from symjac.analysis.inverse_kinematics.closed_form import solve_plan
+
+    solved = solve_plan(plan, target, free_value=free_value)
+    solutions = []
+    for s in solved.solutions:
+        q = np.asarray(s.q, dtype=float)[joints]  # a coupled arm's coordinates: the joints that are coordinates
+        solutions.append(InverseKinematicsSolution(q, tuple(s.branch), bool(s.within_limits), s.singular,
+                                                   *_errors(model, q, target)))
+    kept = tuple(s for s in solutions if s.within_limits or not within_limits)
+    unreachable = solved.unreachable
+    if not kept and solutions:
+        unreachable = f"all {len(solutions)} solutions leave the joint limits (within_limits=False shows them)"
+    return InverseKinematicsResult(robot.name, target, "closed_form", why, kept, controlled, plan.family,
+                                   tuple(plan.reasons), len(solutions) - len(kept), unreachable,
+                                   float(solved.distance), solved.uncontrolled, plan)
+
+
+def _numeric(robot: Robot, model: NumericModel, target: np.ndarray, why: str, controlled: Controlled, *, seed: Any,
+             rng: int, restarts: int, tolerance: float, within_limits: bool) -> InverseKinematicsResult:
+    n = robot.n_coordinates
+    if seed is not None:
+        seed = np.asarray(seed, dtype=float)
+        if seed.shape != (n,) or not np.all(np.isfinite(seed)):
+            raise ArgumentError(f"inverse_kinematics: seed must be {n} finite numbers for {robot.name}, got "
+                                f"{np.asarray(seed).tolist()}")
+    weight = 0.0 if controlled.position_only else 1.0
+    found = solve_numeric(robot, target, model, seed=seed, rng=rng, restarts=restarts, tolerance=tolerance,
+                          orientation_weight=weight, respect_limits=within_limits)
+    lower, upper = seed_bounds(robot)
+    limited = [joint.limits is not None and not joint.continuous for joint in robot.joints]
+    solutions = []
+    for s in found:
+        inside = all(not bounded or lo - 1e-9 <= value <= hi + 1e-9
+                     for value, lo, hi, bounded in zip(s.q, lower, upper, limited, strict=True))
+        solutions.append(InverseKinematicsSolution(np.asarray(s.q, dtype=float), (), inside, "",
+                                                   *_errors(model, s.q, target)))
+    unreachable = "" if solutions else (
+        f"none of the numeric solver's {restarts + (seed is not None)} or more starts converged: the pose is probably "
+        "out of reach (the numeric solver cannot say how far)")
+    uncontrolled = ""
+    if solutions and controlled.position_only and solutions[0].orientation_error > 1e-6:
+        uncontrolled = (f"the orientation reached differs from the target's by {solutions[0].orientation_error:.4g} "
+                        "rad (the arm does not set it)")
+    return InverseKinematicsResult(robot.name, target, "numeric", why, tuple(solutions), controlled,
+                                   unreachable=unreachable, distance=0.0 if solutions else float("nan"),
+                                   uncontrolled=uncontrolled)

@@ -17,10 +17,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from symjac.codegen.description import JacobianInfo, ModuleDescription
 from symjac.codegen.printers import float_literal
 from symjac.errors import CodegenError
+
+if TYPE_CHECKING:  # description.py imports this module (through inverse_kinematics.py)
+    from symjac.codegen.description import JacobianInfo, ModuleDescription
 
 __all__ = ["NUMERIC_IK_TARGETS", "NumericIkTables", "numeric_ik_jacobian", "numeric_ik_tables"]
 

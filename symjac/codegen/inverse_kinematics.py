@@ -33,6 +33,7 @@ from typing import Protocol
 import sympy as sp
 
 from symjac.codegen.cse import eliminate_common
+from symjac.codegen.ik_numeric import NUMERIC_IK_TARGETS
 from symjac.codegen.lower import LoweredFunction
 from symjac.errors import CodegenError
 from symjac.kinematics.chain import Chain, as_chain
@@ -339,7 +340,6 @@ def closed_or_numeric(chain: Chain, target: str, asked: bool) -> tuple[InverseKi
     targets that have it (:data:`~symjac.codegen.ik_numeric.NUMERIC_IK_TARGETS`); in another target its
     :class:`~symjac.errors.NoClosedFormError` (which says why, and points to the numeric solver) propagates.
     """
-    from symjac.codegen.ik_numeric import NUMERIC_IK_TARGETS
     from symjac.errors import NoClosedFormError
 
     if not asked:

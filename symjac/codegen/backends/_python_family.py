@@ -16,6 +16,7 @@ from typing import Any
 
 from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
 from symjac.codegen.ik_numeric import NumericIkTables, numeric_ik_tables
+from symjac.codegen.ik_printing import IKText, PrinterClass, python_inverse_kinematics
 from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import RESERVED
@@ -250,31 +251,30 @@ def _bound(value: float) -> str:
     return repr(value) if math.isfinite(value) else f'float("{value}")'
 
 
-def _inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str]) -> Any:
+def _inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str],
+                        ik_printer: tuple[str, PrinterClass] | None) -> Any:
     """The module's closed-form inverse kinematics printed for ``target``'s family, or empty text.
 
     The c and lambdify targets carry the NumPy version (batched over poses, as their other functions); the c
     target's calls its extension's compiled closed form first.
     """
-    from symjac.codegen.backends.casadi.printer import CasadiPrinter
-    from symjac.codegen.backends.jax.printer import JaxPrinter
-    from symjac.codegen.backends.numpy.printer import NumPyPrinter
-    from symjac.codegen.backends.python.printer import PythonPrinter
-    from symjac.codegen.ik_printing import python_inverse_kinematics
-
-    family = target if target in ("python", "jax", "casadi") else "numpy"
-    printer = {"python": PythonPrinter, "jax": JaxPrinter, "casadi": CasadiPrinter}.get(family, NumPyPrinter)
+    if ik_printer is None:
+        return IKText("")
+    family, printer = ik_printer
     return python_inverse_kinematics(description, family, taken, printer, c_kernel=target == "c")
 
 
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),
-                           sections: Iterable[str] = ()) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
+                           sections: Iterable[str] = (), ik_printer: tuple[str, PrinterClass] | None = None,
+                           ) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
     """The ``render`` of a Python-family backend: print each function with ``emit``, fill ``backend.template``.
 
     ``extras`` builds module-level text from every function (templates read ``module.extras.<key>``); ``imports``
     are names the module imports whatever its expressions use (the python target's ``pi`` and ``sqrt``);
     ``sections`` are runtime sections the emitted functions call (the numpy emitter's ``sincos``), carried besides
-    those the description uses (:attr:`~symjac.codegen.description.ModuleDescription.runtime_sections`).
+    those the description uses (:attr:`~symjac.codegen.description.ModuleDescription.runtime_sections`);
+    ``ik_printer`` is the family (python, numpy, jax or casadi) and printer the closed-form inverse kinematics is
+    printed with, ``None`` for a target without it.
     """
     always = tuple(imports)
     own = frozenset(sections)
@@ -282,7 +282,7 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
     def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
         taken = frozenset(RESERVED) | set(description.parameter_names)
         functions = tuple(emit(description, f, taken) for f in description.functions)
-        ik = _inverse_kinematics(description, backend.name, taken)
+        ik = _inverse_kinematics(description, backend.name, taken, ik_printer)
         module = PythonModule(
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,

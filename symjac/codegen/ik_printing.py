@@ -18,7 +18,7 @@ from sympy.printing.precedence import PRECEDENCE
 
 from symjac.codegen.backends._c_family import c_statements, comment
 from symjac.codegen.description import ModuleDescription
-from symjac.codegen.inverse_kinematics import IK_NOISE, IK_TOLERANCE, InverseKinematics
+from symjac.codegen.inverse_kinematics import IK_NOISE, IK_TOLERANCE, Q_FREE, InverseKinematics
 from symjac.codegen.lower import SymbolNames, symbol_names
 from symjac.codegen.printers import float_literal
 from symjac.codegen.source_layout import entry_names, temporary_lines, tuple_lines, wrap_statement
@@ -128,8 +128,11 @@ def _names(description: ModuleDescription, ik: InverseKinematics, taken: frozens
     return names
 
 
-def _facts(description: ModuleDescription, ik: InverseKinematics) -> dict[str, Any]:
-    return {"module": description, "ik": ik, "tolerance": float_literal(IK_TOLERANCE),
+def _facts(description: ModuleDescription, ik: InverseKinematics, names: SymbolNames) -> dict[str, Any]:
+    free = "" if ik.free_joint is None else names.mapping[Q_FREE]
+    return {"free": free, "free_joint": None if ik.free_joint is None else ik.free_joint + 1,
+            "free_variable": ik.free_variable, "module": description, "ik": ik,
+            "tolerance": float_literal(IK_TOLERANCE),
             "branches": ik.branch_names, "n": ik.n, "m": ik.max_solutions,
             "conditions": ik.branch_conditions, "n_conditions": ik.n_conditions,
             "family": ik.family or "closed form", "op_count": ik.lowered.op_count}
@@ -153,7 +156,7 @@ def python_inverse_kinematics(description: ModuleDescription, family: str, taken
     printer = ik_printer(printer_base, family)(names.mapping)
     indent = "        " if family in ("python", "numpy") else "    "
     lowered = ik.lowered
-    (_, pose), = lowered.inputs
+    pose = lowered.inputs[0][1]
     entries = entry_names(lowered, names, pose)
     if family in ("python", "numpy"):
         source = "pose[{r}][:4]" if family == "python" else "rows[{r}]"
@@ -166,7 +169,7 @@ def python_inverse_kinematics(description: ModuleDescription, family: str, taken
         parameters = entry_names(lowered, names, description.parameter_symbols)
         parameter_line = f"{indent}{', '.join(parameters)}{',' if len(parameters) == 1 else ''} = ca.vertsplit(p)"
     values = [printer.doprint(e) for e in lowered.outputs]
-    data = {**_facts(description, ik), "unpack": unpack, "parameter_line": parameter_line, "c_kernel": c_kernel,
+    data = {**_facts(description, ik, names), "unpack": unpack, "parameter_line": parameter_line, "c_kernel": c_kernel,
             "body": temporary_lines(lowered, names, printer, indent),
             "value_lines": tuple_lines(f"{indent}values = ", values),
             "branch_lines": tuple_lines("IK_BRANCHES = ", (f'"{name}"' for name in ik.branch_names)),
@@ -194,13 +197,15 @@ def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: 
     names = _names(description, ik, reserved | _C_LOCALS)
     mapping = dict(names.mapping)
     lowered = ik.lowered
-    (_, pose), = lowered.inputs
+    pose = lowered.inputs[0][1]
     used = lowered.used_symbols
     reads = []
     for k, symbol in enumerate(pose):
         if symbol in used:
             place = f"pose({k // 4}, {k % 4})" if target == "cpp" else f"pose[{4 * (k // 4) + k % 4}]"
             reads.append(f"    const real {mapping[symbol]} = {place};")
+    if ik.free_joint is not None and target == "c":  # the extension's kernel carries it in the pose's last row
+        reads.append(f"    const real {mapping[Q_FREE]} = pose[12];")
     for k, symbol in enumerate(description.parameter_symbols):
         mapping[symbol] = f"p.{symbol.name}" if target == "cpp" else f"p[{k}]"
     printer = ik_printer(printer_base, "c")(mapping)
@@ -212,7 +217,7 @@ def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: 
                  f"count += sj_cf_store(v + {start}, q + count * {ik.n});")
         test = " && ".join(f"v[{k}] >= -tolerance" for k in conditions)
         selection += wrap_statement(f"    if ({test}) ", store, language="c") if test else [f"    {store}"]
-    data = {**_facts(description, ik), "reads": reads,
+    data = {**_facts(description, ik, names), "reads": reads,
             "body": (*statements.temporaries, *statements.outputs), "selection": selection,
             "size": len(lowered.outputs), "prefix": description.robot, "macro": description.robot.upper(),
             "revolute": ", ".join("1" if r else "0" for r in ik.revolute),

@@ -45,6 +45,7 @@ __all__ = [
     "IK_NOISE",
     "IK_TOLERANCE",
     "POSE_ENTRIES",
+    "Q_FREE",
     "BranchProgramLike",
     "IKAtan2",
     "IKClamp",
@@ -65,6 +66,10 @@ still count as 0 (as :func:`~symjac.analysis.inverse_kinematics.closed_form.solv
 
 IK_EXPORTS = ("IK_BRANCHES", "IK_MAX_SOLUTIONS", "IK_TOLERANCE", "inverse_kinematics")
 """The names a Python-family module with inverse kinematics exports besides its other functions."""
+
+Q_FREE = sp.Symbol("q_free", real=True)
+"""The given joint's value in a closed form that takes one joint as given (a 7-joint arm's redundancy parameter): the
+argument ``q_free`` of every target's ``inverse_kinematics``, right after the pose."""
 
 POSE_ENTRIES = ("r11", "r12", "r13", "px", "r21", "r22", "r23", "py", "r31", "r32", "r33", "pz")
 """The pose symbols in the order of the first twelve entries of a row-major 4 x 4 pose (the last row is ignored)."""
@@ -100,6 +105,8 @@ class InverseKinematics:
     n_conditions: int
     n: int
     revolute: tuple[bool, ...]
+    free_joint: int | None = None
+    free_variable: str = ""
 
     @property
     def max_solutions(self) -> int:
@@ -125,26 +132,29 @@ def pose_symbols() -> tuple[sp.Symbol, ...]:
 
 
 def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequence[sp.Symbol],
-                          parameters: Sequence[sp.Symbol], revolute: Sequence[bool], family: str = ""
-                          ) -> InverseKinematics:
+                          parameters: Sequence[sp.Symbol], revolute: Sequence[bool], family: str = "",
+                          free_joint: int | None = None) -> InverseKinematics:
     """Lower ``programs`` (one per branch) to one straight-line function of the pose and the ``parameters``.
 
     ``joints`` are the joint variables every program must assign (their last assignment is the branch's value).
     An expression reading a symbol that is neither a pose symbol, a parameter nor assigned before it is refused.
+    With ``free_joint`` that joint's variable is an input instead (renamed :data:`Q_FREE`, a second input of the
+    lowered function), and its value is copied into every branch.
     """
     if not programs:
         raise CodegenError("inverse kinematics: the closed form has no branch")
-    known = set(pose_symbols()) | set(parameters)
+    free: dict[sp.Symbol, sp.Symbol] = {} if free_joint is None else {joints[free_joint]: Q_FREE}
+    known = set(pose_symbols()) | set(parameters) | set(free.values())
     sharing = _Sharing()
     share = sharing.share
     condition_values: list[sp.Expr] = []
     branch_conditions: list[tuple[int, ...]] = []
     joint_values: list[sp.Expr] = []
     for program in programs:
-        values: dict[sp.Symbol, sp.Expr] = {}
+        values: dict[sp.Symbol, sp.Expr] = dict(free)
         indices: list[int] = []
         for symbol, expr in program.assignments:
-            expr = sp.sympify(expr)
+            expr = sp.sympify(expr).xreplace(free)
             unknown = sorted(str(s) for s in expr.free_symbols - known - set(values))
             if unknown:
                 raise CodegenError(f"inverse kinematics, branch {', '.join(program.branch) or '(only)'}: "
@@ -173,11 +183,13 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
     temporaries, reduced = eliminate_common(flat, _needed(definitions, flat))
     temporaries = _needed(temporaries, reduced)
     op_count = sum(int(sp.count_ops(e)) for _, e in temporaries) + sum(int(sp.count_ops(e)) for e in reduced)
-    lowered = LoweredFunction((("pose", pose_symbols()),), (), tuple(temporaries), tuple(reduced),
+    inputs = (("pose", pose_symbols()), *((("q_free", (Q_FREE,)),) if free else ()))
+    lowered = LoweredFunction(inputs, (), tuple(temporaries), tuple(reduced),
                               tuple(flat), (len(flat),), op_count, f"closed form ({family})" if family else
                               "closed form")
     return InverseKinematics(lowered, family, tuple(tuple(p.branch) for p in programs), tuple(branch_conditions),
-                             len(condition_values), len(joints), tuple(revolute))
+                             len(condition_values), len(joints), tuple(revolute), free_joint,
+                             "" if free_joint is None else str(joints[free_joint]))
 
 
 class IKInverse(sp.Function):
@@ -310,44 +322,56 @@ def _needed(definitions: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[
 
 
 @memoized()
-def lowered_inverse_kinematics(chain: Chain) -> InverseKinematics:
-    """The robot's closed form (its plan's branch programs) lowered; NoClosedFormError for an arm without one."""
+def lowered_inverse_kinematics(chain: Chain, free_joint: int | None = None) -> InverseKinematics:
+    """The robot's closed form (its plan's branch programs) lowered; NoClosedFormError for an arm without one.
+
+    With ``free_joint`` (0-based) the closed form with that joint given (``closed_form_plan(robot,
+    free_joint=...)``): its value is the input ``q_free`` (:data:`Q_FREE`).
+    """
     from symjac.analysis.inverse_kinematics import branch_programs, closed_form_plan
 
     robot = chain.robot
     if robot.coupling is not None:
         raise CodegenError(f"inverse kinematics: {robot.name} has coupled joints; generated closed forms solve "
                            "independent joints only")
-    plan = closed_form_plan(robot)
-    if plan.free_joint is not None:
-        raise CodegenError(f"inverse kinematics: the closed form of {robot.name} takes joint {plan.free_joint + 1} "
-                           "as a parameter, which generated code does not take yet")
+    if free_joint is not None and not 0 <= free_joint < robot.n_joints:
+        raise CodegenError(f"inverse kinematics: free_joint is a 0-based joint index, 0 to {robot.n_joints - 1} "
+                           f"for {robot.name}, got {free_joint}")
+    plan = closed_form_plan(robot, free_joint=free_joint)
+    if plan.free_joint != free_joint:
+        raise CodegenError(f"inverse kinematics: the closed form of {robot.name} takes joint "
+                           f"{(plan.free_joint or 0) + 1} as given; ask for it with free_joint")
     revolute = tuple(kind.value == "revolute" for kind in robot.coordinate_types)
     return lower_branch_programs(branch_programs(plan), robot.joint_variables,
                                  tuple(p.symbol for p in robot.geometric_parameters),
-                                 revolute, plan.family)
+                                 revolute, plan.family, plan.free_joint)
 
 
-def inverse_kinematics_of(robot: Robot | Chain) -> InverseKinematics:
+def inverse_kinematics_of(robot: Robot | Chain, free_joint: int | None = None) -> InverseKinematics:
     """:func:`lowered_inverse_kinematics` of a robot or chain."""
-    return lowered_inverse_kinematics(as_chain(robot))
+    return lowered_inverse_kinematics(as_chain(robot), free_joint)
 
 
-def closed_or_numeric(chain: Chain, target: str, asked: bool) -> tuple[InverseKinematics | None, bool]:
+def closed_or_numeric(chain: Chain, target: str, asked: bool, free_joint: int | None = None
+                      ) -> tuple[InverseKinematics | None, bool]:
     """The closed form when ``asked`` and the arm has one; else whether the numeric solver stands in for it.
 
     An arm without a closed form gets the numeric solver (``inverse_kinematics_numeric``, with a seed) in the
     targets that have it (:data:`~symjac.codegen.ik_numeric.NUMERIC_IK_TARGETS`); in another target its
-    :class:`~symjac.errors.NoClosedFormError` (which says why, and points to the numeric solver) propagates.
+    :class:`~symjac.errors.NoClosedFormError` (which says why, and points to the numeric solver) propagates, as it
+    does with ``free_joint`` (the closed form with that joint given, which the numeric solver does not stand in for).
     """
     from symjac.errors import NoClosedFormError
 
     if not asked:
+        if free_joint is not None:
+            raise CodegenError("free_joint is the given joint of the closed-form inverse kinematics: ask for "
+                               "inverse_kinematics too")
         return None, False
     try:
-        return inverse_kinematics_of(chain), False
+        return inverse_kinematics_of(chain, free_joint), False
     except NoClosedFormError:
-        if target not in NUMERIC_IK_TARGETS:
+        if target not in NUMERIC_IK_TARGETS or free_joint is not None:
             raise
         return None, True
 
@@ -356,5 +380,6 @@ def ik_listing(ik: InverseKinematics | None) -> tuple[tuple[str, str], ...]:
     """The module docstring's line for ``inverse_kinematics``, or none without it."""
     if ik is None:
         return ()
-    return (("inverse_kinematics", f"Every closed-form solution ({ik.family or 'closed form'}) for a pose, at most "
-             f"{ik.max_solutions} (branches {'; '.join(ik.branch_names)}), and their count."),)
+    given = "" if ik.free_joint is None else f" and joint {ik.free_joint + 1}'s value q_free"
+    return (("inverse_kinematics", f"Every closed-form solution ({ik.family or 'closed form'}) for a pose{given}, at "
+             f"most {ik.max_solutions} (branches {'; '.join(ik.branch_names)}), and their count."),)

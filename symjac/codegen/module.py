@@ -96,6 +96,7 @@ class ModuleRequest:
     identification: bool = False
     inverse_kinematics: bool = False
     numeric_ik: bool = False
+    free_joint: int | None = None  # 0-based: the closed form with this joint given (q_free), a 7-joint arm's
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -149,7 +150,7 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
                               request.acceleration, request.name, request.dynamics, request.identification,
-                              request.inverse_kinematics, request.numeric_ik)
+                              request.inverse_kinematics, request.numeric_ik, request.free_joint)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
@@ -165,7 +166,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if with_dynamics and not friction else []
     name_lists, identification_checks = _identification(chain, functions) if request.identification else ((), ())
     exports |= {constant for constant, _ in name_lists}
-    inverse_kinematics, numeric = closed_or_numeric(chain, request.target, request.inverse_kinematics)
+    inverse_kinematics, numeric = closed_or_numeric(chain, request.target, request.inverse_kinematics,
+                                                  request.free_joint)
     if inverse_kinematics is not None:
         exports |= set(IK_EXPORTS)
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
@@ -257,6 +259,7 @@ def generate(
     identification: bool = False,
     inverse_kinematics: bool = False,
     numeric_ik: bool = False,
+    free_joint: int | None = None,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -317,6 +320,7 @@ def generate(
         Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
         ``IK_MAX_SOLUTIONS`` rows with their count. An arm without a closed form gets the numeric
         ``inverse_kinematics_numeric`` (with a seed) in c99, cpp and python, ``NoClosedFormError`` elsewhere.
+        ``free_joint=k`` (0-based) asks for the closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
     numeric_ik : bool
         Also generate ``inverse_kinematics_numeric`` (c99, cpp, python), Levenberg-Marquardt on the module's forward
         kinematics and its first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``).
@@ -349,7 +353,7 @@ def generate(
     request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
                             strategy=strategy, command=command, acceleration=acceleration, name=name,
                             dynamics=dynamics, identification=identification, inverse_kinematics=inverse_kinematics,
-                            numeric_ik=numeric_ik)
+                            numeric_ik=numeric_ik, free_joint=free_joint)
     return primary(render_files(describe(request)))
 
 

@@ -216,6 +216,7 @@ def python_call(
     robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
     loader: str, acceleration: bool = False, name: str | None = None, dynamics: bool = False,
     identification: bool = False, inverse_kinematics: bool = False, numeric_ik: bool = False,
+    free_joint: int | None = None,
 ) -> str:
     """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
 
@@ -246,6 +247,8 @@ def python_call(
         parts.append("inverse_kinematics=True")
     if numeric_ik:
         parts.append("numeric_ik=True")
+    if free_joint is not None:
+        parts.append(f"free_joint={free_joint}")
     if name is not None:
         parts.append(f'name="{name}"')
     return f"symjac.generate({', '.join(parts)})"

@@ -23,7 +23,7 @@ def planar(tmp_path_factory):
                                [p.symbol for p in robot.geometric_parameters], (True, True), "planar 2R")
     folder = tmp_path_factory.mktemp("ik_planar")
     with pytest.MonkeyPatch.context() as patch:  # only while the modules are made
-        patch.setattr(codegen_ik, "inverse_kinematics_of", lambda chain: ik)
+        patch.setattr(codegen_ik, "inverse_kinematics_of", lambda chain, free_joint=None: ik)
         solvers = ik_solvers(folder, robot, TARGETS)
     return robot, solvers, folder
 
@@ -131,7 +131,7 @@ def test_the_command_line_option_writes_a_module_that_solves(cli, tmp_path):
 
 
 def test_an_arm_without_a_closed_form_is_refused_in_one_line_or_solved_numerically(cli, tmp_path):
-    error = cli.one_line_error("codegen", "panda", "--target", "numpy", "--inverse-kinematics")
+    error = cli.one_line_error("codegen", "panda", "--target", "jax", "--inverse-kinematics")
     assert "closed-form" in error and "numeric" in error
     files = ik_files(load_robot("panda"), "c99")  # C99 and C++ carry the numeric solver instead
     header = files["panda.h"]

@@ -27,12 +27,16 @@ if TYPE_CHECKING:  # description.py imports this module (through inverse_kinemat
 
 __all__ = ["NUMERIC_IK_TARGETS", "NumericIkTables", "numeric_ik_jacobian", "numeric_ik_tables"]
 
-NUMERIC_IK_TARGETS = ("c99", "cpp", "python")
+NUMERIC_IK_TARGETS = ("c99", "cpp", "python", "numpy", "lambdify", "c")
 """The targets that generate ``inverse_kinematics_numeric``."""
 
 
 def numeric_ik_jacobian(target: str, infos: Sequence[JacobianInfo], coupled: bool) -> str:
     """The name of the Jacobian the solver runs on: the first request in frame {0} with all six rows."""
+    if target in ("jax", "casadi"):
+        raise CodegenError(f"numeric_ik: the {target} target traces each function into a fixed graph, and the "
+                           "numeric solver's restarts and stopping test are loops that depend on the data; use "
+                           f"one of {', '.join(NUMERIC_IK_TARGETS)}")
     if target not in NUMERIC_IK_TARGETS:
         raise CodegenError(f"numeric_ik: the {target} target has no numeric inverse kinematics yet; "
                            f"use one of {', '.join(NUMERIC_IK_TARGETS)}")

@@ -168,8 +168,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     exports |= {constant for constant, _ in name_lists}
     inverse_kinematics, numeric = closed_or_numeric(chain, request.target, request.inverse_kinematics,
                                                   request.free_joint)
-    if inverse_kinematics is not None:
-        exports |= set(IK_EXPORTS)
+    exports |= set(IK_EXPORTS) if inverse_kinematics is not None else set()
+    exports |= {"inverse_kinematics_numeric"} if request.numeric_ik or numeric else set()
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
     symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()
@@ -319,10 +319,10 @@ def generate(
     inverse_kinematics : bool
         Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
         ``IK_MAX_SOLUTIONS`` rows with their count. An arm without a closed form gets the numeric
-        ``inverse_kinematics_numeric`` (with a seed) in c99, cpp and python, ``NoClosedFormError`` elsewhere.
+        ``inverse_kinematics_numeric`` (with a seed) in every target but jax and casadi (``NoClosedFormError``).
         ``free_joint=k`` (0-based) asks for the closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
     numeric_ik : bool
-        Also generate ``inverse_kinematics_numeric`` (c99, cpp, python), Levenberg-Marquardt on the module's forward
+        Also generate ``inverse_kinematics_numeric`` (not jax, casadi), Levenberg-Marquardt on the module's forward
         kinematics and its first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``).
 
     Returns

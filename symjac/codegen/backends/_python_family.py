@@ -16,6 +16,7 @@ from typing import Any
 
 from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
 from symjac.codegen.ik_numeric import NumericIkTables, numeric_ik_tables
+from symjac.codegen.ik_numeric_numpy import numpy_numeric_ik
 from symjac.codegen.ik_printing import IKText, PrinterClass, python_inverse_kinematics
 from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
@@ -261,7 +262,9 @@ def _inverse_kinematics(description: ModuleDescription, target: str, taken: froz
     if ik_printer is None:
         return IKText("")
     family, printer = ik_printer
-    return python_inverse_kinematics(description, family, taken, printer, c_kernel=target == "c")
+    closed = python_inverse_kinematics(description, family, taken, printer, c_kernel=target == "c")
+    numeric = numpy_numeric_ik(description)  # the NumPy family's numeric solver, when the module has it
+    return IKText("\n\n\n".join(t for t in (closed.text.strip("\n"), numeric) if t), closed.uses, closed.header)
 
 
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),

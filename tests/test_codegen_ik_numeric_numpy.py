@@ -13,6 +13,8 @@ import sympy as sp
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics import seed_bounds
 from symjac.codegen import CodegenError, ModuleRequest, describe, render_files
+from symjac.codegen.numeric_model import numeric_model
+from symjac.errors import NoClosedFormError
 from symjac.kinematics.chain import forward_kinematics
 
 TARGETS = ("numpy", "lambdify", "c")
@@ -75,6 +77,8 @@ def test_asking_for_inverse_kinematics_gives_the_numeric_solver_and_jax_casadi_r
     robot, _, _ = panda
     module = _module(robot, "numpy", inverse_kinematics=True)
     assert "inverse_kinematics_numeric" in module.__all__ and not hasattr(module, "inverse_kinematics")
+    with pytest.raises(NoClosedFormError):  # the model's ik is the closed form's: no numeric stand-in there
+        numeric_model(robot, backend="numpy").ik(np.eye(4))
     for target in ("jax", "casadi"):
         with pytest.raises(CodegenError, match="loops that depend on the data") as error:
             describe(ModuleRequest(robot, target, numeric_ik=True))

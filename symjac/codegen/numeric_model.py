@@ -23,7 +23,7 @@ from typing import Any, Literal, get_args
 
 import numpy as np
 
-from symjac.codegen.inverse_kinematics import IK_TOLERANCE
+from symjac.codegen.inverse_kinematics import IK_TOLERANCE, inverse_kinematics_of
 from symjac.codegen.module import generate
 from symjac.codegen.request import JacobianRequest
 from symjac.errors import ArgumentError, CodegenError
@@ -269,6 +269,7 @@ def _ik_modules(chain: Chain, name: str, backend: str) -> _IKSolvers:
     NumPy for batches and plain Python floats for one pose.
     """
     made = f"{name}_ik"
+    inverse_kinematics_of(chain)  # NoClosedFormError for an arm without one (generate would give the numeric solver)
     if backend == "c":
         return _load(generate(chain, "c", strategy="raw", name=made, inverse_kinematics=True), made), None
     return (_load(generate(chain, "numpy", strategy="raw", name=made, inverse_kinematics=True), made),

@@ -177,6 +177,8 @@ def test_a_value_of_the_given_joint_that_no_solution_has_gives_none(iiwa):
 
 def test_the_option_is_refused_in_one_line_where_it_does_not_apply(cli):
     robot = load_robot("iiwa7")
+    command = describe(ModuleRequest(robot, "python", inverse_kinematics=True, free_joint=FREE)).command
+    assert command.endswith(", inverse_kinematics=True, free_joint=2)")  # the header's call regenerates it
     with pytest.raises(CodegenError, match="ask for inverse_kinematics too"):
         describe(ModuleRequest(robot, "numpy", free_joint=FREE))
     with pytest.raises(CodegenError, match="0 to 6"):

@@ -810,11 +810,11 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
 }
 
 /* Numeric inverse kinematics, as symjac's solve_numeric: each start descends without limits first; a solution it
- * reaches is shifted by 2 pi into the limits, and when a joint does not fit, the descent goes on from the clipped
- * configuration with the limits respected (a joint at a limit that a step would push past is held still). Starts
- * from `start` (when not NULL), then from seeds drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64
- * starts. Writes q (the best found on failure) and the steps taken in all (when iterations is not NULL); returns 1
- * when it converged, else 0. */
+ * reaches is shifted by 2 pi into the limits, and when a joint does not fit, a redundant arm (n > 6) goes on from the
+ * clipped configuration with the limits respected (a joint at a limit that a step would push past is held still;
+ * an arm with n <= 6 has isolated solutions: it restarts). Starts from `start` (when not NULL), then from seeds
+ * drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64 starts. Writes q (the best found on failure)
+ * and the steps taken in all (when iterations is not NULL); returns 1 when it converged, else 0. */
 static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
                                 const real *lower, const real *upper, const int *kind, const real *low,
                                 const real *high, const real *target, const real *start, unsigned long long seed,
@@ -833,7 +833,11 @@ static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobia
         }
         real cost = sj_ik_descend(n, forward_kinematics, jacobian, params, NULL, NULL, kind, target, x, e, &steps);
         found = sj_ik_converged(e);
-        if (found && !sj_ik_into_limits(n, lower, upper, kind, x)) {
+        const int inside = found ? sj_ik_into_limits(n, lower, upper, kind, x) : 0;
+        if (found && !inside && n <= 6) { /* isolated solutions (no self-motion to clip along): restart */
+            found = 0;
+            cost = (real)HUGE_VAL;
+        } else if (found && !inside) {
             cost = sj_ik_descend(n, forward_kinematics, jacobian, params, lower, upper, kind, target, x, e, &steps);
             found = sj_ik_converged(e);
         } else if (!found) {

@@ -201,7 +201,8 @@ using Table = std::array<T, static_cast<std::size_t>(N)>;
 // descends by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
 // log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 4 without the
 // cost falling 10 % while E > 1e-10); a solution is shifted by 2 pi into the limits, and when a joint does not
-// fit, the descent goes on from the clipped configuration with the limits respected (a joint at a limit that a
+// fit, a redundant arm (N > 6) goes on from the clipped configuration with the limits respected (N <= 6: isolated
+// solutions, it restarts) (a joint at a limit that a
 // step would push past is held still). Kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped
 // to (-pi, pi]). At most 64 starts; converged when both error norms are at most 1e-10 (1e-4 in single precision).
 // Writes q (the best found on failure) and the steps taken; returns 1 when it converged, else 0.
@@ -350,7 +351,11 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
         Error e;
         Scalar cost = descend(x, e, false);
         found = converged(e);
-        if (found && !into_limits(x)) {
+        const bool inside = found && into_limits(x);
+        if (found && !inside && N <= 6) {  // isolated solutions (no self-motion) to clip towards: restart
+            found = 0;
+            cost = std::numeric_limits<Scalar>::infinity();
+        } else if (found && !inside) {
             cost = descend(x, e, true);
             found = converged(e);
         } else if (!found) {

@@ -24,7 +24,9 @@ the cost near a singular solution::
 Each start descends without limits first (revolute joints without limits wrapped to (-pi, pi]); a solution it
 reaches is shifted by 2 pi k into the limits (the same pose), and when a joint does not fit, the descent goes on from
 the configuration clipped into them with the limits respected: joints clipped to them after each step, and a joint
-that sits at a limit and whose step would push it past held still (the step solved again without it). A start that
+that sits at a limit and whose step would push it past held still (the step solved again without it). That is for
+redundant arms (more joints than weighted error components) only: an arm without self-motion has isolated
+solutions, and one outside the limits has none inside them nearby, so the start is abandoned. A start that
 stalls (the
 cost has not fallen below 0.9 times its reference value for ``stall`` accepted or rejected steps while ``E > 1e-10``)
 is abandoned early, and the solver restarts from a seed drawn uniformly within the limits (from ``rng``, as
@@ -197,6 +199,7 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
     def free(q: np.ndarray) -> np.ndarray:
         return np.where(wrap, _wrapped(q), q)
 
+    redundant = n > 3 * ((position_weight != 0) + (orientation_weight != 0))
     found = NumericSolutions()
     nearest: tuple[float, np.ndarray, int, int] | None = None  # cost, clipped configuration, steps, start
     for index in range(max(primary, until_found)):
@@ -207,7 +210,9 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
                                     max_iterations, stall)
         if converged(e):
             q, inside = _into_limits(q, lower, upper, revolute)
-            if not inside:  # a solution outside the limits: go on from it clipped into them, the limits respected
+            if not inside and not redundant:  # isolated solutions (no self-motion to clip along): restart
+                e = np.full(6, np.inf)
+            elif not inside:  # a solution outside the limits: go on from it clipped into them, the limits respected
                 q, e, more = _descend(project(q), error, jacobian, project, converged, lower, upper,
                                       max_iterations, stall)
                 iterations += more

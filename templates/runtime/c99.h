@@ -619,36 +619,39 @@ static inline int sj_ik_into_limits(int n, const real *lower, const real *upper,
     return inside;
 }
 
-/* Solve a x = b in place (a n x n symmetric positive definite, row-major; its lower triangle becomes L with
- * a = L L^T) by Cholesky: b becomes x. One square root and one division per row. */
+/* Solve a x = b in place (a n x n symmetric positive definite, row-major; its strict lower triangle becomes the unit
+ * lower L of a = L D L^T) by LDL^T: b becomes x. No square root and one division per row (a Cholesky factor's
+ * square roots and divisions lie on the dependency chain). */
 static inline void sj_ik_cholesky(real *a, real *b, int n)
 {
-    real inverse[SJ_DIM];
-    for (int j = 0; j < n; j++) {
-        real d = a[j * n + j];
-        for (int k = 0; k < j; k++) {
-            d -= a[j * n + k] * a[j * n + k];
-        }
-        inverse[j] = 1 / sqrt(d);
-        for (int i = j + 1; i < n; i++) {
+    real inverse[SJ_DIM]; /* 1 / D */
+    real t[SJ_DIM];       /* row i of L D */
+    for (int i = 0; i < n; i++) {
+        real d = a[i * n + i];
+        for (int j = 0; j < i; j++) {
             real s = a[i * n + j];
             for (int k = 0; k < j; k++) {
-                s -= a[i * n + k] * a[j * n + k];
+                s -= t[k] * a[j * n + k];
             }
-            a[i * n + j] = s * inverse[j];
+            t[j] = s;
         }
+        for (int j = 0; j < i; j++) {
+            const real l = t[j] * inverse[j];
+            d -= t[j] * l;
+            a[i * n + j] = l;
+        }
+        inverse[i] = 1 / d;
     }
     for (int i = 0; i < n; i++) {
         for (int k = 0; k < i; k++) {
             b[i] -= a[i * n + k] * b[k];
         }
-        b[i] *= inverse[i];
     }
     for (int i = n - 1; i >= 0; i--) {
+        b[i] *= inverse[i];
         for (int k = i + 1; k < n; k++) {
             b[i] -= a[k * n + i] * b[k];
         }
-        b[i] *= inverse[i];
     }
 }
 
@@ -807,11 +810,11 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
 }
 
 /* Numeric inverse kinematics, as symjac's solve_numeric: each start descends without limits first; a solution it
- * reaches is shifted by 2 pi into the limits, and when a joint does not fit, the descent goes on from the clipped
- * configuration with the limits respected (a joint at a limit that a step would push past is held still). Starts
- * from `start` (when not NULL), then from seeds drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64
- * starts. Writes q (the best found on failure) and the steps taken in all (when iterations is not NULL); returns 1
- * when it converged, else 0. */
+ * reaches is shifted by 2 pi into the limits, and when a joint does not fit, a redundant arm (n > 6) goes on from the
+ * clipped configuration with the limits respected (a joint at a limit that a step would push past is held still;
+ * an arm with n <= 6 has isolated solutions: it restarts). Starts from `start` (when not NULL), then from seeds
+ * drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64 starts. Writes q (the best found on failure)
+ * and the steps taken in all (when iterations is not NULL); returns 1 when it converged, else 0. */
 static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
                                 const real *lower, const real *upper, const int *kind, const real *low,
                                 const real *high, const real *target, const real *start, unsigned long long seed,
@@ -830,7 +833,11 @@ static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobia
         }
         real cost = sj_ik_descend(n, forward_kinematics, jacobian, params, NULL, NULL, kind, target, x, e, &steps);
         found = sj_ik_converged(e);
-        if (found && !sj_ik_into_limits(n, lower, upper, kind, x)) {
+        const int inside = found ? sj_ik_into_limits(n, lower, upper, kind, x) : 0;
+        if (found && !inside && n <= 6) { /* isolated solutions (no self-motion to clip along): restart */
+            found = 0;
+            cost = (real)HUGE_VAL;
+        } else if (found && !inside) {
             cost = sj_ik_descend(n, forward_kinematics, jacobian, params, lower, upper, kind, target, x, e, &steps);
             found = sj_ik_converged(e);
         } else if (!found) {

@@ -157,6 +157,42 @@ Eigen::Matrix<Scalar, 3, 1> rotation_vector(const Eigen::Matrix<Scalar, 3, 3>& r
     return (axis.dot(w) < Scalar(0) ? -angle : angle) * axis;
 }
 
+// Solve a x = b (a symmetric positive definite) by LDL^T without pivoting, as the c99 runtime's sj_ik_cholesky: no
+// square root and one division per row (faster than a Cholesky factor at these sizes); b becomes x.
+template <class Scalar, int N>
+void ldl_solve(Eigen::Matrix<Scalar, N, N>& a, Eigen::Matrix<Scalar, N, 1>& b)
+{
+    Scalar inverse[N];  // 1 / D
+    Scalar t[N];        // row i of L D
+    for (int i = 0; i < N; i++) {
+        Scalar d = a(i, i);
+        for (int j = 0; j < i; j++) {
+            Scalar s = a(i, j);
+            for (int k = 0; k < j; k++) {
+                s -= t[k] * a(j, k);
+            }
+            t[j] = s;
+        }
+        for (int j = 0; j < i; j++) {
+            const Scalar l = t[j] * inverse[j];
+            d -= t[j] * l;
+            a(i, j) = l;
+        }
+        inverse[i] = Scalar(1) / d;
+    }
+    for (int i = 0; i < N; i++) {
+        for (int k = 0; k < i; k++) {
+            b[i] -= a(i, k) * b[k];
+        }
+    }
+    for (int i = N - 1; i >= 0; i--) {
+        b[i] *= inverse[i];
+        for (int k = i + 1; k < N; k++) {
+            b[i] -= a(k, i) * b[k];
+        }
+    }
+}
+
 // A per-joint table of N entries (N an int, as Eigen's sizes are).
 template <class T, int N>
 using Table = std::array<T, static_cast<std::size_t>(N)>;
@@ -165,7 +201,8 @@ using Table = std::array<T, static_cast<std::size_t>(N)>;
 // descends by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
 // log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 4 without the
 // cost falling 10 % while E > 1e-10); a solution is shifted by 2 pi into the limits, and when a joint does not
-// fit, the descent goes on from the clipped configuration with the limits respected (a joint at a limit that a
+// fit, a redundant arm (N > 6) goes on from the clipped configuration with the limits respected (N <= 6: isolated
+// solutions, it restarts) (a joint at a limit that a
 // step would push past is held still). Kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped
 // to (-pi, pi]). At most 64 starts; converged when both error norms are at most 1e-10 (1e-4 in single precision).
 // Writes q (the best found on failure) and the steps taken; returns 1 when it converged, else 0.
@@ -253,7 +290,8 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
                         b[k] = Scalar(0);
                     }
                 }
-                return Vector(a.llt().solve(b));
+                ldl_solve<Scalar, N>(a, b);
+                return b;
             };
             Vector step;
             for (int round = 0; round < N; round++) {
@@ -313,7 +351,11 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
         Error e;
         Scalar cost = descend(x, e, false);
         found = converged(e);
-        if (found && !into_limits(x)) {
+        const bool inside = found && into_limits(x);
+        if (found && !inside && N <= 6) {  // isolated solutions (no self-motion) to clip towards: restart
+            found = 0;
+            cost = std::numeric_limits<Scalar>::infinity();
+        } else if (found && !inside) {
             cost = descend(x, e, true);
             found = converged(e);
         } else if (!found) {

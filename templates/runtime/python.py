@@ -252,7 +252,8 @@ def _ik_numeric(forward_kinematics: Callable[..., Any], jacobian: Callable[..., 
     """Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds and steps): (q, found, steps).
 
     Each start descends by Levenberg-Marquardt without limits first; a solution is shifted by 2 pi into the limits,
-    and when a joint does not fit, the descent goes on from the clipped configuration with the limits respected. At
+    and when a joint does not fit, the descent goes on from the clipped configuration with the limits respected (a
+    redundant arm, more than six joints; an arm with at most six has isolated solutions, so it restarts). At
     most 64 starts: ``start`` (when given), then seeds drawn uniformly in [low, high] by splitmix64 from ``seed``.
     """
     target = [[float(v) for v in row] for row in pose]
@@ -268,7 +269,9 @@ def _ik_numeric(forward_kinematics: Callable[..., Any], jacobian: Callable[..., 
         found = max(sum(v * v for v in e[:3]), sum(v * v for v in e[3:])) <= 1e-20
         if found:
             x, inside = _ik_into_limits(x, lower, upper, kind)
-            if not inside:
+            if not inside and len(kind) <= 6:  # isolated solutions (no self-motion to clip along): restart
+                found, cost = False, float("inf")
+            elif not inside:
                 x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, (lower, upper), kind,
                                                 parameters)
                 steps += taken

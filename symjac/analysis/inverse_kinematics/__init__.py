@@ -11,7 +11,13 @@ from symjac.analysis.inverse_kinematics.closed_form import (
 )
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, reduced_geometry
 from symjac.analysis.inverse_kinematics.null_space import NULL_SPACE_TASKS, refine_in_null_space
-from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
+from symjac.analysis.inverse_kinematics.numeric import (
+    KinematicModel,
+    NumericSolution,
+    NumericSolutions,
+    seed_bounds,
+    solve_numeric,
+)
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
 from symjac.analysis.inverse_kinematics.planar import (
@@ -56,6 +62,7 @@ __all__ = [
     "ClosedFormResult",
     "KinematicModel",
     "NumericSolution",
+    "NumericSolutions",
     "Plan",
     "Solution",
     "Step",

@@ -24,7 +24,9 @@ the cost near a singular solution::
 Each start descends without limits first (revolute joints without limits wrapped to (-pi, pi]); a solution it
 reaches is shifted by 2 pi k into the limits (the same pose), and when a joint does not fit, the descent goes on from
 the configuration clipped into them with the limits respected: joints clipped to them after each step, and a joint
-that sits at a limit and whose step would push it past held still (the step solved again without it). A start that
+that sits at a limit and whose step would push it past held still (the step solved again without it). That is for
+redundant arms (more joints than weighted error components) only: an arm without self-motion has isolated
+solutions, and one outside the limits has none inside them nearby, so the start is abandoned. A start that
 stalls (the
 cost has not fallen below 0.9 times its reference value for ``stall`` accepted or rejected steps while ``E > 1e-10``)
 is abandoned early, and the solver restarts from a seed drawn uniformly within the limits (from ``rng``, as
@@ -45,7 +47,7 @@ from symjac.analysis.inverse_kinematics.null_space import NULL_SPACE_TASKS, refi
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
-__all__ = ["KinematicModel", "NumericSolution", "seed_bounds", "solve_numeric"]
+__all__ = ["KinematicModel", "NumericSolution", "NumericSolutions", "seed_bounds", "solve_numeric"]
 
 
 class KinematicModel(Protocol):
@@ -67,6 +69,17 @@ class NumericSolution:
     orientation_error: float
     iterations: int
     start: int = 0
+
+
+class NumericSolutions(list[NumericSolution]):
+    """The solutions :func:`solve_numeric` found (a list), and ``closest`` when none converged.
+
+    ``closest`` is the configuration closest to the pose that the search reached (within the limits when they are
+    respected), with its unweighted position (m) and orientation (rad) errors; None when there are solutions. A
+    search that found nothing proves nothing: the pose is probably, not certainly, out of reach.
+    """
+
+    closest: NumericSolution | None = None
 
 
 def _rotation_vector(r: np.ndarray) -> np.ndarray:
@@ -136,7 +149,7 @@ def seed_bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
 def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any = None, rng: int = 0,
                   restarts: int = 8, position_weight: float = 1.0, orientation_weight: float = 1.0,
                   tolerance: float = 1e-10, max_iterations: int = 100, respect_limits: bool = True,
-                  until_found: int = 64, stall: int = 4, null_space: str | None = None) -> list[NumericSolution]:
+                  until_found: int = 64, stall: int = 4, null_space: str | None = None) -> NumericSolutions:
     r"""Configurations of ``robot`` whose tool reaches ``pose`` (4 x 4), found by Levenberg-Marquardt.
 
     ``model`` gives ``fk`` and ``jacobian`` (base frame, at the tool point), for example
@@ -149,7 +162,8 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
     cost falling by 10 %). Solutions closer than 1e-6 (rad or m) to an earlier one are dropped. ``null_space``
     ("limits" or "manipulability", arms with more than six joints) moves each solution along the self-motion to
     that secondary task's optimum (:func:`~symjac.analysis.inverse_kinematics.null_space.refine_in_null_space`).
-    An unreachable pose gives an empty list.
+    An unreachable pose gives an empty list whose ``closest`` (:class:`NumericSolutions`) is the configuration
+    with the smallest cost reached over all starts, polished by one more descent within the limits.
     """
     target = _pose(pose)
     n = len(robot.joints)
@@ -185,7 +199,9 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
     def free(q: np.ndarray) -> np.ndarray:
         return np.where(wrap, _wrapped(q), q)
 
-    found: list[NumericSolution] = []
+    redundant = n > 3 * ((position_weight != 0) + (orientation_weight != 0))
+    found = NumericSolutions()
+    nearest: tuple[float, np.ndarray, int, int] | None = None  # cost, clipped configuration, steps, start
     for index in range(max(primary, until_found)):
         if found and index >= primary:
             break
@@ -194,11 +210,17 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
                                     max_iterations, stall)
         if converged(e):
             q, inside = _into_limits(q, lower, upper, revolute)
-            if not inside:  # a solution outside the limits: go on from it clipped into them, the limits respected
+            if not inside and not redundant:  # isolated solutions (no self-motion to clip along): restart
+                e = np.full(6, np.inf)
+            elif not inside:  # a solution outside the limits: go on from it clipped into them, the limits respected
                 q, e, more = _descend(project(q), error, jacobian, project, converged, lower, upper,
                                       max_iterations, stall)
                 iterations += more
         if not converged(e):
+            clipped = _into_limits(q, lower, upper, revolute)[0]
+            cost = float(np.sum(error(clipped) ** 2))
+            if nearest is None or cost < nearest[0]:
+                nearest = (cost, clipped, iterations, index)
             continue
         if null_space is not None and n > 6:
             q = refine_in_null_space(q, null_space, error, jacobian, project, converged, lower, upper)
@@ -206,6 +228,14 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
         if all(np.max(np.abs(_difference(q, s.q, wrap))) > 1e-6 for s in found):
             found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])), iterations,
                                          index))
+    if not found and nearest is not None:
+        q, e, more = _descend(nearest[1], error, jacobian, project, converged, lower, upper, max_iterations, stall)
+        if float(e @ e) > nearest[0]:
+            q = nearest[1]
+        t = np.asarray(model.fk(q), dtype=float)
+        found.closest = NumericSolution(
+            q, float(np.linalg.norm(target[:3, 3] - t[:3, 3])),
+            float(np.linalg.norm(_rotation_vector(target[:3, :3] @ t[:3, :3].T))), nearest[2] + more, nearest[3])
     return found
 
 

@@ -388,7 +388,9 @@ def _ik_numeric(forward_kinematics: Callable[..., np.ndarray], jacobian: Callabl
         found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20
         if found:
             x, inside = _ik_into_limits(x, *bounds, kind)
-            if not inside:
+            if not inside and len(kind) <= 6:  # isolated solutions (no self-motion to clip along): restart
+                found, cost = False, float("inf")
+            elif not inside:
                 x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, bounds, wraps, parameters)
                 steps += taken
                 found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20

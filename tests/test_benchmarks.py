@@ -26,6 +26,8 @@ pytestmark = pytest.mark.slow  # seconds per script
     pytest.param("generated_code.py planar2r -n 64 --seconds 0.001", marks=pytest.mark.external),  # a C compiler
     pytest.param("numeric_model.py --quick", marks=pytest.mark.external),  # a C compiler; pin and rtb optional
     pytest.param("ik_numeric.py planar3r -n 5", marks=pytest.mark.external),  # numeric_model: a C compiler
+    pytest.param("ik_closed_form.py puma560 -n 10 --seconds 0.01 --repeats 1",
+                 marks=pytest.mark.external),  # g++ and Eigen for the C++ loop (skipped without), a C compiler
     pytest.param("jax_casadi.py planar2r -n 64", marks=pytest.mark.skipif(
         importlib.util.find_spec("jax") is None or importlib.util.find_spec("casadi") is None,
         reason="jax and casadi come with the test extra")),

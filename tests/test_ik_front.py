@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from scipy.optimize import minimize
 
 import symjac
 from symjac import inverse_kinematics, load_robot, numeric_model, pose_from_rpy
+from symjac.analysis.inverse_kinematics import seed_bounds, solve_numeric
 from symjac.errors import ArgumentError, UnknownRobotError
 from symjac.kinematics.chain import forward_kinematics
 from symjac.kinematics.numeric import numeric_at
@@ -78,8 +80,10 @@ def test_an_arm_that_places_a_point_finds_both_elbows():
 def test_an_unreachable_pose_says_so():
     robot = load_robot("planar2r")
     result = inverse_kinematics(robot, pose_from_rpy([2.0, 0.0, 0.0], [0, 0, 0]), method="numeric")
-    assert result.solutions == () and np.isnan(result.distance)
-    assert result.unreachable.startswith("none of the numeric solver's 8 or more starts converged")
+    assert result.solutions == () and abs(result.distance - (2.0 - 0.9)) < 1e-5  # |p| - (L1 + L2)
+    assert result.unreachable.startswith("none of the numeric solver's 8 or more starts converged: no solution found; "
+                                         "the closest configuration reached is 1.1 m and")
+    assert "probably out of reach (a numeric search proves nothing)" in result.unreachable
 
 
 def test_within_limits_false_keeps_and_flags_solutions_outside():
@@ -250,3 +254,24 @@ def test_a_coupled_arm_is_solved_in_its_coordinates():
     assert all(s.q.shape == (4,) for s in result.solutions)
     assert_reaches(robot, result)
     assert any(np.allclose(s.q, q, atol=1e-9) for s in result.solutions)
+
+
+def test_a_numeric_pose_out_of_reach_says_how_far_the_closest_configuration_is():
+    robot = load_robot("panda")
+    # the reach from the shoulder (joint 2's axis, 0.333 m up) by an independent search: the farthest tool point of
+    # random configurations, polished by Nelder-Mead on the symbolic forward kinematics
+    shoulder, (lower, upper) = np.array([0.0, 0.0, 0.333]), seed_bounds(robot)
+    generator = np.random.default_rng(3)
+
+    def far(q):
+        return -np.linalg.norm(independent_fk(robot, np.clip(q, lower, upper))[:3, 3] - shoulder)
+
+    best = min((generator.uniform(lower, upper) for _ in range(300)), key=far)
+    reach = -minimize(far, best, method="Nelder-Mead", options={"xatol": 1e-8, "fatol": 1e-10}).fun
+    pose = pose_from_rpy([2.0, 0.0, 0.333], [0.0, 0.0, 0.0])
+    gap = 2.0 - reach
+    position_only = solve_numeric(robot, pose, numeric_model(robot), orientation_weight=0.0)
+    assert position_only == [] and abs(position_only.closest.position_error - gap) < 5e-3
+    result = inverse_kinematics(robot, pose, method="numeric")
+    assert result.solutions == () and gap - 5e-3 < result.distance < gap + 0.1  # position traded for orientation
+    assert f"the closest configuration reached is {result.distance:.3g} m and " in result.unreachable

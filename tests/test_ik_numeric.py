@@ -81,3 +81,48 @@ def test_bad_pose_is_one_clear_error(pose, match):
     robot = load_robot("planar2r")
     with pytest.raises(ArgumentError, match=match):
         solve_numeric(robot, pose, numeric_model(robot, backend="numpy"))
+
+
+@pytest.mark.parametrize("task", ["limits", "manipulability"])
+def test_null_space_task_keeps_the_pose_and_improves_its_objective(task):
+    from symjac.analysis.inverse_kinematics.null_space import limit_distance, manipulability
+
+    robot = load_robot("panda")
+    model, fk = numeric_model(robot), _independent_fk(robot)
+    lower, upper = seed_bounds(robot)
+    generator = np.random.default_rng(5)
+    gained = 0.0
+    for k in range(4):
+        pose = np.asarray(fk(generator.uniform(lower, upper)), dtype=float)
+        plain = solve_numeric(robot, pose, model, rng=k, restarts=1)[0]
+        moved = solve_numeric(robot, pose, model, rng=k, restarts=1, null_space=task)[0]
+        assert np.abs(np.asarray(fk(moved.q), dtype=float) - pose).max() < 1e-9
+        assert np.all(moved.q >= lower) and np.all(moved.q <= upper)
+        if task == "limits":
+            before, after = limit_distance(plain.q, lower, upper), limit_distance(moved.q, lower, upper)
+        else:
+            before, after = manipulability(model.jacobian(plain.q)), manipulability(model.jacobian(moved.q))
+        assert after >= before - 1e-12
+        gained += after - before
+    assert gained > 1e-3  # it moves, not only stays put
+
+
+def test_unknown_null_space_task_is_one_clear_error():
+    robot = load_robot("planar2r")
+    with pytest.raises(ArgumentError, match="null_space must be one of limits, manipulability"):
+        solve_numeric(robot, np.eye(4), numeric_model(robot, backend="numpy"), null_space="distance")
+
+
+@pytest.mark.parametrize("name", ["panda", "iiwa7", "puma560", "ur5"])
+def test_one_seed_per_call_solves_a_fixed_set_within_the_limits(name):
+    robot = load_robot(name)
+    model, fk = numeric_model(robot), _independent_fk(robot)
+    lower, upper = seed_bounds(robot)
+    generator = np.random.default_rng(2046)
+    for k in range(30):
+        pose = np.asarray(fk(generator.uniform(lower, upper)), dtype=float)
+        solutions = solve_numeric(robot, pose, model, rng=k, restarts=1)
+        assert len(solutions) == 1, k  # the first solution found, restarting from further seeds of rng=k
+        q = solutions[0].q
+        assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
+        assert np.all(q >= lower) and np.all(q <= upper)

@@ -222,15 +222,21 @@ def _singularities(args: argparse.Namespace) -> Document:
 def _codegen(args: argparse.Namespace) -> str:
     from symjac.codegen import JacobianRequest, ModuleRequest, describe, render_files
     from symjac.codegen.module import single_or_written
+    from symjac.errors import ArgumentError
 
     robot = load(args)
     frames = [parse_frame(text) for text in (args.frame or ["0"])]
     points = [parse_point(text, robot) for text in (args.point or [None])]
     rows = None if args.rows is None else parse_rows(args.rows)
     requests = [JacobianRequest(frame, point, rows) for frame in frames for point in points]
+    if args.free_joint is not None and not 1 <= args.free_joint <= robot.n_joints:
+        raise ArgumentError(f"--free-joint is a joint number, 1 to {robot.n_joints} for {robot.name}, got "
+                            f"{args.free_joint}")
     request = ModuleRequest(robot, args.target, jacobians=requests, strategy=args.strategy,
                             command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration,
-                            name=args.name, dynamics=args.dynamics, identification=args.identification)
+                            name=args.name, dynamics=args.dynamics, identification=args.identification,
+                            inverse_kinematics=args.inverse_kinematics,
+                            free_joint=None if args.free_joint is None else args.free_joint - 1)
     files = progress(f"{args.target} module for {robot.name}", lambda: render_files(describe(request)))
     text = single_or_written(files, args.output)  # several files are written here, all or none
     args.output = args.output if text is not None else None

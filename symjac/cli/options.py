@@ -58,6 +58,12 @@ def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--identification", action="store_true",
                      help="also generate regressor and base_regressor (tau = Y pi = Y_b pi_b; the parameters' names "
                           "in order as REGRESSOR_PARAMETERS, BASE_PARAMETERS); implies --dynamics")
+    sub.add_argument("--inverse-kinematics", action="store_true",
+                     help="also generate inverse_kinematics(pose): every closed-form solution (an arm with a closed "
+                          "form) into IK_MAX_SOLUTIONS rows and their count")
+    sub.add_argument("--free-joint", type=int, default=None, metavar="K",
+                     help="with --inverse-kinematics: the closed form with joint K (1..n) given, a 7-joint arm's "
+                          "redundancy parameter; inverse_kinematics then takes its value q_free after the pose")
     sub.add_argument("--name", default=None,
                      help="the module's name: file names, C prefix, C++ namespace (default: the robot's name)")
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from symjac.codegen.inverse_kinematics import InverseKinematics
 from symjac.codegen.joint_table import JointEntry, convention_words
 from symjac.codegen.kinds import CHECK_WORDS, COUPLED_WORDS, kind_spec
 from symjac.codegen.lower import LoweredFunction
@@ -322,6 +323,9 @@ class ModuleDescription:
     tip_frame: str = ""
     origin: str = ""
     name_lists: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    inverse_kinematics: InverseKinematics | None = None
+    """The closed-form inverse kinematics, lowered (:mod:`symjac.codegen.inverse_kinematics`), when asked for."""
+    numeric_ik: str = ""
 
     @property
     def joint_names(self) -> tuple[str, ...]:
@@ -350,7 +354,8 @@ class ModuleDescription:
         :func:`~symjac.codegen.runtime.runtime_source` adds the sections they need and the core (which holds the
         pose and Jacobian checks): what the backends copy into the module.
         """
-        return frozenset(d.routine for d in self.derived) | frozenset(check.routine for check in self.checks)
+        return (frozenset(d.routine for d in self.derived) | frozenset(check.routine for check in self.checks)
+                | frozenset(("ik_numeric",) if self.numeric_ik else ()))
 
     @property
     def check_words(self) -> str:

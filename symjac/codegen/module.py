@@ -34,6 +34,8 @@ from symjac.codegen.functions import (
     scalar_descriptions,
     self_checks,
 )
+from symjac.codegen.ik_numeric import numeric_ik_jacobian
+from symjac.codegen.inverse_kinematics import IK_EXPORTS, closed_or_numeric, ik_listing
 from symjac.codegen.joint_table import joint_entries, source_words, tip_frame
 from symjac.codegen.kinds import DYNAMICS_CHECKED, IDENTIFICATION_CHECKED
 from symjac.codegen.printers import float_literal
@@ -92,6 +94,9 @@ class ModuleRequest:
     name: str | None = None
     dynamics: bool = False
     identification: bool = False
+    inverse_kinematics: bool = False
+    numeric_ik: bool = False
+    free_joint: int | None = None  # 0-based: the closed form with this joint given (q_free), a 7-joint arm's
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -144,7 +149,8 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     if command is None:
         loader, command_note = robot_loader(request.robot if isinstance(request.robot, Robot) else model)
         command = python_call(model, request.target, requests, request.scalars or {}, request.strategy, loader,
-                              request.acceleration, request.name, request.dynamics, request.identification)
+                              request.acceleration, request.name, request.dynamics, request.identification,
+                              request.inverse_kinematics, request.numeric_ik, request.free_joint)
     else:
         source = request.robot.source if isinstance(request.robot, Robot) else model.source
         command_note = "in the folder it was run in" if names_relative_file(source, command) else ""
@@ -160,6 +166,10 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
     checked = [kinds[kind] for kind in DYNAMICS_CHECKED if kind in kinds] if with_dynamics and not friction else []
     name_lists, identification_checks = _identification(chain, functions) if request.identification else ((), ())
     exports |= {constant for constant, _ in name_lists}
+    inverse_kinematics, numeric = closed_or_numeric(chain, request.target, request.inverse_kinematics,
+                                                  request.free_joint)
+    exports |= set(IK_EXPORTS) if inverse_kinematics is not None else set()
+    exports |= {"inverse_kinematics_numeric"} if request.numeric_ik or numeric else set()
     # gravity's magnitude is a parameter when the lowered dynamics leave it a symbol (else its 9.81 is written in)
     symbolic_gravity = any(GRAVITY_SYMBOL in f.lowered.used_symbols for f in functions)
     gravity = ((GRAVITY_SYMBOL.name, float(STANDARD_GRAVITY)),) if symbolic_gravity else ()
@@ -179,12 +189,15 @@ def module_header(request: ModuleRequest, chain: Chain, requests: Sequence[Jacob
         accelerations=tuple(s.name for s in model.coordinate_accelerations) if with_dynamics else (),
         coordinate_symbols=tuple(model.q),
         parameter_symbols=(*(p.symbol for p in parameters), *((GRAVITY_SYMBOL,) if symbolic_gravity else ())),
-        derived=tuple(derived), listing=listing(functions, derived, infos, n, coupled, end_words(model)),
+        derived=tuple(derived), listing=(*listing(functions, derived, infos, n, coupled, end_words(model)),
+                 *ik_listing(inverse_kinematics)),
         checks=(*self_checks(infos, checked), *identification_checks),
         request_lines=request_lines(infos),
         joint_entries=joint_entries(given, spec.identifiers), tip_frame=tip_frame(given),
         origin=source_words(given, catalog_files()),
         name_lists=name_lists,
+        inverse_kinematics=inverse_kinematics,
+        numeric_ik=numeric_ik_jacobian(request.target, infos, coupled) if request.numeric_ik or numeric else "",
     )
 
 
@@ -244,6 +257,9 @@ def generate(
     name: str | None = None,
     dynamics: bool = False,
     identification: bool = False,
+    inverse_kinematics: bool = False,
+    numeric_ik: bool = False,
+    free_joint: int | None = None,
 ) -> str:
     r"""The source text of a numeric module for ``robot``: FK, Jacobians, torques, manipulability, self-test.
 
@@ -300,6 +316,14 @@ def generate(
         ``REGRESSOR_PARAMETERS``: ten per link, ``XX1 XY1 XZ1 YY1 YZ1 ZZ1 MX1 MY1 MZ1 M1 XX2 ...``, about the link
         origin) and ``base_regressor(q, qdot, qddot)`` (n x b, tau = Y_b pi_b, ``BASE_PARAMETERS``); ``selftest``
         checks both against inverse dynamics with the robot's own parameters.
+    inverse_kinematics : bool
+        Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
+        ``IK_MAX_SOLUTIONS`` rows with their count. An arm without a closed form gets the numeric
+        ``inverse_kinematics_numeric`` (with a seed) in every target but jax and casadi (``NoClosedFormError``).
+        ``free_joint=k`` (0-based) asks for the closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
+    numeric_ik : bool
+        Also generate ``inverse_kinematics_numeric`` (not jax, casadi), Levenberg-Marquardt on the module's forward
+        kinematics and its first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``).
 
     Returns
     -------
@@ -328,7 +352,8 @@ def generate(
     """
     request = ModuleRequest(robot, target, frames, points, rows=rows, jacobians=jacobians, scalars=scalars,
                             strategy=strategy, command=command, acceleration=acceleration, name=name,
-                            dynamics=dynamics, identification=identification)
+                            dynamics=dynamics, identification=identification, inverse_kinematics=inverse_kinematics,
+                            numeric_ik=numeric_ik, free_joint=free_joint)
     return primary(render_files(describe(request)))
 
 

@@ -17,12 +17,13 @@ import os
 import re
 import shutil
 import types
-from collections.abc import Hashable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass, field
 from typing import Any, Literal, get_args
 
 import numpy as np
 
+from symjac.codegen.inverse_kinematics import IK_TOLERANCE, inverse_kinematics_of
 from symjac.codegen.module import generate
 from symjac.codegen.request import JacobianRequest
 from symjac.errors import ArgumentError, CodegenError
@@ -81,6 +82,7 @@ class NumericModel:
     note: str
     _batch: types.ModuleType = field(repr=False)
     _single: types.ModuleType | None = field(repr=False)
+    _ik_modules: Callable[[], _IKSolvers] | None = field(default=None, repr=False)
     _one: tuple[int] = field(init=False, repr=False)  # the shape of one configuration
     _fast: tuple[Any, Any] | None = field(init=False, repr=False)  # C's fk and jacobian, for the common call
 
@@ -120,6 +122,34 @@ class NumericModel:
                 and q.dtype is _FLOAT64 and math.isfinite(sum(q.tolist()))):
             return self._fast[1](q, None)  # type: ignore[no-any-return]
         return self._call("jacobian", q, out, (6, len(self.names)))
+
+    def ik(self, pose: Any, tolerance: float = IK_TOLERANCE) -> tuple[np.ndarray, np.ndarray]:
+        """Every closed-form solution for a pose (4, 4) or a batch (..., 4, 4), as the generated ``inverse_kinematics``.
+
+        Returns ``(solutions, count)``: solutions of shape (..., m, n), each pose's solutions first in branch order
+        and rows of NaN after, m the most a pose has; count of shape (...), 0 for an unreachable or NaN pose.
+        Revolute angles are in (-pi, pi] (or shifted by 2 pi into the limits). The first call derives the closed
+        form and generates its module (a :class:`~symjac.errors.NoClosedFormError` for an arm without one); one
+        pose goes through plain Python floats with the numpy backend, a batch through NumPy, vectorised over the
+        poses; a C model runs the c target's compiled closed form for both.
+        """
+        if self._ik_modules is None:
+            raise CodegenError(f"no inverse kinematics for {self.robot}: the model was built without its chain")
+        poses = pose if type(pose) is np.ndarray and pose.dtype == np.float64 else _as_array(pose)
+        if poses.ndim < 2 or poses.shape[-2:] != (4, 4):
+            raise ArgumentError(f"pose must have shape (4, 4) or (..., 4, 4), got shape {poses.shape}")
+        solvers = self.__dict__.get("_ik_solvers")
+        if solvers is None:
+            solvers = self._ik_modules()
+            object.__setattr__(self, "_ik_solvers", solvers)
+        batch, single = solvers
+        if single is not None and poses.ndim == 2:
+            rows, count = single.inverse_kinematics(poses.tolist(), tolerance)
+            solutions = np.full((int(batch.IK_MAX_SOLUTIONS), self.n), np.nan)
+            if count:
+                solutions[:count] = rows
+            return solutions, np.array(count)
+        return batch.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
 
     def _call(self, function: str, q: Any, out: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:
         values = q if type(q) is np.ndarray and q.dtype == np.float64 else _as_array(q)
@@ -208,7 +238,8 @@ def _model(chain: Chain, frame: Frame, point: Point | None, backend: BackendChoi
 
     def made(backend: Literal["c", "numpy"], note: str, batch: types.ModuleType,
              single: types.ModuleType | None) -> NumericModel:
-        return NumericModel(robot.name, tuple(batch.JOINT_NAMES), frame, shown, backend, note, batch, single)
+        return NumericModel(robot.name, tuple(batch.JOINT_NAMES), frame, shown, backend, note, batch, single,
+                            lambda: _ik_modules(chain, name, backend))
 
     note = ""
     if backend in ("auto", "c"):
@@ -224,6 +255,25 @@ def _model(chain: Chain, frame: Frame, point: Point | None, backend: BackendChoi
     batch = _load(generate(chain, "numpy", jacobians=[request], strategy="raw", name=name), name)
     single = _load(generate(chain, "python", jacobians=[request], strategy="raw", name=name), name)
     return made("numpy", note, batch, single)
+
+
+_IKSolvers = tuple[types.ModuleType, types.ModuleType | None]
+"""What a model's ``ik`` runs: the batched module (``"c"`` or ``"numpy"``) and, for NumPy, the python one."""
+
+
+@memoized()
+def _ik_modules(chain: Chain, name: str, backend: str) -> _IKSolvers:
+    """The modules with the closed form a model's ``ik`` calls.
+
+    A C model's is the c target's module (its compiled closed form, the C of the c99 target); a NumPy model has
+    NumPy for batches and plain Python floats for one pose.
+    """
+    made = f"{name}_ik"
+    inverse_kinematics_of(chain)  # NoClosedFormError for an arm without one (generate would give the numeric solver)
+    if backend == "c":
+        return _load(generate(chain, "c", strategy="raw", name=made, inverse_kinematics=True), made), None
+    return (_load(generate(chain, "numpy", strategy="raw", name=made, inverse_kinematics=True), made),
+            _load(generate(chain, "python", strategy="raw", name=made, inverse_kinematics=True), made))
 
 
 def _load(source: str, name: str) -> types.ModuleType:

@@ -215,7 +215,8 @@ def function_labels(robot: Robot, requests: Sequence[JacobianRequest]) -> list[s
 def python_call(
     robot: Robot, target: str, requests: Sequence[JacobianRequest], scalars: Mapping[str, sp.Expr], strategy: str,
     loader: str, acceleration: bool = False, name: str | None = None, dynamics: bool = False,
-    identification: bool = False,
+    identification: bool = False, inverse_kinematics: bool = False, numeric_ik: bool = False,
+    free_joint: int | None = None,
 ) -> str:
     """The Python call that generates the module, for its header: ``symjac.generate(...)`` from the request data.
 
@@ -242,6 +243,12 @@ def python_call(
         parts.append("identification=True")
     elif dynamics:
         parts.append("dynamics=True")
+    if inverse_kinematics:
+        parts.append("inverse_kinematics=True")
+    if numeric_ik:
+        parts.append("numeric_ik=True")
+    if free_joint is not None:
+        parts.append(f"free_joint={free_joint}")
     if name is not None:
         parts.append(f'name="{name}"')
     return f"symjac.generate({', '.join(parts)})"

@@ -13,6 +13,7 @@ orientation errors are reported with it.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Literal, get_args
 
@@ -88,7 +89,8 @@ class InverseKinematicsResult:
     unreachable : str
         Why there is no solution, with how far out the pose is when known; empty when there are solutions.
     distance : float
-        How far out (metres) when the closed form knows it; NaN when the numeric solver found nothing; 0 otherwise.
+        How far out (metres) when the closed form knows it; when the numeric solver found nothing, the position
+        error of the closest configuration it reached (an upper bound on how far out, not a proof); 0 otherwise.
     controlled : Controlled
         Which pose components the arm sets and which it cannot (:func:`.controlled_components`).
     uncontrolled : str
@@ -281,13 +283,21 @@ def _numeric(robot: Robot, model: NumericModel, target: np.ndarray, why: str, co
                      for value, lo, hi, bounded in zip(s.q, lower, upper, limited, strict=True))
         solutions.append(InverseKinematicsSolution(np.asarray(s.q, dtype=float), (), inside, "",
                                                    *_errors(model, s.q, target)))
-    unreachable = "" if solutions else (
-        f"none of the numeric solver's {restarts + (seed is not None)} or more starts converged: the pose is probably "
-        "out of reach (the numeric solver cannot say how far)")
+    unreachable, distance = "", 0.0
+    if not solutions:
+        closest = found.closest
+        distance = float("nan") if closest is None else closest.position_error
+        how_far = "" if closest is None else (
+            f"; the closest configuration reached is {closest.position_error:.3g} m and "
+            f"{math.degrees(closest.orientation_error):.3g} degrees away" + (
+                " (the orientation was not asked for)" if controlled.position_only else ""))
+        unreachable = (f"none of the numeric solver's {restarts + (seed is not None)} or more starts converged: no "
+                       f"solution found{how_far}; the pose is probably out of reach (a numeric search proves "
+                       "nothing)")
     uncontrolled = ""
     if solutions and controlled.position_only and solutions[0].orientation_error > 1e-6:
         uncontrolled = (f"the orientation reached differs from the target's by {solutions[0].orientation_error:.4g} "
                         "rad (the arm does not set it)")
     return InverseKinematicsResult(robot.name, target, "numeric", why, tuple(solutions), controlled,
-                                   unreachable=unreachable, distance=0.0 if solutions else float("nan"),
+                                   unreachable=unreachable, distance=distance,
                                    uncontrolled=uncontrolled)

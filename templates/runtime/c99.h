@@ -505,6 +505,357 @@ static inline int sj_check_identification(int n, int size, const int *rows, sj_m
     return failures;
 }
 
+/* ---- runtime section: ik_numeric ---- */
+
+/* splitmix64 (Steele, Lea and Flood 2014): the numeric solver's seeds, the same sequence on every platform. */
+static inline unsigned long long sj_splitmix64(unsigned long long *state)
+{
+    unsigned long long z = (*state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+/* The rotation vector (axis times angle) of the row-major rotation r, robust near 0 and pi. */
+static inline void sj_rotation_vector(const real *r, real *w)
+{
+    const real pi = (real)3.14159265358979323846;
+    real cosine = (r[0] + r[4] + r[8] - 1) / 2;
+    cosine = cosine > 1 ? 1 : (cosine < -1 ? -1 : cosine);
+    const real angle = acos(cosine);
+    w[0] = r[7] - r[5];
+    w[1] = r[2] - r[6];
+    w[2] = r[3] - r[1];
+    if (angle < (real)1e-6) {
+        for (int k = 0; k < 3; k++) {
+            w[k] /= 2;
+        }
+    } else if (pi - angle > (real)1e-4) {
+        const real scale = angle / (2 * sin(angle));
+        for (int k = 0; k < 3; k++) {
+            w[k] *= scale;
+        }
+    } else { /* near pi: the axis from the symmetric part (r + I) / 2, its largest diagonal entry's row */
+        int m = 0;
+        for (int k = 1; k < 3; k++) {
+            m = r[4 * k] > r[4 * m] ? k : m;
+        }
+        real axis[3];
+        real norm = 0;
+        real dot = 0;
+        for (int k = 0; k < 3; k++) {
+            axis[k] = (r[3 * m + k] + (k == m ? 1 : 0)) / 2;
+            norm += axis[k] * axis[k];
+            dot += axis[k] * w[k];
+        }
+        norm = (dot < 0 ? -angle : angle) / sqrt(norm);
+        for (int k = 0; k < 3; k++) {
+            w[k] = axis[k] * norm;
+        }
+    }
+}
+
+/* e = [p* - p; log(R* R^T)] of the pose T (row-major 4 x 4) against the target; returns e^T e. */
+static inline real sj_ik_error(const real *target, const real *T, real *e)
+{
+    real r[9];
+    for (int i = 0; i < 3; i++) {
+        e[i] = target[4 * i + 3] - T[4 * i + 3];
+        for (int j = 0; j < 3; j++) {
+            r[3 * i + j] = 0;
+            for (int k = 0; k < 3; k++) {
+                r[3 * i + j] += target[4 * i + k] * T[4 * j + k];
+            }
+        }
+    }
+    sj_rotation_vector(r, e + 3);
+    real cost = 0;
+    for (int i = 0; i < 6; i++) {
+        cost += e[i] * e[i];
+    }
+    return cost;
+}
+
+/* The angle x wrapped to (-pi, pi] (unchanged when it is in already). */
+static inline real sj_ik_wrap_angle(real x)
+{
+    const real pi = (real)3.14159265358979323846;
+    return (x > pi || x <= -pi) ? pi - fmod(fmod(pi - x, 2 * pi) + 2 * pi, 2 * pi) : x;
+}
+
+/* Joint kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped to (-pi, pi]). Clip q to [lower,
+ * upper] (no clipping when lower is NULL) and wrap the joints of kind 2. */
+static inline void sj_ik_project(int n, const real *lower, const real *upper, const int *kind, real *q)
+{
+    for (int k = 0; k < n; k++) {
+        if (kind[k] == 2) {
+            q[k] = sj_ik_wrap_angle(q[k]);
+        } else if (lower != NULL) {
+            q[k] = q[k] < lower[k] ? lower[k] : (q[k] > upper[k] ? upper[k] : q[k]);
+        }
+    }
+}
+
+/* Shift each angle by 2 pi k (the same pose) into its limits where a shift fits, else clip it: 1 when all fitted. */
+static inline int sj_ik_into_limits(int n, const real *lower, const real *upper, const int *kind, real *q)
+{
+    const real pi = (real)3.14159265358979323846;
+    int inside = 1;
+    for (int k = 0; k < n; k++) {
+        const real value = kind[k] ? sj_ik_wrap_angle(q[k]) : q[k];
+        int fits = 0;
+        for (int shift = 0; shift < (kind[k] ? 5 : 1) && !fits; shift++) {
+            const real x = value + (real)((shift + 1) / 2 * (shift % 2 ? 1 : -1)) * 2 * pi;
+            if (lower[k] <= x && x <= upper[k]) {
+                q[k] = x;
+                fits = 1;
+            }
+        }
+        if (!fits) {
+            q[k] = value < lower[k] ? lower[k] : (value > upper[k] ? upper[k] : value);
+            inside = 0;
+        }
+    }
+    return inside;
+}
+
+/* Solve a x = b in place (a n x n symmetric positive definite, row-major; its strict lower triangle becomes the unit
+ * lower L of a = L D L^T) by LDL^T: b becomes x. No square root and one division per row (a Cholesky factor's
+ * square roots and divisions lie on the dependency chain). */
+static inline void sj_ik_cholesky(real *a, real *b, int n)
+{
+    real inverse[SJ_DIM]; /* 1 / D */
+    real t[SJ_DIM];       /* row i of L D */
+    for (int i = 0; i < n; i++) {
+        real d = a[i * n + i];
+        for (int j = 0; j < i; j++) {
+            real s = a[i * n + j];
+            for (int k = 0; k < j; k++) {
+                s -= t[k] * a[j * n + k];
+            }
+            t[j] = s;
+        }
+        for (int j = 0; j < i; j++) {
+            const real l = t[j] * inverse[j];
+            d -= t[j] * l;
+            a[i * n + j] = l;
+        }
+        inverse[i] = 1 / d;
+    }
+    for (int i = 0; i < n; i++) {
+        for (int k = 0; k < i; k++) {
+            b[i] -= a[i * n + k] * b[k];
+        }
+    }
+    for (int i = n - 1; i >= 0; i--) {
+        b[i] *= inverse[i];
+        for (int k = i + 1; k < n; k++) {
+            b[i] -= a[k * n + i] * b[k];
+        }
+    }
+}
+
+/* J^T r, J 6 x n row-major. */
+static inline void sj_ik_transpose_times(int n, const real *J, const real *r, real *out)
+{
+    for (int i = 0; i < n; i++) {
+        out[i] = 0;
+        for (int k = 0; k < 6; k++) {
+            out[i] += J[k * n + i] * r[k];
+        }
+    }
+}
+
+/* x = (J^T J + lambda I)^-1 b over the joints not held (x = 0 for those: their rows and columns are the
+ * identity's), from the normal matrix J^T J (n x n, row-major). */
+static inline void sj_ik_solve(int n, const real *normal, const real *b, real lambda, const int *held, real *x)
+{
+    real a[SJ_DIM * SJ_DIM];
+    for (int i = 0; i < n; i++) {
+        x[i] = held[i] ? 0 : b[i];
+        for (int j = 0; j < n; j++) {
+            a[i * n + j] = (held[i] || held[j]) ? (i == j ? 1 : 0) : normal[i * n + j] + (i == j ? lambda : 0);
+        }
+    }
+    sj_ik_cholesky(a, x, n);
+}
+
+/* One damped least-squares step (J^T J + lambda I) dq = J^T e (the gradient), the joints at a limit that it would
+ * push past held still (held[i] = 1) and the step solved again (no limits when lower is NULL). */
+static inline void sj_ik_step(int n, const real *normal, const real *gradient, real lambda, const real *q,
+                              const real *lower, const real *upper, real *step, int *held)
+{
+    for (int i = 0; i < n; i++) {
+        held[i] = 0;
+    }
+    for (int round = 0; round < n; round++) {
+        sj_ik_solve(n, normal, gradient, lambda, held, step);
+        int more = 0;
+        for (int i = 0; i < n; i++) {
+            if (lower != NULL && !held[i]
+                && ((q[i] <= lower[i] && step[i] < 0) || (q[i] >= upper[i] && step[i] > 0))) {
+                held[i] = more = 1;
+            }
+        }
+        if (!more) {
+            return;
+        }
+    }
+}
+
+/* Transtrum and Sethna's geodesic acceleration of the step v, once E < 1e-6: f_vv = (2 / h) ((f(q + h v) - f(q)) / h
+ * - J v) with h = 0.1 (from the error e = f* - f), (J^T J + lambda I) a = -J^T f_vv, and v += a / 2 when
+ * 2 |a| <= 0.75 |v|: it follows the curved valleys of the cost near a singular solution. */
+static inline void sj_ik_accelerate(int n, sj_map forward_kinematics, const real *params, const real *target,
+                                    const real *J, const real *normal, const real *e, real lambda, const int *held,
+                                    const real *x, real *step)
+{
+    real probe[SJ_DIM], acceleration[SJ_DIM], b[SJ_DIM], T[16], e_probe[6], curvature[6];
+    for (int k = 0; k < n; k++) {
+        probe[k] = x[k] + (real)0.1 * step[k];
+    }
+    forward_kinematics(probe, params, T);
+    sj_ik_error(target, T, e_probe);
+    for (int r = 0; r < 6; r++) {
+        real moved = 0;
+        for (int k = 0; k < n; k++) {
+            moved += J[r * n + k] * step[k];
+        }
+        curvature[r] = 20 * ((e_probe[r] - e[r]) / (real)0.1 + moved); /* -f_vv */
+    }
+    sj_ik_transpose_times(n, J, curvature, b);
+    sj_ik_solve(n, normal, b, lambda, held, acceleration);
+    real a2 = 0;
+    real v2 = 0;
+    for (int k = 0; k < n; k++) {
+        a2 += acceleration[k] * acceleration[k];
+        v2 += step[k] * step[k];
+    }
+    if (4 * a2 <= (real)0.5625 * v2) {
+        for (int k = 0; k < n; k++) {
+            step[k] += acceleration[k] / 2;
+        }
+    }
+}
+
+/* Both error norms within the tolerance: 1e-10 (1e-4 in single precision). */
+static inline int sj_ik_converged(const real *e)
+{
+    const real tolerance = sizeof(real) < sizeof(double) ? (real)1e-4 : (real)1e-10;
+    return e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= tolerance * tolerance
+           && e[3] * e[3] + e[4] * e[4] + e[5] * e[5] <= tolerance * tolerance;
+}
+
+/* One start of Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
+ * log(R* R(q)^T)], and geodesic acceleration once E < 1e-6: mu halves after an accepted step and grows 4 times
+ * after a rejected one; the start ends after 100 steps or 4 steps without the cost falling by 10 % (while
+ * E > 1e-10). Limits when lower is not NULL. x is overwritten by the configuration reached and e by its error;
+ * *steps counts the steps; returns the cost E. */
+static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
+                                 const real *lower, const real *upper, const int *kind, const real *target, real *x,
+                                 real *e, int *steps)
+{
+    real trial[SJ_DIM], step[SJ_DIM], T[16], e_trial[6], J[6 * SJ_DIM], normal[SJ_DIM * SJ_DIM], gradient[SJ_DIM];
+    int held[SJ_DIM];
+    int moved = 1; /* J, J^T J and J^T e are those of x unless it moved */
+    sj_ik_project(n, lower, upper, kind, x);
+    forward_kinematics(x, params, T);
+    real cost = sj_ik_error(target, T, e);
+    real reference = cost;
+    real mu = 1;
+    int stalled = 0;
+    for (int it = 0; it < 100 && !sj_ik_converged(e); it++) {
+        ++*steps;
+        if (moved) {
+            jacobian(x, params, J);
+            for (int i = 0; i < n; i++) {
+                for (int j = 0; j <= i; j++) {
+                    real dot = 0;
+                    for (int k = 0; k < 6; k++) {
+                        dot += J[k * n + i] * J[k * n + j];
+                    }
+                    normal[i * n + j] = normal[j * n + i] = dot;
+                }
+            }
+            sj_ik_transpose_times(n, J, e, gradient);
+        }
+        const real lambda = mu * (cost / 2 + (real)1e-3);
+        sj_ik_step(n, normal, gradient, lambda, x, lower, upper, step, held);
+        if (cost < (real)1e-6) {
+            sj_ik_accelerate(n, forward_kinematics, params, target, J, normal, e, lambda, held, x, step);
+        }
+        for (int k = 0; k < n; k++) {
+            trial[k] = x[k] + step[k];
+        }
+        sj_ik_project(n, lower, upper, kind, trial);
+        forward_kinematics(trial, params, T);
+        const real c = sj_ik_error(target, T, e_trial);
+        moved = c < cost;
+        if (moved) {
+            memcpy(x, trial, sizeof(real) * (size_t)n);
+            memcpy(e, e_trial, sizeof e_trial);
+            cost = c;
+            mu = mu / 2 > (real)1e-6 ? mu / 2 : (real)1e-6;
+        } else {
+            mu *= 4;
+        }
+        if (cost < (real)0.9 * reference || cost < (real)1e-10) {
+            reference = cost;
+            stalled = 0;
+        } else if (++stalled >= 4) {
+            break;
+        }
+    }
+    return cost;
+}
+
+/* Numeric inverse kinematics, as symjac's solve_numeric: each start descends without limits first; a solution it
+ * reaches is shifted by 2 pi into the limits, and when a joint does not fit, a redundant arm (n > 6) goes on from the
+ * clipped configuration with the limits respected (a joint at a limit that a step would push past is held still;
+ * an arm with n <= 6 has isolated solutions: it restarts). Starts from `start` (when not NULL), then from seeds
+ * drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64 starts. Writes q (the best found on failure)
+ * and the steps taken in all (when iterations is not NULL); returns 1 when it converged, else 0. */
+static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
+                                const real *lower, const real *upper, const int *kind, const real *low,
+                                const real *high, const real *target, const real *start, unsigned long long seed,
+                                real *q, int *iterations)
+{
+    unsigned long long state = seed;
+    real best[SJ_DIM];
+    real best_cost = (real)HUGE_VAL;
+    int steps = 0;
+    int found = 0;
+    for (int attempt = 0; attempt < 64 && !found; attempt++) {
+        real x[SJ_DIM], e[6];
+        for (int k = 0; k < n; k++) {
+            const real u = (real)((double)(sj_splitmix64(&state) >> 11) * (1.0 / 9007199254740992.0));
+            x[k] = (attempt == 0 && start != NULL) ? start[k] : low[k] + u * (high[k] - low[k]);
+        }
+        real cost = sj_ik_descend(n, forward_kinematics, jacobian, params, NULL, NULL, kind, target, x, e, &steps);
+        found = sj_ik_converged(e);
+        const int inside = found ? sj_ik_into_limits(n, lower, upper, kind, x) : 0;
+        if (found && !inside && n <= 6) { /* isolated solutions (no self-motion to clip along): restart */
+            found = 0;
+            cost = (real)HUGE_VAL;
+        } else if (found && !inside) {
+            cost = sj_ik_descend(n, forward_kinematics, jacobian, params, lower, upper, kind, target, x, e, &steps);
+            found = sj_ik_converged(e);
+        } else if (!found) {
+            sj_ik_into_limits(n, lower, upper, kind, x);
+            cost = (real)HUGE_VAL;
+        }
+        if (found || cost < best_cost || attempt == 0) {
+            best_cost = cost;
+            memcpy(best, x, sizeof(real) * (size_t)n);
+        }
+    }
+    memcpy(q, best, sizeof(real) * (size_t)n);
+    if (iterations != NULL) {
+        *iterations = steps;
+    }
+    return found;
+}
+
 /* ---- runtime section: core ---- */
 
 /* q[i] = the position of joint_names[i] in names and positions (count entries; other names are ignored, the first

@@ -121,6 +121,259 @@ Eigen::Matrix<Scalar, N, 1> forward_dynamics(const Eigen::Matrix<Scalar, N, N>& 
 
 // ---- runtime section: acceleration ----
 
+// ---- runtime section: ik_numeric ----
+
+// splitmix64 (Steele, Lea and Flood 2014): the numeric solver's seeds, the same sequence on every platform.
+inline unsigned long long splitmix64(unsigned long long& state)
+{
+    unsigned long long z = (state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+// The rotation vector (axis times angle) of the rotation r, robust near 0 and pi.
+template <class Scalar>
+Eigen::Matrix<Scalar, 3, 1> rotation_vector(const Eigen::Matrix<Scalar, 3, 3>& r)
+{
+    using std::acos;
+    using std::sin;
+    const Scalar pi = Scalar(3.14159265358979323846);
+    const Scalar cosine = std::min(Scalar(1), std::max(Scalar(-1), (r.trace() - Scalar(1)) / Scalar(2)));
+    const Scalar angle = acos(cosine);
+    Eigen::Matrix<Scalar, 3, 1> w(r(2, 1) - r(1, 2), r(0, 2) - r(2, 0), r(1, 0) - r(0, 1));
+    if (angle < Scalar(1e-6)) {
+        return w / Scalar(2);
+    }
+    if (pi - angle > Scalar(1e-4)) {
+        return w * (angle / (Scalar(2) * sin(angle)));
+    }
+    int m = 0;  // near pi: the axis from the symmetric part (r + I) / 2, its largest diagonal entry's row
+    for (int k = 1; k < 3; k++) {
+        m = r(k, k) > r(m, m) ? k : m;
+    }
+    Eigen::Matrix<Scalar, 3, 1> axis = (r.row(m).transpose() + Eigen::Matrix<Scalar, 3, 1>::Unit(m)) / Scalar(2);
+    axis.normalize();
+    return (axis.dot(w) < Scalar(0) ? -angle : angle) * axis;
+}
+
+// Solve a x = b (a symmetric positive definite) by LDL^T without pivoting, as the c99 runtime's sj_ik_cholesky: no
+// square root and one division per row (faster than a Cholesky factor at these sizes); b becomes x.
+template <class Scalar, int N>
+void ldl_solve(Eigen::Matrix<Scalar, N, N>& a, Eigen::Matrix<Scalar, N, 1>& b)
+{
+    Scalar inverse[N];  // 1 / D
+    Scalar t[N];        // row i of L D
+    for (int i = 0; i < N; i++) {
+        Scalar d = a(i, i);
+        for (int j = 0; j < i; j++) {
+            Scalar s = a(i, j);
+            for (int k = 0; k < j; k++) {
+                s -= t[k] * a(j, k);
+            }
+            t[j] = s;
+        }
+        for (int j = 0; j < i; j++) {
+            const Scalar l = t[j] * inverse[j];
+            d -= t[j] * l;
+            a(i, j) = l;
+        }
+        inverse[i] = Scalar(1) / d;
+    }
+    for (int i = 0; i < N; i++) {
+        for (int k = 0; k < i; k++) {
+            b[i] -= a(i, k) * b[k];
+        }
+    }
+    for (int i = N - 1; i >= 0; i--) {
+        b[i] *= inverse[i];
+        for (int k = i + 1; k < N; k++) {
+            b[i] -= a(k, i) * b[k];
+        }
+    }
+}
+
+// A per-joint table of N entries (N an int, as Eigen's sizes are).
+template <class T, int N>
+using Table = std::array<T, static_cast<std::size_t>(N)>;
+
+// Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds, steps and budget): each start
+// descends by Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
+// log(R* R(q)^T)] (with geodesic acceleration once E < 1e-6), without limits first (100 steps, or 4 without the
+// cost falling 10 % while E > 1e-10); a solution is shifted by 2 pi into the limits, and when a joint does not
+// fit, a redundant arm (N > 6) goes on from the clipped configuration with the limits respected (N <= 6: isolated
+// solutions, it restarts) (a joint at a limit that a
+// step would push past is held still). Kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped
+// to (-pi, pi]). At most 64 starts; converged when both error norms are at most 1e-10 (1e-4 in single precision).
+// Writes q (the best found on failure) and the steps taken; returns 1 when it converged, else 0.
+template <class Scalar, int N, class PoseOf, class VelocityOf>
+int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table<double, N>& lower,
+               const Table<double, N>& upper, const Table<int, N>& kind, const Table<double, N>& low,
+               const Table<double, N>& high, const Eigen::Matrix<Scalar, 4, 4>& target,
+               const Eigen::Matrix<Scalar, N, 1>* start, unsigned long long seed, Eigen::Matrix<Scalar, N, 1>& q,
+               int* iterations)
+{
+    using std::fmod;
+    using Vector = Eigen::Matrix<Scalar, N, 1>;
+    using Error = Eigen::Matrix<Scalar, 6, 1>;
+    const Scalar pi = Scalar(3.14159265358979323846);
+    const Scalar tolerance = sizeof(Scalar) < sizeof(double) ? Scalar(1e-4) : Scalar(1e-10);
+    auto wrapped = [&](Scalar x) {  // to (-pi, pi], unchanged when it is in already
+        return (x > pi || x <= -pi) ? pi - fmod(fmod(pi - x, Scalar(2) * pi) + Scalar(2) * pi, Scalar(2) * pi) : x;
+    };
+    auto converged = [&](const Error& e) {
+        return e.template head<3>().squaredNorm() <= tolerance * tolerance
+               && e.template tail<3>().squaredNorm() <= tolerance * tolerance;
+    };
+    auto project = [&](Vector& x, bool limited) {
+        for (int k = 0; k < N; k++) {
+            if (kind[k] == 2) {
+                x[k] = wrapped(x[k]);
+            } else if (limited) {
+                x[k] = std::min(Scalar(upper[k]), std::max(Scalar(lower[k]), x[k]));
+            }
+        }
+    };
+    auto into_limits = [&](Vector& x) {
+        bool inside = true;
+        for (int k = 0; k < N; k++) {
+            const Scalar value = kind[k] ? wrapped(x[k]) : x[k];
+            bool fits = false;
+            for (int shift = 0; shift < (kind[k] ? 5 : 1) && !fits; shift++) {
+                const Scalar y = value + Scalar((shift + 1) / 2 * (shift % 2 ? 1 : -1)) * Scalar(2) * pi;
+                if (Scalar(lower[k]) <= y && y <= Scalar(upper[k])) {
+                    x[k] = y;
+                    fits = true;
+                }
+            }
+            if (!fits) {
+                x[k] = std::min(Scalar(upper[k]), std::max(Scalar(lower[k]), value));
+                inside = false;
+            }
+        }
+        return inside;
+    };
+    auto error = [&](const Vector& x, Error& e) {
+        const Eigen::Matrix<Scalar, 4, 4> T = pose_of(x);
+        e.template head<3>() = target.template block<3, 1>(0, 3) - T.template block<3, 1>(0, 3);
+        e.template tail<3>() = rotation_vector<Scalar>(
+            Eigen::Matrix<Scalar, 3, 3>(target.template block<3, 3>(0, 0) * T.template block<3, 3>(0, 0).transpose()));
+        return e.squaredNorm();
+    };
+    int steps = 0;
+    auto descend = [&](Vector& x, Error& e, bool limited) {
+        project(x, limited);
+        Scalar cost = error(x, e);
+        Scalar reference = cost;
+        Scalar mu = 1;
+        int stalled = 0;
+        Eigen::Matrix<Scalar, 6, N> J;
+        Eigen::Matrix<Scalar, N, N> normal;
+        bool moved = true;  // J and J^T J are those of x unless it moved
+        for (int it = 0; it < 100 && !converged(e); it++) {
+            steps++;
+            if (moved) {
+                J = velocity_of(x);
+                normal = J.transpose() * J;
+            }
+            const Scalar lambda = mu * (cost / Scalar(2) + Scalar(1e-3));
+            Table<bool, N> held{};
+            auto solve = [&](const Error& r) {  // (J^T J + lambda I)^-1 J^T r over the joints not held
+                Eigen::Matrix<Scalar, N, N> a = normal;
+                Vector b = J.transpose() * r;
+                for (int k = 0; k < N; k++) {
+                    a(k, k) += lambda;
+                    if (held[k]) {
+                        a.row(k).setZero();
+                        a.col(k).setZero();
+                        a(k, k) = Scalar(1);
+                        b[k] = Scalar(0);
+                    }
+                }
+                ldl_solve<Scalar, N>(a, b);
+                return b;
+            };
+            Vector step;
+            for (int round = 0; round < N; round++) {
+                step = solve(e);
+                bool more = false;
+                for (int k = 0; k < N && limited; k++) {
+                    const bool outward = (x[k] <= Scalar(lower[k]) && step[k] < 0)
+                                         || (x[k] >= Scalar(upper[k]) && step[k] > 0);
+                    if (!held[k] && outward) {
+                        held[k] = more = true;
+                    }
+                }
+                if (!more) {
+                    break;
+                }
+            }
+            if (cost < Scalar(1e-6)) {  // geodesic acceleration: -f_vv from the error at q + 0.1 v
+                Error e_probe;
+                error(Vector(x + Scalar(0.1) * step), e_probe);
+                const Vector acceleration = solve(Error(Scalar(20) * ((e_probe - e) / Scalar(0.1) + J * step)));
+                if (Scalar(2) * acceleration.norm() <= Scalar(0.75) * step.norm()) {
+                    step += acceleration / Scalar(2);
+                }
+            }
+            Vector trial = x + step;
+            project(trial, limited);
+            Error e_trial;
+            const Scalar c = error(trial, e_trial);
+            moved = c < cost;
+            if (moved) {
+                x = trial;
+                e = e_trial;
+                cost = c;
+                mu = std::max(mu / Scalar(2), Scalar(1e-6));
+            } else {
+                mu *= Scalar(4);
+            }
+            if (cost < Scalar(0.9) * reference || cost < Scalar(1e-10)) {
+                reference = cost;
+                stalled = 0;
+            } else if (++stalled >= 4) {
+                break;
+            }
+        }
+        return cost;
+    };
+    unsigned long long state = seed;
+    Vector best = Vector::Zero();
+    Scalar best_cost = std::numeric_limits<Scalar>::infinity();
+    int found = 0;
+    for (int attempt = 0; attempt < 64 && !found; attempt++) {
+        Vector x;
+        for (int k = 0; k < N; k++) {
+            const double u = double(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
+            x[k] = (attempt == 0 && start != nullptr) ? (*start)[k] : Scalar(low[k] + u * (high[k] - low[k]));
+        }
+        Error e;
+        Scalar cost = descend(x, e, false);
+        found = converged(e);
+        const bool inside = found && into_limits(x);
+        if (found && !inside && N <= 6) {  // isolated solutions (no self-motion) to clip towards: restart
+            found = 0;
+            cost = std::numeric_limits<Scalar>::infinity();
+        } else if (found && !inside) {
+            cost = descend(x, e, true);
+            found = converged(e);
+        } else if (!found) {
+            into_limits(x);
+            cost = std::numeric_limits<Scalar>::infinity();
+        }
+        if (found || cost < best_cost || attempt == 0) {
+            best_cost = cost;
+            best = x;
+        }
+    }
+    q = best;
+    if (iterations != nullptr) {
+        *iterations = steps;
+    }
+    return found;
+}
+
 // ---- runtime section: core ----
 
 // q[i] = the position of joint_names[i] in names and positions (other names are ignored, the first of a repeated

@@ -247,6 +247,162 @@ def _dynamics_error(
     return max(worst, error(inverse_dynamics(q[0], qdot[0], qddot[0]), tau[0]))
 
 
+# ---- runtime section: ik_numeric ----
+
+
+def _ik_splitmix64(state: int) -> tuple[int, int]:
+    """splitmix64 (Steele, Lea and Flood 2014): the next state and its output, as the c99 runtime draws seeds."""
+    state = (state + 0x9E3779B97F4A7C15) & 0xFFFFFFFFFFFFFFFF
+    z = state
+    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & 0xFFFFFFFFFFFFFFFF
+    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & 0xFFFFFFFFFFFFFFFF
+    return state, z ^ (z >> 31)
+
+
+def _ik_wrap(x: np.ndarray) -> np.ndarray:
+    """Angles wrapped to (-pi, pi] (unchanged where they are in already)."""
+    return np.where((x > np.pi) | (x <= -np.pi), np.pi - (np.pi - x) % (2 * np.pi), x)
+
+
+def _ik_error(target: np.ndarray, pose: np.ndarray) -> np.ndarray:
+    """The error [p* - p; log(R* R^T)], the rotation vector robust near 0 and pi (as the python runtime's)."""
+    r = target[:3, :3] @ pose[:3, :3].T
+    w = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
+    angle = float(np.arccos(min(1.0, max(-1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0))))
+    if angle < 1e-6:
+        w = w / 2.0
+    elif np.pi - angle > 1e-4:
+        w = w * (angle / (2.0 * np.sin(angle)))
+    else:  # near pi: the axis from the symmetric part (r + I) / 2, its largest diagonal entry's row
+        m = int(np.argmax(np.diag(r)))
+        axis = (r[m] + np.eye(3)[m]) / 2.0
+        w = axis * ((-angle if axis @ w < 0 else angle) / np.linalg.norm(axis))
+    return np.concatenate([target[:3, 3] - pose[:3, 3], w])
+
+
+def _ik_solve(normal: np.ndarray, b: np.ndarray, damping: float, held: np.ndarray) -> np.ndarray:
+    """(J^T J + damping I)^-1 b over the joints not held (0 for those)."""
+    free = ~held
+    out = np.zeros(len(b))
+    out[free] = np.linalg.solve(normal[np.ix_(free, free)] + damping * np.eye(int(free.sum())), b[free])
+    return out
+
+
+def _ik_descend(forward_kinematics: Callable[..., np.ndarray], jacobian: Callable[..., np.ndarray],
+                target: np.ndarray, x: np.ndarray, limits: tuple[np.ndarray, np.ndarray] | None, wraps: np.ndarray,
+                parameters: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray, float, int]:
+    """One start, as the python runtime's _ik_descend: the configuration, its error and cost, the steps taken."""
+
+    def project(y: np.ndarray) -> np.ndarray:
+        y = np.where(wraps, _ik_wrap(y), y)
+        return y if limits is None else np.where(wraps, y, np.clip(y, limits[0], limits[1]))
+
+    def error(y: np.ndarray) -> np.ndarray:
+        return _ik_error(target, np.asarray(forward_kinematics(y, **parameters), dtype=float))
+
+    x = project(x)
+    e = error(x)
+    cost = reference = float(e @ e)
+    mu, stalled, steps, moved = 1.0, 0, 0, True
+    J = normal = np.zeros((0, 0))
+    for _ in range(100):
+        if e[:3] @ e[:3] <= 1e-20 and e[3:] @ e[3:] <= 1e-20:
+            break
+        steps += 1
+        if moved:
+            J = np.asarray(jacobian(x, **parameters), dtype=float)
+            normal = J.T @ J
+        gradient = J.T @ e
+        damping = mu * (cost / 2.0 + 1e-3)
+        held = np.zeros(len(x), dtype=bool)
+        step = _ik_solve(normal, gradient, damping, held)
+        while limits is not None:
+            outward = ~held & (((x <= limits[0]) & (step < 0)) | ((x >= limits[1]) & (step > 0)))
+            if not outward.any():
+                break
+            held |= outward
+            step = _ik_solve(normal, gradient, damping, held)
+        if cost < 1e-6:  # geodesic acceleration: -f_vv from the error at x + 0.1 step
+            curvature = 20.0 * ((error(x + 0.1 * step) - e) / 0.1 + J @ step)
+            acceleration = _ik_solve(normal, J.T @ curvature, damping, held)
+            if 4.0 * (acceleration @ acceleration) <= 0.5625 * (step @ step):
+                step = step + acceleration / 2.0
+        trial = project(x + step)
+        e_trial = error(trial)
+        c = float(e_trial @ e_trial)
+        moved = c < cost
+        if moved:
+            x, e, cost, mu = trial, e_trial, c, max(mu / 2.0, 1e-6)
+        else:
+            mu *= 4.0
+        if cost < 0.9 * reference or cost < 1e-10:
+            reference, stalled = cost, 0
+        else:
+            stalled += 1
+            if stalled >= 4:
+                break
+    return x, e, cost, steps
+
+
+def _ik_into_limits(x: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                    kind: Sequence[int]) -> tuple[np.ndarray, bool]:
+    """Each angle shifted by 2 pi k into its limits where a shift fits (the same pose), else clipped; all fit."""
+    out, inside = [], True
+    for k, v in enumerate(x):
+        value = float(_ik_wrap(v)) if kind[k] else float(v)
+        shifts = (0.0, 2 * np.pi, -2 * np.pi, 4 * np.pi, -4 * np.pi) if kind[k] else (0.0,)
+        fits = [value + s for s in shifts if lower[k] <= value + s <= upper[k]]
+        inside = inside and bool(fits)
+        out.append(fits[0] if fits else min(max(value, lower[k]), upper[k]))
+    return np.array(out), inside
+
+
+def _ik_numeric(forward_kinematics: Callable[..., np.ndarray], jacobian: Callable[..., np.ndarray], pose: ArrayLike,
+                seed: int, start: ArrayLike | None, lower: Sequence[float], upper: Sequence[float],
+                kind: Sequence[int], low: Sequence[float], high: Sequence[float],
+                parameters: Mapping[str, float]) -> tuple[np.ndarray, bool, int]:
+    """Numeric inverse kinematics of one pose, as the python runtime's _ik_numeric: (q, found, steps).
+
+    The same seeds (splitmix64 from ``seed``, uniform in [low, high]) and the same Levenberg-Marquardt steps, on
+    the module's own forward kinematics and Jacobian: each start descends without limits first; a solution is
+    shifted by 2 pi into the limits, and when a joint does not fit, the descent goes on from the clipped
+    configuration with the limits respected. At most 64 starts: ``start`` (when given), then the seeds.
+    """
+    target = np.asarray(pose, dtype=float)
+    if target.shape != (4, 4):
+        raise ValueError(f"pose must have shape (4, 4), got {target.shape}")
+    n = len(kind)
+    first = None if start is None else np.asarray(start, dtype=float).reshape(n)
+    bounds = (np.asarray(lower, dtype=float), np.asarray(upper, dtype=float))
+    wraps = np.asarray(kind) == 2
+    state, steps, best, best_cost = int(seed) & 0xFFFFFFFFFFFFFFFF, 0, None, float("inf")
+    for attempt in range(64):
+        x = np.empty(n)
+        for k in range(n):
+            state, bits = _ik_splitmix64(state)
+            x[k] = low[k] + (bits >> 11) * (1.0 / 9007199254740992.0) * (high[k] - low[k])
+        if attempt == 0 and first is not None:
+            x = first.copy()
+        x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, None, wraps, parameters)
+        steps += taken
+        found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20
+        if found:
+            x, inside = _ik_into_limits(x, *bounds, kind)
+            if not inside and len(kind) <= 6:  # isolated solutions (no self-motion to clip along): restart
+                found, cost = False, float("inf")
+            elif not inside:
+                x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, bounds, wraps, parameters)
+                steps += taken
+                found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20
+        else:
+            x, cost = _ik_into_limits(x, *bounds, kind)[0], float("inf")
+        if found or cost < best_cost or best is None:
+            best, best_cost = x, cost
+        if found:
+            return x, True, steps
+    return (np.zeros(n) if best is None else best), False, steps
+
+
 # ---- runtime section: sincos ----
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import random
 from collections.abc import Callable, Mapping, Sequence, Sized
-from math import pi, sqrt
+from math import acos, pi, sin, sqrt
 from typing import Any
 
 # ---- runtime: everything below is copied into every generated module of the target ----
@@ -111,6 +111,178 @@ def _acceleration_error(
         expected = sum((a - b) / (2.0 * step) * v for a, b, v in zip(above, below, qdot, strict=True))
         worst = max(worst, abs(value - expected) / (1.0 + abs(expected)))
     return worst
+
+
+# ---- runtime section: ik_numeric ----
+
+
+def _ik_splitmix64(state: int) -> tuple[int, int]:
+    """splitmix64 (Steele, Lea and Flood 2014): the next state and its output, as the c99 runtime draws seeds."""
+    state = (state + 0x9E3779B97F4A7C15) & 0xFFFFFFFFFFFFFFFF
+    z = state
+    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & 0xFFFFFFFFFFFFFFFF
+    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & 0xFFFFFFFFFFFFFFFF
+    return state, z ^ (z >> 31)
+
+
+def _ik_wrap(x: float) -> float:
+    """The angle x wrapped to (-pi, pi] (unchanged when it is in already)."""
+    return pi - (pi - x) % (2 * pi) if x > pi or x <= -pi else x
+
+
+def _ik_error(target: Sequence[Sequence[float]], pose: Sequence[Sequence[float]]) -> list[float]:
+    """The error [p* - p; log(R* R^T)], the rotation vector robust near 0 and pi."""
+    r = [[sum(target[i][k] * pose[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
+    w = [r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]]
+    angle = acos(min(1.0, max(-1.0, (r[0][0] + r[1][1] + r[2][2] - 1.0) / 2.0)))
+    if angle < 1e-6:
+        w = [x / 2.0 for x in w]
+    elif pi - angle > 1e-4:
+        w = [x * angle / (2.0 * sin(angle)) for x in w]
+    else:  # near pi: the axis from the symmetric part (r + I) / 2, its largest diagonal entry's row
+        m = max(range(3), key=lambda k: r[k][k])
+        axis = [(r[m][k] + (1.0 if k == m else 0.0)) / 2.0 for k in range(3)]
+        norm = sqrt(sum(x * x for x in axis))
+        scale = (-angle if sum(a * b for a, b in zip(axis, w, strict=True)) < 0 else angle) / norm
+        w = [x * scale for x in axis]
+    return [target[i][3] - pose[i][3] for i in range(3)] + w
+
+
+def _ik_solve(normal: Sequence[Sequence[float]], b: Sequence[float], damping: float,
+              held: Sequence[bool]) -> list[float]:
+    """(J^T J + damping I)^-1 b over the joints not held (0 for those), by Cholesky."""
+    free = [i for i in range(len(b)) if not held[i]]
+    a = [[normal[i][j] + (damping if i == j else 0.0) for j in free] for i in free]
+    x = [b[i] for i in free]
+    m = len(free)
+    for j in range(m):
+        d = sqrt(a[j][j] - sum(a[j][k] * a[j][k] for k in range(j)))
+        a[j][j] = d
+        for i in range(j + 1, m):
+            a[i][j] = (a[i][j] - sum(a[i][k] * a[j][k] for k in range(j))) / d
+    for i in range(m):
+        x[i] = (x[i] - sum(a[i][k] * x[k] for k in range(i))) / a[i][i]
+    for i in reversed(range(m)):
+        x[i] = (x[i] - sum(a[k][i] * x[k] for k in range(i + 1, m))) / a[i][i]
+    out = [0.0] * len(b)
+    for index, i in enumerate(free):
+        out[i] = x[index]
+    return out
+
+
+def _ik_descend(forward_kinematics: Callable[..., Any], jacobian: Callable[..., Any], target: Sequence[Sequence[float]],
+                x: list[float], limits: tuple[Sequence[float], Sequence[float]] | None, kind: Sequence[int],
+                parameters: Mapping[str, float]) -> tuple[list[float], list[float], float, int]:
+    """One start, as the c99 runtime's sj_ik_descend: the configuration, its error and cost, the steps taken."""
+
+    def project(y: list[float]) -> list[float]:
+        return [_ik_wrap(v) if kind[k] == 2 else v if limits is None else min(max(v, limits[0][k]), limits[1][k])
+                for k, v in enumerate(y)]
+
+    def converged(e: Sequence[float]) -> bool:
+        return sum(v * v for v in e[:3]) <= 1e-20 and sum(v * v for v in e[3:]) <= 1e-20
+
+    n = len(x)
+    x = project(x)
+    e = _ik_error(target, forward_kinematics(x, **parameters))
+    cost = reference = sum(v * v for v in e)
+    mu, stalled, steps, moved = 1.0, 0, 0, True
+    J: Sequence[Sequence[float]] = ()
+    normal: list[list[float]] = []
+    for _ in range(100):
+        if converged(e):
+            break
+        steps += 1
+        if moved:
+            J = jacobian(x, **parameters)
+            normal = [[sum(J[r][i] * J[r][j] for r in range(6)) for j in range(n)] for i in range(n)]
+        gradient = [sum(J[r][i] * e[r] for r in range(6)) for i in range(n)]
+        damping = mu * (cost / 2.0 + 1e-3)
+        held = [False] * n
+        step = _ik_solve(normal, gradient, damping, held)
+        while limits is not None:
+            outward = [not held[i] and ((x[i] <= limits[0][i] and step[i] < 0)
+                                        or (x[i] >= limits[1][i] and step[i] > 0)) for i in range(n)]
+            if not any(outward):
+                break
+            held = [h or o for h, o in zip(held, outward, strict=True)]
+            step = _ik_solve(normal, gradient, damping, held)
+        if cost < 1e-6:  # geodesic acceleration: -f_vv from the error at x + 0.1 step
+            probe = _ik_error(target, forward_kinematics([a + 0.1 * b for a, b in zip(x, step, strict=True)],
+                                                         **parameters))
+            curvature = [20.0 * ((probe[r] - e[r]) / 0.1 + sum(J[r][k] * step[k] for k in range(n))) for r in range(6)]
+            acceleration = _ik_solve(normal, [sum(J[r][i] * curvature[r] for r in range(6)) for i in range(n)],
+                                     damping, held)
+            if 4.0 * sum(a * a for a in acceleration) <= 0.5625 * sum(s * s for s in step):
+                step = [s + a / 2.0 for s, a in zip(step, acceleration, strict=True)]
+        trial = project([a + b for a, b in zip(x, step, strict=True)])
+        e_trial = _ik_error(target, forward_kinematics(trial, **parameters))
+        c = sum(v * v for v in e_trial)
+        moved = c < cost
+        if moved:
+            x, e, cost, mu = trial, e_trial, c, max(mu / 2.0, 1e-6)
+        else:
+            mu *= 4.0
+        if cost < 0.9 * reference or cost < 1e-10:
+            reference, stalled = cost, 0
+        else:
+            stalled += 1
+            if stalled >= 4:
+                break
+    return x, e, cost, steps
+
+
+def _ik_into_limits(x: list[float], lower: Sequence[float], upper: Sequence[float],
+                    kind: Sequence[int]) -> tuple[list[float], bool]:
+    """Each angle shifted by 2 pi k into its limits where a shift fits (the same pose), else clipped; all fit."""
+    out, inside = [], True
+    for k, v in enumerate(x):
+        value = _ik_wrap(v) if kind[k] else v
+        shifts = (0.0, 2 * pi, -2 * pi, 4 * pi, -4 * pi) if kind[k] else (0.0,)
+        fits = [value + s for s in shifts if lower[k] <= value + s <= upper[k]]
+        inside = inside and bool(fits)
+        out.append(fits[0] if fits else min(max(value, lower[k]), upper[k]))
+    return out, inside
+
+
+def _ik_numeric(forward_kinematics: Callable[..., Any], jacobian: Callable[..., Any],
+                pose: Sequence[Sequence[float]], seed: int, start: Sequence[float] | None, lower: Sequence[float],
+                upper: Sequence[float], kind: Sequence[int], low: Sequence[float], high: Sequence[float],
+                parameters: Mapping[str, float]) -> tuple[list[float], bool, int]:
+    """Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds and steps): (q, found, steps).
+
+    Each start descends by Levenberg-Marquardt without limits first; a solution is shifted by 2 pi into the limits,
+    and when a joint does not fit, the descent goes on from the clipped configuration with the limits respected (a
+    redundant arm, more than six joints; an arm with at most six has isolated solutions, so it restarts). At
+    most 64 starts: ``start`` (when given), then seeds drawn uniformly in [low, high] by splitmix64 from ``seed``.
+    """
+    target = [[float(v) for v in row] for row in pose]
+    state, steps, best, best_cost = int(seed) & 0xFFFFFFFFFFFFFFFF, 0, None, float("inf")
+    for attempt in range(64):
+        x = []
+        for k in range(len(kind)):
+            state, bits = _ik_splitmix64(state)
+            u = (bits >> 11) * (1.0 / 9007199254740992.0)
+            x.append(float(start[k]) if attempt == 0 and start is not None else low[k] + u * (high[k] - low[k]))
+        x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, None, kind, parameters)
+        steps += taken
+        found = max(sum(v * v for v in e[:3]), sum(v * v for v in e[3:])) <= 1e-20
+        if found:
+            x, inside = _ik_into_limits(x, lower, upper, kind)
+            if not inside and len(kind) <= 6:  # isolated solutions (no self-motion to clip along): restart
+                found, cost = False, float("inf")
+            elif not inside:
+                x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, (lower, upper), kind,
+                                                parameters)
+                steps += taken
+                found = max(sum(v * v for v in e[:3]), sum(v * v for v in e[3:])) <= 1e-20
+        else:
+            x, cost = _ik_into_limits(x, lower, upper, kind)[0], float("inf")
+        if found or cost < best_cost or best is None:
+            best, best_cost = x, cost
+        if found:
+            return x, True, steps
+    return list(best or []), False, steps
 
 
 # ---- runtime section: core ----

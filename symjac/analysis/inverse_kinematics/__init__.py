@@ -10,7 +10,14 @@ from symjac.analysis.inverse_kinematics.closed_form import (
     solve_plan,
 )
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, reduced_geometry
-from symjac.analysis.inverse_kinematics.numeric import KinematicModel, NumericSolution, seed_bounds, solve_numeric
+from symjac.analysis.inverse_kinematics.null_space import NULL_SPACE_TASKS, refine_in_null_space
+from symjac.analysis.inverse_kinematics.numeric import (
+    KinematicModel,
+    NumericSolution,
+    NumericSolutions,
+    seed_bounds,
+    solve_numeric,
+)
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
 from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
 from symjac.analysis.inverse_kinematics.planar import (
@@ -47,6 +54,7 @@ from symjac.analysis.inverse_kinematics.subproblems import (
 
 __all__ = [
     "FAMILIES",
+    "NULL_SPACE_TASKS",
     "POSE_SYMBOLS",
     "AngleSolutions",
     "ArmGeometry",
@@ -54,6 +62,7 @@ __all__ = [
     "ClosedFormResult",
     "KinematicModel",
     "NumericSolution",
+    "NumericSolutions",
     "Plan",
     "Solution",
     "Step",
@@ -71,6 +80,7 @@ __all__ = [
     "pose_matrix",
     "quaternion_from_pose",
     "reduced_geometry",
+    "refine_in_null_space",
     "rotation_to_distance",
     "rotation_to_distance_symbolic",
     "rotation_to_plane",

@@ -1,10 +1,11 @@
 r"""Closed-form inverse kinematics: the plan of an arm (:func:`closed_form_plan`) and its numeric executor.
 
-:func:`closed_form_plan` decides the arm's family exactly from its axes at home (:mod:`.geometry`) by trying the
-builders in :data:`FAMILIES` in order; :func:`solve_plan` runs a plan on a numeric pose: each step's arguments are
-evaluated (compiled once per plan with ``lambdify``), the numeric subproblem returns all its solutions, and every
-branch goes on to the next step. Where a subproblem leaves an angle free (a point on the axis: a singular pose) the
-angle is set to 0 and :attr:`Solution.singular` says which combination of joints is fixed instead. The symbolic
+:func:`closed_form_plan` decides the arm's family exactly from its axes at home
+(:mod:`~symjac.analysis.inverse_kinematics.geometry`) by trying the builders in :data:`FAMILIES` in order;
+:func:`solve_plan` runs a plan on a numeric pose: each step's arguments are evaluated (compiled once per plan with
+``lambdify``), the numeric subproblem returns all its solutions, and every branch goes on to the next step. Where a
+subproblem leaves an angle free (a point on the axis: a singular pose) the angle is set to 0 and
+:attr:`Solution.singular` says which combination of joints is fixed instead. The symbolic
 executor, :func:`branch_programs` (from :mod:`.programs`), writes the same steps as formulas.
 
 Angles are wrapped to ``(-pi, pi]``; when that value is outside the joint's limits but a ``2 pi`` shift is inside,

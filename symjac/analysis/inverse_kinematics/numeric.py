@@ -2,12 +2,37 @@ r"""Numeric inverse kinematics: Levenberg-Marquardt on a compiled forward kinema
 
 The solver works on any object with ``fk(q)`` (a 4 x 4 pose of the tool point in the base frame) and
 ``jacobian(q)`` (6 x n, linear velocity of that point then angular velocity, both in the base frame), such as
-:func:`symjac.codegen.numeric_model.numeric_model` of the robot with its default frame and point. The error is
-``[w_p (p* - p); w_o log(R* R^T)]`` (the rotation vector of the remaining rotation, in the base frame), the step
-is damped least squares ``(J^T J + lambda I) dq = J^T e`` with ``lambda`` divided by 3 after an accepted step and
-multiplied by 4 after a rejected one. Joints with limits are clipped to them, revolute joints without limits are
-wrapped to (-pi, pi]. Restarts from seeds drawn uniformly within limits (from ``rng``, so the result is
-deterministic) collect the distinct solutions.
+:func:`symjac.codegen.numeric_model.numeric_model` of the robot with its default frame and point.
+
+The error and its cost, with weights ``W = diag(w_p I, w_o I)``::
+
+    e(q) = W [p* - p(q); log(R* R(q)^T)]        (log: the rotation vector of the remaining rotation, base frame)
+    E(q) = e^T e
+
+A step solves the damped normal equations with an error-dependent damping (Sugihara's Levenberg-Marquardt: the
+damping shrinks with the error, so the last steps are Gauss-Newton steps and converge fast)::
+
+    (J_W^T J_W + lambda I) dq = J_W^T e,    J_W = W J,    lambda = mu (E / 2 + 1e-3)
+
+with ``mu`` halved after an accepted step (the cost fell) and multiplied by 4 after a rejected one. Once
+``E < 1e-6`` the step ``v`` gains Transtrum and Sethna's geodesic acceleration, which follows the curved valleys of
+the cost near a singular solution::
+
+    f_vv = (2 / h) ((f(q + h v) - f(q)) / h - J v),  h = 0.1;    (J_W^T J_W + lambda I) a = -J_W^T f_vv
+    dq = v + a / 2      (only when 2 |a| <= 0.75 |v|)
+
+Each start descends without limits first (revolute joints without limits wrapped to (-pi, pi]); a solution it
+reaches is shifted by 2 pi k into the limits (the same pose), and when a joint does not fit, the descent goes on from
+the configuration clipped into them with the limits respected: joints clipped to them after each step, and a joint
+that sits at a limit and whose step would push it past held still (the step solved again without it). That is for
+redundant arms (more joints than weighted error components) only: an arm without self-motion has isolated
+solutions, and one outside the limits has none inside them nearby, so the start is abandoned. A start that
+stalls (the
+cost has not fallen below 0.9 times its reference value for ``stall`` accepted or rejected steps while ``E > 1e-10``)
+is abandoned early, and the solver restarts from a seed drawn uniformly within the limits (from ``rng``, as
+TRAC-IK restarts, so the result is deterministic). The restarts also collect several distinct solutions; for
+redundant arms a null-space task (:mod:`symjac.analysis.inverse_kinematics.null_space`) may then move each solution
+away from the joint limits or towards more manipulability without changing the pose.
 """
 
 from __future__ import annotations
@@ -18,10 +43,11 @@ from typing import Any, Protocol
 import numpy as np
 import sympy
 
+from symjac.analysis.inverse_kinematics.null_space import NULL_SPACE_TASKS, refine_in_null_space
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
-__all__ = ["KinematicModel", "NumericSolution", "seed_bounds", "solve_numeric"]
+__all__ = ["KinematicModel", "NumericSolution", "NumericSolutions", "seed_bounds", "solve_numeric"]
 
 
 class KinematicModel(Protocol):
@@ -36,12 +62,24 @@ class KinematicModel(Protocol):
 
 @dataclass(frozen=True)
 class NumericSolution:
-    """One converged configuration with its final error norms and the iterations it took."""
+    """One converged configuration with its final error norms, the iterations it took and which start found it."""
 
     q: np.ndarray
     position_error: float
     orientation_error: float
     iterations: int
+    start: int = 0
+
+
+class NumericSolutions(list[NumericSolution]):
+    """The solutions :func:`solve_numeric` found (a list), and ``closest`` when none converged.
+
+    ``closest`` is the configuration closest to the pose that the search reached (within the limits when they are
+    respected), with its unweighted position (m) and orientation (rad) errors; None when there are solutions. A
+    search that found nothing proves nothing: the pose is probably, not certainly, out of reach.
+    """
+
+    closest: NumericSolution | None = None
 
 
 def _rotation_vector(r: np.ndarray) -> np.ndarray:
@@ -106,22 +144,32 @@ def seed_bounds(robot: Robot) -> tuple[np.ndarray, np.ndarray]:
             np.where(np.isfinite(upper), upper, np.where(wrap, np.pi, 1.0)))
 
 
+
+
 def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any = None, rng: int = 0,
                   restarts: int = 8, position_weight: float = 1.0, orientation_weight: float = 1.0,
-                  tolerance: float = 1e-10, max_iterations: int = 200,
-                  respect_limits: bool = True, until_found: int = 40) -> list[NumericSolution]:
+                  tolerance: float = 1e-10, max_iterations: int = 100, respect_limits: bool = True,
+                  until_found: int = 64, stall: int = 4, null_space: str | None = None) -> NumericSolutions:
     r"""Configurations of ``robot`` whose tool reaches ``pose`` (4 x 4), found by Levenberg-Marquardt.
 
     ``model`` gives ``fk`` and ``jacobian`` (base frame, at the tool point), for example
     ``numeric_model(robot)``. The first start is ``seed`` when given, then ``restarts`` seeds drawn within the
     limits (+-pi for free revolute joints, +-1 for free prismatic ones) from ``numpy.random.default_rng(rng)``.
     When none of these converges, further seeds are drawn until one does or ``until_found`` starts in all
-    have been tried. A start converges when both the weighted position and orientation error norms fall below
-    ``tolerance``; solutions closer than 1e-6 (rad or m) to an earlier one are dropped.
-    An unreachable pose gives an empty list.
+    have been tried: ``restarts=1`` is one call from one random seed that returns the first solution it finds.
+    A start converges when both the weighted (``w_p``, ``w_o``) position and orientation error norms fall below
+    ``tolerance``; it is abandoned after ``max_iterations`` steps or when it stalls (``stall`` steps without the
+    cost falling by 10 %). Solutions closer than 1e-6 (rad or m) to an earlier one are dropped. ``null_space``
+    ("limits" or "manipulability", arms with more than six joints) moves each solution along the self-motion to
+    that secondary task's optimum (:func:`~symjac.analysis.inverse_kinematics.null_space.refine_in_null_space`).
+    An unreachable pose gives an empty list whose ``closest`` (:class:`NumericSolutions`) is the configuration
+    with the smallest cost reached over all starts, polished by one more descent within the limits.
     """
     target = _pose(pose)
     n = len(robot.joints)
+    if null_space is not None and null_space not in NULL_SPACE_TASKS:
+        raise ArgumentError(f"solve_numeric: null_space must be one of {', '.join(NULL_SPACE_TASKS)} or None, "
+                            f"got {null_space!r}")
     lower, upper, wrap = _limits(robot)
     if not respect_limits:
         lower, upper = np.full(n, -np.inf), np.full(n, np.inf)
@@ -129,58 +177,136 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
     low = np.where(np.isfinite(lower), lower, np.where(wrap, -np.pi, -1.0))
     high = np.where(np.isfinite(upper), upper, np.where(wrap, np.pi, 1.0))
     starts = [] if seed is None else [np.asarray(seed, dtype=float).reshape(n)]
-    starts += [generator.uniform(low, high) for _ in range(restarts)]
-    primary = len(starts)
-    starts += [generator.uniform(low, high) for _ in range(max(0, until_found - primary))]
+    primary = len(starts) + restarts
     weights = np.array([position_weight] * 3 + [orientation_weight] * 3)
 
     def error(q: np.ndarray) -> np.ndarray:
         t = np.asarray(model.fk(q), dtype=float)
         return weights * np.concatenate([target[:3, 3] - t[:3, 3], _rotation_vector(target[:3, :3] @ t[:3, :3].T)])
 
-    def project(q: np.ndarray) -> np.ndarray:
-        q = np.clip(q, lower, upper)
-        return np.where(wrap, np.pi - np.mod(np.pi - q, 2 * np.pi), q)
+    def jacobian(q: np.ndarray) -> np.ndarray:
+        return weights[:, None] * np.asarray(model.jacobian(q), dtype=float)
 
-    found: list[NumericSolution] = []
-    for index, start in enumerate(starts):
+    def project(q: np.ndarray) -> np.ndarray:
+        return np.where(wrap, _wrapped(q), np.clip(q, lower, upper))
+
+    def converged(e: np.ndarray) -> bool:
+        return max(float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:]))) <= tolerance
+
+    revolute = np.array([bool(joint.is_revolute) for joint in robot.joints])
+    unbounded = np.full(n, np.inf)
+
+    def free(q: np.ndarray) -> np.ndarray:
+        return np.where(wrap, _wrapped(q), q)
+
+    redundant = n > 3 * ((position_weight != 0) + (orientation_weight != 0))
+    found = NumericSolutions()
+    nearest: tuple[float, np.ndarray, int, int] | None = None  # cost, clipped configuration, steps, start
+    for index in range(max(primary, until_found)):
         if found and index >= primary:
             break
-        q, e = project(start), error(project(start))
-        damping, cost = 1.0, float(e @ e)
-        iterations = 0
-        while iterations < max_iterations and max(np.linalg.norm(e[:3]), np.linalg.norm(e[3:])) > tolerance:
-            iterations += 1
-            j = weights[:, None] * np.asarray(model.jacobian(q), dtype=float)
-            step = _step(j, e, damping, q, lower, upper)
-            trial = project(q + step)
-            e_trial = error(trial)
-            c_trial = float(e_trial @ e_trial)
-            if c_trial < cost:
-                q, e, cost, damping = trial, e_trial, c_trial, max(damping / 3.0, 1e-12)
-            else:
-                damping *= 4.0
-                if damping > 1e8:
-                    break
-        converged = max(np.linalg.norm(e[:3]), np.linalg.norm(e[3:])) <= tolerance
-        if converged and all(np.max(np.abs(_difference(q, s.q, wrap))) > 1e-6 for s in found):
-            found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])), iterations))
+        start = starts[index] if index < len(starts) else generator.uniform(low, high)
+        q, e, iterations = _descend(free(start), error, jacobian, free, converged, -unbounded, unbounded,
+                                    max_iterations, stall)
+        if converged(e):
+            q, inside = _into_limits(q, lower, upper, revolute)
+            if not inside and not redundant:  # isolated solutions (no self-motion to clip along): restart
+                e = np.full(6, np.inf)
+            elif not inside:  # a solution outside the limits: go on from it clipped into them, the limits respected
+                q, e, more = _descend(project(q), error, jacobian, project, converged, lower, upper,
+                                      max_iterations, stall)
+                iterations += more
+        if not converged(e):
+            clipped = _into_limits(q, lower, upper, revolute)[0]
+            cost = float(np.sum(error(clipped) ** 2))
+            if nearest is None or cost < nearest[0]:
+                nearest = (cost, clipped, iterations, index)
+            continue
+        if null_space is not None and n > 6:
+            q = refine_in_null_space(q, null_space, error, jacobian, project, converged, lower, upper)
+            e = error(q)
+        if all(np.max(np.abs(_difference(q, s.q, wrap))) > 1e-6 for s in found):
+            found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])), iterations,
+                                         index))
+    if not found and nearest is not None:
+        q, e, more = _descend(nearest[1], error, jacobian, project, converged, lower, upper, max_iterations, stall)
+        if float(e @ e) > nearest[0]:
+            q = nearest[1]
+        t = np.asarray(model.fk(q), dtype=float)
+        found.closest = NumericSolution(
+            q, float(np.linalg.norm(target[:3, 3] - t[:3, 3])),
+            float(np.linalg.norm(_rotation_vector(target[:3, :3] @ t[:3, :3].T))), nearest[2] + more, nearest[3])
     return found
 
 
+def _descend(q: np.ndarray, error: Any, jacobian: Any, project: Any, converged: Any, lower: np.ndarray,
+             upper: np.ndarray, max_iterations: int, stall: int) -> tuple[np.ndarray, np.ndarray, int]:
+    """One start of Levenberg-Marquardt with Sugihara's damping: the configuration, its error and the steps taken."""
+    e = error(q)
+    cost = reference = float(e @ e)
+    mu, stalled = 1.0, 0
+    for iteration in range(max_iterations):
+        if converged(e):
+            return q, e, iteration
+        j, damping = jacobian(q), mu * (0.5 * cost + 1e-3)
+        step, free = _step(j, e, damping, q, lower, upper)
+        if cost < 1e-6:  # the end-game: geodesic acceleration, for the curved valleys near a singular solution
+            curvature = -20.0 * ((error(q + 0.1 * step) - e) / 0.1 + j @ step)  # f_vv, step h = 0.1
+            jf, acceleration = j[:, free], np.zeros(len(q))
+            acceleration[free] = np.linalg.solve(jf.T @ jf + damping * np.eye(int(free.sum())), -jf.T @ curvature)
+            if 2.0 * np.linalg.norm(acceleration) <= 0.75 * np.linalg.norm(step):
+                step = step + acceleration / 2.0
+        trial = project(q + step)
+        e_trial = error(trial)
+        c_trial = float(e_trial @ e_trial)
+        if c_trial < cost:
+            q, e, cost, mu = trial, e_trial, c_trial, max(mu / 2.0, 1e-6)
+        else:
+            mu *= 4.0
+        if cost < 0.9 * reference or cost < 1e-10:  # near a solution slow progress is no stall
+            reference, stalled = cost, 0
+        else:
+            stalled += 1
+            if stalled >= stall:
+                return q, e, iteration + 1
+    return q, e, max_iterations
+
+
+def _wrapped(q: Any) -> Any:
+    """Angles wrapped to (-pi, pi], those already in it unchanged (no rounding)."""
+    return np.where((q > np.pi) | (q <= -np.pi), np.pi - np.mod(np.pi - q, 2 * np.pi), q)
+
+
+def _into_limits(q: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                 revolute: np.ndarray) -> tuple[np.ndarray, bool]:
+    """``q`` with each angle wrapped and shifted by 2 pi k into its limits, and whether every joint fitted.
+
+    A shift changes no pose; an angle no shift fits is clipped to its limits.
+    """
+    out, inside = q.copy(), True
+    for i in range(len(q)):
+        value = float(_wrapped(q[i])) if revolute[i] else q[i]
+        shifts = (0.0, 2 * np.pi, -2 * np.pi, 4 * np.pi, -4 * np.pi) if revolute[i] else (0.0,)
+        fits = [value + shift for shift in shifts if lower[i] <= value + shift <= upper[i]]
+        inside &= bool(fits)
+        out[i] = fits[0] if fits else min(max(value, lower[i]), upper[i])
+    return out, inside
+
+
 def _step(j: np.ndarray, e: np.ndarray, damping: float, q: np.ndarray, lower: np.ndarray,
-          upper: np.ndarray) -> np.ndarray:
-    """The damped least-squares step, with the joints that sit at a limit and would be pushed past it held still."""
+          upper: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The damped least-squares step and which joints are free: those at a limit it would push past are held still."""
     free = np.ones(len(q), dtype=bool)
+    step = np.zeros(len(q))
     for _ in range(len(q)):
         step = np.zeros(len(q))
         jf = j[:, free]
         step[free] = np.linalg.solve(jf.T @ jf + damping * np.eye(int(free.sum())), jf.T @ e)
         blocked = free & (((q <= lower) & (step < 0)) | ((q >= upper) & (step > 0)))
         if not blocked.any():
-            return step
+            return step, free
         free &= ~blocked
-    return step
+    return step, free
 
 
 def _difference(a: np.ndarray, b: np.ndarray, wrap: np.ndarray) -> np.ndarray:

@@ -78,8 +78,9 @@ def spherical_wrist_plan(geometry: ArmGeometry) -> Plan | None:
     pose = pose_matrix()
     rotation, position = pose[:3, :3], pose[:3, 3]
     centre_in_tool = _s(home[:3, :3].T * (centre - home[:3, 3]))
+    definitions: tuple[tuple[sympy.Symbol, sympy.Expr], ...] = ()
     if centre_in_tool == sympy.zeros(3, 1):  # the tool point is the wrist centre (the PUMA's flange): w = p
-        w, definitions = sympy.Matrix(position), ()
+        w = sympy.Matrix(position)
     else:
         w = sympy.Matrix(WRIST_CENTRE)
         definitions = tuple(zip(WRIST_CENTRE, _s(rotation * centre_in_tool + position), strict=True))

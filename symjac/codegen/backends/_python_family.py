@@ -15,6 +15,9 @@ from types import MappingProxyType
 from typing import Any
 
 from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
+from symjac.codegen.ik_numeric import NumericIkTables, numeric_ik_tables
+from symjac.codegen.ik_numeric_numpy import numpy_numeric_ik
+from symjac.codegen.ik_printing import IKText, PrinterClass, python_inverse_kinematics
 from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
 from symjac.codegen.names import RESERVED
@@ -149,11 +152,17 @@ class PythonModule:
     imports: tuple[str, ...]
     extras: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     runtime: str = ""  # the runtime's text, copied into the module at its end
+    ik_text: str = ""  # the closed-form inverse kinematics (symjac.codegen.ik_printing), or nothing
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__"):
             raise AttributeError(name)
         return getattr(self.description, name)
+
+    @property
+    def numeric_ik(self) -> NumericIkTables | None:
+        """The numeric inverse kinematics' tables when the module has it (``ModuleRequest(numeric_ik=True)``)."""
+        return numeric_ik_tables(self.description, prefixed=False)
 
     @property
     def command_lines(self) -> tuple[str, ...]:
@@ -243,14 +252,32 @@ def _bound(value: float) -> str:
     return repr(value) if math.isfinite(value) else f'float("{value}")'
 
 
+def _inverse_kinematics(description: ModuleDescription, target: str, taken: frozenset[str],
+                        ik_printer: tuple[str, PrinterClass] | None) -> Any:
+    """The module's closed-form inverse kinematics printed for ``target``'s family, or empty text.
+
+    The c and lambdify targets carry the NumPy version (batched over poses, as their other functions); the c
+    target's calls its extension's compiled closed form first.
+    """
+    if ik_printer is None:
+        return IKText("")
+    family, printer = ik_printer
+    closed = python_inverse_kinematics(description, family, taken, printer, c_kernel=target == "c")
+    numeric = numpy_numeric_ik(description)  # the NumPy family's numeric solver, when the module has it
+    return IKText("\n\n\n".join(t for t in (closed.text.strip("\n"), numeric) if t), closed.uses, closed.header)
+
+
 def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports: Iterable[str] = (),
-                           sections: Iterable[str] = ()) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
+                           sections: Iterable[str] = (), ik_printer: tuple[str, PrinterClass] | None = None,
+                           ) -> Callable[[ModuleDescription, Backend], Mapping[str, str]]:
     """The ``render`` of a Python-family backend: print each function with ``emit``, fill ``backend.template``.
 
     ``extras`` builds module-level text from every function (templates read ``module.extras.<key>``); ``imports``
     are names the module imports whatever its expressions use (the python target's ``pi`` and ``sqrt``);
     ``sections`` are runtime sections the emitted functions call (the numpy emitter's ``sincos``), carried besides
-    those the description uses (:attr:`~symjac.codegen.description.ModuleDescription.runtime_sections`).
+    those the description uses (:attr:`~symjac.codegen.description.ModuleDescription.runtime_sections`);
+    ``ik_printer`` is the family (python, numpy, jax or casadi) and printer the closed-form inverse kinematics is
+    printed with, ``None`` for a target without it.
     """
     always = tuple(imports)
     own = frozenset(sections)
@@ -258,10 +285,13 @@ def python_module_renderer(emit: Emitter, extras: Extras | None = None, imports:
     def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str]:
         taken = frozenset(RESERVED) | set(description.parameter_names)
         functions = tuple(emit(description, f, taken) for f in description.functions)
+        ik = _inverse_kinematics(description, backend.name, taken, ik_printer)
         module = PythonModule(
             description=description, template=backend.template, title=backend.title,
             description_text=backend.description, nan_policy=backend.nan_policy, functions=functions,
-            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always))),
+            imports=tuple(sorted(set().union(*(f.uses for f in functions)) | set(always) | set(ik.uses)
+                                 | ({"acos", "sin"} if description.numeric_ik else set()))),
+            ik_text=ik.text,
             extras=MappingProxyType(dict(extras(description, taken))) if extras else
             MappingProxyType({}),
             runtime=runtime_source(backend.runtime, description.runtime_sections | own) if backend.runtime else "",

@@ -15,8 +15,11 @@ from collections.abc import Mapping
 
 from symjac.codegen.backends._c_family import C_DIALECT, CFunction, block_comment, c_function
 from symjac.codegen.backends._python_family import kernel_name, python_module_renderer
+from symjac.codegen.backends.c.printer import CPrinter
 from symjac.codegen.backends.numpy import numpy_function
+from symjac.codegen.backends.numpy.printer import NumPyPrinter
 from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, IdentifierRule, ModuleDescription
+from symjac.codegen.ik_printing import c_inverse_kinematics
 from symjac.errors import CodegenError
 from symjac.resources import render_template
 
@@ -56,6 +59,7 @@ def c_sources(description: ModuleDescription, taken: frozenset[str]) -> Mapping[
     dialect = dataclasses.replace(C_DIALECT, reserved=C_KEYWORDS | _MATH)
     functions = tuple(c_function(description, f, dialect) for f in description.functions if not f.selftest_only)
     data = {
+        "ik_kernel": c_inverse_kinematics(description, "c", C_KEYWORDS | _MATH, CPrinter).text,
         "module": description,
         "functions": functions,
         "kernel_names": {f.name: kernel_name(f.base) for f in functions},
@@ -87,7 +91,9 @@ BACKEND = Backend(
                 "the Python headers are present (``BACKEND`` is \"c\" or \"numpy\", ``BUILD_ERROR`` says why not).\n"
                 "The extension is cached in $SYMJAC_CACHE_DIR or ~/.cache/symjac.",
     nan_policy="Wrong shapes raise ValueError; NaN and infinite angles give NaN outputs (no warning from C).",
-    render=python_module_renderer(numpy_function, extras=c_sources, sections=("sincos",)),  # NumPy's angle lines
+    # NumPy's angle lines
+    render=python_module_renderer(numpy_function, extras=c_sources, sections=("sincos",),
+                                  ik_printer=("numpy", NumPyPrinter)),
     dependencies=("numpy",),
     exports=("BACKEND",),
     runtime="numpy.py",

@@ -25,7 +25,10 @@ from symjac.codegen.backends._c_family import (
     header_comments,
 )
 from symjac.codegen.backends.c import C_KEYWORDS
+from symjac.codegen.backends.c.printer import RealPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
+from symjac.codegen.ik_numeric import numeric_ik_tables
+from symjac.codegen.ik_printing import c_inverse_kinematics
 from symjac.codegen.printers import float_literal
 from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
@@ -69,7 +72,10 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
     """The header and the source file: ``{"<robot>.h": ..., "<robot>.c": ...}``."""
     dialect = dataclasses.replace(C_DIALECT, reserved=C99_KEYWORDS | LIBRARY_NAMES | GENERATED_NAMES)
     functions = tuple(c_function(description, f, dialect) for f in description.functions)
+    ik = c_inverse_kinematics(description, "c99", dialect.reserved, RealPrinter)
     data = {
+        "ik_header": ik.header,
+        "ik_source": ik.text,
         "module": description,
         "functions": functions,
         "prefix": description.robot,
@@ -84,6 +90,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "runtime": runtime_source(backend.runtime, description.runtime_sections).rstrip("\n"),
         "block_comment": block_comment,
         "joint_arrays": joint_arrays(description),
+        "numeric_ik": numeric_ik_tables(description),
         **header_comments(description),
     }
     header, source = (name.format(robot=description.robot) for name in backend.files)
@@ -98,7 +105,8 @@ BACKEND = Backend(
     emits="a C99 header and source file (<math.h> only, no allocation)",
     identifiers=IDENTIFIERS,
     files=("{robot}.h", "{robot}.c"),
-    templates=("c99/header.h.j2", "c99/source.c.j2", "c_common/functions.c.j2"),
+    templates=("c99/header.h.j2", "c99/source.c.j2", "c_common/functions.c.j2", "c99/ik_numeric.h.j2",
+               "c99/ik_numeric.c.j2"),
     title="Kinematics and Jacobians in standalone C99",
     description="Row-major outputs in the caller's buffers; params == NULL means the defaults.",
     nan_policy="NaN and infinite inputs give NaN outputs; nothing is checked at run time.",

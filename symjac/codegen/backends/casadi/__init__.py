@@ -92,7 +92,7 @@ BACKEND = Backend(
     description="Each function is a casadi.Function of (q, p) (the wrench or the rates after q), p the parameter\n"
                 "vector in the order of PARAMETER_NAMES, PARAMETER_DEFAULTS its defaults.",
     nan_policy="CasADi checks the shapes of what it is called with; NaN inputs give NaN outputs.",
-    render=python_module_renderer(casadi_function),
+    render=python_module_renderer(casadi_function, ik_printer=("casadi", CasadiPrinter)),
     dependencies=("casadi",),
     batched=False,
     language="Python/CasADi",

@@ -18,6 +18,8 @@ from symjac.codegen.backends._c_family import Dialect, c_function, header_commen
 from symjac.codegen.backends.c99 import C99_KEYWORDS, LIBRARY_NAMES
 from symjac.codegen.backends.cpp.printer import CppPrinter
 from symjac.codegen.description import Backend, IdentifierRule, ModuleDescription
+from symjac.codegen.ik_numeric import numeric_ik_tables
+from symjac.codegen.ik_printing import c_inverse_kinematics
 from symjac.codegen.printers import float_literal
 from symjac.codegen.runtime import runtime_source
 from symjac.codegen.source_layout import check_layout
@@ -86,6 +88,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
     """The header: ``{"<robot>.hpp": ...}``."""
     functions = tuple(c_function(description, f, DIALECT) for f in description.functions if not f.name.startswith("_"))
     data = {
+        "ik": c_inverse_kinematics(description, "cpp", DIALECT.reserved, CppPrinter).text,
         "module": description,
         "functions": functions,
         "namespace": description.robot,
@@ -93,6 +96,7 @@ def render(description: ModuleDescription, backend: Backend) -> Mapping[str, str
         "line_comment": line_comment,
         "cpp_type": cpp_type,
         "joint_arrays": joint_arrays(description),
+        "numeric_ik": numeric_ik_tables(description, prefixed=False),
         "runtime": runtime_source(backend.runtime, description.runtime_sections).rstrip("\n"),
         **header_comments(description),
     }
@@ -107,7 +111,7 @@ BACKEND = Backend(
     emits="one header-only C++17 file on Eigen 3.4",
     identifiers=IDENTIFIERS,
     files=("{robot}.hpp",),
-    templates=("cpp/header.hpp.j2",),
+    templates=("cpp/header.hpp.j2", "cpp/ik_numeric.hpp.j2"),
     title="Kinematics and Jacobians as a header-only C++17 library on Eigen",
     description="Templated on the scalar type; fixed sizes, no heap.",
     nan_policy="NaN and infinite inputs give NaN outputs; nothing is checked at run time.",

@@ -87,7 +87,7 @@ BACKEND = Backend(
     description="Each function takes one configuration q of shape (n,) and the parameters as keyword floats; use\n"
                 "jax.vmap for batches. Results are float32 unless jax_enable_x64 is on, then float64.",
     nan_policy="NaN and infinite inputs give NaN outputs; shapes are checked by JAX when it traces.",
-    render=python_module_renderer(jax_function),
+    render=python_module_renderer(jax_function, ik_printer=("jax", JaxPrinter)),
     dependencies=("jax",),
     batched=False,
     language="Python/JAX",

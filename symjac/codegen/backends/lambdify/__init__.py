@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from symjac.codegen.backends._python_family import GeneratedFunction, generated_function, python_module_renderer
 from symjac.codegen.backends.lambdify.printer import SymPyPrinter
+from symjac.codegen.backends.numpy.printer import NumPyPrinter
 from symjac.codegen.description import PYTHON_IDENTIFIERS, Backend, FunctionDescription, ModuleDescription
 from symjac.codegen.lower import symbol_names
 from symjac.codegen.source_layout import angle_lines, input_lines, temporary_lines, wrap_statement
@@ -41,7 +42,7 @@ BACKEND = Backend(
     description="The expressions are rebuilt in SymPy and compiled with ``sympy.lambdify(..., cse=True)`` at\n"
                 "import; functions take q of shape (..., n) and return arrays of shape (..., rows, columns).",
     nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs.",
-    render=python_module_renderer(sympy_function),
+    render=python_module_renderer(sympy_function, ik_printer=("numpy", NumPyPrinter)),
     dependencies=("numpy", "sympy"),
     runtime="numpy.py",
 )

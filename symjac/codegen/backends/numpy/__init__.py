@@ -42,7 +42,8 @@ BACKEND = Backend(
                 "threads (``THREADS``, default the number of CPUs).",
     nan_policy="Wrong shapes raise ValueError; NaN inputs propagate to NaN outputs (infinite angles give NaN with a\n"
                "RuntimeWarning).",
-    render=python_module_renderer(numpy_function, sections=("sincos",)),  # its angle lines call _sincos
+    # its angle lines call _sincos
+    render=python_module_renderer(numpy_function, sections=("sincos",), ik_printer=("numpy", NumPyPrinter)),
     dependencies=("numpy",),
     runtime="numpy.py",
 )

@@ -74,12 +74,13 @@ BACKEND = Backend(
     emits="one Python module (standard library only)",
     identifiers=PYTHON_IDENTIFIERS,
     files=("{robot}.py",),
-    templates=("python/module.py.j2", "python_common/macros.py.j2"),
+    templates=("python/module.py.j2", "python_common/macros.py.j2", "python/ik_numeric.py.j2"),
     title="Kinematics and Jacobians in plain Python (standard library only, one configuration per call)",
     description="Each function takes one configuration as a sequence of floats and returns floats or nested tuples.",
     nan_policy="Wrong lengths raise ValueError; NaN inputs propagate to NaN outputs (an infinite angle raises\n"
                "ValueError from math.sin).",
-    render=python_module_renderer(python_function, imports=("pi", "sqrt")),  # the self-test uses them always
+    # the self-test uses pi and sqrt always
+    render=python_module_renderer(python_function, imports=("pi", "sqrt"), ik_printer=("python", PythonPrinter)),
     batched=False,
     runtime="python.py",
 )

@@ -40,20 +40,10 @@ import sympy
 from symjac.errors import ArgumentError
 
 __all__ = [
-    "AngleSolutions",
-    "Subproblem",
-    "rotation_to_distance",
-    "rotation_to_distance_symbolic",
-    "rotation_to_plane",
-    "rotation_to_plane_symbolic",
-    "rotation_to_point",
-    "rotation_to_point_symbolic",
-    "slide_to_distance",
-    "slide_to_distance_symbolic",
-    "slide_to_point",
-    "slide_to_point_symbolic",
-    "two_rotations_to_point",
-    "two_rotations_to_point_symbolic",
+    "AngleSolutions", "Subproblem", "rotation_to_distance", "rotation_to_distance_symbolic", "rotation_to_plane",
+    "rotation_to_plane_symbolic", "rotation_to_point", "rotation_to_point_symbolic", "slide_to_distance",
+    "slide_to_distance_symbolic", "slide_to_point", "slide_to_point_symbolic", "two_rotations_to_point",
+    "two_rotations_to_point_symbolic"
 ]
 
 
@@ -148,10 +138,7 @@ def _angle_across(k: Vector, u: Vector, v: Vector) -> float:
     return math.atan2(_dot(k, _cross(u, v)), _dot(u, v) - _dot(k, u) * _dot(k, v))
 
 
-_ROUNDING = 256 * sys.float_info.epsilon
-"""A cosine this close to +-1 is one merged solution: its half angle, below sqrt(2 * 256 eps) = 3.4e-7 rad, is what
-rounding in the cosine alone produces. Farther out the two solutions are kept apart (the old test, 1 - |c| <=
-tolerance, merged half angles up to 4.5e-5 rad and lost branches after a nearly singular step)."""
+_ROUNDING = 256 * sys.float_info.epsilon  # 1 - |cos| this small is rounding: one merged solution (3.4e-7 rad)
 
 
 def _scale(*lengths: float) -> float:

@@ -25,13 +25,14 @@ the formulas (:math:`r_{31}^2 = 1 - r_{11}^2 - r_{21}^2`).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import sympy as sp
 
-from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import chain_of
 from symjac.printing.document import Block, Document, Equation, Inline
@@ -184,9 +185,61 @@ def _two_rotations(plan: Plan, step: Step) -> StepFormulas:
     return StepFormulas(step, intermediates, tuple(solutions), (sp.Ge(square, 0, evaluate=False),), _TWO)
 
 
+def _even_powers_of_abs(expr: sp.Expr) -> sp.Expr:
+    """``x^2 / |x|`` as ``|x|`` for a real symbol ``x`` (``x^2 = |x|^2``; no sign assumed)."""
+    for magnitude in sorted(expr.atoms(sp.Abs), key=sp.default_sort_key):
+        inner = magnitude.args[0]
+        if not (inner.is_Symbol and inner.is_real):
+            continue
+        stand_in = sp.Dummy(positive=True)
+        expr = expr.xreplace({magnitude: stand_in}).replace(
+            lambda e, x=inner: e.is_Pow and e.base == x and e.exp.is_even,
+            lambda e, m=stand_in: m**e.exp).xreplace({stand_in: magnitude})
+    return expr
+
+
+def _common_number(y: sp.Expr, x: sp.Expr) -> sp.Expr:
+    """``atan2(k y, k x)`` as ``atan2(y, x)`` for a positive number ``k``.
+
+    Only numbers are cancelled: the robot's parameters are real symbols of unknown sign (``a_2`` may be negative in
+    another arm file), and ``atan2(a_2 y, a_2 x)`` is ``atan2(y, x)`` only for ``a_2 > 0``, so a common symbolic
+    factor stays.
+    """
+    (ky, rest_y), (kx, rest_x) = y.as_content_primitive(), x.as_content_primitive()
+    if not (ky.is_Rational and kx.is_Rational and ky.is_positive and kx.is_positive):
+        return sp.atan2(y, x)
+    common = sp.gcd(ky, kx)
+    return sp.atan2(ky / common * rest_y, kx / common * rest_x)
+
+
+def _tidy(expr: sp.Expr) -> sp.Expr:
+    """Common positive numbers out of every atan2, ``x^2/|x|`` as ``|x|`` (both exact)."""
+    expr = _even_powers_of_abs(sp.sympify(expr))
+    return expr.replace(lambda e: isinstance(e, sp.atan2), lambda e: _common_number(*e.args))
+
+
+def _inlined(formulas: StepFormulas) -> StepFormulas:
+    """Intermediates that are a number or a lone symbol written into the later formulas instead of named.
+
+    The PUMA's wrist step has ``beta_4 = 0``: carrying the name through every formula would hide that the terms in
+    it vanish.
+    """
+    values: dict[sp.Symbol, sp.Expr] = {}
+    kept = []
+    for symbol, expr in formulas.intermediates:
+        expr = _tidy(expr.xreplace(values))
+        if expr.is_number or expr.is_Symbol:
+            values[symbol] = expr
+        else:
+            kept.append((symbol, expr))
+    solutions = tuple(tuple(_tidy(e.xreplace(values)) for e in branch) for branch in formulas.solutions)
+    conditions = tuple(c for c in (c.xreplace(values) for c in formulas.conditions) if c is not sp.true)
+    return replace(formulas, intermediates=tuple(kept), solutions=solutions, conditions=conditions)
+
+
 def step_formulas(plan: Plan) -> tuple[StepFormulas, ...]:
     """The printed formulas of every step of ``plan``, as SymPy expressions (see the module docstring)."""
-    return tuple(_formulas(plan, step) for step in plan.steps)
+    return tuple(_inlined(_formulas(plan, step)) for step in plan.steps)
 
 
 def substituted(formulas: StepFormulas) -> tuple[tuple[sp.Expr, ...], ...]:
@@ -197,6 +250,60 @@ def substituted(formulas: StepFormulas) -> tuple[tuple[sp.Expr, ...], ...]:
     return tuple(tuple(e.xreplace(values) for e in branch) for branch in formulas.solutions)
 
 
+_SHOWN = {symbol: sp.Symbol(f"p_{symbol.name[1]}", real=True) for symbol in POSE_SYMBOLS[9:]}
+"""The target position ``px py pz`` as printed: :math:`p_x`, not the product :math:`p x` (``r11`` is already
+:math:`r_{11}`, ``w_x`` :math:`w_x`)."""
+
+
+def _shown(expr: Any) -> Any:
+    return expr.xreplace(_SHOWN) if isinstance(expr, sp.Basic | sp.MatrixBase) else expr
+
+
+_PROSE = re.compile(
+    r"\bh(?P<a>\d+) x h(?P<b>\d+)\b"
+    r"|\btheta(?P<joint>\d+)(?:\s*(?P<relation>>=|<=|>|<|=)\s*(?P<value>-?\d+(?:\.\d+)?))?"
+    r"|(?P<sum>-?\b[a-z]\d+\b(?:\s[+-]\s[a-z]\d+\b)*)")
+_RELATIONS = {">=": r"\geq", "<=": r"\leq", ">": ">", "<": "<", "=": "="}
+_AXES = (" (", Inline("h_i", "h_i"), ": the unit vector along the axis of joint ", Inline("i", "i"),
+         ", as the joints before it turn it)")
+
+
+def _axes_defined(blocks: list[Block]) -> list[Block]:
+    r"""The first caption that writes :math:`h_a \times h_b` says once what :math:`h_i` is."""
+    for number, block in enumerate(blocks):
+        if any(isinstance(part, Inline) and r"\times" in part.tex for part in block.caption):
+            caption = block.caption
+            last = caption[-1]
+            if isinstance(last, str) and last.endswith("."):
+                caption = (*caption[:-1], last[:-1], *_AXES, ".")
+            else:
+                caption = (*caption, *_AXES)
+            return [*blocks[:number], replace(block, caption=caption), *blocks[number + 1:]]
+    return blocks
+
+
+def _prose_math(match: re.Match[str]) -> Inline:
+    if match["a"]:
+        return Inline(rf"h_{{{match['a']}}} \times h_{{{match['b']}}}", f"h{match['a']} x h{match['b']}")
+    if match["joint"]:
+        tex = rf"\theta_{{{match['joint']}}}"
+        if match["relation"]:
+            tex += rf" {_RELATIONS[match['relation']]} {match['value']}"
+        return Inline(tex, match[0])
+    return Inline(re.sub(r"([a-z])(\d+)", r"\1_{\2}", match[0]), match[0])
+
+
+def _prose(text: str) -> tuple[str | Inline, ...]:
+    """Words with the math in them typeset: ``theta5 >= 0``, ``h1 x h2``, ``a2 + a3`` (pretty text unchanged)."""
+    parts: list[str | Inline] = []
+    start = 0
+    for match in _PROSE.finditer(text):
+        parts += [text[start:match.start()], _prose_math(match)]
+        start = match.end()
+    parts.append(text[start:])
+    return tuple(p for p in parts if p != "")
+
+
 def _name(plan: Plan, joint: int) -> tuple[str, str]:
     symbol = plan.robot.joint_variables[joint]
     return latex(symbol), pretty(symbol)
@@ -204,17 +311,18 @@ def _name(plan: Plan, joint: int) -> tuple[str, str]:
 
 def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]:
     step = formulas.step
-    math: list[Equation] = [Equation(latex(s), str(s), e) for s, e in formulas.intermediates]
+    math: list[Equation] = [Equation(latex(s), str(s), _shown(e)) for s, e in formulas.intermediates]
     branches = step.branches or ("",)
     for branch, values in zip(branches, formulas.solutions, strict=False):  # one solution: no branch name
         for joint, value in zip(step.joints, values, strict=True):
             tex, text = _name(plan, joint)
             suffix = f" ({branch})" if branch else ""
-            math.append(Equation(tex + (rf"\ \text{{({branch})}}" if branch else ""), text + suffix, value))
-    blocks = [Block((f"Step {number}: {step.statement.rstrip('.')}.",), tuple(math))]
+            math.append(Equation(tex + (rf"\ \text{{({branch})}}" if branch else ""), text + suffix, _shown(value)))
+    statement = f"Step {number}: {step.statement.rstrip('.')}."
+    blocks = [Block(_prose(statement), tuple(math))]
     condition: tuple[str | sp.Basic | Inline, ...] = (f"Existence: {formulas.note}",)
     if formulas.conditions:
-        condition = (*condition, ": ", *formulas.conditions)
+        condition = (*condition, ": ", *(_shown(c) for c in formulas.conditions))
     blocks.append(Block(condition))
     return blocks
 
@@ -233,9 +341,9 @@ def _data(plan: Plan, all_formulas: tuple[StepFormulas, ...]) -> dict[str, Any]:
                 "statement": f.step.statement,
                 "branches": list(f.step.branches),
                 "intermediates": {str(s): str(e) for s, e in f.intermediates},
-                "intermediates_latex": {str(s): latex(e) for s, e in f.intermediates},
+                "intermediates_latex": {str(s): latex(_shown(e)) for s, e in f.intermediates},
                 "solutions": [[str(e) for e in branch] for branch in f.solutions],
-                "solutions_latex": [[latex(e) for e in branch] for branch in f.solutions],
+                "solutions_latex": [[latex(_shown(e)) for e in branch] for branch in f.solutions],
                 "conditions": [str(c) for c in f.conditions],
                 "existence": f.note,
             }
@@ -258,18 +366,20 @@ def ik_derivation_document(plan: Plan) -> Document:
     """
     all_formulas = step_formulas(plan)
     blocks = [
-        Block((f"Family: {plan.family}, because {'; '.join(plan.reasons)}.",)),
-        Block((f"The arm controls {plan.controlled}; the target pose is",), (Equation("T", "T", pose_matrix()),)),
+        Block(_prose(f"Family: {plan.family}, because {'; '.join(plan.reasons)}.")),
+        Block((f"The arm controls {plan.controlled}; the target pose is",),
+              (Equation("T", "T", _shown(pose_matrix())),)),
     ]
     if plan.definitions:
         blocks.append(
             Block(
                 ("Named from the target:",),
-                tuple(Equation(latex(s), str(s), e) for s, e in plan.definitions),
+                tuple(Equation(latex(s), str(s), _shown(e)) for s, e in plan.definitions),
             )
         )
     for number, formulas in enumerate(all_formulas, start=1):
         blocks += _step_blocks(plan, number, formulas)
+    blocks = _axes_defined(blocks)
     counts = " x ".join(str(max(1, len(s.branches))) for s in plan.steps)
     blocks.append(Block((f"At most {counts} = {plan.max_solutions} solutions.",)))
     return Document(

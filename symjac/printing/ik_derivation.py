@@ -259,11 +259,17 @@ def _shown(expr: Any) -> Any:
     return expr.xreplace(_SHOWN) if isinstance(expr, sp.Basic | sp.MatrixBase) else expr
 
 
+_TERM = r"(?:\b[a-z]\d+\.\([^()]*\)|\btheta\d+|\bphi\b|\bpsi\b|\b[a-z]\d+\b)"
+_RUN = rf"-?{_TERM}(?:\s*(?:[+-]|>=|<=|=|>|<)\s*-?(?:{_TERM}|\d+(?:\.\d+)?\b))*"
+_ITEM = rf"(?:{_RUN}|-?\d+(?:\.\d+)?)"
 _PROSE = re.compile(
-    r"\bh(?P<a>\d+) x h(?P<b>\d+)\b"
-    r"|\btheta(?P<joint>\d+)(?:\s*(?P<relation>>=|<=|>|<|=)\s*(?P<value>-?\d+(?:\.\d+)?))?"
-    r"|(?P<sum>-?\b[a-z]\d+\b(?:\s[+-]\s[a-z]\d+\b)*)")
-_RELATIONS = {">=": r"\geq", "<=": r"\leq", ">": ">", "<": "<", "=": "="}
+    rf"\((?P<point>{_ITEM}(?:, {_ITEM}){{2}})(?P<home> at home)?\)"
+    r"|\bh(?P<a>\d+) x h(?P<b>\d+)\b"
+    rf"|(?P<run>{_RUN})")
+_SYMBOLS = ((r"\btheta(\d+)", r"\\theta_{\1}"), (r"\b(phi|psi)\b", r"\\\1"), (r"\b([a-z])(\d+)\b", r"\1_{\2}"),
+            (">=", r"\\geq"), ("<=", r"\\leq"), (r"\.\(", r" \\cdot ("))
+
+
 _AXES = (" (", Inline("h_i", "h_i"), ": the unit vector along the axis of joint ", Inline("i", "i"),
          ", as the joints before it turn it)")
 
@@ -282,23 +288,29 @@ def _axes_defined(blocks: list[Block]) -> list[Block]:
     return blocks
 
 
-def _prose_math(match: re.Match[str]) -> Inline:
+def _tex(words: str) -> str:
+    for pattern, tex in _SYMBOLS:
+        words = re.sub(pattern, tex, words)
+    return words
+
+
+def _prose_math(match: re.Match[str]) -> tuple[str | Inline, ...]:
+    if match["point"]:
+        return Inline(f"({_tex(match['point'])})", f"({match['point']})"), *((" at home",) if match["home"] else ())
     if match["a"]:
-        return Inline(rf"h_{{{match['a']}}} \times h_{{{match['b']}}}", f"h{match['a']} x h{match['b']}")
-    if match["joint"]:
-        tex = rf"\theta_{{{match['joint']}}}"
-        if match["relation"]:
-            tex += rf" {_RELATIONS[match['relation']]} {match['value']}"
-        return Inline(tex, match[0])
-    return Inline(re.sub(r"([a-z])(\d+)", r"\1_{\2}", match[0]), match[0])
+        return (Inline(rf"h_{{{match['a']}}} \times h_{{{match['b']}}}", match[0]),)
+    return (Inline(_tex(match[0]), match[0]),)
 
 
 def _prose(text: str) -> tuple[str | Inline, ...]:
-    """Words with the math in them typeset: ``theta5 >= 0``, ``h1 x h2``, ``a2 + a3`` (pretty text unchanged)."""
+    """Words with the math in them typeset: ``theta5 >= 0``, ``h1 x h2``, ``(a2 + a3, d3, -d4)``, ``phi - psi``.
+
+    The pretty text keeps the words as they were.
+    """
     parts: list[str | Inline] = []
     start = 0
     for match in _PROSE.finditer(text):
-        parts += [text[start:match.start()], _prose_math(match)]
+        parts += [text[start:match.start()], *_prose_math(match)]
         start = match.end()
     parts.append(text[start:])
     return tuple(p for p in parts if p != "")

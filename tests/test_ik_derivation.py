@@ -226,3 +226,19 @@ def test_the_prose_writes_its_math_as_math(name):
         assert r"$\theta_{5} \geq 0$" in latex
         assert r"$h_{1} \times h_{2}$" in latex
         assert latex.count("$h_i$: the unit vector along the axis of joint $i$") == 1
+
+
+def test_the_puma_wrist_is_craigs_theta4():
+    """theta4 (no flip) = atan2(-r13 s1 + r23 c1, -r13 c1 c23 - r23 s1 c23 + r33 s23) (Craig, eq. 4.80)."""
+    plan = _plan("puma560")
+    wrist = next(f for f in step_formulas(plan) if 3 in f.step.joints)
+    theta4 = wrist.solutions[wrist.step.branches.index("no flip")][wrist.step.joints.index(3)]
+    assert not any(s.name.startswith("gamma") for s in theta4.free_symbols)  # sqrt(G4) >= 0 left the atan2
+    r13, r23, r33 = POSE_SYMBOLS[2], POSE_SYMBOLS[5], POSE_SYMBOLS[8]
+    t1, t2, t3 = plan.robot.joint_variables[:3]
+    s1, c1, s23, c23 = sp.sin(t1), sp.cos(t1), sp.sin(t2 + t3), sp.cos(t2 + t3)
+    craig = sp.atan2(-r13 * s1 + r23 * c1, -r13 * c1 * c23 - r23 * s1 * c23 + r33 * s23)
+    rng = np.random.default_rng(4)
+    for _ in range(20):
+        at = dict(zip([*POSE_SYMBOLS[:9], t1, t2, t3], rng.uniform(-1, 1, 12), strict=True))
+        assert abs(float(theta4.subs(at)) - float(craig.subs(at))) < 1e-12

@@ -198,13 +198,20 @@ def _even_powers_of_abs(expr: sp.Expr) -> sp.Expr:
     return expr
 
 
-def _common_number(y: sp.Expr, x: sp.Expr) -> sp.Expr:
-    """``atan2(k y, k x)`` as ``atan2(y, x)`` for a positive number ``k``.
+def _common_factor(y: sp.Expr, x: sp.Expr, roots: frozenset[sp.Symbol]) -> sp.Expr:
+    """``atan2(k y, k x)`` as ``atan2(y, x)`` for a positive number ``k`` or a named square root ``k``.
 
-    Only numbers are cancelled: the robot's parameters are real symbols of unknown sign (``a_2`` may be negative in
-    another arm file), and ``atan2(a_2 y, a_2 x)`` is ``atan2(y, x)`` only for ``a_2 > 0``, so a common symbolic
-    factor stays.
+    A square root (``gamma_4 = sqrt(G_4)``) is positive where it is not 0, and at 0 the angle is arbitrary (the
+    point lies on the axis), so the shorter form is a solution there too. Other symbols are not cancelled: the
+    robot's parameters are real of unknown sign (``a_2`` may be negative in another arm file), and ``atan2(a_2 y, a_2
+    x)`` is ``atan2(y, x)`` only for ``a_2 > 0`` (off by pi otherwise), so a common parameter stays.
     """
+    for root in sorted(roots, key=sp.default_sort_key):
+        factors_y, factors_x = (list(sp.Mul.make_args(sp.factor_terms(e))) for e in (y, x))
+        if root in factors_y and root in factors_x:
+            factors_y.remove(root)
+            factors_x.remove(root)
+            y, x = sp.Mul(*factors_y), sp.Mul(*factors_x)
     (ky, rest_y), (kx, rest_x) = y.as_content_primitive(), x.as_content_primitive()
     if not (ky.is_Rational and kx.is_Rational and ky.is_positive and kx.is_positive):
         return sp.atan2(y, x)
@@ -212,10 +219,10 @@ def _common_number(y: sp.Expr, x: sp.Expr) -> sp.Expr:
     return sp.atan2(ky / common * rest_y, kx / common * rest_x)
 
 
-def _tidy(expr: sp.Expr) -> sp.Expr:
-    """Common positive numbers out of every atan2, ``x^2/|x|`` as ``|x|`` (both exact)."""
+def _tidy(expr: sp.Expr, roots: frozenset[sp.Symbol] = frozenset()) -> sp.Expr:
+    """Common positive numbers and named square roots out of every atan2, ``x^2/|x|`` as ``|x|`` (both exact)."""
     expr = _even_powers_of_abs(sp.sympify(expr))
-    return expr.replace(lambda e: isinstance(e, sp.atan2), lambda e: _common_number(*e.args))
+    return expr.replace(lambda e: isinstance(e, sp.atan2), lambda e: _common_factor(e.args[0], e.args[1], roots))
 
 
 def _inlined(formulas: StepFormulas) -> StepFormulas:
@@ -232,7 +239,8 @@ def _inlined(formulas: StepFormulas) -> StepFormulas:
             values[symbol] = expr
         else:
             kept.append((symbol, expr))
-    solutions = tuple(tuple(_tidy(e.xreplace(values)) for e in branch) for branch in formulas.solutions)
+    roots = frozenset(symbol for symbol, expr in kept if isinstance(expr, sp.Pow) and expr.exp == sp.S.Half)
+    solutions = tuple(tuple(_tidy(e.xreplace(values), roots) for e in branch) for branch in formulas.solutions)
     conditions = tuple(c for c in (c.xreplace(values) for c in formulas.conditions) if c is not sp.true)
     return replace(formulas, intermediates=tuple(kept), solutions=solutions, conditions=conditions)
 

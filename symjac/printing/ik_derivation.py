@@ -19,6 +19,14 @@ Formulas are exact in the parameters, with one exception said here: an angle of 
 parameters' defaults, the values the executor and generated code use. The target rotation's orthonormality shortens
 the formulas (:math:`r_{31}^2 = 1 - r_{11}^2 - r_{21}^2`).
 
+The printed form is tidied exactly, as a textbook would: the target position is :math:`p_x, p_y, p_z`; an
+intermediate that comes out a number or a lone symbol (the PUMA's :math:`\beta_4 = 0`) is written into the later
+formulas instead of named; a common positive number or named square root leaves an atan2 (:math:`\gamma_4 =
+\sqrt{G_4}`: at :math:`\gamma_4 = 0` every angle works) and :math:`x^2 / |x|` is :math:`|x|`. A common parameter
+stays (:math:`\operatorname{atan2}(a_2 d_4, -a_2 a_3)`): parameters are real of unknown sign, and cancelling a
+negative one would be off by :math:`\pi`. The sentences' math (:math:`\theta_5 \ge 0`, :math:`h_1 \times h_2`) is
+typeset; :math:`h_i` is the unit vector along the axis of joint :math:`i`.
+
 :func:`step_formulas` gives the formulas as SymPy expressions (the ones printed), :func:`ik_derivation_document` the
 :class:`~symjac.printing.document.Document` (LaTeX, pretty text and JSON).
 """

@@ -220,6 +220,8 @@ def _common_factor(y: sp.Expr, x: sp.Expr, roots: frozenset[sp.Symbol]) -> sp.Ex
             factors_y.remove(root)
             factors_x.remove(root)
             y, x = sp.Mul(*factors_y), sp.Mul(*factors_x)
+    if x == 0 and (y in roots or (isinstance(y, sp.Pow) and y.exp == sp.S.Half)):
+        return sp.pi / 2  # atan2(sqrt(X), 0); at X = 0 every angle works
     (ky, rest_y), (kx, rest_x) = y.as_content_primitive(), x.as_content_primitive()
     if not (ky.is_Rational and kx.is_Rational and ky.is_positive and kx.is_positive):
         return sp.atan2(y, x)
@@ -243,13 +245,14 @@ def _inlined(formulas: StepFormulas) -> StepFormulas:
     kept = []
     for symbol, expr in formulas.intermediates:
         expr = _tidy(expr.xreplace(values))
-        if expr.is_number or expr.is_Symbol:
+        if expr.is_number or expr.is_Symbol or (-expr).is_Symbol:
             values[symbol] = expr
         else:
             kept.append((symbol, expr))
     roots = frozenset(symbol for symbol, expr in kept if isinstance(expr, sp.Pow) and expr.exp == sp.S.Half)
     solutions = tuple(tuple(_tidy(e.xreplace(values), roots) for e in branch) for branch in formulas.solutions)
-    conditions = tuple(c for c in (c.xreplace(values) for c in formulas.conditions) if c is not sp.true)
+    conditions = tuple(type(c)(c.lhs.xreplace(values), c.rhs.xreplace(values), evaluate=False)
+                       for c in formulas.conditions)
     return replace(formulas, intermediates=tuple(kept), solutions=solutions, conditions=conditions)
 
 
@@ -294,13 +297,9 @@ def _axes_defined(blocks: list[Block]) -> list[Block]:
     r"""The first caption that writes :math:`h_a \times h_b` says once what :math:`h_i` is."""
     for number, block in enumerate(blocks):
         if any(isinstance(part, Inline) and r"\times" in part.tex for part in block.caption):
-            caption = block.caption
-            last = caption[-1]
-            if isinstance(last, str) and last.endswith("."):
-                caption = (*caption[:-1], last[:-1], *_AXES, ".")
-            else:
-                caption = (*caption, *_AXES)
-            return [*blocks[:number], replace(block, caption=caption), *blocks[number + 1:]]
+            *caption, last = block.caption  # the statement ends in a full stop
+            caption = [*caption, last[:-1], *_AXES, "."] if isinstance(last, str) else [*caption, last, *_AXES]
+            return [*blocks[:number], replace(block, caption=tuple(caption)), *blocks[number + 1:]]
     return blocks
 
 

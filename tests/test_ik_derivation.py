@@ -242,3 +242,12 @@ def test_the_puma_wrist_is_craigs_theta4():
     for _ in range(20):
         at = dict(zip([*POSE_SYMBOLS[:9], t1, t2, t3], rng.uniform(-1, 1, 12), strict=True))
         assert abs(float(theta4.subs(at)) - float(craig.subs(at))) < 1e-12
+
+
+def test_a_quarter_turn_is_written_in_and_its_condition_stays():
+    first = step_formulas(_plan("irb140"))[0]
+    phi = next(s for s, _ in first.intermediates if s.name == "phi1")
+    assert [s.name for s, _ in first.intermediates] == ["phi1"]  # psi1 = atan2(sqrt(w_x^2 + w_y^2), 0) = pi/2
+    assert first.solutions == ((phi - sp.pi / 2,), (phi + sp.pi / 2,))
+    (condition,) = first.conditions
+    assert isinstance(condition, sp.GreaterThan) and {s.name for s in condition.free_symbols} == {"w_x", "w_y"}

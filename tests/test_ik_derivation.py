@@ -7,6 +7,7 @@ random configurations; the executor (``solve_plan``) calls the numeric subproble
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 
@@ -154,3 +155,99 @@ def test_latex_compiles(name, tmp_path):
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stdout[-3000:]
     assert (tmp_path / "derivation.pdf").stat().st_size > 1000
+
+
+def _latex_without_math(latex):
+    """The comment lines' words, every ``$...$`` taken out."""
+    words = "\n".join(line for line in latex.splitlines() if line.startswith("%"))
+    return re.sub(r"\$[^$]*\$", "", words)
+
+
+@pytest.mark.parametrize("name", ["puma560", "ur5", "scara"])
+def test_the_target_position_prints_with_subscripts(name):
+    document = ik_derivation_document(_plan(name))
+    latex = render(document, "latex")
+    assert "p_{x}" in latex and "p_{z}" in latex
+    assert not re.search(r"\bp[xyz]\b", latex), "px would read as the product p x"
+    data = json.loads(render(document, "json"))
+    assert any("px" in e for step in data["steps"] for branch in step["solutions"] for e in branch) or name == "ur5"
+    assert not any(re.search(r"\bp[xyz]\b", e) for step in data["steps"] for e in step["intermediates_latex"].values())
+
+
+@pytest.mark.parametrize("name", [*sorted(BUILDERS), "puma560", "stanford", "irb140"])
+def test_no_intermediate_is_a_number_or_a_lone_symbol(name):
+    for formulas in step_formulas(_plan(name)):
+        for symbol, expr in formulas.intermediates:
+            assert not (expr.is_number or expr.is_Symbol or (-expr).is_Symbol), (symbol, expr)
+
+
+def test_the_puma_wrist_carries_no_zero_beta():
+    plan = _plan("puma560")
+    wrist = next(f for f in step_formulas(plan) if len(f.step.joints) == 2 and 3 in f.step.joints)
+    named = dict(wrist.intermediates)
+    alpha, square = (next(s for s in named if s.name == n) for n in ("alpha4", "G4"))
+    assert "beta4" not in {s.name for s in named}
+    assert sp.expand(named[square] - (1 - alpha**2)) == 0
+    used = set().union(*(e.free_symbols for branch in wrist.solutions for e in branch))
+    assert "beta4" not in {s.name for s in used}
+    assert r"\beta_{4}" not in render(ik_derivation_document(plan), "latex")
+
+
+def test_common_positive_numbers_leave_atan2_and_abs_squares_cancel():
+    plan = _plan("ur5")
+    first = dict(step_formulas(plan)[0].intermediates)
+    d4 = next(s for s in plan.robot.defaults if s.name == "d4")
+    wx, wy = (next(s for s, _ in plan.definitions if s.name == n) for n in ("w_x", "w_y"))
+    phi, cosine = (next(e for s, e in first.items() if s.name == n) for n in ("phi1", "D1"))
+    assert phi == sp.atan2(d4 * wx, -d4 * wy)  # the 2 of atan2(2 d4 wx, -2 d4 wy) cancelled, d4 kept
+    assert sp.simplify(cosine - sp.Abs(d4) / sp.sqrt(wx**2 + wy**2)) == 0
+    assert not any(isinstance(m, sp.Abs) and m.args[0] == d4 for m in sp.denom(cosine).atoms(sp.Abs))
+
+
+def test_a_factor_of_unknown_sign_stays_inside_atan2():
+    plan = _plan("puma560")
+    a2, a3, d4 = (next(s for s in plan.robot.defaults if s.name == n) for n in ("a2", "a3", "d4"))
+    assert a2.is_positive is None  # a length parameter may be negative in an arm file: a2 cannot be cancelled
+    phi = next(e for f in step_formulas(plan) for s, e in f.intermediates if s.name == "phi3")
+    assert phi == sp.atan2(a2 * d4, -a2 * a3)
+    at = {a2: 0.4318, a3: 0.0203, d4: 0.4318}
+    assert abs(float(phi.subs(at)) - float(sp.atan2(d4, -a3).subs(at))) < 1e-15
+    at[a2] = -0.4318  # with a2 < 0 the cancelled form would be off by pi
+    assert abs(abs(float(phi.subs(at)) - float(sp.atan2(d4, -a3).subs(at))) - np.pi) < 1e-12
+
+
+@pytest.mark.parametrize("name", ["puma560", "stanford", "scara", "palletizer", "ur5"])
+def test_the_prose_writes_its_math_as_math(name):
+    latex = render(ik_derivation_document(_plan(name)), "latex")
+    words = _latex_without_math(latex)
+    assert "textgreater" not in latex and "textless" not in latex
+    assert not re.search(r"\btheta\d|\bh\d x h\d|\b[a-z]\d \+ [a-z]\d|\bphi\b|\bpsi\b", words), words
+    if name in ("puma560", "stanford"):
+        assert r"$\theta_{5} \geq 0$" in latex
+        assert r"$h_{1} \times h_{2}$" in latex
+        assert latex.count("$h_i$: the unit vector along the axis of joint $i$") == 1
+
+
+def test_the_puma_wrist_is_craigs_theta4():
+    """theta4 (no flip) = atan2(-r13 s1 + r23 c1, -r13 c1 c23 - r23 s1 c23 + r33 s23) (Craig, eq. 4.80)."""
+    plan = _plan("puma560")
+    wrist = next(f for f in step_formulas(plan) if 3 in f.step.joints)
+    theta4 = wrist.solutions[wrist.step.branches.index("no flip")][wrist.step.joints.index(3)]
+    assert not any(s.name.startswith("gamma") for s in theta4.free_symbols)  # sqrt(G4) >= 0 left the atan2
+    r13, r23, r33 = POSE_SYMBOLS[2], POSE_SYMBOLS[5], POSE_SYMBOLS[8]
+    t1, t2, t3 = plan.robot.joint_variables[:3]
+    s1, c1, s23, c23 = sp.sin(t1), sp.cos(t1), sp.sin(t2 + t3), sp.cos(t2 + t3)
+    craig = sp.atan2(-r13 * s1 + r23 * c1, -r13 * c1 * c23 - r23 * s1 * c23 + r33 * s23)
+    rng = np.random.default_rng(4)
+    for _ in range(20):
+        at = dict(zip([*POSE_SYMBOLS[:9], t1, t2, t3], rng.uniform(-1, 1, 12), strict=True))
+        assert abs(float(theta4.subs(at)) - float(craig.subs(at))) < 1e-12
+
+
+def test_a_quarter_turn_is_written_in_and_its_condition_stays():
+    first = step_formulas(_plan("irb140"))[0]
+    phi = next(s for s, _ in first.intermediates if s.name == "phi1")
+    assert [s.name for s, _ in first.intermediates] == ["phi1"]  # psi1 = atan2(sqrt(w_x^2 + w_y^2), 0) = pi/2
+    assert first.solutions == ((phi - sp.pi / 2,), (phi + sp.pi / 2,))
+    (condition,) = first.conditions
+    assert isinstance(condition, sp.GreaterThan) and {s.name for s in condition.free_symbols} == {"w_x", "w_y"}

@@ -19,19 +19,28 @@ Formulas are exact in the parameters, with one exception said here: an angle of 
 parameters' defaults, the values the executor and generated code use. The target rotation's orthonormality shortens
 the formulas (:math:`r_{31}^2 = 1 - r_{11}^2 - r_{21}^2`).
 
+The printed form is tidied exactly, as a textbook would: the target position is :math:`p_x, p_y, p_z`; an
+intermediate that comes out a number or a lone symbol (the PUMA's :math:`\beta_4 = 0`) is written into the later
+formulas instead of named; a common positive number or named square root leaves an atan2 (:math:`\gamma_4 =
+\sqrt{G_4}`: at :math:`\gamma_4 = 0` every angle works) and :math:`x^2 / |x|` is :math:`|x|`. A common parameter
+stays (:math:`\operatorname{atan2}(a_2 d_4, -a_2 a_3)`): parameters are real of unknown sign, and cancelling a
+negative one would be off by :math:`\pi`. The sentences' math (:math:`\theta_5 \ge 0`, :math:`h_1 \times h_2`) is
+typeset; :math:`h_i` is the unit vector along the axis of joint :math:`i`.
+
 :func:`step_formulas` gives the formulas as SymPy expressions (the ones printed), :func:`ik_derivation_document` the
 :class:`~symjac.printing.document.Document` (LaTeX, pretty text and JSON).
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import sympy as sp
 
-from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, pose_matrix
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import chain_of
 from symjac.printing.document import Block, Document, Equation, Inline
@@ -184,9 +193,72 @@ def _two_rotations(plan: Plan, step: Step) -> StepFormulas:
     return StepFormulas(step, intermediates, tuple(solutions), (sp.Ge(square, 0, evaluate=False),), _TWO)
 
 
+def _even_powers_of_abs(expr: sp.Expr) -> sp.Expr:
+    """``x^2 / |x|`` as ``|x|`` for a real symbol ``x`` (``x^2 = |x|^2``; no sign assumed)."""
+    for magnitude in sorted(expr.atoms(sp.Abs), key=sp.default_sort_key):
+        inner = magnitude.args[0]
+        if not (inner.is_Symbol and inner.is_real):
+            continue
+        stand_in = sp.Dummy(positive=True)
+        expr = expr.xreplace({magnitude: stand_in}).replace(
+            lambda e, x=inner: e.is_Pow and e.base == x and e.exp.is_even,
+            lambda e, m=stand_in: m**e.exp).xreplace({stand_in: magnitude})
+    return expr
+
+
+def _common_factor(y: sp.Expr, x: sp.Expr, roots: frozenset[sp.Symbol]) -> sp.Expr:
+    """``atan2(k y, k x)`` as ``atan2(y, x)`` for a positive number ``k`` or a named square root ``k``.
+
+    A square root (``gamma_4 = sqrt(G_4)``) is positive where it is not 0, and at 0 the angle is arbitrary (the
+    point lies on the axis), so the shorter form is a solution there too. Other symbols are not cancelled: the
+    robot's parameters are real of unknown sign (``a_2`` may be negative in another arm file), and ``atan2(a_2 y, a_2
+    x)`` is ``atan2(y, x)`` only for ``a_2 > 0`` (off by pi otherwise), so a common parameter stays.
+    """
+    for root in sorted(roots, key=sp.default_sort_key):
+        factors_y, factors_x = (list(sp.Mul.make_args(sp.factor_terms(e))) for e in (y, x))
+        if root in factors_y and root in factors_x:
+            factors_y.remove(root)
+            factors_x.remove(root)
+            y, x = sp.Mul(*factors_y), sp.Mul(*factors_x)
+    if x == 0 and (y in roots or (isinstance(y, sp.Pow) and y.exp == sp.S.Half)):
+        return sp.pi / 2  # atan2(sqrt(X), 0); at X = 0 every angle works
+    (ky, rest_y), (kx, rest_x) = y.as_content_primitive(), x.as_content_primitive()
+    if not (ky.is_Rational and kx.is_Rational and ky.is_positive and kx.is_positive):
+        return sp.atan2(y, x)
+    common = sp.gcd(ky, kx)
+    return sp.atan2(ky / common * rest_y, kx / common * rest_x)
+
+
+def _tidy(expr: sp.Expr, roots: frozenset[sp.Symbol] = frozenset()) -> sp.Expr:
+    """Common positive numbers and named square roots out of every atan2, ``x^2/|x|`` as ``|x|`` (both exact)."""
+    expr = _even_powers_of_abs(sp.sympify(expr))
+    return expr.replace(lambda e: isinstance(e, sp.atan2), lambda e: _common_factor(e.args[0], e.args[1], roots))
+
+
+def _inlined(formulas: StepFormulas) -> StepFormulas:
+    """Intermediates that are a number or a lone symbol written into the later formulas instead of named.
+
+    The PUMA's wrist step has ``beta_4 = 0``: carrying the name through every formula would hide that the terms in
+    it vanish.
+    """
+    values: dict[sp.Symbol, sp.Expr] = {}
+    kept = []
+    for symbol, expr in formulas.intermediates:
+        expr = _tidy(expr.xreplace(values))
+        if expr.is_number or expr.is_Symbol or (-expr).is_Symbol:
+            values[symbol] = expr
+        else:
+            kept.append((symbol, expr))
+    roots = frozenset(symbol for symbol, expr in kept if isinstance(expr, sp.Pow) and expr.exp == sp.S.Half)
+    solutions = tuple(tuple(_tidy(e.xreplace(values), roots) for e in branch) for branch in formulas.solutions)
+    conditions = tuple(type(c)(c.lhs.xreplace(values), c.rhs.xreplace(values), evaluate=False)
+                       for c in formulas.conditions)
+    return replace(formulas, intermediates=tuple(kept), solutions=solutions, conditions=conditions)
+
+
 def step_formulas(plan: Plan) -> tuple[StepFormulas, ...]:
     """The printed formulas of every step of ``plan``, as SymPy expressions (see the module docstring)."""
-    return tuple(_formulas(plan, step) for step in plan.steps)
+    return tuple(_inlined(_formulas(plan, step)) for step in plan.steps)
 
 
 def substituted(formulas: StepFormulas) -> tuple[tuple[sp.Expr, ...], ...]:
@@ -197,6 +269,68 @@ def substituted(formulas: StepFormulas) -> tuple[tuple[sp.Expr, ...], ...]:
     return tuple(tuple(e.xreplace(values) for e in branch) for branch in formulas.solutions)
 
 
+_SHOWN = {symbol: sp.Symbol(f"p_{symbol.name[1]}", real=True) for symbol in POSE_SYMBOLS[9:]}
+"""The target position ``px py pz`` as printed: :math:`p_x`, not the product :math:`p x` (``r11`` is already
+:math:`r_{11}`, ``w_x`` :math:`w_x`)."""
+
+
+def _shown(expr: Any) -> Any:
+    return expr.xreplace(_SHOWN) if isinstance(expr, sp.Basic | sp.MatrixBase) else expr
+
+
+_TERM = r"(?:\b[a-z]\d+\.\([^()]*\)|\btheta\d+|\bphi\b|\bpsi\b|\b[a-z]\d+\b)"
+_RUN = rf"-?{_TERM}(?:\s*(?:[+-]|>=|<=|=|>|<)\s*-?(?:{_TERM}|\d+(?:\.\d+)?\b))*"
+_ITEM = rf"(?:{_RUN}|-?\d+(?:\.\d+)?)"
+_PROSE = re.compile(
+    rf"\((?P<point>{_ITEM}(?:, {_ITEM}){{2}})(?P<home> at home)?\)"
+    r"|\bh(?P<a>\d+) x h(?P<b>\d+)\b"
+    rf"|(?P<run>{_RUN})")
+_SYMBOLS = ((r"\btheta(\d+)", r"\\theta_{\1}"), (r"\b(phi|psi)\b", r"\\\1"), (r"\b([a-z])(\d+)\b", r"\1_{\2}"),
+            (">=", r"\\geq"), ("<=", r"\\leq"), (r"\.\(", r" \\cdot ("))
+
+
+_AXES = (" (", Inline("h_i", "h_i"), ": the unit vector along the axis of joint ", Inline("i", "i"),
+         ", as the joints before it turn it)")
+
+
+def _axes_defined(blocks: list[Block]) -> list[Block]:
+    r"""The first caption that writes :math:`h_a \times h_b` says once what :math:`h_i` is."""
+    for number, block in enumerate(blocks):
+        if any(isinstance(part, Inline) and r"\times" in part.tex for part in block.caption):
+            *caption, last = block.caption  # the statement ends in a full stop
+            caption = [*caption, last[:-1], *_AXES, "."] if isinstance(last, str) else [*caption, last, *_AXES]
+            return [*blocks[:number], replace(block, caption=tuple(caption)), *blocks[number + 1:]]
+    return blocks
+
+
+def _tex(words: str) -> str:
+    for pattern, tex in _SYMBOLS:
+        words = re.sub(pattern, tex, words)
+    return words
+
+
+def _prose_math(match: re.Match[str]) -> tuple[str | Inline, ...]:
+    if match["point"]:
+        return Inline(f"({_tex(match['point'])})", f"({match['point']})"), *((" at home",) if match["home"] else ())
+    if match["a"]:
+        return (Inline(rf"h_{{{match['a']}}} \times h_{{{match['b']}}}", match[0]),)
+    return (Inline(_tex(match[0]), match[0]),)
+
+
+def _prose(text: str) -> tuple[str | Inline, ...]:
+    """Words with the math in them typeset: ``theta5 >= 0``, ``h1 x h2``, ``(a2 + a3, d3, -d4)``, ``phi - psi``.
+
+    The pretty text keeps the words as they were.
+    """
+    parts: list[str | Inline] = []
+    start = 0
+    for match in _PROSE.finditer(text):
+        parts += [text[start:match.start()], *_prose_math(match)]
+        start = match.end()
+    parts.append(text[start:])
+    return tuple(p for p in parts if p != "")
+
+
 def _name(plan: Plan, joint: int) -> tuple[str, str]:
     symbol = plan.robot.joint_variables[joint]
     return latex(symbol), pretty(symbol)
@@ -204,17 +338,18 @@ def _name(plan: Plan, joint: int) -> tuple[str, str]:
 
 def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]:
     step = formulas.step
-    math: list[Equation] = [Equation(latex(s), str(s), e) for s, e in formulas.intermediates]
+    math: list[Equation] = [Equation(latex(s), str(s), _shown(e)) for s, e in formulas.intermediates]
     branches = step.branches or ("",)
     for branch, values in zip(branches, formulas.solutions, strict=False):  # one solution: no branch name
         for joint, value in zip(step.joints, values, strict=True):
             tex, text = _name(plan, joint)
             suffix = f" ({branch})" if branch else ""
-            math.append(Equation(tex + (rf"\ \text{{({branch})}}" if branch else ""), text + suffix, value))
-    blocks = [Block((f"Step {number}: {step.statement.rstrip('.')}.",), tuple(math))]
+            math.append(Equation(tex + (rf"\ \text{{({branch})}}" if branch else ""), text + suffix, _shown(value)))
+    statement = f"Step {number}: {step.statement.rstrip('.')}."
+    blocks = [Block(_prose(statement), tuple(math))]
     condition: tuple[str | sp.Basic | Inline, ...] = (f"Existence: {formulas.note}",)
     if formulas.conditions:
-        condition = (*condition, ": ", *formulas.conditions)
+        condition = (*condition, ": ", *(_shown(c) for c in formulas.conditions))
     blocks.append(Block(condition))
     return blocks
 
@@ -233,9 +368,9 @@ def _data(plan: Plan, all_formulas: tuple[StepFormulas, ...]) -> dict[str, Any]:
                 "statement": f.step.statement,
                 "branches": list(f.step.branches),
                 "intermediates": {str(s): str(e) for s, e in f.intermediates},
-                "intermediates_latex": {str(s): latex(e) for s, e in f.intermediates},
+                "intermediates_latex": {str(s): latex(_shown(e)) for s, e in f.intermediates},
                 "solutions": [[str(e) for e in branch] for branch in f.solutions],
-                "solutions_latex": [[latex(e) for e in branch] for branch in f.solutions],
+                "solutions_latex": [[latex(_shown(e)) for e in branch] for branch in f.solutions],
                 "conditions": [str(c) for c in f.conditions],
                 "existence": f.note,
             }
@@ -258,18 +393,20 @@ def ik_derivation_document(plan: Plan) -> Document:
     """
     all_formulas = step_formulas(plan)
     blocks = [
-        Block((f"Family: {plan.family}, because {'; '.join(plan.reasons)}.",)),
-        Block((f"The arm controls {plan.controlled}; the target pose is",), (Equation("T", "T", pose_matrix()),)),
+        Block(_prose(f"Family: {plan.family}, because {'; '.join(plan.reasons)}.")),
+        Block((f"The arm controls {plan.controlled}; the target pose is",),
+              (Equation("T", "T", _shown(pose_matrix())),)),
     ]
     if plan.definitions:
         blocks.append(
             Block(
                 ("Named from the target:",),
-                tuple(Equation(latex(s), str(s), e) for s, e in plan.definitions),
+                tuple(Equation(latex(s), str(s), _shown(e)) for s, e in plan.definitions),
             )
         )
     for number, formulas in enumerate(all_formulas, start=1):
         blocks += _step_blocks(plan, number, formulas)
+    blocks = _axes_defined(blocks)
     counts = " x ".join(str(max(1, len(s.branches))) for s in plan.steps)
     blocks.append(Block((f"At most {counts} = {plan.max_solutions} solutions.",)))
     return Document(

@@ -123,11 +123,13 @@ class NumericModel:
             return self._fast[1](q, None)  # type: ignore[no-any-return]
         return self._call("jacobian", q, out, (6, len(self.names)))
 
-    def ik(self, pose: Any, tolerance: float = IK_TOLERANCE) -> tuple[np.ndarray, np.ndarray]:
+    def ik(self, pose: Any, tolerance: float = IK_TOLERANCE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every closed-form solution for a pose (4, 4) or a batch (..., 4, 4), as the generated ``inverse_kinematics``.
 
-        Returns ``(solutions, count)``: solutions of shape (..., m, n), each pose's solutions first in branch order
-        and rows of NaN after, m the most a pose has; count of shape (...), 0 for an unreachable or NaN pose.
+        Returns ``(solutions, count, branches)``: solutions of shape (..., m, n), each pose's solutions first in branch
+        order and rows of NaN after, m the most a pose has (a row equal to an earlier one within ``tolerance``, where
+        branches coincide, is dropped); count of shape (...), 0 for an unreachable or NaN pose; branches of shape
+        (..., m), each row's branch as its index in the module's ``IK_BRANCHES``, -1 for the rows of NaN.
         Revolute angles are in (-pi, pi] (or shifted by 2 pi into the limits). The first call derives the closed
         form and generates its module (a :class:`~symjac.errors.NoClosedFormError` for an arm without one); one
         pose goes through plain Python floats with the numpy backend, a batch through NumPy, vectorised over the
@@ -144,11 +146,13 @@ class NumericModel:
             object.__setattr__(self, "_ik_solvers", solvers)
         batch, single = solvers
         if single is not None and poses.ndim == 2:
-            rows, count = single.inverse_kinematics(poses.tolist(), tolerance)
+            rows, count, indices = single.inverse_kinematics(poses.tolist(), tolerance)
             solutions = np.full((int(batch.IK_MAX_SOLUTIONS), self.n), np.nan)
+            branches = np.full(int(batch.IK_MAX_SOLUTIONS), -1, dtype=np.intp)
             if count:
                 solutions[:count] = rows
-            return solutions, np.array(count)
+                branches[:count] = indices
+            return solutions, np.array(count), branches
         return batch.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
 
     def _call(self, function: str, q: Any, out: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:

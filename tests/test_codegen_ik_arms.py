@@ -64,7 +64,7 @@ def test_every_row_names_the_executors_branch_of_that_solution(arm):
     """Each written row's branch index (``IK_BRANCHES``, jax/casadi: the row's position) is the branch under which
     the executor finds that solution, at the 60 random poses and at 200 more for the UR5 and the PUMA, where some
     poses have fewer solutions than branches (a branch without a solution leaves no gap in the rows)."""
-    robot, plan, solvers, q, poses = arm
+    robot, plan, solvers, _, poses = arm
     ik = inverse_kinematics_of(robot)
     revolute = np.array([kind.value == "revolute" for kind in robot.coordinate_types])
     if robot.name in ("puma560", "ur5"):

@@ -139,6 +139,12 @@ def test_ten_thousand_poses_round_trip_through_the_numeric_model(arm):
     solutions, count, branches = model.ik(poses)
     assert count.min() >= 1
     assert np.array_equal(branches >= 0, np.arange(branches.shape[-1]) < count[:, None])
+    assert model.ik_branches == inverse_kinematics_of(robot).branch_names
+    numpy_model = numeric_model(robot, backend="numpy")  # one pose through the python module, as floats
+    for k in range(5):
+        rows, how_many, which = numpy_model.ik(poses[k])
+        assert int(how_many) == count[k] and which.tolist() == branches[k].tolist(), k
+        np.testing.assert_allclose(rows, solutions[k], rtol=0, atol=1e-10)
     flat = solutions.reshape(-1, robot.n_joints)
     valid = ~np.isnan(flat).any(axis=1)
     assert valid.sum() == count.sum()

@@ -94,16 +94,20 @@ def _distinct(rows: np.ndarray, revolute: np.ndarray) -> list[np.ndarray]:
 def test_at_singular_poses_every_target_gives_the_executors_representatives_exactly(arm):
     """At home (the wrist singularity of all three) and with the wrist straight: the same distinct solutions as the
     executor (the free joint at 0), each reproducing the pose to 1e-12; of branches that coincide only the first is
-    written (jax and casadi mark both valid)."""
+    written (jax and casadi mark both valid), so the rows' branches are the executor's (the PUMA at q5 = 0: 7 of 8)."""
     robot, plan, solvers, _, _ = arm
+    ik = inverse_kinematics_of(robot)
     fk = numeric_model(robot, backend="numpy").fk
     revolute = np.array([kind.value == "revolute" for kind in robot.coordinate_types])
     straight = np.array([0.3, -0.5, 0.4, 0.2, 0.0, -0.1])  # theta5 = 0 (the Stanford arm: d3 = 0.4)
     poses = fk(np.array([np.zeros(robot.n_joints), straight]))
     for k, pose in enumerate(poses):
-        expected = _distinct(np.array([s.q for s in solve_plan(plan, pose).solutions]), revolute)
+        executor = solve_plan(plan, pose).solutions
+        expected = _distinct(np.array([s.q for s in executor]), revolute)
         for target, solve in solvers.items():
-            (found,) = solve(pose[None])
+            ((found, branches),) = solve.pairs(pose[None])
+            names = [ik.branches[b] for b in branches]
+            assert target in ("jax", "casadi") or names == [s.branch for s in executor], (target, k)
             assert np.abs(fk(found) - pose).max() < 1e-12, (target, k)
             distinct = _distinct(found, revolute)
             assert len(distinct) == len(expected), (target, k)

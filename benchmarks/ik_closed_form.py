@@ -57,9 +57,10 @@ int main(int argc, char** argv)
         poses.push_back(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(&data[16 * k]));
     }}
     std::array<Eigen::Matrix<double, {n}, 1>, ik_max_solutions> solutions;
+    std::array<int, ik_max_solutions> branches;
     std::FILE* out = std::fopen(argv[3], "wb");
     for (const auto& pose : poses) {{  // the solutions once, for the check
-        const int count = inverse_kinematics(pose, solutions);
+        const int count = inverse_kinematics(pose, solutions, branches);
         double row[ik_max_solutions * {n} + 1] = {{static_cast<double>(count)}};
         for (int k = 0; k < count; ++k) {{
             for (int i = 0; i < {n}; ++i) {{
@@ -76,7 +77,7 @@ int main(int argc, char** argv)
         const auto start = std::chrono::steady_clock::now();
         for (long r = 0; r < repeats; ++r) {{
             for (const auto& pose : poses) {{
-                const int count = inverse_kinematics(pose, solutions);
+                const int count = inverse_kinematics(pose, solutions, branches);
                 total += count;
                 checksum += solutions[0](0);
             }}
@@ -182,11 +183,11 @@ def _robot(name: str, count: int, seconds: float, repeats: int) -> None:
         if cpp is not None:
             rows.append(("generated C++ (loop)", cpp[0] / 1e3, cpp[1]))
         numpy_module = _module(robot, "numpy", folder)
-        solutions, counts = numpy_module.inverse_kinematics(poses)
+        solutions, counts, _ = numpy_module.inverse_kinematics(poses)
         found = [s[:k] for s, k in zip(solutions, counts, strict=True)]
         rows.append(("numpy target, batch", 1e6 * _timed(lambda: numpy_module.inverse_kinematics(poses), seconds)
                      / len(poses), found))
-    solutions, counts = model.ik(poses)
+    solutions, counts, _ = model.ik(poses)
     found = [s[:k] for s, k in zip(solutions, counts, strict=True)]
     rows.append((f"NumericModel.ik ({model.backend}), batch",
                  1e6 * _timed(lambda: model.ik(poses), seconds) / len(poses), found))

@@ -2,7 +2,8 @@
 
 :func:`ik_solvers` generates a robot's module for each target, compiles what needs compiling (c99 with gcc, cpp with
 g++ on Eigen, both ``-Wall -Wextra -Werror``) and returns, per target, a function from a batch of 4 x 4 poses to the
-list of each pose's solutions (an array of shape (count, n)).
+list of each pose's solutions (an array of shape (count, n)); its ``pairs`` gives each pose's solutions and their
+branch indices in ``IK_BRANCHES`` (jax and casadi: the positions of the valid rows).
 """
 
 from __future__ import annotations
@@ -21,7 +22,17 @@ EIGEN = Path("/usr/include/eigen3")
 C_FLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 CPP_FLAGS = ["-std=c++17", "-Wall", "-Wextra", "-Werror", "-O2", f"-I{EIGEN}"]
 
-Solver = Callable[[np.ndarray], list[np.ndarray]]
+Pairs = Callable[[np.ndarray], list[tuple[np.ndarray, np.ndarray]]]
+
+
+class Solver:
+    """A target's solver: called on a batch of poses, each pose's solutions; ``pairs`` adds their branch indices."""
+
+    def __init__(self, pairs: Pairs) -> None:
+        self.pairs = pairs
+
+    def __call__(self, poses: np.ndarray) -> list[np.ndarray]:
+        return [rows for rows, _ in self.pairs(poses)]
 
 
 def ik_files(robot, target: str, **options) -> dict[str, str]:
@@ -29,7 +40,7 @@ def ik_files(robot, target: str, **options) -> dict[str, str]:
     return render_files(describe(ModuleRequest(robot, target, inverse_kinematics=True, **options)))
 
 
-def _python(folder: Path, robot, target: str) -> Solver:
+def _python(folder: Path, robot, target: str) -> Pairs:
     (name, text), = ik_files(robot, target).items()
     path = folder / f"{target}_{name}"
     path.write_text(text)
@@ -38,39 +49,48 @@ def _python(folder: Path, robot, target: str) -> Solver:
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     if target == "python":
-        return lambda poses: [np.array(module.inverse_kinematics(pose)[0]).reshape(-1, robot.n_joints)
-                              for pose in poses]
+        def single(poses: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+            found = []
+            for pose in poses:
+                rows, count, branches = module.inverse_kinematics(pose)
+                assert len(rows) == count == len(branches)
+                found.append((np.array(rows).reshape(-1, robot.n_joints), np.array(branches, dtype=int)))
+            return found
+
+        return single
     if target == "jax":
         import jax
 
         jax.config.update("jax_enable_x64", True)
         solve = jax.jit(jax.vmap(module.inverse_kinematics))
 
-        def masked(poses: np.ndarray) -> list[np.ndarray]:
+        def masked(poses: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
             solutions, valid = (np.asarray(a) for a in solve(poses))
-            return [rows[ok] for rows, ok in zip(solutions, valid, strict=True)]
+            return [(rows[ok], np.flatnonzero(ok)) for rows, ok in zip(solutions, valid, strict=True)]
 
         return masked
     if target == "casadi":
         defaults = np.array([value for value in module.PARAMETER_DEFAULTS], dtype=float)
 
-        def function(poses: np.ndarray) -> list[np.ndarray]:
+        def function(poses: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
             found = []
             for pose in poses:
                 solutions, valid = (np.asarray(a) for a in module.inverse_kinematics(pose, defaults))
-                found.append(solutions[valid.ravel() > 0.5])
+                ok = valid.ravel() > 0.5
+                found.append((solutions[ok], np.flatnonzero(ok)))
             return found
 
         return function
 
-    def batched(poses: np.ndarray) -> list[np.ndarray]:
-        solutions, count = module.inverse_kinematics(poses)
-        return [rows[:k] for rows, k in zip(solutions, count, strict=True)]
+    def batched(poses: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+        solutions, count, branches = module.inverse_kinematics(poses)
+        assert np.all((branches >= 0) == (np.arange(branches.shape[-1]) < count[:, None]))
+        return [(rows[:k], indices[:k]) for rows, k, indices in zip(solutions, count, branches, strict=True)]
 
     return batched
 
 
-def _c99(folder: Path, robot) -> Solver:
+def _c99(folder: Path, robot) -> Pairs:
     files = ik_files(robot, "c99")
     for name, text in files.items():
         (folder / name).write_text(text)
@@ -84,27 +104,30 @@ def _c99(folder: Path, robot) -> Solver:
                        if line.startswith(f"#define {robot.name.upper()}_IK_MAX_SOLUTIONS")))
     n = robot.n_joints
 
-    def solve(poses: np.ndarray) -> list[np.ndarray]:
+    def solve(poses: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
         found = []
         for pose in poses:
             flat = np.ascontiguousarray(pose, dtype=float).ravel()
             out = np.full(maximum * n, np.nan)
+            branches = np.full(maximum, -1, dtype=np.intc)
             count = function(flat.ctypes.data_as(ctypes.c_void_p), None, ctypes.c_double(1e-9),
-                             out.ctypes.data_as(ctypes.c_void_p))
-            found.append(out.reshape(maximum, n)[:count].copy())
+                             out.ctypes.data_as(ctypes.c_void_p), branches.ctypes.data_as(ctypes.c_void_p))
+            found.append((out.reshape(maximum, n)[:count].copy(), branches[:count].astype(int)))
         return found
 
     return solve
 
 
 CPP_SHIM = """#include "{robot}.hpp"
-extern "C" int solve(const double* pose, double* out)
+extern "C" int solve(const double* pose, double* out, int* indices)
 {{
     using namespace symjac::{robot};
     const Eigen::Matrix4d T = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(pose);
     std::array<Eigen::Matrix<double, {n}, 1>, ik_max_solutions> solutions;
-    const int count = inverse_kinematics(T, solutions);
+    std::array<int, ik_max_solutions> branches;
+    const int count = inverse_kinematics(T, solutions, branches);
     for (int k = 0; k < count; ++k) {{
+        indices[k] = branches[k];
         for (int i = 0; i < {n}; ++i) {{
             out[k * {n} + i] = solutions[k](i);
         }}
@@ -115,7 +138,7 @@ extern "C" int maximum() {{ return symjac::{robot}::ik_max_solutions; }}
 """
 
 
-def _cpp(folder: Path, robot) -> Solver:
+def _cpp(folder: Path, robot) -> Pairs:
     (name, text), = ik_files(robot, "cpp").items()
     (folder / name).write_text(text)
     n = robot.n_joints
@@ -125,13 +148,15 @@ def _cpp(folder: Path, robot) -> Solver:
     lib = ctypes.CDLL(str(folder / "libikshim.so"))
     maximum = lib.maximum()
 
-    def solve(poses: np.ndarray) -> list[np.ndarray]:
+    def solve(poses: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
         found = []
         for pose in poses:
             flat = np.ascontiguousarray(pose, dtype=float).ravel()
             out = np.full(maximum * n, np.nan)
-            count = lib.solve(flat.ctypes.data_as(ctypes.c_void_p), out.ctypes.data_as(ctypes.c_void_p))
-            found.append(out.reshape(maximum, n)[:count].copy())
+            branches = np.full(maximum, -1, dtype=np.intc)
+            count = lib.solve(flat.ctypes.data_as(ctypes.c_void_p), out.ctypes.data_as(ctypes.c_void_p),
+                              branches.ctypes.data_as(ctypes.c_void_p))
+            found.append((out.reshape(maximum, n)[:count].copy(), branches[:count].astype(int)))
         return found
 
     return solve
@@ -144,9 +169,9 @@ def ik_solvers(folder: Path, robot, targets: tuple[str, ...]) -> dict[str, Solve
         where = folder / target
         where.mkdir(exist_ok=True)
         if target == "c99":
-            solvers[target] = _c99(where, robot)
+            solvers[target] = Solver(_c99(where, robot))
         elif target == "cpp":
-            solvers[target] = _cpp(where, robot)
+            solvers[target] = Solver(_cpp(where, robot))
         else:
-            solvers[target] = _python(where, robot, target)
+            solvers[target] = Solver(_python(where, robot, target))
     return solvers

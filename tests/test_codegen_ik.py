@@ -71,9 +71,11 @@ def test_a_pose_at_full_stretch_keeps_the_branch_within_the_tolerance(planar):
     _, solvers, _ = planar
     pose = np.eye(4)
     pose[0, 3] = 0.9 * (1 + 1e-12)  # c2 = 1 + a few 1e-12: the condition is clamped, not failed
-    for target, solve in solvers.items():
-        (solutions,) = solve(pose[None])
-        assert solutions.shape == (2, 2), target
+    for target, solve in solvers.items():  # both elbows give q = 0: the second is dropped, but jax/casadi's mask
+        ((solutions, branches),) = solve.pairs(pose[None])
+        both = target in ("jax", "casadi")
+        assert solutions.shape == ((2, 2) if both else (1, 2)), target
+        assert branches.tolist() == ([0, 1] if both else [0]), target
         np.testing.assert_allclose(solutions, 0.0, atol=1e-5, err_msg=target)
 
 
@@ -92,10 +94,11 @@ def test_the_numpy_target_keeps_batch_shapes(planar):
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     _, poses = _poses(robot, 6)
-    solutions, count = module.inverse_kinematics(poses.reshape(2, 3, 4, 4))
+    solutions, count, branches = module.inverse_kinematics(poses.reshape(2, 3, 4, 4))
     assert solutions.shape == (2, 3, module.IK_MAX_SOLUTIONS, 2) and count.shape == (2, 3)
-    single, one = module.inverse_kinematics(poses[0])
-    assert single.shape == (2, 2) and one.shape == () and int(one) == 2
+    assert branches.shape == (2, 3, module.IK_MAX_SOLUTIONS) and branches.dtype.kind == "i"
+    single, one, which = module.inverse_kinematics(poses[0])
+    assert single.shape == (2, 2) and one.shape == () and int(one) == 2 and which.tolist() == [0, 1]
     with pytest.raises(ValueError, match=r"shape \(\.\.\., 4, 4\)"):
         module.inverse_kinematics(np.zeros((3, 4)))
 
@@ -105,16 +108,16 @@ def test_the_numeric_models_ik_gives_every_solution_for_one_pose_and_a_batch(pla
     robot, solvers, _ = planar  # the model's own closed form (the planar family) against the hand-written one
     model = numeric_model(robot, backend=backend)
     _, poses = _poses(robot, 30, seed=2)
-    solutions, count = model.ik(poses)
-    assert solutions.shape == (30, 2, 2) and count.tolist() == [2] * 30
+    solutions, count, branches = model.ik(poses)
+    assert solutions.shape == (30, 2, 2) and count.tolist() == [2] * 30 and branches.tolist() == [[0, 1]] * 30
     expected = solvers["python"](poses)
     for k in range(30):
         np.testing.assert_allclose(solutions[k][np.argsort(solutions[k][:, 1])], expected[k][::-1], atol=1e-12)
-    one, how_many = model.ik(poses[0])
-    assert one.shape == (2, 2) and int(how_many) == 2
+    one, how_many, which = model.ik(poses[0])
+    assert one.shape == (2, 2) and int(how_many) == 2 and which.tolist() == [0, 1]
     np.testing.assert_allclose(one, solutions[0], atol=1e-12)
-    nothing, zero = model.ik(np.full((4, 4), np.nan))
-    assert int(zero) == 0 and np.isnan(nothing).all()
+    nothing, zero, none = model.ik(np.full((4, 4), np.nan))
+    assert int(zero) == 0 and np.isnan(nothing).all() and none.tolist() == [-1, -1]
     with pytest.raises(Exception, match=r"shape \(4, 4\) or \(\.\.\., 4, 4\)"):
         model.ik(np.zeros(4))
 
@@ -125,7 +128,7 @@ def test_the_command_line_option_writes_a_module_that_solves(cli, tmp_path):
     namespace: dict = {}
     exec(compile(source, "stanford.py", "exec"), namespace)
     q = np.array([0.3, -0.5, 0.4, 0.2, 0.7, -0.1])
-    solutions, count = namespace["inverse_kinematics"](namespace["forward_kinematics"](q))
+    solutions, count, _ = namespace["inverse_kinematics"](namespace["forward_kinematics"](q))
     assert int(count) == namespace["IK_MAX_SOLUTIONS"] == 8
     assert np.abs(solutions[:count] - q).max(axis=1).min() < 1e-9
 

@@ -13,6 +13,7 @@ import pytest
 from ik_generated import ik_solvers
 
 from symjac.analysis.inverse_kinematics import closed_form_plan, seed_bounds, solve_plan
+from symjac.codegen.inverse_kinematics import inverse_kinematics_of
 from symjac.codegen.numeric_model import numeric_model
 from symjac.errors import NoClosedFormError
 from symjac.model.io import load_robot
@@ -59,6 +60,29 @@ def test_every_target_finds_the_executors_solutions(arm):
             assert np.all(inside | ((angles > -np.pi) & (angles <= np.pi))), (target, k)
 
 
+def test_every_row_names_the_executors_branch_of_that_solution(arm):
+    """Each written row's branch index (``IK_BRANCHES``, jax/casadi: the row's position) is the branch under which
+    the executor finds that solution, at the 60 random poses and at 200 more for the UR5 and the PUMA, where some
+    poses have fewer solutions than branches (a branch without a solution leaves no gap in the rows)."""
+    robot, plan, solvers, _, poses = arm
+    ik = inverse_kinematics_of(robot)
+    revolute = np.array([kind.value == "revolute" for kind in robot.coordinate_types])
+    if robot.name in ("puma560", "ur5"):
+        lower, upper = seed_bounds(robot)
+        more = np.random.default_rng(8).uniform(lower, upper, (200, robot.n_joints))
+        poses = np.concatenate([poses, numeric_model(robot, backend="numpy").fk(more)])
+    expected = [solve_plan(plan, pose).solutions for pose in poses]
+    fewer = sum(len(solutions) < ik.max_solutions for solutions in expected)
+    assert robot.name != "ur5" or fewer >= 10  # the point: rows whose branches are not the first ones
+    for target, solve in solvers.items():
+        for k, ((found, branches), reference) in enumerate(zip(solve.pairs(poses), expected, strict=True)):
+            assert len(branches) == len(found) == len(reference), (target, k)
+            for row, branch in zip(found, branches, strict=True):
+                names = ik.branches[branch]
+                (match,) = [s for s in reference if s.branch == names]
+                assert _distance(row[None], match.q[None], revolute)[0, 0] < 1e-6, (target, k, names)
+
+
 def _distinct(rows: np.ndarray, revolute: np.ndarray) -> list[np.ndarray]:
     found: list[np.ndarray] = []
     for row in rows:
@@ -69,19 +93,25 @@ def _distinct(rows: np.ndarray, revolute: np.ndarray) -> list[np.ndarray]:
 
 def test_at_singular_poses_every_target_gives_the_executors_representatives_exactly(arm):
     """At home (the wrist singularity of all three) and with the wrist straight: the same distinct solutions as the
-    executor (the free joint at 0), each reproducing the pose to 1e-12; branches that coincide are both written."""
+    executor (the free joint at 0), each reproducing the pose to 1e-12; of branches that coincide only the first is
+    written (jax and casadi mark both valid), so the rows' branches are the executor's (the PUMA at q5 = 0: 7 of 8)."""
     robot, plan, solvers, _, _ = arm
+    ik = inverse_kinematics_of(robot)
     fk = numeric_model(robot, backend="numpy").fk
     revolute = np.array([kind.value == "revolute" for kind in robot.coordinate_types])
     straight = np.array([0.3, -0.5, 0.4, 0.2, 0.0, -0.1])  # theta5 = 0 (the Stanford arm: d3 = 0.4)
     poses = fk(np.array([np.zeros(robot.n_joints), straight]))
     for k, pose in enumerate(poses):
-        expected = _distinct(np.array([s.q for s in solve_plan(plan, pose).solutions]), revolute)
+        executor = solve_plan(plan, pose).solutions
+        expected = _distinct(np.array([s.q for s in executor]), revolute)
         for target, solve in solvers.items():
-            (found,) = solve(pose[None])
+            ((found, branches),) = solve.pairs(pose[None])
+            names = [ik.branches[b] for b in branches]
+            assert target in ("jax", "casadi") or names == [s.branch for s in executor], (target, k)
             assert np.abs(fk(found) - pose).max() < 1e-12, (target, k)
             distinct = _distinct(found, revolute)
             assert len(distinct) == len(expected), (target, k)
+            assert target in ("jax", "casadi") or len(found) == len(expected), (target, k)
             assert _distance(np.array(distinct), np.array(expected), revolute).min(axis=1).max() < 1e-9, (target, k)
 
 
@@ -110,8 +140,15 @@ def test_ten_thousand_poses_round_trip_through_the_numeric_model(arm):
     lower, upper = seed_bounds(robot)
     q = np.random.default_rng(10_000).uniform(lower, upper, (10_000, robot.n_joints))
     poses = model.fk(q)
-    solutions, count = model.ik(poses)
+    solutions, count, branches = model.ik(poses)
     assert count.min() >= 1
+    assert np.array_equal(branches >= 0, np.arange(branches.shape[-1]) < count[:, None])
+    assert model.ik_branches == inverse_kinematics_of(robot).branch_names
+    numpy_model = numeric_model(robot, backend="numpy")  # one pose through the python module, as floats
+    for k in range(5):
+        rows, how_many, which = numpy_model.ik(poses[k])
+        assert int(how_many) == count[k] and which.tolist() == branches[k].tolist(), k
+        np.testing.assert_allclose(rows, solutions[k], rtol=0, atol=1e-10)
     flat = solutions.reshape(-1, robot.n_joints)
     valid = ~np.isnan(flat).any(axis=1)
     assert valid.sum() == count.sum()

@@ -31,7 +31,8 @@ extern "C" int solve(const double* pose, double q_free, double* out)
     using namespace symjac::iiwa7;
     const Eigen::Matrix4d T = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(pose);
     std::array<Eigen::Matrix<double, 7, 1>, ik_max_solutions> solutions;
-    const int count = inverse_kinematics(T, q_free, solutions);
+    std::array<int, ik_max_solutions> branches;
+    const int count = inverse_kinematics(T, q_free, solutions, branches);
     for (int k = 0; k < count; ++k) {
         for (int i = 0; i < 7; ++i) {
             out[k * 7 + i] = solutions[k](i);
@@ -69,7 +70,7 @@ def _solver(folder, robot, target):
             for pose, value in zip(poses, free, strict=True):
                 flat, out = np.ascontiguousarray(pose, dtype=float).ravel(), np.full(8 * 7, np.nan)
                 count = function(flat.ctypes.data_as(ctypes.c_void_p), ctypes.c_double(value), None,
-                                 ctypes.c_double(1e-9), out.ctypes.data_as(ctypes.c_void_p))
+                                 ctypes.c_double(1e-9), out.ctypes.data_as(ctypes.c_void_p), None)
                 found.append(out.reshape(8, 7)[:count].copy())
             return found
 
@@ -120,7 +121,7 @@ def _solver(folder, robot, target):
         return function
 
     def batched(poses, free):
-        solutions, count = module.inverse_kinematics(poses, free)
+        solutions, count, _ = module.inverse_kinematics(poses, free)
         return [rows[:k] for rows, k in zip(solutions, count, strict=True)]
 
     return batched
@@ -195,5 +196,5 @@ def test_the_command_line_option_writes_a_module_that_takes_the_joint(cli):
     namespace: dict = {}
     exec(compile(source, "iiwa7.py", "exec"), namespace)
     q = np.array([0.3, -0.5, 0.4, 0.9, 0.7, -0.6, 0.2])
-    solutions, count = namespace["inverse_kinematics"](namespace["forward_kinematics"](q), q[FREE])
+    solutions, count, _ = namespace["inverse_kinematics"](namespace["forward_kinematics"](q), q[FREE])
     assert int(count) >= 1 and np.abs(solutions[:count] - q).max(axis=1).min() < 1e-9

@@ -60,7 +60,7 @@ def codegen_options(sub: argparse.ArgumentParser, name: str) -> None:
                           "in order as REGRESSOR_PARAMETERS, BASE_PARAMETERS); implies --dynamics")
     sub.add_argument("--inverse-kinematics", action="store_true",
                      help="also generate inverse_kinematics(pose): every closed-form solution (an arm with a closed "
-                          "form) into IK_MAX_SOLUTIONS rows and their count")
+                          "form) into IK_MAX_SOLUTIONS rows, their count and branches")
     sub.add_argument("--free-joint", type=int, default=None, metavar="K",
                      help="with --inverse-kinematics: the closed form with joint K (1..n) given, a 7-joint arm's "
                           "redundancy parameter; inverse_kinematics then takes its value q_free after the pose")

@@ -139,7 +139,7 @@ def _facts(description: ModuleDescription, ik: InverseKinematics, names: SymbolN
 
 
 _PYTHON_LOCALS = frozenset(("pose", "tolerance", "values", "poses", "rows", "batch", "count", "solutions", "np",
-                            "math", "parameters", "out", "q"))
+                            "math", "parameters", "out", "q", "branches", "branch", "valid", "order"))
 
 
 def python_inverse_kinematics(description: ModuleDescription, family: str, taken: frozenset[str],
@@ -182,7 +182,7 @@ def python_inverse_kinematics(description: ModuleDescription, family: str, taken
 
 
 _C_LOCALS = frozenset(("pose", "tolerance", "v", "count", "q", "p", "params", "solutions", "real", "row", "value",
-                       "lower", "upper", "i"))
+                       "lower", "upper", "i", "k", "branches", "branch", "same"))
 
 
 def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: frozenset[str],
@@ -213,8 +213,8 @@ def c_inverse_kinematics(description: ModuleDescription, target: str, reserved: 
     selection = []
     for b, conditions in enumerate(ik.branch_conditions):
         start = ik.joint_output(b, 0)
-        store = (f"count += detail::ik_store(&v[{start}], solutions[count]);" if target == "cpp" else
-                 f"count += sj_cf_store(v + {start}, q + count * {ik.n});")
+        store = (f"count += detail::ik_store(&v[{start}], solutions, branches, count, {b}, tolerance);"
+                 if target == "cpp" else f"count += sj_cf_store(v + {start}, q, branches, count, {b}, tolerance);")
         test = " && ".join(f"v[{k}] >= -tolerance" for k in conditions)
         selection += wrap_statement(f"    if ({test}) ", store, language="c") if test else [f"    {store}"]
     data = {**_facts(description, ik, names), "reads": reads,

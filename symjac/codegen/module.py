@@ -318,7 +318,7 @@ def generate(
         checks both against inverse dynamics with the robot's own parameters.
     inverse_kinematics : bool
         Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
-        ``IK_MAX_SOLUTIONS`` rows with their count. An arm without a closed form gets the numeric
+        ``IK_MAX_SOLUTIONS`` rows, their count and branches. An arm without a closed form gets the numeric
         ``inverse_kinematics_numeric`` (with a seed) in every target but jax and casadi (``NoClosedFormError``).
         ``free_joint=k`` (0-based) asks for the closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
     numeric_ik : bool

@@ -123,33 +123,48 @@ class NumericModel:
             return self._fast[1](q, None)  # type: ignore[no-any-return]
         return self._call("jacobian", q, out, (6, len(self.names)))
 
-    def ik(self, pose: Any, tolerance: float = IK_TOLERANCE) -> tuple[np.ndarray, np.ndarray]:
+    def ik(self, pose: Any, tolerance: float = IK_TOLERANCE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every closed-form solution for a pose (4, 4) or a batch (..., 4, 4), as the generated ``inverse_kinematics``.
 
-        Returns ``(solutions, count)``: solutions of shape (..., m, n), each pose's solutions first in branch order
-        and rows of NaN after, m the most a pose has; count of shape (...), 0 for an unreachable or NaN pose.
+        Returns ``(solutions, count, branches)``: solutions of shape (..., m, n), each pose's solutions first in branch
+        order and rows of NaN after, m the most a pose has (a row equal to an earlier one within ``tolerance``, where
+        branches coincide, is dropped); count of shape (...), 0 for an unreachable or NaN pose; branches of shape
+        (..., m), each row's branch as its index in :attr:`ik_branches`, -1 for the rows of NaN.
         Revolute angles are in (-pi, pi] (or shifted by 2 pi into the limits). The first call derives the closed
         form and generates its module (a :class:`~symjac.errors.NoClosedFormError` for an arm without one); one
         pose goes through plain Python floats with the numpy backend, a batch through NumPy, vectorised over the
         poses; a C model runs the c target's compiled closed form for both.
         """
-        if self._ik_modules is None:
-            raise CodegenError(f"no inverse kinematics for {self.robot}: the model was built without its chain")
         poses = pose if type(pose) is np.ndarray and pose.dtype == np.float64 else _as_array(pose)
         if poses.ndim < 2 or poses.shape[-2:] != (4, 4):
             raise ArgumentError(f"pose must have shape (4, 4) or (..., 4, 4), got shape {poses.shape}")
+        batch, single = self._ik_solvers_made()
+        if single is not None and poses.ndim == 2:
+            rows, count, indices = single.inverse_kinematics(poses.tolist(), tolerance)
+            solutions = np.full((int(batch.IK_MAX_SOLUTIONS), self.n), np.nan)
+            branches = np.full(int(batch.IK_MAX_SOLUTIONS), -1, dtype=np.intp)
+            if count:
+                solutions[:count] = rows
+                branches[:count] = indices
+            return solutions, np.array(count), branches
+        return batch.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
+
+    @property
+    def ik_branches(self) -> tuple[str, ...]:
+        """The names of the closed form's branches, which :meth:`ik`'s ``branches`` index (``IK_BRANCHES``).
+
+        For example ``"shoulder left, elbow up, no flip"``; the first use derives the closed form.
+        """
+        return tuple(self._ik_solvers_made()[0].IK_BRANCHES)
+
+    def _ik_solvers_made(self) -> Any:
+        if self._ik_modules is None:
+            raise CodegenError(f"no inverse kinematics for {self.robot}: the model was built without its chain")
         solvers = self.__dict__.get("_ik_solvers")
         if solvers is None:
             solvers = self._ik_modules()
             object.__setattr__(self, "_ik_solvers", solvers)
-        batch, single = solvers
-        if single is not None and poses.ndim == 2:
-            rows, count = single.inverse_kinematics(poses.tolist(), tolerance)
-            solutions = np.full((int(batch.IK_MAX_SOLUTIONS), self.n), np.nan)
-            if count:
-                solutions[:count] = rows
-            return solutions, np.array(count)
-        return batch.inverse_kinematics(poses, tolerance)  # type: ignore[no-any-return]
+        return solvers
 
     def _call(self, function: str, q: Any, out: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:
         values = q if type(q) is np.ndarray and q.dtype == np.float64 else _as_array(q)

@@ -31,7 +31,7 @@ import sympy
 
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry
 from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
-from symjac.analysis.inverse_kinematics.planar import DISTANCE_RULE, ELBOW, length, plane_step, rotation, turned
+from symjac.analysis.inverse_kinematics.planar import DISTANCE_RULE, ELBOW, SHOULDER, length, plane_step, rotation, turned
 
 __all__ = ["WRIST", "three_parallel_axes_plan"]
 
@@ -114,8 +114,9 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         "rotation_to_distance",
         {"k": h[2], "p": b, "q": points[1], "delta": length(b1 - points[1]), "point_on_axis": points[2]},
         f"{t3} bends the elbow until the point where axes 4 and 5 meet is as far from axis 2 as the target puts it, "
-        f"a rotation to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]})",
+        f"a rotation to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]}; swapped with {SHOULDER[1]})",
         ELBOW,
+        swapped_by=0,
     )
     lift = Step(
         (1,),

@@ -117,7 +117,8 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
                                                 "delta": sympy.sqrt((w - elbow_at).dot(w - elbow_at))},
                  f"{name[c]}: joint {c + 1} sets the wrist centre's distance from axis {b + 1}'s point, which must "
                  f"equal the target's (rotation to a distance); elbow up: seen along axis {c + 1}, the wrist centre at "
-                 f"a negative angle from that point", ("elbow up", "elbow down")),
+                 f"a negative angle from that point with shoulder left, a positive one with shoulder right",
+                 ("elbow down", "elbow up"), swapped_by=0),
             Step((b,), "rotation_to_point", {"k": h_b, "p": wrist_at, "q": back, "point_on_axis": p_b},
                  f"{name[b]}: joint {b + 1} turns the wrist centre onto the target's, joint {a + 1} undone "
                  f"(rotation to a point)"),

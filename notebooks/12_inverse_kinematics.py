@@ -43,7 +43,8 @@ OUTPUT.mkdir(parents=True, exist_ok=True)
 #
 # The tip of the planar 2R arm is at $x = L_1 c_1 + L_2 c_{12}$, $y = L_1 s_1 + L_2 s_{12}$. The law of cosines
 # gives the elbow, $c_2 = (x^2 + y^2 - L_1^2 - L_2^2) / (2 L_1 L_2)$, and two angles have that cosine,
-# $\theta_2 = \pm \arccos c_2$: the two branches. Each fixes the shoulder,
+# $\theta_2 = \pm \arccos c_2$: the two branches (the solver calls $+\arccos c_2$ elbow down, as the textbook does,
+# and $-\arccos c_2$ elbow up). Each fixes the shoulder,
 # $\theta_1 = \operatorname{atan2}(y, x) - \operatorname{atan2}(L_2 s_2, L_1 + L_2 c_2)$. When $|c_2| > 1$ the point is
 # out of reach; at $c_2 = \pm 1$ (arm stretched or folded) the two branches meet: a singular configuration.
 
@@ -115,13 +116,14 @@ for solution in found.solutions:
 # A wrong answer gets a hint of what is wrong, never the answer; to see the answer, add `reveal=True` to the
 # cell's `check(...)`.
 #
-# 1. The 2R arm's tip at $(x, y) = (0.3, 0.6)$: what is $\theta_2$ of the elbow-down branch (the negative one)?
+# 1. The 2R arm's tip at $(x, y) = (0.3, 0.6)$: what is $\theta_2$ of the elbow-down branch (the solver's name for
+#    $\theta_2 = +\arccos c_2$, the textbook's)?
 # 2. How far beyond the 2R arm's reach is the point $(1.2, 0)$, in metres?
 # 3. How many configurations (within the limits or not) does the PUMA 560 have for the pose `pose` above?
 
 # %%
 answer_1 = ...  # your answer here
-check(answer_1, -np.arccos((0.3**2 + 0.6**2 - L1**2 - L2**2) / (2 * L1 * L2)), tolerance=1e-6)
+check(answer_1, np.arccos((0.3**2 + 0.6**2 - L1**2 - L2**2) / (2 * L1 * L2)), tolerance=1e-6)
 
 # %%
 answer_2 = ...  # your answer here

@@ -62,7 +62,7 @@ SOLUTIONS: dict[str, dict[str, str]] = {
         "answer_2": "answer_2 = MX2 + L2 * M2",
     },
     "12_inverse_kinematics": {
-        "answer_1": "answer_1 = -np.arccos((0.3**2 + 0.6**2 - 0.5**2 - 0.4**2) / (2 * 0.5 * 0.4))",
+        "answer_1": "answer_1 = np.arccos((0.3**2 + 0.6**2 - 0.5**2 - 0.4**2) / (2 * 0.5 * 0.4))",
         "answer_2": "answer_2 = 1.2 - 0.9  # the reach is L1 + L2",
         "answer_3": "answer_3 = 8  # two shoulders, two elbows, two wrists",
     },

@@ -104,9 +104,12 @@ def test_printed_formulas_equal_the_executor(name, tmp_path):
             values = [*pose[:3, :3].ravel(), *pose[:3, 3], *([0.0] * len(definitions)), *solution.q]
             for k, f in enumerate(definitions):
                 values[12 + k] = float(f(values))
-            taken = iter(solution.branch)
+            taken, choices = iter(solution.branch), []
             for step, functions in zip(plan.steps, branches, strict=True):
                 index = step.branches.index(next(taken)) if step.branches else 0
+                if step.swapped_by is not None and choices[step.swapped_by] == 1:  # the names swapped by the shoulder
+                    index = 1 - index
+                choices.append(index)
                 for joint, printed in zip(step.joints, functions[index](values), strict=True):
                     if robot.joints[joint].is_revolute:
                         assert abs(_wrapped(printed - solution.q[joint])) < 1e-8, (step.statement, printed, solution.q)

@@ -340,6 +340,9 @@ def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]
     step = formulas.step
     math: list[Equation] = [Equation(latex(s), str(s), _shown(e)) for s, e in formulas.intermediates]
     branches = step.branches or ("",)
+    if step.swapped_by is not None and len(branches) == 2:  # the names swap with the earlier step's second solution
+        other = plan.steps[step.swapped_by].branches[1]
+        branches = (f"{branches[0]}; {branches[1]} with {other}", f"{branches[1]}; {branches[0]} with {other}")
     for branch, values in zip(branches, formulas.solutions, strict=False):  # one solution: no branch name
         for joint, value in zip(step.joints, values, strict=True):
             tex, text = _name(plan, joint)

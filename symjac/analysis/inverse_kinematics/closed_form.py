@@ -27,7 +27,7 @@ import sympy
 from symjac.analysis.inverse_kinematics import subproblems
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, exponential, reduced_geometry
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
-from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, branch_names
 from symjac.analysis.inverse_kinematics.planar import (
     articulated_plan,
     cylindrical_plan,
@@ -296,11 +296,11 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     compiled = _compiled(plan)
     inputs = [*matrix[:3, :3].ravel().tolist(), *matrix[:3, 3].tolist(), *free]
     inputs += list(compiled.definitions(*inputs))
-    branches: list[tuple[list[float], tuple[str, ...], tuple[int, ...]]] = [([], (), ())]
+    branches: list[tuple[list[float], tuple[int, ...], tuple[int, ...]]] = [([], (), ())]  # values, choices, singular
     failure: tuple[float, str] | None = None
     for step in compiled.steps:
         grown = []
-        for values, names, singular in branches:
+        for values, choices, singular in branches:
             arguments = _arguments(step, inputs + values)
             result, free_angle = _run(step, arguments, tolerance)
             if not result.solutions:
@@ -309,14 +309,14 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
                     failure = (distance, f"{step.step.statement} fails: {result.reason}")
                 continue
             for index, angles in enumerate(result.solutions):
-                name = step.step.branches[index:index + 1] if step.step.branches else ()
-                grown.append((values + list(angles), names + name,
+                grown.append((values + list(angles), (*choices, index),
                               (*singular, step.step.joints[0]) if free_angle else singular))
         branches = grown
     if not branches:
         distance, why = failure or (0.0, "no branch")
         return ClosedFormResult(plan, (), f"unreachable: {why}; the target is {distance:.6g} out of reach", distance)
-    solutions = tuple(_solution(plan, compiled, values, names, singular, free) for values, names, singular in branches)
+    solutions = tuple(_solution(plan, compiled, values, branch_names(plan.steps, choices), singular, free)
+                      for values, choices, singular in branches)
     if plan.controlled == "the whole pose":
         return ClosedFormResult(plan, solutions)
     uncontrolled, distance = _uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance)

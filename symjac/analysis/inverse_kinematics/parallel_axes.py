@@ -15,7 +15,9 @@ direction ``h2``; that one fact gives the whole decomposition:
 4. **theta6**: ``rot(h6, theta6) (R_M R^T R1 h2) = rot(h5, -theta5) h2``, a rotation to a point.
 5. **theta3** (elbow): axes 4 and 5 meet at ``b``; the target puts it at ``b_w = w + R R_M^T rot(h6, -theta6)
    (b - c)``, and seen from link 1, ``b1 = rot(h1, -theta1)(b_w - p1) + p1``; ``theta3`` turns ``b`` about axis 3 to the
-   distance ``|b1 - p2|`` from axis 2, a rotation to a distance; two solutions, elbow down and up.
+   distance ``|b1 - p2|`` from axis 2, a rotation to a distance; two solutions, elbow down and up with shoulder right,
+   up and down with shoulder left (the step's ``swapped_by``): turning the shoulder over turns the arm over, and "elbow
+   up" is the elbow above the line from shoulder to wrist (checked by height in tests/test_ik_branch_names.py).
 6. **theta2**: turns ``rot(h3, theta3) b`` onto ``b1`` about axis 2, a rotation to a point.
 7. **theta4**: ``rot(h4, theta4) h5 = R3^T R2^T R1^T R R_M^T rot(h6, -theta6) h5``, a rotation to a point.
 
@@ -31,7 +33,7 @@ import sympy
 
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry
 from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
-from symjac.analysis.inverse_kinematics.planar import DISTANCE_RULE, ELBOW, length, plane_step, rotation, turned
+from symjac.analysis.inverse_kinematics.planar import DISTANCE_RULE, ELBOW, SHOULDER, length, plane_step, rotation, turned
 
 __all__ = ["WRIST", "three_parallel_axes_plan"]
 
@@ -114,8 +116,9 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         "rotation_to_distance",
         {"k": h[2], "p": b, "q": points[1], "delta": length(b1 - points[1]), "point_on_axis": points[2]},
         f"{t3} bends the elbow until the point where axes 4 and 5 meet is as far from axis 2 as the target puts it, "
-        f"a rotation to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]})",
+        f"a rotation to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]}; swapped with {SHOULDER[1]})",
         ELBOW,
+        swapped_by=0,
     )
     lift = Step(
         (1,),

@@ -11,7 +11,7 @@ of those counts.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import sympy
@@ -19,7 +19,7 @@ import sympy
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
-__all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "pose_matrix"]
+__all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "branch_names", "pose_matrix"]
 
 POSE_SYMBOLS: tuple[sympy.Symbol, ...] = sympy.symbols("r11 r12 r13 r21 r22 r23 r31 r32 r33 px py pz", real=True)
 """The target pose's entries as real symbols: the rotation ``r11 .. r33`` row by row, then the position."""
@@ -48,7 +48,10 @@ class Step:
     ``joints`` are the robot joints (0-based) it solves, one or two (two rotations to a point: first the joint
     turned last, as the subproblem's ``theta1``); ``subproblem`` the numeric function's name; ``arguments`` its
     keyword arguments as SymPy expressions or 3 x 1 matrices; ``statement`` one sentence saying what it solves and
-    how; ``branches`` the names of its solutions in the subproblem's order (empty for one solution).
+    how; ``branches`` the names of its solutions in the subproblem's order (empty for one solution); ``swapped_by``
+    the position in the plan's steps of an earlier step whose second solution swaps this step's two names (the elbow
+    after the shoulder: turning the shoulder over turns the arm over, and the bend that put the elbow above the line
+    from shoulder to wrist then puts it below), else None.
     """
 
     joints: tuple[int, ...]
@@ -56,6 +59,7 @@ class Step:
     arguments: Mapping[str, sympy.Expr | sympy.Matrix]
     statement: str
     branches: tuple[str, ...] = ()
+    swapped_by: int | None = None
 
     def __post_init__(self) -> None:
         if self.subproblem not in SUBPROBLEMS:
@@ -69,6 +73,20 @@ class Step:
     def solution_count(self) -> int:
         """The most solutions this step has."""
         return SUBPROBLEMS[self.subproblem]
+
+
+def branch_names(steps: Sequence[Step], choices: Sequence[int]) -> tuple[str, ...]:
+    """The branch names of the solution that took solution ``choices[i]`` (0-based) of each step ``steps[i]``.
+
+    The one place the names are decided, for the numeric executor and the symbolic programs alike: a step's names in
+    its subproblem's order, the two swapped when its ``swapped_by`` step took its second solution.
+    """
+    names: list[str] = []
+    for step, index in zip(steps, choices, strict=True):
+        if step.branches:
+            swap = step.swapped_by is not None and choices[step.swapped_by] == 1
+            names.append(step.branches[1 - index if swap and len(step.branches) == 2 else index])
+    return tuple(names)
 
 
 @dataclass(frozen=True, eq=False)

@@ -19,7 +19,7 @@ from typing import Any
 import sympy
 
 from symjac.analysis.inverse_kinematics import subproblems
-from symjac.analysis.inverse_kinematics.plan import Plan, Step
+from symjac.analysis.inverse_kinematics.plan import Plan, Step, branch_names
 
 __all__ = ["BranchProgram", "branch_programs"]
 
@@ -169,7 +169,7 @@ def branch_programs(plan: Plan) -> tuple[BranchProgram, ...]:
     >>> from symjac.analysis.inverse_kinematics import closed_form_plan
     >>> programs = branch_programs(closed_form_plan(load_robot("puma560")))
     >>> len(programs), programs[0].branch
-    (8, ('shoulder right', 'elbow up', 'wrist flip'))
+    (8, ('shoulder right', 'elbow down', 'wrist flip'))
     """
     solved = _solved(plan)
     variables = plan.robot.joint_variables
@@ -177,12 +177,10 @@ def branch_programs(plan: Plan) -> tuple[BranchProgram, ...]:
     for choice in itertools.product(*(range(len(s.solutions)) for s in solved)):
         assignments: list[tuple[sympy.Symbol, sympy.Expr]] = list(plan.definitions)
         conditions: list[sympy.Symbol] = []
-        names: list[str] = []
         for step, index in zip(solved, choice, strict=True):
             assignments.extend(step.intermediates)
             conditions.extend(symbol for symbol, _ in step.intermediates if symbol.name.startswith("Delta"))
             assignments.extend((variables[j], value) for j, value in zip(step.step.joints, step.solutions[index],
                                                                          strict=True))
-            names.extend(step.step.branches[index:index + 1])
-        programs.append(BranchProgram(tuple(names), tuple(assignments), tuple(conditions)))
+        programs.append(BranchProgram(branch_names(plan.steps, choice), tuple(assignments), tuple(conditions)))
     return tuple(programs)

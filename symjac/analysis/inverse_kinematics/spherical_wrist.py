@@ -24,13 +24,16 @@ Eight solutions in general.
 Branch names follow fixed geometric rules, each a choice of sign in a subproblem. Shoulder: with axes b and c
 parallel, "shoulder right" is the solution where the wrist centre lies on the positive side of h_a x h_b (h_b turned
 by q_a); where axes a and b meet, "shoulder right" is the middle point on the positive side of h_a x h_b. Elbow:
-"elbow up" is the solution where, seen along the elbow axis h_c, the wrist centre lies at a negative angle from the
-shoulder point (theta_0 - atan2(sqrt(D), N)); on the PUMA 560 and the IRB 140 that is the bend of the home posture,
-the elbow above the line from shoulder to wrist while the upper arm faces the wrist (with the other shoulder
-solution the whole arm is turned over, and the same bend puts the elbow below it). A prismatic joint c has "shorter
-slide" and "longer slide" (the smaller and the larger displacement). Wrist: "no flip" is the solution with q_5 >= 0
-when axes 4 and 6 are parallel at home (the home posture of these arms), else "wrist flip" is the middle point on
-the positive side of h_4 x h_5.
+with axes b and c parallel, "elbow up" is the solution with the elbow above the line from shoulder to wrist centre
+while the wrist lies on the side of the vertical the shoulder faces (as in Fu, Gonzalez and Lee's ELBOW indicator,
+taken relative to the shoulder's): seen along the elbow axis h_c, the wrist centre at a positive angle from the shoulder
+point (theta_0 + atan2(sqrt(D), N)) with shoulder right and at a negative one with shoulder left, because turning the
+shoulder over turns the whole arm over and the same bend then puts the elbow below the line (the step's
+``swapped_by``; tests/test_ik_branch_names.py checks it by the elbow's height on the PUMA 560 and the IRB 140). Where
+axes a and b meet, the elbow step comes first and "elbow up" is the negative angle, by the bend alone. A prismatic
+joint c has "shorter slide" and "longer slide" (the smaller and the larger displacement). Wrist: "no flip" is the
+solution with q_5 >= 0 when axes 4 and 6 are parallel at home (the home posture of these arms), else "wrist flip" is
+the middle point on the positive side of h_4 x h_5.
 """
 
 from __future__ import annotations
@@ -117,7 +120,8 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
                                                 "delta": sympy.sqrt((w - elbow_at).dot(w - elbow_at))},
                  f"{name[c]}: joint {c + 1} sets the wrist centre's distance from axis {b + 1}'s point, which must "
                  f"equal the target's (rotation to a distance); elbow up: seen along axis {c + 1}, the wrist centre at "
-                 f"a negative angle from that point", ("elbow up", "elbow down")),
+                 f"a negative angle from that point with shoulder left, a positive one with shoulder right",
+                 ("elbow down", "elbow up"), swapped_by=0),
             Step((b,), "rotation_to_point", {"k": h_b, "p": wrist_at, "q": back, "point_on_axis": p_b},
                  f"{name[b]}: joint {b + 1} turns the wrist centre onto the target's, joint {a + 1} undone "
                  f"(rotation to a point)"),

@@ -17,15 +17,13 @@ through :math:`r`:
 Formulas are exact in the parameters, with one exception said here: an angle of parameters alone (the folded angle
 :math:`\operatorname{atan2}(0, -L_1 L_2)` of a 2R arm) is printed as the multiple of :math:`\pi/2` it is at the
 parameters' defaults, the values the executor and generated code use. The target rotation's orthonormality shortens
-the formulas (:math:`r_{31}^2 = 1 - r_{11}^2 - r_{21}^2`).
-
-The printed form is tidied exactly, as a textbook would: the target position is :math:`p_x, p_y, p_z`; an
-intermediate that comes out a number or a lone symbol (the PUMA's :math:`\beta_4 = 0`) is written into the later
-formulas instead of named; a common positive number or named square root leaves an atan2 (:math:`\gamma_4 =
-\sqrt{G_4}`: at :math:`\gamma_4 = 0` every angle works) and :math:`x^2 / |x|` is :math:`|x|`. A common parameter
-stays (:math:`\operatorname{atan2}(a_2 d_4, -a_2 a_3)`): parameters are real of unknown sign, and cancelling a
-negative one would be off by :math:`\pi`. The sentences' math (:math:`\theta_5 \ge 0`, :math:`h_1 \times h_2`) is
-typeset; :math:`h_i` is the unit vector along the axis of joint :math:`i`.
+the formulas (:math:`r_{31}^2 = 1 - r_{11}^2 - r_{21}^2`). The printed form is tidied exactly, as a textbook would:
+the target position is :math:`p_x, p_y, p_z`; an intermediate that comes out a number or a lone symbol (the PUMA's
+:math:`\beta_4 = 0`) is written into the later formulas instead of named; a common positive number or named square
+root leaves an atan2 (:math:`\gamma_4 = \sqrt{G_4}`: at :math:`\gamma_4 = 0` every angle works) and :math:`x^2 / |x|`
+is :math:`|x|`. A common parameter stays (:math:`\operatorname{atan2}(a_2 d_4, -a_2 a_3)`): parameters are real of
+unknown sign, and cancelling a negative one would be off by :math:`\pi`. The sentences' math (:math:`\theta_5 \ge 0`,
+:math:`h_1 \times h_2`) is typeset; :math:`h_i` is the unit vector along the axis of joint :math:`i`.
 
 :func:`step_formulas` gives the formulas as SymPy expressions (the ones printed), :func:`ik_derivation_document` the
 :class:`~symjac.printing.document.Document` (LaTeX, pretty text and JSON).
@@ -163,11 +161,8 @@ def _formulas(plan: Plan, step: Step) -> StepFormulas:
         return StepFormulas(step, (), ((angle,),), (), _EXISTS)
     delta = sp.sympify(args["delta"])
     across_u, across_v, numerator = _simplified(
-        plan,
-        u.dot(u) - k.dot(u) ** 2,
-        v.dot(v) - k.dot(v) ** 2,
-        u.dot(u) - k.dot(u) ** 2 + v.dot(v) - k.dot(v) ** 2 - delta**2 + k.dot(u - v) ** 2,
-    )
+        plan, u.dot(u) - k.dot(u) ** 2, v.dot(v) - k.dot(v) ** 2,
+        u.dot(u) - k.dot(u) ** 2 + v.dot(v) - k.dot(v) ** 2 - delta**2 + k.dot(u - v) ** 2)
     value = numerator / (2 * sp.sqrt(across_u) * sp.sqrt(across_v))
     intermediates, condition = _split(index, angle, value)
     phi, _, psi = (s for s, _ in intermediates)
@@ -340,9 +335,9 @@ def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]
     step = formulas.step
     math: list[Equation] = [Equation(latex(s), str(s), _shown(e)) for s, e in formulas.intermediates]
     branches = step.branches or ("",)
-    if step.swapped_by is not None and len(branches) == 2:  # the names swap with the earlier step's second solution
-        other = plan.steps[step.swapped_by].branches[1]
-        branches = (f"{branches[0]}; {branches[1]} with {other}", f"{branches[1]}; {branches[0]} with {other}")
+    if step.swapped_by is not None and len(branches) == 2:  # names swap with the earlier step's second solution
+        b, other = branches, plan.steps[step.swapped_by].branches[1]
+        branches = tuple(f"{b[i]}; {b[1 - i]} with {other}" for i in (0, 1))
     for branch, values in zip(branches, formulas.solutions, strict=False):  # one solution: no branch name
         for joint, value in zip(step.joints, values, strict=True):
             tex, text = _name(plan, joint)

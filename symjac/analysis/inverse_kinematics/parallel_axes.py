@@ -33,7 +33,15 @@ import sympy
 
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry
 from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
-from symjac.analysis.inverse_kinematics.planar import DISTANCE_RULE, ELBOW, SHOULDER, length, plane_step, rotation, turned
+from symjac.analysis.inverse_kinematics.planar import (
+    DISTANCE_RULE,
+    ELBOW,
+    SHOULDER,
+    length,
+    plane_step,
+    rotation,
+    turned,
+)
 
 __all__ = ["WRIST", "three_parallel_axes_plan"]
 

@@ -14,6 +14,7 @@ import subprocess
 import numpy as np
 import pytest
 import sympy as sp
+from ik_robots import CYLINDRICAL
 
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan, solve_plan
@@ -35,40 +36,6 @@ BUILDERS = {
     "ur5_poe": three_parallel_axes_plan,
 }
 PDFLATEX = shutil.which("pdflatex")
-
-
-CYLINDRICAL = """
-name = "cylindrical"
-description = "Cylindrical arm: a waist, a vertical slide, a radial slide"
-convention = "modified"
-
-[parameters]
-d1 = 0.3
-c = 0.1
-
-[[joints]]
-type = "revolute"
-alpha = 0
-a = 0
-d = "d1"
-theta = 0
-
-[[joints]]
-type = "prismatic"
-alpha = 0
-a = 0
-d = 0
-theta = 0
-limits = [0.0, 0.8]
-
-[[joints]]
-type = "prismatic"
-alpha = "-pi/2"
-a = "c"
-d = 0
-theta = 0
-limits = [0.2, 0.9]
-"""
 
 
 def _plan(name):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import sympy as sp
+from ik_robots import CYLINDRICAL
 from scipy.optimize import least_squares
 
 from symjac import load_robot
@@ -304,40 +305,6 @@ def test_spherical_arm_round_trips_and_count(tmp_path):
         if trial < 5:
             numeric = solve_numeric(robot, pose, model, rng=5, restarts=60, orientation_weight=0.0)
             assert len(_distinct(inside)) == len(_distinct([s.q for s in numeric], 1e-5))
-
-
-CYLINDRICAL = """
-name = "cylindrical"
-description = "Cylindrical arm: a waist, a vertical slide, a radial slide offset c from the waist axis"
-convention = "modified"
-
-[parameters]
-d1 = 0.3
-c = 0.1
-
-[[joints]]
-type = "revolute"
-alpha = 0
-a = 0
-d = "d1"
-theta = 0
-
-[[joints]]
-type = "prismatic"
-alpha = 0
-a = 0
-d = 0
-theta = 0
-limits = [0.0, 0.8]
-
-[[joints]]
-type = "prismatic"
-alpha = "-pi/2"
-a = "c"
-d = 0
-theta = 0
-limits = [0.2, 0.9]
-"""
 
 
 def test_cylindrical_arm_round_trips(tmp_path):

@@ -96,7 +96,7 @@ class ModuleRequest:
     identification: bool = False
     inverse_kinematics: bool = False
     numeric_ik: bool = False
-    free_joint: int | None = None  # 0-based: the closed form with this joint given (q_free), a 7-joint arm's
+    free_joint: int | None = None  # joint number (1-based) given in the closed form (q_free), a 7-joint arm's
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -320,7 +320,8 @@ def generate(
         Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
         ``IK_MAX_SOLUTIONS`` rows, their count and branches. An arm without a closed form gets the numeric
         ``inverse_kinematics_numeric`` (with a seed) in every target but jax and casadi (``NoClosedFormError``).
-        ``free_joint=k`` (0-based) asks for the closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
+        ``free_joint=k`` (a joint number, 1-based) asks for the closed form with joint k given:
+        ``inverse_kinematics(pose, q_free)``.
     numeric_ik : bool
         Also generate ``inverse_kinematics_numeric`` (not jax, casadi), Levenberg-Marquardt on the module's forward
         kinematics and its first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``).

@@ -192,7 +192,8 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
     ("limits" or "manipulability", arms with more than six joints) moves each solution along the self-motion to
     that secondary task's optimum (:func:`~symjac.analysis.inverse_kinematics.null_space.refine_in_null_space`).
     An unreachable pose gives an empty list whose ``closest`` (:class:`NumericSolutions`) is the configuration
-    with the smallest cost reached over all starts, polished by one more descent within the limits.
+    with the smallest cost reached over all starts, polished by one more descent within the limits (without the
+    early stop).
     """
     target = _pose(pose)
     n = len(robot.joints)
@@ -259,7 +260,14 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
             found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])), iterations,
                                          index, self_motion_dimension(q, error, jacobian, converged)))
     if not found and nearest is not None:
-        q, e, more = _descend(nearest[1], error, jacobian, project, converged, lower, upper, max_iterations, stall)
+        q, e, more = _descend(nearest[1], error, jacobian, project, converged, lower, upper, max_iterations,
+                              max_iterations)  # no early stop: as close as it gets
+        if converged(e):  # the closest configuration's descent within the limits reached the pose after all
+            q = _canonical(q, limits[0], limits[1], revolute)
+            found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])),
+                                         nearest[2] + more, nearest[3],
+                                         self_motion_dimension(q, error, jacobian, converged)))
+            return found
         if float(e @ e) > nearest[0]:
             q = nearest[1]
         t = np.asarray(model.fk(q), dtype=float)

@@ -102,18 +102,19 @@ def self_motion_dimension(q: np.ndarray, error: Vector, jacobian: Vector, conver
 
     ``error``, ``jacobian`` and ``converged`` are the solver's (weighted; rows of weight 0 do not count). Where the
     Jacobian has full row rank ``m`` (no singular value below ``singular`` times the largest), the set is a manifold
-    of dimension ``n - m`` (the implicit function theorem). Where it has not, each direction of its null space and
-    each with a singular value below that is tried: ``q +- step`` along it, pulled back onto the pose by at most 8
-    Gauss-Newton steps, must reach the pose again at least ``step / 2`` from ``q`` both ways.
+    of dimension ``n - m`` (the implicit function theorem). Where it has not (or a row vanishes: it may vanish
+    here only), each direction of its null space and each with a singular value below that is tried: ``q +- step``
+    along it, pulled back onto the pose by at most 8 Gauss-Newton steps, must reach the pose again at least
+    ``step / 2`` from ``q`` both ways.
     """
-    j = np.asarray(jacobian(q), dtype=float)
-    j = j[np.any(j != 0.0, axis=1)]  # the controlled rows
+    full = np.asarray(jacobian(q), dtype=float)
+    j = full[np.any(full != 0.0, axis=1)]  # the controlled rows (and any that vanish here)
     n, rows = j.shape[1], j.shape[0]
     if rows == 0:
         return n
     _, values, directions = np.linalg.svd(j)
     weak = [k for k, value in enumerate(values) if value <= singular * max(values[0], 1e-300)]
-    if not weak:
+    if not weak and rows == len(full):  # full row rank: the implicit function theorem
         return max(n - rows, 0)
     candidates = [*weak, *range(len(values), n)]
     return sum(all(_moved(q + sign * step * directions[k], error, jacobian, converged, q, step / 2.0)

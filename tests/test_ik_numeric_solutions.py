@@ -136,3 +136,14 @@ def test_where_two_solutions_merge_at_the_edge_of_the_workspace_one_isolated_sol
     found = solve_numeric(robot, np.asarray(fk(q0), dtype=float), numeric_model(robot), rng=0)
     assert _rank(fk, q0) == 2 and len(found) == 1 and found.continuum_dimension == 0
     assert np.abs(found[0].q - q0).max() < 1e-3
+
+
+def test_the_command_calls_a_redundant_arms_solutions_samples(cli):
+    q = "0.3,-0.4,0.2,-2.0,0.1,1.6,0.5"
+    pretty = cli.ok("ik", "panda", "--q", q, "--method", "numeric", "--format", "pretty")
+    assert "Inverse kinematics of panda: " in pretty and "samples of a 1-dimensional set of solutions" in pretty
+    assert " solutions by the numeric solver" not in pretty and "one sample of a 1-dimensional set" in pretty
+    data = cli.json("ik", "panda", "--q", q, "--method", "numeric")
+    assert data["continuum_dimension"] == 1 and len(data["solutions"]) >= 1
+    assert cli.json("ik", "puma560", "--q", "0.3,-0.5,0.4,-1,0.6,0.2", "--method", "numeric")[
+        "continuum_dimension"] == 0

@@ -147,3 +147,13 @@ def test_the_command_calls_a_redundant_arms_solutions_samples(cli):
     assert data["continuum_dimension"] == 1 and len(data["solutions"]) >= 1
     assert cli.json("ik", "puma560", "--q", "0.3,-0.5,0.4,-1,0.6,0.2", "--method", "numeric")[
         "continuum_dimension"] == 0
+
+
+def test_without_the_limits_seeds_still_cover_each_joints_range():
+    robot = load_robot("irb140")  # limited revolute joints drew their seeds from [-1, 1] when limits were ignored
+    model = numeric_model(robot)
+    pose = np.asarray(model.fk(np.array([0.3, -0.5, 0.4, -1.0, 0.6, 0.2])), dtype=float)
+    closed = [s.q for s in solve_plan(closed_form_plan(robot), pose).solutions]
+    result = inverse_kinematics(robot, pose, method="numeric", within_limits=False, restarts=40)
+    matched = {int(np.argmin([np.abs(_wrapped(s.q - q)).max() for q in closed])) for s in result.solutions}
+    assert len(result.solutions) == len(matched) == len(closed) == 8

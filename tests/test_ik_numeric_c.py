@@ -93,8 +93,7 @@ def test_an_unreachable_pose_reports_no_solution(tmp_path):
 
 def test_only_c_targets_and_a_base_frame_jacobian_have_it():
     robot = load_robot("planar2r")
-    with pytest.raises(CodegenError, match="jax target traces each function"):
-        describe(ModuleRequest(robot, "jax", numeric_ik=True))
+    assert describe(ModuleRequest(robot, "jax", numeric_ik=True)).numeric_ik  # a fixed graph there (ikcodegen)
     with pytest.raises(CodegenError, match="frame"):
         describe(ModuleRequest(robot, "c99", frames=(1,), numeric_ik=True))
     plain = "".join(render_files(describe(ModuleRequest(robot, "c99"))).values())

@@ -22,7 +22,7 @@ import pytest
 from symjac.codegen import ModuleRequest, describe, render_files
 from symjac.model.io import load_robot
 
-FREE_JOINT = 2  # iiwa7: joint 3 given (free_joint 0-based here)
+FREE_JOINT = 3  # iiwa7: joint 3 given (a joint number, from 1)
 CASES = {
     "puma560": {"inverse_kinematics": True},
     "palletizer": {"inverse_kinematics": True},

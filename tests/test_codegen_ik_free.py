@@ -1,6 +1,6 @@
 """Generated closed-form inverse kinematics of a 7-joint arm with one joint given (the redundancy parameter).
 
-The iiwa7 with joint 3 given (``free_joint=2``) is a spherical wrist: every target's ``inverse_kinematics(pose,
+The iiwa7 with joint 3 given (``free_joint=3``) is a spherical wrist: every target's ``inverse_kinematics(pose,
 q_free)`` must find the same solutions as :func:`~symjac.analysis.inverse_kinematics.closed_form.solve_plan` with
 ``free_value=q_free`` (up to 2 pi) at random poses, each reproducing the pose to 1e-10 and holding the given value in
 joint 3, the configuration that made the pose among them. C99 and C++ are compiled with -Wall -Wextra -Werror.
@@ -22,7 +22,8 @@ from symjac.codegen.numeric_model import numeric_model
 from symjac.errors import CodegenError, NoClosedFormError
 from symjac.model.io import load_robot
 
-FREE = 2  # joint 3, 0-based
+FREE = 3  # joint 3 (joint numbers are 1-based)
+COLUMN = FREE - 1  # its column in q
 TARGETS = ("python", "numpy", "c", "lambdify", "jax", "casadi", "c99", "cpp")
 
 CPP_SHIM = """#include "iiwa7.hpp"
@@ -148,7 +149,7 @@ def _distance(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def test_every_target_finds_the_executors_solutions_with_the_joint_given(iiwa):
     robot, plan, solvers, q, poses = iiwa
     fk = numeric_model(robot, backend="numpy").fk
-    free = q[:, FREE]
+    free = q[:, COLUMN]
     expected = [np.array([s.q for s in solve_plan(plan, pose, free_value=v).solutions])
                 for pose, v in zip(poses, free, strict=True)]
     assert sum(len(e) for e in expected) >= 4 * len(poses)  # most poses have several solutions
@@ -157,7 +158,7 @@ def test_every_target_finds_the_executors_solutions_with_the_joint_given(iiwa):
             assert len(found) == len(reference), (target, k)
             np.testing.assert_allclose(found, reference, atol=1e-8, err_msg=f"{target}, pose {k}")
             assert np.abs(fk(found) - poses[k]).max() < 1e-10, (target, k)
-            assert np.all(np.abs(found[:, FREE] - free[k]) < 1e-15), (target, k)
+            assert np.all(np.abs(found[:, COLUMN] - free[k]) < 1e-15), (target, k)
             assert _distance(found, q[k:k + 1]).min() < 1e-6, (target, k)
 
 
@@ -166,26 +167,26 @@ def test_a_value_of_the_given_joint_that_no_solution_has_gives_none(iiwa):
     by a configuration holding the given value: every row holds it and reproduces the pose."""
     robot, plan, solvers, q, poses = iiwa
     fk = numeric_model(robot, backend="numpy").fk
-    other = q[:, FREE] + 0.8
+    other = q[:, COLUMN] + 0.8
     for target in ("numpy", "c99"):
         for k, found in enumerate(solvers[target](poses, other)):
             reference = solve_plan(plan, poses[k], free_value=other[k]).solutions
             assert len(found) == len(reference), (target, k)
             if len(found):
                 assert np.abs(fk(found) - poses[k]).max() < 1e-9, (target, k)
-                assert np.all(_distance(found[:, FREE:FREE + 1], other[k:k + 1, None]) < 1e-12), (target, k)
+                assert np.all(_distance(found[:, COLUMN:COLUMN + 1], other[k:k + 1, None]) < 1e-12), (target, k)
 
 
 def test_the_option_is_refused_in_one_line_where_it_does_not_apply(cli):
     robot = load_robot("iiwa7")
     command = describe(ModuleRequest(robot, "python", inverse_kinematics=True, free_joint=FREE)).command
-    assert command.endswith(", inverse_kinematics=True, free_joint=2)")  # the header's call regenerates it
+    assert command.endswith(", inverse_kinematics=True, free_joint=3)")  # the header's call regenerates it
     with pytest.raises(CodegenError, match="ask for inverse_kinematics too"):
         describe(ModuleRequest(robot, "numpy", free_joint=FREE))
-    with pytest.raises(CodegenError, match="0 to 6"):
-        ik_files(robot, "numpy", free_joint=7)
+    with pytest.raises(CodegenError, match="1 to 7 for iiwa7, got 8"):
+        ik_files(robot, "numpy", free_joint=8)
     with pytest.raises(NoClosedFormError):  # joint 5 given leaves no closed form, and no numeric stand-in
-        ik_files(robot, "c99", free_joint=4)
+        ik_files(robot, "c99", free_joint=5)
     error = cli.one_line_error("codegen", "iiwa7", "--target", "numpy", "--inverse-kinematics", "--free-joint", "9")
     assert "--free-joint" in error and "1 to 7" in error
 
@@ -196,5 +197,5 @@ def test_the_command_line_option_writes_a_module_that_takes_the_joint(cli):
     namespace: dict = {}
     exec(compile(source, "iiwa7.py", "exec"), namespace)
     q = np.array([0.3, -0.5, 0.4, 0.9, 0.7, -0.6, 0.2])
-    solutions, count, _ = namespace["inverse_kinematics"](namespace["forward_kinematics"](q), q[FREE])
+    solutions, count, _ = namespace["inverse_kinematics"](namespace["forward_kinematics"](q), q[COLUMN])
     assert int(count) >= 1 and np.abs(solutions[:count] - q).max(axis=1).min() < 1e-9

@@ -46,7 +46,7 @@ def test_bad_poses_get_one_line_errors():
         solve_plan(plan, np.eye(3))
     with pytest.raises(ArgumentError, match="rotation block is not a rotation"):
         solve_plan(plan, 2 * np.eye(4))
-    iiwa = closed_form_plan(load_robot("iiwa7"), free_joint=2)
+    iiwa = closed_form_plan(load_robot("iiwa7"), free_joint=3)
     with pytest.raises(ArgumentError, match="takes joint 3 as given; pass its value as free_value"):
         solve_plan(iiwa, np.eye(4))
     with pytest.raises(ArgumentError, match="unknown subproblem 'rotate'"):

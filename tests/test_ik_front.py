@@ -136,7 +136,7 @@ def test_the_components_follow_the_jacobians_rows():
     (lambda: inverse_kinematics("planar2r", np.eye(4), method="numeric", seed=[0.0]), ArgumentError,
      r"seed must be 2 finite numbers for planar2r"),
     (lambda: inverse_kinematics("planar2r", np.eye(4), free_joint=5), ArgumentError,
-     r"free_joint is 0-based, 0 to 1 for planar2r, got 5"),
+     r"free_joint is a joint number, 1 to 2 for planar2r, got 5"),
     (lambda: inverse_kinematics("palletizer", np.eye(4), method="numeric"), ArgumentError,
      r"palletizer's joints are coupled and the numeric solver works joint by joint \(numeric: asked for"),
     (lambda: inverse_kinematics(3, np.eye(4)), ArgumentError, r"robot must be a Robot or a robot's name, got int"),
@@ -195,7 +195,7 @@ def test_a_redundant_arm_in_closed_form_with_its_free_joint_given():
     robot = load_robot("iiwa7")
     q = [0.1, 0.2, 0.3, -1.5, 0.2, 1.0, 0.3]
     pose = independent_fk(robot, q)
-    result = inverse_kinematics(robot, pose, free_value=0.3, free_joint=2, within_limits=False)
+    result = inverse_kinematics(robot, pose, free_value=0.3, free_joint=3, within_limits=False)
     assert result.method == "closed_form" and "joint 3 is given" in result.why
     assert_reaches(robot, result)
     assert any(np.allclose(s.q, q, atol=1e-9) for s in result.solutions)

@@ -103,8 +103,8 @@ def _puma_with(*, joint: int, a: str, parameter: str = "") -> str:
 
 def test_reduced_geometry_of_the_iiwa_keeps_its_spherical_shoulder_and_wrist():
     robot = load_robot("iiwa7")
-    geometry = reduced_geometry(robot, 2)
-    assert geometry.joints == (0, 1, 3, 4, 5, 6) and geometry.free_joint == 2
+    geometry = reduced_geometry(robot, 3)
+    assert geometry.joints == (0, 1, 3, 4, 5, 6) and geometry.free_joint == 3 and geometry.free_index == 2
     assert geometry.intersection(0, 1) is not None
     assert geometry.intersection(4, 5, 6) is not None
     theta3 = robot.joint_variables[2]
@@ -124,5 +124,7 @@ def test_bad_joint_numbers_are_refused():
         geometry.axis(7)
     with pytest.raises(ArgumentError, match="two axes or more"):
         geometry.intersection(3)
-    with pytest.raises(ArgumentError, match="free_joint must be a joint number from 0 to 5"):
-        reduced_geometry(load_robot("puma560"), 6)
+    with pytest.raises(ArgumentError, match="free_joint must be a joint number from 1 to 6, got 7"):
+        reduced_geometry(load_robot("puma560"), 7)
+    with pytest.raises(ArgumentError, match="from 1 to 6, got 0"):
+        reduced_geometry(load_robot("puma560"), 0)

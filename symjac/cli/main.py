@@ -236,7 +236,7 @@ def _codegen(args: argparse.Namespace) -> str:
                             command=shlex.join(["symjac", *args.argv]), acceleration=args.acceleration,
                             name=args.name, dynamics=args.dynamics, identification=args.identification,
                             inverse_kinematics=args.inverse_kinematics,
-                            free_joint=None if args.free_joint is None else args.free_joint - 1)
+                            free_joint=args.free_joint)
     files = progress(f"{args.target} module for {robot.name}", lambda: render_files(describe(request)))
     text = single_or_written(files, args.output)  # several files are written here, all or none
     args.output = args.output if text is not None else None

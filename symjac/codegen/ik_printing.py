@@ -130,7 +130,7 @@ def _names(description: ModuleDescription, ik: InverseKinematics, taken: frozens
 
 def _facts(description: ModuleDescription, ik: InverseKinematics, names: SymbolNames) -> dict[str, Any]:
     free = "" if ik.free_joint is None else names.mapping[Q_FREE]
-    return {"free": free, "free_joint": None if ik.free_joint is None else ik.free_joint + 1,
+    return {"free": free, "free_joint": ik.free_joint,
             "free_variable": ik.free_variable, "module": description, "ik": ik,
             "tolerance": float_literal(IK_TOLERANCE),
             "branches": ik.branch_names, "n": ik.n, "m": ik.max_solutions,

@@ -140,15 +140,16 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
 
     ``joints`` are the joint variables every program must assign (their last assignment is the branch's value).
     An expression reading a symbol that is neither a pose symbol, a parameter nor assigned before it is refused.
-    With ``free_joint`` that joint's variable is an input instead (renamed :data:`Q_FREE`, a second input of the
-    lowered function), and its value is copied into every branch. ``coordinates`` (default: ``joints``) are what
-    each branch outputs, as expressions of the joint variables: a coupled robot's coordinates
-    (:func:`~symjac.codegen.coupled.coordinates_of_joints`); ``revolute`` says which of them are angles.
+    With ``free_joint`` (a joint number, 1-based) that joint's variable is an input instead (renamed
+    :data:`Q_FREE`, a second input of the lowered function), and its value is copied into every branch.
+    ``coordinates`` (default: ``joints``) are what each branch outputs, as expressions of the joint variables: a
+    coupled robot's coordinates (:func:`~symjac.codegen.coupled.coordinates_of_joints`); ``revolute`` says which of
+    them are angles.
     """
     outputs = tuple(joints if coordinates is None else coordinates)
     if not programs:
         raise CodegenError("inverse kinematics: the closed form has no branch")
-    free: dict[sp.Symbol, sp.Symbol] = {} if free_joint is None else {joints[free_joint]: Q_FREE}
+    free: dict[sp.Symbol, sp.Symbol] = {} if free_joint is None else {joints[free_joint - 1]: Q_FREE}
     known = set(pose_symbols()) | set(parameters) | set(free.values())
     sharing = _Sharing()
     share = sharing.share
@@ -194,7 +195,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
                               "closed form")
     return InverseKinematics(lowered, family, tuple(tuple(p.branch) for p in programs), tuple(branch_conditions),
                              len(condition_values), len(outputs), tuple(revolute), free_joint,
-                             "" if free_joint is None else str(joints[free_joint]))
+                             "" if free_joint is None else str(joints[free_joint - 1]))
 
 
 class IKInverse(sp.Function):
@@ -333,19 +334,20 @@ def lowered_inverse_kinematics(chain: Chain, free_joint: int | None = None) -> I
     Its solutions are in the robot's coordinates (a coupled robot's joint values written as its coordinates, as
     every other generated function takes them).
 
-    With ``free_joint`` (0-based) the closed form with that joint given (``closed_form_plan(robot,
+    With ``free_joint`` (a joint number, 1-based) the closed form with that joint given (``closed_form_plan(robot,
     free_joint=...)``): its value is the input ``q_free`` (:data:`Q_FREE`).
     """
     from symjac.analysis.inverse_kinematics import branch_programs, closed_form_plan
 
     robot = chain.robot
-    if free_joint is not None and not 0 <= free_joint < robot.n_joints:
-        raise CodegenError(f"inverse kinematics: free_joint is a 0-based joint index, 0 to {robot.n_joints - 1} "
-                           f"for {robot.name}, got {free_joint}")
+    if free_joint is not None and (isinstance(free_joint, bool) or not isinstance(free_joint, int)
+                                   or not 1 <= free_joint <= robot.n_joints):
+        raise CodegenError(f"inverse kinematics: free_joint is a joint number, 1 to {robot.n_joints} for "
+                           f"{robot.name}, got {free_joint!r}")
     plan = closed_form_plan(robot, free_joint=free_joint)
     if plan.free_joint != free_joint:
         raise CodegenError(f"inverse kinematics: the closed form of {robot.name} takes joint "
-                           f"{(plan.free_joint or 0) + 1} as given; ask for it with free_joint")
+                           f"{plan.free_joint} as given; ask for it with free_joint")
     revolute = tuple(kind.value == "revolute" for kind in robot.coordinate_types)
     return lower_branch_programs(branch_programs(plan), robot.joint_variables,
                                  tuple(p.symbol for p in robot.geometric_parameters),
@@ -385,6 +387,6 @@ def ik_listing(ik: InverseKinematics | None) -> tuple[tuple[str, str], ...]:
     """The module docstring's line for ``inverse_kinematics``, or none without it."""
     if ik is None:
         return ()
-    given = "" if ik.free_joint is None else f" and joint {ik.free_joint + 1}'s value q_free"
+    given = "" if ik.free_joint is None else f" and joint {ik.free_joint}'s value q_free"
     return (("inverse_kinematics", f"Every closed-form solution ({ik.family or 'closed form'}) for a pose{given}, at "
              f"most {ik.max_solutions} (branches {'; '.join(ik.branch_names)}), and their count."),)

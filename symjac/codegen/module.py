@@ -96,7 +96,7 @@ class ModuleRequest:
     identification: bool = False
     inverse_kinematics: bool = False
     numeric_ik: bool = False
-    free_joint: int | None = None  # 0-based: the closed form with this joint given (q_free), a 7-joint arm's
+    free_joint: int | None = None  # joint number (1-based) given in the closed form (q_free), a 7-joint arm's
 
 
 def describe(request: ModuleRequest, *args: Any, **options: Any) -> ModuleDescription:
@@ -318,9 +318,9 @@ def generate(
         checks both against inverse dynamics with the robot's own parameters.
     inverse_kinematics : bool
         Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
-        ``IK_MAX_SOLUTIONS`` rows, their count and branches, in the coordinates (a coupled robot's too). An arm
-        without a closed form gets the numeric ``inverse_kinematics_numeric`` instead, in every target.
-        ``free_joint=k`` (0-based) asks for the closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
+        ``IK_MAX_SOLUTIONS`` rows, their count and branches, in the coordinates (a coupled robot's too); an arm
+        without one gets ``inverse_kinematics_numeric``. ``free_joint=k`` (a joint number, 1-based) asks for the
+        closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
     numeric_ik : bool
         Also generate ``inverse_kinematics_numeric``, Levenberg-Marquardt on the module's forward kinematics and its
         first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``; jax, casadi: ``ik_numeric_traced``).

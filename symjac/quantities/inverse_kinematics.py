@@ -140,7 +140,7 @@ def command(request: Request) -> Document:
     if args.free_value is not None:
         [value] = _numbers(request, args.free_value, 1, "--free-value")
         options["free_value"] = value
-        options["free_joint"] = None if args.free_joint is None else args.free_joint - 1
+        options["free_joint"] = args.free_joint
     result = request.progress(f"inverse kinematics of {robot.name}", lambda: QUANTITY.derive(robot, pose, **options))
     if args.derivation:
         from symjac.printing.ik_derivation import ik_derivation_document

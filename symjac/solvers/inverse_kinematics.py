@@ -143,7 +143,7 @@ def _closed_form(robot: Robot, free_joint: int | None, free_value: float | None)
 
     candidates: list[int | None] = [free_joint]
     if free_joint is None and free_value is not None and robot.n_joints > 6:
-        candidates = list(range(robot.n_joints))
+        candidates = list(range(1, robot.n_joints + 1))
     first: NoClosedFormError | None = None
     for candidate in candidates:
         try:
@@ -182,7 +182,7 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     rng : int
         Numeric solver: the seed of the random starts (the result is deterministic).
     free_value, free_joint : optional
-        A 7-joint arm's redundancy parameter: the value of joint ``free_joint`` (0-based; default the first joint
+        A 7-joint arm's redundancy parameter: the value of joint number ``free_joint`` (1-based; default the first joint
         whose value leaves a closed form) given as input, so the 6 joints left are solved in closed form. Without
         ``free_value`` such an arm is solved numerically under ``"auto"``.
     within_limits : bool
@@ -209,9 +209,10 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     if method not in METHODS:
         raise ArgumentError(f"inverse_kinematics: method must be one of {', '.join(METHODS)}, got {method!r}")
     n = model_robot.n_coordinates
-    if free_joint is not None and not 0 <= free_joint < n:
-        raise ArgumentError(f"inverse_kinematics: free_joint is 0-based, 0 to {n - 1} for {model_robot.name}, "
-                            f"got {free_joint}")
+    if free_joint is not None and (isinstance(free_joint, bool) or not isinstance(free_joint, int)
+                                   or not 1 <= free_joint <= n):
+        raise ArgumentError(f"inverse_kinematics: free_joint is a joint number, 1 to {n} for {model_robot.name}, "
+                            f"got {free_joint!r}")
     model = numeric_model(model_robot)
     controlled = controlled_components(model_robot)
     plan: Any = None
@@ -226,8 +227,8 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
         if plan is not None and plan.free_joint is not None and free_value is None:
             if method == "closed_form":
                 raise ArgumentError(f"inverse_kinematics: {model_robot.name} is redundant; its closed form takes "
-                                    f"joint {plan.free_joint + 1} as given: pass free_value")
-            plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint + 1} as given and no "
+                                    f"joint {plan.free_joint} as given: pass free_value")
+            plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint} as given and no "
                                "free_value was passed")
     if free_value is not None and (plan is None or plan.free_joint is None):
         reason = why.removeprefix("numeric, as there is no closed form: ")

@@ -62,8 +62,8 @@ its family."""
 def closed_form_plan(robot: Robot, *, free_joint: int | None = None) -> Plan:
     """The closed-form inverse kinematics of ``robot``: the first family of :data:`FAMILIES` that fits it, exactly.
 
-    With ``free_joint`` (0-based) that joint's value is an input (the redundancy parameter of a 7-joint arm) and the
-    arm that remains is solved.
+    With ``free_joint`` (a joint number, 1-based) that joint's value is an input (the redundancy parameter of a
+    7-joint arm) and the arm that remains is solved.
 
     Raises
     ------
@@ -87,7 +87,7 @@ def closed_form_plan(robot: Robot, *, free_joint: int | None = None) -> Plan:
 
 def _why_none(geometry: ArmGeometry) -> str:
     robot, joints = geometry.robot, geometry.joints
-    given = "" if geometry.free_joint is None else f" with joint {geometry.free_joint + 1} given"
+    given = "" if geometry.free_joint is None else f" with joint {geometry.free_joint} given"
     facts = [f"{len(joints)} joints remain"] if len(joints) != 6 else []
     if len(joints) == 7:
         facts[0] += " (give one joint's value, free_joint=k, to solve the six that remain)"
@@ -163,7 +163,7 @@ def _compile(plan: Plan) -> _Compiled:
     robot = plan.robot
     numbers = robot.defaults
     variables = robot.joint_variables
-    free = () if plan.free_joint is None else (variables[plan.free_joint],)
+    free = () if plan.free_joint is None else (variables[plan.free_joint - 1],)
     inputs = [*POSE_SYMBOLS, *free]
     definitions = [symbol for symbol, _ in plan.definitions]
     values: list[sympy.Expr] = []
@@ -290,7 +290,7 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     free: list[float] = []
     if plan.free_joint is not None:
         if free_value is None or not math.isfinite(free_value):
-            raise ArgumentError(f"inverse kinematics of {robot.name}: the plan takes joint {plan.free_joint + 1} as "
+            raise ArgumentError(f"inverse kinematics of {robot.name}: the plan takes joint {plan.free_joint} as "
                                 f"given; pass its value as free_value (a finite number), got {free_value!r}")
         free = [float(free_value)]
     compiled = _compiled(plan)
@@ -361,7 +361,7 @@ def _solution(plan: Plan, compiled: _Compiled, values: list[float], names: tuple
     q = np.zeros(robot.n_joints)
     q[list(compiled.positions)] = values
     if plan.free_joint is not None:
-        q[plan.free_joint] = free[0]
+        q[plan.free_joint - 1] = free[0]
     inside = True
     for j in range(robot.n_joints):
         if compiled.revolute[j]:

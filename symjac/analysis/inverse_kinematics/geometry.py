@@ -64,8 +64,10 @@ class ArmGeometry:
 
     ``axes[i]`` is the unit axis ``h_i`` (3 x 1) and ``points[i]`` a point on it, ``kinds[i]`` ``"revolute"`` or
     ``"prismatic"``, ``home`` the 4 x 4 tool pose ``M``. ``joints[i]`` is the robot joint (0-based) that entry ``i``
-    belongs to: all of them, or all but ``free_joint`` for the arm that remains when that joint's value is given
-    (:func:`reduced_geometry`; its variable then appears in the axes that follow it and in ``home``).
+    belongs to: all of them, or all but ``free_index`` for the arm that remains when that joint's value is given
+    (:func:`reduced_geometry`; its variable then appears in the axes that follow it and in ``home``). Methods take
+    these 0-based indices, like the tuples; :attr:`free_joint` is the given joint's number (1-based), as everywhere
+    a user names a joint.
     """
 
     robot: Robot
@@ -74,10 +76,15 @@ class ArmGeometry:
     kinds: tuple[str, ...]
     home: sympy.Matrix
     joints: tuple[int, ...] = ()
-    free_joint: int | None = None
+    free_index: int | None = None
 
     def __hash__(self) -> int:
-        return hash((self.robot, self.joints, self.free_joint))
+        return hash((self.robot, self.joints, self.free_index))
+
+    @property
+    def free_joint(self) -> int | None:
+        """The number (1-based) of the joint whose value is given, or None for the whole arm."""
+        return None if self.free_index is None else self.free_index + 1
 
     def _index(self, joint: int) -> int:
         if joint not in self.joints:
@@ -104,10 +111,10 @@ class ArmGeometry:
         robot's home (products of plain sines and cosines, where the turned axis would give ``1 - cos`` terms).
         """
         variable = self.robot.joint_variables[joint]
-        if self.free_joint is None or joint < self.free_joint:
+        if self.free_index is None or joint < self.free_index:
             return exponential(self.axis(joint), self.point(joint), self.kind(joint), variable)
         whole = arm_geometry(self.robot)
-        k = self.free_joint
+        k = self.free_index
         given = exponential(whole.axes[k], whole.points[k], whole.kinds[k], self.robot.joint_variables[k])
         inverse = exponential(whole.axes[k], whole.points[k], whole.kinds[k], -self.robot.joint_variables[k])
         own = exponential(whole.axes[joint], whole.points[joint], whole.kinds[joint], variable)
@@ -143,9 +150,9 @@ class ArmGeometry:
         """A sentence saying how the axes of these robot joints (0-based) miss one another, at the defaults."""
         numbers = dict(self.robot.defaults)
         at = "at the defaults"
-        if self.free_joint is not None:  # the given joint's variable is in the axes after it: take it at 0
-            numbers[self.robot.joint_variables[self.free_joint]] = sympy.S.Zero
-            at = f"at the defaults, joint {self.free_joint + 1} at 0"
+        if self.free_index is not None:  # the given joint's variable is in the axes after it: take it at 0
+            numbers[self.robot.joint_variables[self.free_index]] = sympy.S.Zero
+            at = f"at the defaults, joint {self.free_joint} at 0"
         names = ", ".join(str(j + 1) for j in joints[:-1]) + f" and {joints[-1] + 1}"
         if self.intersection(*joints) is not None:
             return f"the axes of joints {names} meet in one point"
@@ -195,16 +202,16 @@ def arm_geometry(robot: Robot) -> ArmGeometry:
 
 @functools.lru_cache(maxsize=32)
 def reduced_geometry(robot: Robot, free_joint: int) -> ArmGeometry:
-    r"""The arm that remains when robot joint ``free_joint`` (0-based) is held at its variable's value.
+    r"""The arm that remains when joint number ``free_joint`` (1-based) is held at its variable's value.
 
     ``e^{[xi_k] q_k}`` moves to the right past the later joints: each later axis ``(h_j, p_j)`` becomes its image under
     that motion, and so does ``M``; the variable ``q_k`` stays a symbol (the redundancy parameter).
     """
     geometry = arm_geometry(robot)
-    if not 0 <= free_joint < robot.n_joints:
-        raise ArgumentError(f"{robot.name}: free_joint must be a joint number from 0 to {robot.n_joints - 1} "
-                            f"(0-based), got {free_joint}")
-    k = free_joint
+    if isinstance(free_joint, bool) or not isinstance(free_joint, int) or not 1 <= free_joint <= robot.n_joints:
+        raise ArgumentError(f"{robot.name}: free_joint must be a joint number from 1 to {robot.n_joints}, "
+                            f"got {free_joint!r}")
+    k = free_joint - 1
     motion = exponential(geometry.axes[k], geometry.points[k], geometry.kinds[k], robot.joint_variables[k])
     rotation, shift = motion[:3, :3], motion[:3, 3]
     axes = [*geometry.axes[:k], *(_simplified(rotation * h) for h in geometry.axes[k + 1:])]

@@ -95,8 +95,8 @@ class Plan:
 
     ``reasons`` are the exact facts that decide the family (sentences); ``definitions`` named intermediates
     ``(symbol, expression)`` in pose symbols and parameters, evaluated first; ``controlled`` what of the pose the
-    plan reaches (``"the whole pose"``); ``free_joint`` the joint (0-based) whose value is an input, for a 7-joint
-    arm, else None.
+    plan reaches (``"the whole pose"``); ``free_joint`` the number (1-based) of the joint whose value is an
+    input, for a 7-joint arm, else None.
     """
 
     robot: Robot

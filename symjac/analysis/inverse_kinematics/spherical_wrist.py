@@ -76,7 +76,7 @@ def spherical_wrist_plan(geometry: ArmGeometry) -> Plan | None:
     reasons = [f"the axes of joints {number[3]}, {number[4]} and {number[5]} meet at the wrist centre "
                f"({', '.join(str(e) for e in centre)} at home)"]
     if geometry.free_joint is not None:
-        reasons.append(f"joint {geometry.free_joint + 1} is given: its value is the redundancy parameter")
+        reasons.append(f"joint {geometry.free_joint} is given: its value is the redundancy parameter")
     home = geometry.home
     pose = pose_matrix()
     rotation, position = pose[:3, :3], pose[:3, 3]

@@ -126,8 +126,7 @@ def test_an_unreachable_pose_gives_the_closest_configuration_and_its_errors(tmp_
 
 def test_only_c_targets_and_a_base_frame_jacobian_have_it():
     robot = load_robot("planar2r")
-    with pytest.raises(CodegenError, match="jax target traces each function"):
-        describe(ModuleRequest(robot, "jax", numeric_ik=True))
+    assert describe(ModuleRequest(robot, "jax", numeric_ik=True)).numeric_ik  # a fixed graph there (ikcodegen)
     with pytest.raises(CodegenError, match="frame"):
         describe(ModuleRequest(robot, "c99", frames=(1,), numeric_ik=True))
     plain = "".join(render_files(describe(ModuleRequest(robot, "c99"))).values())

@@ -16,6 +16,7 @@ __all__ = [
     "InertialWarning",
     "NoClosedFormError",
     "NoInertialDataError",
+    "OrientationNeededError",
     "RepresentationError",
     "ResultTooLargeError",
     "RobotFileError",
@@ -71,6 +72,10 @@ class FrameError(SymjacError, ValueError):
 
 class ArgumentError(SymjacError, ValueError):
     """An argument is not one of its choices or has the wrong shape (unknown method, row name, wrench length, ...)."""
+
+
+class OrientationNeededError(ArgumentError):
+    """A target gave a position only, to an arm that sets its orientation too (inverse kinematics)."""
 
 
 class RepresentationError(SymjacError, ValueError):

@@ -84,7 +84,8 @@ def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
 @pytest.mark.parametrize(("argv", "message"), [
     (["planar2r"], "ik needs the pose: --pose T, --position X,Y,Z with --rpy or --quaternion, or --q Q"),
     (["planar2r", "--q", "0,0", "--pose", numbers(np.eye(4))], "ik takes one pose, got --pose and --q"),
-    (["planar2r", "--position", "0.5,0,0"], "--position needs --rpy or --quaternion"),
+    (["puma560", "--position", "0.5,0,0"], "--position alone is a target for an arm that sets no orientation; "
+     "puma560 sets its orientation too: add --rpy or --quaternion"),
     (["planar2r", "--position", "0.5,0,0", "--rpy", "0,0,0", "--quaternion", "1,0,0,0"],
      "--position takes one of --rpy and --quaternion, not both"),
     (["planar2r", "--q", "0,0", "--rpy", "0,0,0"], "--rpy goes with --position, not with --q"),
@@ -101,7 +102,13 @@ def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
     (["planar2r", "--q", "0,0", "--numeric"], "--numeric does not apply to ik: the solutions are numbers already"),
     (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3", "--free-joint", "8"],
      "--free-joint is a joint number, 1 to 7 for iiwa7, got 8"),
-    (["puma560", "--q", "0,0,0,0,0,0", "--free-value", "0.3"], "free_value applies to a redundant arm's closed form"),
+    (["puma560", "--q", "0,0,0,0,0,0", "--free-value", "0.3"],
+     "--free-value gives a redundant arm's closed form one joint's value; puma560 has 6 joints"),
+    (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3", "--method", "numeric"],
+     "--free-value gives a redundant arm's closed form one joint's value: it does not apply with --method numeric"),
+    (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--method", "closed_form"],
+     "a redundant arm's closed form takes one joint's value: --free-value V (and --free-joint K for joint K)"),
+    (["planar2r", "--derivation", "--pose", "1,0,0"], "--pose needs 16 comma-separated values"),
     (["planar2r", "--q", "0,0", "--derivation", "--method", "numeric"], "--derivation prints a closed form"),
     (["palletizer", "--q", "0.3,0.4,0.5,0.2", "--method", "numeric"], "palletizer's joints are coupled"),
 ])
@@ -110,9 +117,33 @@ def test_each_mistake_is_one_line(cli, argv, message):
     assert message in line, line
 
 
-def test_a_nan_pose_is_one_line(cli):
-    line = cli.one_line_error("ik", "planar2r", "--position", "nan,0,0", "--rpy", "0,0,0")
-    assert line.startswith("symjac: error: --position")
+@pytest.mark.parametrize(("option", "argv"), [
+    ("--position", ["--position", "nan,0,0", "--rpy", "0,0,0"]),
+    ("--rpy", ["--position", "0,0,0", "--rpy", "0,inf,0"]),
+    ("--quaternion", ["--position", "0,0,0", "--quaternion", "nan,0,0,1"]),
+    ("--pose", ["--pose", ",".join(["nan"] * 16)]),
+])
+def test_a_nan_pose_is_one_line_naming_its_option(cli, option, argv):
+    line = cli.one_line_error("ik", "planar2r", *argv)
+    assert line.startswith(f"symjac: error: {option} takes finite numbers, got "), line
+    assert "joint angles" not in line  # the configuration's wording belongs to --q
+
+
+def test_a_position_alone_is_enough_for_an_arm_that_sets_no_orientation(cli):
+    data = cli.json("ik", "planar2r", "--position", "0.5,0.3,0")
+    assert len(data["solutions"]) == 2 and data["uncontrolled"] == ""  # no orientation asked, none to differ from
+    for solution in data["solutions"]:
+        assert np.allclose(fk("planar2r", solution["q"])[:3, 3], [0.5, 0.3, 0], atol=1e-12)
+
+
+def test_the_derivation_needs_no_pose(cli):
+    code, out, _ = cli.run("ik", "puma560", "--derivation")
+    assert code == 0 and "atan2" in out
+    assert cli.run("ik", "puma560", "--derivation", "--q", "0.1,0.2,0.3,0.4,0.5,0.6")[1] == out  # the same steps
+    code, out, _ = cli.run("ik", "iiwa7", "--derivation", "--free-joint", "3", "--format", "pretty")
+    assert code == 0 and "joint 3 is given" in out
+    code, out, _ = cli.run("ik", "iiwa7", "--derivation", "--format", "pretty")
+    assert code == 0 and "joint 1 is given" in out  # the first joint whose value leaves a closed form
 
 
 @pytest.mark.external

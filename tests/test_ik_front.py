@@ -13,7 +13,7 @@ from scipy.optimize import minimize
 import symjac
 from symjac import inverse_kinematics, load_robot, numeric_model, pose_from_rpy
 from symjac.analysis.inverse_kinematics import seed_bounds, solve_numeric
-from symjac.errors import ArgumentError, UnknownRobotError
+from symjac.errors import ArgumentError, OrientationNeededError, UnknownRobotError
 from symjac.kinematics.chain import forward_kinematics
 from symjac.kinematics.numeric import numeric_at
 from symjac.model.ends import last_frame
@@ -140,6 +140,11 @@ def test_the_components_follow_the_jacobians_rows():
     (lambda: inverse_kinematics("palletizer", np.eye(4), method="numeric"), ArgumentError,
      r"palletizer's joints are coupled and the numeric solver works joint by joint \(numeric: asked for"),
     (lambda: inverse_kinematics(3, np.eye(4)), ArgumentError, r"robot must be a Robot or a robot's name, got int"),
+    (lambda: inverse_kinematics("puma560", [0.5, 0.1, 0.2]), OrientationNeededError,
+     r"puma560 sets the whole pose, so a position alone is not a pose for it"),
+    (lambda: inverse_kinematics("planar2r", [0.5, np.nan, 0.0]), ArgumentError, r"position: .* is nan"),
+    (lambda: inverse_kinematics("puma560", np.eye(4), free_value=0.3), ArgumentError,
+     r"the free value \(a given joint's value\) applies to a redundant arm's closed form only, and for puma560 its"),
 ])
 def test_each_bad_argument_is_one_line(call, error, message):
     with pytest.raises(error, match=message) as raised:
@@ -275,3 +280,26 @@ def test_a_numeric_pose_out_of_reach_says_how_far_the_closest_configuration_is()
     result = inverse_kinematics(robot, pose, method="numeric")
     assert result.solutions == () and gap - 5e-3 < result.distance < gap + 0.1  # position traded for orientation
     assert f"the closest configuration reached is {result.distance:.3g} m and " in result.unreachable
+
+
+def test_a_position_alone_is_a_target_for_an_arm_that_sets_no_orientation():
+    robot = load_robot("articulated3r")
+    q = [0.4, -0.3, 0.9]
+    position = independent_fk(robot, q)[:3, 3]
+    result = inverse_kinematics(robot, position)
+    assert result.controlled.position_only and result.uncontrolled == ""
+    assert any(np.allclose(s.q, q, atol=1e-9) for s in result.solutions)
+    assert_reaches(robot, result, position_only=True)
+    assert np.allclose(result.pose, np.block([[np.eye(3), position[:, None]], [np.zeros((1, 3)), 1.0]]))
+
+
+def test_str_is_a_short_summary_and_repr_stays_whole():
+    robot = load_robot("puma560")
+    result = inverse_kinematics(robot, independent_fk(robot, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]))
+    lines = str(result).splitlines()
+    kept = len(result.solutions)
+    assert lines[0] == (f"puma560: {kept} solutions, closed form (spherical wrist); {result.outside_limits} more "
+                        "outside the joint limits")
+    assert len(lines) == 1 + kept and "shoulder left, elbow up, no flip" in str(result)
+    assert "q = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]" in str(result)
+    assert repr(result).startswith("InverseKinematicsResult(robot='puma560'")

@@ -47,13 +47,14 @@ def test_draw_ik_pose_writes_one_panel_per_solution(cli, tmp_path):
     ("0.6,0.3,0,0,0,1.5", pose_from_rpy([0.6, 0.3, 0], [0, 0, 1.5])),
     ("0.6,0.3,0,1,0,0,0", pose_from_rpy([0.6, 0.3, 0], [0, 0, 0])),
     ("1,0,0,0.6,0,1,0,0.3,0,0,1,0", pose_from_rpy([0.6, 0.3, 0], [0, 0, 0])),
+    ("0.6,0.3,0", [0.6, 0.3, 0.0]),  # a position alone, for an arm that sets no orientation
 ])
 def test_the_ik_pose_forms(text, expected):
     assert np.allclose(ik_pose(text, load_robot("planar2r")), expected, atol=1e-15)
 
 
 @pytest.mark.parametrize(("argv", "message"), [
-    (["--ik-pose", "0.6,0.3,0,0,0"], "--ik-pose takes 6 numbers (x,y,z,roll,pitch,yaw), 7 (x,y,z,w,qx,qy,qz) or 12"),
+    (["--ik-pose", "0.6,0.3,0,0,0"], "--ik-pose takes 6 numbers (x,y,z,roll,pitch,yaw), 7 (x,y,z,w,qx,qy,qz), 12"),
     (["--ik-pose", "0.6,0.3,0,2,0,0,0"], "--ik-pose: the quaternion (w, x, y, z) must have unit length, got length 2"),
     (["--ik-pose", "0.6,0.3,0,0,0,0", "--q", "0,0"], "--ik-pose draws the solutions it finds: --q does not apply"),
 ])
@@ -81,3 +82,23 @@ def test_the_page_has_the_section(cli, tmp_path):
     assert cli.run("report", "planar2r", "-o", str(page)) == (0, "", "")
     text = page.read_text(encoding="utf-8")
     assert '<section id="inverse-kinematics">' in text and '<a href="#inverse-kinematics">' in text
+
+
+def test_draw_ik_pose_says_how_many_more_leave_the_limits_and_draws_them_when_asked(cli, tmp_path):
+    robot = load_robot("puma560")
+    pose = ",".join(repr(v) for v in (0.5, 0.2, 0.3, 0.0, 1.5, 0.0))
+    kept = inverse_kinematics(robot, ik_pose(pose, robot))
+    assert kept.outside_limits > 0 and kept.solutions  # this pose has solutions on both sides of the limits
+    within, every = tmp_path / "within.svg", tmp_path / "every.svg"
+    assert cli.run("draw", "puma560", "--ik-pose", pose, "-o", str(within))[0] == 0
+    assert cli.run("draw", "puma560", "--ik-pose", pose, "--no-within-limits", "-o", str(every))[0] == 0
+    panels = [len(set(re.findall(r'id="(panel\d+)-target-x"', path.read_text()))) for path in (within, every)]
+    assert panels == [len(kept.solutions), len(kept.solutions) + kept.outside_limits]
+    title = f"{kept.outside_limits} more outside (--no-within-limits draws them)".replace("--", "- -")  # SVG comment
+    assert title in within.read_text()
+    assert "outside limits" in every.read_text()  # a panel's title says so
+
+
+def test_draw_ik_pose_position_alone_is_refused_for_an_arm_that_sets_its_orientation(cli, tmp_path):
+    line = cli.one_line_error("draw", "puma560", "--ik-pose", "0.5,0.2,0.3", "-o", str(tmp_path / "x.svg"))
+    assert "--ik-pose x,y,z is a target for an arm that sets no orientation; puma560 sets its orientation" in line

@@ -143,8 +143,12 @@ def parse_point(text: str | None, robot: Robot) -> str | tuple[sp.Expr, ...] | N
         raise FrameError(f"--point: {error}") from None
 
 
-def parse_values(text: str, length: int, option: str, robot: Robot, *, parameters: bool = True) -> list[sp.Expr]:
-    """``length`` comma-separated values: numbers, ``pi`` and (with ``parameters``) the robot's parameter names."""
+def parse_values(text: str, length: int, option: str, robot: Robot, *, parameters: bool = True,
+                 units: str = "") -> list[sp.Expr]:
+    """``length`` comma-separated values: numbers, ``pi`` and (with ``parameters``) the robot's parameter names.
+
+    ``units`` (``"metres"``) is named in the error for a word that is none of these.
+    """
     from symjac.model.expressions import parse_expression
 
     parts = text.split(",")
@@ -156,9 +160,12 @@ def parse_values(text: str, length: int, option: str, robot: Robot, *, parameter
         try:
             values.append(parse_expression(part.strip(), names))
         except ExpressionError as error:
-            if not parameters and set(re.findall(r"[A-Za-z_]\w*", part)) - {"pi"}:  # say what is allowed
-                raise ArgumentError(f"{option} takes numbers and expressions with pi only (joint angles in "
-                                    f"radians, prismatic offsets in metres), got {part.strip()!r}") from None
+            words = set(re.findall(r"[A-Za-z_]\w*", part))
+            if not parameters and words & {"nan", "inf", "NaN", "Inf", "infinity"}:
+                raise ArgumentError(f"{option} takes finite numbers, got {part.strip()!r}") from None
+            if not parameters and words - {"pi"}:  # say what is allowed
+                raise ArgumentError(f"{option} takes numbers and expressions with pi only"
+                                    f"{f' ({units})' if units else ''}, got {part.strip()!r}") from None
             raise ArgumentError(f"{option}: {error}") from None
     return values
 
@@ -190,7 +197,8 @@ def configuration_values(text: str, robot: Robot, option: str = "--q") -> list[s
         if unit is not None and kind is not JointType.REVOLUTE:
             raise ArgumentError(f"{option}: {robot.q[index]} is a length (a prismatic joint), so {number!r} cannot "
                                 f"be in {'degrees' if unit == 'deg' else 'radians'}")
-        [value] = parse_values(number if unit is None else number[:-3], 1, option, robot, parameters=False)
+        [value] = parse_values(number if unit is None else number[:-3], 1, option, robot, parameters=False,
+                               units="joint angles in radians, prismatic offsets in metres")
         if unit is None and kind is JointType.REVOLUTE and robot.angle_unit == "deg" and "pi" not in number:
             unit = "deg"  # a plain number in a file that speaks degrees (0 is 0 in any unit: not noted)
             in_file_unit += [number] if value != 0 else []

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 from symjac.cli.args import load, parse_configuration, parse_values
 from symjac.cli.output import progress
-from symjac.errors import ArgumentError
+from symjac.errors import ArgumentError, OrientationNeededError
 
 if TYPE_CHECKING:
     from symjac.model.robot import Robot
@@ -73,20 +73,39 @@ def _solutions_figure(args: argparse.Namespace, robot: Robot, suffix: str, view:
     if refused:
         raise ArgumentError(f"--ik-pose draws the solutions it finds: {' and '.join(refused)} does not apply")
     pose = ik_pose(args.ik_pose, robot)
-    result = progress(f"inverse kinematics of {robot.name}", lambda: inverse_kinematics(robot, pose))
-    figure = draw_solutions(robot, result, view=view, frames=args.frames or False, limits=args.limits)
+    try:
+        result = progress(f"inverse kinematics of {robot.name}",
+                          lambda: inverse_kinematics(robot, pose, within_limits=args.within_limits))
+    except OrientationNeededError:
+        raise ArgumentError(f"--ik-pose x,y,z is a target for an arm that sets no orientation; {robot.name} sets "
+                            "its orientation too: give 6, 7, 12 or 16 numbers") from None
+    hidden = result.outside_limits
+    if hidden and not result.solutions:
+        raise ArgumentError(f"{robot.name}: all {hidden} solutions leave the joint limits (--no-within-limits "
+                            "draws them)")
+    title = None
+    if hidden:
+        count = len(result.solutions)
+        title = (f"{robot.name}: {count} solution{'s' if count != 1 else ''} within the joint limits, {hidden} more "
+                 "outside (--no-within-limits draws them)")
+    figure = draw_solutions(robot, result, view=view, frames=args.frames or False, limits=args.limits, title=title)
     return figure_bytes(figure, suffix)  # type: ignore[no-any-return]
 
 
 def ik_pose(text: str, robot: Robot) -> Any:
-    """``--ik-pose``: 6 numbers (position, URDF rpy), 7 (position, quaternion w first), or 12 or 16 (the matrix)."""
+    """``--ik-pose``: 6 numbers (position, URDF rpy), 7 (position, quaternion w first), 12 or 16 (the matrix), or 3.
+
+    Three numbers are a position alone, for an arm that sets no orientation (the solver refuses it for another).
+    """
     from symjac.analysis.inverse_kinematics.poses import pose_from_matrix, pose_from_quaternion, pose_from_rpy
 
     count = len(text.split(","))
-    if count not in (6, 7, 12, 16):
-        raise ArgumentError(f"--ik-pose takes 6 numbers (x,y,z,roll,pitch,yaw), 7 (x,y,z,w,qx,qy,qz) or 12 or 16 "
-                            f"(the matrix row by row), got {count} in {text!r}")
+    if count not in (3, 6, 7, 12, 16):
+        raise ArgumentError(f"--ik-pose takes 6 numbers (x,y,z,roll,pitch,yaw), 7 (x,y,z,w,qx,qy,qz), 12 or 16 "
+                            f"(the matrix row by row), or 3 (x,y,z), got {count} in {text!r}")
     values = [float(value) for value in parse_values(text, count, "--ik-pose", robot, parameters=False)]
+    if count == 3:
+        return values
     if count == 6:
         return pose_from_rpy(values[:3], values[3:], name="--ik-pose")
     if count == 7:

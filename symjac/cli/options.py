@@ -105,7 +105,11 @@ def draw_options(sub: argparse.ArgumentParser, name: str) -> None:
     sub.add_argument("--ik-pose", default=None, metavar="POSE",
                      help="draw every inverse-kinematics solution reaching this pose of the end of the chain in {0}, "
                           "side by side: x,y,z,roll,pitch,yaw (URDF rpy, radians), x,y,z,w,qx,qy,qz (unit quaternion, "
-                          "scalar first), or the 4 x 4 matrix row by row (16 or the top 12 numbers)")
+                          "scalar first), the 4 x 4 matrix row by row (16 or the top 12 numbers), or x,y,z alone "
+                          "for an arm that sets no orientation")
+    sub.add_argument("--within-limits", action=argparse.BooleanOptionalAction, default=True,
+                     help="with --ik-pose: draw only solutions within the joint limits (default); "
+                          "--no-within-limits draws all, each outside one titled so")
 
 
 def sweep_options(sub: argparse.ArgumentParser, name: str) -> None:

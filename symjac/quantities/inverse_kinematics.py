@@ -16,9 +16,10 @@ coupling law is never applied.
 from __future__ import annotations
 
 import argparse
+import functools
 from typing import TYPE_CHECKING, Any
 
-from symjac.errors import ArgumentError
+from symjac.errors import ArgumentError, NoClosedFormError, OrientationNeededError
 from symjac.quantities.spec import Quantity, Request
 
 if TYPE_CHECKING:
@@ -82,7 +83,8 @@ def _angles(request: Request, text: str, option: str) -> list[float]:
 def requested_pose(request: Request) -> Any:
     """The target pose the options give (``--pose``, ``--position`` with ``--rpy`` or ``--quaternion``, or ``--q``).
 
-    Checked, as a 4 x 4 NumPy array.
+    Checked, as a 4 x 4 NumPy array; ``--position`` alone gives its three numbers, a target for an arm that sets
+    no orientation (:func:`symjac.inverse_kinematics` refuses it for another arm).
     """
     from symjac.analysis.inverse_kinematics.poses import pose_from_matrix, pose_from_quaternion, pose_from_rpy
 
@@ -93,9 +95,8 @@ def requested_pose(request: Request) -> Any:
     if len(given) != 1:
         raise ArgumentError("ik needs the pose: --pose T, --position X,Y,Z with --rpy or --quaternion, or --q Q"
                             if not given else f"ik takes one pose, got {' and '.join(given)}")
-    if given == ["--position"] and len(rotation) != 1:
-        raise ArgumentError("--position needs --rpy or --quaternion" if not rotation
-                            else "--position takes one of --rpy and --quaternion, not both")
+    if given == ["--position"] and len(rotation) > 1:
+        raise ArgumentError("--position takes one of --rpy and --quaternion, not both")
     if given != ["--position"] and rotation:
         raise ArgumentError(f"{rotation[0]} goes with --position, not with {given[0]}")
     if args.pose is not None:
@@ -111,6 +112,8 @@ def requested_pose(request: Request) -> Any:
         robot = request.robot
         return pose_from_matrix(numeric_at(robot, forward_kinematics(robot, 0, last_frame(robot)), q), name="--q")
     position = _numbers(request, args.position, 3, "--position")
+    if args.rpy is None and args.quaternion is None:
+        return position  # a position alone: enough for an arm that sets no orientation (the solver checks)
     if args.rpy is not None:
         return pose_from_rpy(position, _angles(request, args.rpy, "--rpy"), name="--rpy")
     return pose_from_quaternion(position, _numbers(request, args.quaternion, 4, "--quaternion"), name="--quaternion")
@@ -123,30 +126,77 @@ def command(request: Request) -> Document:
     args, robot = request.args, request.robot
     if args.numeric:
         raise ArgumentError("--numeric does not apply to ik: the solutions are numbers already (--digits rounds them)")
+    if args.free_joint is not None and not 1 <= args.free_joint <= robot.n_joints:
+        raise ArgumentError(f"--free-joint is a joint number, 1 to {robot.n_joints} for {robot.name}, got "
+                            f"{args.free_joint}")
+    if args.derivation:
+        return _derivation(request)
     pose = requested_pose(request)
     if args.restarts < 0:
         raise ArgumentError(f"--restarts must be 0 or more, got {args.restarts}")
     if args.free_joint is not None and args.free_value is None:
         raise ArgumentError("--free-joint needs --free-value (the value of that joint)")
-    if args.free_joint is not None and not 1 <= args.free_joint <= robot.n_joints:
-        raise ArgumentError(f"--free-joint is a joint number, 1 to {robot.n_joints} for {robot.name}, got "
-                            f"{args.free_joint}")
-    options: dict[str, Any] = {"method": "closed_form" if args.derivation else args.method, "rng": args.rng,
-                               "restarts": args.restarts, "within_limits": args.within_limits}
-    if args.derivation and args.method == "numeric":
-        raise ArgumentError("--derivation prints a closed form: it does not apply with --method numeric")
+    if args.free_value is not None and args.method == "numeric":
+        raise ArgumentError("--free-value gives a redundant arm's closed form one joint's value: it does not apply "
+                            "with --method numeric")
+    if args.free_value is not None and robot.n_joints <= 6:
+        raise ArgumentError(f"--free-value gives a redundant arm's closed form one joint's value; {robot.name} has "
+                            f"{robot.n_joints} joints")
+    options: dict[str, Any] = {"method": args.method, "rng": args.rng, "restarts": args.restarts,
+                               "within_limits": args.within_limits}
     if args.seed is not None:
         options["seed"] = [float(v) for v in request.configuration(args.seed, "--seed")]
     if args.free_value is not None:
         [value] = _numbers(request, args.free_value, 1, "--free-value")
         options["free_value"] = value
         options["free_joint"] = args.free_joint
-    result = request.progress(f"inverse kinematics of {robot.name}", lambda: QUANTITY.derive(robot, pose, **options))
-    if args.derivation:
-        from symjac.printing.ik_derivation import ik_derivation_document
-
-        return ik_derivation_document(result.plan)
+    try:
+        result = request.progress(f"inverse kinematics of {robot.name}",
+                                  lambda: QUANTITY.derive(robot, pose, **options))
+    except OrientationNeededError:
+        raise ArgumentError(f"--position alone is a target for an arm that sets no orientation; {robot.name} sets "
+                            "its orientation too: add --rpy or --quaternion") from None
+    except NoClosedFormError as error:
+        raise NoClosedFormError(reason=f"{error}{_redundant_hint(robot, args)}") from None
     return inverse_kinematics_document(robot, result, args.digits)  # numbers always: --digits needs no --numeric
+
+
+def _redundant_hint(robot: Any, args: argparse.Namespace) -> str:
+    """For a redundant arm asked for a closed form without a joint's value: the options that give one."""
+    if robot.n_joints <= 6 or args.free_value is not None:
+        return ""
+    return "; a redundant arm's closed form takes one joint's value: --free-value V (and --free-joint K for joint K)"
+
+
+def _derivation(request: Request) -> Document:
+    """``--derivation``: the closed form's steps, which hold for every pose (a pose given is checked, not needed).
+
+    A redundant arm takes ``--free-joint K`` (the closed form with joint K given); without it, the first joint whose
+    value leaves a closed form, as :func:`symjac.inverse_kinematics` chooses it.
+    """
+    from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan
+    from symjac.printing.ik_derivation import ik_derivation_document
+
+    args, robot = request.args, request.robot
+    if args.method == "numeric":
+        raise ArgumentError("--derivation prints a closed form: it does not apply with --method numeric")
+    if any(value is not None for value in (args.pose, args.position, args.q, args.rpy, args.quaternion)):
+        requested_pose(request)  # checked, so a mistake in it is not silently ignored
+    choices: list[int | None] = [args.free_joint]
+    if args.free_joint is None and robot.n_joints > 6:
+        choices += list(range(1, robot.n_joints + 1))
+    first: NoClosedFormError | None = None
+    for joint in choices:
+        try:
+            plan = request.progress(f"closed form of {robot.name}", functools.partial(closed_form_plan, robot,
+                                                                                       free_joint=joint))
+        except NoClosedFormError as error:
+            first = first or error
+            continue
+        return ik_derivation_document(plan)
+    assert first is not None
+    hint = "" if args.free_joint is not None or robot.n_joints <= 6 else "; no joint, its value given, leaves one"
+    raise NoClosedFormError(reason=f"{first}{hint}") from None
 
 
 QUANTITY = Quantity(

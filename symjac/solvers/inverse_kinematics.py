@@ -13,6 +13,7 @@ orientation errors are reported with it.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import Any, Literal, get_args
@@ -22,7 +23,7 @@ import numpy as np
 from symjac.analysis.inverse_kinematics.numeric import seed_bounds, solve_numeric
 from symjac.analysis.inverse_kinematics.poses import pose_from_matrix
 from symjac.codegen.numeric_model import NumericModel, numeric_model
-from symjac.errors import ArgumentError, NoClosedFormError
+from symjac.errors import ArgumentError, NoClosedFormError, OrientationNeededError
 from symjac.model.robot import Robot
 from symjac.solvers.controlled import Controlled, controlled_components, coordinate_joints
 
@@ -123,6 +124,28 @@ class InverseKinematicsResult:
     plan: Any = field(default=None, repr=False, compare=False)
     continuum_dimension: int = 0
 
+    def __str__(self) -> str:
+        """A short summary: how it was solved, then one line per solution (q, branch, notes)."""
+        how = f"closed form ({self.family})" if self.method == "closed_form" else "numeric"
+        count = len(self.solutions)
+        lines = [f"{self.robot}: {count} solution{'s' if count != 1 else ''}, {how}"]
+        if self.continuum_dimension:
+            lines[0] += f" (samples of a {self.continuum_dimension}-dimensional set of solutions)"
+        if self.outside_limits:
+            lines[0] += f"; {self.outside_limits} more outside the joint limits"
+        for number, solution in enumerate(self.solutions, start=1):
+            notes = [", ".join(solution.branch)] if solution.branch else []
+            notes += [] if solution.within_limits else ["outside the joint limits"]
+            notes += [solution.singular] if solution.singular else []
+            q = np.array2string(np.asarray(solution.q, dtype=float), precision=4, suppress_small=True,
+                                separator=", ", max_line_width=10_000)
+            lines.append(f"  {number}. q = {q}" + (f"  ({'; '.join(notes)})" if notes else ""))
+        if self.unreachable:
+            lines.append(f"  unreachable: {self.unreachable}")
+        if self.uncontrolled:
+            lines.append(f"  not set by the arm: {self.uncontrolled}")
+        return "\n".join(lines)
+
 
 def _robot(robot: Robot | str) -> Robot:
     if isinstance(robot, Robot):
@@ -163,7 +186,7 @@ def _closed_form(robot: Robot, free_joint: int | None, free_value: float | None)
         return plan, f"closed form ({plan.family}): {'; '.join(plan.reasons)}"
     assert first is not None
     if len(candidates) > 1:
-        raise NoClosedFormError(reason=f"{robot.name}: no joint given as free_value leaves a six-joint arm with a "
+        raise NoClosedFormError(reason=f"{robot.name}: no joint, its value given, leaves a six-joint arm with a "
                                        f"closed form ({first})")
     raise first
 
@@ -177,11 +200,14 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     ----------
     robot : Robot or str
         The robot, or a name :func:`~symjac.model.io.load_robot` knows.
-    pose : array_like, shape (4, 4) or (3, 4)
+    pose : array_like, shape (4, 4), (3, 4) or (3,)
         The end of the chain (the tool frame when the robot has one, else frame {n}) in frame {0}, as
         ``numeric_model(robot).fk(q)`` returns it; build one with
         :func:`~symjac.analysis.inverse_kinematics.poses.pose_from_rpy` or ``pose_from_quaternion``. Checked:
-        finite, rigid.
+        finite, rigid. A position alone (3 numbers) is enough for an arm that sets no orientation of its own (the
+        planar 2R, the articulated 3R: ``result.controlled.position_only``); it stands for that position with the
+        identity rotation, and the orientation errors are then measured from the identity. Another arm raises
+        :class:`~symjac.errors.OrientationNeededError`.
     method : "auto", "closed_form" or "numeric"
         ``"auto"`` (default): the closed form when the geometry has one (decided exactly on the symbolic model),
         else the numeric solver; the result's ``why`` says which and why. ``"closed_form"`` raises
@@ -214,7 +240,19 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     """
     model_robot = _robot(robot)
     joints = coordinate_joints(model_robot, "inverse_kinematics")
-    target = pose_from_matrix(pose)
+    controlled = controlled_components(model_robot)
+    target = _target(model_robot, pose, controlled)
+    result = _solve(model_robot, joints, controlled, target, method, seed=seed, rng=rng, free_value=free_value,
+                    free_joint=free_joint, within_limits=within_limits, restarts=restarts, tolerance=tolerance)
+    if _position_alone(pose) and all(s.position_error < 1e-9 for s in result.solutions):
+        result = dataclasses.replace(result, uncontrolled="")  # no orientation was asked for: nothing to differ
+    return result
+
+
+def _solve(model_robot: Robot, joints: list[int], controlled: Controlled, target: np.ndarray, method: Method, *,
+           seed: Any, rng: int, free_value: float | None, free_joint: int | None, within_limits: bool,
+           restarts: int, tolerance: float) -> InverseKinematicsResult:
+    """:func:`inverse_kinematics` once the robot and the target are checked."""
     if method not in METHODS:
         raise ArgumentError(f"inverse_kinematics: method must be one of {', '.join(METHODS)}, got {method!r}")
     n = model_robot.n_coordinates
@@ -223,7 +261,6 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
         raise ArgumentError(f"inverse_kinematics: free_joint is a joint number, 1 to {n} for {model_robot.name}, "
                             f"got {free_joint!r}")
     model = numeric_model(model_robot)
-    controlled = controlled_components(model_robot)
     plan: Any = None
     why = ""
     if method != "numeric":
@@ -242,9 +279,9 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     if free_value is not None and (plan is None or plan.free_joint is None):
         reason = why.removeprefix("numeric, as there is no closed form: ")
         instead = ("its closed form takes no joint as given" if plan is not None
-                   else "method='numeric' was asked for" if method == "numeric" else f"there is none: {reason}")
-        raise ArgumentError(f"inverse_kinematics: free_value applies to a redundant arm's closed form only, and "
-                            f"for {model_robot.name} {instead}")
+                   else "the numeric method was asked for" if method == "numeric" else f"there is none: {reason}")
+        raise ArgumentError(f"inverse_kinematics: the free value (a given joint's value) applies to a redundant "
+                            f"arm's closed form only, and for {model_robot.name} {instead}")
     if plan is not None:
         return _from_plan(model_robot, model, plan, target, why, controlled, free_value, within_limits, joints)
     why = why or "numeric: asked for (method='numeric')"
@@ -253,6 +290,25 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
                             f"joint by joint ({why})")
     return _numeric(model_robot, model, target, why, controlled, seed=seed, rng=rng, restarts=restarts,
                     tolerance=tolerance, within_limits=within_limits)
+
+
+def _position_alone(pose: Any) -> bool:
+    try:
+        return not isinstance(pose, str) and np.shape(pose) == (3,)
+    except ValueError:  # ragged: not a position (pose_from_matrix says what it is)
+        return False
+
+
+def _target(robot: Robot, pose: Any, controlled: Controlled) -> np.ndarray:
+    """The checked 4 x 4 target: ``pose`` as given, or a position alone for an arm that sets no orientation."""
+    if not _position_alone(pose):
+        return pose_from_matrix(pose)
+    if not controlled.position_only:
+        raise OrientationNeededError(f"inverse_kinematics: {robot.name} sets {controlled.sets}, so a position "
+                                     "alone is not a pose for it: give a 4 x 4 pose (pose_from_rpy, "
+                                     "pose_from_quaternion)")
+    x, y, z = pose
+    return pose_from_matrix([[1.0, 0.0, 0.0, x], [0.0, 1.0, 0.0, y], [0.0, 0.0, 1.0, z]], name="position")
 
 
 def _from_plan(robot: Robot, model: NumericModel, plan: Any, target: np.ndarray, why: str, controlled: Controlled,
@@ -268,7 +324,7 @@ def _from_plan(robot: Robot, model: NumericModel, plan: Any, target: np.ndarray,
     kept = tuple(s for s in solutions if s.within_limits or not within_limits)
     unreachable = solved.unreachable
     if not kept and solutions:
-        unreachable = f"all {len(solutions)} solutions leave the joint limits (within_limits=False shows them)"
+        unreachable = f"all {len(solutions)} solutions leave the joint limits"
     return InverseKinematicsResult(robot.name, target, "closed_form", why, kept, controlled, plan.family,
                                    tuple(plan.reasons), len(solutions) - len(kept), unreachable,
                                    float(solved.distance), solved.uncontrolled, plan)

@@ -51,7 +51,14 @@ class Step:
     how; ``branches`` the names of its solutions in the subproblem's order (empty for one solution); ``swapped_by``
     the position in the plan's steps of an earlier step whose second solution swaps this step's two names (the elbow
     after the shoulder: turning the shoulder over turns the arm over, and the bend that put the elbow above the line
-    from shoulder to wrist then puts it below), else None.
+    from shoulder to wrist then puts it below), else None; ``merged`` the index in ``branches`` of the name a solution
+    carries when the step's two solutions coincide (then no swap applies: the stretched elbow has one name on both
+    shoulders; a wrist at ``q5 = 0`` is "no flip" by the rule ``q5 >= 0``).
+
+    For words about a pose, ``subject`` names what the step puts in place ("the wrist centre") and ``reach`` how the
+    step fails when it cannot: ``"elbow"`` (the subject beyond the stretched arm or closer in than the folded arm),
+    ``"offset"`` (an offset keeps the subject at least some distance from the step's axis, or from the shoulder
+    for a slide), ``""`` (any other step: the target out of that joint's range).
     """
 
     joints: tuple[int, ...]
@@ -60,6 +67,9 @@ class Step:
     statement: str
     branches: tuple[str, ...] = ()
     swapped_by: int | None = None
+    merged: int = 0
+    subject: str = ""
+    reach: str = ""
 
     def __post_init__(self) -> None:
         if self.subproblem not in SUBPROBLEMS:
@@ -75,15 +85,18 @@ class Step:
         return SUBPROBLEMS[self.subproblem]
 
 
-def branch_names(steps: Sequence[Step], choices: Sequence[int]) -> tuple[str, ...]:
+def branch_names(steps: Sequence[Step], choices: Sequence[int], merged: Sequence[bool] = ()) -> tuple[str, ...]:
     """The branch names of the solution that took solution ``choices[i]`` (0-based) of each step ``steps[i]``.
 
     The one place the names are decided, for the numeric executor and the symbolic programs alike: a step's names in
-    its subproblem's order, the two swapped when its ``swapped_by`` step took its second solution.
+    its subproblem's order, the two swapped when its ``swapped_by`` step took its second solution. Where
+    ``merged[i]`` is true the step's two solutions coincided and it carries ``steps[i].branches[steps[i].merged]``.
     """
     names: list[str] = []
-    for step, index in zip(steps, choices, strict=True):
-        if step.branches:
+    for i, (step, index) in enumerate(zip(steps, choices, strict=True)):
+        if step.branches and i < len(merged) and merged[i]:
+            names.append(step.branches[step.merged])
+        elif step.branches:
             swap = step.swapped_by is not None and choices[step.swapped_by] == 1
             names.append(step.branches[1 - index if swap and len(step.branches) == 2 else index])
     return tuple(names)

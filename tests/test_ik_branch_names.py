@@ -98,6 +98,7 @@ def test_scara_handedness_follows_the_side_of_the_elbow():
             assert (solution.q[1] > 0) == (side > 0)
             checked += 1
     assert checked > POSES
-    (solution,) = solve_plan(plan, np.asarray(fk([0.3, 0.0, -0.1, 0.2]), float)).solutions  # the boundary, theta2 = 0, is right-handed, as theta2 >= 0
+    # the boundary, theta2 = 0, is right-handed (theta2 >= 0)
+    (solution,) = solve_plan(plan, np.asarray(fk([0.3, 0.0, -0.1, 0.2]), float)).solutions
     assert solution.branch[0] == "right-handed"
     assert solution.singular == "elbow stretched: right-handed and left-handed coincide"

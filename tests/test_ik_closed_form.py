@@ -73,8 +73,8 @@ def test_a_wrist_centre_just_beyond_reach_is_unreachable_by_that_much():
         pose[:3, 3] = (reach + beyond) * direction
         result = solve_plan(plan, pose)
         assert result.solutions == ()
-        assert result.unreachable == (f"unreachable: the wrist centre is {result.distance:.4g} beyond the arm's reach "
-                                      "(joint 3 stretched)")
+        assert result.unreachable == (f"unreachable: the wrist centre is {result.distance:.4g} beyond the reach of "
+                                      "the arm stretched at joint 3")
         _in_words(result.unreachable, result.distance)
         # the distance is measured across axis 2: sqrt(r^2 - d3^2) grows by about r / sqrt(r^2 - d3^2) per metre
         across = math.sqrt((reach + beyond) ** 2 - d3**2) - math.sqrt(reach**2 - d3**2)
@@ -138,9 +138,8 @@ def test_the_shoulder_singularity_of_the_irb_is_a_continuum_in_theta1():
         low, high = (middle, high) if wrist_x(low) * wrist_x(middle) > 0 else (low, middle)
     pose = model.fk(configuration(low))
     result = solve_plan(plan, pose)
-    assert result.solutions and all(s.singular.startswith("theta1 takes every value; shown at 0 (the joints solved "
-                                                          "after it, theta3, theta2, theta4, theta5, theta6, follow it)")
-                                    for s in result.solutions)
+    stated = "theta1 takes every value; shown at 0 (the joints solved after it, theta3, theta2, theta4, theta5, theta6"
+    assert result.solutions and all(s.singular.startswith(stated + ", follow it)") for s in result.solutions)
     for solution in result.solutions:
         assert np.abs(model.fk(solution.q) - pose).max() < 1e-9
 
@@ -255,7 +254,8 @@ def test_the_stretched_elbow_has_one_elbow_solution_per_shoulder():
     assert np.linalg.norm(farther) < np.linalg.norm(pose[:3, 3])  # the reach is largest there
     result = solve_plan(plan, pose)
     assert len(result.solutions) == 4  # the one elbow solution has one name on both shoulders, and says why
-    assert {s.branch[:2] for s in result.solutions} == {("shoulder right", "elbow down"), ("shoulder left", "elbow down")}
+    assert {s.branch[:2] for s in result.solutions} == {("shoulder right", "elbow down"),
+                                                        ("shoulder left", "elbow down")}
     assert all("elbow stretched: elbow down and elbow up coincide" in s.singular for s in result.solutions)
     assert np.abs(model.fk(np.array([s.q for s in result.solutions])) - pose).max() < 1e-9
     assert any(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() < 1e-6 for s in result.solutions)

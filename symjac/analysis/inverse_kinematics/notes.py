@@ -114,15 +114,15 @@ def unreachable_note(step: Step, arguments: dict[str, Any]) -> tuple[float, str]
     """How far out the target is when ``step`` has no solution, and a sentence saying so in the arm's words.
 
     ``arguments`` are the step's numeric subproblem arguments at the failing branch. The sentence names the subject
-    and the distance once: ``"the wrist centre is 0.1234 beyond the arm's reach (joint 3 stretched)"``.
+    and the distance once: ``"the wrist centre is 0.1234 beyond the reach of the arm stretched at joint 3"``.
     """
     a = _arrays(arguments)
     subject = step.subject or "the target"
     if step.reach == "elbow" and step.subproblem == "rotation_to_distance":
         far, near, _ = _stretch(a)
         if far >= near:
-            return far, f"{subject} is {far:.4g} beyond the arm's reach ({_joints(step)} stretched)"
-        return near, f"{subject} is {near:.4g} closer in than the arm folds ({_joints(step)} folded)"
+            return far, f"{subject} is {far:.4g} beyond the reach of the arm stretched at {_joints(step)}"
+        return near, f"{subject} is {near:.4g} closer in than the arm folded at {_joints(step)} reaches"
     if step.reach == "offset" and step.subproblem in ("rotation_to_plane", "rotation_to_distance"):
         short, radius = _offset(step.subproblem, a)
         axis = step.joints[0] + 1

@@ -223,7 +223,8 @@ def planar_plan(geometry: ArmGeometry) -> Plan | None:
     if not _apart(geometry, 1, points[2]):
         return None
     wrist = _in_plane(h, _link_point(geometry, points[2]), points[2])
-    steps = (*_two_link(geometry, 0, 1, points[2], wrist, "the wrist point on axis 3"), _orientation_step(geometry, 2, [0, 1]))
+    pair = _two_link(geometry, 0, 1, points[2], wrist, "the wrist point on axis 3")
+    steps = (*pair, _orientation_step(geometry, 2, [0, 1]))
     return Plan(
         geometry.robot,
         "planar 3R",

@@ -28,7 +28,7 @@ from symjac.analysis.inverse_kinematics import subproblems
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, reduced_geometry
 from symjac.analysis.inverse_kinematics.notes import continuum_note, merged_note, motion, unreachable_note
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
-from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, branch_names
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, branch_names, solution_order
 from symjac.analysis.inverse_kinematics.planar import (
     articulated_plan,
     cylindrical_plan,
@@ -285,8 +285,8 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
             merged = len(step.step.branches) == 2 and len(result.solutions) == 1
             notes = (*branch.notes, merged_note(step.step, arguments)) if merged else branch.notes
             singular = (*branch.singular, (number, step.step.joints[0])) if free_angle else branch.singular
-            for index, angles in enumerate(result.solutions):
-                grown.append(_Branch(branch.values + list(angles), (*branch.choices, index),
+            for index in solution_order(plan.steps, branch.choices, len(result.solutions)):
+                grown.append(_Branch(branch.values + list(result.solutions[index]), (*branch.choices, index),
                                      (*branch.merged, merged), singular, notes))
         branches = grown
     if not branches:

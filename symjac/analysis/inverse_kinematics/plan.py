@@ -19,7 +19,8 @@ import sympy
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
-__all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "branch_names", "pose_matrix"]
+__all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "branch_choices", "branch_names", "pose_matrix",
+           "solution_order"]
 
 POSE_SYMBOLS: tuple[sympy.Symbol, ...] = sympy.symbols("r11 r12 r13 r21 r22 r23 r31 r32 r33 px py pz", real=True)
 """The target pose's entries as real symbols: the rotation ``r11 .. r33`` row by row, then the position."""
@@ -100,6 +101,32 @@ def branch_names(steps: Sequence[Step], choices: Sequence[int], merged: Sequence
             swap = step.swapped_by is not None and choices[step.swapped_by] == 1
             names.append(step.branches[1 - index if swap and len(step.branches) == 2 else index])
     return tuple(names)
+
+
+def solution_order(steps: Sequence[Step], choices: Sequence[int], count: int) -> tuple[int, ...]:
+    """The order in which step ``steps[len(choices)]`` takes its ``count`` solutions after the earlier ``choices``.
+
+    The solution named ``branches[merged]`` comes first, so that where the two coincide and only the first is kept
+    (the numeric executor's one solution, generated code dropping a row equal to an earlier one) it carries that name
+    on every branch of the earlier steps.
+    """
+    step = steps[len(choices)]
+    if count != 2 or len(step.branches) != 2:
+        return tuple(range(count))
+    swap = step.swapped_by is not None and choices[step.swapped_by] == 1
+    first = 1 - step.merged if swap else step.merged
+    return (first, 1 - first)
+
+
+def branch_choices(steps: Sequence[Step], counts: Sequence[int]) -> list[tuple[int, ...]]:
+    """Every branch as the solution index each step takes, in the order the executor and the programs list them.
+
+    ``counts[i]`` is the number of solutions of ``steps[i]``; each step's solutions come in :func:`solution_order`.
+    """
+    branches: list[tuple[int, ...]] = [()]
+    for count in counts:
+        branches = [(*choices, index) for choices in branches for index in solution_order(steps, choices, count)]
+    return branches
 
 
 @dataclass(frozen=True, eq=False)

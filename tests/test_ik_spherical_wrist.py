@@ -183,8 +183,8 @@ def test_the_stanford_slide_is_named_by_its_sign():
 
 
 def test_the_iiwa_with_its_elbow_given_has_no_closed_form():
-    with pytest.raises(NoClosedFormError, match=r"7 joints remain \(give one joint's value as the redundancy "
-                                                r"parameter to solve the six that remain\)") as raised:
+    with pytest.raises(NoClosedFormError, match=r"7 joints, one more than a pose fixes \(give one joint's value as "
+                                                r"the redundancy parameter to solve the six that remain\)") as raised:
         closed_form_plan(load_robot("iiwa7"))
     message = str(raised.value)  # geometry and neutral advice: no function, keyword or option of any front end
     assert "tried: spherical wrist, three parallel axes" in message
@@ -199,6 +199,10 @@ def test_the_panda_has_no_closed_form_with_any_joint_given():
             closed_form_plan(load_robot("panda"), free_joint=joint)
     with pytest.raises(NoClosedFormError, match=r"the axes of joints 5 and 7 are parallel, 0\.088 apart"):
         closed_form_plan(load_robot("panda"), free_joint=3)
+    with pytest.raises(NoClosedFormError) as raised:  # "as well" only after a wrist whose axes meet
+        closed_form_plan(load_robot("panda"))
+    assert "the axes of joints 1, 2 and 3 meet in one point;" in str(raised.value)
+    assert "as well" not in str(raised.value)
 
 
 def _six_r(name, rows):

@@ -95,11 +95,12 @@ def _why_none(geometry: ArmGeometry) -> str:
     given = "" if geometry.free_joint is None else f" with joint {geometry.free_joint} given"
     facts = [f"{len(joints)} joints remain"] if len(joints) != 6 else []
     if len(joints) == 7:
-        facts[0] += " (give one joint's value as the redundancy parameter to solve the six that remain)"
+        facts[0] = ("7 joints, one more than a pose fixes (give one joint's value as the redundancy parameter to solve "
+                    "the six that remain)")
     if len(joints) >= 3:
         facts.append(geometry.why_not_meet(*joints[-3:]))
         facts.append(geometry.why_not_meet(*joints[:3]))
-        if geometry.intersection(*joints[:3]) is not None:
+        if geometry.intersection(*joints[:3]) is not None and geometry.intersection(*joints[-3:]) is not None:
             facts[-1] += (" as well, so they cannot change the distance from that point to the wrist: the arm has a "
                           "continuum of solutions or none")
     return (f"{robot.name}{given}: no closed-form family fits (tried: {', '.join(_FAMILY_NAMES)}): "

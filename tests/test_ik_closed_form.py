@@ -140,6 +140,8 @@ def test_the_shoulder_singularity_of_the_irb_is_a_continuum_in_theta1():
     result = solve_plan(plan, pose)
     stated = "theta1 takes every value; shown at 0 (the joints solved after it, theta3, theta2, theta4, theta5, theta6"
     assert result.solutions and all(s.singular.startswith(stated + ", follow it)") for s in result.solutions)
+    merged = "the wrist centre on axis 1, as close as it comes: shoulder right and shoulder left coincide"
+    assert all(s.singular.endswith(merged) and s.branch[0] == "shoulder right" for s in result.solutions)
     for solution in result.solutions:
         assert np.abs(model.fk(solution.q) - pose).max() < 1e-9
 

@@ -210,10 +210,11 @@ def test_shoulder_singularity_merges_the_shoulder_branches():
         assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-9
     assert len({round(float(s.q[0]), 6) for s in result.solutions}) == 1
     # the note says so, and the fact it states: the wrist point's distance from axis 1 is the offset along h2
-    assert all(s.branch[0] == "shoulder right" and "the wrist point (where axes 5 and 6 meet) at the offset's distance "
-               "from axis 1: shoulder right and shoulder left coincide" in s.singular for s in result.solutions)
     w = pose[:3, :3] @ home[:3, :3].T @ (corner - home[:3, 3]) + pose[:3, 3]
     offset = abs(float(axes[1] @ (corner - points[0])))
+    note = (f"the wrist point (where axes 5 and 6 meet) {offset:.4g} from axis 1, as close as it comes: shoulder right "
+            "and shoulder left coincide")
+    assert all(s.branch[0] == "shoulder right" and note in s.singular for s in result.solutions)
     assert np.linalg.norm(np.cross(axes[0], w - points[0])) == pytest.approx(offset, rel=1e-9)
 
 

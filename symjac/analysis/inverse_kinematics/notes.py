@@ -145,8 +145,10 @@ def merged_note(step: Step, arguments: dict[str, Any]) -> str:
         return f"elbow {'stretched' if _stretch(_arrays(arguments))[2] < 0 else 'folded'}: {both}"
     if step.reach == "offset" and step.subproblem == "slide_to_distance":
         return f"{step.subject or 'the target'} where the slide passes closest to the shoulder: {both}"
-    if step.reach == "offset":
-        return f"{step.subject or 'the target'} at the offset's distance from axis {step.joints[0] + 1}: {both}"
+    if step.reach == "offset" and step.subproblem in ("rotation_to_plane", "rotation_to_distance"):
+        radius = _offset(step.subproblem, _arrays(arguments))[1]
+        where = "on" if radius <= 1e-9 else f"{radius:.4g} from"
+        return f"{step.subject or 'the target'} {where} axis {step.joints[0] + 1}, as close as it comes: {both}"
     return both
 
 

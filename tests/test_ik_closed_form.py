@@ -96,6 +96,18 @@ def test_a_wrist_centre_inside_the_shoulder_cylinder_is_unreachable():
     _in_words(result.unreachable, result.distance)
 
 
+def test_a_wrist_centre_on_the_shoulder_cylinder_merges_the_shoulders_and_says_so():
+    robot, plan, model = _arm("puma560")
+    d3 = float(robot.defaults[sympy.Symbol("d3", real=True)])
+    pose = np.eye(4)
+    pose[:3, 3] = [0.6 * d3, 0.8 * d3, 0.3]  # the wrist centre (the flange) d3 from axis 1: as close as it comes
+    result = solve_plan(plan, pose)
+    assert len(result.solutions) == 4 and len({round(float(s.q[0]), 9) for s in result.solutions}) == 1
+    note = f"the wrist centre {d3:.4g} from axis 1, as close as it comes: shoulder right and shoulder left coincide"
+    assert all(s.branch[0] == "shoulder right" and note in s.singular for s in result.solutions)
+    assert np.abs(model.fk(np.array([s.q for s in result.solutions])) - pose).max() < 1e-9
+
+
 def test_the_wrist_singularity_is_a_continuum_with_theta4_plus_theta6_fixed():
     _, plan, model = _arm("puma560")
     q = np.array([0.4, -0.8, 0.6, 0.9, 0.0, -0.3])

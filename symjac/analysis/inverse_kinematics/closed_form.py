@@ -112,7 +112,8 @@ class Solution:
     """One solution: every joint's value, the branch names along the way, and whether it is within the limits.
 
     ``singular`` describes the continuum at a singular pose (``"theta4 + theta6 = 0.73 is fixed; theta4 shown at
-    0"``), empty elsewhere.
+    0"``) and the steps whose two solutions coincide there (``"elbow stretched: elbow down and elbow up coincide"``),
+    joined by ``"; "``; empty elsewhere.
     """
 
     q: np.ndarray
@@ -124,6 +125,9 @@ class Solution:
 @dataclass(frozen=True)
 class ClosedFormResult:
     """Every solution of a plan at one pose; without one, ``unreachable`` says why and ``distance`` how far out.
+
+    ``unreachable`` names the point of the arm that cannot be placed, in the arm's words, with that distance once:
+    ``"unreachable: the wrist centre is 0.05 beyond the reach of the arm stretched at joint 3"``.
 
     For a plan that controls less than the whole pose, ``uncontrolled`` says how far the pose the solutions reach is
     from the target when it differs (``uncontrolled_distance``: the position error, in length units).

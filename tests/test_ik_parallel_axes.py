@@ -225,7 +225,7 @@ def test_unreachable_pose_says_how_far():
     pose[:3, 3] *= 3.0
     result = solve_plan(plan, pose)
     assert result.solutions == ()
-    assert result.unreachable == (f"unreachable: the point where axes 4 and 5 meet is {result.distance:.4g} beyond "
+    assert result.unreachable == (f"the point where axes 4 and 5 meet is {result.distance:.4g} beyond "
                                   "the reach of the arm stretched at joint 3")
     assert result.distance > 0.5
 

@@ -127,7 +127,7 @@ class ClosedFormResult:
     """Every solution of a plan at one pose; without one, ``unreachable`` says why and ``distance`` how far out.
 
     ``unreachable`` names the point of the arm that cannot be placed, in the arm's words, with that distance once:
-    ``"unreachable: the wrist centre is 0.05 beyond the reach of the arm stretched at joint 3"``.
+    ``"the wrist centre is 0.05 beyond the reach of the arm stretched at joint 3"``.
 
     For a plan that controls less than the whole pose, ``uncontrolled`` says how far the pose the solutions reach is
     from the target when it differs (``uncontrolled_distance``: the position error, in length units).
@@ -296,7 +296,7 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
         branches = grown
     if not branches:
         distance, why = failure or (0.0, "no branch")
-        return ClosedFormResult(plan, (), f"unreachable: {why}", distance)
+        return ClosedFormResult(plan, (), why, distance)
     solutions = tuple(_solution(plan, compiled, branch, free) for branch in branches)
     if plan.controlled == "the whole pose":
         return ClosedFormResult(plan, solutions)

@@ -232,7 +232,10 @@ def rotation_to_distance(k: Any, p: Any, q: Any, delta: float, point_on_axis: An
     product = 2.0 * math.sqrt(across_u_squared * across_v_squared)
     c = (across_u_squared + across_v_squared - max(delta_across_squared, 0.0)) / product
     if abs(c) > 1.0 + scale:
-        return AngleSolutions((), f"delta = {delta:.6g} is out of the range the rotation reaches (cos = {c:.6g})")
+        low, high = (math.hypot(ku - kv, math.sqrt(across_u_squared) + sign * math.sqrt(across_v_squared))
+                     for sign in (-1.0, 1.0))
+        return AngleSolutions((), f"delta = {delta:.6g} is outside the distances the rotation reaches, {low:.6g} to "
+                                  f"{high:.6g}")
     theta0 = _angle_across(k, u, v)
     sine = math.sqrt(max(1.0 - c * c, 0.0))
     if sine <= scale or 1.0 - abs(c) <= _ROUNDING:  # they coincide, to what rounding in c can resolve
@@ -268,7 +271,8 @@ def rotation_to_plane(k: Any, p: Any, h: Any, d: float, point_on_axis: Any = Non
         return AngleSolutions((), f"the rotation does not move p across the plane, which it misses by {c:.6g}")
     theta0 = math.atan2(a, -b)
     if abs(c) > radius + tolerance * size:
-        return AngleSolutions((), f"the plane is out of reach: |C| = {abs(c):.6g} > sqrt(A^2 + B^2) = {radius:.6g}")
+        return AngleSolutions((), f"h.x of the turned point reaches {d - c - radius:.6g} to {d - c + radius:.6g}, "
+                                  f"not d = {d:.6g}")
     root = math.sqrt(max(radius * radius - c * c, 0.0))
     if root <= tolerance * size or radius - abs(c) <= _ROUNDING * radius:  # they coincide, to rounding
         return AngleSolutions(((theta0 - math.atan2(c, 0.0),),))
@@ -302,9 +306,9 @@ def slide_to_distance(k: Any, p: Any, q: Any, delta: float, tolerance: float = 1
     if discriminant < -scale:
         gap = math.sqrt(across_squared) - delta
         return AngleSolutions((), f"q lies {gap:.6g} farther from the line than delta = {delta:.6g}")
-    if discriminant <= scale:
+    root = math.sqrt(max(discriminant, 0.0))  # one solution only where the two coincide
+    if root <= scale or discriminant <= _ROUNDING * _scale(delta, _norm(u)) ** 2:
         return AngleSolutions(((-along,),))
-    root = math.sqrt(discriminant)
     return AngleSolutions(((-along - root,), (-along + root,)))
 
 

@@ -139,6 +139,7 @@ def _angle_across(k: Vector, u: Vector, v: Vector) -> float:
 
 
 _ROUNDING = 256 * sys.float_info.epsilon  # 1 - |cos| this small is rounding: one merged solution (3.4e-7 rad)
+_HALF_ANGLE = math.sqrt(2 * _ROUNDING)  # that half angle, 3.4e-7 rad
 
 
 def _scale(*lengths: float) -> float:
@@ -194,11 +195,14 @@ def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any =
     w = _dot(k1, k2)
     alpha = (_dot(k1, v) - w * _dot(k2, u)) / (1.0 - w * w)
     beta = (_dot(k2, u) - w * _dot(k1, v)) / (1.0 - w * w)
-    gamma_squared = (_dot(u, u) - alpha**2 - beta**2 - 2.0 * alpha * beta * w) / _dot(normal, normal)
+    # gamma^2 from the smaller circle, e.g. about k1: |v'|^2 = (beta^2 + gamma^2) |k1 x k2|^2 (accurate near a wrist
+    # singularity, where |u|^2 - alpha^2 - ... cancels); the two solutions merge at a half angle of rounding's size
+    radius, side = min((_norm(_cross(k1, v)), beta), (_norm(_cross(k2, u)), alpha))
+    gamma_squared = radius**2 / _dot(normal, normal) - side**2
     if gamma_squared < -scale * _scale(length_u):
         return AngleSolutions((), f"no middle point: gamma^2 = {gamma_squared:.6g} < 0")
     root = math.sqrt(max(gamma_squared, 0.0))
-    merged = root <= scale or gamma_squared <= _ROUNDING * length_u**2  # the middle points coincide, to rounding
+    merged = root <= scale or root * _norm(normal) <= _HALF_ANGLE * radius
     gammas = (0.0,) if merged else (root, -root)
     solutions = []
     for gamma in gammas:

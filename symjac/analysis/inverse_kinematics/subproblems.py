@@ -134,12 +134,12 @@ def _relative(p: Any, q: Any, point: Any) -> tuple[Vector, Vector]:
 
 
 def _angle_across(k: Vector, u: Vector, v: Vector) -> float:
-    """The angle about ``k`` from ``u'`` to ``v'``: ``atan2(k.(u x v), u.v - (k.u)(k.v))``."""
-    return math.atan2(_dot(k, _cross(u, v)), _dot(u, v) - _dot(k, u) * _dot(k, v))
+    """The angle about ``k`` from ``u'`` to ``v'``: ``atan2(k.(u' x v'), u'.v')`` (``u.v - (k.u)(k.v)`` cancels)."""
+    a, b = _combination((1.0, u), (-_dot(k, u), k)), _combination((1.0, v), (-_dot(k, v), k))
+    return math.atan2(_dot(k, _cross(a, b)), _dot(a, b))
 
 
 _ROUNDING = 256 * sys.float_info.epsilon  # 1 - |cos| this small is rounding: one merged solution (3.4e-7 rad)
-_HALF_ANGLE = math.sqrt(2 * _ROUNDING)  # that half angle, 3.4e-7 rad
 
 
 def _scale(*lengths: float) -> float:
@@ -202,7 +202,7 @@ def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any =
     if gamma_squared < -scale * _scale(length_u):
         return AngleSolutions((), f"no middle point: gamma^2 = {gamma_squared:.6g} < 0")
     root = math.sqrt(max(gamma_squared, 0.0))
-    merged = root <= scale or root * _norm(normal) <= _HALF_ANGLE * radius
+    merged = root <= scale or root * _norm(normal) <= math.sqrt(2 * _ROUNDING) * radius
     gammas = (0.0,) if merged else (root, -root)
     solutions = []
     for gamma in gammas:

@@ -23,7 +23,7 @@ the target position is :math:`p_x, p_y, p_z`; an intermediate that comes out a n
 root leaves an atan2 (:math:`\gamma_4 = \sqrt{G_4}`: at :math:`\gamma_4 = 0` every angle works) and :math:`x^2 / |x|`
 is :math:`|x|`. A common parameter keeps its sign (:math:`\operatorname{atan2}(a_2 d_4, -a_2 a_3)` is exactly
 ``atan2(sign(a2) d4, -sign(a2) a3)``) and is printed for the sign of its default, said in a sentence
-(:mod:`symjac.printing.ik_signs`). The sentences' math (:math:`\theta_5 \ge 0`,
+(``symjac.printing.ik_signs``). The sentences' math (:math:`\theta_5 \ge 0`,
 :math:`h_1 \times h_2`) is typeset; :math:`h_i` is the unit vector along the axis of joint :math:`i`.
 
 :func:`step_formulas` gives the formulas as SymPy expressions (the ones printed), :func:`ik_derivation_document` the
@@ -218,7 +218,7 @@ def step_formulas(plan: Plan) -> tuple[StepFormulas, ...]:
 
 
 def _under(formulas: StepFormulas, signs: Mapping[sp.Symbol, int]) -> StepFormulas:
-    """The formulas as printed: for the parameters' signs at their defaults (:func:`under_signs`)."""
+    """The formulas as printed: for the parameters' signs at their defaults (``under_signs``)."""
     return replace(formulas, intermediates=tuple((s, under_signs(e, signs)) for s, e in formulas.intermediates),
                    solutions=tuple(tuple(under_signs(e, signs) for e in b) for b in formulas.solutions))
 

@@ -115,7 +115,7 @@ def _common_factor(y: sp.Expr, x: sp.Expr, roots: frozenset[sp.Symbol], paramete
 
     A square root (``gamma_4 = sqrt(G_4)``) is positive where it is not 0, and at 0 the angle is arbitrary (the
     point lies on the axis), so the shorter form is a solution there too. A common robot parameter of unknown sign
-    leaves its sign in both arguments (:func:`~symjac.printing.ik_signs.cancel_parameters`): ``atan2(a_2 y, a_2 x)``
+    leaves its sign in both arguments (:func:`cancel_parameters`): ``atan2(a_2 y, a_2 x)``
     is ``atan2(y, x)`` only for ``a_2 > 0``.
     """
     for root in sorted(roots, key=sp.default_sort_key):

@@ -49,7 +49,7 @@ double sj_bench(const double *poses, int count, double *qs, int *found, int *ite
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &begin);
     for (int k = 0; k < count; k++) {{
         found[k] = {robot}_inverse_kinematics_numeric(poses + 16 * k, NULL, NULL, (unsigned long long)k,
-                                                     qs + {n} * k, iterations + k);
+                                                     qs + {n} * k, iterations + k, NULL, NULL);
     }}
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &end);
     return (double)(end.tv_sec - begin.tv_sec) + 1e-9 * (double)(end.tv_nsec - begin.tv_nsec);

@@ -54,7 +54,7 @@ def _python(folder: Path, robot, target: str) -> Pairs:
             for pose in poses:
                 rows, count, branches = module.inverse_kinematics(pose)
                 assert len(rows) == count == len(branches)
-                found.append((np.array(rows).reshape(-1, robot.n_joints), np.array(branches, dtype=int)))
+                found.append((np.array(rows).reshape(-1, robot.n_coordinates), np.array(branches, dtype=int)))
             return found
 
         return single
@@ -102,7 +102,7 @@ def _c99(folder: Path, robot) -> Pairs:
     function.restype = ctypes.c_int
     maximum = int(next(line.split()[-1] for line in files[f"{robot.name}.h"].splitlines()
                        if line.startswith(f"#define {robot.name.upper()}_IK_MAX_SOLUTIONS")))
-    n = robot.n_joints
+    n = robot.n_coordinates
 
     def solve(poses: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
         found = []
@@ -141,7 +141,7 @@ extern "C" int maximum() {{ return symjac::{robot}::ik_max_solutions; }}
 def _cpp(folder: Path, robot) -> Pairs:
     (name, text), = ik_files(robot, "cpp").items()
     (folder / name).write_text(text)
-    n = robot.n_joints
+    n = robot.n_coordinates
     (folder / "ik_shim.cpp").write_text(CPP_SHIM.format(robot=robot.name, n=n))
     subprocess.run(["g++", *CPP_FLAGS, "-fPIC", "-shared", "ik_shim.cpp", "-o", "libikshim.so"], cwd=folder,
                    check=True, capture_output=True)

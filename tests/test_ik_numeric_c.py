@@ -13,8 +13,9 @@ import pytest
 import sympy as sp
 
 from symjac import load_robot
-from symjac.analysis.inverse_kinematics import seed_bounds
+from symjac.analysis.inverse_kinematics import seed_bounds, solve_numeric
 from symjac.codegen import CodegenError, ModuleRequest, describe, render_files
+from symjac.codegen.numeric_model import numeric_model
 from symjac.kinematics.chain import forward_kinematics
 
 pytestmark = pytest.mark.external  # a C compiler
@@ -34,15 +35,17 @@ def _solver(tmp_path, robot):
     source = next(name for name in files if name.endswith(".c"))
     subprocess.run(["gcc", *FLAGS, source, "-o", "libik.so", "-lm"], cwd=tmp_path, check=True, capture_output=True)
     function = getattr(ctypes.CDLL(str(tmp_path / "libik.so")), f"{robot.name}_inverse_kinematics_numeric")
-    function.argtypes = [P, P, P, ctypes.c_ulonglong, P, ctypes.POINTER(ctypes.c_int)]
+    function.argtypes = [P, P, P, ctypes.c_ulonglong, P, ctypes.POINTER(ctypes.c_int), P, P]
 
-    def solve(pose, seed, start=None):
+    def solve(pose, seed, start=None, errors=False):
         q, iterations = np.zeros(robot.n_joints), ctypes.c_int(-1)
+        position, orientation = ctypes.c_double(-1.0), ctypes.c_double(-1.0)
         pose = np.ascontiguousarray(pose, dtype=float)
         begin = None if start is None else np.ascontiguousarray(start, dtype=float)
         found = function(pose.ctypes.data_as(P), None, None if begin is None else begin.ctypes.data_as(P), seed,
-                         q.ctypes.data_as(P), ctypes.byref(iterations))
-        return found, q, iterations.value
+                         q.ctypes.data_as(P), ctypes.byref(iterations), ctypes.byref(position) if errors else None,
+                         ctypes.byref(orientation) if errors else None)
+        return (found, q, iterations.value) + ((position.value, orientation.value) if errors else ())
 
     return solve
 
@@ -82,19 +85,48 @@ def test_generated_solver_is_deterministic_and_starts_from_a_given_configuration
     assert found == 1 and iterations == 0 and np.array_equal(q, q0)
 
 
-def test_an_unreachable_pose_reports_no_solution(tmp_path):
+def _errors(fk, q, pose):
+    """Position and orientation errors of q against the pose, from the independent forward kinematics."""
+    reached = np.asarray(fk(q), dtype=float)
+    r = reached[:3, :3] @ pose[:3, :3].T
+    sine = np.linalg.norm([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]]) / 2.0
+    return float(np.linalg.norm(reached[:3, 3] - pose[:3, 3])), float(np.arctan2(sine, (np.trace(r) - 1.0) / 2.0))
+
+
+def assert_closest(fk, q, pose, lower, upper):
+    """q is a local minimum of the squared errors within the limits: the gradient (central differences of the
+    independent forward kinematics) vanishes along free joints and points outwards at a limit."""
+    cost = [sum(x * x for x in _errors(fk, q + h, pose)) - sum(x * x for x in _errors(fk, q - h, pose))
+            for h in np.eye(len(q)) * 1e-6]
+    gradient = np.array(cost) / 2e-6
+    low, high = q <= lower + 1e-9, q >= upper - 1e-9
+    assert np.all(np.abs(gradient[~low & ~high]) < 1e-5) and np.all(gradient[low] > -1e-5)
+    assert np.all(gradient[high] < 1e-5)
+
+
+def test_an_unreachable_pose_gives_the_closest_configuration_and_its_errors(tmp_path):
     robot = load_robot("puma560")
-    solve = _solver(tmp_path, robot)
+    solve, fk = _solver(tmp_path, robot), _independent_fk(robot)
+    lower, upper = seed_bounds(robot)
     pose = np.eye(4)
-    pose[:3, 3] = [5.0, 0.0, 0.0]
-    found, q, iterations = solve(pose, 1)
-    assert found == 0 and np.all(np.isfinite(q)) and iterations > 0
+    pose[:3, 3] = [5.0, 0.0, 0.0]  # far beyond the PUMA's reach of about 0.9 m
+    for seed in range(4):
+        found, q, iterations, position, orientation = solve(pose, seed, errors=True)
+        assert found == 0 and iterations > 0 and np.all(q >= lower - 1e-12) and np.all(q <= upper + 1e-12)
+        assert (position, orientation) == pytest.approx(_errors(fk, q, pose), abs=1e-12)
+        assert_closest(fk, q, pose, lower, upper)
+        closest = solve_numeric(robot, pose, numeric_model(robot), restarts=16, until_found=16).closest
+        assert closest is not None  # Python's closest: as close, to 1 % (each finds its own local minimum)
+        assert position ** 2 + orientation ** 2 < 1.01 * (closest.position_error ** 2 + closest.orientation_error ** 2)
+        assert solve(pose, seed)[:3] == (found, pytest.approx(q, abs=0), iterations)  # NULL errors: the same answer
+    reachable = np.asarray(fk(np.array([0.3, -0.5, 0.4, -1.0, 0.6, 0.2])), dtype=float)
+    found, q, _, position, orientation = solve(reachable, 1, errors=True)
+    assert found == 1 and max(position, orientation) <= 1e-10
 
 
 def test_only_c_targets_and_a_base_frame_jacobian_have_it():
     robot = load_robot("planar2r")
-    with pytest.raises(CodegenError, match="jax target traces each function"):
-        describe(ModuleRequest(robot, "jax", numeric_ik=True))
+    assert describe(ModuleRequest(robot, "jax", numeric_ik=True)).numeric_ik  # a fixed graph there (ikcodegen)
     with pytest.raises(CodegenError, match="frame"):
         describe(ModuleRequest(robot, "c99", frames=(1,), numeric_ik=True))
     plain = "".join(render_files(describe(ModuleRequest(robot, "c99"))).values())
@@ -107,12 +139,12 @@ def test_only_c_targets_and_a_base_frame_jacobian_have_it():
 SHIM = """
 #include "{robot}.hpp"
 
-extern "C" int solve(const double *pose, unsigned long long seed, double *q, int *iterations)
+extern "C" int solve(const double *pose, unsigned long long seed, double *q, int *iterations, double *errors)
 {{
     using Matrix = Eigen::Matrix<double, 4, 4, Eigen::RowMajor>;
     Eigen::Matrix<double, {n}, 1> x;
     const int found = symjac::{robot}::inverse_kinematics_numeric<double>(
-        Eigen::Matrix4d(Eigen::Map<const Matrix>(pose)), seed, x, iterations);
+        Eigen::Matrix4d(Eigen::Map<const Matrix>(pose)), seed, x, iterations, errors, errors + 1);
     Eigen::Map<Eigen::Matrix<double, {n}, 1>> out(q);
     out = x;
     Eigen::Matrix<float, {n}, 1> single;  // single precision compiles and converges to its own tolerance
@@ -133,16 +165,27 @@ def test_generated_cpp_solver_reaches_every_pose(tmp_path, name):
     subprocess.run(["g++", "-std=c++17", "-Wall", "-Wextra", "-Werror", "-O1", "-I/usr/include/eigen3", "-fPIC",
                     "-shared", "shim.cpp", "-o", "libshim.so"], cwd=tmp_path, check=True, capture_output=True)
     solve = ctypes.CDLL(str(tmp_path / "libshim.so")).solve
-    solve.argtypes = [P, ctypes.c_ulonglong, P, ctypes.POINTER(ctypes.c_int)]
+    solve.argtypes = [P, ctypes.c_ulonglong, P, ctypes.POINTER(ctypes.c_int), P]
     fk, (lower, upper) = _independent_fk(robot), seed_bounds(robot)
     generator = np.random.default_rng(47)
     for k in range(POSES // 2):
         pose = np.ascontiguousarray(fk(generator.uniform(lower, upper)), dtype=float)
-        q, iterations = np.zeros(robot.n_joints), ctypes.c_int(-1)
-        found = solve(pose.ctypes.data_as(P), k, q.ctypes.data_as(P), ctypes.byref(iterations))
-        assert found == 3 and iterations.value > 0
+        q, iterations, errors = np.zeros(robot.n_joints), ctypes.c_int(-1), np.full(2, -1.0)
+        found = solve(pose.ctypes.data_as(P), k, q.ctypes.data_as(P), ctypes.byref(iterations),
+                      errors.ctypes.data_as(P))
+        assert found == 3 and iterations.value > 0 and np.all(errors <= 1e-10) and np.all(errors >= 0)
         assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
         assert np.all(q >= lower - 1e-12) and np.all(q <= upper + 1e-12)
+    far = np.eye(4)
+    far[:3, 3] = [3.0, 0.0, 0.5]  # beyond reach: the closest configuration, as the c99 solver's (same seeds and steps)
+    q, iterations, errors = np.zeros(robot.n_joints), ctypes.c_int(-1), np.zeros(2)
+    found = solve(far.ctypes.data_as(P), 3, q.ctypes.data_as(P), ctypes.byref(iterations), errors.ctypes.data_as(P))
+    assert found == 0 and np.all(q >= lower - 1e-12) and np.all(q <= upper + 1e-12)
+    assert tuple(errors) == pytest.approx(_errors(fk, q, far), abs=1e-12)
+    assert_closest(fk, q, far, lower, upper)
+    c99 = _solver(tmp_path, robot)(far, 3, errors=True)
+    assert c99[0] == 0 and c99[2] == iterations.value and np.abs(c99[1] - q).max() < 1e-6  # a flat minimum: rounding
+    assert tuple(errors) == pytest.approx(c99[3:], abs=1e-9)
 
 
 @pytest.mark.parametrize("name", ["panda", "stanford"])
@@ -159,11 +202,19 @@ def test_generated_python_solver_agrees_with_the_c99_one(tmp_path, name):
     same = 0
     for k in range(10):
         pose = np.asarray(fk(generator.uniform(lower, upper)), dtype=float)
-        q, found, iterations = module.inverse_kinematics_numeric(pose.tolist(), seed=k)
-        assert found and iterations > 0
+        q, found, iterations, position, orientation = module.inverse_kinematics_numeric(pose.tolist(), seed=k)
+        assert found and iterations > 0 and max(position, orientation) <= 1e-10
         assert np.abs(np.asarray(fk(q), dtype=float) - pose).max() < 1e-9
         assert np.all(np.asarray(q) >= lower - 1e-12) and np.all(np.asarray(q) <= upper + 1e-12)
-        assert module.inverse_kinematics_numeric(pose.tolist(), seed=k) == (q, found, iterations)  # deterministic
+        assert module.inverse_kinematics_numeric(pose.tolist(), seed=k) == (q, found, iterations, position,
+                                                                            orientation)  # deterministic
         found_c, q_c, iterations_c = solve_c(pose, k)
         same += found_c == 1 and iterations_c == iterations and np.abs(q_c - np.asarray(q)).max() < 1e-8
     assert same >= 8  # the same seeds and steps: the same path, unless rounding sends one start elsewhere
+    far = np.eye(4)
+    far[:3, 3] = [3.0, 0.0, 0.5]  # beyond reach: the same closest configuration and errors as the c99 solver's
+    q, found, iterations, position, orientation = module.inverse_kinematics_numeric(far.tolist(), seed=2)
+    found_c, q_c, iterations_c, position_c, orientation_c = solve_c(far, 2, errors=True)
+    assert not found and found_c == 0 and iterations == iterations_c and np.abs(q_c - np.asarray(q)).max() < 1e-9
+    assert (position, orientation) == pytest.approx((position_c, orientation_c), abs=1e-9)
+    assert (position, orientation) == pytest.approx(_errors(fk, np.asarray(q), far), abs=1e-12)

@@ -40,6 +40,7 @@ from symjac.kinematics.coupling import coupling_matrix
 from symjac.kinematics.jacobian import point_vector
 from symjac.kinematics.memo import frame_of, memoized
 from symjac.kinematics.propagation import joint_rate_symbols
+from symjac.model.robot import Robot
 from symjac.quantities.spec import LawName, entry_point
 
 __all__ = [
@@ -51,6 +52,7 @@ __all__ = [
     "coordinate_jacobian",
     "coordinate_kinematics",
     "coordinate_torques",
+    "coordinates_of_joints",
     "coupling_lines",
 ]
 
@@ -64,6 +66,36 @@ def coupling_lines(chain: Chain) -> tuple[str, ...]:
         return ()
     return tuple(f"{variable} = {value}" for variable, value in zip(model.joint_variables, model.joint_values,
                                                                       strict=True) if variable != value)
+
+
+def coordinates_of_joints(robot: Robot) -> tuple[sp.Expr, ...]:
+    r"""Each coordinate as an expression of the joint variables: how a joint-space solution (IK) becomes ``q``.
+
+    The joint variables themselves without a coupling. With one, :math:`\vartheta = C\,q + \vartheta_0` is solved
+    on the first rows of C that are independent (a coordinate that is a joint's own variable is that joint's value):
+    :math:`q = C_S^{-1}(\vartheta_S - \vartheta_{0,S})`, the joints that are coordinates tried first. A coupling
+    whose C has dependent columns is refused.
+
+    Examples
+    --------
+    >>> from symjac import load_robot
+    >>> coordinates_of_joints(load_robot("palletizer"))
+    (theta1, theta2, theta3, theta5)
+    """
+    coupling = robot.coupling
+    if coupling is None:
+        return tuple(robot.joint_variables)
+    C, offsets, own = sp.Matrix(coupling.matrix), coupling.offsets, set(coupling.coordinates)
+    rows: list[int] = []
+    for i in sorted(range(C.rows), key=lambda i: coupling.values[i] not in own):  # a coordinate's own joint first
+        if C.extract([*rows, i], list(range(C.cols))).rank() > len(rows):
+            rows.append(i)
+    if len(rows) < C.cols:
+        raise CodegenError(f"{robot.name}: the joint values do not determine its coordinates (the coupling matrix "
+                           f"has rank {len(rows)}, fewer than its {C.cols} columns)")
+    rows.sort()
+    joints = sp.Matrix([robot.joint_variables[i] - offsets[i] for i in rows])
+    return tuple(sp.expand(value) for value in C.extract(rows, list(range(C.cols))).inv() * joints)
 
 
 def _values(chain: Chain) -> dict[sp.Symbol, sp.Expr]:

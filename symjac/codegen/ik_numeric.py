@@ -27,20 +27,17 @@ if TYPE_CHECKING:  # description.py imports this module (through inverse_kinemat
 
 __all__ = ["NUMERIC_IK_TARGETS", "NumericIkTables", "numeric_ik_jacobian", "numeric_ik_tables"]
 
-NUMERIC_IK_TARGETS = ("c99", "cpp", "python", "numpy", "lambdify", "c")
-"""The targets that generate ``inverse_kinematics_numeric``."""
+NUMERIC_IK_TARGETS = ("c99", "cpp", "python", "numpy", "lambdify", "c", "jax", "casadi")
+"""The targets that generate ``inverse_kinematics_numeric`` (jax and casadi: a fixed graph,
+:mod:`symjac.codegen.ik_numeric_traced`)."""
 
 
 def numeric_ik_jacobian(target: str, infos: Sequence[JacobianInfo], coupled: bool) -> str:
     """The name of the Jacobian the solver runs on: the first request in frame {0} with all six rows."""
-    if target in ("jax", "casadi"):
-        raise CodegenError(f"numeric_ik: the {target} target traces each function into a fixed graph, and the "
-                           "numeric solver's restarts and stopping test are loops that depend on the data; use "
-                           f"one of {', '.join(NUMERIC_IK_TARGETS)}")
     if target not in NUMERIC_IK_TARGETS:
         raise CodegenError(f"numeric_ik: the {target} target has no numeric inverse kinematics yet; "
                            f"use one of {', '.join(NUMERIC_IK_TARGETS)}")
-    if coupled:
+    if coupled and target not in ("jax", "casadi"):  # their fixed graphs run on the functions of the coordinates
         raise CodegenError("numeric_ik: a coupled robot's modules have no numeric inverse kinematics yet")
     for info in infos:
         if info.frame == "{0}" and tuple(info.rows) == tuple(range(6)):

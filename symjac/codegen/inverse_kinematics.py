@@ -32,6 +32,7 @@ from typing import Protocol
 
 import sympy as sp
 
+from symjac.codegen.coupled import coordinates_of_joints
 from symjac.codegen.cse import eliminate_common
 from symjac.codegen.ik_numeric import NUMERIC_IK_TARGETS
 from symjac.codegen.lower import LoweredFunction
@@ -133,14 +134,19 @@ def pose_symbols() -> tuple[sp.Symbol, ...]:
 
 def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequence[sp.Symbol],
                           parameters: Sequence[sp.Symbol], revolute: Sequence[bool], family: str = "",
-                          free_joint: int | None = None) -> InverseKinematics:
+                          free_joint: int | None = None, coordinates: Sequence[sp.Expr] | None = None
+                          ) -> InverseKinematics:
     """Lower ``programs`` (one per branch) to one straight-line function of the pose and the ``parameters``.
 
     ``joints`` are the joint variables every program must assign (their last assignment is the branch's value).
     An expression reading a symbol that is neither a pose symbol, a parameter nor assigned before it is refused.
     With ``free_joint`` (a joint number, 1-based) that joint's variable is an input instead (renamed
     :data:`Q_FREE`, a second input of the lowered function), and its value is copied into every branch.
+    ``coordinates`` (default: ``joints``) are what each branch outputs, as expressions of the joint variables: a
+    coupled robot's coordinates (:func:`~symjac.codegen.coupled.coordinates_of_joints`); ``revolute`` says which of
+    them are angles.
     """
+    outputs = tuple(joints if coordinates is None else coordinates)
     if not programs:
         raise CodegenError("inverse kinematics: the closed form has no branch")
     free: dict[sp.Symbol, sp.Symbol] = {} if free_joint is None else {joints[free_joint - 1]: Q_FREE}
@@ -172,7 +178,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
             raise CodegenError(f"inverse kinematics, branch {', '.join(program.branch) or '(only)'}: no value for "
                                f"{', '.join(missing)}")
         branch_conditions.append(tuple(sorted(set(indices))))
-        joint_values += [values[j] for j in joints]
+        joint_values += [share(sp.sympify(c).xreplace(values)) for c in outputs]
     flat = [*condition_values, *joint_values]
 
     def snapped(y: sp.Expr, x: sp.Expr) -> sp.Expr:
@@ -188,7 +194,7 @@ def lower_branch_programs(programs: Sequence[BranchProgramLike], joints: Sequenc
                               tuple(flat), (len(flat),), op_count, f"closed form ({family})" if family else
                               "closed form")
     return InverseKinematics(lowered, family, tuple(tuple(p.branch) for p in programs), tuple(branch_conditions),
-                             len(condition_values), len(joints), tuple(revolute), free_joint,
+                             len(condition_values), len(outputs), tuple(revolute), free_joint,
                              "" if free_joint is None else str(joints[free_joint - 1]))
 
 
@@ -325,15 +331,15 @@ def _needed(definitions: Sequence[tuple[sp.Symbol, sp.Expr]], outputs: Sequence[
 def lowered_inverse_kinematics(chain: Chain, free_joint: int | None = None) -> InverseKinematics:
     """The robot's closed form (its plan's branch programs) lowered; NoClosedFormError for an arm without one.
 
+    Its solutions are in the robot's coordinates (a coupled robot's joint values written as its coordinates, as
+    every other generated function takes them).
+
     With ``free_joint`` (a joint number, 1-based) the closed form with that joint given (``closed_form_plan(robot,
     free_joint=...)``): its value is the input ``q_free`` (:data:`Q_FREE`).
     """
     from symjac.analysis.inverse_kinematics import branch_programs, closed_form_plan
 
     robot = chain.robot
-    if robot.coupling is not None:
-        raise CodegenError(f"inverse kinematics: {robot.name} has coupled joints; generated closed forms solve "
-                           "independent joints only")
     if free_joint is not None and (isinstance(free_joint, bool) or not isinstance(free_joint, int)
                                    or not 1 <= free_joint <= robot.n_joints):
         raise CodegenError(f"inverse kinematics: free_joint is a joint number, 1 to {robot.n_joints} for "
@@ -345,7 +351,7 @@ def lowered_inverse_kinematics(chain: Chain, free_joint: int | None = None) -> I
     revolute = tuple(kind.value == "revolute" for kind in robot.coordinate_types)
     return lower_branch_programs(branch_programs(plan), robot.joint_variables,
                                  tuple(p.symbol for p in robot.geometric_parameters),
-                                 revolute, plan.family, plan.free_joint)
+                                 revolute, plan.family, plan.free_joint, coordinates_of_joints(robot))
 
 
 def inverse_kinematics_of(robot: Robot | Chain, free_joint: int | None = None) -> InverseKinematics:

@@ -318,13 +318,12 @@ def generate(
         checks both against inverse dynamics with the robot's own parameters.
     inverse_kinematics : bool
         Also generate ``inverse_kinematics(pose)``, every solution of the closed form into a fixed array of
-        ``IK_MAX_SOLUTIONS`` rows, their count and branches. An arm without a closed form gets the numeric
-        ``inverse_kinematics_numeric`` (with a seed) in every target but jax and casadi (``NoClosedFormError``).
-        ``free_joint=k`` (a joint number, 1-based) asks for the closed form with joint k given:
-        ``inverse_kinematics(pose, q_free)``.
+        ``IK_MAX_SOLUTIONS`` rows, their count and branches, in the coordinates (a coupled robot's too); an arm
+        without one gets ``inverse_kinematics_numeric``. ``free_joint=k`` (a joint number, 1-based) asks for the
+        closed form with joint k given: ``inverse_kinematics(pose, q_free)``.
     numeric_ik : bool
-        Also generate ``inverse_kinematics_numeric`` (not jax, casadi), Levenberg-Marquardt on the module's forward
-        kinematics and its first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``).
+        Also generate ``inverse_kinematics_numeric``, Levenberg-Marquardt on the module's forward kinematics and its
+        first six-row frame-{0} Jacobian (``symjac.codegen.ik_numeric``; jax, casadi: ``ik_numeric_traced``).
 
     Returns
     -------

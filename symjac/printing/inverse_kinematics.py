@@ -3,7 +3,8 @@ r"""The solutions of inverse kinematics as a document (``symjac ik``): the pose,
 The document reads an :class:`~symjac.solvers.inverse_kinematics.InverseKinematicsResult` by its fields (it sits
 below the solvers, so it names no solver type): ``robot``, ``pose``, ``method``, ``why``, ``family``, ``reasons``,
 ``solutions`` (each ``q``, ``branch``, ``within_limits``, ``singular``, ``position_error``, ``orientation_error``),
-``outside_limits``, ``unreachable``, ``distance``, ``uncontrolled`` and ``controlled`` (``sets``, ``not_set``).
+``outside_limits``, ``unreachable``, ``distance``, ``uncontrolled`` and ``controlled`` (``sets``, ``not_set``), and
+``continuum_dimension`` when it has one (the numeric solver's samples of a continuum are called samples).
 
 LaTeX and pretty text print the target pose :math:`T`, then the solutions as one matrix :math:`Q`, one row per
 solution and one column per joint, then a line per row (its branch, limits, singular note, and the error of its
@@ -45,6 +46,11 @@ def solution_words(solution: Any) -> str:
 def _method_words(result: Any) -> str:
     count = len(result.solutions)
     found = f"{count} solution{'s' if count != 1 else ''}"
+    samples = sum(bool(getattr(s, "continuum_dimension", 0)) for s in result.solutions)
+    if samples:  # not a count: samples of a continuum, as many as the numeric solver's starts found
+        sets = f"a {result.continuum_dimension}-dimensional set of solutions (they are not isolated)"
+        found = (f"{count} samples of {sets}" if samples == count
+                 else f"{found}, {samples} of them samples of {sets}")
     how = f"in closed form ({result.family})" if result.method == "closed_form" else "by the numeric solver"
     return f"Inverse kinematics of {result.robot}: {found} {how}."
 
@@ -104,4 +110,5 @@ def inverse_kinematics_data(result: Any) -> dict[str, Any]:
         "outside_limits": result.outside_limits,
         "unreachable": result.unreachable,
         "distance": distance,
+        "continuum_dimension": getattr(result, "continuum_dimension", 0),
     }

@@ -54,6 +54,9 @@ class InverseKinematicsSolution:
     position_error, orientation_error : float
         :math:`\|p(q) - p^*\|` in metres and the angle of :math:`R(q) R^{*T}` in radians, from the compiled
         forward kinematics: over the whole pose, also for an arm that controls only part of it.
+    continuum_dimension : int
+        Numeric solver: 0 for an isolated solution, else ``d``: ``q`` is one sample of a ``d``-dimensional set of
+        configurations reaching the pose (``n - rank J`` there; ``singular`` says so in words).
     """
 
     q: np.ndarray
@@ -62,6 +65,7 @@ class InverseKinematicsSolution:
     singular: str = ""
     position_error: float = 0.0
     orientation_error: float = 0.0
+    continuum_dimension: int = 0
 
 
 @dataclass(frozen=True)
@@ -98,6 +102,10 @@ class InverseKinematicsResult:
         what it does not set (empty when they agree).
     plan : object
         The closed form's plan (``None`` for the numeric solver): its steps, for the derivation.
+    continuum_dimension : int
+        Numeric solver: the largest ``continuum_dimension`` of the solutions. When it is not 0 the solutions on a
+        continuum (a redundant arm's self-motion, a singular pose's) are samples of it, as many as the starts
+        happened to find, not a count of distinct solutions.
     """
 
     robot: str
@@ -113,6 +121,7 @@ class InverseKinematicsResult:
     distance: float = 0.0
     uncontrolled: str = ""
     plan: Any = field(default=None, repr=False, compare=False)
+    continuum_dimension: int = 0
 
 
 def _robot(robot: Robot | str) -> Robot:
@@ -282,8 +291,8 @@ def _numeric(robot: Robot, model: NumericModel, target: np.ndarray, why: str, co
     for s in found:
         inside = all(not bounded or lo - 1e-9 <= value <= hi + 1e-9
                      for value, lo, hi, bounded in zip(s.q, lower, upper, limited, strict=True))
-        solutions.append(InverseKinematicsSolution(np.asarray(s.q, dtype=float), (), inside, "",
-                                                   *_errors(model, s.q, target)))
+        solutions.append(InverseKinematicsSolution(np.asarray(s.q, dtype=float), (), inside, _sample_words(s, n),
+                                                   *_errors(model, s.q, target), s.continuum_dimension))
     unreachable, distance = "", 0.0
     if not solutions:
         closest = found.closest
@@ -300,5 +309,12 @@ def _numeric(robot: Robot, model: NumericModel, target: np.ndarray, why: str, co
         uncontrolled = (f"the orientation reached differs from the target's by {solutions[0].orientation_error:.4g} "
                         "rad (the arm does not set it)")
     return InverseKinematicsResult(robot.name, target, "numeric", why, tuple(solutions), controlled,
-                                   unreachable=unreachable, distance=distance,
-                                   uncontrolled=uncontrolled)
+                                   unreachable=unreachable, distance=distance, uncontrolled=uncontrolled,
+                                   continuum_dimension=max((s.continuum_dimension for s in solutions), default=0))
+
+
+def _sample_words(solution: Any, n: int) -> str:
+    """The numeric solution's continuum in words (empty when it is isolated)."""
+    d = solution.continuum_dimension
+    return "" if not d else (f"one sample of a {d}-dimensional set of configurations reaching this pose (the "
+                             f"Jacobian has rank {n - d} for {n} joints here)")

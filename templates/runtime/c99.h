@@ -748,12 +748,12 @@ static inline int sj_ik_converged(const real *e)
 
 /* One start of Levenberg-Marquardt with Sugihara's damping lambda = mu (E / 2 + 1e-3), E = e^T e, e = [p* - p(q);
  * log(R* R(q)^T)], and geodesic acceleration once E < 1e-6: mu halves after an accepted step and grows 4 times
- * after a rejected one; the start ends after 100 steps or 4 steps without the cost falling by 10 % (while
- * E > 1e-10). Limits when lower is not NULL. x is overwritten by the configuration reached and e by its error;
- * *steps counts the steps; returns the cost E. */
+ * after a rejected one; the start ends after 100 steps or `patience` steps without the cost falling by 10 % (while
+ * E > 1e-10; 4 for a start, 100 for the closest configuration's last descent). Limits when lower is not NULL.
+ * x is overwritten by the configuration reached and e by its error; *steps counts the steps; returns the cost E. */
 static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
                                  const real *lower, const real *upper, const int *kind, const real *target, real *x,
-                                 real *e, int *steps)
+                                 real *e, int *steps, int patience)
 {
     real trial[SJ_DIM], step[SJ_DIM], T[16], e_trial[6], J[6 * SJ_DIM], normal[SJ_DIM * SJ_DIM], gradient[SJ_DIM];
     int held[SJ_DIM];
@@ -802,7 +802,7 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
         if (cost < (real)0.9 * reference || cost < (real)1e-10) {
             reference = cost;
             stalled = 0;
-        } else if (++stalled >= 4) {
+        } else if (++stalled >= patience) {
             break;
         }
     }
@@ -813,15 +813,19 @@ static inline real sj_ik_descend(int n, sj_map forward_kinematics, sj_map jacobi
  * reaches is shifted by 2 pi into the limits, and when a joint does not fit, a redundant arm (n > 6) goes on from the
  * clipped configuration with the limits respected (a joint at a limit that a step would push past is held still;
  * an arm with n <= 6 has isolated solutions: it restarts). Starts from `start` (when not NULL), then from seeds
- * drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64 starts. Writes q (the best found on failure)
- * and the steps taken in all (when iterations is not NULL); returns 1 when it converged, else 0. */
+ * drawn uniformly in [low, high] by splitmix64 from `seed`, at most 64 starts. When none converges, the closest
+ * configuration reached (the least cost E, clipped into the limits) descends once more within the limits (no
+ * early stop). Writes
+ * q (the solution, or that closest configuration), the steps taken in all and the position (m) and orientation
+ * (rad) error norms of q (each when not NULL); returns 1 when q reaches the pose, else 0. */
 static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobian, const real *params,
                                 const real *lower, const real *upper, const int *kind, const real *low,
                                 const real *high, const real *target, const real *start, unsigned long long seed,
-                                real *q, int *iterations)
+                                real *q, int *iterations, real *position_error, real *orientation_error)
 {
     unsigned long long state = seed;
-    real best[SJ_DIM];
+    real best[SJ_DIM], T[16];
+    real best_e[6] = {0, 0, 0, 0, 0, 0};
     real best_cost = (real)HUGE_VAL;
     int steps = 0;
     int found = 0;
@@ -831,27 +835,45 @@ static inline int sj_ik_numeric(int n, sj_map forward_kinematics, sj_map jacobia
             const real u = (real)((double)(sj_splitmix64(&state) >> 11) * (1.0 / 9007199254740992.0));
             x[k] = (attempt == 0 && start != NULL) ? start[k] : low[k] + u * (high[k] - low[k]);
         }
-        real cost = sj_ik_descend(n, forward_kinematics, jacobian, params, NULL, NULL, kind, target, x, e, &steps);
+        real cost = sj_ik_descend(n, forward_kinematics, jacobian, params, NULL, NULL, kind, target, x, e, &steps,
+                                  4);
         found = sj_ik_converged(e);
-        const int inside = found ? sj_ik_into_limits(n, lower, upper, kind, x) : 0;
-        if (found && !inside && n <= 6) { /* isolated solutions (no self-motion to clip along): restart */
-            found = 0;
-            cost = (real)HUGE_VAL;
-        } else if (found && !inside) {
-            cost = sj_ik_descend(n, forward_kinematics, jacobian, params, lower, upper, kind, target, x, e, &steps);
+        const int inside = sj_ik_into_limits(n, lower, upper, kind, x); /* else clipped into them */
+        if (found && !inside && n > 6) {
+            cost = sj_ik_descend(n, forward_kinematics, jacobian, params, lower, upper, kind, target, x, e, &steps,
+                                 4);
             found = sj_ik_converged(e);
-        } else if (!found) {
-            sj_ik_into_limits(n, lower, upper, kind, x);
-            cost = (real)HUGE_VAL;
+        } else if (!inside) { /* not converged, or isolated solutions (n <= 6) outside the limits: restart */
+            found = 0;
+            forward_kinematics(x, params, T);
+            cost = sj_ik_error(target, T, e);
         }
         if (found || cost < best_cost || attempt == 0) {
             best_cost = cost;
             memcpy(best, x, sizeof(real) * (size_t)n);
+            memcpy(best_e, e, sizeof e);
+        }
+    }
+    if (!found) { /* the closest configuration reached: one more descent from it, within the limits */
+        real x[SJ_DIM], e[6];
+        memcpy(x, best, sizeof(real) * (size_t)n);
+        const real cost = sj_ik_descend(n, forward_kinematics, jacobian, params, lower, upper, kind, target, x, e,
+                                        &steps, 100);
+        found = sj_ik_converged(e);
+        if (found || cost < best_cost) {
+            memcpy(best, x, sizeof(real) * (size_t)n);
+            memcpy(best_e, e, sizeof e);
         }
     }
     memcpy(q, best, sizeof(real) * (size_t)n);
     if (iterations != NULL) {
         *iterations = steps;
+    }
+    if (position_error != NULL) {
+        *position_error = sqrt(best_e[0] * best_e[0] + best_e[1] * best_e[1] + best_e[2] * best_e[2]);
+    }
+    if (orientation_error != NULL) {
+        *orientation_error = sqrt(best_e[3] * best_e[3] + best_e[4] * best_e[4] + best_e[5] * best_e[5]);
     }
     return found;
 }

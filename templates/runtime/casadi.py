@@ -181,6 +181,129 @@ def _identification_error(functions: tuple[ca.Function, ...], q: ca.DM, qdot: ca
     return _relative_error(ca.mtimes(regressor(q, qdot, qddot, p), values(q, p)), inverse_dynamics(q, qdot, qddot, p))
 
 
+# ---- runtime section: ik_numeric ----
+
+
+def _ik_error(target: ca.SX, pose: ca.SX) -> ca.SX:
+    """The error [p* - p; log(R* R^T)] (the python runtime's), its rotation vector robust near 0 and pi, branch-free."""
+    r = ca.mtimes(target[:3, :3], pose[:3, :3].T)
+    w = ca.vertcat(r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1])
+    angle = ca.acos(ca.fmin(1.0, ca.fmax(-1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0)))
+    small, near_pi = angle < 1e-6, math.pi - angle <= 1e-4
+    plain = ca.logic_or(small, near_pi)
+    scale = ca.if_else(plain, 0.5, angle / (2.0 * ca.sin(ca.if_else(plain, 1.0, angle))))
+    unit = ca.SX.eye(3)
+    rows = [(r[m, :].T + unit[:, m]) / 2.0 for m in range(3)]  # near pi: the axis from the symmetric part's row
+    first = ca.logic_and(r[0, 0] >= r[1, 1], r[0, 0] >= r[2, 2])  # of the largest diagonal entry
+    axis = ca.if_else(first, rows[0], ca.if_else(r[1, 1] >= r[2, 2], rows[1], rows[2]))
+    length = ca.norm_2(axis)
+    turned = axis * (ca.if_else(ca.dot(axis, w) < 0, -angle, angle) / ca.if_else(length > 0, length, 1.0))
+    rotation = ca.if_else(ca.logic_and(near_pi, ca.logic_not(small)), turned, w * scale)
+    return ca.vertcat(target[:3, 3] - pose[:3, 3], rotation)
+
+
+def _ik_splitmix64(state: int) -> tuple[int, int]:
+    """splitmix64 (Steele, Lea and Flood 2014): the next state and its output, as the other runtimes draw seeds."""
+    state = (state + 0x9E3779B97F4A7C15) & 0xFFFFFFFFFFFFFFFF
+    z = state
+    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & 0xFFFFFFFFFFFFFFFF
+    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & 0xFFFFFFFFFFFFFFFF
+    return state, z ^ (z >> 31)
+
+
+def _ik_numeric(forward: ca.Function, velocity: ca.Function, lower: Sequence[float], upper: Sequence[float],
+                kind: Sequence[int], low: Sequence[float], high: Sequence[float], parameters: int, starts: int,
+                iterations: int, tolerance: float, seed: int) -> ca.Function:
+    """``inverse_kinematics_numeric(pose, start, p) -> (q, found, error)``: fixed Levenberg-Marquardt as a graph.
+
+    One step, an SX function of (q and the damping mu, pose, p), solves (J^T J + mu (|e|^2 / 2 + 1e-3) I) dq =
+    J^T e (Sugihara's damping) on ``forward`` and ``velocity`` and takes the step when it lowers |e|^2 (mu halves)
+    or not (mu quadruples); a start that met ``tolerance`` stays. ``Function.fold`` repeats it ``iterations``
+    times and ``Function.map`` runs it from ``starts`` starts: ``start`` and ``starts - 1`` seeds drawn by
+    splitmix64 from ``seed`` in [low, high] (the other targets' first seeds). Angles without limits are wrapped to
+    (-pi, pi]; a solution is shifted by 2 pi into the limits, one that does not fit counts as not found, except for
+    a redundant arm (more than six joints), which descends again with the limits enforced (clipped). The result is
+    the first start found, else the one with the least error (clipped into the limits); ``error`` holds its
+    position (m) and rotation (rad) errors.
+    """
+    n = len(kind)
+    two_pi = 2.0 * math.pi
+    pose, p, start = ca.SX.sym("pose", 4, 4), ca.SX.sym("p", parameters), ca.SX.sym("start", n)
+    state = ca.SX.sym("state", n + 1)
+    x, mu = state[:n], state[n]
+
+    def wrap(y: ca.SX, joints: Sequence[bool]) -> ca.SX:
+        return ca.vertcat(*[y[k] - two_pi * ca.ceil((y[k] - math.pi) / two_pi) if joints[k] else y[k]
+                            for k in range(n)])
+
+    def error(y: ca.SX) -> ca.SX:
+        return _ik_error(pose, forward(y, p))
+
+    def met(e: ca.SX) -> ca.SX:
+        return ca.fmax(ca.dot(e[:3], e[:3]), ca.dot(e[3:], e[3:])) <= tolerance**2
+
+    def step_function(clipped: bool) -> ca.Function:
+        e = error(x)
+        cost = ca.dot(e, e)
+        J = velocity(x, p)
+        normal = ca.mtimes(J.T, J) + mu * (cost / 2.0 + 1e-3) * ca.SX.eye(n)
+        trial = wrap(x + ca.solve(normal, ca.mtimes(J.T, e)), [k == 2 for k in kind])
+        if clipped:
+            trial = ca.vertcat(*[trial[k] if kind[k] == 2 else ca.fmin(ca.fmax(trial[k], lower[k]), upper[k])
+                                 for k in range(n)])
+        e_trial = error(trial)
+        done = met(e)
+        better = ca.logic_and(ca.dot(e_trial, e_trial) < cost, ca.logic_not(done))
+        damping = ca.if_else(done, mu, ca.if_else(better, ca.fmax(mu / 2.0, 1e-6), mu * 4.0))
+        return ca.Function("ik_step", [state, pose, p], [ca.vertcat(ca.if_else(better, trial, x), damping)])
+
+    def into_limits(y: ca.SX) -> tuple[ca.SX, ca.SX]:
+        wrapped = wrap(y, [k != 0 for k in kind])
+        values, inside = [], ca.SX(1)
+        for k in range(n):
+            value = ca.fmin(ca.fmax(wrapped[k], lower[k]), upper[k])
+            fits = ca.SX(0)
+            for shift in ((-2.0, 2.0, -1.0, 1.0, 0.0) if kind[k] else (0.0,)):  # the last that fits wins: 0 first
+                choice = wrapped[k] + shift * two_pi
+                fit = ca.logic_and(choice >= lower[k], choice <= upper[k])
+                value, fits = ca.if_else(fit, choice, value), ca.logic_or(fits, fit)
+            values.append(value)
+            inside = ca.logic_and(inside, fits)
+        return ca.vertcat(*values), inside
+
+    descend = step_function(False).fold(iterations)
+    reached = descend(ca.vertcat(start, 1.0), pose, p)[:n]
+    q, inside = into_limits(reached)
+    e = error(reached)
+    found, cost = ca.logic_and(met(e), inside), ca.if_else(inside, ca.dot(e, e), math.inf)
+    if n > 6:  # self-motion: go on from the clipped configuration within the limits
+        again = step_function(True).fold(iterations)(ca.vertcat(q, 1.0), pose, p)[:n]
+        e_again = error(again)
+        q, found = ca.if_else(inside, q, again), ca.if_else(inside, found, met(e_again))
+        cost = ca.if_else(inside, cost, ca.dot(e_again, e_again))
+    each = ca.Function("ik_start", [start, pose, p], [q, found, cost]).map(starts)
+    seeds, state_bits = [], int(seed) & 0xFFFFFFFFFFFFFFFF
+    for _ in range(starts - 1):
+        draw = []
+        for k in range(n):
+            state_bits, bits = _ik_splitmix64(state_bits)
+            draw.append(low[k] + (bits >> 11) * (1.0 / 9007199254740992.0) * (high[k] - low[k]))
+        seeds.append(draw)
+    pose_in, p_in, start_in = ca.MX.sym("pose", 4, 4), ca.MX.sym("p", parameters), ca.MX.sym("start", n)
+    all_q, all_found, all_cost = each(ca.horzcat(start_in, ca.DM(seeds).T if seeds else ca.DM.zeros(n, 0)),
+                                      pose_in, p_in)
+    best, least = all_q[:, 0], all_cost[0]
+    for k in range(1, starts):  # the least error
+        lower_cost = all_cost[k] < least
+        best, least = ca.if_else(lower_cost, all_q[:, k], best), ca.if_else(lower_cost, all_cost[k], least)
+    for k in reversed(range(starts)):  # the first found
+        best = ca.if_else(all_found[k], all_q[:, k], best)
+    final = ca.Function("ik_error", [start, pose, p], [error(start)])(best, pose_in, p_in)
+    errors = ca.vertcat(ca.norm_2(final[:3]), ca.norm_2(final[3:]))
+    return ca.Function("inverse_kinematics_numeric", [pose_in, start_in, p_in],
+                       [best, ca.mmax(all_found), errors], ["pose", "start", "p"], ["q", "found", "error"])
+
+
 # ---- runtime section: core ----
 
 

@@ -205,13 +205,15 @@ using Table = std::array<T, static_cast<std::size_t>(N)>;
 // solutions, it restarts) (a joint at a limit that a
 // step would push past is held still). Kinds: 0 prismatic, 1 revolute with limits, 2 revolute without (wrapped
 // to (-pi, pi]). At most 64 starts; converged when both error norms are at most 1e-10 (1e-4 in single precision).
-// Writes q (the best found on failure) and the steps taken; returns 1 when it converged, else 0.
+// When none converges, the closest configuration reached (the least cost E, clipped into the limits) descends once
+// more within the limits. Writes q (the solution, or that closest configuration), the steps taken and q's position
+// (m) and orientation (rad) error norms (each pointer when not nullptr); returns 1 when q reaches the pose, else 0.
 template <class Scalar, int N, class PoseOf, class VelocityOf>
 int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table<double, N>& lower,
                const Table<double, N>& upper, const Table<int, N>& kind, const Table<double, N>& low,
                const Table<double, N>& high, const Eigen::Matrix<Scalar, 4, 4>& target,
                const Eigen::Matrix<Scalar, N, 1>* start, unsigned long long seed, Eigen::Matrix<Scalar, N, 1>& q,
-               int* iterations)
+               int* iterations, Scalar* position_error, Scalar* orientation_error)
 {
     using std::fmod;
     using Vector = Eigen::Matrix<Scalar, N, 1>;
@@ -261,7 +263,7 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
         return e.squaredNorm();
     };
     int steps = 0;
-    auto descend = [&](Vector& x, Error& e, bool limited) {
+    auto descend = [&](Vector& x, Error& e, bool limited, int patience) {
         project(x, limited);
         Scalar cost = error(x, e);
         Scalar reference = cost;
@@ -332,7 +334,7 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
             if (cost < Scalar(0.9) * reference || cost < Scalar(1e-10)) {
                 reference = cost;
                 stalled = 0;
-            } else if (++stalled >= 4) {
+            } else if (++stalled >= patience) {
                 break;
             }
         }
@@ -340,6 +342,7 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
     };
     unsigned long long state = seed;
     Vector best = Vector::Zero();
+    Error best_e = Error::Zero();
     Scalar best_cost = std::numeric_limits<Scalar>::infinity();
     int found = 0;
     for (int attempt = 0; attempt < 64 && !found; attempt++) {
@@ -349,27 +352,41 @@ int ik_numeric(const PoseOf& pose_of, const VelocityOf& velocity_of, const Table
             x[k] = (attempt == 0 && start != nullptr) ? (*start)[k] : Scalar(low[k] + u * (high[k] - low[k]));
         }
         Error e;
-        Scalar cost = descend(x, e, false);
+        Scalar cost = descend(x, e, false, 4);
         found = converged(e);
-        const bool inside = found && into_limits(x);
-        if (found && !inside && N <= 6) {  // isolated solutions (no self-motion) to clip towards: restart
-            found = 0;
-            cost = std::numeric_limits<Scalar>::infinity();
-        } else if (found && !inside) {
-            cost = descend(x, e, true);
+        const bool inside = into_limits(x);  // else clipped into them
+        if (found && !inside && N > 6) {
+            cost = descend(x, e, true, 4);
             found = converged(e);
-        } else if (!found) {
-            into_limits(x);
-            cost = std::numeric_limits<Scalar>::infinity();
+        } else if (!inside) {  // not converged, or isolated solutions (N <= 6) outside the limits: restart
+            found = 0;
+            cost = error(x, e);
         }
         if (found || cost < best_cost || attempt == 0) {
             best_cost = cost;
             best = x;
+            best_e = e;
+        }
+    }
+    if (!found) {  // the closest configuration reached: one more descent from it, within the limits
+        Vector x = best;
+        Error e;
+        const Scalar cost = descend(x, e, true, 100);  // no early stop
+        found = converged(e);
+        if (found || cost < best_cost) {
+            best = x;
+            best_e = e;
         }
     }
     q = best;
     if (iterations != nullptr) {
         *iterations = steps;
+    }
+    if (position_error != nullptr) {
+        *position_error = best_e.template head<3>().norm();
+    }
+    if (orientation_error != nullptr) {
+        *orientation_error = best_e.template tail<3>().norm();
     }
     return found;
 }

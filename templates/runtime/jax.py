@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 
+import jax
 import jax.numpy as jnp
 from jax import Array
 from jax.typing import ArrayLike
@@ -185,6 +186,111 @@ def _identification_error(functions: tuple[Callable[..., Array], ...], q: Array,
     inverse_dynamics, regressor, values = functions
     qddot = 0.5 - 0.25 * jnp.arange(q.shape[0]) + 0.3 * qdot
     return error(regressor(q, qdot, qddot) @ values(q), inverse_dynamics(q, qdot, qddot))
+
+
+# ---- runtime section: ik_numeric ----
+
+
+def _ik_error(target: Array, pose: Array) -> Array:
+    """The error [p* - p; log(R* R^T)] (the python runtime's), its rotation vector robust near 0 and pi, branch-free."""
+    r = target[:3, :3] @ pose[:3, :3].T
+    w = jnp.stack([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
+    angle = jnp.arccos(jnp.clip((r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0, -1.0, 1.0))
+    small, near_pi = angle < 1e-6, jnp.pi - angle <= 1e-4
+    scale = jnp.where(small | near_pi, 0.5, angle / (2.0 * jnp.sin(jnp.where(small | near_pi, 1.0, angle))))
+    m = jnp.argmax(jnp.diagonal(r))  # near pi: the axis from the symmetric part, its largest diagonal entry's row
+    axis = (r[m] + jnp.eye(3, dtype=r.dtype)[m]) / 2.0
+    length = jnp.sqrt(axis @ axis)
+    turned = axis * (jnp.where(axis @ w < 0, -angle, angle) / jnp.where(length > 0, length, 1.0))
+    rotation = jnp.where(near_pi & ~small, turned, w * scale)
+    return jnp.concatenate([target[:3, 3] - pose[:3, 3], rotation])
+
+
+def _ik_numeric(forward: Callable[..., Array], velocity: Callable[..., Array], pose: ArrayLike, seed: ArrayLike,
+                start: ArrayLike | None, lower: Sequence[float], upper: Sequence[float], kind: Sequence[int],
+                low: Sequence[float], high: Sequence[float], parameters: Mapping[str, float], starts: int,
+                iterations: int, tolerance: float | None) -> tuple[Array, Array, Array]:
+    """Numeric inverse kinematics of one pose: ``starts`` Levenberg-Marquardt descents of ``iterations`` steps each.
+
+    Fixed shapes and a fixed number of steps (``jax.lax.fori_loop`` inside ``jax.vmap`` over the starts), so that
+    ``jit`` and ``vmap`` compose with it. The starts are ``start`` (when given) and draws of ``jax.random`` from
+    ``seed``, uniform in [low, high]. Each step solves (J^T J + mu (|e|^2 / 2 + 1e-3) I) dq = J^T e (Sugihara's
+    damping) and is taken when it lowers |e|^2 (mu halves) or not (mu quadruples); a start that met the tolerance
+    stays. Angles without limits are wrapped to (-pi, pi]; a solution is shifted by 2 pi into the limits, and one
+    that does not fit counts as not found, except for a redundant arm (more than six joints), which descends again
+    with the limits enforced (clipped) from the clipped configuration. Returns (q, found, steps): the first start
+    found (else the one with the least error, clipped into the limits) and the steps taken by the starts up to it
+    (the steps a start takes before it meets the tolerance).
+    """
+    target = jnp.asarray(pose, dtype=jnp.result_type(float))
+    dtype, n = target.dtype, len(kind)
+    tolerance = (1e-10 if dtype == jnp.float64 else 1e-4) if tolerance is None else tolerance
+    wraps = jnp.asarray([k == 2 for k in kind])
+    angles = jnp.asarray([k != 0 for k in kind])
+    bounds = (jnp.asarray(lower, dtype=dtype), jnp.asarray(upper, dtype=dtype))
+    box = (jnp.asarray(low, dtype=dtype), jnp.asarray(high, dtype=dtype))
+    seeds = box[0] + jax.random.uniform(jax.random.PRNGKey(seed), (starts, n), dtype) * (box[1] - box[0])
+    if start is not None:
+        seeds = seeds.at[0].set(jnp.asarray(start, dtype=dtype).reshape(n))
+    two_pi = 2.0 * jnp.pi
+
+    def wrap(x: Array) -> Array:
+        return jnp.where(wraps, x - two_pi * jnp.ceil((x - jnp.pi) / two_pi), x)
+
+    def error(x: Array) -> Array:
+        return _ik_error(target, jnp.asarray(forward(x, **parameters), dtype=dtype))
+
+    def met(e: Array) -> Array:
+        return jnp.maximum(e[:3] @ e[:3], e[3:] @ e[3:]) <= tolerance**2
+
+    def descend(x: Array, clipped: bool) -> tuple[Array, Array, Array, Array]:
+        def project(y: Array) -> Array:
+            y = wrap(y)
+            return jnp.where(wraps, y, jnp.clip(y, *bounds)) if clipped else y
+
+        def step(_: int, state: tuple[Array, Array, Array, Array, Array]) -> tuple[Array, Array, Array, Array, Array]:
+            x, e, cost, mu, taken = state
+            done = met(e)
+            J = jnp.asarray(velocity(x, **parameters), dtype=dtype)
+            normal = J.T @ J + (mu * (cost / 2.0 + 1e-3)) * jnp.eye(n, dtype=dtype)
+            trial = project(x + jnp.linalg.solve(normal, J.T @ e))
+            e_trial = error(trial)
+            c = e_trial @ e_trial
+            better = (c < cost) & ~done
+            return (jnp.where(better, trial, x), jnp.where(better, e_trial, e), jnp.where(better, c, cost),
+                    jnp.where(done, mu, jnp.where(better, jnp.maximum(mu / 2.0, 1e-6), mu * 4.0)),
+                    taken + jnp.where(done, 0, 1))
+
+        x = project(x)
+        e = error(x)
+        state = (x, e, e @ e, jnp.asarray(1.0, dtype=dtype), jnp.asarray(0, dtype=jnp.int32))
+        x, e, cost, _, taken = jax.lax.fori_loop(0, iterations, step, state)
+        return x, met(e), cost, taken
+
+    def into_limits(x: Array) -> tuple[Array, Array]:
+        wrapped = jnp.where(angles, x - two_pi * jnp.ceil((x - jnp.pi) / two_pi), x)
+        choices = [wrapped + s * two_pi for s in (0.0, 1.0, -1.0, 2.0, -2.0)]
+        fits = [angles | (s == 0.0) for s in (0.0, 1.0, -1.0, 2.0, -2.0)]
+        value, fitted = jnp.clip(wrapped, *bounds), jnp.zeros(n, dtype=bool)
+        for choice, allowed in zip(choices[::-1], fits[::-1], strict=True):  # the first that fits wins
+            inside = allowed & (choice >= bounds[0]) & (choice <= bounds[1])
+            value, fitted = jnp.where(inside, choice, value), fitted | inside
+        return value, jnp.all(fitted)
+
+    def solve(x: Array) -> tuple[Array, Array, Array, Array]:
+        x, found, cost, taken = descend(x, False)
+        x, inside = into_limits(x)
+        if n > 6:  # self-motion: go on from the clipped configuration within the limits
+            y, again, cost_again, more = descend(x, True)
+            x, found = jnp.where(inside, x, y), found & inside | again & ~inside
+            cost, taken = jnp.where(inside, cost, cost_again), taken + jnp.where(inside, 0, more)
+            return x, found, cost, taken
+        return x, found & inside, jnp.where(inside, cost, jnp.inf), taken
+
+    x, found, cost, taken = jax.vmap(solve)(seeds)
+    index = jnp.where(jnp.any(found), jnp.argmax(found), jnp.argmin(cost))
+    steps = jnp.sum(jnp.where(jnp.arange(starts) <= index, taken, 0))
+    return x[index], jnp.any(found), steps
 
 
 # ---- runtime section: core ----

@@ -290,7 +290,7 @@ def _ik_solve(normal: np.ndarray, b: np.ndarray, damping: float, held: np.ndarra
 
 def _ik_descend(forward_kinematics: Callable[..., np.ndarray], jacobian: Callable[..., np.ndarray],
                 target: np.ndarray, x: np.ndarray, limits: tuple[np.ndarray, np.ndarray] | None, wraps: np.ndarray,
-                parameters: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray, float, int]:
+                parameters: Mapping[str, float], patience: int = 4) -> tuple[np.ndarray, np.ndarray, float, int]:
     """One start, as the python runtime's _ik_descend: the configuration, its error and cost, the steps taken."""
 
     def project(y: np.ndarray) -> np.ndarray:
@@ -339,7 +339,7 @@ def _ik_descend(forward_kinematics: Callable[..., np.ndarray], jacobian: Callabl
             reference, stalled = cost, 0
         else:
             stalled += 1
-            if stalled >= 4:
+            if stalled >= patience:
                 break
     return x, e, cost, steps
 
@@ -360,13 +360,15 @@ def _ik_into_limits(x: np.ndarray, lower: np.ndarray, upper: np.ndarray,
 def _ik_numeric(forward_kinematics: Callable[..., np.ndarray], jacobian: Callable[..., np.ndarray], pose: ArrayLike,
                 seed: int, start: ArrayLike | None, lower: Sequence[float], upper: Sequence[float],
                 kind: Sequence[int], low: Sequence[float], high: Sequence[float],
-                parameters: Mapping[str, float]) -> tuple[np.ndarray, bool, int]:
-    """Numeric inverse kinematics of one pose, as the python runtime's _ik_numeric: (q, found, steps).
+                parameters: Mapping[str, float]) -> tuple[np.ndarray, bool, int, float, float]:
+    """Numeric inverse kinematics of one pose, as the python runtime's _ik_numeric.
 
     The same seeds (splitmix64 from ``seed``, uniform in [low, high]) and the same Levenberg-Marquardt steps, on
     the module's own forward kinematics and Jacobian: each start descends without limits first; a solution is
     shifted by 2 pi into the limits, and when a joint does not fit, the descent goes on from the clipped
-    configuration with the limits respected. At most 64 starts: ``start`` (when given), then the seeds.
+    configuration with the limits respected. At most 64 starts: ``start`` (when given), then the seeds. When none
+    converges, the closest configuration reached (the least cost, clipped into the limits) descends once more
+    within the limits. Returns ``(q, found, steps, position_error, orientation_error)``, the errors of ``q``.
     """
     target = np.asarray(pose, dtype=float)
     if target.shape != (4, 4):
@@ -375,7 +377,8 @@ def _ik_numeric(forward_kinematics: Callable[..., np.ndarray], jacobian: Callabl
     first = None if start is None else np.asarray(start, dtype=float).reshape(n)
     bounds = (np.asarray(lower, dtype=float), np.asarray(upper, dtype=float))
     wraps = np.asarray(kind) == 2
-    state, steps, best, best_cost = int(seed) & 0xFFFFFFFFFFFFFFFF, 0, None, float("inf")
+    state, steps, best, best_e, best_cost = int(seed) & 0xFFFFFFFFFFFFFFFF, 0, np.zeros(n), np.zeros(6), np.inf
+    found = False
     for attempt in range(64):
         x = np.empty(n)
         for k in range(n):
@@ -386,21 +389,26 @@ def _ik_numeric(forward_kinematics: Callable[..., np.ndarray], jacobian: Callabl
         x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, None, wraps, parameters)
         steps += taken
         found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20
+        x, inside = _ik_into_limits(x, *bounds, kind)  # else clipped into them
+        if found and not inside and n > 6:
+            x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, bounds, wraps, parameters)
+            steps += taken
+            found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20
+        elif not inside:  # not converged, or isolated solutions (six joints or fewer) outside the limits: restart
+            found = False
+            e = _ik_error(target, np.asarray(forward_kinematics(x, **parameters), dtype=float))
+            cost = float(e @ e)
+        if found or cost < best_cost or attempt == 0:
+            best, best_e, best_cost = x, e, cost
         if found:
-            x, inside = _ik_into_limits(x, *bounds, kind)
-            if not inside and len(kind) <= 6:  # isolated solutions (no self-motion to clip along): restart
-                found, cost = False, float("inf")
-            elif not inside:
-                x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, bounds, wraps, parameters)
-                steps += taken
-                found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20
-        else:
-            x, cost = _ik_into_limits(x, *bounds, kind)[0], float("inf")
-        if found or cost < best_cost or best is None:
-            best, best_cost = x, cost
-        if found:
-            return x, True, steps
-    return (np.zeros(n) if best is None else best), False, steps
+            break
+    if not found:  # the closest configuration reached: one more descent from it, within the limits
+        x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, best, bounds, wraps, parameters, 100)
+        steps += taken
+        found = max(e[:3] @ e[:3], e[3:] @ e[3:]) <= 1e-20
+        if found or cost < best_cost:
+            best, best_e = x, e
+    return best, bool(found), steps, float(np.linalg.norm(best_e[:3])), float(np.linalg.norm(best_e[3:]))
 
 
 # ---- runtime section: sincos ----

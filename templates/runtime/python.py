@@ -172,7 +172,7 @@ def _ik_solve(normal: Sequence[Sequence[float]], b: Sequence[float], damping: fl
 
 def _ik_descend(forward_kinematics: Callable[..., Any], jacobian: Callable[..., Any], target: Sequence[Sequence[float]],
                 x: list[float], limits: tuple[Sequence[float], Sequence[float]] | None, kind: Sequence[int],
-                parameters: Mapping[str, float]) -> tuple[list[float], list[float], float, int]:
+                parameters: Mapping[str, float], patience: int = 4) -> tuple[list[float], list[float], float, int]:
     """One start, as the c99 runtime's sj_ik_descend: the configuration, its error and cost, the steps taken."""
 
     def project(y: list[float]) -> list[float]:
@@ -227,7 +227,7 @@ def _ik_descend(forward_kinematics: Callable[..., Any], jacobian: Callable[..., 
             reference, stalled = cost, 0
         else:
             stalled += 1
-            if stalled >= 4:
+            if stalled >= patience:
                 break
     return x, e, cost, steps
 
@@ -248,16 +248,19 @@ def _ik_into_limits(x: list[float], lower: Sequence[float], upper: Sequence[floa
 def _ik_numeric(forward_kinematics: Callable[..., Any], jacobian: Callable[..., Any],
                 pose: Sequence[Sequence[float]], seed: int, start: Sequence[float] | None, lower: Sequence[float],
                 upper: Sequence[float], kind: Sequence[int], low: Sequence[float], high: Sequence[float],
-                parameters: Mapping[str, float]) -> tuple[list[float], bool, int]:
-    """Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds and steps): (q, found, steps).
+                parameters: Mapping[str, float]) -> tuple[list[float], bool, int, float, float]:
+    """Numeric inverse kinematics, as the c99 runtime's sj_ik_numeric (the same seeds and steps).
 
     Each start descends by Levenberg-Marquardt without limits first; a solution is shifted by 2 pi into the limits,
     and when a joint does not fit, the descent goes on from the clipped configuration with the limits respected (a
     redundant arm, more than six joints; an arm with at most six has isolated solutions, so it restarts). At
     most 64 starts: ``start`` (when given), then seeds drawn uniformly in [low, high] by splitmix64 from ``seed``.
+    When none converges, the closest configuration reached (the least cost, clipped into the limits) descends once
+    more within the limits. Returns ``(q, found, steps, position_error, orientation_error)``, the errors of ``q``.
     """
     target = [[float(v) for v in row] for row in pose]
-    state, steps, best, best_cost = int(seed) & 0xFFFFFFFFFFFFFFFF, 0, None, float("inf")
+    state, steps, best, best_e, best_cost = int(seed) & 0xFFFFFFFFFFFFFFFF, 0, None, [0.0] * 6, float("inf")
+    found = False
     for attempt in range(64):
         x = []
         for k in range(len(kind)):
@@ -267,22 +270,29 @@ def _ik_numeric(forward_kinematics: Callable[..., Any], jacobian: Callable[..., 
         x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, None, kind, parameters)
         steps += taken
         found = max(sum(v * v for v in e[:3]), sum(v * v for v in e[3:])) <= 1e-20
-        if found:
-            x, inside = _ik_into_limits(x, lower, upper, kind)
-            if not inside and len(kind) <= 6:  # isolated solutions (no self-motion to clip along): restart
-                found, cost = False, float("inf")
-            elif not inside:
-                x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, (lower, upper), kind,
-                                                parameters)
-                steps += taken
-                found = max(sum(v * v for v in e[:3]), sum(v * v for v in e[3:])) <= 1e-20
-        else:
-            x, cost = _ik_into_limits(x, lower, upper, kind)[0], float("inf")
+        x, inside = _ik_into_limits(x, lower, upper, kind)  # else clipped into them
+        if found and not inside and len(kind) > 6:
+            x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, x, (lower, upper), kind,
+                                            parameters)
+            steps += taken
+            found = max(sum(v * v for v in e[:3]), sum(v * v for v in e[3:])) <= 1e-20
+        elif not inside:  # not converged, or isolated solutions (six joints or fewer) outside the limits: restart
+            found = False
+            e = _ik_error(target, forward_kinematics(x, **parameters))
+            cost = sum(v * v for v in e)
         if found or cost < best_cost or best is None:
-            best, best_cost = x, cost
+            best, best_e, best_cost = x, e, cost
         if found:
-            return x, True, steps
-    return list(best or []), False, steps
+            break
+    if not found and best is not None:  # the closest configuration reached: one more descent, within the limits
+        x, e, cost, taken = _ik_descend(forward_kinematics, jacobian, target, best, (lower, upper), kind, parameters,
+                                        100)
+        steps += taken
+        found = max(sum(v * v for v in e[:3]), sum(v * v for v in e[3:])) <= 1e-20
+        if found or cost < best_cost:
+            best, best_e = x, e
+    return (list(best or []), found, steps, sqrt(sum(v * v for v in best_e[:3])),
+            sqrt(sum(v * v for v in best_e[3:])))
 
 
 # ---- runtime section: core ----

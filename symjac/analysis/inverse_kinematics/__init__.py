@@ -10,7 +10,11 @@ from symjac.analysis.inverse_kinematics.closed_form import (
     solve_plan,
 )
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, reduced_geometry
-from symjac.analysis.inverse_kinematics.null_space import NULL_SPACE_TASKS, refine_in_null_space
+from symjac.analysis.inverse_kinematics.null_space import (
+    NULL_SPACE_TASKS,
+    refine_in_null_space,
+    self_motion_dimension,
+)
 from symjac.analysis.inverse_kinematics.numeric import (
     KinematicModel,
     NumericSolution,
@@ -90,6 +94,7 @@ __all__ = [
     "rpy_from_pose",
     "scara_plan",
     "seed_bounds",
+    "self_motion_dimension",
     "slide_to_distance",
     "slide_to_distance_symbolic",
     "slide_to_point",

@@ -33,6 +33,15 @@ is abandoned early, and the solver restarts from a seed drawn uniformly within t
 TRAC-IK restarts, so the result is deterministic). The restarts also collect several distinct solutions; for
 redundant arms a null-space task (:mod:`symjac.analysis.inverse_kinematics.null_space`) may then move each solution
 away from the joint limits or towards more manipulability without changing the pose.
+
+Two solutions are the same when every prismatic joint agrees and every revolute angle agrees modulo 2 pi, to
+``max(1e-6, 10 sqrt(tolerance))`` (1e-4: where two solutions merge, at the edge of the workspace, each start stops
+at its own side of the merged one, about ``sqrt(tolerance)`` away):
+a joint whose limits span more than 2 pi is reported once, wrapped to (-pi, pi] and shifted by 2 pi into its limits
+where that fits, never as several aliases. Each solution says whether it is isolated or one sample of a continuum
+(``continuum_dimension``, :func:`~symjac.analysis.inverse_kinematics.null_space.self_motion_dimension`): a redundant
+arm's self-motion, or a singular pose's (a wrist with its middle joint at 0). The solutions found on a continuum are
+samples of it, as many as the starts happened to land on, not a count of distinct solutions.
 """
 
 from __future__ import annotations
@@ -43,7 +52,11 @@ from typing import Any, Protocol
 import numpy as np
 import sympy
 
-from symjac.analysis.inverse_kinematics.null_space import NULL_SPACE_TASKS, refine_in_null_space
+from symjac.analysis.inverse_kinematics.null_space import (
+    NULL_SPACE_TASKS,
+    refine_in_null_space,
+    self_motion_dimension,
+)
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
@@ -62,13 +75,19 @@ class KinematicModel(Protocol):
 
 @dataclass(frozen=True)
 class NumericSolution:
-    """One converged configuration with its final error norms, the iterations it took and which start found it."""
+    """One converged configuration with its final error norms, the iterations it took and which start found it.
+
+    ``continuum_dimension`` is 0 for an isolated solution, else the dimension ``d`` of the set of configurations
+    around ``q`` that reach the same pose (``n - rank J`` at ``q``, :func:`.self_motion_dimension`): ``q`` is then
+    one sample of a ``d``-dimensional self-motion.
+    """
 
     q: np.ndarray
     position_error: float
     orientation_error: float
     iterations: int
     start: int = 0
+    continuum_dimension: int = 0
 
 
 class NumericSolutions(list[NumericSolution]):
@@ -80,6 +99,14 @@ class NumericSolutions(list[NumericSolution]):
     """
 
     closest: NumericSolution | None = None
+
+    @property
+    def continuum_dimension(self) -> int:
+        """The largest ``continuum_dimension`` of the solutions: 0 when each is isolated (or there are none).
+
+        When it is not 0, the solutions on a continuum are samples of it, not a count of distinct solutions.
+        """
+        return max((s.continuum_dimension for s in self), default=0)
 
 
 def _rotation_vector(r: np.ndarray) -> np.ndarray:
@@ -159,23 +186,25 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
     have been tried: ``restarts=1`` is one call from one random seed that returns the first solution it finds.
     A start converges when both the weighted (``w_p``, ``w_o``) position and orientation error norms fall below
     ``tolerance``; it is abandoned after ``max_iterations`` steps or when it stalls (``stall`` steps without the
-    cost falling by 10 %). Solutions closer than 1e-6 (rad or m) to an earlier one are dropped. ``null_space``
+    cost falling by 10 %). Solutions closer than ``max(1e-6, 10 sqrt(tolerance))`` (rad or m; revolute
+    angles compared modulo 2 pi) to an earlier one are dropped; each says whether it is one sample of a continuum
+    (``continuum_dimension``). ``null_space``
     ("limits" or "manipulability", arms with more than six joints) moves each solution along the self-motion to
     that secondary task's optimum (:func:`~symjac.analysis.inverse_kinematics.null_space.refine_in_null_space`).
     An unreachable pose gives an empty list whose ``closest`` (:class:`NumericSolutions`) is the configuration
-    with the smallest cost reached over all starts, polished by one more descent within the limits.
+    with the smallest cost reached over all starts, polished by one more descent within the limits (without the
+    early stop).
     """
     target = _pose(pose)
     n = len(robot.joints)
     if null_space is not None and null_space not in NULL_SPACE_TASKS:
         raise ArgumentError(f"solve_numeric: null_space must be one of {', '.join(NULL_SPACE_TASKS)} or None, "
                             f"got {null_space!r}")
-    lower, upper, wrap = _limits(robot)
+    lower, upper, wrap = limits = _limits(robot)
+    low, high = seed_bounds(robot)  # seeds within the limits also when they are not respected
     if not respect_limits:
         lower, upper = np.full(n, -np.inf), np.full(n, np.inf)
     generator = np.random.default_rng(rng)
-    low = np.where(np.isfinite(lower), lower, np.where(wrap, -np.pi, -1.0))
-    high = np.where(np.isfinite(upper), upper, np.where(wrap, np.pi, 1.0))
     starts = [] if seed is None else [np.asarray(seed, dtype=float).reshape(n)]
     primary = len(starts) + restarts
     weights = np.array([position_weight] * 3 + [orientation_weight] * 3)
@@ -200,6 +229,7 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
         return np.where(wrap, _wrapped(q), q)
 
     redundant = n > 3 * ((position_weight != 0) + (orientation_weight != 0))
+    same = max(1e-6, 10.0 * float(np.sqrt(tolerance)))  # closer solutions are one
     found = NumericSolutions()
     nearest: tuple[float, np.ndarray, int, int] | None = None  # cost, clipped configuration, steps, start
     for index in range(max(primary, until_found)):
@@ -224,12 +254,20 @@ def solve_numeric(robot: Robot, pose: Any, model: KinematicModel, *, seed: Any =
             continue
         if null_space is not None and n > 6:
             q = refine_in_null_space(q, null_space, error, jacobian, project, converged, lower, upper)
-            e = error(q)
-        if all(np.max(np.abs(_difference(q, s.q, wrap))) > 1e-6 for s in found):
+        q = _canonical(q, limits[0], limits[1], revolute)
+        e = error(q)
+        if converged(e) and all(np.max(np.abs(_difference(q, s.q, revolute))) > same for s in found):
             found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])), iterations,
-                                         index))
+                                         index, self_motion_dimension(q, error, jacobian, converged)))
     if not found and nearest is not None:
-        q, e, more = _descend(nearest[1], error, jacobian, project, converged, lower, upper, max_iterations, stall)
+        q, e, more = _descend(nearest[1], error, jacobian, project, converged, lower, upper, max_iterations,
+                              max_iterations)  # no early stop: as close as it gets
+        if converged(e):  # the closest configuration's descent within the limits reached the pose after all
+            q = _canonical(q, limits[0], limits[1], revolute)
+            found.append(NumericSolution(q, float(np.linalg.norm(e[:3])), float(np.linalg.norm(e[3:])),
+                                         nearest[2] + more, nearest[3],
+                                         self_motion_dimension(q, error, jacobian, converged)))
+            return found
         if float(e @ e) > nearest[0]:
             q = nearest[1]
         t = np.asarray(model.fk(q), dtype=float)
@@ -309,6 +347,19 @@ def _step(j: np.ndarray, e: np.ndarray, damping: float, q: np.ndarray, lower: np
     return step, free
 
 
-def _difference(a: np.ndarray, b: np.ndarray, wrap: np.ndarray) -> np.ndarray:
+def _canonical(q: np.ndarray, lower: np.ndarray, upper: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+    """Each angle wrapped to (-pi, pi], then shifted by 2 pi k into the joint's limits where that fits (else left)."""
+    out = q.copy()
+    for i in np.flatnonzero(revolute):
+        value = float(_wrapped(q[i]))
+        fits = [value + shift for shift in (0.0, 2 * np.pi, -2 * np.pi, 4 * np.pi, -4 * np.pi)
+                if lower[i] <= value + shift <= upper[i]]
+        canonical = fits[0] if fits else value
+        out[i] = q[i] if abs(canonical - q[i]) <= 1e-12 else canonical  # no rounding of an angle already in place
+    return out
+
+
+def _difference(a: np.ndarray, b: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+    """``a - b``, revolute entries wrapped to (-pi, pi] (angles equal modulo 2 pi differ by 0)."""
     d = a - b
-    return np.where(wrap, np.pi - np.mod(np.pi - d, 2 * np.pi), d)
+    return np.where(revolute, np.pi - np.mod(np.pi - d, 2 * np.pi), d)

@@ -17,6 +17,7 @@ from typing import Any
 from symjac.codegen.description import Backend, FunctionDescription, FunctionKind, FunctionSpec, ModuleDescription
 from symjac.codegen.ik_numeric import NumericIkTables, numeric_ik_tables
 from symjac.codegen.ik_numeric_numpy import numpy_numeric_ik
+from symjac.codegen.ik_numeric_traced import traced_numeric_ik
 from symjac.codegen.ik_printing import IKText, PrinterClass, python_inverse_kinematics
 from symjac.codegen.kinds import kind_spec
 from symjac.codegen.lower import LoweredFunction
@@ -263,7 +264,7 @@ def _inverse_kinematics(description: ModuleDescription, target: str, taken: froz
         return IKText("")
     family, printer = ik_printer
     closed = python_inverse_kinematics(description, family, taken, printer, c_kernel=target == "c")
-    numeric = numpy_numeric_ik(description)  # the NumPy family's numeric solver, when the module has it
+    numeric = numpy_numeric_ik(description) or traced_numeric_ik(description)  # the numeric solver, if it has one
     return IKText("\n\n\n".join(t for t in (closed.text.strip("\n"), numeric) if t), closed.uses, closed.header)
 
 

@@ -73,8 +73,10 @@ def singular_configurations(model, name):
 
 
 def _free_joint(note):
-    """The 0-based joint a ``singular`` note shows at 0 (the parameter of its continuum)."""
-    return int(re.search(r"theta(\d+) (?:shown at 0|takes every value)", note).group(1)) - 1
+    """The 0-based joint a ``singular`` note shows at 0 (the parameter of its continuum), None for a note without a
+    continuum (two branches that merge)."""
+    found = re.search(r"theta(\d+) (?:shown at 0|takes every value)", note)
+    return None if found is None else int(found.group(1)) - 1
 
 
 def _follow(model, q, joint, value, pose):
@@ -99,9 +101,9 @@ def covers(model, pose, solution, x, within=SAME):
     """Whether ``x`` is ``solution`` (joint by joint, within SAME) or on the continuum its ``singular`` note names."""
     if differences([solution.q], [x], True)[0, 0] < within:
         return True
-    if not solution.singular:
-        return False
     joint = _free_joint(solution.singular)
+    if joint is None:
+        return False
     return bool(differences([_follow(model, solution.q, joint, x[joint], pose)], [x], True)[0, 0] < 1e-5)
 
 

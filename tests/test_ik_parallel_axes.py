@@ -188,6 +188,33 @@ def test_wrist_singularity_is_described():
             assert abs(np.angle(np.exp(1j * (stated(moved) - stated(solution.q))))) < 1e-8
 
 
+
+def test_wrist_singularity_where_theta6_at_0_is_out_of_the_elbows_reach():
+    """q5 = 0 where theta6 = 0 leaves the elbow out of reach (found by sampling: 11 of 300): theta6 is shown at a value
+    inside the reach, the note says which, every solution reaches the pose and the note's sum is the generating one."""
+    robot = load_robot("ur5")
+    plan, fk = three_parallel_axes_plan(arm_geometry(robot)), _fk(robot)
+    q = np.array([2.197659, -0.666474, -0.12765, -2.222145, 0.0, -1.307037])
+    pose = np.asarray(fk(q), dtype=float)
+    solutions = solve_plan(plan, pose).solutions
+    assert len(solutions) == 2  # elbow down and up, shoulder left (shoulder right reaches for no theta6)
+    for s in solutions:
+        assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-10
+        match = re.match(r"theta2 \+ theta3 \+ theta4 \+ theta6 = (\S+) is fixed; theta6 shown at (\S+) ", s.singular)
+        assert match, s.singular
+        assert abs(np.angle(np.exp(1j * (float(match.group(1)) - q[[1, 2, 3, 5]].sum())))) < 1e-5
+        assert abs(float(match.group(2)) - s.q[5]) < 0.01 and abs(s.q[5]) > 0.5
+
+    def residual(x, theta6):  # theta1, theta5 as solved; theta2..4 by least squares on the FK
+        moved = solutions[0].q.copy()
+        moved[[1, 2, 3, 5]] = [*x, theta6]
+        return (np.asarray(fk(moved), dtype=float) - pose)[:3].ravel()
+
+    starts = [solutions[0].q[1:4], np.zeros(3), np.array([-1.0, 1.0, 0.0]), np.array([1.0, -1.0, 0.0])]
+    at_zero = min(np.abs(least_squares(residual, x, args=(0.0,), xtol=1e-15, ftol=1e-15).fun).max()
+                  for x in starts)
+    assert at_zero > 1e-3  # theta6 = 0 does not reach the pose: the old representative failed there
+
 def test_shoulder_singularity_merges_the_shoulder_branches():
     """The wrist point at the offset distance from axis 1: both theta1 solutions coincide."""
     robot = load_robot("ur5")

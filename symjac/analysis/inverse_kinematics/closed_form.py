@@ -4,8 +4,9 @@ r"""Closed-form inverse kinematics: the plan of an arm (:func:`closed_form_plan`
 (:mod:`~symjac.analysis.inverse_kinematics.geometry`) by trying the builders in :data:`FAMILIES` in order;
 :func:`solve_plan` runs a plan on a numeric pose: each step's arguments are evaluated (compiled once per plan with
 ``lambdify``), the numeric subproblem returns all its solutions, and every branch goes on to the next step. Where a
-subproblem leaves an angle free (a point on the axis: a singular pose) the angle is set to 0 and
-:attr:`Solution.singular` says which combination of joints is fixed instead. The symbolic
+subproblem leaves an angle free (a point on the axis: a singular pose) the angle is set to 0 (or, where 0 puts the
+next step out of reach, to the middle of the interval within its reach nearest 0) and :attr:`Solution.singular` says
+which combination of joints is fixed instead and the value shown. The symbolic
 executor, :func:`branch_programs` (from :mod:`.programs`), writes the same steps as formulas.
 
 Angles are wrapped to ``(-pi, pi]``; when that value is outside the joint's limits but a ``2 pi`` shift is inside,
@@ -240,13 +241,48 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
     return result, result.every_angle
 
 
+def _representative(following: _CompiledStep, values: list[float], tolerance: float) -> float:
+    """The free angle's value shown for a continuum: 0, unless the next step has no solution there.
+
+    A next step that is a rotation to a distance whose ``delta^2`` varies as ``A + B cos(t) + C sin(t)`` with the
+    free angle ``t`` (the UR5's elbow, ``t = theta6``) then takes the middle of the interval of ``t`` nearest 0 where
+    ``delta`` is within its reach (two elbows there, apart); 0 when no ``t`` reaches (the step then says why).
+    """
+    if following.step.subproblem != "rotation_to_distance" or following.call(
+            **_arguments(following, [*values, 0.0]), tolerance=tolerance).solutions:
+        return 0.0
+    samples = [_arguments(following, [*values, t]) for t in (0.0, math.pi / 2, math.pi, -math.pi / 2)]
+    d = [a["delta"] ** 2 for a in samples]
+    moved = any(a[name] != samples[0][name] for a in samples for name in a if name != "delta")
+    if moved or abs(d[0] + d[2] - d[1] - d[3]) > tolerance * max(1.0, *d):
+        return 0.0  # not a circle's distance: keep 0 (the step then says why it fails)
+    a = samples[0]
+    k, r = np.array(a["k"]), np.zeros(3) if a.get("point_on_axis") is None else np.array(a["point_on_axis"])
+    u, v = np.array(a["p"]) - r, np.array(a["q"]) - r
+    along = float(k @ (u - v)) ** 2
+    ru, rv = (float(np.linalg.norm(x - k * float(k @ x))) for x in (u, v))
+    mean, b, c = (d[0] + d[2]) / 2, (d[0] - d[2]) / 2, (d[1] - d[3]) / 2
+    amplitude, phase = math.hypot(b, c), math.atan2(c, b)  # delta^2 = mean + amplitude cos(t - phase)
+    if amplitude <= tolerance * max(1.0, mean):
+        return 0.0
+    low = ((ru - rv) ** 2 + along - mean) / amplitude
+    high = ((ru + rv) ** 2 + along - mean) / amplitude
+    if low > 1.0 or high < -1.0:
+        return 0.0
+    inner, outer = math.acos(min(high, 1.0)), math.acos(max(low, -1.0))  # t - phase in +-[inner, outer]
+    middles = [phase] if inner == 0.0 else [phase + math.pi] if outer == math.pi else \
+        [phase + (inner + outer) / 2, phase - (inner + outer) / 2]
+    return min((math.remainder(t, 2 * math.pi) for t in middles), key=abs)
+
+
 def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolerance: float = 1e-9) -> ClosedFormResult:
     r"""Every solution of ``plan`` at the 4 x 4 ``pose`` (frame {0}, as ``numeric_model(robot).fk(q)`` returns it).
 
     With a plan for a 7-joint arm (``plan.free_joint``), ``free_value`` is that joint's value. Each step's
     subproblem returns all its solutions (two where a square root has two signs) and each branch goes on; at a
-    singular pose a free joint is shown at 0 and the solution's ``singular`` says what is fixed. ``tolerance`` is
-    the subproblems' relative tolerance for existence (a square root's argument within it of zero is one solution).
+    singular pose a free joint is shown at 0 (or, where 0 leaves the next step out of reach, at a value within it) and
+    the solution's ``singular`` says what is fixed and the value shown. ``tolerance`` is the subproblems' relative
+    tolerance for existence (a square root's argument within it of zero is one solution).
 
     Raises
     ------
@@ -287,6 +323,9 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
                 if failure is None or distance < failure[0]:
                     failure = (distance, why)
                 continue
+            if free_angle and len(step.step.joints) == 1 and number + 1 < len(compiled.steps):
+                shown = _representative(compiled.steps[number + 1], inputs + branch.values, tolerance)
+                result = subproblems.AngleSolutions(((shown,),), result.reason, True)
             merged = len(step.step.branches) == 2 and len(result.solutions) == 1
             notes = (*branch.notes, merged_note(step.step, arguments)) if merged else branch.notes
             singular = (*branch.singular, (number, step.step.joints[0])) if free_angle else branch.singular

@@ -11,7 +11,8 @@ r"""What the closed-form executor says about a pose, in the arm's words: why it 
 - **Continuum** (:func:`continuum_note`): where a step's joint takes every value, the joints solved after it
   follow it; when they all turn about axes parallel to it at that pose, the orientation about that direction is
   their signed sum, which stays fixed: ``theta2 + theta3 + theta4 + theta6`` on the UR5 with ``theta5 = 0``,
-  ``theta4 + theta6`` on the PUMA's wrist (axes 4 and 6 in line).
+  ``theta4 + theta6`` on the PUMA's wrist (axes 4 and 6 in line). The free joint is shown at 0, or where 0 leaves
+  the next step out of reach at the value the executor chose instead (``"theta6 shown at -1.95"``).
 """
 
 from __future__ import annotations
@@ -162,13 +163,14 @@ def continuum_note(variables: Sequence[str], lines: Sequence[tuple[np.ndarray, n
     rotation about that direction is their signed sum, which the target fixes (the earlier joints do not move).
     """
     h, p = lines[joint]
+    shown = "shown at 0" if q[joint] == 0 else f"shown at {q[joint]:.3g}"  # 0 unless later steps need another value
     for other, (g, r) in enumerate(lines):  # a joint on the same line undoes it exactly
         if other != joint and revolute[other] and np.linalg.norm(np.cross(h, g)) < 1e-6 \
                 and np.linalg.norm(np.cross(r - p, h)) < 1e-6:
             sign = 1.0 if h @ g > 0 else -1.0
             fixed = math.remainder(q[joint] + sign * q[other], 2 * math.pi)
             return (f"{variables[joint]} {'+' if sign > 0 else '-'} {variables[other]} = {fixed:.6g} is fixed; "
-                    f"{variables[joint]} shown at 0")
+                    f"{variables[joint]} {shown}")
     follow = [j for j in later if j != joint]
     if follow and all(revolute[j] and np.linalg.norm(np.cross(h, lines[j][0])) < 1e-6 for j in follow):
         terms = sorted([joint, *follow])
@@ -179,11 +181,11 @@ def continuum_note(variables: Sequence[str], lines: Sequence[tuple[np.ndarray, n
                                              for j in terms[1:])
         moved = "" if len(follow) < 2 else (f" ({', '.join(variables[j] for j in sorted(follow))} change with "
                                              f"{variables[joint]})")
-        return f"{text} = {fixed:.6g} is fixed; {variables[joint]} shown at 0{moved}"
+        return f"{text} = {fixed:.6g} is fixed; {variables[joint]} {shown}{moved}"
     if follow:
-        return (f"{variables[joint]} takes every value; shown at 0 (the joints solved after it, "
+        return (f"{variables[joint]} takes every value; {shown} (the joints solved after it, "
                 f"{', '.join(variables[j] for j in follow)}, follow it)")
-    return f"{variables[joint]} takes every value; shown at 0"
+    return f"{variables[joint]} takes every value; {shown}"
 
 
 @functools.lru_cache(maxsize=256)

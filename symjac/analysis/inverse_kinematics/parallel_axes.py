@@ -22,7 +22,9 @@ direction ``h2``; that one fact gives the whole decomposition:
 7. **theta4**: ``rot(h4, theta4) h5 = R3^T R2^T R1^T R R_M^T rot(h6, -theta6) h5``, a rotation to a point.
 
 Eight solutions in general. At the wrist singularity (``h6`` turned along ``h2``, theta5 = 0 on the UR5) step 4 has
-every angle (theta6 shown at 0 and theta2 + theta3 + theta4 takes the rest); at the shoulder singularity (``w`` at
+every angle (theta6 shown at 0 and theta2 + theta3 + theta4 takes the rest; where theta6 = 0 puts the point of
+step 5 out of the elbow's reach, theta6 is shown in the middle of the values that reach, ``delta^2`` being
+``A + B cos(theta6 - phi)``); at the shoulder singularity (``w`` at
 distance ``|d|`` from the plane through axis 1 and along ``h2``, on the UR5 ``w`` above the base at the offset) the two
 theta1 merge.
 """

@@ -152,10 +152,8 @@ def compare(ours, model, eaik, q):
     return failures, len(failed)
 
 
-KNOWN = {  # label prefix -> why the closed form fails there (the executor's, reported in NOTES-46.md)
-    "ur5 wrist q5=0.000000+1e-08": "theta5 merged by rounding (half angle < 3.4e-7), then theta6 has no solution",
-    "ur5 wrist q5=0.000000+1e-07": "the same",
-}
+KNOWN: dict[str, str] = {}  # label -> why the closed form fails there (none now: the UR5 at q5 = 1e-8 and 1e-7, theta5
+# merged by rounding and theta6 then out of reach, takes the two theta5 from the lengths: singular_steps.unmerged)
 
 
 @pytest.mark.parametrize("name", ["puma560", "irb140", "ur5"])

@@ -39,6 +39,7 @@ from symjac.analysis.inverse_kinematics.planar import (
     spherical_arm_plan,
 )
 from symjac.analysis.inverse_kinematics.programs import BranchProgram, branch_programs
+from symjac.analysis.inverse_kinematics.singular_steps import shown_value, unmerged
 from symjac.analysis.inverse_kinematics.spherical_wrist import spherical_wrist_plan
 from symjac.errors import ArgumentError, NoClosedFormError
 from symjac.model.robot import Robot
@@ -241,40 +242,6 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
     return result, result.every_angle
 
 
-def _representative(following: _CompiledStep, values: list[float], tolerance: float) -> float:
-    """The free angle's value shown for a continuum: 0, unless the next step has no solution there.
-
-    A next step that is a rotation to a distance whose ``delta^2`` varies as ``A + B cos(t) + C sin(t)`` with the
-    free angle ``t`` (the UR5's elbow, ``t = theta6``) then takes the middle of the interval of ``t`` nearest 0 where
-    ``delta`` is within its reach (two elbows there, apart); 0 when no ``t`` reaches (the step then says why).
-    """
-    if following.step.subproblem != "rotation_to_distance" or following.call(
-            **_arguments(following, [*values, 0.0]), tolerance=tolerance).solutions:
-        return 0.0
-    samples = [_arguments(following, [*values, t]) for t in (0.0, math.pi / 2, math.pi, -math.pi / 2)]
-    d = [a["delta"] ** 2 for a in samples]
-    moved = any(a[name] != samples[0][name] for a in samples for name in a if name != "delta")
-    if moved or abs(d[0] + d[2] - d[1] - d[3]) > tolerance * max(1.0, *d):
-        return 0.0  # not a circle's distance: keep 0 (the step then says why it fails)
-    a = samples[0]
-    k, r = np.array(a["k"]), np.zeros(3) if a.get("point_on_axis") is None else np.array(a["point_on_axis"])
-    u, v = np.array(a["p"]) - r, np.array(a["q"]) - r
-    along = float(k @ (u - v)) ** 2
-    ru, rv = (float(np.linalg.norm(x - k * float(k @ x))) for x in (u, v))
-    mean, b, c = (d[0] + d[2]) / 2, (d[0] - d[2]) / 2, (d[1] - d[3]) / 2
-    amplitude, phase = math.hypot(b, c), math.atan2(c, b)  # delta^2 = mean + amplitude cos(t - phase)
-    if amplitude <= tolerance * max(1.0, mean):
-        return 0.0
-    low = ((ru - rv) ** 2 + along - mean) / amplitude
-    high = ((ru + rv) ** 2 + along - mean) / amplitude
-    if low > 1.0 or high < -1.0:
-        return 0.0
-    inner, outer = math.acos(min(high, 1.0)), math.acos(max(low, -1.0))  # t - phase in +-[inner, outer]
-    middles = [phase] if inner == 0.0 else [phase + math.pi] if outer == math.pi else \
-        [phase + (inner + outer) / 2, phase - (inner + outer) / 2]
-    return min((math.remainder(t, 2 * math.pi) for t in middles), key=abs)
-
-
 def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolerance: float = 1e-9) -> ClosedFormResult:
     r"""Every solution of ``plan`` at the 4 x 4 ``pose`` (frame {0}, as ``numeric_model(robot).fk(q)`` returns it).
 
@@ -311,30 +278,41 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     compiled = _compiled(plan)
     inputs = [*matrix[:3, :3].ravel().tolist(), *matrix[:3, 3].tolist(), *free]
     inputs += list(compiled.definitions(*inputs))
-    branches: list[_Branch] = [_Branch([], (), (), (), ())]
-    failure: tuple[float, str] | None = None
-    for number, step in enumerate(compiled.steps):
-        grown = []
-        for branch in branches:
-            arguments = _arguments(step, inputs + branch.values)
-            result, free_angle = _run(step, arguments, tolerance)
-            if not result.solutions:
-                distance, why = unreachable_note(step.step, arguments)
-                if failure is None or distance < failure[0]:
-                    failure = (distance, why)
-                continue
-            if free_angle and len(step.step.joints) == 1 and number + 1 < len(compiled.steps):
-                shown = _representative(compiled.steps[number + 1], inputs + branch.values, tolerance)
-                result = subproblems.AngleSolutions(((shown,),), result.reason, True)
-            merged = len(step.step.branches) == 2 and len(result.solutions) == 1
-            notes = (*branch.notes, merged_note(step.step, arguments)) if merged else branch.notes
-            singular = (*branch.singular, (number, step.step.joints[0])) if free_angle else branch.singular
-            for index in solution_order(plan.steps, branch.choices, len(result.solutions)):
-                grown.append(_Branch(branch.values + list(result.solutions[index]), (*branch.choices, index),
-                                     (*branch.merged, merged), singular, notes))
-        branches = grown
+    failures: list[tuple[float, str]] = []
+
+    def descend(number: int, branch: _Branch) -> list[_Branch]:
+        """Every finished branch from ``branch`` on, the steps from ``number`` on (in the steps' solution order)."""
+        if number == len(compiled.steps):
+            return [branch]
+        step = compiled.steps[number]
+        arguments = _arguments(step, inputs + branch.values)
+        result, free_angle = _run(step, arguments, tolerance)
+        if not result.solutions:
+            failures.append(unreachable_note(step.step, arguments))
+            return []
+        if free_angle and len(step.step.joints) == 1 and number + 1 < len(compiled.steps):
+            following = compiled.steps[number + 1]
+            shown = shown_value(lambda t: _arguments(following, [*inputs, *branch.values, t]),
+                                following.step.subproblem, following.call, tolerance)
+            result = subproblems.AngleSolutions(((shown,),), result.reason, True)
+        merged = len(step.step.branches) == 2 and len(result.solutions) == 1
+        notes = (*branch.notes, merged_note(step.step, arguments)) if merged else branch.notes
+        singular = (*branch.singular, (number, step.step.joints[0])) if free_angle else branch.singular
+        found = [done for index in solution_order(plan.steps, branch.choices, len(result.solutions))
+                 for done in descend(number + 1, _Branch(branch.values + list(result.solutions[index]),
+                                                         (*branch.choices, index), (*branch.merged, merged),
+                                                         singular, notes))]
+        angles = None if found or not merged or free_angle or step.step.subproblem != "rotation_to_distance" \
+            else unmerged(arguments, result.solutions[0][0])
+        if angles is not None:  # merged by rounding, and nothing follows from it: the two angles from the lengths
+            found = [done for index in solution_order(plan.steps, branch.choices, 2)
+                     for done in descend(number + 1, _Branch([*branch.values, angles[index]], (*branch.choices, index),
+                                                             (*branch.merged, False), singular, branch.notes))]
+        return found
+
+    branches = descend(0, _Branch([], (), (), (), ()))
     if not branches:
-        distance, why = failure or (0.0, "no branch")
+        distance, why = min(failures, key=lambda failure: failure[0], default=(0.0, "no branch"))
         return ClosedFormResult(plan, (), why, distance)
     solutions = tuple(_solution(plan, compiled, branch, free) for branch in branches)
     if plan.controlled == "the whole pose":

@@ -156,8 +156,8 @@ def rotation_to_point(k: Any, p: Any, q: Any, point_on_axis: Any = None, toleran
     ku, kv = _dot(k, u), _dot(k, v)
     if abs(ku - kv) > scale:
         return AngleSolutions((), f"p and q differ along the axis by {kv - ku:.6g}")
-    across_u = math.sqrt(max(_dot(u, u) - ku**2, 0.0))
-    across_v = math.sqrt(max(_dot(v, v) - kv**2, 0.0))
+    across_u = _norm(_combination((1.0, u), (-ku, k)))  # not sqrt(|u|^2 - (k.u)^2): 1e-8 of rounding near the axis
+    across_v = _norm(_combination((1.0, v), (-kv, k)))
     if abs(across_u - across_v) > scale:
         return AngleSolutions((), f"p and q lie at distances {across_u:.6g} and {across_v:.6g} from the axis")
     if across_u <= scale:

@@ -120,6 +120,29 @@ def test_near_the_wrist_singularity_every_branch_stays():
     assert min(np.abs(np.angle(np.exp(1j * (x - q)))).max() for x in solved) < 1e-6
 
 
+
+@pytest.mark.parametrize("theta5", [1e-8, -1e-7, 3e-7])
+def test_closer_to_the_wrist_singularity_the_merged_theta5_splits(theta5):
+    """theta5 within rounding's merge (half angle below 3.4e-7) of the singularity: the merged theta5 left theta6 no
+    solution and the shoulder-left branches vanished; now every configuration that generated a pose is among the
+    solutions, which reach it by the independent FK, and no two solutions coincide."""
+    robot = load_robot("ur5")
+    plan, fk = three_parallel_axes_plan(arm_geometry(robot)), _fk(robot)
+    rng = np.random.default_rng(5)
+    eight = 0
+    for _ in range(20):
+        q = rng.uniform(-np.pi, np.pi, 6)
+        q[4] = theta5
+        pose = np.asarray(fk(q), dtype=float)
+        solved = np.array([s.q for s in solve_plan(plan, pose).solutions])
+        assert max(np.abs(np.asarray(fk(x), dtype=float) - pose).max() for x in solved) < 1e-10
+        apart = np.abs(np.angle(np.exp(1j * (solved[:, None, :] - solved[None, :, :])))).max(axis=2)
+        assert min(apart[np.triu_indices(len(solved), 1)], default=1.0) > 1e-3
+        assert min(np.abs(np.angle(np.exp(1j * (x - q)))).max() for x in solved) < 1e-6
+        assert all(abs(abs(x[4]) - abs(theta5)) < 1e-12 for x in solved if abs(x[4]) < 1e-3)
+        eight += len(solved) == 8
+    assert eight >= 10
+
 def test_poe_copy_gives_the_same_solutions(tmp_path):
     """With the DH file's lengths, ur5_poe is the UR5 seen from a base turned by pi about z: same joint solutions."""
     text = (Path(__file__).parents[1] / "symjac" / "robots" / "ur5_poe.toml").read_text()

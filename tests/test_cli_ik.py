@@ -107,7 +107,8 @@ def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
     (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3", "--method", "numeric"],
      "--free-value gives a redundant arm's closed form one joint's value: it does not apply with --method numeric"),
     (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--method", "closed_form"],
-     "a redundant arm's closed form takes one joint's value: --free-value V (and --free-joint K for joint K)"),
+     "a redundant arm's closed form takes one joint's value: --free-value V (joint 1's, or --free-joint K for "
+     "joint K)"),
     (["planar2r", "--derivation", "--pose", "1,0,0"], "--pose needs 16 comma-separated values"),
     (["planar2r", "--q", "0,0", "--derivation", "--method", "numeric"], "--derivation prints a closed form"),
     (["palletizer", "--q", "0.3,0.4,0.5,0.2", "--method", "numeric"], "palletizer's joints are coupled"),
@@ -179,4 +180,23 @@ def test_seed_rng_and_restarts_reach_the_numeric_solver(cli):
     assert np.allclose(near["solutions"][0]["q"], [0.4, -0.6, 0.3, 0.5, 0.7, -0.2], atol=1e-9)
     first = cli.json("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--method", "numeric", "--rng", "5")
     again = cli.json("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--method", "numeric", "--rng", "5")
-    assert first["solutions"] == again["solutions"] and first["why"] == "numeric: asked for (method='numeric')"
+    assert first["solutions"] == again["solutions"] and first["why"] == "numeric: asked for"
+
+
+@pytest.mark.parametrize(("argv", "hint"), [
+    (["iiwa7", "--method", "closed_form"],
+     "; a redundant arm's closed form takes one joint's value: --free-value V (joint 1's, or --free-joint K for "
+     "joint K)"),
+    (["panda", "--method", "closed_form"], "; --method auto solves it numerically"),
+    (["panda", "--method", "closed_form", "--free-value", "0.2", "--free-joint", "4"],
+     "; without --free-value, --method auto solves it numerically"),
+])
+def test_no_closed_form_ends_with_the_command_lines_options(cli, argv, hint):
+    line = cli.one_line_error("ik", *argv, "--q", "0,0.3,0,-1,0,1,0.2")
+    assert line.endswith(hint), line
+    assert "free_value=V" not in line and "method='auto'" not in line  # Python's hint is not passed on
+
+
+def test_an_unreachable_pose_states_its_distance_once(cli):
+    out = cli.run("ik", "planar2r", "--position", "5,0,0", "--format", "pretty")[1]
+    assert "No solution: " in out and " m out)" not in out

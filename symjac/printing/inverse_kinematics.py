@@ -65,8 +65,7 @@ def _notes(result: Any) -> list[str]:
         notes.append(f"{result.outside_limits} more solution{'s' if result.outside_limits != 1 else ''} leave the "
                      "joint limits (shown with --no-within-limits).")
     if result.unreachable:
-        far = f" ({result.distance:.4g} m out)" if result.distance and math.isfinite(result.distance) else ""
-        notes.append(f"No solution: {result.unreachable}{far}.")
+        notes.append(f"No solution: {result.unreachable}.")  # the sentence says how far out, in the robot's units
     return notes
 
 

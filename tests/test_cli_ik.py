@@ -123,6 +123,7 @@ def test_each_mistake_is_one_line(cli, argv, message):
     ("--rpy", ["--position", "0,0,0", "--rpy", "0,inf,0"]),
     ("--quaternion", ["--position", "0,0,0", "--quaternion", "nan,0,0,1"]),
     ("--pose", ["--pose", ",".join(["nan"] * 16)]),
+    ("--rpy", ["--position", "0,0,0", "--rpy", "0,0,1e999"]),  # a number, but too large to be finite
 ])
 def test_a_nan_pose_is_one_line_naming_its_option(cli, option, argv):
     line = cli.one_line_error("ik", "planar2r", *argv)
@@ -133,6 +134,9 @@ def test_a_nan_pose_is_one_line_naming_its_option(cli, option, argv):
 def test_a_position_alone_is_enough_for_an_arm_that_sets_no_orientation(cli):
     data = cli.json("ik", "planar2r", "--position", "0.5,0.3,0")
     assert len(data["solutions"]) == 2 and data["uncontrolled"] == ""  # no orientation asked, none to differ from
+    assert data["position_alone"] and not cli.json("ik", "planar2r", "--q", "0.1,0.2")["position_alone"]
+    out = cli.run("ik", "planar2r", "--position", "0.5,0.3,0", "--format", "pretty")[1]
+    assert "Only a position was given: the rotation in T is the identity, standing in for the orientation" in out
     for solution in data["solutions"]:
         assert np.allclose(fk("planar2r", solution["q"])[:3, 3], [0.5, 0.3, 0], atol=1e-12)
 

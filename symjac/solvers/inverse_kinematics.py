@@ -107,6 +107,9 @@ class InverseKinematicsResult:
         Numeric solver: the largest ``continuum_dimension`` of the solutions. When it is not 0 the solutions on a
         continuum (a redundant arm's self-motion, a singular pose's) are samples of it, as many as the starts
         happened to find, not a count of distinct solutions.
+    position_alone : bool
+        The target was a position alone (3 numbers): ``pose`` holds it with the identity rotation, a stand-in for
+        the orientation that the arm does not set and that was not given.
     """
 
     robot: str
@@ -123,6 +126,7 @@ class InverseKinematicsResult:
     uncontrolled: str = ""
     plan: Any = field(default=None, repr=False, compare=False)
     continuum_dimension: int = 0
+    position_alone: bool = False
 
     def __str__(self) -> str:
         """A short summary: how it was solved, then one line per solution (q, branch, notes)."""
@@ -248,7 +252,7 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
         missed = max((s.position_error for s in result.solutions), default=0.0)
         uncontrolled = "" if missed < 1e-9 else (f"the arm sets {controlled.sets} only: the target position "
                                                  f"differs from the one it reaches by {missed:.6g}")
-        result = dataclasses.replace(result, uncontrolled=uncontrolled)
+        result = dataclasses.replace(result, uncontrolled=uncontrolled, position_alone=True)
     return result
 
 

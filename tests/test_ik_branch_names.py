@@ -76,3 +76,29 @@ def test_the_puma_example_names_its_elbows_by_height():
     heights = {s.branch[:2]: frames(s.q)[2][0][2] for s in solve_plan(plan, pose).solutions}
     assert heights[("shoulder right", "elbow up")] > 0 > heights[("shoulder right", "elbow down")]
 
+
+
+def test_scara_handedness_follows_the_side_of_the_elbow():
+    """Right-handed: the elbow to the right of the line from shoulder to wrist seen with the axes pointing at the
+    viewer, z.((E - S) x (W - E)) > 0; on this SCARA (axes up, straight at home) the elbow angle theta2 > 0."""
+    robot = load_robot("scara")
+    plan = closed_form_plan(robot)
+    frames = _frames(robot, (1, 2, 4))
+    fk = sympy.lambdify([robot.joint_variables], forward_kinematics(robot).subs(robot.defaults), "numpy")
+    generator = np.random.default_rng(12)
+    checked = 0
+    for _ in range(POSES):
+        q = generator.uniform(*seed_bounds(robot))
+        for solution in solve_plan(plan, np.asarray(fk(q), float)).solutions:
+            (shoulder, z), (elbow, _), (wrist, _) = frames(solution.q)
+            side = float(z @ np.cross(elbow - shoulder, wrist - elbow))
+            if abs(side) < 1e-6:
+                continue
+            assert solution.branch[0] == ("right-handed" if side > 0 else "left-handed")
+            assert (solution.q[1] > 0) == (side > 0)
+            checked += 1
+    assert checked > POSES
+    # the boundary, theta2 = 0, is right-handed (theta2 >= 0)
+    (solution,) = solve_plan(plan, np.asarray(fk([0.3, 0.0, -0.1, 0.2]), float)).solutions
+    assert solution.branch[0] == "right-handed"
+    assert solution.singular == "elbow stretched: right-handed and left-handed coincide"

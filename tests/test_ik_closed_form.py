@@ -53,6 +53,16 @@ def test_bad_poses_get_one_line_errors():
         Step((0,), "rotate", {}, "")
 
 
+JARGON = ("delta", "cos", "gamma", "subproblem", "rotation to", "slide to", "two rotations", "sqrt", "A^2", "=",
+          "fails", "out of reach")
+
+
+def _in_words(unreachable, distance):
+    """The message names no subproblem quantity and states the distance once."""
+    assert not any(word in unreachable for word in JARGON), unreachable
+    assert unreachable.count(f"{distance:.4g}") == 1, unreachable
+
+
 def test_a_wrist_centre_just_beyond_reach_is_unreachable_by_that_much():
     robot, plan, _ = _arm("puma560")
     a2, a3, d3, d4 = (float(robot.defaults[sympy.Symbol(n, real=True)]) for n in ("a2", "a3", "d3", "d4"))
@@ -62,7 +72,10 @@ def test_a_wrist_centre_just_beyond_reach_is_unreachable_by_that_much():
         pose = np.eye(4)
         pose[:3, 3] = (reach + beyond) * direction
         result = solve_plan(plan, pose)
-        assert result.solutions == () and "out of reach" in result.unreachable
+        assert result.solutions == ()
+        assert result.unreachable == (f"the wrist centre is {result.distance:.4g} beyond the reach of "
+                                      "the arm stretched at joint 3")
+        _in_words(result.unreachable, result.distance)
         # the distance is measured across axis 2: sqrt(r^2 - d3^2) grows by about r / sqrt(r^2 - d3^2) per metre
         across = math.sqrt((reach + beyond) ** 2 - d3**2) - math.sqrt(reach**2 - d3**2)
         assert result.distance == pytest.approx(across, rel=1e-6)
@@ -78,6 +91,21 @@ def test_a_wrist_centre_inside_the_shoulder_cylinder_is_unreachable():
     pose[:3, 3] = [0.5 * d3, 0.0, 0.3]
     result = solve_plan(plan, pose)
     assert result.solutions == () and result.distance == pytest.approx(0.5 * d3, rel=1e-9)
+    assert result.unreachable == (f"the wrist centre is {0.5 * d3:.4g} too close to axis 1: the arm's "
+                                  f"offset keeps it at least {d3:.4g} from that axis")
+    _in_words(result.unreachable, result.distance)
+
+
+def test_a_wrist_centre_on_the_shoulder_cylinder_merges_the_shoulders_and_says_so():
+    robot, plan, model = _arm("puma560")
+    d3 = float(robot.defaults[sympy.Symbol("d3", real=True)])
+    pose = np.eye(4)
+    pose[:3, 3] = [0.6 * d3, 0.8 * d3, 0.3]  # the wrist centre (the flange) d3 from axis 1: as close as it comes
+    result = solve_plan(plan, pose)
+    assert len(result.solutions) == 4 and len({round(float(s.q[0]), 9) for s in result.solutions}) == 1
+    note = f"the wrist centre {d3:.4g} from axis 1, as close as it comes: shoulder right and shoulder left coincide"
+    assert all(s.branch[0] == "shoulder right" and note in s.singular for s in result.solutions)
+    assert np.abs(model.fk(np.array([s.q for s in result.solutions])) - pose).max() < 1e-9
 
 
 def test_the_wrist_singularity_is_a_continuum_with_theta4_plus_theta6_fixed():
@@ -97,6 +125,11 @@ def test_the_wrist_singularity_is_a_continuum_with_theta4_plus_theta6_fixed():
     assert "theta4 + theta6" in fixed.singular  # axes 4 and 6 point the same way at theta5 = 0
     value = float(fixed.singular.split("= ")[1].split(" ")[0])
     assert value == pytest.approx(math.remainder(q[3] + q[5], 2 * math.pi), abs=1e-6)
+    for t in (0.5, -1.2, 2.9):  # along the stated continuum the pose stays
+        moved = fixed.q + np.array([0, 0, 0, t, 0, -t])
+        assert np.abs(model.fk(moved) - pose).max() < 1e-10
+    # q5 = 0 is "no flip" by the rule q5 >= 0, and the flip there is the same continuum: the note says they coincide
+    assert all("no flip" in s.branch and "wrist flip and no flip coincide" in s.singular for s in singular)
 
 
 def test_the_shoulder_singularity_of_the_irb_is_a_continuum_in_theta1():
@@ -117,7 +150,10 @@ def test_the_shoulder_singularity_of_the_irb_is_a_continuum_in_theta1():
         low, high = (middle, high) if wrist_x(low) * wrist_x(middle) > 0 else (low, middle)
     pose = model.fk(configuration(low))
     result = solve_plan(plan, pose)
-    assert result.solutions and all("theta1 takes every value; shown at 0" in s.singular for s in result.solutions)
+    stated = "theta1 takes every value; shown at 0 (the joints solved after it, theta3, theta2, theta4, theta5, theta6"
+    assert result.solutions and all(s.singular.startswith(stated + ", follow it)") for s in result.solutions)
+    merged = "the wrist centre on axis 1, as close as it comes: shoulder right and shoulder left coincide"
+    assert all(s.singular.endswith(merged) and s.branch[0] == "shoulder right" for s in result.solutions)
     for solution in result.solutions:
         assert np.abs(model.fk(solution.q) - pose).max() < 1e-9
 
@@ -217,8 +253,9 @@ def test_the_stanford_wrist_centre_at_the_shoulder_is_out_of_reach_by_its_offset
     robot, plan, _ = _arm("stanford")
     d2 = float(robot.defaults[sympy.Symbol("d2", real=True)])
     result = solve_plan(plan, np.eye(4))  # the wrist centre (the flange) at the shoulder point
-    assert result.solutions == () and "slide to a distance" in result.unreachable
-    assert result.distance == pytest.approx(d2, rel=1e-12)
+    assert result.solutions == () and result.distance == pytest.approx(d2, rel=1e-12)
+    assert result.unreachable == (f"the wrist centre is {d2:.4g} too close to the shoulder: the line of "
+                                  f"the slide (joint 3) passes {d2:.4g} from it")
 
 
 def test_the_stretched_elbow_has_one_elbow_solution_per_shoulder():
@@ -230,7 +267,9 @@ def test_the_stretched_elbow_has_one_elbow_solution_per_shoulder():
     farther = model.fk(q + np.array([0, 0, 1e-3, 0, 0, 0]))[:3, 3]
     assert np.linalg.norm(farther) < np.linalg.norm(pose[:3, 3])  # the reach is largest there
     result = solve_plan(plan, pose)
-    assert len(result.solutions) == 4  # the one elbow solution takes the first name, swapped with shoulder left
-    assert {s.branch[:2] for s in result.solutions} == {("shoulder right", "elbow down"), ("shoulder left", "elbow up")}
+    assert len(result.solutions) == 4  # the one elbow solution has one name on both shoulders, and says why
+    assert {s.branch[:2] for s in result.solutions} == {("shoulder right", "elbow down"),
+                                                        ("shoulder left", "elbow down")}
+    assert all("elbow stretched: elbow down and elbow up coincide" in s.singular for s in result.solutions)
     assert np.abs(model.fk(np.array([s.q for s in result.solutions])) - pose).max() < 1e-9
     assert any(np.abs(np.angle(np.exp(1j * (s.q - q)))).max() < 1e-6 for s in result.solutions)

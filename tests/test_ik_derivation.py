@@ -10,6 +10,7 @@ import json
 import re
 import shutil
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -26,6 +27,7 @@ from symjac.errors import ArgumentError
 from symjac.kinematics.chain import forward_kinematics
 from symjac.printing.document import render
 from symjac.printing.ik_derivation import ik_derivation_document, step_formulas, substituted
+from symjac.printing.ik_signs import assumed_signs, cancel_parameters, under_signs
 
 BUILDERS = {
     "planar2r": planar_plan,
@@ -47,18 +49,30 @@ def _wrapped(angle):
     return float(np.angle(np.exp(1j * angle)))
 
 
-@pytest.mark.parametrize("name", [*sorted(BUILDERS), "puma560", "stanford", "irb140", "cylindrical"])
+def _negative_puma(tmp_path):
+    """The PUMA 560 with a2 = -0.4318: the same arm with its upper arm's x axis reversed (a textbook keeps a2 > 0)."""
+    text = (Path(__file__).parents[1] / "symjac" / "robots" / "puma560.toml").read_text()
+    (tmp_path / "puma_negative.toml").write_text(re.sub(r"^a2 = 0\.4318$", "a2 = -0.4318", text, flags=re.MULTILINE))
+    return tmp_path / "puma_negative.toml"
+
+
+@pytest.mark.parametrize("name", [*sorted(BUILDERS), "puma560", "stanford", "irb140", "cylindrical", "puma_negative"])
 def test_printed_formulas_equal_the_executor(name, tmp_path):
     if name == "cylindrical":
         (tmp_path / "cylindrical.toml").write_text(CYLINDRICAL)
         name = tmp_path / "cylindrical.toml"
+    if name == "puma_negative":
+        name = _negative_puma(tmp_path)
     plan = _plan(name)
     robot = plan.robot
+    formulas = step_formulas(plan)
+    signs = assumed_signs([e for f in formulas for b in substituted(f) for e in b], robot.defaults)
     fk = sp.lambdify([list(robot.joint_variables)], forward_kinematics(robot).subs(robot.defaults), "numpy")
     names = [*POSE_SYMBOLS, *(s for s, _ in plan.definitions), *robot.joint_variables]
     definitions = [sp.lambdify([names], e.subs(robot.defaults), "numpy") for _, e in plan.definitions]
-    branches = [[sp.lambdify([names], [v.subs(robot.defaults) for v in values], "numpy") for values in substituted(f)]
-                for f in step_formulas(plan)]
+    branches = [[sp.lambdify([names], [v.subs(robot.defaults) for v in values]
+                             + [under_signs(v, signs).subs(robot.defaults) for v in values], "numpy")
+                 for values in substituted(f)] for f in formulas]  # exact, then as printed for the defaults' signs
     rng = np.random.default_rng(12)
     checked = 0
     for _ in range(40):
@@ -77,7 +91,8 @@ def test_printed_formulas_equal_the_executor(name, tmp_path):
                 if step.swapped_by is not None and choices[step.swapped_by] == 1:  # the names swapped by the shoulder
                     index = 1 - index
                 choices.append(index)
-                for joint, printed in zip(step.joints, functions[index](values), strict=True):
+                values_out = functions[index](values)
+                for joint, printed in zip(step.joints * 2, values_out, strict=True):
                     if robot.joints[joint].is_revolute:
                         assert abs(_wrapped(printed - solution.q[joint])) < 1e-8, (step.statement, printed, solution.q)
                     else:
@@ -169,21 +184,30 @@ def test_common_positive_numbers_leave_atan2_and_abs_squares_cancel():
     d4 = next(s for s in plan.robot.defaults if s.name == "d4")
     wx, wy = (next(s for s, _ in plan.definitions if s.name == n) for n in ("w_x", "w_y"))
     phi, cosine = (next(e for s, e in first.items() if s.name == n) for n in ("phi1", "D1"))
-    assert phi == sp.atan2(d4 * wx, -d4 * wy)  # the 2 of atan2(2 d4 wx, -2 d4 wy) cancelled, d4 kept
+    assert phi == sp.atan2(wx * sp.sign(d4), -wy * sp.sign(d4))  # the 2 of atan2(2 d4 wx, -2 d4 wy) cancelled, d4's
+    # sign kept (exact for either sign of d4)
     assert sp.simplify(cosine - sp.Abs(d4) / sp.sqrt(wx**2 + wy**2)) == 0
     assert not any(isinstance(m, sp.Abs) and m.args[0] == d4 for m in sp.denom(cosine).atoms(sp.Abs))
 
 
-def test_a_factor_of_unknown_sign_stays_inside_atan2():
+def test_a_factor_of_unknown_sign_keeps_its_sign_and_is_printed_for_the_arms_sign(tmp_path):
     plan = _plan("puma560")
     a2, a3, d4 = (next(s for s in plan.robot.defaults if s.name == n) for n in ("a2", "a3", "d4"))
-    assert a2.is_positive is None  # a length parameter may be negative in an arm file: a2 cannot be cancelled
+    assert a2.is_positive is None  # a length parameter may be negative in an arm file: a2 cannot just be cancelled
     phi = next(e for f in step_formulas(plan) for s, e in f.intermediates if s.name == "phi3")
-    assert phi == sp.atan2(a2 * d4, -a2 * a3)
-    at = {a2: 0.4318, a3: 0.0203, d4: 0.4318}
-    assert abs(float(phi.subs(at)) - float(sp.atan2(d4, -a3).subs(at))) < 1e-15
-    at[a2] = -0.4318  # with a2 < 0 the cancelled form would be off by pi
-    assert abs(abs(float(phi.subs(at)) - float(sp.atan2(d4, -a3).subs(at))) - np.pi) < 1e-12
+    assert phi == sp.atan2(d4 * sp.sign(a2), -a3 * sp.sign(a2))
+    for value in (0.4318, -0.4318):  # equal to the uncancelled atan2(a2 d4, -a2 a3) for either sign
+        at = {a2: value, a3: 0.0203, d4: 0.4318}
+        assert abs(float(phi.subs(at)) - float(sp.atan2(a2 * d4, -a2 * a3).subs(at))) < 1e-15
+    positive = render(ik_derivation_document(plan), "latex")
+    assert r"\phi_{3} = \operatorname{atan2}\left(d_{4}, - a_{3}\right)" in positive and "sign" not in positive
+    assert "Written for a2 > 0, as in this arm (a2 = 0.4318)" in render(ik_derivation_document(plan), "pretty")
+    negative = ik_derivation_document(closed_form_plan(load_robot(_negative_puma(tmp_path))))
+    assert r"\phi_{3} = \operatorname{atan2}\left(- d_{4}, a_{3}\right)" in render(negative, "latex")
+    assert "Written for a2 < 0, as in this arm (a2 = -0.4318)" in render(negative, "pretty")
+    positive_symbol = sp.Symbol("L", positive=True)  # a sign SymPy knows is cancelled outright
+    assert cancel_parameters(positive_symbol * d4, -positive_symbol * a3, [positive_symbol]) == sp.atan2(d4, -a3)
+    assert cancel_parameters(-2 * a2 * d4, 2 * a2 * a3, [a2]) == sp.atan2(-2 * d4 * sp.sign(a2), 2 * a3 * sp.sign(a2))
 
 
 @pytest.mark.parametrize("name", ["puma560", "stanford", "scara", "palletizer", "ur5"])

@@ -221,7 +221,7 @@ def test_a_wrist_singularity_is_described_not_divided_by(cli):
     result = inverse_kinematics(robot, independent_fk(robot, q), within_limits=False)
     assert_reaches(robot, result)
     (singular,) = [s for s in result.solutions if s.singular]
-    assert singular.singular == "theta4 + theta6 = 0.3 is fixed; theta4 shown at 0"
+    assert singular.singular == "theta4 + theta6 = 0.3 is fixed; theta4 shown at 0; wrist flip and no flip coincide"
     assert abs(singular.q[3] + singular.q[5] - (q[3] + q[5])) < 1e-9
     data = cli.json("ik", "puma560", "--q", ",".join(map(str, q)), "--no-within-limits")
     assert [s["singular"] for s in data["solutions"] if s["singular"]] == [singular.singular]

@@ -32,7 +32,8 @@ def test_each_solution_is_a_panel_reaching_the_target():
 def test_nothing_to_draw_is_one_line():
     robot = load_robot("planar2r")
     result = inverse_kinematics(robot, pose_from_rpy([2.0, 0.0, 0.0], [0, 0, 0]))
-    with pytest.raises(ArgumentError, match=r"planar2r: no solution to draw \(unreachable: theta2 bends the elbow"):
+    with pytest.raises(ArgumentError, match=r"planar2r: no solution to draw \(the tool point is 1\.1 "
+                                             r"beyond the reach"):
         draw_solutions(robot, result)
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy as sp
-from scipy.optimize import brentq
+from scipy.optimize import brentq, least_squares
 
 from symjac import load_robot
 from symjac.analysis.inverse_kinematics.closed_form import solve_plan
@@ -162,6 +162,30 @@ def test_wrist_singularity_is_described():
     # the continuum: axes 2, 3, 4 and 6 are parallel there, and the pose fixes only theta2 + theta3 + theta4 + theta6
     fixed = q[1] + q[2] + q[3] + q[5]
     assert any(abs(np.angle(np.exp(1j * (s.q[1] + s.q[2] + s.q[3] + s.q[5] - fixed)))) < 1e-9 for s in singular)
+    for solution in singular:
+        match = re.match(r"theta2 ([+-]) theta3 ([+-]) theta4 ([+-]) theta6 = (\S+) is fixed; theta6 shown at 0 "
+                         r"\(theta2, theta3, theta4 change with theta6\); wrist down and wrist up coincide",
+                         solution.singular)
+        assert match, solution.singular
+        signs = np.array([1.0] + [1.0 if sign == "+" else -1.0 for sign in match.groups()[:3]])
+        assert solution.q[5] == 0.0 and "wrist down" in solution.branch
+
+        def stated(x, signs=signs):
+            return float(signs @ x[[1, 2, 3, 5]])
+
+        assert abs(np.angle(np.exp(1j * (stated(solution.q) - float(match.group(4)))))) < 1e-5
+        # along the continuum: another theta6, theta1 and theta5 kept, theta2..4 found by least squares on the FK
+        for theta6 in (0.3, -0.5, 1.0):
+            def residual(x, theta6=theta6, start=solution.q):
+                moved = start.copy()
+                moved[[1, 2, 3, 5]] = [*x, theta6]
+                return (np.asarray(fk(moved), dtype=float) - pose)[:3].ravel()
+
+            found = least_squares(residual, solution.q[1:4], xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            assert np.abs(residual(found.x)).max() < 1e-9
+            moved = solution.q.copy()
+            moved[[1, 2, 3, 5]] = [*found.x, theta6]
+            assert abs(np.angle(np.exp(1j * (stated(moved) - stated(solution.q))))) < 1e-8
 
 
 def test_shoulder_singularity_merges_the_shoulder_branches():
@@ -185,6 +209,13 @@ def test_shoulder_singularity_merges_the_shoulder_branches():
     for s in result.solutions:
         assert np.abs(np.asarray(fk(s.q), dtype=float) - pose).max() < 1e-9
     assert len({round(float(s.q[0]), 6) for s in result.solutions}) == 1
+    # the note says so, and the fact it states: the wrist point's distance from axis 1 is the offset along h2
+    w = pose[:3, :3] @ home[:3, :3].T @ (corner - home[:3, 3]) + pose[:3, 3]
+    offset = abs(float(axes[1] @ (corner - points[0])))
+    note = (f"the wrist point (where axes 5 and 6 meet) {offset:.4g} from axis 1, as close as it comes: shoulder right "
+            "and shoulder left coincide")
+    assert all(s.branch[0] == "shoulder right" and note in s.singular for s in result.solutions)
+    assert np.linalg.norm(np.cross(axes[0], w - points[0])) == pytest.approx(offset, rel=1e-9)
 
 
 def test_unreachable_pose_says_how_far():
@@ -194,5 +225,18 @@ def test_unreachable_pose_says_how_far():
     pose[:3, 3] *= 3.0
     result = solve_plan(plan, pose)
     assert result.solutions == ()
-    assert result.unreachable
+    assert result.unreachable == (f"the point where axes 4 and 5 meet is {result.distance:.4g} beyond "
+                                  "the reach of the arm stretched at joint 3")
     assert result.distance > 0.5
+
+
+def test_the_stretched_elbow_at_home_says_so():
+    """At q = 0 the UR5's arm is straight: one elbow solution on each shoulder, with the same name, and a note."""
+    robot = load_robot("ur5")
+    plan, fk = three_parallel_axes_plan(arm_geometry(robot)), _fk(robot)
+    result = solve_plan(plan, np.asarray(fk(np.zeros(6)), dtype=float))
+    assert {s.branch[0] for s in result.solutions} == {"shoulder right", "shoulder left"}
+    assert all(s.branch[2] == "elbow down" and "elbow stretched: elbow down and elbow up coincide" in s.singular
+               for s in result.solutions)
+    home = next(s for s in result.solutions if np.abs(s.q).max() < 1e-9)
+    assert home.q[2] == 0.0  # stretched: theta3 = 0 on the UR5

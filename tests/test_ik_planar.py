@@ -126,13 +126,28 @@ def test_unreachable_2r_says_how_far():
     pose[0, 3] = 1.2  # L1 + L2 = 0.9
     _, _, _, _, result = _solve("planar2r", pose=pose)
     assert result.solutions == ()
-    assert result.unreachable
+    assert result.unreachable == "the tool point is 0.3 beyond the reach of the arm stretched at joint 2"
     assert result.distance == pytest.approx(0.3, abs=1e-9)
+
+
+def test_too_close_2r_says_the_arm_cannot_fold_that_far():
+    pose = np.eye(4)
+    pose[0, 3] = 0.04  # L1 - L2 = 0.1: the folded arm reaches no closer
+    _, _, _, _, result = _solve("planar2r", pose=pose)
+    assert result.solutions == () and result.distance == pytest.approx(0.06, abs=1e-9)
+    assert result.unreachable == ("the tool point is 0.06 closer in than the arm folded at joint 2 "
+                                  "reaches")
 
 
 def test_stretched_2r_has_one_solution():
     _, _, _, _, result = _solve("planar2r", q=np.array([0.7, 0.0]))
     assert len(result.solutions) == 1
+    (solution,) = result.solutions
+    assert solution.branch == ("elbow down",)
+    assert solution.singular == "elbow stretched: elbow down and elbow up coincide"
+    _, _, _, pose, folded = _solve("planar2r", q=np.array([0.7, np.pi]))
+    assert np.linalg.norm(pose[:2, 3]) == pytest.approx(0.1, abs=1e-12)  # L1 - L2: folded
+    assert [s.singular for s in folded.solutions] == ["elbow folded: elbow down and elbow up coincide"]
 
 
 def _distinct(qs, tolerance=1e-6):

@@ -162,9 +162,33 @@ def test_the_iiwa_with_one_joint_given_round_trips_and_matches_eaik(given):
         assert len(distinct(exact, np.ones(len(exact[0]), dtype=bool))) == len(distinct(solutions, revolute))
 
 
+def test_the_stanford_slide_is_named_by_its_sign():
+    """"slide out" is the wrist centre beyond the slide line's closest point to the shoulder, at d3 = 0 on this arm."""
+    robot, plan, model, _, _ = _setup("stanford")
+    generator = np.random.default_rng(3)
+    for _ in range(20):
+        q = generator.uniform(*seed_bounds(robot))
+        level = q.copy()
+        level[2] = 0.0
+        # the flange is the wrist centre, the shoulder the origin: |w|^2 = |w(d3 = 0)|^2 + d3^2 (closest at d3 = 0)
+        assert np.linalg.norm(model.fk(q)[:3, 3]) ** 2 == pytest.approx(
+            np.linalg.norm(model.fk(level)[:3, 3]) ** 2 + q[2] ** 2, rel=1e-12)
+        result = solve_plan(plan, model.fk(q))
+        assert len(result.solutions) == 8
+        for solution in result.solutions:
+            assert ("slide out" in solution.branch) == (solution.q[2] > 0)
+            assert ("slide reversed" in solution.branch) == (solution.q[2] < 0)
+        slides = sorted(abs(s.q[2]) for s in result.solutions)
+        assert slides[0] == pytest.approx(slides[-1], rel=1e-9)  # the same length either way: no "shorter" slide
+
+
 def test_the_iiwa_with_its_elbow_given_has_no_closed_form():
-    with pytest.raises(NoClosedFormError, match=r"7 joints remain \(give one joint's value, free_joint=k"):
+    with pytest.raises(NoClosedFormError, match=r"7 joints, one more than a pose fixes \(give one joint's value as "
+                                                r"the redundancy parameter to solve the six that remain\)") as raised:
         closed_form_plan(load_robot("iiwa7"))
+    message = str(raised.value)  # geometry and neutral advice: no function, keyword or option of any front end
+    assert "tried: spherical wrist, three parallel axes" in message
+    assert not any(word in message for word in ("_plan", "free_joint", "=", "within_limits", "--"))
     with pytest.raises(NoClosedFormError, match="joints 1, 2 and 3 meet in one point as well, so they cannot change"):
         closed_form_plan(load_robot("iiwa7"), free_joint=4)
 
@@ -175,6 +199,10 @@ def test_the_panda_has_no_closed_form_with_any_joint_given():
             closed_form_plan(load_robot("panda"), free_joint=joint)
     with pytest.raises(NoClosedFormError, match=r"the axes of joints 5 and 7 are parallel, 0\.088 apart"):
         closed_form_plan(load_robot("panda"), free_joint=3)
+    with pytest.raises(NoClosedFormError) as raised:  # "as well" only after a wrist whose axes meet
+        closed_form_plan(load_robot("panda"))
+    assert "the axes of joints 1, 2 and 3 meet in one point;" in str(raised.value)
+    assert "as well" not in str(raised.value)
 
 
 def _six_r(name, rows):

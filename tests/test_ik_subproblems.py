@@ -229,7 +229,20 @@ def test_slides_recover_the_displacement(k, p, s, q):
     assert any(abs(value - s) < 1e-6 for (value,) in result.solutions)
 
 
+def test_out_of_range_reasons_give_the_range_reached():
+    """No cosine or A, B, C in the reasons: the distances (or plane offsets) the rotation reaches, and the target."""
+    x, y, z = np.eye(3)
+    far = rotation_to_distance(z, x, 2 * y + z, 4.0)  # |rot(z, t) x - (2y + z)| runs from sqrt(2) to sqrt(10)
+    assert far.solutions == ()
+    assert far.reason == f"delta = 4 is outside the distances the rotation reaches, {2**0.5:.6g} to {10**0.5:.6g}"
+    plane = rotation_to_plane(z, x + 3 * z, x + z, 5.0)  # h.x = cos(t) + 3 runs from 2 to 4
+    assert plane.solutions == () and plane.reason == "h.x of the turned point reaches 2 to 4, not d = 5"
+
+
 def test_slide_boundaries():
+    # two slides 4e-6 apart stay two (the square-root argument, 4e-12, is below the tolerance, the slides are not)
+    near = slide_to_distance(np.array([0.0, 1.0, 2e-6]), np.zeros(3), np.array([0.0, 0.0, 1.0]), 1.0).solutions
+    assert len(near) == 2 and min(abs(value) for (value,) in near) < 1e-10
     x, y, z = np.eye(3)
     assert slide_to_point(z, x, x + z).solutions == ((1.0,),)
     assert slide_to_point(z, x, y).solutions == () and "off the line" in slide_to_point(z, x, y).reason

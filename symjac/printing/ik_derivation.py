@@ -21,8 +21,9 @@ the formulas (:math:`r_{31}^2 = 1 - r_{11}^2 - r_{21}^2`). The printed form is t
 the target position is :math:`p_x, p_y, p_z`; an intermediate that comes out a number or a lone symbol (the PUMA's
 :math:`\beta_4 = 0`) is written into the later formulas instead of named; a common positive number or named square
 root leaves an atan2 (:math:`\gamma_4 = \sqrt{G_4}`: at :math:`\gamma_4 = 0` every angle works) and :math:`x^2 / |x|`
-is :math:`|x|`. A common parameter stays (:math:`\operatorname{atan2}(a_2 d_4, -a_2 a_3)`): parameters are real of
-unknown sign, and cancelling a negative one would be off by :math:`\pi`. The sentences' math (:math:`\theta_5 \ge 0`,
+is :math:`|x|`. A common parameter keeps its sign (:math:`\operatorname{atan2}(a_2 d_4, -a_2 a_3)` is exactly
+``atan2(sign(a2) d4, -sign(a2) a3)``) and is printed for the sign of its default, said in a sentence
+(``symjac.printing.ik_signs``). The sentences' math (:math:`\theta_5 \ge 0`,
 :math:`h_1 \times h_2`) is typeset; :math:`h_i` is the unit vector along the axis of joint :math:`i`.
 
 :func:`step_formulas` gives the formulas as SymPy expressions (the ones printed), :func:`ik_derivation_document` the
@@ -42,6 +43,7 @@ from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, po
 from symjac.errors import ArgumentError
 from symjac.kinematics.chain import chain_of
 from symjac.printing.document import Block, Document, Equation, Inline
+from symjac.printing.ik_signs import assumed_signs, sign_assumption, tidied, under_signs
 from symjac.printing.latex import latex
 from symjac.printing.pretty import pretty
 from symjac.symbolic.simplify import simplify_matrix
@@ -188,49 +190,7 @@ def _two_rotations(plan: Plan, step: Step) -> StepFormulas:
     return StepFormulas(step, intermediates, tuple(solutions), (sp.Ge(square, 0, evaluate=False),), _TWO)
 
 
-def _even_powers_of_abs(expr: sp.Expr) -> sp.Expr:
-    """``x^2 / |x|`` as ``|x|`` for a real symbol ``x`` (``x^2 = |x|^2``; no sign assumed)."""
-    for magnitude in sorted(expr.atoms(sp.Abs), key=sp.default_sort_key):
-        inner = magnitude.args[0]
-        if not (inner.is_Symbol and inner.is_real):
-            continue
-        stand_in = sp.Dummy(positive=True)
-        expr = expr.xreplace({magnitude: stand_in}).replace(
-            lambda e, x=inner: e.is_Pow and e.base == x and e.exp.is_even,
-            lambda e, m=stand_in: m**e.exp).xreplace({stand_in: magnitude})
-    return expr
-
-
-def _common_factor(y: sp.Expr, x: sp.Expr, roots: frozenset[sp.Symbol]) -> sp.Expr:
-    """``atan2(k y, k x)`` as ``atan2(y, x)`` for a positive number ``k`` or a named square root ``k``.
-
-    A square root (``gamma_4 = sqrt(G_4)``) is positive where it is not 0, and at 0 the angle is arbitrary (the
-    point lies on the axis), so the shorter form is a solution there too. Other symbols are not cancelled: the
-    robot's parameters are real of unknown sign (``a_2`` may be negative in another arm file), and ``atan2(a_2 y, a_2
-    x)`` is ``atan2(y, x)`` only for ``a_2 > 0`` (off by pi otherwise), so a common parameter stays.
-    """
-    for root in sorted(roots, key=sp.default_sort_key):
-        factors_y, factors_x = (list(sp.Mul.make_args(sp.factor_terms(e))) for e in (y, x))
-        if root in factors_y and root in factors_x:
-            factors_y.remove(root)
-            factors_x.remove(root)
-            y, x = sp.Mul(*factors_y), sp.Mul(*factors_x)
-    if x == 0 and (y in roots or (isinstance(y, sp.Pow) and y.exp == sp.S.Half)):
-        return sp.pi / 2  # atan2(sqrt(X), 0); at X = 0 every angle works
-    (ky, rest_y), (kx, rest_x) = y.as_content_primitive(), x.as_content_primitive()
-    if not (ky.is_Rational and kx.is_Rational and ky.is_positive and kx.is_positive):
-        return sp.atan2(y, x)
-    common = sp.gcd(ky, kx)
-    return sp.atan2(ky / common * rest_y, kx / common * rest_x)
-
-
-def _tidy(expr: sp.Expr, roots: frozenset[sp.Symbol] = frozenset()) -> sp.Expr:
-    """Common positive numbers and named square roots out of every atan2, ``x^2/|x|`` as ``|x|`` (both exact)."""
-    expr = _even_powers_of_abs(sp.sympify(expr))
-    return expr.replace(lambda e: isinstance(e, sp.atan2), lambda e: _common_factor(e.args[0], e.args[1], roots))
-
-
-def _inlined(formulas: StepFormulas) -> StepFormulas:
+def _inlined(formulas: StepFormulas, parameters: frozenset[sp.Symbol]) -> StepFormulas:
     """Intermediates that are a number or a lone symbol written into the later formulas instead of named.
 
     The PUMA's wrist step has ``beta_4 = 0``: carrying the name through every formula would hide that the terms in
@@ -239,13 +199,14 @@ def _inlined(formulas: StepFormulas) -> StepFormulas:
     values: dict[sp.Symbol, sp.Expr] = {}
     kept = []
     for symbol, expr in formulas.intermediates:
-        expr = _tidy(expr.xreplace(values))
+        expr = tidied(expr.xreplace(values), parameters)
         if expr.is_number or expr.is_Symbol or (-expr).is_Symbol:
             values[symbol] = expr
         else:
             kept.append((symbol, expr))
     roots = frozenset(symbol for symbol, expr in kept if isinstance(expr, sp.Pow) and expr.exp == sp.S.Half)
-    solutions = tuple(tuple(_tidy(e.xreplace(values), roots) for e in branch) for branch in formulas.solutions)
+    solutions = tuple(tuple(tidied(e.xreplace(values), parameters, roots) for e in branch)
+                      for branch in formulas.solutions)
     conditions = tuple(type(c)(c.lhs.xreplace(values), c.rhs.xreplace(values), evaluate=False)
                        for c in formulas.conditions)
     return replace(formulas, intermediates=tuple(kept), solutions=solutions, conditions=conditions)
@@ -253,7 +214,13 @@ def _inlined(formulas: StepFormulas) -> StepFormulas:
 
 def step_formulas(plan: Plan) -> tuple[StepFormulas, ...]:
     """The printed formulas of every step of ``plan``, as SymPy expressions (see the module docstring)."""
-    return tuple(_inlined(_formulas(plan, step)) for step in plan.steps)
+    return tuple(_inlined(_formulas(plan, step), frozenset(plan.robot.defaults)) for step in plan.steps)
+
+
+def _under(formulas: StepFormulas, signs: Mapping[sp.Symbol, int]) -> StepFormulas:
+    """The formulas as printed: for the parameters' signs at their defaults (``under_signs``)."""
+    return replace(formulas, intermediates=tuple((s, under_signs(e, signs)) for s, e in formulas.intermediates),
+                   solutions=tuple(tuple(under_signs(e, signs) for e in b) for b in formulas.solutions))
 
 
 def substituted(formulas: StepFormulas) -> tuple[tuple[sp.Expr, ...], ...]:
@@ -352,9 +319,10 @@ def _step_blocks(plan: Plan, number: int, formulas: StepFormulas) -> list[Block]
     return blocks
 
 
-def _data(plan: Plan, all_formulas: tuple[StepFormulas, ...]) -> dict[str, Any]:
+def _data(plan: Plan, all_formulas: tuple[StepFormulas, ...], signs: Mapping[sp.Symbol, int]) -> dict[str, Any]:
     return {
         "robot": plan.robot.name,
+        "signs": {str(symbol): sign for symbol, sign in signs.items()},  # the formulas are written for these
         "family": plan.family,
         "reasons": list(plan.reasons),
         "controlled": plan.controlled,
@@ -389,7 +357,11 @@ def ik_derivation_document(plan: Plan) -> Document:
     >>> document.blocks[0].caption[0]
     'Family: planar 2R, because the axes of joints 1 and 2 are parallel.'
     """
-    all_formulas = step_formulas(plan)
+    exact = step_formulas(plan)
+    defaults = plan.robot.defaults
+    signs = assumed_signs([e for f in exact for e in (*dict(f.intermediates).values(), *sum(f.solutions, ()))],
+                          defaults)
+    all_formulas = tuple(_under(f, signs) for f in exact)
     blocks = [
         Block(_prose(f"Family: {plan.family}, because {'; '.join(plan.reasons)}.")),
         Block((f"The arm controls {plan.controlled}; the target pose is",),
@@ -402,6 +374,8 @@ def ik_derivation_document(plan: Plan) -> Document:
                 tuple(Equation(latex(s), str(s), _shown(e)) for s, e in plan.definitions),
             )
         )
+    if signs:
+        blocks.append(Block(sign_assumption(signs, defaults)))
     for number, formulas in enumerate(all_formulas, start=1):
         blocks += _step_blocks(plan, number, formulas)
     blocks = _axes_defined(blocks)
@@ -411,7 +385,7 @@ def ik_derivation_document(plan: Plan) -> Document:
         f"{plan.robot.name}: inverse kinematics in closed form",
         plan.robot.name,
         tuple(blocks),
-        data=lambda: _data(plan, all_formulas),
+        data=lambda: _data(plan, all_formulas, signs),
         comments=True,
         model=plan.robot,
     )

@@ -68,8 +68,8 @@ def _notes(result: Any) -> list[str]:
     if result.outside_limits:
         notes.append(f"{result.outside_limits} more solution{'s' if result.outside_limits != 1 else ''} leave the "
                      "joint limits (shown with --no-within-limits).")
-    if result.unreachable:
-        notes.append(f"No solution: {result.unreachable}.")  # the sentence says how far out, in the robot's units
+    if result.unreachable:  # the sentence says how far out, once (the JSON gives ``distance`` as a number)
+        notes.append(f"No solution: {result.unreachable}.")
     return notes
 
 

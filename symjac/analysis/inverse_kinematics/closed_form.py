@@ -25,9 +25,10 @@ import numpy as np
 import sympy
 
 from symjac.analysis.inverse_kinematics import subproblems
-from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, exponential, reduced_geometry
+from symjac.analysis.inverse_kinematics.geometry import ArmGeometry, arm_geometry, reduced_geometry
+from symjac.analysis.inverse_kinematics.notes import continuum_note, merged_note, motion, unreachable_note
 from symjac.analysis.inverse_kinematics.parallel_axes import three_parallel_axes_plan
-from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, branch_names
+from symjac.analysis.inverse_kinematics.plan import POSE_SYMBOLS, Plan, Step, branch_names, solution_order
 from symjac.analysis.inverse_kinematics.planar import (
     articulated_plan,
     cylindrical_plan,
@@ -85,19 +86,24 @@ def closed_form_plan(robot: Robot, *, free_joint: int | None = None) -> Plan:
     raise NoClosedFormError(reason=_why_none(geometry))
 
 
+_FAMILY_NAMES = ("spherical wrist", "three parallel axes", "planar 2R or 3R", "SCARA", "articulated 3R", "palletizer",
+                 "spherical arm", "cylindrical")
+
+
 def _why_none(geometry: ArmGeometry) -> str:
     robot, joints = geometry.robot, geometry.joints
     given = "" if geometry.free_joint is None else f" with joint {geometry.free_joint} given"
     facts = [f"{len(joints)} joints remain"] if len(joints) != 6 else []
     if len(joints) == 7:
-        facts[0] += " (give one joint's value, free_joint=k, to solve the six that remain)"
+        facts[0] = ("7 joints, one more than a pose fixes (give one joint's value as the redundancy parameter to solve "
+                    "the six that remain)")
     if len(joints) >= 3:
         facts.append(geometry.why_not_meet(*joints[-3:]))
         facts.append(geometry.why_not_meet(*joints[:3]))
-        if geometry.intersection(*joints[:3]) is not None:
+        if geometry.intersection(*joints[:3]) is not None and geometry.intersection(*joints[-3:]) is not None:
             facts[-1] += (" as well, so they cannot change the distance from that point to the wrist: the arm has a "
                           "continuum of solutions or none")
-    return (f"{robot.name}{given}: no closed-form family fits ({', '.join(f.__name__ for f in FAMILIES)}): "
+    return (f"{robot.name}{given}: no closed-form family fits (tried: {', '.join(_FAMILY_NAMES)}): "
             + "; ".join(facts) + "; use the numeric solver")
 
 
@@ -106,7 +112,8 @@ class Solution:
     """One solution: every joint's value, the branch names along the way, and whether it is within the limits.
 
     ``singular`` describes the continuum at a singular pose (``"theta4 + theta6 = 0.73 is fixed; theta4 shown at
-    0"``), empty elsewhere.
+    0"``) and the steps whose two solutions coincide there (``"elbow stretched: elbow down and elbow up coincide"``),
+    joined by ``"; "``; empty elsewhere.
     """
 
     q: np.ndarray
@@ -119,6 +126,9 @@ class Solution:
 class ClosedFormResult:
     """Every solution of a plan at one pose; without one, ``unreachable`` says why and ``distance`` how far out.
 
+    ``unreachable`` names the point of the arm that cannot be placed, in the arm's words, with that distance once:
+    ``"the wrist centre is 0.05 beyond the reach of the arm stretched at joint 3"``.
+
     For a plan that controls less than the whole pose, ``uncontrolled`` says how far the pose the solutions reach is
     from the target when it differs (``uncontrolled_distance``: the position error, in length units).
     """
@@ -129,6 +139,15 @@ class ClosedFormResult:
     distance: float = 0.0
     uncontrolled: str = ""
     uncontrolled_distance: float = 0.0
+
+
+@dataclass(frozen=True)
+class _Branch:
+    values: list[float]  # the joint values solved so far, in the steps' order
+    choices: tuple[int, ...]  # the solution each step took
+    merged: tuple[bool, ...]  # whether each step's two solutions coincided
+    singular: tuple[tuple[int, int], ...]  # (step, joint) of each joint that took every value
+    notes: tuple[str, ...]  # the merged steps' notes
 
 
 @dataclass(frozen=True)
@@ -221,46 +240,6 @@ def _run(compiled: _CompiledStep, arguments: dict[str, Any], tolerance: float) -
     return result, result.every_angle
 
 
-def _point(arguments: dict[str, Any], name: str) -> np.ndarray:
-    value = arguments.get(name)
-    return np.zeros(3) if value is None else np.array(value)
-
-
-def _shortfall(subproblem: str, arguments: dict[str, Any]) -> float:
-    """How far the failed subproblem's target is from what it can reach (a length)."""
-    a: dict[str, Any] = {name: np.array(value) if isinstance(value, tuple) else value
-                         for name, value in arguments.items()}
-    if subproblem.startswith("slide"):
-        u = a["p"] - a["q"]
-        across = float(np.linalg.norm(u - a["k"] * (a["k"] @ u)))
-        return across if subproblem == "slide_to_point" else max(across - a["delta"], 0.0)
-    r = _point(a, "intersection" if subproblem == "two_rotations_to_point" else "point_on_axis")
-    if subproblem == "rotation_to_plane":
-        k, u, h = a["k"], a["p"] - r, a["h"]
-        across = u - k * (k @ u)
-        size = max(float(np.linalg.norm(across)), 1e-300)
-        reach = math.hypot(float(h @ across), float(h @ np.cross(k, u)))
-        return max(abs(a["d"] - h @ r - (k @ u) * (k @ h)) - reach, 0.0) / size
-    u, v = a["p"] - r, a["q"] - r
-    if subproblem == "two_rotations_to_point":  # different radii, or the two circles of reach miss each other
-        k1, k2 = a["k1"], a["k2"]
-        w = float(k1 @ k2)
-        alpha = (k1 @ v - w * (k2 @ u)) / (1.0 - w * w)
-        beta = (k2 @ u - w * (k1 @ v)) / (1.0 - w * w)
-        middle = float(np.sqrt(max(alpha**2 + beta**2 + 2.0 * alpha * beta * w, 0.0)))
-        return max(abs(float(np.linalg.norm(u) - np.linalg.norm(v))), middle - float(np.linalg.norm(u)), 0.0)
-    k = a["k"]
-    along = float(k @ (u - v))
-    ru, rv = (float(np.linalg.norm(x - k * (k @ x))) for x in (u, v))
-    if subproblem == "rotation_to_point":
-        return math.hypot(along, ru - rv)
-    squared = a["delta"] ** 2 - along**2
-    if squared < 0:
-        return abs(along) - a["delta"]
-    across = math.sqrt(squared)
-    return max(across - (ru + rv), abs(ru - rv) - across, 0.0)
-
-
 def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolerance: float = 1e-9) -> ClosedFormResult:
     r"""Every solution of ``plan`` at the 4 x 4 ``pose`` (frame {0}, as ``numeric_model(robot).fk(q)`` returns it).
 
@@ -296,27 +275,29 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
     compiled = _compiled(plan)
     inputs = [*matrix[:3, :3].ravel().tolist(), *matrix[:3, 3].tolist(), *free]
     inputs += list(compiled.definitions(*inputs))
-    branches: list[tuple[list[float], tuple[int, ...], tuple[int, ...]]] = [([], (), ())]  # values, choices, singular
+    branches: list[_Branch] = [_Branch([], (), (), (), ())]
     failure: tuple[float, str] | None = None
-    for step in compiled.steps:
+    for number, step in enumerate(compiled.steps):
         grown = []
-        for values, choices, singular in branches:
-            arguments = _arguments(step, inputs + values)
+        for branch in branches:
+            arguments = _arguments(step, inputs + branch.values)
             result, free_angle = _run(step, arguments, tolerance)
             if not result.solutions:
-                distance = _shortfall(step.step.subproblem, arguments)
+                distance, why = unreachable_note(step.step, arguments)
                 if failure is None or distance < failure[0]:
-                    failure = (distance, f"{step.step.statement} fails: {result.reason}")
+                    failure = (distance, why)
                 continue
-            for index, angles in enumerate(result.solutions):
-                grown.append((values + list(angles), (*choices, index),
-                              (*singular, step.step.joints[0]) if free_angle else singular))
+            merged = len(step.step.branches) == 2 and len(result.solutions) == 1
+            notes = (*branch.notes, merged_note(step.step, arguments)) if merged else branch.notes
+            singular = (*branch.singular, (number, step.step.joints[0])) if free_angle else branch.singular
+            for index in solution_order(plan.steps, branch.choices, len(result.solutions)):
+                grown.append(_Branch(branch.values + list(result.solutions[index]), (*branch.choices, index),
+                                     (*branch.merged, merged), singular, notes))
         branches = grown
     if not branches:
         distance, why = failure or (0.0, "no branch")
-        return ClosedFormResult(plan, (), f"unreachable: {why}; the target is {distance:.6g} out of reach", distance)
-    solutions = tuple(_solution(plan, compiled, values, branch_names(plan.steps, choices), singular, free)
-                      for values, choices, singular in branches)
+        return ClosedFormResult(plan, (), why, distance)
+    solutions = tuple(_solution(plan, compiled, branch, free) for branch in branches)
     if plan.controlled == "the whole pose":
         return ClosedFormResult(plan, solutions)
     uncontrolled, distance = _uncontrolled(plan, compiled, solutions[0].q, matrix, tolerance)
@@ -325,10 +306,10 @@ def solve_plan(plan: Plan, pose: Any, *, free_value: float | None = None, tolera
 
 def _forward(compiled: _Compiled, q: np.ndarray) -> np.ndarray:
     """The tool pose at ``q`` by the product of exponentials about the numeric axes at home."""
-    motion = np.eye(4)
+    moved = np.eye(4)
     for (h, p, kind), value in zip(compiled.axes, q, strict=True):
-        motion = motion @ _motion(h, p, kind, float(value))
-    return motion @ compiled.home
+        moved = moved @ motion(h, p, kind, float(value))
+    return moved @ compiled.home
 
 
 def _uncontrolled(plan: Plan, compiled: _Compiled, q: np.ndarray, target: np.ndarray,
@@ -355,11 +336,10 @@ def _wrapped(value: float, limits: tuple[float, float] | None) -> tuple[float, b
     return angle, False
 
 
-def _solution(plan: Plan, compiled: _Compiled, values: list[float], names: tuple[str, ...],
-              singular: tuple[int, ...], free: list[float]) -> Solution:
+def _solution(plan: Plan, compiled: _Compiled, branch: _Branch, free: list[float]) -> Solution:
     robot = plan.robot
     q = np.zeros(robot.n_joints)
-    q[list(compiled.positions)] = values
+    q[list(compiled.positions)] = branch.values
     if plan.free_joint is not None:
         q[plan.free_joint - 1] = free[0]
     inside = True
@@ -370,36 +350,18 @@ def _solution(plan: Plan, compiled: _Compiled, values: list[float], names: tuple
             limits = compiled.limits[j]
             ok = limits is None or limits[0] - 1e-12 <= q[j] <= limits[1] + 1e-12
         inside = inside and ok
-    notes = [_continuum(robot, compiled, q, j) for j in singular]
-    return Solution(q, names, inside, "; ".join(notes))
+    notes = [continuum_note([str(v) for v in robot.joint_variables], _lines(compiled, q), compiled.revolute, q, joint,
+                            [j for later in plan.steps[number + 1:] for j in later.joints])
+             for number, joint in branch.singular]
+    names = branch_names(plan.steps, branch.choices, branch.merged)
+    return Solution(q, names, inside, "; ".join([*notes, *branch.notes]))
 
 
-def _continuum(robot: Robot, compiled: _Compiled, q: np.ndarray, joint: int) -> str:
-    """What stays fixed when ``joint`` is free at ``q``: its sum or difference with a joint on the same line."""
-    variables = [str(v) for v in robot.joint_variables]
+def _lines(compiled: _Compiled, q: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Every joint's axis at ``q`` (direction, point), by the product of exponentials."""
     lines = []
-    motion = np.eye(4)
-    for j, (h, p, kind) in enumerate(compiled.axes):  # the axes at q, by the product of exponentials
-        lines.append((motion[:3, :3] @ h, motion[:3, :3] @ p + motion[:3, 3]))
-        motion = motion @ _motion(h, p, kind, float(q[j]))
-    h, p = lines[joint]
-    for other in range(robot.n_joints):
-        g, r = lines[other]
-        if other != joint and compiled.revolute[other] and np.linalg.norm(np.cross(h, g)) < 1e-6 \
-                and np.linalg.norm(np.cross(r - p, h)) < 1e-6:
-            sign = 1.0 if h @ g > 0 else -1.0
-            fixed = math.remainder(q[joint] + sign * q[other], 2 * math.pi)
-            return (f"{variables[joint]} {'+' if sign > 0 else '-'} {variables[other]} = {fixed:.6g} is fixed; "
-                    f"{variables[joint]} shown at 0")
-    return f"{variables[joint]} takes every value; shown at 0"
-
-
-@functools.lru_cache(maxsize=256)
-def _motion_symbolic(kind: str) -> Callable[..., Any]:
-    h, p = sympy.Matrix(sympy.symbols("h1:4")), sympy.Matrix(sympy.symbols("p1:4"))
-    value = sympy.Symbol("value")
-    return sympy.lambdify([*h, *p, value], exponential(h, p, kind, value), modules="numpy")
-
-
-def _motion(h: np.ndarray, p: np.ndarray, kind: str, value: float) -> np.ndarray:
-    return np.asarray(_motion_symbolic(kind)(*h, *p, value), dtype=float)
+    moved = np.eye(4)
+    for j, (h, p, kind) in enumerate(compiled.axes):
+        lines.append((moved[:3, :3] @ h, moved[:3, :3] @ p + moved[:3, 3]))
+        moved = moved @ motion(h, p, kind, float(q[j]))
+    return lines

@@ -97,7 +97,8 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
     w = sympy.Matrix(_WRIST_POINT)
     definitions = tuple(zip(_WRIST_POINT, _expand(r * r_m.T * (c - p_m) + p), strict=True))
     offset = sympy.simplify(h[1].dot(c - points[0]))
-    shoulder = plane_step(0, geometry, h[1], w, offset, "the direction of the parallel axes about axis 1")
+    shoulder = plane_step(0, geometry, h[1], w, offset, "the direction of the parallel axes about axis 1",
+                          "the wrist point (where axes 5 and 6 meet)")
     r1 = rotation(h[0], t1)
     seen = r1.T * r * r_m.T  # R234 R5 R6
     wrist = Step(
@@ -108,6 +109,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         f"rotation seen from link 1 gives it, a rotation to a distance ({DISTANCE_RULE}: {WRIST[0]}, then "
         f"{WRIST[1]})",
         WRIST,
+        subject="the direction of axis 6",
     )
     roll = Step(
         (5,),
@@ -115,6 +117,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         {"k": h[5], "p": _expand(seen.T * h[1]), "q": _expand(rotation(h[4], -t5) * h[1]), "point_on_axis": _ORIGIN},
         f"{t6} turns the parallel axes' direction, seen from the tool, onto where joint 5 leaves it, a rotation to a "
         "point",
+        subject="the tool's orientation",
     )
     r6_back = rotation(h[5], -t6)
     b_w = w + r * r_m.T * r6_back * (b - c)
@@ -127,12 +130,15 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         f"a rotation to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]}; swapped with {SHOULDER[1]})",
         ELBOW,
         swapped_by=0,
+        subject="the point where axes 4 and 5 meet",
+        reach="elbow",
     )
     lift = Step(
         (1,),
         "rotation_to_point",
         {"k": h[1], "p": _expand(turned(h[2], points[2], t3, b)), "q": b1, "point_on_axis": points[1]},
         f"{t2} swings that point onto its target about axis 2, a rotation to a point",
+        subject="the point where axes 4 and 5 meet",
     )
     r23 = rotation(h[2], -t3) * rotation(h[1], -t2)
     last = Step(
@@ -140,6 +146,7 @@ def three_parallel_axes_plan(geometry: ArmGeometry) -> Plan | None:
         "rotation_to_point",
         {"k": h[3], "p": h[4], "q": _expand(r23 * seen * r6_back * h[4]), "point_on_axis": _ORIGIN},
         f"{t4} turns the direction of axis 5 to where the rest of the target rotation puts it, a rotation to a point",
+        subject="the tool's orientation",
     )
     reasons = (
         "the axes of joints 2, 3 and 4 are parallel",

@@ -19,7 +19,8 @@ import sympy
 from symjac.errors import ArgumentError
 from symjac.model.robot import Robot
 
-__all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "branch_names", "pose_matrix"]
+__all__ = ["POSE_SYMBOLS", "SUBPROBLEMS", "Plan", "Step", "branch_choices", "branch_names", "pose_matrix",
+           "solution_order"]
 
 POSE_SYMBOLS: tuple[sympy.Symbol, ...] = sympy.symbols("r11 r12 r13 r21 r22 r23 r31 r32 r33 px py pz", real=True)
 """The target pose's entries as real symbols: the rotation ``r11 .. r33`` row by row, then the position."""
@@ -51,7 +52,14 @@ class Step:
     how; ``branches`` the names of its solutions in the subproblem's order (empty for one solution); ``swapped_by``
     the position in the plan's steps of an earlier step whose second solution swaps this step's two names (the elbow
     after the shoulder: turning the shoulder over turns the arm over, and the bend that put the elbow above the line
-    from shoulder to wrist then puts it below), else None.
+    from shoulder to wrist then puts it below), else None; ``merged`` the index in ``branches`` of the name a solution
+    carries when the step's two solutions coincide (then no swap applies: the stretched elbow has one name on both
+    shoulders; a wrist at ``q5 = 0`` is "no flip" by the rule ``q5 >= 0``).
+
+    For words about a pose, ``subject`` names what the step puts in place ("the wrist centre") and ``reach`` how the
+    step fails when it cannot: ``"elbow"`` (the subject beyond the stretched arm or closer in than the folded arm),
+    ``"offset"`` (an offset keeps the subject at least some distance from the step's axis, or from the shoulder
+    for a slide), ``""`` (any other step: the target out of that joint's range).
     """
 
     joints: tuple[int, ...]
@@ -60,6 +68,9 @@ class Step:
     statement: str
     branches: tuple[str, ...] = ()
     swapped_by: int | None = None
+    merged: int = 0
+    subject: str = ""
+    reach: str = ""
 
     def __post_init__(self) -> None:
         if self.subproblem not in SUBPROBLEMS:
@@ -75,18 +86,47 @@ class Step:
         return SUBPROBLEMS[self.subproblem]
 
 
-def branch_names(steps: Sequence[Step], choices: Sequence[int]) -> tuple[str, ...]:
+def branch_names(steps: Sequence[Step], choices: Sequence[int], merged: Sequence[bool] = ()) -> tuple[str, ...]:
     """The branch names of the solution that took solution ``choices[i]`` (0-based) of each step ``steps[i]``.
 
     The one place the names are decided, for the numeric executor and the symbolic programs alike: a step's names in
-    its subproblem's order, the two swapped when its ``swapped_by`` step took its second solution.
+    its subproblem's order, the two swapped when its ``swapped_by`` step took its second solution. Where
+    ``merged[i]`` is true the step's two solutions coincided and it carries ``steps[i].branches[steps[i].merged]``.
     """
     names: list[str] = []
-    for step, index in zip(steps, choices, strict=True):
-        if step.branches:
+    for i, (step, index) in enumerate(zip(steps, choices, strict=True)):
+        if step.branches and i < len(merged) and merged[i]:
+            names.append(step.branches[step.merged])
+        elif step.branches:
             swap = step.swapped_by is not None and choices[step.swapped_by] == 1
             names.append(step.branches[1 - index if swap and len(step.branches) == 2 else index])
     return tuple(names)
+
+
+def solution_order(steps: Sequence[Step], choices: Sequence[int], count: int) -> tuple[int, ...]:
+    """The order in which step ``steps[len(choices)]`` takes its ``count`` solutions after the earlier ``choices``.
+
+    The solution named ``branches[merged]`` comes first, so that where the two coincide and only the first is kept
+    (the numeric executor's one solution, generated code dropping a row equal to an earlier one) it carries that name
+    on every branch of the earlier steps.
+    """
+    step = steps[len(choices)]
+    if count != 2 or len(step.branches) != 2:
+        return tuple(range(count))
+    swap = step.swapped_by is not None and choices[step.swapped_by] == 1
+    first = 1 - step.merged if swap else step.merged
+    return (first, 1 - first)
+
+
+def branch_choices(steps: Sequence[Step], counts: Sequence[int]) -> list[tuple[int, ...]]:
+    """Every branch as the solution index each step takes, in the order the executor and the programs list them.
+
+    ``counts[i]`` is the number of solutions of ``steps[i]``; each step's solutions come in :func:`solution_order`.
+    """
+    branches: list[tuple[int, ...]] = [()]
+    for count in counts:
+        branches = [(*choices, index) for choices in branches for index in solution_order(steps, choices, count)]
+    return branches
 
 
 @dataclass(frozen=True, eq=False)

@@ -49,6 +49,18 @@ __all__ = [
 
 ELBOW = ("elbow down", "elbow up")
 SHOULDER = ("shoulder right", "shoulder left")
+HANDED = ("right-handed", "left-handed")
+"""A SCARA's elbow, as industrial SCARA controllers name it: right-handed with the elbow angle >= 0 (the forearm
+turned counterclockwise from the upper arm about the elbow's axis, seen with that axis pointing at the viewer, so
+the elbow lies to the right of the line from shoulder to wrist), left-handed with it negative. The first solution of
+the elbow's rotation to a distance, ``phi - psi``, is right-handed: it leaves ``h.((e - s) x (w - e)) = |e - s| |w -
+e| sin(psi) > 0`` for shoulder ``s``, elbow ``e`` and wrist ``w``."""
+SLIDE = ("slide reversed", "slide out")
+"""A slide to a distance: "slide out" puts the point beyond (along the slide's direction) the place where the slide's
+line passes closest to the point it keeps its distance from, "slide reversed" before it; one solution, "slide out",
+where they coincide. On the Stanford arm and the spherical arm that place is at d3 = 0, so the names are the sign of
+d3."""
+SLIDE_RULE = "slide reversed: the first solution, before the line's closest point; slide out: the second, beyond it"
 DISTANCE_RULE = "the first solution is phi - psi, the second phi + psi"
 
 
@@ -85,7 +97,8 @@ def _zero(expr: sympy.Expr) -> bool:
 
 
 def plane_step(
-    joint: int, geometry: ArmGeometry, direction: sympy.Matrix, target: sympy.Matrix, offset: sympy.Expr, what: str
+    joint: int, geometry: ArmGeometry, direction: sympy.Matrix, target: sympy.Matrix, offset: sympy.Expr, what: str,
+    subject: str = "the tool point",
 ) -> Step:
     r"""The rotation of ``joint`` that puts ``target`` at ``offset`` along the turned ``direction``.
 
@@ -107,6 +120,8 @@ def plane_step(
         f"{name} turns {what} so that the target lies at the offset {offset} along it, a rotation to a distance "
         f"({DISTANCE_RULE}: {SHOULDER[0]}, then {SHOULDER[1]})",
         SHOULDER,
+        subject=subject,
+        reach="offset",
     )
 
 
@@ -128,7 +143,7 @@ def _in_plane(axis: sympy.Matrix, x: sympy.Matrix, plane_point: sympy.Matrix) ->
 
 
 def _two_link(geometry: ArmGeometry, first: int, second: int, point: sympy.Matrix, target: sympy.Matrix,
-              turn_first: sympy.Matrix | None = None) -> tuple[Step, Step]:
+              subject: str, branches: tuple[str, str] = ELBOW) -> tuple[Step, Step]:
     """The elbow ``second`` by the distance of ``target`` from axis ``first``, then ``first`` onto ``target``.
 
     ``point`` is the home position of the point to be placed; ``target`` is already in its plane across the axes.
@@ -140,8 +155,10 @@ def _two_link(geometry: ArmGeometry, first: int, second: int, point: sympy.Matri
         "rotation_to_distance",
         {"k": h[second], "p": point, "q": p_first, "delta": length(target - p_first), "point_on_axis": p_second},
         f"{names[second]} bends the elbow until the point is as far from axis {first + 1} as the target, a rotation "
-        f"to a distance ({DISTANCE_RULE}: {ELBOW[0]}, then {ELBOW[1]})",
-        ELBOW,
+        f"to a distance ({DISTANCE_RULE}: {branches[0]}, then {branches[1]})",
+        branches,
+        subject=subject,
+        reach="elbow",
     )
     moved = turned(h[second], p_second, names[second], point).applyfunc(sympy.expand)
     swing = Step(
@@ -149,6 +166,7 @@ def _two_link(geometry: ArmGeometry, first: int, second: int, point: sympy.Matri
         "rotation_to_point",
         {"k": h[first], "p": moved, "q": target, "point_on_axis": p_first},
         f"{names[first]} swings that point onto the target about axis {first + 1}, a rotation to a point",
+        subject=subject,
     )
     return elbow, swing
 
@@ -200,12 +218,13 @@ def planar_plan(geometry: ArmGeometry) -> Plan | None:
         if not _apart(geometry, 1, tool):
             return None
         _, p = _pose()
-        pair = _two_link(geometry, 0, 1, tool, _in_plane(h, p, tool))
+        pair = _two_link(geometry, 0, 1, tool, _in_plane(h, p, tool), "the tool point")
         return Plan(geometry.robot, "planar 2R", reasons, (), pair, "the position in the plane across the axes")
     if not _apart(geometry, 1, points[2]):
         return None
     wrist = _in_plane(h, _link_point(geometry, points[2]), points[2])
-    steps = (*_two_link(geometry, 0, 1, points[2], wrist), _orientation_step(geometry, 2, [0, 1]))
+    pair = _two_link(geometry, 0, 1, points[2], wrist, "the wrist point on axis 3")
+    steps = (*pair, _orientation_step(geometry, 2, [0, 1]))
     return Plan(
         geometry.robot,
         "planar 3R",
@@ -226,7 +245,7 @@ def scara_plan(geometry: ArmGeometry) -> Plan | None:
     h = geometry.axes[0]
     wrist = _link_point(geometry, points[3])
     planar = _in_plane(h, wrist, points[3])
-    elbow, swing = _two_link(geometry, 0, 1, points[3], planar)
+    elbow, swing = _two_link(geometry, 0, 1, points[3], planar, "the wrist point on axis 4", HANDED)
     along = geometry.axes[2]
     slide = Step(
         (2,),
@@ -259,7 +278,7 @@ def articulated_plan(geometry: ArmGeometry) -> Plan | None:
     offset = sympy.simplify(h[1].dot(tool - points[0]))
     waist = plane_step(0, geometry, h[1], p, offset, "the direction of axis 2 about axis 1")
     seen = turned(h[0], points[0], -robot.joint_variables[0], p).applyfunc(sympy.expand)
-    elbow, swing = _two_link(geometry, 1, 2, tool, seen)
+    elbow, swing = _two_link(geometry, 1, 2, tool, seen, "the tool point")
     reasons = ("the axes of joints 2 and 3 are parallel", "the axis of joint 1 is not parallel to them")
     return Plan(robot, "articulated 3R", reasons, (), (waist, elbow, swing), "the position of the tool point")
 
@@ -268,7 +287,7 @@ def spherical_arm_plan(geometry: ArmGeometry) -> Plan | None:
     """Spherical (polar) arm: a waist, a revolute joint across it, a slide across that: the tool point's position.
 
     ``theta1`` as for the articulated 3R (the slide keeps the component along axis 2 because it is across it), then
-    the slide from the distance to the point ``p2`` on axis 2 (two solutions, the shorter and the longer slide), then
+    the slide from the distance to the point ``p2`` on axis 2 (two solutions, :data:`SLIDE`), then
     ``theta2`` turns the slid point onto the target.
     """
     if not _plain(geometry) or geometry.kinds != ("revolute", "revolute", "prismatic"):
@@ -288,9 +307,11 @@ def spherical_arm_plan(geometry: ArmGeometry) -> Plan | None:
         (2,),
         "slide_to_distance",
         {"k": h[2], "p": tool, "q": points[1], "delta": length(seen - points[1])},
-        f"{name} slides the tool point to the target's distance from axis 2, a slide to a distance (the first "
-        "solution is the shorter slide, the second the longer)",
-        ("shorter slide", "longer slide"),
+        f"{name} slides the tool point to the target's distance from axis 2, a slide to a distance ({SLIDE_RULE})",
+        SLIDE,
+        merged=1,
+        subject="the tool point",
+        reach="offset",
     )
     swing = Step(
         (1,),
@@ -361,9 +382,9 @@ def palletizer_plan(geometry: ArmGeometry) -> Plan | None:
         return None
     target = _link_point(geometry, flange)
     waist = plane_step(0, geometry, h[1], target, sympy.simplify(h[1].dot(flange - points[0])),
-                       "the direction of axes 2 to 4 about axis 1")
+                       "the direction of axes 2 to 4 about axis 1", "the flange point")
     seen = (turned(h[0], points[0], -names[0], target) - (flange - points[3])).applyfunc(sympy.expand)
-    elbow, swing = _two_link(geometry, 1, 2, points[3], seen)
+    elbow, swing = _two_link(geometry, 1, 2, points[3], seen, "the point on axis 4")
     v = perpendicular(h[3])
     follow = Step(
         (3,),

@@ -19,7 +19,7 @@ from typing import Any
 import sympy
 
 from symjac.analysis.inverse_kinematics import subproblems
-from symjac.analysis.inverse_kinematics.plan import Plan, Step, branch_names
+from symjac.analysis.inverse_kinematics.plan import Plan, Step, branch_choices, branch_names
 
 __all__ = ["BranchProgram", "branch_programs"]
 
@@ -169,12 +169,12 @@ def branch_programs(plan: Plan) -> tuple[BranchProgram, ...]:
     >>> from symjac.analysis.inverse_kinematics import closed_form_plan
     >>> programs = branch_programs(closed_form_plan(load_robot("puma560")))
     >>> len(programs), programs[0].branch
-    (8, ('shoulder right', 'elbow down', 'wrist flip'))
+    (8, ('shoulder right', 'elbow down', 'no flip'))
     """
     solved = _solved(plan)
     variables = plan.robot.joint_variables
     programs = []
-    for choice in itertools.product(*(range(len(s.solutions)) for s in solved)):
+    for choice in branch_choices(plan.steps, [len(s.solutions) for s in solved]):
         assignments: list[tuple[sympy.Symbol, sympy.Expr]] = list(plan.definitions)
         conditions: list[sympy.Symbol] = []
         for step, index in zip(solved, choice, strict=True):

@@ -31,9 +31,12 @@ point (theta_0 + atan2(sqrt(D), N)) with shoulder right and at a negative one wi
 shoulder over turns the whole arm over and the same bend then puts the elbow below the line (the step's
 ``swapped_by``; tests/test_ik_branch_names.py checks it by the elbow's height on the PUMA 560 and the IRB 140). Where
 axes a and b meet, the elbow step comes first and "elbow up" is the negative angle, by the bend alone. A prismatic
-joint c has "shorter slide" and "longer slide" (the smaller and the larger displacement). Wrist: "no flip" is the
-solution with q_5 >= 0 when axes 4 and 6 are parallel at home (the home posture of these arms), else "wrist flip" is
-the middle point on the positive side of h_4 x h_5.
+joint c has "slide reversed" and "slide out": the wrist centre before or beyond (along the slide's direction) the
+point where the slide's line passes closest to the shoulder, which on the Stanford arm is the sign of d_3 (its
+line passes closest at d_3 = 0), one solution "slide out" where they coincide. Wrist: "no flip" is the solution
+with q_5 >= 0 when axes 4 and 6 are parallel at home (the home posture of these arms), else "wrist flip" is the
+middle point on the positive side of h_4 x h_5; where the two coincide (q_5 = 0, or the middle point on the line)
+the one solution is "no flip".
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ import sympy
 
 from symjac.analysis.inverse_kinematics.geometry import ArmGeometry
 from symjac.analysis.inverse_kinematics.plan import Plan, Step, pose_matrix
+from symjac.analysis.inverse_kinematics.planar import SLIDE, SLIDE_RULE
 
 __all__ = ["WRIST_CENTRE", "spherical_wrist_plan"]
 
@@ -115,16 +119,16 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
                  f"{name[a]}: joints {b + 1} and {c + 1} keep the wrist centre's component along their common axis, "
                  f"so turning that axis about axis {a + 1} must give it the target's (rotation to a plane); shoulder "
                  f"right: the wrist centre on the positive side of h{a + 1} x h{b + 1}",
-                 shoulder),
+                 shoulder, subject="the wrist centre", reach="offset"),
             Step((c,), "rotation_to_distance", {"k": h_c, "p": centre, "q": p_b, "point_on_axis": p_c,
                                                 "delta": sympy.sqrt((w - elbow_at).dot(w - elbow_at))},
                  f"{name[c]}: joint {c + 1} sets the wrist centre's distance from axis {b + 1}'s point, which must "
                  f"equal the target's (rotation to a distance); elbow up: seen along axis {c + 1}, the wrist centre at "
                  f"a negative angle from that point with shoulder left, a positive one with shoulder right",
-                 ("elbow down", "elbow up"), swapped_by=0),
+                 ("elbow down", "elbow up"), swapped_by=0, subject="the wrist centre", reach="elbow"),
             Step((b,), "rotation_to_point", {"k": h_b, "p": wrist_at, "q": back, "point_on_axis": p_b},
                  f"{name[b]}: joint {b + 1} turns the wrist centre onto the target's, joint {a + 1} undone "
-                 f"(rotation to a point)"),
+                 f"(rotation to a point)", subject="the wrist centre"),
         ]
     meet = geometry.intersection(a, b)
     if meet is None or (geometry.kind(c) == "revolute" and _on_line(meet, h_c, p_c)):
@@ -135,8 +139,8 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
         reasons.append(f"joint {c + 1} is prismatic")
         first = Step((c,), "slide_to_distance", {"k": h_c, "p": centre, "q": meet, "delta": delta},
                      f"{name[c]}: the slide sets the wrist centre's distance from the point where axes {a + 1} and "
-                     f"{b + 1} meet, which must equal the target's (slide to a distance); the shorter slide first",
-                     ("shorter slide", "longer slide"))
+                     f"{b + 1} meet, which must equal the target's (slide to a distance); {SLIDE_RULE}",
+                     SLIDE, merged=1, subject="the wrist centre", reach="offset")
         moved = _s(centre + h_c * name[c])
     else:
         first = Step((c,), "rotation_to_distance", {"k": h_c, "p": centre, "q": meet, "point_on_axis": p_c,
@@ -144,12 +148,12 @@ def _position(geometry: ArmGeometry, a: int, b: int, c: int, centre: sympy.Matri
                      f"{name[c]}: joint {c + 1} sets the wrist centre's distance from the point where axes {a + 1} "
                      f"and {b + 1} meet, which must equal the target's (rotation to a distance); elbow up: seen along "
                      f"axis {c + 1}, the wrist centre at a negative angle from that point",
-                     ("elbow up", "elbow down"))
+                     ("elbow up", "elbow down"), subject="the wrist centre", reach="elbow")
         moved = _s(_rotation(geometry, c)[:3, :3] * (centre - p_c) + p_c)
     second = Step((a, b), "two_rotations_to_point", {"k1": h_a, "k2": h_b, "p": moved, "q": w, "intersection": meet},
                   f"{name[a]}, {name[b]}: joints {a + 1} and {b + 1} turn the wrist centre onto the target's about "
                   f"the point where their axes meet (two rotations to a point); shoulder right: the middle point on "
-                  f"the positive side of h{a + 1} x h{b + 1}", shoulder)
+                  f"the positive side of h{a + 1} x h{b + 1}", shoulder, subject="the wrist centre")
     return [first, second]
 
 
@@ -170,8 +174,10 @@ def _orientation(geometry: ArmGeometry, joints: tuple[int, ...], rotation: sympy
     return [
         Step((j4, j5), "two_rotations_to_point", {"k1": h4, "k2": h5, "p": h6, "q": wrist * h6},
              f"{name[j4]}, {name[j5]}: joints {j4 + 1} and {j5 + 1} turn axis {j6 + 1} onto the direction the target "
-             f"orientation gives it (two rotations to a point); {flip_rule}", flip),
+             f"orientation gives it (two rotations to a point); {flip_rule}", flip, merged=flip.index("no flip"),
+             subject=f"the direction of axis {j6 + 1}"),
         Step((j6,), "rotation_to_point", {"k": h6, "p": across, "q": turned * wrist * across},
-             f"{name[j6]}: joint {j6 + 1} turns a direction across its axis onto the target's (rotation to a point)"),
+             f"{name[j6]}: joint {j6 + 1} turns a direction across its axis onto the target's (rotation to a point)",
+             subject="the tool's orientation"),
     ]
 

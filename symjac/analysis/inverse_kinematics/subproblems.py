@@ -18,13 +18,11 @@ identities keep the formulas short: ``u'.v' = u.v - (k.u)(k.v)`` and ``k.(u' x v
 - **Rotation to a plane** (subproblem 4): ``h.(r + rot(k, theta) u) = d``. With ``A = h.u'``, ``B = h.(k x u)`` and
   ``C = d - h.r - (k.u)(k.h)`` it reads ``A cos(theta) + B sin(theta) = C``, so
   ``theta = atan2(A, -B) - atan2(C, -+sqrt(A^2 + B^2 - C^2))`` (the textbook form); zero, one or two solutions.
-- **Slide to a point**: ``p + s k = q`` along ``k``: ``s = k.(q - p)`` when ``q - p`` is along ``k``.
-- **Slide to a distance**: ``|p + s k - q| = delta``, a quadratic in ``s``: with ``u = p - q``,
-  ``s = -k.u -+ sqrt(delta^2 - |u'|^2)``; zero, one or two solutions.
+- **Slides** to a point, ``p + s k = q``: ``s = k.(q - p)`` when ``q - p`` is along ``k``; to a distance,
+  ``|p + s k - q| = delta`` with ``u = p - q``: ``s = -k.u -+ sqrt(delta^2 - |u'|^2)``, zero, one or two solutions.
 
-Each comes as a numeric function (floats, all solutions, a tolerance for the existence test, one solution where two
-merge) and a ``_symbolic`` function returning a :class:`Subproblem`: the solutions as SymPy expressions with
-``atan2`` and the conditions under which they exist, for a derivation to print step by step.
+Each is a numeric function (floats, every solution, a tolerance for existence, one solution where two merge) and a
+``_symbolic`` one giving a :class:`Subproblem`: SymPy solutions with ``atan2`` and their existence conditions.
 """
 
 from __future__ import annotations
@@ -39,12 +37,10 @@ import sympy
 
 from symjac.errors import ArgumentError
 
-__all__ = [
-    "AngleSolutions", "Subproblem", "rotation_to_distance", "rotation_to_distance_symbolic", "rotation_to_plane",
-    "rotation_to_plane_symbolic", "rotation_to_point", "rotation_to_point_symbolic", "slide_to_distance",
-    "slide_to_distance_symbolic", "slide_to_point", "slide_to_point_symbolic", "two_rotations_to_point",
-    "two_rotations_to_point_symbolic"
-]
+__all__ = ["AngleSolutions", "Subproblem", "rotation_to_distance", "rotation_to_distance_symbolic",
+           "rotation_to_plane", "rotation_to_plane_symbolic", "rotation_to_point", "rotation_to_point_symbolic",
+           "slide_to_distance", "slide_to_distance_symbolic", "slide_to_point", "slide_to_point_symbolic",
+           "two_rotations_to_point", "two_rotations_to_point_symbolic"]
 
 
 @dataclass(frozen=True)
@@ -134,8 +130,9 @@ def _relative(p: Any, q: Any, point: Any) -> tuple[Vector, Vector]:
 
 
 def _angle_across(k: Vector, u: Vector, v: Vector) -> float:
-    """The angle about ``k`` from ``u'`` to ``v'``: ``atan2(k.(u x v), u.v - (k.u)(k.v))``."""
-    return math.atan2(_dot(k, _cross(u, v)), _dot(u, v) - _dot(k, u) * _dot(k, v))
+    """The angle about ``k`` from ``u'`` to ``v'``: ``atan2(k.(u' x v'), u'.v')`` (``u.v - (k.u)(k.v)`` cancels)."""
+    a, b = _combination((1.0, u), (-_dot(k, u), k)), _combination((1.0, v), (-_dot(k, v), k))
+    return math.atan2(_dot(k, _cross(a, b)), _dot(a, b))
 
 
 _ROUNDING = 256 * sys.float_info.epsilon  # 1 - |cos| this small is rounding: one merged solution (3.4e-7 rad)
@@ -194,11 +191,14 @@ def two_rotations_to_point(k1: Any, k2: Any, p: Any, q: Any, intersection: Any =
     w = _dot(k1, k2)
     alpha = (_dot(k1, v) - w * _dot(k2, u)) / (1.0 - w * w)
     beta = (_dot(k2, u) - w * _dot(k1, v)) / (1.0 - w * w)
-    gamma_squared = (_dot(u, u) - alpha**2 - beta**2 - 2.0 * alpha * beta * w) / _dot(normal, normal)
+    # gamma^2 from the smaller circle, e.g. about k1: |v'|^2 = (beta^2 + gamma^2) |k1 x k2|^2 (accurate near a wrist
+    # singularity, where |u|^2 - alpha^2 - ... cancels); the two solutions merge at a half angle of rounding's size
+    radius, side = min((_norm(_cross(k1, v)), beta), (_norm(_cross(k2, u)), alpha))
+    gamma_squared = radius**2 / _dot(normal, normal) - side**2
     if gamma_squared < -scale * _scale(length_u):
         return AngleSolutions((), f"no middle point: gamma^2 = {gamma_squared:.6g} < 0")
     root = math.sqrt(max(gamma_squared, 0.0))
-    merged = root <= scale or gamma_squared <= _ROUNDING * length_u**2  # the middle points coincide, to rounding
+    merged = root <= scale or root * _norm(normal) <= math.sqrt(2 * _ROUNDING) * radius
     gammas = (0.0,) if merged else (root, -root)
     solutions = []
     for gamma in gammas:
@@ -232,7 +232,10 @@ def rotation_to_distance(k: Any, p: Any, q: Any, delta: float, point_on_axis: An
     product = 2.0 * math.sqrt(across_u_squared * across_v_squared)
     c = (across_u_squared + across_v_squared - max(delta_across_squared, 0.0)) / product
     if abs(c) > 1.0 + scale:
-        return AngleSolutions((), f"delta = {delta:.6g} is out of the range the rotation reaches (cos = {c:.6g})")
+        low, high = (math.hypot(ku - kv, math.sqrt(across_u_squared) + sign * math.sqrt(across_v_squared))
+                     for sign in (-1.0, 1.0))
+        return AngleSolutions((), f"delta = {delta:.6g} is outside the distances the rotation reaches, {low:.6g} to "
+                                  f"{high:.6g}")
     theta0 = _angle_across(k, u, v)
     sine = math.sqrt(max(1.0 - c * c, 0.0))
     if sine <= scale or 1.0 - abs(c) <= _ROUNDING:  # they coincide, to what rounding in c can resolve
@@ -268,7 +271,8 @@ def rotation_to_plane(k: Any, p: Any, h: Any, d: float, point_on_axis: Any = Non
         return AngleSolutions((), f"the rotation does not move p across the plane, which it misses by {c:.6g}")
     theta0 = math.atan2(a, -b)
     if abs(c) > radius + tolerance * size:
-        return AngleSolutions((), f"the plane is out of reach: |C| = {abs(c):.6g} > sqrt(A^2 + B^2) = {radius:.6g}")
+        return AngleSolutions((), f"h.x of the turned point reaches {d - c - radius:.6g} to {d - c + radius:.6g}, "
+                                  f"not d = {d:.6g}")
     root = math.sqrt(max(radius * radius - c * c, 0.0))
     if root <= tolerance * size or radius - abs(c) <= _ROUNDING * radius:  # they coincide, to rounding
         return AngleSolutions(((theta0 - math.atan2(c, 0.0),),))
@@ -302,9 +306,9 @@ def slide_to_distance(k: Any, p: Any, q: Any, delta: float, tolerance: float = 1
     if discriminant < -scale:
         gap = math.sqrt(across_squared) - delta
         return AngleSolutions((), f"q lies {gap:.6g} farther from the line than delta = {delta:.6g}")
-    if discriminant <= scale:
+    root = math.sqrt(max(discriminant, 0.0))  # one solution only where the two coincide
+    if root <= scale or discriminant <= _ROUNDING * _scale(delta, _norm(u)) ** 2:
         return AngleSolutions(((-along,),))
-    root = math.sqrt(discriminant)
     return AngleSolutions(((-along - root,), (-along + root,)))
 
 

@@ -110,6 +110,12 @@ def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
      "a redundant arm's closed form takes one joint's value: --free-value V (joint 1's, or --free-joint K for "
      "joint K)"),
     (["planar2r", "--derivation", "--pose", "1,0,0"], "--pose needs 16 comma-separated values"),
+    (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3", "--free-joint", "5"],
+     "--free-value gives a redundant arm's closed form one joint's value, and iiwa7 with --free-joint 5 has none: "
+     "iiwa7 with joint 5 given: no closed-form family fits"),
+    (["panda", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3"],
+     "--free-value gives a redundant arm's closed form one joint's value, and panda has none: panda: no joint"),
+    (["panda", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3"], "without --free-value, --method auto"),
     (["planar2r", "--q", "0,0", "--derivation", "--method", "numeric"], "--derivation prints a closed form"),
     (["palletizer", "--q", "0.3,0.4,0.5,0.2", "--method", "numeric"], "palletizer's joints are coupled"),
 ])
@@ -191,9 +197,9 @@ def test_seed_rng_and_restarts_reach_the_numeric_solver(cli):
     (["iiwa7", "--method", "closed_form"],
      "; a redundant arm's closed form takes one joint's value: --free-value V (joint 1's, or --free-joint K for "
      "joint K)"),
-    (["panda", "--method", "closed_form"], "; --method auto solves it numerically"),
+    (["panda", "--method", "closed_form"], "; use the numeric solver (--method auto or numeric)"),
     (["panda", "--method", "closed_form", "--free-value", "0.2", "--free-joint", "4"],
-     "; without --free-value, --method auto solves it numerically"),
+     "; use the numeric solver (without --free-value, --method auto or numeric)"),
 ])
 def test_no_closed_form_ends_with_the_command_lines_options(cli, argv, hint):
     line = cli.one_line_error("ik", *argv, "--q", "0,0.3,0,-1,0,1,0.2")

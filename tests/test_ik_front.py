@@ -316,8 +316,9 @@ def test_a_position_alone_out_of_the_plane_differs_in_position_only():
 @pytest.mark.parametrize(("name", "options", "hint"), [
     ("iiwa7", {}, "; a redundant arm's closed form takes one joint's value: free_value=V (joint 1's, or free_joint=K "
                   "for joint K)"),
-    ("panda", {}, "; method='auto' solves it numerically"),  # no joint given leaves the panda a closed form
-    ("panda", {"free_value": 0.2, "free_joint": 4}, "; without free_value, method='auto' solves it numerically"),
+    ("panda", {}, "; use the numeric solver (method='auto' or 'numeric')"),  # no joint given leaves a closed form
+    ("panda", {"free_value": 0.2, "free_joint": 4},
+     "; use the numeric solver (without free_value, method='auto' or 'numeric')"),
 ])
 def test_no_closed_form_ends_with_what_to_pass_in_python(name, options, hint):
     pose = numeric_model(load_robot(name)).fk([0, 0.3, 0, -1, 0, 1, 0.2])

@@ -156,13 +156,21 @@ def command(request: Request) -> Document:
     except OrientationNeededError:
         raise ArgumentError(f"--position alone is a target for an arm that sets no orientation; {robot.name} sets "
                             "its orientation too: add --rpy or --quaternion") from None
+    except ArgumentError as error:  # a free value where no joint given leaves a closed form: say it in options
+        if not isinstance(error.__cause__, NoClosedFormError):
+            raise
+        given = f" with --free-joint {args.free_joint}" if args.free_joint is not None else ""
+        reason = str(error.__cause__)
+        raise ArgumentError(f"--free-value gives a redundant arm's closed form one joint's value, and {robot.name}"
+                            f"{given} has none: {reason}{_numeric_hint(reason, 'without --free-value, --method auto')}"
+                            ) from None
     except NoClosedFormError as error:  # the analysis's reason (Python's hint names keywords), then these options
-        reason = error.__cause__ if isinstance(error.__cause__, NoClosedFormError) else error
-        raise NoClosedFormError(reason=f"{reason}{_redundant_hint(robot, args)}") from None
+        cause = error.__cause__ if isinstance(error.__cause__, NoClosedFormError) else error
+        raise NoClosedFormError(reason=f"{cause}{_redundant_hint(robot, args, str(cause))}") from None
     return inverse_kinematics_document(robot, result, args.digits)  # numbers always: --digits needs no --numeric
 
 
-def _redundant_hint(robot: Any, args: argparse.Namespace) -> str:
+def _redundant_hint(robot: Any, args: argparse.Namespace, reason: str) -> str:
     """After the analysis's reason why there is no closed form: the options that give one, or the numeric solver."""
     from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan
 
@@ -176,7 +184,13 @@ def _redundant_hint(robot: Any, args: argparse.Namespace) -> str:
                     "or --free-joint K for joint K)")
     if args.method != "closed_form":
         return ""
-    return f"; {'without --free-value, ' if args.free_value is not None else ''}--method auto solves it numerically"
+    how = f"{'without --free-value, ' if args.free_value is not None else ''}--method auto or numeric"
+    return _numeric_hint(reason, how)
+
+
+def _numeric_hint(reason: str, how: str) -> str:
+    """After why there is no closed form: how to solve numerically, ``how`` in the command line's options."""
+    return f" ({how})" if reason.endswith("use the numeric solver") else f"; the numeric solver solves it: {how}"
 
 
 def _derivation(request: Request) -> Document:

@@ -270,17 +270,18 @@ def _solve(model_robot: Robot, joints: list[int], controlled: Controlled, target
     model = numeric_model(model_robot)
     plan: Any = None
     why = ""
+    none: NoClosedFormError | None = None  # why there is no closed form, the cause of a refused free_value
     if method != "numeric":
         try:
             plan, why = _closed_form(model_robot, free_joint, free_value)
         except NoClosedFormError as error:
             if method == "closed_form":  # the analysis's reason, then what to pass in Python (the CLI its options)
                 given = free_value is None and n > 6 and _first_given_joint(model_robot)
+                how = f"{'without free_value, ' if free_value is not None else ''}method='auto' or 'numeric'"
                 hint = (f"; a redundant arm's closed form takes one joint's value: free_value=V (joint {given}'s, "
-                        "or free_joint=K for joint K)" if given else "; method='auto' solves it numerically"
-                        if free_value is None else "; without free_value, method='auto' solves it numerically")
+                        "or free_joint=K for joint K)" if given else _numeric_hint(str(error), how))
                 raise NoClosedFormError(reason=f"{error}{hint}") from error
-            why = f"numeric, as there is no closed form: {error}"
+            why, none = f"numeric, as there is no closed form: {error}", error
         if plan is not None and plan.free_joint is not None and free_value is None:
             if method == "closed_form":
                 raise ArgumentError(f"inverse_kinematics: {model_robot.name} is redundant; its closed form takes "
@@ -292,7 +293,7 @@ def _solve(model_robot: Robot, joints: list[int], controlled: Controlled, target
         instead = ("its closed form takes no joint as given" if plan is not None
                    else "the numeric method was asked for" if method == "numeric" else f"there is none: {reason}")
         raise ArgumentError(f"inverse_kinematics: the free value (a given joint's value) applies to a redundant "
-                            f"arm's closed form only, and for {model_robot.name} {instead}")
+                            f"arm's closed form only, and for {model_robot.name} {instead}") from none
     if plan is not None:
         return _from_plan(model_robot, model, plan, target, why, controlled, free_value, within_limits, joints)
     why = why or "numeric: asked for"
@@ -301,6 +302,11 @@ def _solve(model_robot: Robot, joints: list[int], controlled: Controlled, target
                             f"joint by joint ({why})")
     return _numeric(model_robot, model, target, why, controlled, seed=seed, rng=rng, restarts=restarts,
                     tolerance=tolerance, within_limits=within_limits)
+
+
+def _numeric_hint(reason: str, how: str) -> str:
+    """After why there is no closed form: how to solve numerically, ``how`` in the words of the front end."""
+    return f" ({how})" if reason.endswith("use the numeric solver") else f"; the numeric solver solves it: {how}"
 
 
 def _first_given_joint(robot: Robot) -> int | None:

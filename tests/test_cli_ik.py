@@ -107,8 +107,15 @@ def test_an_unreachable_pose_is_an_answer_not_an_error(cli):
     (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3", "--method", "numeric"],
      "--free-value gives a redundant arm's closed form one joint's value: it does not apply with --method numeric"),
     (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--method", "closed_form"],
-     "a redundant arm's closed form takes one joint's value: --free-value V (and --free-joint K for joint K)"),
+     "a redundant arm's closed form takes one joint's value: --free-value V (joint 1's, or --free-joint K for "
+     "joint K)"),
     (["planar2r", "--derivation", "--pose", "1,0,0"], "--pose needs 16 comma-separated values"),
+    (["iiwa7", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3", "--free-joint", "5"],
+     "--free-value gives a redundant arm's closed form one joint's value, and iiwa7 with --free-joint 5 has none: "
+     "iiwa7 with joint 5 given: no closed-form family fits"),
+    (["panda", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3"],
+     "--free-value gives a redundant arm's closed form one joint's value, and panda has none: panda: no joint"),
+    (["panda", "--q", "0,0,0,-1,0,1,0", "--free-value", "0.3"], "without --free-value, --method auto"),
     (["planar2r", "--q", "0,0", "--derivation", "--method", "numeric"], "--derivation prints a closed form"),
     (["palletizer", "--q", "0.3,0.4,0.5,0.2", "--method", "numeric"], "palletizer's joints are coupled"),
 ])
@@ -122,6 +129,7 @@ def test_each_mistake_is_one_line(cli, argv, message):
     ("--rpy", ["--position", "0,0,0", "--rpy", "0,inf,0"]),
     ("--quaternion", ["--position", "0,0,0", "--quaternion", "nan,0,0,1"]),
     ("--pose", ["--pose", ",".join(["nan"] * 16)]),
+    ("--rpy", ["--position", "0,0,0", "--rpy", "0,0,1e999"]),  # a number, but too large to be finite
 ])
 def test_a_nan_pose_is_one_line_naming_its_option(cli, option, argv):
     line = cli.one_line_error("ik", "planar2r", *argv)
@@ -132,6 +140,9 @@ def test_a_nan_pose_is_one_line_naming_its_option(cli, option, argv):
 def test_a_position_alone_is_enough_for_an_arm_that_sets_no_orientation(cli):
     data = cli.json("ik", "planar2r", "--position", "0.5,0.3,0")
     assert len(data["solutions"]) == 2 and data["uncontrolled"] == ""  # no orientation asked, none to differ from
+    assert data["position_alone"] and not cli.json("ik", "planar2r", "--q", "0.1,0.2")["position_alone"]
+    out = cli.run("ik", "planar2r", "--position", "0.5,0.3,0", "--format", "pretty")[1]
+    assert "Only a position was given: the rotation in T is the identity, standing in for the orientation" in out
     for solution in data["solutions"]:
         assert np.allclose(fk("planar2r", solution["q"])[:3, 3], [0.5, 0.3, 0], atol=1e-12)
 
@@ -179,4 +190,23 @@ def test_seed_rng_and_restarts_reach_the_numeric_solver(cli):
     assert np.allclose(near["solutions"][0]["q"], [0.4, -0.6, 0.3, 0.5, 0.7, -0.2], atol=1e-9)
     first = cli.json("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--method", "numeric", "--rng", "5")
     again = cli.json("ik", "puma560", "--q", "0.4,-0.6,0.3,0.5,0.7,-0.2", "--method", "numeric", "--rng", "5")
-    assert first["solutions"] == again["solutions"] and first["why"] == "numeric: asked for (method='numeric')"
+    assert first["solutions"] == again["solutions"] and first["why"] == "numeric: asked for"
+
+
+@pytest.mark.parametrize(("argv", "hint"), [
+    (["iiwa7", "--method", "closed_form"],
+     "; a redundant arm's closed form takes one joint's value: --free-value V (joint 1's, or --free-joint K for "
+     "joint K)"),
+    (["panda", "--method", "closed_form"], "; use the numeric solver (--method auto or numeric)"),
+    (["panda", "--method", "closed_form", "--free-value", "0.2", "--free-joint", "4"],
+     "; use the numeric solver (without --free-value, --method auto or numeric)"),
+])
+def test_no_closed_form_ends_with_the_command_lines_options(cli, argv, hint):
+    line = cli.one_line_error("ik", *argv, "--q", "0,0.3,0,-1,0,1,0.2")
+    assert line.endswith(hint), line
+    assert "free_value=V" not in line and "method='auto'" not in line  # Python's hint is not passed on
+
+
+def test_an_unreachable_pose_states_its_distance_once(cli):
+    out = cli.run("ik", "planar2r", "--position", "5,0,0", "--format", "pretty")[1]
+    assert "No solution: " in out and " m out)" not in out

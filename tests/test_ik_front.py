@@ -46,7 +46,7 @@ def test_numeric_solutions_reach_the_pose_and_include_the_one_that_made_it(name,
     robot = load_robot(name)
     pose = independent_fk(robot, q)
     result = inverse_kinematics(robot, pose, method="numeric", seed=q)
-    assert result.method == "numeric" and result.why == "numeric: asked for (method='numeric')"
+    assert result.method == "numeric" and result.why == "numeric: asked for"
     assert result.solutions and not result.unreachable and result.family == ""
     assert_reaches(robot, result)
     assert any(np.allclose(s.q, q, atol=1e-7) for s in result.solutions)
@@ -299,7 +299,29 @@ def test_str_is_a_short_summary_and_repr_stays_whole():
     lines = str(result).splitlines()
     kept = len(result.solutions)
     assert lines[0] == (f"puma560: {kept} solutions, closed form (spherical wrist); {result.outside_limits} more "
-                        "outside the joint limits")
+                        "outside the joint limits (within_limits=False keeps them)")
     assert len(lines) == 1 + kept and "shoulder left, elbow up, no flip" in str(result)
     assert "q = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]" in str(result)
     assert repr(result).startswith("InverseKinematicsResult(robot='puma560'")
+
+
+def test_a_position_alone_out_of_the_plane_differs_in_position_only():
+    result = inverse_kinematics("planar2r", [0.5, 0.3, 0.2])  # the arm's plane is z = 0
+    assert len(result.solutions) == 2
+    assert result.uncontrolled == ("the arm sets x and y only: the target position differs from the one it "
+                                   "reaches by 0.2")
+    assert "orientation" not in str(result) and result.position_alone  # none was given, so none can differ
+
+
+@pytest.mark.parametrize(("name", "options", "hint"), [
+    ("iiwa7", {}, "; a redundant arm's closed form takes one joint's value: free_value=V (joint 1's, or free_joint=K "
+                  "for joint K)"),
+    ("panda", {}, "; use the numeric solver (method='auto' or 'numeric')"),  # no joint given leaves a closed form
+    ("panda", {"free_value": 0.2, "free_joint": 4},
+     "; use the numeric solver (without free_value, method='auto' or 'numeric')"),
+])
+def test_no_closed_form_ends_with_what_to_pass_in_python(name, options, hint):
+    pose = numeric_model(load_robot(name)).fk([0, 0.3, 0, -1, 0, 1, 0.2])
+    with pytest.raises(symjac.errors.NoClosedFormError) as raised:
+        inverse_kinematics(name, pose, method="closed_form", **options)
+    assert str(raised.value).endswith(hint) and "--" not in str(raised.value)

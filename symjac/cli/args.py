@@ -143,6 +143,14 @@ def parse_point(text: str | None, robot: Robot) -> str | tuple[sp.Expr, ...] | N
         raise FrameError(f"--point: {error}") from None
 
 
+def _overflows(text: str) -> bool:
+    """Whether ``text`` is a number too large for a float (``1e999``): not finite, though written as a number."""
+    try:
+        return not math.isfinite(float(text))
+    except ValueError:
+        return False
+
+
 def parse_values(text: str, length: int, option: str, robot: Robot, *, parameters: bool = True,
                  units: str = "") -> list[sp.Expr]:
     """``length`` comma-separated values: numbers, ``pi`` and (with ``parameters``) the robot's parameter names.
@@ -161,7 +169,7 @@ def parse_values(text: str, length: int, option: str, robot: Robot, *, parameter
             values.append(parse_expression(part.strip(), names))
         except ExpressionError as error:
             words = set(re.findall(r"[A-Za-z_]\w*", part))
-            if not parameters and words & {"nan", "inf", "NaN", "Inf", "infinity"}:
+            if not parameters and (words & {"nan", "inf", "NaN", "Inf", "infinity"} or _overflows(part)):
                 raise ArgumentError(f"{option} takes finite numbers, got {part.strip()!r}") from None
             if not parameters and words - {"pi"}:  # say what is allowed
                 raise ArgumentError(f"{option} takes numbers and expressions with pi only"

@@ -133,7 +133,10 @@ def _common_factor(y: sp.Expr, x: sp.Expr, roots: frozenset[sp.Symbol], paramete
 
 
 def tidied(expr: sp.Expr, parameters: frozenset[sp.Symbol], roots: frozenset[sp.Symbol] = frozenset()) -> sp.Expr:
-    """Common positive numbers, named square roots and parameters (exactly) out of every atan2, ``x^2/|x|`` as |x|."""
+    """Every atan2 tidied: common positive numbers, named square roots and parameters out (exactly).
+
+    Also ``x^2/|x|`` as ``|x|``.
+    """
     expr = _even_powers_of_abs(sp.sympify(expr))
     return expr.replace(lambda e: isinstance(e, sp.atan2),
                         lambda e: _common_factor(e.args[0], e.args[1], roots, parameters))

@@ -4,7 +4,8 @@ The document reads an :class:`~symjac.solvers.inverse_kinematics.InverseKinemati
 below the solvers, so it names no solver type): ``robot``, ``pose``, ``method``, ``why``, ``family``, ``reasons``,
 ``solutions`` (each ``q``, ``branch``, ``within_limits``, ``singular``, ``position_error``, ``orientation_error``),
 ``outside_limits``, ``unreachable``, ``distance``, ``uncontrolled`` and ``controlled`` (``sets``, ``not_set``), and
-``continuum_dimension`` when it has one (the numeric solver's samples of a continuum are called samples).
+``continuum_dimension`` when it has one (the numeric solver's samples of a continuum are called samples), and
+``position_alone`` (the target was a position alone: the rotation in the pose is a stand-in).
 
 LaTeX and pretty text print the target pose :math:`T`, then the solutions as one matrix :math:`Q`, one row per
 solution and one column per joint, then a line per row (its branch, limits, singular note, and the error of its
@@ -59,6 +60,9 @@ def _notes(result: Any) -> list[str]:
     notes = [f"Why: {'; '.join(result.reasons) if result.method == 'closed_form' else result.why}."]
     if result.controlled.not_set:
         notes.append(f"The arm sets {result.controlled.sets}; it does not set {result.controlled.not_set}.")
+    if getattr(result, "position_alone", False):
+        notes.append("Only a position was given: the rotation in T is the identity, standing in for the orientation "
+                     "the arm does not set.")
     if result.uncontrolled:
         notes.append(f"Not set: {result.uncontrolled}.")
     if result.outside_limits:
@@ -110,4 +114,5 @@ def inverse_kinematics_data(result: Any) -> dict[str, Any]:
         "unreachable": result.unreachable,
         "distance": distance,
         "continuum_dimension": getattr(result, "continuum_dimension", 0),
+        "position_alone": bool(getattr(result, "position_alone", False)),
     }

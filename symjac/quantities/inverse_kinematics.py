@@ -156,16 +156,41 @@ def command(request: Request) -> Document:
     except OrientationNeededError:
         raise ArgumentError(f"--position alone is a target for an arm that sets no orientation; {robot.name} sets "
                             "its orientation too: add --rpy or --quaternion") from None
-    except NoClosedFormError as error:
-        raise NoClosedFormError(reason=f"{error}{_redundant_hint(robot, args)}") from None
+    except ArgumentError as error:  # a free value where no joint given leaves a closed form: say it in options
+        if not isinstance(error.__cause__, NoClosedFormError):
+            raise
+        given = f" with --free-joint {args.free_joint}" if args.free_joint is not None else ""
+        reason = str(error.__cause__)
+        raise ArgumentError(f"--free-value gives a redundant arm's closed form one joint's value, and {robot.name}"
+                            f"{given} has none: {reason}{_numeric_hint(reason, 'without --free-value, --method auto')}"
+                            ) from None
+    except NoClosedFormError as error:  # the analysis's reason (Python's hint names keywords), then these options
+        cause = error.__cause__ if isinstance(error.__cause__, NoClosedFormError) else error
+        raise NoClosedFormError(reason=f"{cause}{_redundant_hint(robot, args, str(cause))}") from None
     return inverse_kinematics_document(robot, result, args.digits)  # numbers always: --digits needs no --numeric
 
 
-def _redundant_hint(robot: Any, args: argparse.Namespace) -> str:
-    """For a redundant arm asked for a closed form without a joint's value: the options that give one."""
-    if robot.n_joints <= 6 or args.free_value is not None:
+def _redundant_hint(robot: Any, args: argparse.Namespace, reason: str) -> str:
+    """After the analysis's reason why there is no closed form: the options that give one, or the numeric solver."""
+    from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan
+
+    if robot.n_joints > 6 and args.free_value is None:
+        for joint in range(1, robot.n_joints + 1):
+            try:
+                closed_form_plan(robot, free_joint=joint)
+            except NoClosedFormError:
+                continue
+            return (f"; a redundant arm's closed form takes one joint's value: --free-value V (joint {joint}'s, "
+                    "or --free-joint K for joint K)")
+    if args.method != "closed_form":
         return ""
-    return "; a redundant arm's closed form takes one joint's value: --free-value V (and --free-joint K for joint K)"
+    how = f"{'without --free-value, ' if args.free_value is not None else ''}--method auto or numeric"
+    return _numeric_hint(reason, how)
+
+
+def _numeric_hint(reason: str, how: str) -> str:
+    """After why there is no closed form: how to solve numerically, ``how`` in the command line's options."""
+    return f" ({how})" if reason.endswith("use the numeric solver") else f"; the numeric solver solves it: {how}"
 
 
 def _derivation(request: Request) -> Document:

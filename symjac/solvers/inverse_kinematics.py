@@ -107,6 +107,9 @@ class InverseKinematicsResult:
         Numeric solver: the largest ``continuum_dimension`` of the solutions. When it is not 0 the solutions on a
         continuum (a redundant arm's self-motion, a singular pose's) are samples of it, as many as the starts
         happened to find, not a count of distinct solutions.
+    position_alone : bool
+        The target was a position alone (3 numbers): ``pose`` holds it with the identity rotation, a stand-in for
+        the orientation that the arm does not set and that was not given.
     """
 
     robot: str
@@ -123,6 +126,7 @@ class InverseKinematicsResult:
     uncontrolled: str = ""
     plan: Any = field(default=None, repr=False, compare=False)
     continuum_dimension: int = 0
+    position_alone: bool = False
 
     def __str__(self) -> str:
         """A short summary: how it was solved, then one line per solution (q, branch, notes)."""
@@ -132,7 +136,7 @@ class InverseKinematicsResult:
         if self.continuum_dimension:
             lines[0] += f" (samples of a {self.continuum_dimension}-dimensional set of solutions)"
         if self.outside_limits:
-            lines[0] += f"; {self.outside_limits} more outside the joint limits"
+            lines[0] += f"; {self.outside_limits} more outside the joint limits (within_limits=False keeps them)"
         for number, solution in enumerate(self.solutions, start=1):
             notes = [", ".join(solution.branch)] if solution.branch else []
             notes += [] if solution.within_limits else ["outside the joint limits"]
@@ -244,8 +248,11 @@ def inverse_kinematics(robot: Robot | str, pose: Any, *, method: Method = "auto"
     target = _target(model_robot, pose, controlled)
     result = _solve(model_robot, joints, controlled, target, method, seed=seed, rng=rng, free_value=free_value,
                     free_joint=free_joint, within_limits=within_limits, restarts=restarts, tolerance=tolerance)
-    if _position_alone(pose) and all(s.position_error < 1e-9 for s in result.solutions):
-        result = dataclasses.replace(result, uncontrolled="")  # no orientation was asked for: nothing to differ
+    if _position_alone(pose):  # no orientation was asked for: only the position can differ from the target
+        missed = max((s.position_error for s in result.solutions), default=0.0)
+        uncontrolled = "" if missed < 1e-9 else (f"the arm sets {controlled.sets} only: the target position "
+                                                 f"differs from the one it reaches by {missed:.6g}")
+        result = dataclasses.replace(result, uncontrolled=uncontrolled, position_alone=True)
     return result
 
 
@@ -263,33 +270,56 @@ def _solve(model_robot: Robot, joints: list[int], controlled: Controlled, target
     model = numeric_model(model_robot)
     plan: Any = None
     why = ""
+    none: NoClosedFormError | None = None  # why there is no closed form, the cause of a refused free_value
     if method != "numeric":
         try:
             plan, why = _closed_form(model_robot, free_joint, free_value)
         except NoClosedFormError as error:
-            if method == "closed_form":
-                raise
-            why = f"numeric, as there is no closed form: {error}"
+            if method == "closed_form":  # the analysis's reason, then what to pass in Python (the CLI its options)
+                given = free_value is None and n > 6 and _first_given_joint(model_robot)
+                how = f"{'without free_value, ' if free_value is not None else ''}method='auto' or 'numeric'"
+                hint = (f"; a redundant arm's closed form takes one joint's value: free_value=V (joint {given}'s, "
+                        "or free_joint=K for joint K)" if given else _numeric_hint(str(error), how))
+                raise NoClosedFormError(reason=f"{error}{hint}") from error
+            why, none = f"numeric, as there is no closed form: {error}", error
         if plan is not None and plan.free_joint is not None and free_value is None:
             if method == "closed_form":
                 raise ArgumentError(f"inverse_kinematics: {model_robot.name} is redundant; its closed form takes "
                                     f"joint {plan.free_joint} as given: pass free_value")
-            plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint} as given and no "
-                               "free_value was passed")
+            plan, why = None, (f"numeric: the closed form takes joint {plan.free_joint} as given and no value of "
+                               "it was given")
     if free_value is not None and (plan is None or plan.free_joint is None):
         reason = why.removeprefix("numeric, as there is no closed form: ")
         instead = ("its closed form takes no joint as given" if plan is not None
                    else "the numeric method was asked for" if method == "numeric" else f"there is none: {reason}")
         raise ArgumentError(f"inverse_kinematics: the free value (a given joint's value) applies to a redundant "
-                            f"arm's closed form only, and for {model_robot.name} {instead}")
+                            f"arm's closed form only, and for {model_robot.name} {instead}") from none
     if plan is not None:
         return _from_plan(model_robot, model, plan, target, why, controlled, free_value, within_limits, joints)
-    why = why or "numeric: asked for (method='numeric')"
+    why = why or "numeric: asked for"
     if model_robot.coupling is not None:
         raise ArgumentError(f"inverse_kinematics: {model_robot.name}'s joints are coupled and the numeric solver works "
                             f"joint by joint ({why})")
     return _numeric(model_robot, model, target, why, controlled, seed=seed, rng=rng, restarts=restarts,
                     tolerance=tolerance, within_limits=within_limits)
+
+
+def _numeric_hint(reason: str, how: str) -> str:
+    """After why there is no closed form: how to solve numerically, ``how`` in the words of the front end."""
+    return f" ({how})" if reason.endswith("use the numeric solver") else f"; the numeric solver solves it: {how}"
+
+
+def _first_given_joint(robot: Robot) -> int | None:
+    """The first joint (from 1) whose value, given, leaves a redundant arm with a closed form; None when none does."""
+    from symjac.analysis.inverse_kinematics.closed_form import closed_form_plan
+
+    for joint in range(1, robot.n_coordinates + 1):
+        try:
+            closed_form_plan(robot, free_joint=joint)
+        except NoClosedFormError:
+            continue
+        return joint
+    return None
 
 
 def _position_alone(pose: Any) -> bool:

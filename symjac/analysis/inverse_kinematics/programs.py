@@ -4,7 +4,9 @@ Each step's subproblem is solved in symbols (the ``*_symbolic`` functions of
 :mod:`~symjac.analysis.inverse_kinematics.subproblems`) on the step's arguments, which are written in the pose symbols,
 the robot's parameters, the definitions' symbols and the earlier joints' variables. Every square root's argument
 becomes an assigned symbol of its own (``Delta1``, ``Delta2``, ...), listed in the program's ``conditions``: the
-branch exists where each is ``>= 0``. Each small expression is simplified on its own, so the formulas stay readable:
+branch exists where each is ``>= 0``. A sum of squares is no condition (it is never negative), and generated code
+takes its root unclamped: the PUMA's ``Delta3 = q4_x^2 + q4_y^2`` (``sin(theta5)^2``) is accurate to rounding at
+``theta5 = 1e-8``, where clamping below rounding noise would set ``theta5 = 0``. Each small expression is simplified on its own, so the formulas stay readable:
 for the PUMA 560, ``theta1`` comes out as the textbook ``atan2(py, px) - atan2(d3, -+sqrt(Delta1))`` with
 ``Delta1 = px^2 + py^2 - d3^2``.
 """
@@ -79,6 +81,7 @@ class _SolvedStep:
     step: Step
     intermediates: tuple[tuple[sympy.Symbol, sympy.Expr], ...]
     solutions: tuple[tuple[sympy.Expr, ...], ...]
+    conditions: tuple[sympy.Symbol, ...]
 
 
 def _named_arguments(step: Step, variables: set[sympy.Symbol],
@@ -109,6 +112,12 @@ def _named_arguments(step: Step, variables: set[sympy.Symbol],
     return arguments
 
 
+def _never_negative(expr: sympy.Expr) -> bool:
+    """A sum of squares, each times a positive number."""
+    return all(all(factor.is_positive or (factor.is_Pow and factor.exp.is_even) for factor in sympy.Mul.make_args(term))
+               for term in sympy.Add.make_args(expr))
+
+
 def _rooted(expr: sympy.Expr) -> bool:
     return any(power.exp == sympy.S.Half for power in expr.atoms(sympy.Pow))
 
@@ -118,6 +127,7 @@ def _solve(step: Step, counter: itertools.count, variables: set[sympy.Symbol]) -
     intermediates: list[tuple[sympy.Symbol, sympy.Expr]] = []
     result = solve(**_named_arguments(step, variables, intermediates))
     roots: dict[sympy.Expr, sympy.Symbol] = {}
+    conditions: list[sympy.Symbol] = []
 
     def named(root: sympy.Pow) -> sympy.Expr:
         argument = _simple(root.base)
@@ -127,6 +137,8 @@ def _solve(step: Step, counter: itertools.count, variables: set[sympy.Symbol]) -
             symbol = sympy.Symbol(f"Delta{next(counter)}", real=True)
             roots[argument] = symbol
             intermediates.append((symbol, argument))
+            if not _never_negative(argument):
+                conditions.append(symbol)
         return sympy.sqrt(roots[argument])
 
     cosines: dict[sympy.Expr, sympy.Symbol] = {}
@@ -147,7 +159,7 @@ def _solve(step: Step, counter: itertools.count, variables: set[sympy.Symbol]) -
         solutions.append(tuple(
             _tidy(named_cosine(value).replace(lambda e: isinstance(e, sympy.Pow) and e.exp == sympy.S.Half, named))
             for value in solution))
-    return _SolvedStep(step, tuple(intermediates), tuple(solutions))
+    return _SolvedStep(step, tuple(intermediates), tuple(solutions), tuple(conditions))
 
 
 @functools.lru_cache(maxsize=32)
@@ -179,7 +191,7 @@ def branch_programs(plan: Plan) -> tuple[BranchProgram, ...]:
         conditions: list[sympy.Symbol] = []
         for step, index in zip(solved, choice, strict=True):
             assignments.extend(step.intermediates)
-            conditions.extend(symbol for symbol, _ in step.intermediates if symbol.name.startswith("Delta"))
+            conditions.extend(step.conditions)
             assignments.extend((variables[j], value) for j, value in zip(step.step.joints, step.solutions[index],
                                                                          strict=True))
         programs.append(BranchProgram(branch_names(plan.steps, choice), tuple(assignments), tuple(conditions)))

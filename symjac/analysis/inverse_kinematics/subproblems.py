@@ -10,8 +10,8 @@ identities keep the formulas short: ``u'.v' = u.v - (k.u)(k.v)`` and ``k.(u' x v
 - **Two rotations to a point** (subproblem 2): ``rot(k1, theta1) rot(k2, theta2) u = v`` for axes meeting at ``r``.
   The middle point ``c = rot(k2, theta2) u`` is ``alpha k1 + beta k2 + gamma (k1 x k2)`` with
   ``alpha = (k1.v - w k2.u) / (1 - w^2)``, ``beta = (k2.u - w k1.v) / (1 - w^2)``, ``w = k1.k2`` and
-  ``gamma^2 = (|u|^2 - alpha^2 - beta^2 - 2 alpha beta w) / |k1 x k2|^2``; zero, one or two solutions by the sign of
-  ``gamma^2`` (and ``|u| = |v|``), each then two rotations to a point. Parallel axes are refused.
+  ``gamma^2 = |k1 x v|^2 / |k1 x k2|^2 - beta^2`` (not ``(|u|^2 - alpha^2 - ...) / ...``: it cancels near a wrist
+  singularity); zero, one or two solutions by its sign (and ``|u| = |v|``), each then two rotations to a point.
 - **Rotation to a distance** (subproblem 3): ``|rot(k, theta) u - v| = delta``. Across the axis the distance is
   ``delta'^2 = delta^2 - (k.(u - v))^2``, and ``theta = theta0 -+ atan2(sqrt(1 - c^2), c)`` with ``theta0`` the angle
   from ``u'`` to ``v'`` and ``c = (|u'|^2 + |v'|^2 - delta'^2) / (2 |u'| |v'|)``; zero, one or two solutions.
@@ -356,7 +356,10 @@ def two_rotations_to_point_symbolic(k1: Any, k2: Any, p: Any, q: Any, intersecti
     w = k1.dot(k2)
     alpha = (k1.dot(v) - w * k2.dot(u)) / (1 - w**2)
     beta = (k2.dot(u) - w * k1.dot(v)) / (1 - w**2)
-    gamma_squared = (u.dot(u) - alpha**2 - beta**2 - 2 * alpha * beta * w) / normal.dot(normal)
+    # gamma^2 from the circle about k1 through v, |k1 x v|^2 = (beta^2 + gamma^2) |k1 x k2|^2 (about k2 through u where
+    # alpha is 0 and beta not): |u|^2 - alpha^2 - ... cancels near a wrist singularity (PUMA: 1 - q4_z^2 for theta5)
+    axis, point, side = (k2, u, alpha) if sympy.expand(alpha) == 0 != sympy.expand(beta) else (k1, v, beta)
+    gamma_squared = axis.cross(point).dot(axis.cross(point)) / normal.dot(normal) - side**2
     solutions = []
     for sign in (1, -1):
         middle = alpha * k1 + beta * k2 + sign * sympy.sqrt(gamma_squared) * normal
@@ -398,23 +401,20 @@ def rotation_to_plane_symbolic(k: Any, p: Any, h: Any, d: Any, point_on_axis: An
     a = h.dot(u) - k.dot(u) * k.dot(h)
     b = h.dot(k.cross(u))
     c = sympy.sympify(d) - h.dot(r) - k.dot(u) * k.dot(h)
-    root = sympy.sqrt(a**2 + b**2 - c**2)
-    theta0 = sympy.atan2(a, -b)
+    root, theta0 = sympy.sqrt(a**2 + b**2 - c**2), sympy.atan2(a, -b)
     return Subproblem(((theta0 - sympy.atan2(c, -root),), (theta0 - sympy.atan2(c, root),)),
                       (sympy.Ge(a**2 + b**2 - c**2, 0, evaluate=False),))
 
 
 def slide_to_point_symbolic(k: Any, p: Any, q: Any) -> Subproblem:
     """A slide to a point in symbols: ``s = k.(q - p)`` under the condition ``|q - p|^2 = (k.(q - p))^2``."""
-    k = _matrix(k, "k")
-    u = _matrix(q, "q") - _matrix(p, "p")
+    k, u = _matrix(k, "k"), _matrix(q, "q") - _matrix(p, "p")
     return Subproblem(((k.dot(u),),), (sympy.Eq(u.dot(u), k.dot(u) ** 2, evaluate=False),))
 
 
 def slide_to_distance_symbolic(k: Any, p: Any, q: Any, delta: Any) -> Subproblem:
     """A slide to a distance in symbols: ``s = -k.u -+ sqrt(delta^2 - |u'|^2)`` under ``delta^2 - |u'|^2 >= 0``."""
-    k = _matrix(k, "k")
-    u = _matrix(p, "p") - _matrix(q, "q")
+    k, u = _matrix(k, "k"), _matrix(p, "p") - _matrix(q, "q")
     discriminant = sympy.sympify(delta) ** 2 - (u.dot(u) - k.dot(u) ** 2)
     root, along = sympy.sqrt(discriminant), k.dot(u)
     return Subproblem(((-along - root,), (-along + root,)), (sympy.Ge(discriminant, 0, evaluate=False),))

@@ -6,9 +6,9 @@ the robot's parameters, the definitions' symbols and the earlier joints' variabl
 becomes an assigned symbol of its own (``Delta1``, ``Delta2``, ...), listed in the program's ``conditions``: the
 branch exists where each is ``>= 0``. A sum of squares is no condition (it is never negative), and generated code
 takes its root unclamped: the PUMA's ``Delta3 = q4_x^2 + q4_y^2`` (``sin(theta5)^2``) is accurate to rounding at
-``theta5 = 1e-8``, where clamping below rounding noise would set ``theta5 = 0``. Each small expression is simplified on its own, so the formulas stay readable:
-for the PUMA 560, ``theta1`` comes out as the textbook ``atan2(py, px) - atan2(d3, -+sqrt(Delta1))`` with
-``Delta1 = px^2 + py^2 - d3^2``.
+``theta5 = 1e-8``, where clamping below rounding noise would set ``theta5 = 0``. Each small expression is simplified
+on its own, so the formulas stay readable: for the PUMA 560, ``theta1`` comes out as the textbook
+``atan2(py, px) - atan2(d3, -+sqrt(Delta1))`` with ``Delta1 = px^2 + py^2 - d3^2``.
 """
 
 from __future__ import annotations
